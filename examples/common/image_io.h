@@ -1,0 +1,54 @@
+/* image_io.h: reading and writing image files for envlight's examples, tests and benchmarks.
+ *
+ * Not part of the library (envlight's headers never touch files). Built on Debian's stb
+ * (stb_image / stb_image_write, linked as libstb.so) and tinyexr (libtinyexr.so); PFM is ours.
+ *
+ *   el_image img;
+ *   char err[256];
+ *   if (el_image_load("city.hdr", &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); ... }
+ *   ... img.pixels[(y * img.width + x) * img.channels + c], row 0 at the top ...
+ *   el_image_free(&img);
+ *
+ * Every function returns 0 on success; on failure it returns -1 and writes a message that names the
+ * file and the problem ("city.hdr: file is truncated") into err. Rows are stored top to bottom.
+ */
+#ifndef EL_IMAGE_IO_H
+#define EL_IMAGE_IO_H
+#include <stddef.h>
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct el_image {
+  int width, height, channels; /* channels: 1..4 */
+  float *pixels;               /* row-major, top row first, width*height*channels floats */
+  int is_8bit;                 /* 1 when the file held 8-bit values (PNG/JPEG/...): pixels are the raw
+                                  code values / 255, not linearised; HDR formats give 0 (linear) */
+} el_image;
+
+/* .hdr (Radiance RGBE), .exr (tinyexr), .pfm, and 8-bit formats stb_image reads (.png .jpg .tga .bmp).
+ * HDR formats give 3 channels (EXR gives RGB when the file has RGB; alpha is dropped), 8-bit formats
+ * give their own channel count. */
+int el_image_load(const char *path, el_image *img, char *err, size_t errlen);
+void el_image_free(el_image *img);
+
+/* Writers. The format follows the extension: .png takes 8-bit data (el_image_write_png), the others
+ * take linear floats with 1, 3 or 4 channels. el_image_write_float dispatches on .exr .hdr .pfm. */
+int el_image_write_png(const char *path, const unsigned char *rgb8, int width, int height, int channels,
+                       char *err, size_t errlen);
+int el_image_write_float(const char *path, const float *pixels, int width, int height, int channels,
+                         char *err, size_t errlen);
+int el_image_write_exr(const char *path, const float *pixels, int width, int height, int channels,
+                       char *err, size_t errlen);
+int el_image_write_hdr(const char *path, const float *pixels, int width, int height, int channels,
+                       char *err, size_t errlen);
+int el_image_write_pfm(const char *path, const float *pixels, int width, int height, int channels,
+                       char *err, size_t errlen);
+
+/* The lower-case extension of path without the dot ("" when there is none), in a static buffer. */
+const char *el_image_extension(const char *path);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
