@@ -1,0 +1,591 @@
+#!/usr/bin/env python3
+"""mitsuba_compare.py: our renderer against Mitsuba 3 on the same environment-lit scene.
+
+What it measures
+  Accuracy against time for direct lighting of a diffuse sphere on a plane under the city map
+  (data/envmaps/city.hdr: a 3e4 sun, so nearly all the light comes from a few texels), 320x240:
+  - Mitsuba 3 (variant llvm_ad_rgb: a vectorised LLVM JIT renderer), integrator 'direct' (one
+    emitter sample + one BSDF sample per camera sample, combined by MIS, like pbrt-v3's
+    EstimateDirect), sampler 'stratified', box pixel filter, 2 threads, at several spp;
+  - when build/bin/render exists, our renderer on the same scene file at the same spp
+    (`render SCENE --spp N --nthreads 2 --quiet --outfile x.exr`).
+  Each renderer is compared with a high-spp reference of its OWN (so the table measures noise, not
+  the small differences between the two renderers), and the two references are then compared with
+  each other to show that they render the same scene (see "Cross-check" below).
+
+  Relative MSE (the error measure of the tables):
+      relMSE(x, ref) = mean over pixels p and channels c of (x_pc - ref_pc)^2 / (ref_pc^2 + 1e-2)
+  The 1e-2 keeps black pixels from dominating.
+
+  Times are wall-clock seconds on 2 threads. Mitsuba: mi.render() plus reading the image back into
+  numpy (which forces the lazy JIT evaluation), after one warm-up render per spp so that kernel
+  compilation (cached by Dr.Jit) is not counted; the median of 3 runs with different seeds. Ours: the
+  whole `render` process (parsing, loading the 1024x512 map, building the sampling distribution,
+  rendering, writing the EXR), the median of 3 runs: this counts more than Mitsuba's number does.
+  "relMSE x time" is the efficiency (lower is better; for an unbiased renderer relMSE ~ 1/time, so this
+  product is roughly constant across spp); "at equal time" compares renderers by it.
+
+The scene
+  Both renderers read ONE scene description: scenes/bench_city.pbrt when it exists (else the copy in
+  FALLBACK_SCENE below). This script parses the small pbrt-v3 subset that the scene uses (LookAt,
+  Translate/Rotate/Scale/Transform/ConcatTransform, AttributeBegin/End, Camera "perspective" fov,
+  Film "image" x/yresolution, PixelFilter "box", LightSource "infinite" mapname/L/scale, Material
+  "matte" Kd, Shape "sphere" radius and "trianglemesh" indices/P) and builds the same scene in Mitsuba.
+  Anything else makes it stop with a message rather than compare different scenes.
+
+  pbrt-v3 -> Mitsuba 3 conventions (verified by check_background(), which renders the environment
+  alone and compares it with a direct numpy evaluation of pbrt-v3's camera and light mapping):
+  - Camera. pbrt's camera space has +x to the image's right (left-handed); Mitsuba's has +x to the
+    image's LEFT. So Mitsuba's sensor to_world = (pbrt camera-to-world) * Scale(-1, 1, 1). pbrt's fov is
+    on the shorter image axis: Mitsuba's fov_axis = "smaller".
+  - Environment map. pbrt-v3's InfiniteAreaLight looks up (u, v) = (phi / 2pi, theta / pi) of the
+    direction d = WorldToLight(w), with theta = acos(d.z), phi = atan2(d.y, d.x) in [0, 2pi): +z is the
+    top row. Mitsuba's envmap uses (u, v) = (atan2(m.x, -m.z) / 2pi, acos(m.y) / pi) of its local
+    direction m: +y is the top row. With m = (d.y, d.z, -d.x) the two agree, so
+        Mitsuba envmap to_world = (pbrt LightToWorld) * M,   M = [[0,0,-1],[1,0,0],[0,1,0]]
+    (M maps m back to d: M m = (-m.z, m.x, m.y) = (d.x, d.y, d.z)).
+    Remaining difference: Mitsuba places texel centres at u = i/w (it appends a wrapped column) and
+    v = j/(h-1), pbrt at (i+0.5)/w and (j+0.5)/h, a sub-texel shift that the cross-check sees as a
+    small difference in means.
+  - Materials. pbrt's matte (sigma 0) is Lambertian and two-sided; Mitsuba's 'diffuse' is one-sided,
+    so it is wrapped in 'twosided'.
+
+Cross-check of the two references: the per-channel mean of each reference, the relative difference of
+the means, and the mean absolute pixel difference divided by the mean pixel value.
+
+Setup (this script installs nothing):
+    pip install mitsuba numpy           # Mitsuba 3 (tested with 3.x, Dr.Jit 1.x)
+    apt-get install libllvm19           # Debian: the LLVM that the llvm_* variants load at run time
+Run (from the repository root, after `cmake --build build` for our side):
+    python3 bench/mitsuba_compare.py [--spp 4,16,64,256] [--ref-spp 8192] [--render build/bin/render]
+                                     [--scene scenes/bench_city.pbrt] [--threads 2] [--outdir out/mitsuba]
+References are cached in --outdir (keyed by scene text and reference spp); delete them to recompute.
+"""
+import argparse
+import hashlib
+import math
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# Used only when scenes/bench_city.pbrt does not exist; same scene family (z is up, map unrotated).
+FALLBACK_SCENE = """
+LookAt 0 -6 2.5   0 0 0.8   0 0 1
+Camera "perspective" "float fov" [ 35 ]
+Film "image" "integer xresolution" [ 320 ] "integer yresolution" [ 240 ]
+PixelFilter "box"
+Sampler "stratified" "integer xsamples" [ 8 ] "integer ysamples" [ 8 ]
+Integrator "directlighting"
+WorldBegin
+LightSource "infinite" "string mapname" [ "../data/envmaps/city.hdr" ]
+AttributeBegin
+  Material "matte" "rgb Kd" [ 0.7 0.7 0.7 ]
+  Translate 0 0 1
+  Shape "sphere" "float radius" [ 1 ]
+AttributeEnd
+AttributeBegin
+  Material "matte" "rgb Kd" [ 0.5 0.5 0.5 ]
+  Shape "trianglemesh" "integer indices" [ 0 1 2 0 2 3 ]
+        "point P" [ -20 -20 0  20 -20 0  20 20 0  -20 20 0 ]
+AttributeEnd
+WorldEnd
+"""
+
+
+def die(msg):
+    sys.stderr.write("mitsuba_compare: " + msg + "\n")
+    sys.exit(1)
+
+
+# --------------------------------------------------------------------------------------------------
+# A tiny pbrt-v3 parser for the subset above (4x4 matrices as nested lists, row-major, column vectors)
+# --------------------------------------------------------------------------------------------------
+def mat_mul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+
+
+def mat_identity():
+    return [[1.0 if i == j else 0.0 for j in range(4)] for i in range(4)]
+
+
+def mat_inverse(m):
+    import numpy as np
+    return np.linalg.inv(np.array(m, dtype=float)).tolist()
+
+
+def mat_translate(x, y, z):
+    m = mat_identity()
+    m[0][3], m[1][3], m[2][3] = x, y, z
+    return m
+
+
+def mat_scale(x, y, z):
+    m = mat_identity()
+    m[0][0], m[1][1], m[2][2] = x, y, z
+    return m
+
+
+def mat_rotate(deg, x, y, z):
+    # pbrt-v3 Rotate(theta, axis): Rodrigues' rotation about the normalised axis.
+    n = math.sqrt(x * x + y * y + z * z)
+    a = [x / n, y / n, z / n]
+    s, c = math.sin(math.radians(deg)), math.cos(math.radians(deg))
+    m = mat_identity()
+    m[0][0] = a[0] * a[0] + (1 - a[0] * a[0]) * c
+    m[0][1] = a[0] * a[1] * (1 - c) - a[2] * s
+    m[0][2] = a[0] * a[2] * (1 - c) + a[1] * s
+    m[1][0] = a[0] * a[1] * (1 - c) + a[2] * s
+    m[1][1] = a[1] * a[1] + (1 - a[1] * a[1]) * c
+    m[1][2] = a[1] * a[2] * (1 - c) - a[0] * s
+    m[2][0] = a[0] * a[2] * (1 - c) - a[1] * s
+    m[2][1] = a[1] * a[2] * (1 - c) + a[0] * s
+    m[2][2] = a[2] * a[2] + (1 - a[2] * a[2]) * c
+    return m
+
+
+def mat_lookat(ex, ey, ez, lx, ly, lz, ux, uy, uz):
+    # pbrt-v3 LookAt: builds camera-to-world (right = cross(up, dir), newUp = cross(dir, right)) and
+    # returns its inverse, world-to-camera, which is multiplied into the CTM.
+    def norm(v):
+        n = math.sqrt(sum(t * t for t in v))
+        return [t / n for t in v]
+
+    def cross(a, b):
+        return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+    d = norm([lx - ex, ly - ey, lz - ez])
+    right = norm(cross(norm([ux, uy, uz]), d))
+    up = cross(d, right)
+    c2w = [[right[0], up[0], d[0], ex], [right[1], up[1], d[1], ey],
+           [right[2], up[2], d[2], ez], [0, 0, 0, 1]]
+    return mat_inverse(c2w)
+
+
+def tokenize(text):
+    toks = []
+    for m in re.finditer(r'"[^"]*"|\[|\]|[^\s\[\]"#]+|#[^\n]*', text):
+        t = m.group(0)
+        if t.startswith("#"):
+            continue
+        toks.append(t)
+    return toks
+
+
+def parse_params(toks, i):
+    """Reads '"type name" value-or-[values]' pairs; returns (dict name -> (type, [values]), i)."""
+    params = {}
+    while i < len(toks) and toks[i].startswith('"') and len(toks[i][1:-1].split()) == 2:
+        typ, name = toks[i][1:-1].split()
+        i += 1
+        vals = []
+        if toks[i] == "[":
+            i += 1
+            while toks[i] != "]":
+                vals.append(toks[i])
+                i += 1
+            i += 1
+        else:
+            vals.append(toks[i])
+            i += 1
+        if typ in ("float", "integer", "point", "point3", "normal", "rgb", "color", "vector"):
+            vals = [float(v) for v in vals]
+        else:
+            vals = [v.strip('"') for v in vals]
+        params[name] = (typ, vals)
+    return params, i
+
+
+def parse_pbrt(path, text):
+    base = os.path.dirname(os.path.abspath(path))
+    toks = tokenize(text)
+    ctm, stack = mat_identity(), []
+    material = {"Kd": [0.5, 0.5, 0.5]}  # pbrt-v3's default material: matte, Kd 0.5
+    scene = {"camera_to_world": None, "fov": 90.0, "xres": 1280, "yres": 720, "lights": [],
+             "shapes": [], "filter": "box"}
+    i = 0
+
+    def nums(n):
+        nonlocal i
+        v = [float(t) for t in toks[i:i + n]]
+        i += n
+        return v
+
+    while i < len(toks):
+        d = toks[i]
+        i += 1
+        if d == "LookAt":
+            ctm = mat_mul(ctm, mat_lookat(*nums(9)))
+        elif d == "Translate":
+            ctm = mat_mul(ctm, mat_translate(*nums(3)))
+        elif d == "Scale":
+            ctm = mat_mul(ctm, mat_scale(*nums(3)))
+        elif d == "Rotate":
+            ctm = mat_mul(ctm, mat_rotate(*nums(4)))
+        elif d in ("Transform", "ConcatTransform"):
+            assert toks[i] == "["
+            i += 1
+            v = nums(16)
+            i += 1
+            m = [[v[c * 4 + r] for c in range(4)] for r in range(4)]  # pbrt lists column-major
+            ctm = m if d == "Transform" else mat_mul(ctm, m)
+        elif d == "Identity":
+            ctm = mat_identity()
+        elif d in ("AttributeBegin", "TransformBegin"):
+            stack.append((ctm, dict(material)))
+        elif d in ("AttributeEnd", "TransformEnd"):
+            ctm, mat = stack.pop()
+            if d == "AttributeEnd":
+                material = mat
+        elif d == "WorldBegin":
+            ctm = mat_identity()
+        elif d == "WorldEnd":
+            pass
+        else:
+            kind = toks[i].strip('"')
+            i += 1
+            p, i = parse_params(toks, i)
+            if d == "Camera":
+                if kind != "perspective":
+                    die("%s: Camera %s not supported here" % (path, kind))
+                scene["camera_to_world"] = mat_inverse(ctm)
+                scene["fov"] = p.get("fov", ("float", [90.0]))[1][0]
+            elif d == "Film":
+                scene["xres"] = int(p.get("xresolution", ("", [1280]))[1][0])
+                scene["yres"] = int(p.get("yresolution", ("", [720]))[1][0])
+            elif d == "PixelFilter":
+                scene["filter"] = kind
+            elif d in ("Sampler", "Integrator"):
+                scene[d.lower()] = kind
+            elif d == "LightSource":
+                if kind != "infinite":
+                    die("%s: LightSource %s not supported here" % (path, kind))
+                mapname = p.get("mapname", ("", [""]))[1][0]
+                if mapname and not os.path.isabs(mapname):
+                    mapname = os.path.join(base, mapname)
+                scale = p.get("scale", ("", [1, 1, 1]))[1]
+                L = p.get("L", ("", [1, 1, 1]))[1]
+                if len(scale) == 1:
+                    scale = scale * 3
+                scene["lights"].append({"to_world": ctm, "mapname": mapname,
+                                        "scale": [scale[k] * L[k] for k in range(3)]})
+            elif d == "Material":
+                if kind != "matte" or ("Kd" in p and p["Kd"][0] not in ("rgb", "color")):
+                    die("%s: only Material \"matte\" with an rgb Kd is supported here" % path)
+                material = {"Kd": p.get("Kd", ("", [0.5, 0.5, 0.5]))[1]}
+            elif d == "Shape":
+                if kind == "sphere":
+                    r = p.get("radius", ("", [1.0]))[1][0]
+                    scene["shapes"].append({"type": "sphere", "to_world": ctm, "radius": r,
+                                            "Kd": material["Kd"]})
+                elif kind == "trianglemesh":
+                    scene["shapes"].append({"type": "trianglemesh", "to_world": ctm,
+                                            "indices": [int(v) for v in p["indices"][1]],
+                                            "P": p["P"][1], "Kd": material["Kd"]})
+                else:
+                    die("%s: Shape %s not supported here" % (path, kind))
+            else:
+                die("%s: directive %s not supported here" % (path, d))
+    if scene["camera_to_world"] is None:
+        die("%s: no Camera" % path)
+    return scene
+
+
+# --------------------------------------------------------------------------------------------------
+# Mitsuba side
+# --------------------------------------------------------------------------------------------------
+M_PBRT_TO_MITSUBA_ENV = [[0, 0, -1, 0], [1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]]
+
+
+def mitsuba_scene_dict(mi, sc, spp, workdir, with_shapes=True):
+    T = mi.ScalarTransform4f
+    d = {"type": "scene",
+         "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 1},
+         "sensor": {"type": "perspective", "fov": sc["fov"], "fov_axis": "smaller",
+                    # pbrt camera space (+x right) -> Mitsuba camera space (+x left)
+                    "to_world": T(mat_mul(sc["camera_to_world"], mat_scale(-1, 1, 1))),
+                    "film": {"type": "hdrfilm", "width": sc["xres"], "height": sc["yres"],
+                             "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+                    "sampler": {"type": "stratified", "sample_count": spp}}}
+    if sc["filter"] != "box":
+        die("PixelFilter %s: only box is compared here" % sc["filter"])
+    for k, light in enumerate(sc["lights"]):
+        e = {"type": "envmap", "to_world": T(mat_mul(light["to_world"], M_PBRT_TO_MITSUBA_ENV))}
+        s = light["scale"]
+        if light["mapname"]:
+            e["filename"] = light["mapname"]
+            if not (s[0] == s[1] == s[2]):
+                die("a coloured scale on an image map is not compared here")
+            e["scale"] = s[0]
+        else:
+            e = {"type": "constant", "radiance": {"type": "rgb", "value": s}}
+        d["light%d" % k] = e
+    if not with_shapes:
+        return d
+    for k, shp in enumerate(sc["shapes"]):
+        bsdf = {"type": "twosided", "bsdf": {"type": "diffuse",
+                                             "reflectance": {"type": "rgb", "value": shp["Kd"]}}}
+        if shp["type"] == "sphere":
+            d["shape%d" % k] = {"type": "sphere", "bsdf": bsdf,
+                                "to_world": T(mat_mul(shp["to_world"],
+                                                      mat_scale(shp["radius"], shp["radius"],
+                                                                shp["radius"])))}
+        else:
+            P, idx = shp["P"], shp["indices"]
+            ply = os.path.join(workdir, "mesh%d.ply" % k)
+            with open(ply, "w") as f:
+                f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\n"
+                        "property float y\nproperty float z\nelement face %d\n"
+                        "property list uchar int vertex_indices\nend_header\n"
+                        % (len(P) // 3, len(idx) // 3))
+                for v in range(len(P) // 3):
+                    f.write("%.9g %.9g %.9g\n" % tuple(P[3 * v:3 * v + 3]))
+                for t in range(len(idx) // 3):
+                    f.write("3 %d %d %d\n" % tuple(idx[3 * t:3 * t + 3]))
+            d["shape%d" % k] = {"type": "ply", "filename": ply, "bsdf": bsdf,
+                                "face_normals": True, "to_world": T(shp["to_world"])}
+    return d
+
+
+def relmse(x, ref):
+    import numpy as np
+    return float(np.mean((x - ref) ** 2 / (ref * ref + 1e-2)))
+
+
+class MitsubaRunner:
+    def __init__(self, sc, threads, workdir):
+        import drjit as dr
+        import mitsuba as mi
+        mi.set_variant("llvm_ad_rgb")
+        dr.set_thread_count(threads)
+        self.mi, self.dr, self.sc, self.workdir = mi, dr, sc, workdir
+        self.scenes = {}
+
+    def scene(self, spp, with_shapes=True):
+        key = (spp, with_shapes)
+        if key not in self.scenes:
+            self.scenes[key] = self.mi.load_dict(
+                mitsuba_scene_dict(self.mi, self.sc, spp, self.workdir, with_shapes))
+        return self.scenes[key]
+
+    def render(self, spp, seed, with_shapes=True):
+        import numpy as np
+        scene = self.scene(spp, with_shapes)
+        t0 = time.perf_counter()
+        img = self.mi.render(scene, spp=spp, seed=seed)
+        arr = np.array(img, dtype=np.float64)  # forces evaluation of the JIT kernels
+        return arr, time.perf_counter() - t0
+
+
+def read_image(path):
+    import numpy as np
+    import mitsuba as mi
+    return np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
+
+
+def pbrt_background(sc, envpath):
+    """pbrt-v3's camera and InfiniteAreaLight mapping evaluated in numpy at pixel centres
+    (nearest texel), for the orientation check."""
+    import numpy as np
+    w, h = sc["xres"], sc["yres"]
+    env = read_image(envpath)
+    aspect = w / h
+    sw = (aspect, 1.0) if aspect > 1 else (1.0, 1.0 / aspect)
+    t = math.tan(math.radians(sc["fov"]) / 2)
+    px, py = np.meshgrid(np.arange(w) + 0.5, np.arange(h) + 0.5)
+    sx = -sw[0] + 2 * sw[0] * px / w           # raster x -> screen x (left to right)
+    sy = sw[1] - 2 * sw[1] * py / h            # raster y (down) -> screen y (up)
+    dc = np.stack([sx * t, sy * t, np.ones_like(sx)], axis=-1)
+    c2w = np.array(sc["camera_to_world"])[:3, :3]
+    dw = dc @ c2w.T
+    light = sc["lights"][0]
+    w2l = np.linalg.inv(np.array(light["to_world"])[:3, :3])
+    dl = dw @ w2l.T
+    dl /= np.linalg.norm(dl, axis=-1, keepdims=True)
+    theta = np.arccos(np.clip(dl[..., 2], -1, 1))
+    phi = np.arctan2(dl[..., 1], dl[..., 0])
+    phi = np.where(phi < 0, phi + 2 * math.pi, phi)
+    H, W = env.shape[:2]
+    i = np.clip((phi / (2 * math.pi) * W).astype(int), 0, W - 1)
+    j = np.clip((theta / math.pi * H).astype(int), 0, H - 1)
+    return env[j, i] * np.array(light["scale"])
+
+
+def write_background_scene(text, scene_dir, path):
+    """The scene file with its shapes removed (for our renderer's background image), its map path
+    made absolute so that the copy can live elsewhere."""
+    def absolute(m):
+        name = m.group(2)
+        return m.group(1) + (name if os.path.isabs(name) else os.path.join(scene_dir, name)) + '"'
+    text = re.sub(r'("string mapname"\s*\[?\s*")([^"]*)"', absolute, text)
+    out, skip = [], False
+    for line in text.splitlines():
+        s = line.strip()
+        if s.startswith("Shape"):
+            skip = True
+            continue
+        if skip and (s.startswith('"') or s.startswith("[") or (s and s[0] in "-0123456789]")):
+            continue
+        skip = False
+        out.append(line)
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
+def fmt_table(rows, header):
+    widths = [max(len(str(r[k])) for r in rows + [header]) for k in range(len(header))]
+    lines = ["  ".join(str(h).rjust(widths[k]) for k, h in enumerate(header))]
+    for r in rows:
+        lines.append("  ".join(str(v).rjust(widths[k]) for k, v in enumerate(r)))
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--scene", default=os.path.join(ROOT, "scenes", "bench_city.pbrt"))
+    ap.add_argument("--spp", default="4,16,64,256")
+    ap.add_argument("--ref-spp", type=int, default=8192)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--render", default=os.path.join(ROOT, "build", "bin", "render"))
+    ap.add_argument("--outdir", default=os.path.join(ROOT, "out", "mitsuba"))
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    try:
+        import numpy as np
+        import mitsuba  # noqa: F401
+    except ImportError as e:
+        die("%s\n  install: pip install mitsuba numpy; apt-get install libllvm19" % e)
+
+    spps = [int(s) for s in args.spp.split(",")]
+    os.makedirs(args.outdir, exist_ok=True)
+    if os.path.exists(args.scene):
+        scene_path = args.scene
+        with open(scene_path) as f:
+            text = f.read()
+    else:
+        scene_path = os.path.join(args.outdir, "bench_city_fallback.pbrt")
+        text = FALLBACK_SCENE.replace("../data/envmaps/city.hdr",
+                                      os.path.join(ROOT, "data", "envmaps", "city.hdr"))
+        with open(scene_path, "w") as f:
+            f.write(text)
+        print("note: %s does not exist; using the fallback scene %s" % (args.scene, scene_path))
+    sc = parse_pbrt(scene_path, text)
+    tag = hashlib.sha1((text + str(args.ref_spp)).encode()).hexdigest()[:10]
+    workdir = tempfile.mkdtemp(prefix="el_mitsuba_")
+    print("scene %s: %dx%d, fov %g, %d shape(s), %d light(s); %d threads"
+          % (os.path.relpath(scene_path, ROOT), sc["xres"], sc["yres"], sc["fov"],
+             len(sc["shapes"]), len(sc["lights"]), args.threads))
+
+    mr = MitsubaRunner(sc, args.threads, workdir)
+
+    # ---- orientation check: the environment alone, Mitsuba against pbrt-v3's mapping in numpy ----
+    bg, _ = mr.render(16, 0, with_shapes=False)
+    if sc["lights"] and sc["lights"][0]["mapname"]:
+        ref_bg = pbrt_background(sc, sc["lights"][0]["mapname"])
+        mi_flip = bg[:, ::-1]
+        print("background check (environment only, 16 spp box-filtered vs pbrt-v3 mapping at pixel "
+              "centres): relMSE %.3g; mirrored %.3g; upside down %.3g"
+              % (relmse(bg, ref_bg), relmse(mi_flip, ref_bg), relmse(bg[::-1], ref_bg)))
+        import mitsuba as mi
+        mi.Bitmap(bg.astype(np.float32)).write(os.path.join(args.outdir, "mitsuba_background.exr"))
+        mi.Bitmap(ref_bg.astype(np.float32)).write(os.path.join(args.outdir, "pbrt_model_background.exr"))
+
+    # ---- Mitsuba reference (cached) ----
+    ref_path = os.path.join(args.outdir, "mitsuba_ref_%s.npy" % tag)
+    if os.path.exists(ref_path):
+        mref = np.load(ref_path)
+    else:
+        chunk = min(1024, args.ref_spp)
+        n = max(1, args.ref_spp // chunk)
+        t0 = time.perf_counter()
+        acc = None
+        for k in range(n):
+            img, _ = mr.render(chunk, 1000 + k)
+            acc = img if acc is None else acc + img
+        mref = acc / n
+        np.save(ref_path, mref)
+        print("Mitsuba reference: %d spp in %.1f s" % (n * chunk, time.perf_counter() - t0))
+    import mitsuba as mi
+    mi.Bitmap(mref.astype(np.float32)).write(os.path.join(args.outdir, "mitsuba_ref.exr"))
+
+    # ---- Mitsuba at each spp ----
+    rows, mit = [], {}
+    for spp in spps:
+        t0 = time.perf_counter()
+        mr.render(spp, 7)  # warm-up: JIT compilation
+        tcompile = time.perf_counter() - t0
+        times, errs = [], []
+        for r in range(args.runs):
+            img, t = mr.render(spp, r + 1)
+            times.append(t)
+            errs.append(relmse(img, mref))
+        t, e = statistics.median(times), statistics.mean(errs)
+        mit[spp] = (t, e)
+        rows.append([spp, "%.3f" % t, "%.3f" % tcompile, "%.3g" % e, "%.3g" % (e * t)])
+    print("\nMitsuba 3 %s (llvm_ad_rgb, integrator direct, sampler stratified, box filter)"
+          % mi.__version__)
+    print(fmt_table(rows, ["spp", "time s", "1st run s", "relMSE", "relMSE x time"]))
+
+    # ---- ours ----
+    if not os.path.exists(args.render):
+        print("\nour renderer: %s not found (build it first); Mitsuba side only" % args.render)
+        return
+    def run_ours(scene_file, spp, out, seed=0):
+        cmd = [args.render, scene_file, "--spp", str(spp), "--nthreads", str(args.threads),
+               "--quiet", "--seed", str(seed), "--outfile", out]
+        t0 = time.perf_counter()
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        t = time.perf_counter() - t0
+        if p.returncode != 0:
+            die("%s failed (%d): %s" % (" ".join(cmd), p.returncode, p.stderr.strip()))
+        return read_image(out), t
+
+    oref_path = os.path.join(args.outdir, "ours_ref_%s.exr" % tag)
+    if not os.path.exists(oref_path):
+        t0 = time.perf_counter()
+        run_ours(scene_path, args.ref_spp, oref_path, seed=12345)
+        print("our reference: %d spp in %.1f s" % (args.ref_spp, time.perf_counter() - t0))
+    oref = read_image(oref_path)
+    rows = []
+    for spp in spps:
+        times, errs = [], []
+        for r in range(args.runs):
+            img, t = run_ours(scene_path, spp, os.path.join(workdir, "ours_%d.exr" % spp), seed=r + 1)
+            times.append(t)
+            errs.append(relmse(img, oref))
+        t, e = statistics.median(times), statistics.mean(errs)
+        mt, me = mit[spp]
+        rows.append([spp, "%.3f" % t, "%.3g" % e, "%.3g" % (e * t), "%.3g" % (me * mt),
+                     "%.2f" % ((e * t) / (me * mt))])
+    print("\nours (build/bin/render, whole process, sampler and integrator as in the scene file)")
+    print(fmt_table(rows, ["spp", "time s", "relMSE", "relMSE x time", "Mitsuba rMxt",
+                           "ours/Mitsuba at equal time"]))
+    print("(target from issue 5: ours/Mitsuba at equal time <= 0.5)")
+
+    # ---- cross-check: the two references render the same scene ----
+    mm, om = mref.mean(axis=(0, 1)), oref.mean(axis=(0, 1))
+    print("\ncross-check of the references (same scene file):")
+    print("  mean RGB  Mitsuba %s   ours %s   relative difference %s"
+          % (np.array2string(mm, precision=4), np.array2string(om, precision=4),
+             np.array2string((om - mm) / mm, precision=4)))
+    print("  mean |ours - Mitsuba| / mean(Mitsuba) = %.4f;  relMSE(ours ref, Mitsuba ref) = %.3g"
+          % (np.mean(np.abs(oref - mref)) / np.mean(mref), relmse(oref, mref)))
+    bgscene = os.path.join(workdir, "background.pbrt")
+    write_background_scene(text, os.path.dirname(os.path.abspath(scene_path)), bgscene)
+    try:
+        obg, _ = run_ours(bgscene, 16, os.path.join(args.outdir, "ours_background.exr"))
+        print("  background only (16 spp): relMSE(ours, Mitsuba) %.3g, relMSE(ours, pbrt-v3 mapping) %.3g"
+              % (relmse(obg, bg), relmse(obg, pbrt_background(sc, sc["lights"][0]["mapname"]))))
+    except SystemExit:
+        print("  (our renderer could not render the background-only scene)")
+    shutil.rmtree(workdir, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
