@@ -211,6 +211,11 @@ int el_image_write_exr(const char *path, const float *pixels, int width, int hei
   const char *msg = NULL;
   if (el_io__check_args(path, pixels, width, height, channels, err, errlen)) return -1;
   if (channels == 2) return el_io__fail(err, errlen, path, "EXR writer takes 1, 3 or 4 channels, not 2");
+  { /* open the file first: tinyexr's SaveEXR leaks its header arrays when it cannot create the file */
+    FILE *probe = fopen(path, "wb");
+    if (!probe) return el_io__fail(err, errlen, path, "cannot write EXR (cannot open for writing: %s)", strerror(errno));
+    fclose(probe);
+  }
   if (SaveEXR(pixels, width, height, channels, 0 /* float32 */, path, &msg) != TINYEXR_SUCCESS) {
     el_io__fail(err, errlen, path, "cannot write EXR (%s)", msg ? msg : strerror(errno));
     if (msg) FreeEXRErrorMessage(msg);
