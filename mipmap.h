@@ -1,0 +1,1056 @@
+/* mipmap.h - image pyramid with pbrt-v3's MIPMap lookups (point, bilinear, trilinear, EWA)
+ * v0.1.0 - MIT or public domain - part of envlight
+ *
+ * Do this in exactly one C or C++ file before including it:
+ *     #define EL_MIPMAP_IMPLEMENTATION   (or EL_IMPLEMENTATION for every envlight header)
+ *     #include "mipmap.h"
+ * mipmap.h includes blockedarray.h for its declarations only; EL_MIPMAP_IMPLEMENTATION does not
+ * implement blockedarray.h (EL_IMPLEMENTATION implements both).
+ *
+ * Options honoured (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none),
+ * EL_ASSERT, EL_STATIC, EL_DEF; EL_MIPMAP_YIELD() (what a thread waiting for another thread's lazy
+ * build of the upper levels does between polls; default: a CPU pause hint on x86, nothing elsewhere;
+ * define it as sched_yield() on POSIX if you like); EL_MIPMAP_NO_ATOMICS (no lazy building: see
+ * "Threads" below).
+ *
+ * Usage:
+ *     el_mipmap m;
+ *     el_mipmap_options opt;                         // all-zero = pbrt-v3's defaults:
+ *     memset(&opt, 0, sizeof opt);                   //   Repeat, EWA, max anisotropy 8, power of two
+ *     opt.wrap_v = EL_WRAP_CLAMP;                    // e.g. an environment map: Repeat u, Clamp v
+ *     if (el_mipmap_init(&m, rgb, 400, 235, 3, &opt) != EL_SUCCESS) ...;
+ *     float c[3];
+ *     el_mipmap_lookup(&m, 0.3f, 0.7f, 0.15f, c);   // trilinear, filter width 0.15 (in [0,1] units)
+ *     el_mipmap_lookup_differentials(&m, s, t, dsdx, dtdx, dsdy, dtdy, c);  // EWA
+ *     el_mipmap_free(&m);
+ *
+ * What it ports: pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): power-of-two
+ * resampling with 4-tap Lanczos weights (resampleWeights, tau 2, negative ringing clamped to 0), box
+ * filtered levels down to 1x1, Texel() with wrap modes, triangle() (bilinear), Lookup(st, width)
+ * (trilinear, with the level convention of pbrt-v3 after its trilinear fix, PR #275:
+ * level = nLevels - 1 + log2(max(width, 1e-8)), so width 1 means "the whole texture", the 1x1
+ * level), and Lookup(st, dst0, dst1) (EWA with pbrt's 128-entry Gaussian table, alpha 2, anisotropy
+ * clamp, default 8). From pbrt-v4 it takes per-axis wrap modes and point / bilinear filters.
+ * For power-of-two images levels and lookups equal pbrt-v3's to float precision (the same float
+ * operations in the same order; measured against a literal port in bench/bench_mipmap.c).
+ *
+ * Where it departs from pbrt, and why:
+ *  - Levels are built lazily: init builds level 0 only; levels 1.. are allocated and built on the
+ *    first lookup that needs them (or by el_mipmap_build_levels). An environment light that only
+ *    reads level 0 pays for nothing else.
+ *  - Box filtering never reads outside the level: pbrt-v3 reads texel 2s+1 through the wrap mode, so
+ *    with Black wrap a level whose width (or height) reached 1 loses half its energy per level. Here a
+ *    1-wide axis reuses its texel (what Repeat and Clamp give in pbrt), so every level has the mean of
+ *    level 0 under every wrap mode.
+ *  - keep_resolution = 1 keeps a non-power-of-two image as level 0 texel for texel (no resampling;
+ *    envlight uses this so that radiance lookups reproduce the map exactly). Its upper levels are
+ *    exact area averages: level sizes go n -> max(1, floor(n/2)) and an odd n is reduced with 3-tap
+ *    weights (1 - i/n', 1, (i+1)/n') / (2 + 1/n'), which preserves the mean exactly.
+ *  - Every input gives a defined, finite result (for finite texels): NaN coordinates count as 0;
+ *    infinite or huge coordinates are reduced (Repeat) or pinned outside the image (Clamp, Black)
+ *    without integer overflow; NaN or negative widths count as 0 (bilinear at level 0), infinite ones
+ *    give the 1x1 level; NaN differentials count as 0, huge ones are limited to 1e8; zero or parallel
+ *    differentials are fine (pbrt's "+1" keeps the EWA ellipse at least one texel wide). The EWA
+ *    ellipse's determinant uses pbrt's expression when it is accurate and the cancellation-free one,
+ *    F = 1 + |dst0|^2 + |dst1|^2 + (dst0 x dst1)^2, when pbrt's loses more than 0.1% (very
+ *    anisotropic footprints, where pbrt's can go negative and produce NaN).
+ *  - Input texels must be finite (EL_ERROR_NAN / EL_ERROR_INFINITE otherwise); negative values are
+ *    allowed and kept (pbrt only clamps after resampling, as here).
+ *  - Sizes: each side at most 2^24 texels (EL_ERROR_SIZE_OVERFLOW beyond), max_anisotropy at most 1024.
+ *
+ * Threads: every lookup is safe to call concurrently with other lookups on the same map. The lazy
+ * build is guarded by a once-flag (GCC/Clang __atomic builtins, MSVC Interlocked functions): the first
+ * thread that needs an upper level builds all of them while the others wait (spinning with
+ * EL_MIPMAP_YIELD()). el_mipmap_build_levels() builds them explicitly (also thread-safe). With
+ * EL_MIPMAP_NO_ATOMICS, or a compiler with neither, el_mipmap_init builds every level eagerly instead
+ * (so lookups stay thread-safe; only the laziness is lost). init and free are not thread-safe (as for
+ * any object). If the lazy build runs out of memory, lookups fall back to level 0 (bilinear) and
+ * el_mipmap_build_levels() reports EL_ERROR_OUT_OF_MEMORY.
+ *
+ * Coordinates: s (u) runs along a row, t (v) down the rows; (0,0) is the corner of texel (0,0) of
+ * row 0 (the first row of the row-major input), texel (i, j) covers [i/w, (i+1)/w) x [j/h, (j+1)/h),
+ * and its centre is at ((i + 0.5)/w, (j + 0.5)/h). `out` always receives `channels` floats.
+ */
+#ifndef EL_MIPMAP_H
+#define EL_MIPMAP_H
+
+#include "blockedarray.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* >> mipmap declarations */
+
+/* pbrt's ImageWrap, chosen per axis. */
+typedef enum el_wrap {
+  EL_WRAP_REPEAT = 0, /* the texture tiles the plane (pbrt's default) */
+  EL_WRAP_BLACK = 1,  /* outside the texture everything is 0 */
+  EL_WRAP_CLAMP = 2   /* outside, the nearest border texel */
+} el_wrap;
+
+/* The filter of el_mipmap_lookup_differentials (pbrt-v3: doTrilinear false = EWA, the default) and of
+ * el_mipmap_lookup_filtered. Zero is pbrt's default, EWA. */
+typedef enum el_mipmap_filter {
+  EL_FILTER_EWA = 0,       /* elliptically weighted average over the footprint of two differentials */
+  EL_FILTER_TRILINEAR = 1, /* bilinear on two levels, blended (pbrt-v3 doTrilinear = true) */
+  EL_FILTER_BILINEAR = 2,  /* bilinear on the level a trilinear lookup would use first (pbrt-v4) */
+  EL_FILTER_POINT = 3      /* the texel containing (s, t) on that level (pbrt-v4) */
+} el_mipmap_filter;
+
+/* All-zero means pbrt-v3's defaults: Repeat in both axes, EWA, max anisotropy 8, non-power-of-two
+ * images resampled up to a power of two. */
+typedef struct el_mipmap_options {
+  el_wrap wrap_u, wrap_v;  /* per axis; u = s along rows, v = t down the rows */
+  el_mipmap_filter filter; /* for el_mipmap_lookup_differentials */
+  float max_anisotropy;    /* EWA eccentricity clamp; 0 -> 8 (pbrt's default); else in [1, 1024] */
+  int keep_resolution;     /* 1: level 0 is the input as is, for any size (no power-of-two
+                              resampling); upper levels are exact area averages. 0: pbrt's resampling. */
+} el_mipmap_options;
+
+#define EL_MIPMAP_MAX_LEVELS 26 /* 1 + log2(2^24) = 25 levels at most, one spare */
+
+/* A MIP map. Fields are readable; change them only through the functions. */
+typedef struct el_mipmap {
+  int width, height;          /* level-0 resolution (the resampled one when resampling happened) */
+  int input_width, input_height; /* what el_mipmap_init was given */
+  int channels;               /* floats per texel, 1..4 */
+  int levels;                 /* levels of the full pyramid: 1 + floor(log2(max(width, height))) */
+  el_wrap wrap_u, wrap_v;
+  el_mipmap_filter filter;
+  float max_anisotropy;       /* after defaulting */
+  int resampled;              /* 1 when level 0 was resampled to a power of two */
+  int level_width[EL_MIPMAP_MAX_LEVELS], level_height[EL_MIPMAP_MAX_LEVELS];
+  float *level_data[EL_MIPMAP_MAX_LEVELS]; /* row-major, channels interleaved, row 0 first; [0] always,
+                                              the others once built (read them via el_mipmap_level_data) */
+  size_t level0_bytes;        /* bytes of level_data[0] */
+  size_t upper_bytes;         /* bytes of the one allocation holding levels 1.. (0 until built) */
+  long build_state;           /* 0 upper levels not built, 1 building, 2 built, 3 out of memory */
+} el_mipmap;
+
+/* Builds level 0 from `pixels` (width*height*channels floats, row-major, row 0 first, channels 1..4),
+ * resampling it to a power of two unless it is one or opt->keep_resolution is set. opt may be NULL
+ * (pbrt's defaults). Levels 1.. are built on first need. Errors: EL_ERROR_INVALID_ARGUMENT (NULL,
+ * size < 1, channels outside 1..4, an unknown enum, max_anisotropy negative or outside [1,1024]),
+ * EL_ERROR_NAN / EL_ERROR_INFINITE (a texel or max_anisotropy), EL_ERROR_SIZE_OVERFLOW (a side
+ * above 2^24, or bytes overflow), EL_ERROR_OUT_OF_MEMORY. On failure *m is zeroed. */
+EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, int height, int channels,
+                                const el_mipmap_options *opt);
+/* Releases everything and zeroes *m. Safe on a zeroed struct and on NULL. */
+EL_DEF void el_mipmap_free(el_mipmap *m);
+/* Builds levels 1.. now, if not built yet. Thread-safe. EL_SUCCESS or EL_ERROR_OUT_OF_MEMORY. */
+EL_DEF el_result el_mipmap_build_levels(el_mipmap *m);
+/* 1 when levels 1.. exist (built lazily or explicitly, or the map has one level), else 0. */
+EL_DEF int el_mipmap_levels_built(const el_mipmap *m);
+
+EL_DEF int el_mipmap_levels(const el_mipmap *m);                  /* total level count */
+EL_DEF int el_mipmap_level_width(const el_mipmap *m, int level);  /* 0 for a level out of range */
+EL_DEF int el_mipmap_level_height(const el_mipmap *m, int level);
+/* Row-major texels of a level (building levels 1.. if needed); NULL for a level out of range or when
+ * the build ran out of memory. */
+EL_DEF const float *el_mipmap_level_data(const el_mipmap *m, int level);
+
+/* pbrt's Texel(level, s, t): integer texel coordinates, any int, through the wrap modes. A level
+ * outside [0, levels) is clamped into it. */
+EL_DEF void el_mipmap_texel(const el_mipmap *m, int level, int s, int t, float *out);
+/* The texel containing (s, t) (coordinates in [0,1] units) on a level, through the wrap modes. */
+EL_DEF void el_mipmap_point(const el_mipmap *m, int level, float s, float t, float *out);
+/* pbrt's Bilerp / triangle(level, st): bilinear between the four texels around (s*w - 0.5, t*h - 0.5). */
+EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, float *out);
+/* pbrt-v3's Lookup(st, width): trilinear. level = levels - 1 + log2(max(width, 1e-8)); level < 0:
+ * bilinear on level 0; level >= levels - 1: the 1x1 level; else the blend of the bilinear lookups on
+ * floor(level) and floor(level) + 1. width is in [0,1] texture units (1 = the whole texture). */
+EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out);
+/* pbrt-v4's Lookup(st, width) with an explicit filter: POINT and BILINEAR on level
+ * max(0, floor(level)), TRILINEAR as el_mipmap_lookup; EWA (which needs differentials) acts as
+ * TRILINEAR here. */
+EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
+                                      float width, float *out);
+/* pbrt-v3's Lookup(st, dst0, dst1) with dst0 = (dsdx, dtdx), dst1 = (dsdy, dtdy): EWA when the map's
+ * filter is EL_FILTER_EWA, otherwise lookup_filtered with width 2 * max |component|. */
+EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
+                                           float dsdy, float dtdy, float *out);
+/* Heap bytes in use: level 0, plus levels 1.. once built. */
+EL_DEF size_t el_mipmap_bytes(const el_mipmap *m);
+/* << mipmap declarations */
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* EL_MIPMAP_H */
+
+/* ---------------------------------------------------------------------------------------------
+ * Implementation below; stop reading here if you only need the API.
+ * --------------------------------------------------------------------------------------------- */
+#if defined(EL_IMPLEMENTATION) || defined(EL_MIPMAP_IMPLEMENTATION)
+#ifndef EL_MIPMAP_IMPLEMENTATION_DONE
+#define EL_MIPMAP_IMPLEMENTATION_DONE
+#include <string.h>
+#include <math.h>
+
+/* >> mipmap: once-flag for the lazy build */
+#if !defined(EL_MIPMAP_NO_ATOMICS) && (defined(__GNUC__) || defined(__clang__))
+#define EL_MIPMAP__LAZY 1
+static long el_mipmap__load(const long *p) { return __atomic_load_n(p, __ATOMIC_ACQUIRE); }
+static void el_mipmap__store(long *p, long v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
+static int el_mipmap__cas(long *p, long expected, long desired) {
+  return __atomic_compare_exchange_n(p, &expected, desired, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE);
+}
+#elif !defined(EL_MIPMAP_NO_ATOMICS) && defined(_MSC_VER)
+#include <intrin.h>
+#define EL_MIPMAP__LAZY 1
+static long el_mipmap__load(const long *p) { return _InterlockedCompareExchange((volatile long *)p, 0, 0); }
+static void el_mipmap__store(long *p, long v) { _InterlockedExchange((volatile long *)p, v); }
+static int el_mipmap__cas(long *p, long expected, long desired) {
+  return _InterlockedCompareExchange((volatile long *)p, desired, expected) == expected;
+}
+#else
+#define EL_MIPMAP__LAZY 0 /* no atomics: el_mipmap_init builds every level eagerly */
+static long el_mipmap__load(const long *p) { return *p; }
+static void el_mipmap__store(long *p, long v) { *p = v; }
+static int el_mipmap__cas(long *p, long expected, long desired) {
+  if (*p != expected) return 0;
+  *p = desired;
+  return 1;
+}
+#endif
+#ifndef EL_MIPMAP_YIELD
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+#define EL_MIPMAP_YIELD() __builtin_ia32_pause()
+#elif defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))
+#define EL_MIPMAP_YIELD() _mm_pause()
+#else
+#define EL_MIPMAP_YIELD() ((void)0)
+#endif
+#endif
+
+#define EL_MIPMAP__MAX_SIDE (1 << 24)
+#define EL_MIPMAP__STATE_NONE 0L
+#define EL_MIPMAP__STATE_BUILDING 1L
+#define EL_MIPMAP__STATE_BUILT 2L
+#define EL_MIPMAP__STATE_FAILED 3L
+
+/* pbrt-v3's EWA weight table: weightLut[i] = exp(-2 i/127) - exp(-2), evaluated in float with
+ * glibc's expf exactly as pbrt's constructor does; a constant table, so there is no first-use race. */
+static const float el_mipmap__weight_lut[128] = {
+  0.864664733f, 0.849040031f, 0.83365953f, 0.818519294f, 0.80361563f, 0.788944781f,
+  0.774503231f, 0.760287285f, 0.746293485f, 0.732518315f, 0.718958378f, 0.705610275f,
+  0.692470789f, 0.679536581f, 0.666804492f, 0.654271305f, 0.641933978f, 0.629789352f,
+  0.617834508f, 0.606066525f, 0.594482362f, 0.583079159f, 0.571854174f, 0.560804546f,
+  0.549927592f, 0.539220572f, 0.528680861f, 0.518305838f, 0.50809288f, 0.498039544f,
+  0.488143265f, 0.478401601f, 0.468812168f, 0.45937258f, 0.450080454f, 0.440933526f,
+  0.431929469f, 0.423066139f, 0.414341331f, 0.405752778f, 0.397298455f, 0.388976216f,
+  0.380784035f, 0.372719884f, 0.364781618f, 0.356967449f, 0.34927541f, 0.341703475f,
+  0.334249914f, 0.32691282f, 0.319690347f, 0.312580705f, 0.305582166f, 0.298692942f,
+  0.291911423f, 0.285235822f, 0.278664529f, 0.272195935f, 0.265828371f, 0.259560347f,
+  0.253390193f, 0.247316495f, 0.241337672f, 0.235452279f, 0.229658857f, 0.223955944f,
+  0.21834214f, 0.212816045f, 0.207376286f, 0.202021524f, 0.196750447f, 0.191561714f,
+  0.186454013f, 0.181426153f, 0.176476851f, 0.171604887f, 0.166809067f, 0.162088141f,
+  0.157441005f, 0.152866468f, 0.148363426f, 0.143930718f, 0.139567271f, 0.135272011f,
+  0.131043866f, 0.126881793f, 0.122784719f, 0.11875169f, 0.114781633f, 0.11087364f,
+  0.107026696f, 0.103239879f, 0.0995122194f, 0.0958427936f, 0.0922307223f, 0.0886750817f,
+  0.0851749927f, 0.0817295909f, 0.0783380121f, 0.0749994367f, 0.0717130303f, 0.0684779733f,
+  0.0652934611f, 0.0621587038f, 0.0590728968f, 0.0560353249f, 0.0530452281f, 0.0501018465f,
+  0.0472044498f, 0.0443523228f, 0.0415447652f, 0.0387810767f, 0.0360605568f, 0.0333825648f,
+  0.0307464004f, 0.0281514227f, 0.0255970061f, 0.0230824798f, 0.0206072628f, 0.0181707144f,
+  0.0157722086f, 0.013411209f, 0.0110870898f, 0.0087992847f, 0.0065472275f, 0.00433036685f,
+  0.0021481365f, 0.0f};
+
+/* >> mipmap: small helpers */
+/* pbrt-v3's Log2(x) = log(x) * (1 / log 2), not log2(): kept so that levels match pbrt's bits. */
+static float el_mipmap__log2(float x) { return logf(x) * 1.442695040888963387004650940071f; }
+/* floor for |x| < 2^30 without a libm call. */
+static int el_mipmap__ifloor(float x) {
+  int i = (int)x;
+  return ((float)i > x) ? i - 1 : i;
+}
+static int el_mipmap__is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
+static int el_mipmap__round_up_pow2(int v) {
+  int p = 1;
+  while (p < v) p <<= 1; /* v <= 2^24 */
+  return p;
+}
+/* pbrt's Texel() index remapping for one axis; -1 means "Black: outside, value 0". */
+static int el_mipmap__wrap(int i, int n, el_wrap w) {
+  int r;
+  if ((unsigned)i < (unsigned)n) return i;
+  if (w == EL_WRAP_REPEAT) {
+    r = i % n;
+    return r < 0 ? r + n : r;
+  }
+  if (w == EL_WRAP_CLAMP) return i < 0 ? 0 : n - 1;
+  return -1;
+}
+/* A coordinate (in [0,1] units) made safe for point/bilinear/trilinear lookups: [-1, 2] is used as
+ * given (pbrt's arithmetic); beyond it, Repeat keeps the fractional part (exact) and Clamp/Black pin
+ * to -1 or 2, which gives the same texels; NaN counts as 0. */
+static float el_mipmap__sane(float s, el_wrap w) {
+  float f;
+  if (s >= -1.0f && s <= 2.0f) return s;
+  if (s != s) return 0.0f;
+  if (w == EL_WRAP_REPEAT) {
+    if (s > 1e30f || s < -1e30f) return 0.0f; /* also +-infinity */
+    f = s - floorf(s);
+    return f;
+  }
+  return s < 0.0f ? -1.0f : 2.0f;
+}
+/* The same for EWA: Clamp/Black keep far coordinates (the footprint can be wide), only finite. */
+static float el_mipmap__sane_ewa(float s, el_wrap w) {
+  if (w == EL_WRAP_REPEAT) return el_mipmap__sane(s, w);
+  if (s != s) return 0.0f;
+  if (s > 1e20f) return 1e20f;
+  if (s < -1e20f) return -1e20f;
+  return s;
+}
+/* A differential: NaN counts as 0, magnitudes are limited to 1e8 (far beyond the 1x1 level). */
+static float el_mipmap__sane_d(float d) {
+  if (d != d) return 0.0f;
+  if (d > 1e8f) return 1e8f;
+  if (d < -1e8f) return -1e8f;
+  return d;
+}
+
+/* Two bilinear taps along one axis of size n: indices (wrapped) and weights (0 for Black outside). */
+static void el_mipmap__axis(float s, int n, el_wrap w, int *i0, int *i1, float *w0, float *w1) {
+  float x = el_mipmap__sane(s, w) * (float)n - 0.5f;
+  int i = el_mipmap__ifloor(x);
+  float d = x - (float)i;
+  *w0 = 1.0f - d;
+  *w1 = d;
+  if ((unsigned)i < (unsigned)(n - 1)) {
+    *i0 = i;
+    *i1 = i + 1;
+    return;
+  }
+  *i0 = el_mipmap__wrap(i, n, w);
+  *i1 = el_mipmap__wrap(i + 1, n, w);
+  if (*i0 < 0) { *i0 = 0; *w0 = 0.0f; }
+  if (*i1 < 0) { *i1 = 0; *w1 = 0.0f; }
+}
+
+static int el_mipmap__clamp_level(const el_mipmap *m, int level) {
+  return level < 0 ? 0 : (level >= m->levels ? m->levels - 1 : level);
+}
+
+/* >> mipmap: building levels */
+/* Box reduction of a level whose sides are even or 1 (every level of a power-of-two pyramid):
+ * pbrt's .25 * (T(2s,2t) + T(2s+1,2t) + T(2s,2t+1) + T(2s+1,2t+1)), same order of additions; a
+ * 1-wide side reuses its texel (pbrt's Repeat/Clamp result; pbrt's Black would add zeros). */
+static void el_mipmap__reduce_pow2(const float *src, int sw, int sh, float *dst, int dw, int dh, int C) {
+  int s, t, c;
+  size_t srow = (size_t)sw * (size_t)C;
+  int du = sw > 1 ? C : 0; /* offset of texel 2s+1 from 2s */
+  for (t = 0; t < dh; ++t) {
+    const float *r0 = src + (size_t)(2 * t) * srow;
+    const float *r1 = (2 * t + 1 < sh) ? r0 + srow : r0;
+    float *o = dst + (size_t)t * (size_t)dw * (size_t)C;
+    if (C == 3 && du == 3) {
+      for (s = 0; s < dw; ++s) {
+        const float *a = r0 + 6 * s, *b = r1 + 6 * s;
+        o[3 * s + 0] = .25f * (((a[0] + a[3]) + b[0]) + b[3]);
+        o[3 * s + 1] = .25f * (((a[1] + a[4]) + b[1]) + b[4]);
+        o[3 * s + 2] = .25f * (((a[2] + a[5]) + b[2]) + b[5]);
+      }
+    } else {
+      for (s = 0; s < dw; ++s) {
+        const float *a = r0 + (size_t)(2 * s) * (size_t)C, *b = r1 + (size_t)(2 * s) * (size_t)C;
+        for (c = 0; c < C; ++c) o[s * C + c] = .25f * (((a[c] + a[c + du]) + b[c]) + b[c + du]);
+      }
+    }
+  }
+}
+
+/* Area weights from n texels to n2 = max(1, floor(n/2)): output i covers [i n/n2, (i+1) n/n2).
+ * n even: taps 2i, 2i+1, weights 1/2; n == 1: tap 0, weight 1; n odd >= 3: taps 2i, 2i+1, 2i+2 with
+ * weights (1 - i/n2, 1, (i+1)/n2) / (2 + 1/n2). first[i] is the first tap, wt[3 i + j] the weights. */
+static void el_mipmap__area_weights(int n, int n2, int *first, float *wt) {
+  int i;
+  for (i = 0; i < n2; ++i) {
+    first[i] = 2 * i;
+    if (n == 1) {
+      first[i] = 0;
+      wt[3 * i] = 1.0f; wt[3 * i + 1] = 0.0f; wt[3 * i + 2] = 0.0f;
+    } else if ((n & 1) == 0) {
+      wt[3 * i] = 0.5f; wt[3 * i + 1] = 0.5f; wt[3 * i + 2] = 0.0f;
+    } else {
+      double r = 2.0 + 1.0 / n2;
+      wt[3 * i] = (float)((1.0 - (double)i / n2) / r);
+      wt[3 * i + 1] = (float)(1.0 / r);
+      wt[3 * i + 2] = (float)(((double)(i + 1) / n2) / r);
+    }
+  }
+}
+
+/* General (non-power-of-two) reduction: separable exact area averages; tmp holds dw x sh texels. */
+static int el_mipmap__reduce_area(const float *src, int sw, int sh, float *dst, int dw, int dh, int C,
+                                  float *tmp) {
+  int *fu, *fv, s, t, c, j;
+  float *wu, *wv;
+  size_t n = (size_t)dw + (size_t)dh;
+  fu = (int *)EL_MALLOC(n * sizeof(int));
+  wu = (float *)EL_MALLOC(3 * n * sizeof(float));
+  if (!fu || !wu) {
+    if (fu) EL_FREE(fu);
+    if (wu) EL_FREE(wu);
+    return 0;
+  }
+  fv = fu + dw;
+  wv = wu + 3 * (size_t)dw;
+  el_mipmap__area_weights(sw, dw, fu, wu);
+  el_mipmap__area_weights(sh, dh, fv, wv);
+  for (t = 0; t < sh; ++t) { /* along rows */
+    const float *r = src + (size_t)t * (size_t)sw * (size_t)C;
+    float *o = tmp + (size_t)t * (size_t)dw * (size_t)C;
+    for (s = 0; s < dw; ++s)
+      for (c = 0; c < C; ++c) {
+        float acc = 0.0f;
+        for (j = 0; j < 3; ++j) {
+          int k = fu[s] + j;
+          if (k < sw) acc += wu[3 * s + j] * r[(size_t)k * (size_t)C + (size_t)c];
+        }
+        o[(size_t)s * (size_t)C + (size_t)c] = acc;
+      }
+  }
+  for (t = 0; t < dh; ++t) { /* down the columns, a whole row at a time */
+    size_t rowf = (size_t)dw * (size_t)C, k;
+    float *o = dst + (size_t)t * rowf;
+    for (k = 0; k < rowf; ++k) o[k] = 0.0f;
+    for (j = 0; j < 3; ++j) {
+      int v = fv[t] + j;
+      float wgt = wv[3 * t + j];
+      const float *r;
+      if (v >= sh || wgt == 0.0f) continue;
+      r = tmp + (size_t)v * rowf;
+      for (k = 0; k < rowf; ++k) o[k] += wgt * r[k];
+    }
+  }
+  EL_FREE(fu);
+  EL_FREE(wu);
+  return 1;
+}
+
+/* Builds levels 1.. into one allocation. Returns 1 on success, 0 when out of memory. */
+static int el_mipmap__build_upper(el_mipmap *m) {
+  size_t total = 0, off = 0, tmpn = 0;
+  int i, C = m->channels, needs_area = 0;
+  float *block, *tmp = NULL;
+  for (i = 1; i < m->levels; ++i) {
+    total += (size_t)m->level_width[i] * (size_t)m->level_height[i] * (size_t)C;
+    if (((m->level_width[i - 1] & 1) && m->level_width[i - 1] > 1) ||
+        ((m->level_height[i - 1] & 1) && m->level_height[i - 1] > 1)) {
+      size_t t = (size_t)m->level_width[i] * (size_t)m->level_height[i - 1] * (size_t)C;
+      needs_area = 1;
+      if (t > tmpn) tmpn = t;
+    }
+  }
+  if (total == 0) return 1;
+  block = (float *)EL_MALLOC(total * sizeof(float));
+  if (!block) return 0;
+  if (needs_area) {
+    tmp = (float *)EL_MALLOC(tmpn * sizeof(float));
+    if (!tmp) {
+      EL_FREE(block);
+      return 0;
+    }
+  }
+  for (i = 1; i < m->levels; ++i) {
+    /* <<Initialize ith MIPMap level from (i-1)st level>> */
+    int sw = m->level_width[i - 1], sh = m->level_height[i - 1];
+    int dw = m->level_width[i], dh = m->level_height[i];
+    float *dst = block + off;
+    off += (size_t)dw * (size_t)dh * (size_t)C;
+    if (((sw & 1) == 0 || sw == 1) && ((sh & 1) == 0 || sh == 1)) {
+      el_mipmap__reduce_pow2(m->level_data[i - 1], sw, sh, dst, dw, dh, C);
+    } else if (!el_mipmap__reduce_area(m->level_data[i - 1], sw, sh, dst, dw, dh, C, tmp)) {
+      EL_FREE(block);
+      if (tmp) EL_FREE(tmp);
+      for (i = 1; i < m->levels; ++i) m->level_data[i] = NULL;
+      return 0;
+    }
+    m->level_data[i] = dst;
+  }
+  if (tmp) EL_FREE(tmp);
+  m->upper_bytes = total * sizeof(float);
+  return 1;
+}
+
+/* Returns 1 when levels 1.. are readable, 0 when their build ran out of memory. */
+static int el_mipmap__ensure_slow(el_mipmap *m) {
+  for (;;) {
+    long st = el_mipmap__load(&m->build_state);
+    if (st == EL_MIPMAP__STATE_BUILT) return 1;
+    if (st == EL_MIPMAP__STATE_FAILED) return 0;
+    if (st == EL_MIPMAP__STATE_NONE &&
+        el_mipmap__cas(&m->build_state, EL_MIPMAP__STATE_NONE, EL_MIPMAP__STATE_BUILDING)) {
+      int ok = el_mipmap__build_upper(m);
+      el_mipmap__store(&m->build_state, ok ? EL_MIPMAP__STATE_BUILT : EL_MIPMAP__STATE_FAILED);
+      return ok;
+    }
+    EL_MIPMAP_YIELD();
+  }
+}
+static int el_mipmap__ensure(const el_mipmap *m) {
+  if (el_mipmap__load(&m->build_state) == EL_MIPMAP__STATE_BUILT) return 1;
+  return el_mipmap__ensure_slow((el_mipmap *)m); /* the map is not const: init wrote it */
+}
+
+/* pbrt's ResampleWeight / resampleWeights(oldRes, newRes) and Lanczos(x, tau = 2), in float. */
+static float el_mipmap__lanczos(float x, float tau) {
+  float s, l;
+  x = fabsf(x);
+  if (x < 1e-5f) return 1;
+  if (x > 1.f) return 0;
+  x *= 3.14159265358979323846f;
+  s = sinf(x * tau) / (x * tau);
+  l = sinf(x) / x;
+  return s * l;
+}
+static void el_mipmap__resample_weights(int oldres, int newres, el_wrap wrap, int *idx, float *wt) {
+  int i, j;
+  float filterwidth = 2.f;
+  for (i = 0; i < newres; ++i) {
+    /* <<Compute image resampling weights for ith texel>> */
+    float center = (i + .5f) * (float)oldres / (float)newres;
+    int first = (int)floorf((center - filterwidth) + 0.5f);
+    float inv;
+    for (j = 0; j < 4; ++j) {
+      float pos = (float)(first + j) + .5f;
+      wt[4 * i + j] = el_mipmap__lanczos((pos - center) / filterwidth, 2.0f);
+    }
+    /* <<Normalize filter weights for texel resampling>> */
+    inv = 1 / (wt[4 * i] + wt[4 * i + 1] + wt[4 * i + 2] + wt[4 * i + 3]);
+    for (j = 0; j < 4; ++j) {
+      int k = el_mipmap__wrap(first + j, oldres, wrap);
+      wt[4 * i + j] *= inv;
+      if (k < 0) { /* Black: the tap reads 0; pbrt skips it, adding 0 * texel 0 is the same */
+        k = 0;
+        wt[4 * i + j] = 0.0f;
+      }
+      idx[4 * i + j] = k;
+    }
+  }
+}
+
+/* <<Resample image to power-of-two resolution>>: s first (rows of the input), then t, clamp at 0. */
+static el_result el_mipmap__resample(el_mipmap *m, const float *img, int w, int h, int nw, int nh,
+                                     float *out) {
+  int C = m->channels, s, t, j, c;
+  size_t rowf = (size_t)nw * (size_t)C, k;
+  float *tmp = (float *)EL_MALLOC(rowf * (size_t)h * sizeof(float));
+  int *si = (int *)EL_MALLOC(4 * ((size_t)nw + (size_t)nh) * sizeof(int));
+  float *sw = (float *)EL_MALLOC(4 * ((size_t)nw + (size_t)nh) * sizeof(float));
+  int *ti;
+  float *tw;
+  if (!tmp || !si || !sw) {
+    if (tmp) EL_FREE(tmp);
+    if (si) EL_FREE(si);
+    if (sw) EL_FREE(sw);
+    return EL_ERROR_OUT_OF_MEMORY;
+  }
+  ti = si + 4 * (size_t)nw;
+  tw = sw + 4 * (size_t)nw;
+  el_mipmap__resample_weights(w, nw, m->wrap_u, si, sw);
+  el_mipmap__resample_weights(h, nh, m->wrap_v, ti, tw);
+  /* <<Apply sWeights to zoom in s direction>> */
+  for (t = 0; t < h; ++t) {
+    const float *r = img + (size_t)t * (size_t)w * (size_t)C;
+    float *o = tmp + (size_t)t * rowf;
+    if (C == 3) {
+      for (s = 0; s < nw; ++s) {
+        const int *ix = si + 4 * s;
+        const float *wt = sw + 4 * s;
+        const float *p0 = r + 3 * ix[0], *p1 = r + 3 * ix[1], *p2 = r + 3 * ix[2], *p3 = r + 3 * ix[3];
+        o[3 * s + 0] = (((0.f + wt[0] * p0[0]) + wt[1] * p1[0]) + wt[2] * p2[0]) + wt[3] * p3[0];
+        o[3 * s + 1] = (((0.f + wt[0] * p0[1]) + wt[1] * p1[1]) + wt[2] * p2[1]) + wt[3] * p3[1];
+        o[3 * s + 2] = (((0.f + wt[0] * p0[2]) + wt[1] * p1[2]) + wt[2] * p2[2]) + wt[3] * p3[2];
+      }
+    } else {
+      for (s = 0; s < nw; ++s)
+        for (c = 0; c < C; ++c) {
+          float acc = 0.f;
+          for (j = 0; j < 4; ++j) acc += sw[4 * s + j] * r[(size_t)si[4 * s + j] * (size_t)C + (size_t)c];
+          o[(size_t)s * (size_t)C + (size_t)c] = acc;
+        }
+    }
+  }
+  /* <<Resample image in t direction>>, a whole output row at a time */
+  for (t = 0; t < nh; ++t) {
+    const int *ix = ti + 4 * t;
+    const float *wt = tw + 4 * t;
+    const float *r0 = tmp + (size_t)ix[0] * rowf, *r1 = tmp + (size_t)ix[1] * rowf;
+    const float *r2 = tmp + (size_t)ix[2] * rowf, *r3 = tmp + (size_t)ix[3] * rowf;
+    float w0 = wt[0], w1 = wt[1], w2 = wt[2], w3 = wt[3];
+    float *o = out + (size_t)t * rowf;
+    for (k = 0; k < rowf; ++k) {
+      float v = (((0.f + w0 * r0[k]) + w1 * r1[k]) + w2 * r2[k]) + w3 * r3[k];
+      o[k] = v < 0.f ? 0.f : v; /* pbrt's clamp(): negative ringing to 0 */
+    }
+  }
+  EL_FREE(tmp);
+  EL_FREE(si);
+  EL_FREE(sw);
+  return EL_SUCCESS;
+}
+
+/* EL_SUCCESS when all n floats are finite, else EL_ERROR_NAN / EL_ERROR_INFINITE (the first bad one). */
+static el_result el_mipmap__check_finite(const float *p, size_t n) {
+  float acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  size_t i = 0, j;
+  for (; i + 8 <= n; i += 8)
+    for (j = 0; j < 8; ++j) acc[j] += p[i + j] - p[i + j]; /* 0 for finite, NaN otherwise */
+  for (; i < n; ++i) acc[0] += p[i] - p[i];
+  if (acc[0] + acc[1] + acc[2] + acc[3] + acc[4] + acc[5] + acc[6] + acc[7] == 0.0f) return EL_SUCCESS;
+  for (i = 0; i < n; ++i)
+    if (p[i] != p[i]) return EL_ERROR_NAN;
+    else if (p[i] - p[i] != 0.0f) return EL_ERROR_INFINITE;
+  return EL_SUCCESS;
+}
+
+/* >> mipmap: init, free, queries */
+EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, int height, int channels,
+                                const el_mipmap_options *opt) {
+  el_mipmap_options o;
+  int w, h, i, keep;
+  size_t nfl;
+  el_result r;
+  if (!m) return EL_ERROR_INVALID_ARGUMENT;
+  memset(m, 0, sizeof *m);
+  if (!pixels || width < 1 || height < 1 || channels < 1 || channels > 4) return EL_ERROR_INVALID_ARGUMENT;
+  if (opt) o = *opt;
+  else memset(&o, 0, sizeof o);
+  if ((int)o.wrap_u < 0 || (int)o.wrap_u > 2 || (int)o.wrap_v < 0 || (int)o.wrap_v > 2 ||
+      (int)o.filter < 0 || (int)o.filter > 3)
+    return EL_ERROR_INVALID_ARGUMENT;
+  if (o.max_anisotropy != o.max_anisotropy) return EL_ERROR_NAN;
+  if (o.max_anisotropy > 1e30f) return EL_ERROR_INFINITE;
+  if (o.max_anisotropy == 0.0f) o.max_anisotropy = 8.0f;
+  if (o.max_anisotropy < 1.0f || o.max_anisotropy > 1024.0f) return EL_ERROR_INVALID_ARGUMENT;
+  if (width > EL_MIPMAP__MAX_SIDE || height > EL_MIPMAP__MAX_SIDE) return EL_ERROR_SIZE_OVERFLOW;
+  keep = o.keep_resolution || (el_mipmap__is_pow2(width) && el_mipmap__is_pow2(height));
+  w = keep ? width : el_mipmap__round_up_pow2(width);
+  h = keep ? height : el_mipmap__round_up_pow2(height);
+  if ((size_t)w > ((size_t)-1) / sizeof(float) / (size_t)channels / (size_t)h / 2)
+    return EL_ERROR_SIZE_OVERFLOW; /* level 0 and the resampling buffer must fit */
+  if ((size_t)width > ((size_t)-1) / sizeof(float) / (size_t)channels / (size_t)height)
+    return EL_ERROR_SIZE_OVERFLOW;
+  r = el_mipmap__check_finite(pixels, (size_t)width * (size_t)height * (size_t)channels);
+  if (r != EL_SUCCESS) return r;
+  m->input_width = width;
+  m->input_height = height;
+  m->width = w;
+  m->height = h;
+  m->channels = channels;
+  m->wrap_u = o.wrap_u;
+  m->wrap_v = o.wrap_v;
+  m->filter = o.filter;
+  m->max_anisotropy = o.max_anisotropy;
+  m->resampled = !keep;
+  /* <<Initialize levels of MIPMap from image>>: sizes now, texels of levels 1.. on first need */
+  m->levels = 1;
+  m->level_width[0] = w;
+  m->level_height[0] = h;
+  while (m->level_width[m->levels - 1] > 1 || m->level_height[m->levels - 1] > 1) {
+    int pw = m->level_width[m->levels - 1], ph = m->level_height[m->levels - 1];
+    m->level_width[m->levels] = pw > 1 ? pw / 2 : 1;
+    m->level_height[m->levels] = ph > 1 ? ph / 2 : 1;
+    m->levels++;
+  }
+  nfl = (size_t)w * (size_t)h * (size_t)channels;
+  m->level_data[0] = (float *)EL_MALLOC(nfl * sizeof(float));
+  if (!m->level_data[0]) {
+    memset(m, 0, sizeof *m);
+    return EL_ERROR_OUT_OF_MEMORY;
+  }
+  m->level0_bytes = nfl * sizeof(float);
+  /* <<Initialize most detailed level of MIPMap>> */
+  if (keep) {
+    memcpy(m->level_data[0], pixels, nfl * sizeof(float));
+  } else {
+    r = el_mipmap__resample(m, pixels, width, height, w, h, m->level_data[0]);
+    if (r != EL_SUCCESS) {
+      EL_FREE(m->level_data[0]);
+      memset(m, 0, sizeof *m);
+      return r;
+    }
+  }
+  for (i = m->levels; i < EL_MIPMAP_MAX_LEVELS; ++i) m->level_width[i] = m->level_height[i] = 0;
+  m->build_state = (m->levels == 1) ? EL_MIPMAP__STATE_BUILT : EL_MIPMAP__STATE_NONE;
+#if !EL_MIPMAP__LAZY
+  if (el_mipmap_build_levels(m) != EL_SUCCESS) {
+    el_mipmap_free(m);
+    return EL_ERROR_OUT_OF_MEMORY;
+  }
+#endif
+  return EL_SUCCESS;
+}
+
+EL_DEF void el_mipmap_free(el_mipmap *m) {
+  if (!m) return;
+  if (m->level_data[0]) EL_FREE(m->level_data[0]);
+  if (m->levels > 1 && m->level_data[1]) EL_FREE(m->level_data[1]); /* the block of levels 1.. */
+  memset(m, 0, sizeof *m);
+}
+
+EL_DEF el_result el_mipmap_build_levels(el_mipmap *m) {
+  if (!m || !m->level_data[0]) return EL_ERROR_INVALID_ARGUMENT;
+  el_mipmap__cas(&m->build_state, EL_MIPMAP__STATE_FAILED, EL_MIPMAP__STATE_NONE); /* retry */
+  return el_mipmap__ensure_slow(m) ? EL_SUCCESS : EL_ERROR_OUT_OF_MEMORY;
+}
+EL_DEF int el_mipmap_levels_built(const el_mipmap *m) {
+  return m && el_mipmap__load(&m->build_state) == EL_MIPMAP__STATE_BUILT;
+}
+EL_DEF int el_mipmap_levels(const el_mipmap *m) { return m ? m->levels : 0; }
+EL_DEF int el_mipmap_level_width(const el_mipmap *m, int level) {
+  return (m && level >= 0 && level < m->levels) ? m->level_width[level] : 0;
+}
+EL_DEF int el_mipmap_level_height(const el_mipmap *m, int level) {
+  return (m && level >= 0 && level < m->levels) ? m->level_height[level] : 0;
+}
+EL_DEF const float *el_mipmap_level_data(const el_mipmap *m, int level) {
+  if (!m || level < 0 || level >= m->levels) return NULL;
+  if (level > 0 && !el_mipmap__ensure(m)) return NULL;
+  return m->level_data[level];
+}
+EL_DEF size_t el_mipmap_bytes(const el_mipmap *m) {
+  if (!m) return 0;
+  return m->level0_bytes + (el_mipmap_levels_built(m) ? m->upper_bytes : 0);
+}
+
+/* >> mipmap: lookups */
+/* Level usable for a lookup: 0 when levels 1.. are needed but could not be built. */
+static int el_mipmap__usable(const el_mipmap *m, int level) {
+  if (level <= 0) return 0;
+  return el_mipmap__ensure(m) ? level : 0;
+}
+
+static void el_mipmap__texel(const el_mipmap *m, int level, int s, int t, float *out) {
+  int C = m->channels, c;
+  int su = el_mipmap__wrap(s, m->level_width[level], m->wrap_u);
+  int tv = el_mipmap__wrap(t, m->level_height[level], m->wrap_v);
+  const float *p;
+  if (su < 0 || tv < 0) {
+    for (c = 0; c < C; ++c) out[c] = 0.0f;
+    return;
+  }
+  p = m->level_data[level] + ((size_t)tv * (size_t)m->level_width[level] + (size_t)su) * (size_t)C;
+  for (c = 0; c < C; ++c) out[c] = p[c];
+}
+
+EL_DEF void el_mipmap_texel(const el_mipmap *m, int level, int s, int t, float *out) {
+  level = el_mipmap__usable(m, el_mipmap__clamp_level(m, level));
+  el_mipmap__texel(m, level, s, t, out);
+}
+
+EL_DEF void el_mipmap_point(const el_mipmap *m, int level, float s, float t, float *out) {
+  int n, k;
+  level = el_mipmap__usable(m, el_mipmap__clamp_level(m, level));
+  n = m->level_width[level];
+  s = el_mipmap__sane(s, m->wrap_u) * (float)n;
+  k = m->level_height[level];
+  t = el_mipmap__sane(t, m->wrap_v) * (float)k;
+  el_mipmap__texel(m, level, el_mipmap__ifloor(s), el_mipmap__ifloor(t), out);
+}
+
+/* pbrt's triangle(level, st): (1-ds)(1-dt) T00 + (1-ds) dt T01 + ds (1-dt) T10 + ds dt T11. */
+static void el_mipmap__bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
+  int u0, u1, v0, v1, w = m->level_width[level], C = m->channels;
+  float a0, a1, b0, b1, k00, k01, k10, k11;
+  const float *d = m->level_data[level], *p00, *p01, *p10, *p11;
+  el_mipmap__axis(s, w, m->wrap_u, &u0, &u1, &a0, &a1);
+  el_mipmap__axis(t, m->level_height[level], m->wrap_v, &v0, &v1, &b0, &b1);
+  k00 = a0 * b0;
+  k01 = a0 * b1;
+  k10 = a1 * b0;
+  k11 = a1 * b1;
+  p00 = d + ((size_t)v0 * (size_t)w + (size_t)u0) * (size_t)C;
+  p01 = d + ((size_t)v1 * (size_t)w + (size_t)u0) * (size_t)C;
+  p10 = d + ((size_t)v0 * (size_t)w + (size_t)u1) * (size_t)C;
+  p11 = d + ((size_t)v1 * (size_t)w + (size_t)u1) * (size_t)C;
+  switch (C) {
+  case 3:
+    out[0] = k00 * p00[0] + k01 * p01[0] + k10 * p10[0] + k11 * p11[0];
+    out[1] = k00 * p00[1] + k01 * p01[1] + k10 * p10[1] + k11 * p11[1];
+    out[2] = k00 * p00[2] + k01 * p01[2] + k10 * p10[2] + k11 * p11[2];
+    break;
+  case 1: out[0] = k00 * p00[0] + k01 * p01[0] + k10 * p10[0] + k11 * p11[0]; break;
+  default: {
+    int c;
+    for (c = 0; c < C; ++c) out[c] = k00 * p00[c] + k01 * p01[c] + k10 * p10[c] + k11 * p11[c];
+  }
+  }
+}
+
+EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
+  level = el_mipmap__usable(m, el_mipmap__clamp_level(m, level));
+  el_mipmap__bilerp(m, level, s, t, out);
+}
+
+EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
+                                      float width, float *out) {
+  /* <<Compute MIPMap level for trilinear filtering>> */
+  float level, delta;
+  int il, il1, c, C = m->channels;
+  float a[4], b[4];
+  if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
+  level = (float)(m->levels - 1) + el_mipmap__log2(width);
+  /* <<Perform trilinear interpolation at appropriate MIPMap level>> */
+  if (level >= (float)(m->levels - 1)) {
+    el_mipmap__texel(m, el_mipmap__usable(m, m->levels - 1), 0, 0, out);
+    return;
+  }
+  if (level < 0) {
+    if (filter == EL_FILTER_POINT) el_mipmap_point(m, 0, s, t, out);
+    else el_mipmap__bilerp(m, 0, s, t, out);
+    return;
+  }
+  il = (int)level;
+  if (filter == EL_FILTER_POINT) {
+    el_mipmap_point(m, il, s, t, out);
+    return;
+  }
+  if (filter == EL_FILTER_BILINEAR) {
+    el_mipmap__bilerp(m, el_mipmap__usable(m, il), s, t, out);
+    return;
+  }
+  delta = level - (float)il;
+  il1 = el_mipmap__usable(m, il + 1);
+  if (il1 == 0) { /* upper levels unavailable (out of memory): bilinear on level 0 */
+    el_mipmap__bilerp(m, 0, s, t, out);
+    return;
+  }
+  el_mipmap__bilerp(m, il, s, t, a);
+  el_mipmap__bilerp(m, il1, s, t, b);
+  for (c = 0; c < C; ++c) out[c] = (1 - delta) * a[c] + delta * b[c]; /* pbrt's Lerp */
+}
+
+EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out) {
+  el_mipmap_lookup_filtered(m, EL_FILTER_TRILINEAR, s, t, width, out);
+}
+
+/* >> mipmap: EWA */
+/* One row of pbrt's EWA loop, texels lo..hi (row: texel 0 of the wrapped row, NULL for a Black row
+ * outside the level). The loop body is pbrt's: r2 = A ss^2 + B ss tt + C tt^2, weight from the table
+ * when r2 < 1; the caller has trimmed [lo, hi] to the ellipse's chord (plus a margin), so the texels
+ * that pbrt's bounding-box loop visits and this one skips all have r2 >= 1. Specialised per channel
+ * count (CH is a constant in each copy). */
+#define EL_MIPMAP__EWA_ROW(CH)                                                                          \
+  static void el_mipmap__ewa_row##CH(const float *row, int lo, int hi, int n, el_wrap wu, float x,     \
+                                     float A, float B, float tt, float ctt, float *acc, float *sumw) { \
+    float a[4], sw = *sumw, fis = (float)lo;                                                           \
+    int is, c;                                                                                         \
+    for (c = 0; c < CH; ++c) a[c] = acc[c];                                                            \
+    if (row && lo >= 0 && hi < n) {                                                                    \
+      const float *p = row + (size_t)lo * CH;                                                          \
+      for (is = lo; is <= hi; ++is, p += CH, fis += 1.0f) {                                            \
+        float ss = fis - x;                                                                            \
+        float r2 = A * ss * ss + B * ss * tt + ctt;                                                    \
+        if (r2 < 1) {                                                                                  \
+          int idx = (int)(r2 * 128);                                                                   \
+          float wgt;                                                                                   \
+          idx = idx > 127 ? 127 : (idx < 0 ? 0 : idx);                                                 \
+          wgt = el_mipmap__weight_lut[idx];                                                            \
+          for (c = 0; c < CH; ++c) a[c] += p[c] * wgt;                                                 \
+          sw += wgt;                                                                                   \
+        }                                                                                              \
+      }                                                                                                \
+    } else {                                                                                           \
+      for (is = lo; is <= hi; ++is, fis += 1.0f) {                                                     \
+        float ss = fis - x;                                                                            \
+        float r2 = A * ss * ss + B * ss * tt + ctt;                                                    \
+        if (r2 < 1) {                                                                                  \
+          int idx = (int)(r2 * 128), col;                                                              \
+          float wgt;                                                                                   \
+          idx = idx > 127 ? 127 : (idx < 0 ? 0 : idx);                                                 \
+          wgt = el_mipmap__weight_lut[idx];                                                            \
+          col = row ? el_mipmap__wrap(is, n, wu) : -1;                                                 \
+          if (col >= 0) {                                                                              \
+            const float *p = row + (size_t)col * CH;                                                   \
+            for (c = 0; c < CH; ++c) a[c] += p[c] * wgt;                                               \
+          }                                                                                            \
+          sw += wgt;                                                                                   \
+        }                                                                                              \
+      }                                                                                                \
+    }                                                                                                  \
+    for (c = 0; c < CH; ++c) acc[c] = a[c];                                                            \
+    *sumw = sw;                                                                                        \
+  }
+EL_MIPMAP__EWA_ROW(1)
+EL_MIPMAP__EWA_ROW(2)
+EL_MIPMAP__EWA_ROW(3)
+EL_MIPMAP__EWA_ROW(4)
+#undef EL_MIPMAP__EWA_ROW
+
+static int el_mipmap__iceil(float x) { return -el_mipmap__ifloor(-x); }
+
+/* Pins a footprint that lies entirely outside a Clamp axis next to the image, moved by a whole number
+ * of texels (the same texels, the same weights), so that huge coordinates cannot overflow an int. */
+static float el_mipmap__pin(float x, float r, int n) {
+  float f = x - floorf(x);
+  if (x < 0.0f) return -(ceilf(r) + 2.0f) + f;
+  return (float)n + ceilf(r) + 1.0f + f;
+}
+
+/* pbrt's EWA(level, st, dst0, dst1). s, t already made safe by el_mipmap__sane_ewa. */
+static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
+                           float d1s, float d1t, float *out) {
+  int C = m->channels, nu, nv, c, s0, s1, t0, t1, it;
+  float x, y, A, B, Cc, F, Fs, cr, invF, det, invDet, ru, rv, inv2A, fourA, acc[4], sumw = 0.0f;
+  const float *data;
+  if (level >= m->levels) {
+    el_mipmap__texel(m, m->levels - 1, 0, 0, out);
+    return;
+  }
+  nu = m->level_width[level];
+  nv = m->level_height[level];
+  data = m->level_data[level];
+  /* <<Convert EWA coordinates to appropriate scale for level>> */
+  x = s * (float)nu - 0.5f;
+  y = t * (float)nv - 0.5f;
+  d0s *= (float)nu;
+  d0t *= (float)nv;
+  d1s *= (float)nu;
+  d1t *= (float)nv;
+  /* <<Compute ellipse coefficients to bound EWA filter region>> */
+  A = d0t * d0t + d1t * d1t + 1;
+  B = -2 * (d0s * d0t + d1s * d1t);
+  Cc = d0s * d0s + d1s * d1s + 1;
+  F = A * Cc - B * B * 0.25f;
+  cr = d0s * d1t - d0t * d1s;
+  Fs = 1 + d0s * d0s + d0t * d0t + d1s * d1s + d1t * d1t + cr * cr; /* the same, without cancellation */
+  if (!(fabsf(F - Fs) <= 1e-3f * Fs)) F = Fs;
+  invF = 1 / F;
+  A *= invF;
+  B *= invF;
+  Cc *= invF;
+  /* <<Compute the ellipse's (s,t) bounding box in texture space>> */
+  det = -B * B + 4 * A * Cc;
+  if (!(fabsf(det - 4 * invF) <= 4e-3f * invF)) det = 4 * invF;
+  invDet = 1 / det;
+  ru = 2 * invDet * sqrtf(det * Cc);
+  rv = 2 * invDet * sqrtf(A * det);
+  if (m->wrap_u != EL_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
+    if (m->wrap_u == EL_WRAP_BLACK) {
+      for (c = 0; c < C; ++c) out[c] = 0.0f;
+      return;
+    }
+    x = el_mipmap__pin(x, ru, nu);
+  }
+  if (m->wrap_v != EL_WRAP_REPEAT && (y + rv < -1.0f || y - rv > (float)nv)) {
+    if (m->wrap_v == EL_WRAP_BLACK) {
+      for (c = 0; c < C; ++c) out[c] = 0.0f;
+      return;
+    }
+    y = el_mipmap__pin(y, rv, nv);
+  }
+  s0 = el_mipmap__iceil(x - ru);
+  s1 = el_mipmap__ifloor(x + ru);
+  t0 = el_mipmap__iceil(y - rv);
+  t1 = el_mipmap__ifloor(y + rv);
+  /* <<Scan over ellipse bound and compute quadratic equation>>, one chord per row */
+  for (c = 0; c < 4; ++c) acc[c] = 0.0f;
+  inv2A = 0.5f / A;
+  fourA = 4 * A;
+  for (it = t0; it <= t1; ++it) {
+    float tt = (float)it - y;
+    float ctt = Cc * tt * tt, btt = B * tt;
+    float disc = btt * btt - fourA * (ctt - 1);
+    float cs = x - btt * inv2A, hw = disc > 0 ? sqrtf(disc) * inv2A : 0.0f;
+    float mg = 0.05f + 1e-6f * (fabsf(x) + hw);
+    int lo = el_mipmap__iceil(cs - hw - mg), hi = el_mipmap__ifloor(cs + hw + mg), row;
+    const float *rp;
+    if (lo < s0) lo = s0;
+    if (hi > s1) hi = s1;
+    if (lo > hi) continue;
+    row = el_mipmap__wrap(it, nv, m->wrap_v);
+    rp = row < 0 ? NULL : data + (size_t)row * (size_t)nu * (size_t)C;
+    switch (C) {
+    case 1: el_mipmap__ewa_row1(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
+    case 2: el_mipmap__ewa_row2(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
+    case 3: el_mipmap__ewa_row3(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
+    default: el_mipmap__ewa_row4(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
+    }
+  }
+  if (!(sumw > 0.0f)) { /* cannot happen (the ellipse holds a disc of radius 1), kept as a guard */
+    for (c = 0; c < C; ++c) out[c] = 0.0f;
+    return;
+  }
+  for (c = 0; c < C; ++c) out[c] = acc[c] / sumw;
+}
+
+EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
+                                           float dsdy, float dtdy, float *out) {
+  float d0s = el_mipmap__sane_d(dsdx), d0t = el_mipmap__sane_d(dtdx);
+  float d1s = el_mipmap__sane_d(dsdy), d1t = el_mipmap__sane_d(dtdy);
+  float l0, l1, major, minor, lod, f, a[4], b[4];
+  int ilod, c, C = m->channels;
+  if (m->filter != EL_FILTER_EWA) {
+    float w = fabsf(d0s);
+    if (fabsf(d0t) > w) w = fabsf(d0t);
+    if (fabsf(d1s) > w) w = fabsf(d1s);
+    if (fabsf(d1t) > w) w = fabsf(d1t);
+    el_mipmap_lookup_filtered(m, m->filter, s, t, 2 * w, out);
+    return;
+  }
+  /* <<Compute ellipse minor and major axes>> */
+  l0 = d0s * d0s + d0t * d0t;
+  l1 = d1s * d1s + d1t * d1t;
+  if (l0 < l1) {
+    float tmp = d0s;
+    d0s = d1s;
+    d1s = tmp;
+    tmp = d0t;
+    d0t = d1t;
+    d1t = tmp;
+    tmp = l0;
+    l0 = l1;
+    l1 = tmp;
+  }
+  major = sqrtf(l0);
+  minor = sqrtf(l1);
+  /* <<Clamp ellipse eccentricity if too large>> */
+  if (minor * m->max_anisotropy < major && minor > 0) {
+    float scale = major / (minor * m->max_anisotropy);
+    d1s *= scale;
+    d1t *= scale;
+    minor *= scale;
+  }
+  if (minor == 0) {
+    el_mipmap__bilerp(m, 0, s, t, out);
+    return;
+  }
+  /* <<Choose level of detail for EWA lookup and perform EWA filtering>> */
+  lod = (float)m->levels - (float)1 + el_mipmap__log2(minor);
+  if (lod < 0) lod = 0;
+  ilod = (int)lod;
+  f = lod - (float)ilod;
+  if ((ilod > 0 || f > 0) && !el_mipmap__ensure(m)) { /* out of memory: level 0 only */
+    ilod = 0;
+    f = 0;
+  }
+  s = el_mipmap__sane_ewa(s, m->wrap_u);
+  t = el_mipmap__sane_ewa(t, m->wrap_v);
+  el_mipmap__ewa(m, ilod, s, t, d0s, d0t, d1s, d1t, a);
+  if (f == 0) { /* pbrt computes (1 - 0) a + 0 b = a as well */
+    for (c = 0; c < C; ++c) out[c] = a[c];
+    return;
+  }
+  el_mipmap__ewa(m, ilod + 1, s, t, d0s, d0t, d1s, d1t, b);
+  for (c = 0; c < C; ++c) out[c] = (1 - f) * a[c] + f * b[c];
+}
+/* << mipmap implementation */
+
+#endif /* EL_MIPMAP_IMPLEMENTATION_DONE */
+#endif /* implementation */
+
+/* Version history
+ *   0.1.0  first release: pbrt-v3 MIPMap (resampling, box levels, Texel, triangle, trilinear, EWA),
+ *          per-axis wrap, point/bilinear filters, lazy thread-safe upper levels, keep_resolution.
+ *
+ * Licence: MIT or public domain (choose one), like stb.
+ *   MIT: Copyright (c) 2026 the envlight authors. Permission is hereby granted, free of charge, to any
+ *   person obtaining a copy of this software, to deal in it without restriction, including the rights
+ *   to use, copy, modify, merge, publish, distribute, sublicense and/or sell copies, subject to
+ *   including this notice. THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND.
+ *   Public domain: anyone may use this file for any purpose, without any conditions.
+ */
