@@ -546,6 +546,11 @@ static int el_film__accept(el_film_stats *s, float px, float py, const float *rg
   float v[6];
   int i;
   if (!rgb) { s->rejected_nan++; return 0; }
+  /* fast path: finite positions (x - x is 0 only for finite x), components and weight in [0, FLT_MAX]
+     (every comparison with NaN is false) */
+  if ((px - px == 0.0f) & (py - py == 0.0f) & (rgb[0] >= 0.0f) & (rgb[0] <= FLT_MAX) & (rgb[1] >= 0.0f) &
+      (rgb[1] <= FLT_MAX) & (rgb[2] >= 0.0f) & (rgb[2] <= FLT_MAX) & (w >= 0.0f) & (w <= FLT_MAX))
+    return 1;
   v[0] = px; v[1] = py; v[2] = rgb[0]; v[3] = rgb[1]; v[4] = rgb[2]; v[5] = w;
   for (i = 0; i < 6; i++)
     if (v[i] != v[i]) { s->rejected_nan++; return 0; }
@@ -554,6 +559,12 @@ static int el_film__accept(el_film_stats *s, float px, float py, const float *rg
   for (i = 2; i < 6; i++)
     if (v[i] < 0.0f) { s->rejected_negative++; return 0; }
   return 1;
+}
+
+/* floor for |x| well inside the int range (callers clip first): no libm call */
+static int el_film__floori(double x) {
+  int i = (int)x;
+  return i - (x < (double)i);
 }
 
 /* <<FilmTile::AddSample>> into the buffer `buf` over pixel bounds [bx0,bx1) x [by0,by1). */
@@ -580,10 +591,10 @@ static void el_film__add(const el_film *f, el_film_stats *s, double *buf, int bx
   pdx = (double)px - 0.5;
   pdy = (double)py - 0.5;
   if (pdx + rx < bx0 - 1.0 || pdx - rx > bx1 || pdy + ry < by0 - 1.0 || pdy - ry > by1) return;
-  x0 = (int)ceil(pdx - rx);
-  y0 = (int)ceil(pdy - ry);
-  x1 = (int)floor(pdx + rx) + 1;
-  y1 = (int)floor(pdy + ry) + 1;
+  x0 = -el_film__floori(rx - pdx); /* ceil(pdx - rx) */
+  y0 = -el_film__floori(ry - pdy);
+  x1 = el_film__floori(pdx + rx) + 1;
+  y1 = el_film__floori(pdy + ry) + 1;
   if (x0 < bx0) x0 = bx0;
   if (y0 < by0) y0 = by0;
   if (x1 > bx1) x1 = bx1;
