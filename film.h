@@ -722,7 +722,7 @@ EL_DEF el_result el_film_merge_tile(el_film *f, const el_film_tile *t) {
     double *dst = f->pixels + ((size_t)(y - f->y0) * (size_t)f->width + (size_t)(t->x0 - f->x0)) * 4;
     for (x = 0; x < tw * 4; x++) dst[x] += src[x];
   }
-  if (t->splats) {
+  if (t->splats && t->stats.splats) { /* a tile that never splatted since its reset adds nothing */
     if (!f->splats) {
       size_t n = (size_t)f->width * (size_t)f->height * 3;
       f->splats = (double *)EL_MALLOC(n * sizeof(double));
