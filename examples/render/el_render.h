@@ -1,0 +1,88 @@
+/* el_render.h: the pieces of `render`, a pbrt-v3-format scene renderer on Embree (examples/render).
+ *
+ * Not part of the envlight library: an application of it. The renderer reads a pbrt-v3 scene file
+ * (parser.c), builds an Embree scene of exact spheres and triangle meshes (scene.c), shades with
+ * pbrt-v3's matte / mirror / plastic materials and its textures (shading.c), lights with the infinite
+ * area light of envlight.h plus point and distant lights, and integrates with pbrt-v3's
+ * DirectLightingIntegrator or a path tracer with next-event estimation and MIS (integrator.c),
+ * accumulating through film.h over tiles on all cores.
+ *
+ *   elr_scene *s = NULL; char err[512];
+ *   if (elr_scene_load("scene.pbrt", &s, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); exit(1); }
+ *   elr_render_options o; elr_render_options_default(&o); o.spp = 16;
+ *   elr_image img; elr_stats st;
+ *   if (elr_render(s, &o, &img, &st, err, sizeof err) != 0) ...
+ *   elr_image_write(&img, "out.png", err, sizeof err);
+ *   elr_image_free(&img); elr_scene_free(s);
+ *
+ * The pipeline is assembled from what the scene uses (see elr_render): no shadow rays or light
+ * sampling when nothing emits or when a surface has no non-specular lobe, no environment sampling
+ * distribution when the environment is only seen directly or through mirrors, no MIP levels above 0
+ * for textures never minified, no splat buffer (nothing in this renderer splats), no bounce past
+ * maxdepth. elr_stats reports what was built and what each part cost.
+ */
+#ifndef EL_RENDER_H
+#define EL_RENDER_H
+#include <stddef.h>
+#include <stdint.h>
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct elr_scene elr_scene;
+
+/* Parse a pbrt-v3 scene file and build everything it needs except the things that are built lazily
+ * (the environment's sampling distribution, MIP levels). Returns 0, or -1 with "file:line: message"
+ * in err. Warnings (unsupported directives or parameters) go to stderr as "file:line: warning: ..."
+ * unless quiet, and are counted in elr_scene_warnings(). */
+int elr_scene_load(const char *path, elr_scene **out, int quiet, char *err, size_t errlen);
+/* The same from a string (file names in it are relative to base_dir; name is used in messages). */
+int elr_scene_load_string(const char *text, const char *name, const char *base_dir, elr_scene **out,
+                          int quiet, char *err, size_t errlen);
+void elr_scene_free(elr_scene *s);
+int elr_scene_warnings(const elr_scene *s);
+const char *elr_scene_last_warning(const elr_scene *s); /* "" when none */
+const char *elr_scene_film_filename(const elr_scene *s);
+void elr_scene_resolution(const elr_scene *s, int *width, int *height); /* after cropwindow */
+int elr_scene_spp(const elr_scene *s);
+
+/* Light sampling strategies (the integrator's "string lightsampling" parameter, a test/bench hook). */
+enum { ELR_LS_MIS = 0, ELR_LS_LIGHT = 1, ELR_LS_BSDF = 2 };
+enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3 };
+
+typedef struct elr_render_options {
+  int spp;            /* 0: the scene's */
+  int nthreads;       /* 0: all cores */
+  uint64_t seed;
+  int quiet;          /* no progress bar */
+  int light_sampling; /* -1: the scene's, else ELR_LS_* */
+  int compensated;    /* -1: the scene's, else 0/1 (envlight's compensated distribution) */
+  int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
+  int tile_size;      /* 0: 16 */
+} elr_render_options;
+void elr_render_options_default(elr_render_options *o);
+
+typedef struct elr_stats {
+  double t_parse, t_images, t_embree, t_distribution, t_render, t_total;
+  size_t bytes_embree, bytes_textures, bytes_film, bytes_distribution, bytes_splats, bytes_mip;
+  uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
+  int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
+  int nthreads, spp, width, height, maxdepth, integrator_path;
+  uint64_t rejected_samples;
+} elr_stats;
+
+typedef struct elr_image { int width, height; float *rgb; } elr_image; /* linear RGB, top row first */
+void elr_image_free(elr_image *img);
+/* Format by extension: .png (sRGB 8-bit), .exr, .pfm, .hdr (linear float). */
+int elr_image_write(const elr_image *img, const char *path, char *err, size_t errlen);
+
+int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err,
+               size_t errlen);
+void elr_stats_print(const elr_stats *st, void *file /* FILE* */);
+
+double elr_now(void); /* seconds, monotonic */
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,221 @@
+/* elr_internal.h: the renderer's private declarations (scene description, small vector maths and the
+ * glue to envlight's headers). Only examples/render includes it. */
+#ifndef ELR_INTERNAL_H
+#define ELR_INTERNAL_H
+#include "el_render.h"
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#ifndef ELR_PI
+#define ELR_PI 3.14159265358979323846f
+#endif
+#define ELR_INV_PI 0.31830988618379067154f
+#define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
+
+/* >> vectors */
+typedef struct elr_v3 { float x, y, z; } elr_v3;
+static inline elr_v3 elr_v(float x, float y, float z) { elr_v3 r; r.x = x; r.y = y; r.z = z; return r; }
+static inline elr_v3 elr_add(elr_v3 a, elr_v3 b) { return elr_v(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline elr_v3 elr_sub(elr_v3 a, elr_v3 b) { return elr_v(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline elr_v3 elr_mul(elr_v3 a, float s) { return elr_v(a.x * s, a.y * s, a.z * s); }
+static inline elr_v3 elr_vmul(elr_v3 a, elr_v3 b) { return elr_v(a.x * b.x, a.y * b.y, a.z * b.z); }
+static inline float elr_dot(elr_v3 a, elr_v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline elr_v3 elr_cross(elr_v3 a, elr_v3 b) {
+  return elr_v(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline float elr_len(elr_v3 a) { return sqrtf(elr_dot(a, a)); }
+static inline elr_v3 elr_norm(elr_v3 a) {
+  float l = elr_len(a);
+  return l > 0.f ? elr_mul(a, 1.f / l) : elr_v(0.f, 0.f, 1.f);
+}
+static inline float elr_maxc(elr_v3 a) { float m = a.x > a.y ? a.x : a.y; return m > a.z ? m : a.z; }
+static inline int elr_isblack(elr_v3 a) { return a.x == 0.f && a.y == 0.f && a.z == 0.f; }
+/* Orthonormal basis around unit n (Duff et al. 2017). */
+static inline void elr_onb(elr_v3 n, elr_v3 *s, elr_v3 *t) {
+  float sign = n.z >= 0.f ? 1.f : -1.f;
+  float a = -1.f / (sign + n.z), b = n.x * n.y * a;
+  *s = elr_v(1.f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  *t = elr_v(b, sign + n.y * n.y * a, -n.y);
+}
+
+/* >> transforms (pbrt-v3's Transform: a matrix and its inverse, row-major, column vectors) */
+typedef struct elr_xform { double m[4][4], inv[4][4]; } elr_xform;
+void elr_xform_identity(elr_xform *t);
+int elr_xform_from_matrix(elr_xform *t, double m[4][4]); /* -1 when singular */
+void elr_xform_mul(elr_xform *out, const elr_xform *a, const elr_xform *b); /* a*b */
+void elr_xform_invert(elr_xform *out, const elr_xform *a);
+elr_v3 elr_xpoint(const elr_xform *t, elr_v3 p);
+elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
+elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
+elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
+elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
+
+/* >> glue to the library headers (glue.c is the only file that includes them) */
+typedef struct elr_envmap elr_envmap;
+/* rgb: w*h*3 linear floats, top row first (theta = 0 at the top row, pbrt's lat-long mapping);
+ * scale: pbrt's "scale" times "L"; l2w: the light-to-world rotation (3x3, row-major). */
+int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9],
+                   int compensated, elr_envmap **out, char *err, size_t errlen);
+void elr_env_free(elr_envmap *e);
+elr_v3 elr_env_le(const elr_envmap *e, elr_v3 dir_world);
+int elr_env_prepare(elr_envmap *e); /* build the sampling distribution now (before threads start) */
+/* Sample a direction towards the environment: radiance, world direction, solid-angle pdf. */
+elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
+float elr_env_pdf(const elr_envmap *e, elr_v3 wi);
+size_t elr_env_distribution_bytes(const elr_envmap *e);
+size_t elr_env_image_bytes(const elr_envmap *e);
+
+typedef struct elr_mip elr_mip;
+enum { ELR_WRAP_REPEAT = 0, ELR_WRAP_BLACK = 1, ELR_WRAP_CLAMP = 2 };
+enum { ELR_FILTER_BILINEAR = 0, ELR_FILTER_TRILINEAR = 1, ELR_FILTER_EWA = 2 };
+int elr_mip_create(const float *rgb, int w, int h, int wrap, int filter, float maxaniso, elr_mip **out,
+                   char *err, size_t errlen);
+void elr_mip_free(elr_mip *m);
+elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy);
+void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes);
+
+typedef struct elr_film elr_film;
+typedef struct elr_tile elr_tile;
+enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
+typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
+/* full resolution xres x yres; pixel bounds [x0,x1) x [y0,y1) after the crop window */
+int elr_film_create(int xres, int yres, int x0, int y0, int x1, int y1, const elr_filter_desc *f,
+                    elr_film **out, char *err, size_t errlen);
+void elr_film_free(elr_film *f);
+/* the sample bounds of the pixels [x0,x1) x [y0,y1): a tile adds samples for those pixels */
+elr_tile *elr_film_tile(elr_film *f, int x0, int y0, int x1, int y1);
+void elr_tile_add(elr_tile *t, float fx, float fy, elr_v3 L); /* continuous raster position */
+void elr_film_merge(elr_film *f, elr_tile *t);                 /* frees the tile */
+void elr_film_rgb(elr_film *f, float *rgb);                     /* cropped image, top row first */
+void elr_film_sample_bounds(const elr_film *f, int *x0, int *y0, int *x1, int *y1);
+size_t elr_film_bytes(const elr_film *f);
+size_t elr_film_splat_bytes(const elr_film *f);
+uint64_t elr_film_rejected(const elr_film *f);
+int elr_srgb8(const float *rgb, int n, unsigned char *out);
+
+/* >> scene description */
+enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2 };
+typedef struct elr_texture {
+  int kind;
+  elr_v3 value;            /* constant */
+  int tex1, tex2;          /* checkerboard: sub-textures */
+  int aa_closedform;       /* checkerboard aamode */
+  float su, sv, du, dv;    /* uv mapping */
+  elr_mip *mip;            /* imagemap */
+  int is_float;
+} elr_texture;
+
+enum { ELR_MAT_MATTE = 0, ELR_MAT_MIRROR = 1, ELR_MAT_PLASTIC = 2 };
+typedef struct elr_material {
+  int kind;
+  int kd, ks, kr, rough; /* texture indices */
+  int remap;
+} elr_material;
+
+typedef struct elr_mesh {
+  int ntri, nvert;
+  unsigned *idx;  /* 3*ntri */
+  float *p;       /* 3*nvert, world space */
+  float *n;       /* 3*nvert or NULL, world space */
+  float *uv;      /* 2*nvert or NULL */
+  int material;
+} elr_mesh;
+
+typedef struct elr_sphere {
+  elr_xform o2w; /* object to world */
+  float radius;
+  int material;
+} elr_sphere;
+
+enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2 };
+typedef struct elr_light {
+  int kind;
+  elr_v3 L;          /* L * scale (point: I * scale) */
+  elr_v3 pos, dir;   /* point: world position; distant: world direction towards the light */
+  int nsamples;
+  elr_envmap *env;   /* infinite light (a constant L is a 1x1 map) */
+  int compensated;
+  int has_map;
+} elr_light;
+
+typedef struct elr_scene_desc {
+  /* camera */
+  elr_xform cam2world;
+  float fov, frameaspect, screen[4];
+  int has_screen, has_frameaspect;
+  /* film */
+  int xres, yres;
+  float crop[4];
+  char filename[1024];
+  elr_filter_desc filter;
+  /* sampler */
+  int sampler, spp, xs, ys, jitter, dims;
+  /* integrator */
+  int integrator_path, maxdepth, light_sampling;
+  float rrthreshold;
+} elr_scene_desc;
+
+struct elr_scene {
+  elr_scene_desc d;
+  elr_texture *tex; int ntex, captex;
+  elr_material *mat; int nmat, capmat;
+  elr_mesh *mesh; int nmesh, capmesh;
+  elr_sphere *sph; int nsph, capsph;
+  elr_light *light; int nlight, caplight;
+  int warnings;
+  char last_warning[512];
+  int quiet;
+  double t_parse, t_images, t_embree;
+  size_t bytes_textures, bytes_embree;
+  /* Embree */
+  void *device, *rtscene;
+  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres */
+  int *geom_index;
+  unsigned ngeom;
+  unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
+  float world_radius;
+  elr_v3 world_center;
+};
+
+int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, const char *base_dir,
+              char *err, size_t errlen);
+void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
+int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen);
+int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree */
+void elr_scene_release(elr_scene *s);
+
+/* >> intersection */
+typedef struct elr_hit {
+  float t;
+  elr_v3 p, ng, ns;    /* ng, ns unit; ns on the side of ng */
+  elr_v3 dpdu, dpdv, dndu, dndv;
+  float u, v;          /* texture coordinates */
+  int material;
+  float eps;           /* offset for spawned rays */
+} elr_hit;
+int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
+int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
+void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
+
+/* >> textures and materials */
+typedef struct elr_tex_ctx {
+  float u, v, dudx, dudy, dvdx, dvdy;
+} elr_tex_ctx;
+elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
+
+/* A BSDF in the shading frame: up to one diffuse, one glossy and one specular lobe. */
+typedef struct elr_bsdf {
+  elr_v3 ns, ss, ts, ng;
+  elr_v3 kd, ks, kr;
+  float alpha;
+  int has_diffuse, has_glossy, has_specular, ncomp;
+} elr_bsdf;
+void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
+elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
+float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
+/* Returns f; *specular set when the sampled lobe was the specular one. */
+elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
+float elr_roughness_to_alpha(float r);
+
+#endif

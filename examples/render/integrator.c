@@ -1,0 +1,808 @@
+/* integrator.c: camera, samplers, the two integrators, tiles on threads, stats, scene load/free and
+ * image output.
+ *
+ * Camera: pbrt-v3's PerspectiveCamera (pinhole): the screen window spans [-frame, frame] x [-1, 1] (or
+ * [-1, 1] x [-1/frame, 1/frame]) so fov applies to the shorter image axis; raster y grows downwards;
+ * rays carry differentials scaled by 1/sqrt(spp) (pbrt's ScaleDifferentials).
+ *
+ * Samplers: "random"; "stratified" (pbrt-v3's StratifiedSampler: jittered strata for the first
+ * `dimensions` 1D and 2D dimensions, shuffled across the pixel's samples, uniform random after); "halton"
+ * (pbrt-v3's HaltonSampler: one global Halton sequence whose first two dimensions land in the pixel,
+ * random digit permutations for the others). Every pixel's random numbers depend only on --seed and
+ * the pixel, so the image is the same for every thread count.
+ *
+ * Integrators: "directlighting" is pbrt-v3's DirectLightingIntegrator (strategy "all": every light,
+ * its `samples` count, light and BSDF sampling combined with the power heuristic; specular reflection
+ * recursed to maxdepth). "path" is a unidirectional path tracer with next-event estimation from every
+ * light at every vertex, the continuation ray's BSDF sample reused as the MIS partner (pbrt-v4's
+ * arrangement: one fewer ray per vertex than pbrt-v3, the same expectation), and pbrt-v3's Russian
+ * roulette (after 3 bounces, when the throughput's largest component is below rrthreshold). */
+#define _POSIX_C_SOURCE 200809L
+#include "elr_internal.h"
+#include "image_io.h"
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* >> random numbers: PCG32 (pbrt's RNG) */
+typedef struct elr_rng { uint64_t state, inc; } elr_rng;
+static uint32_t elr__rng_u32(elr_rng *r) {
+  uint64_t old = r->state;
+  uint32_t xs, rot;
+  r->state = old * 0x5851f42d4c957f2dULL + r->inc;
+  xs = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+  rot = (uint32_t)(old >> 59u);
+  return (xs >> rot) | (xs << ((~rot + 1u) & 31));
+}
+static void elr__rng_seed(elr_rng *r, uint64_t seq, uint64_t seed) {
+  r->state = 0u; r->inc = (seq << 1u) | 1u;
+  elr__rng_u32(r); r->state += seed; elr__rng_u32(r);
+}
+static float elr__rng_f(elr_rng *r) {
+  float f = (float)(elr__rng_u32(r) >> 8) * 0x1p-24f;
+  return f;
+}
+static uint64_t elr__mix(uint64_t x) {
+  x ^= x >> 31; x *= 0x7fb5d329728ea185ULL; x ^= x >> 27; x *= 0x81dadef4bc2dd44dULL; x ^= x >> 33;
+  return x;
+}
+
+/* >> samplers */
+#define ELR_HALTON_DIMS 256
+typedef struct elr_halton {
+  int base_scales[2], base_exps[2], mult_inv[2];
+  int64_t stride;
+  int ndims;
+  int primes[ELR_HALTON_DIMS];
+  uint16_t *perm; int perm_off[ELR_HALTON_DIMS];
+} elr_halton;
+
+typedef struct elr_sampler {
+  int kind, spp, xs, ys, jitter, dims;
+  uint64_t seed;
+  const elr_halton *H;
+  /* per pixel */
+  int px, py, sample;
+  elr_rng rng;
+  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
+  int d1, d2, dim;
+  int64_t hindex, hoffset;
+} elr_sampler;
+
+static int64_t elr__mod(int64_t a, int64_t b) { int64_t r = a % b; return r < 0 ? r + b : r; }
+static void elr__egcd(int64_t a, int64_t b, int64_t *x, int64_t *y) {
+  int64_t d, xp, yp;
+  if (b == 0) { *x = 1; *y = 0; return; }
+  d = a / b;
+  elr__egcd(b, a % b, &xp, &yp);
+  *x = yp; *y = xp - d * yp;
+}
+static int64_t elr__mulinv(int64_t a, int64_t n) { int64_t x, y; elr__egcd(a, n, &x, &y); return elr__mod(x, n); }
+
+static int elr__halton_init(elr_halton *H, int w, int h, uint64_t seed) {
+  int i, n = 0, total = 0;
+  elr_rng r;
+  memset(H, 0, sizeof *H);
+  for (i = 2; n < ELR_HALTON_DIMS; i++) {
+    int k, p = 1;
+    for (k = 2; k * k <= i; k++) if (i % k == 0) { p = 0; break; }
+    if (p) { H->perm_off[n] = total; total += i; H->primes[n++] = i; }
+  }
+  H->ndims = n;
+  H->perm = (uint16_t *)malloc(sizeof(uint16_t) * (size_t)total);
+  if (!H->perm) return -1;
+  elr__rng_seed(&r, 0x853c49e6748fea9bULL, seed);
+  for (i = 0; i < n; i++) {
+    int b = H->primes[i], k;
+    uint16_t *pp = H->perm + H->perm_off[i];
+    for (k = 0; k < b; k++) pp[k] = (uint16_t)k;
+    for (k = b - 1; k > 0; k--) { int j = (int)(elr__rng_u32(&r) % (uint32_t)(k + 1)); uint16_t t = pp[k]; pp[k] = pp[j]; pp[j] = t; }
+  }
+  /* <<Find radical inverse base scales and exponents that cover sampling area>> */
+  for (i = 0; i < 2; i++) {
+    int base = i == 0 ? 2 : 3, scale = 1, e = 0, res = i == 0 ? w : h;
+    if (res > 128) res = 128;
+    while (scale < res) { scale *= base; ++e; }
+    H->base_scales[i] = scale; H->base_exps[i] = e;
+  }
+  H->stride = (int64_t)H->base_scales[0] * H->base_scales[1];
+  H->mult_inv[0] = (int)elr__mulinv(H->base_scales[1], H->base_scales[0]);
+  H->mult_inv[1] = (int)elr__mulinv(H->base_scales[0], H->base_scales[1]);
+  return 0;
+}
+static double elr__radical_inverse(int base, uint64_t a) {
+  double inv = 1.0 / base, invn = 1.0;
+  uint64_t rev = 0;
+  while (a) { uint64_t next = a / (uint64_t)base, digit = a - next * (uint64_t)base; rev = rev * (uint64_t)base + digit; invn *= inv; a = next; }
+  return (double)rev * invn;
+}
+static float elr__scrambled_ri(int base, uint64_t a, const uint16_t *perm) {
+  double inv = 1.0 / base, invn = 1.0, r;
+  uint64_t rev = 0;
+  while (a) { uint64_t next = a / (uint64_t)base, digit = a - next * (uint64_t)base; rev = rev * (uint64_t)base + perm[digit]; invn *= inv; a = next; }
+  r = invn * ((double)rev + inv * perm[0] / (1.0 - inv));
+  return r < ELR_ONE_MINUS_EPS ? (float)r : ELR_ONE_MINUS_EPS;
+}
+static uint64_t elr__inv_ri(int base, uint64_t inverse, int ndigits) {
+  uint64_t index = 0;
+  int i;
+  for (i = 0; i < ndigits; i++) { uint64_t digit = inverse % (uint64_t)base; inverse /= (uint64_t)base; index = index * (uint64_t)base + digit; }
+  return index;
+}
+
+static void elr__sampler_pixel(elr_sampler *S, int px, int py) {
+  S->px = px; S->py = py;
+  elr__rng_seed(&S->rng, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr__mix(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py ^ (S->seed << 17)));
+  if (S->kind == ELR_SAMPLER_STRATIFIED) {
+    int d, i, n = S->spp;
+    for (d = 0; d < S->dims; d++) {
+      float *a = S->s1d + (size_t)d * (size_t)n, *b = S->s2d + (size_t)d * (size_t)n * 2;
+      int x, y;
+      for (i = 0; i < n; i++) a[i] = fminf(((float)i + (S->jitter ? elr__rng_f(&S->rng) : 0.5f)) / (float)n, ELR_ONE_MINUS_EPS);
+      for (i = n - 1; i > 0; i--) { int j = (int)(elr__rng_u32(&S->rng) % (uint32_t)(i + 1)); float t = a[i]; a[i] = a[j]; a[j] = t; }
+      for (y = 0; y < S->ys; y++)
+        for (x = 0; x < S->xs; x++) {
+          float jx = S->jitter ? elr__rng_f(&S->rng) : 0.5f, jy = S->jitter ? elr__rng_f(&S->rng) : 0.5f;
+          b[2 * (y * S->xs + x)] = fminf(((float)x + jx) / (float)S->xs, ELR_ONE_MINUS_EPS);
+          b[2 * (y * S->xs + x) + 1] = fminf(((float)y + jy) / (float)S->ys, ELR_ONE_MINUS_EPS);
+        }
+      for (i = n - 1; i > 0; i--) {
+        int j = (int)(elr__rng_u32(&S->rng) % (uint32_t)(i + 1));
+        float t0 = b[2 * i], t1 = b[2 * i + 1];
+        b[2 * i] = b[2 * j]; b[2 * i + 1] = b[2 * j + 1]; b[2 * j] = t0; b[2 * j + 1] = t1;
+      }
+    }
+  } else if (S->kind == ELR_SAMPLER_HALTON) {
+    const elr_halton *H = S->H;
+    int64_t off = 0;
+    if (H->stride > 1) {
+      int64_t pm[2];
+      int i;
+      pm[0] = elr__mod(px, 128); pm[1] = elr__mod(py, 128);
+      for (i = 0; i < 2; i++) {
+        uint64_t dimoff = elr__inv_ri(i == 0 ? 2 : 3, (uint64_t)pm[i], H->base_exps[i]);
+        off += (int64_t)dimoff * (H->stride / H->base_scales[i]) * H->mult_inv[i];
+      }
+      off %= H->stride;
+    }
+    S->hoffset = off;
+  }
+}
+static void elr__sampler_start(elr_sampler *S, int sample) {
+  S->sample = sample; S->d1 = S->d2 = 0; S->dim = 0;
+  if (S->kind == ELR_SAMPLER_HALTON) S->hindex = S->hoffset + (int64_t)sample * S->H->stride;
+  if (S->kind == ELR_SAMPLER_RANDOM) {
+    /* every pixel sample its own stream: the same numbers whatever the tile order */
+    elr__rng_seed(&S->rng, elr__mix(S->seed ^ 0x632be59bd9b4e019ULL), elr__mix(((uint64_t)(uint32_t)S->px << 40) ^ ((uint64_t)(uint32_t)S->py << 20) ^ (uint64_t)sample ^ (S->seed << 7)));
+  }
+}
+static float elr__halton_dim(elr_sampler *S, int dim) {
+  const elr_halton *H = S->H;
+  if (dim == 0) return (float)fmin(elr__radical_inverse(2, (uint64_t)S->hindex >> H->base_exps[0]), ELR_ONE_MINUS_EPS);
+  if (dim == 1) return (float)fmin(elr__radical_inverse(3, (uint64_t)S->hindex / (uint64_t)H->base_scales[1]), ELR_ONE_MINUS_EPS);
+  if (dim < H->ndims) return elr__scrambled_ri(H->primes[dim], (uint64_t)S->hindex, H->perm + H->perm_off[dim]);
+  return elr__rng_f(&S->rng);
+}
+static float elr__get1d(elr_sampler *S) {
+  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d1 < S->dims) return S->s1d[(size_t)(S->d1++) * (size_t)S->spp + (size_t)S->sample];
+  if (S->kind == ELR_SAMPLER_HALTON) return elr__halton_dim(S, S->dim++);
+  return elr__rng_f(&S->rng);
+}
+static void elr__get2d(elr_sampler *S, float *u0, float *u1) {
+  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims) {
+    const float *b = S->s2d + ((size_t)S->d2 * (size_t)S->spp + (size_t)S->sample) * 2;
+    S->d2++; *u0 = b[0]; *u1 = b[1]; return;
+  }
+  if (S->kind == ELR_SAMPLER_HALTON) { *u0 = elr__halton_dim(S, S->dim); *u1 = elr__halton_dim(S, S->dim + 1); S->dim += 2; return; }
+  *u0 = elr__rng_f(&S->rng); *u1 = elr__rng_f(&S->rng);
+}
+
+/* >> render context */
+typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
+
+typedef struct elr_ctx {
+  elr_scene *s;
+  int ls;                 /* ELR_LS_* */
+  int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
+  int maxdepth, path;
+  float rr;
+  /* camera */
+  float sx0, sx1, sy0, sy1, tanhalf;
+  int xres, yres;
+  float diff_scale;
+  elr_xform c2w;
+  int spp;
+} elr_ctx;
+
+typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats;
+
+static float elr__power(float a, float b) { float a2 = a * a, b2 = b * b; return a2 + b2 > 0.f ? a2 / (a2 + b2) : 0.f; }
+static int elr__light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
+
+static elr_v3 elr__offset(const elr_hit *h, elr_v3 d) {
+  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
+}
+static elr_v3 elr__env_le(const elr_scene *s, elr_v3 d) {
+  int i;
+  elr_v3 L = elr_v(0, 0, 0);
+  for (i = 0; i < s->nlight; i++)
+    if (s->light[i].kind == ELR_LIGHT_INFINITE && elr__light_emits(&s->light[i])) L = elr_add(L, elr_env_le(s->light[i].env, d));
+  return L;
+}
+
+/* <<Compute ray differentials for SurfaceInteraction>> (pbrt-v3 ComputeDifferentials) */
+static void elr__differentials(const elr_ray *r, const elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy) {
+  c->u = h->u; c->v = h->v;
+  c->dudx = c->dudy = c->dvdx = c->dvdy = 0.f;
+  *dpdx = *dpdy = elr_v(0, 0, 0);
+  if (r->has_diff) {
+    elr_v3 n = h->ng, px, py;
+    float d = elr_dot(n, h->p), tx, ty, dnx = elr_dot(n, r->rxd), dny = elr_dot(n, r->ryd);
+    float A[2][2], Bx[2], By[2], det;
+    float pa[3], pxa[3], pya[3], dpu[3], dpv[3];
+    int dim0, dim1;
+    if (dnx == 0.f || dny == 0.f) return;
+    tx = -(elr_dot(n, r->rxo) - d) / dnx; ty = -(elr_dot(n, r->ryo) - d) / dny;
+    if (!isfinite(tx) || !isfinite(ty)) return;
+    px = elr_add(r->rxo, elr_mul(r->rxd, tx)); py = elr_add(r->ryo, elr_mul(r->ryd, ty));
+    *dpdx = elr_sub(px, h->p); *dpdy = elr_sub(py, h->p);
+    if (fabsf(n.x) > fabsf(n.y) && fabsf(n.x) > fabsf(n.z)) { dim0 = 1; dim1 = 2; }
+    else if (fabsf(n.y) > fabsf(n.z)) { dim0 = 0; dim1 = 2; }
+    else { dim0 = 0; dim1 = 1; }
+    pa[0] = h->p.x; pa[1] = h->p.y; pa[2] = h->p.z;
+    pxa[0] = px.x; pxa[1] = px.y; pxa[2] = px.z; pya[0] = py.x; pya[1] = py.y; pya[2] = py.z;
+    dpu[0] = h->dpdu.x; dpu[1] = h->dpdu.y; dpu[2] = h->dpdu.z; dpv[0] = h->dpdv.x; dpv[1] = h->dpdv.y; dpv[2] = h->dpdv.z;
+    A[0][0] = dpu[dim0]; A[0][1] = dpv[dim0]; A[1][0] = dpu[dim1]; A[1][1] = dpv[dim1];
+    Bx[0] = pxa[dim0] - pa[dim0]; Bx[1] = pxa[dim1] - pa[dim1];
+    By[0] = pya[dim0] - pa[dim0]; By[1] = pya[dim1] - pa[dim1];
+    det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+    if (fabsf(det) < 1e-10f) return;
+    c->dudx = (A[1][1] * Bx[0] - A[0][1] * Bx[1]) / det; c->dvdx = (A[0][0] * Bx[1] - A[1][0] * Bx[0]) / det;
+    c->dudy = (A[1][1] * By[0] - A[0][1] * By[1]) / det; c->dvdy = (A[0][0] * By[1] - A[1][0] * By[0]) / det;
+    if (!isfinite(c->dudx) || !isfinite(c->dvdx)) c->dudx = c->dvdx = 0.f;
+    if (!isfinite(c->dudy) || !isfinite(c->dvdy)) c->dudy = c->dvdy = 0.f;
+  }
+}
+
+/* Direct light at a surface point from every light: pbrt-v3's EstimateDirect for each light, with
+ * the strategies ctx->ls selects. `nsamples_all`: use each light's sample count (directlighting). */
+static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
+                          elr_tstats *ts) {
+  const elr_scene *s = C->s;
+  elr_v3 Ld = elr_v(0, 0, 0);
+  int li;
+  for (li = 0; li < s->nlight; li++) {
+    const elr_light *l = &s->light[li];
+    int n = use_counts ? l->nsamples : 1, k;
+    elr_v3 sum = elr_v(0, 0, 0);
+    if (!elr__light_emits(l)) continue;
+    for (k = 0; k < n; k++) {
+      float ul0, ul1, us0, us1;
+      elr__get2d(S, &ul0, &ul1);
+      elr__get2d(S, &us0, &us1);
+      if (l->kind != ELR_LIGHT_INFINITE) {
+        /* delta lights: light sampling only */
+        elr_v3 wi, Li, f;
+        float dist;
+        if (l->kind == ELR_LIGHT_POINT) {
+          elr_v3 dp = elr_sub(l->pos, h->p);
+          float d2 = elr_dot(dp, dp);
+          if (d2 <= 0.f) continue;
+          dist = sqrtf(d2); wi = elr_mul(dp, 1.f / dist);
+          Li = elr_mul(l->L, 1.f / d2);
+        } else {
+          wi = l->dir; Li = l->L; dist = 2.f * s->world_radius + elr_len(elr_sub(h->p, s->world_center)) + 1.f;
+        }
+        f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+        if (elr_isblack(f)) continue;
+        {
+          elr_v3 o = elr__offset(h, wi);
+          float tmax = l->kind == ELR_LIGHT_POINT ? elr_len(elr_sub(l->pos, o)) * (1.f - 1e-4f) : dist;
+          ts->shadow++;
+          if (elr_occluded(s, o, wi, tmax)) continue;
+        }
+        sum = elr_add(sum, elr_vmul(f, Li));
+        continue;
+      }
+      /* the environment: light sampling */
+      if (C->ls != ELR_LS_BSDF) {
+        elr_v3 wi, Li, f;
+        float lpdf, spdf;
+        Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
+        if (lpdf > 0.f && !elr_isblack(Li)) {
+          f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+          if (!elr_isblack(f)) {
+            ts->shadow++;
+            if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
+              float w = 1.f;
+              if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
+              sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
+            }
+          }
+        }
+      }
+      /* BSDF sampling (in the path integrator the continuation ray plays this part) */
+      if (C->ls != ELR_LS_LIGHT && !C->path) {
+        elr_v3 wi, f;
+        float spdf;
+        int spec;
+        f = elr_bsdf_sample(b, wo, us0, us1, &wi, &spdf, &spec);
+        if (!spec && spdf > 0.f && !elr_isblack(f)) {
+          float w = 1.f;
+          f = elr_mul(f, fabsf(elr_dot(wi, b->ns)));
+          if (C->ls == ELR_LS_MIS) {
+            float lpdf = elr_env_pdf(l->env, wi);
+            if (lpdf == 0.f) continue;
+            w = elr__power(spdf, lpdf);
+          }
+          ts->bsdfl++;
+          if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY))
+            sum = elr_add(sum, elr_mul(elr_vmul(f, elr_env_le(l->env, wi)), w / spdf));
+        }
+      }
+    }
+    Ld = elr_add(Ld, elr_mul(sum, 1.f / (float)n));
+  }
+  return Ld;
+}
+
+static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r, int depth, elr_tstats *ts) {
+  const elr_scene *s = C->s;
+  elr_hit h;
+  elr_bsdf b;
+  elr_tex_ctx tc;
+  elr_v3 L = elr_v(0, 0, 0), wo, dpdx, dpdy;
+  if (!elr_intersect(s, r->o, r->d, INFINITY, &h)) return elr__env_le(s, r->d);
+  elr__differentials(r, &h, &tc, &dpdx, &dpdy);
+  elr_bsdf_init(s, &h, &tc, &b);
+  wo = elr_mul(r->d, -1.f);
+  if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr__direct(C, S, &h, &b, wo, 1, ts);
+  if (depth + 1 < C->maxdepth && b.has_specular) {
+    /* <<SpecularReflect>> */
+    elr_v3 wi, f;
+    float pdf, u0, u1;
+    int spec;
+    elr_ray rd;
+    elr__get2d(S, &u0, &u1);
+    f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
+    if (spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f) {
+      rd.o = elr__offset(&h, wi); rd.d = wi; rd.has_diff = 0;
+      if (r->has_diff) {
+        elr_v3 ns = b.ns;
+        elr_v3 dndx = elr_add(elr_mul(h.dndu, tc.dudx), elr_mul(h.dndv, tc.dvdx));
+        elr_v3 dndy = elr_add(elr_mul(h.dndu, tc.dudy), elr_mul(h.dndv, tc.dvdy));
+        elr_v3 dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo), dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
+        float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
+        rd.has_diff = 1;
+        rd.rxo = elr_add(rd.o, dpdx); rd.ryo = elr_add(rd.o, dpdy);
+        rd.rxd = elr_add(elr_sub(wi, dwodx), elr_mul(elr_add(elr_mul(dndx, elr_dot(wo, ns)), elr_mul(ns, dDNdx)), 2.f));
+        rd.ryd = elr_add(elr_sub(wi, dwody), elr_mul(elr_add(elr_mul(dndy, elr_dot(wo, ns)), elr_mul(ns, dDNdy)), 2.f));
+      }
+      ts->bounce++;
+      L = elr_add(L, elr_mul(elr_vmul(f, elr__li_direct(C, S, &rd, depth + 1, ts)), fabsf(elr_dot(wi, b.ns)) / pdf));
+    }
+  }
+  return L;
+}
+
+static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts) {
+  const elr_scene *s = C->s;
+  elr_v3 L = elr_v(0, 0, 0), beta = elr_v(1, 1, 1), o = r0->o, d = r0->d;
+  int depth, specular = 0;
+  float prev_pdf = 0.f;
+  elr_ray r = *r0;
+  for (depth = 0;; depth++) {
+    elr_hit h;
+    elr_bsdf b;
+    elr_tex_ctx tc;
+    elr_v3 wo, wi, f, dpdx, dpdy;
+    float pdf, u0, u1;
+    int spec;
+    if (!elr_intersect(s, o, d, INFINITY, &h)) {
+      /* escaped: the environment, MIS-weighted against light sampling after a non-specular bounce */
+      int li;
+      for (li = 0; li < s->nlight; li++) {
+        const elr_light *l = &s->light[li];
+        float w = 1.f;
+        if (l->kind != ELR_LIGHT_INFINITE || !elr__light_emits(l)) continue;
+        if (depth > 0 && !specular && C->light_sampling) {
+          if (C->ls == ELR_LS_LIGHT) continue;
+          if (C->ls == ELR_LS_MIS) w = elr__power(prev_pdf, elr_env_pdf(l->env, d));
+        }
+        L = elr_add(L, elr_mul(elr_vmul(beta, elr_env_le(l->env, d)), w));
+      }
+      break;
+    }
+    if (depth >= C->maxdepth) break;
+    if (depth == 0) elr__differentials(&r, &h, &tc, &dpdx, &dpdy);
+    else { tc.u = h.u; tc.v = h.v; tc.dudx = tc.dudy = tc.dvdx = tc.dvdy = 0.f; }
+    elr_bsdf_init(s, &h, &tc, &b);
+    wo = elr_mul(d, -1.f);
+    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 0, ts)));
+    elr__get2d(S, &u0, &u1);
+    f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
+    if (elr_isblack(f) || pdf == 0.f) break;
+    beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
+    specular = spec; prev_pdf = pdf;
+    /* the last vertex's continuation only matters for the environment's BSDF-sampled part */
+    if (depth + 1 == C->maxdepth && !spec && (C->ls == ELR_LS_LIGHT && C->light_sampling)) break;
+    o = elr__offset(&h, wi); d = wi;
+    ts->bounce++;
+    if (depth > 3 || (depth >= 3)) {
+      float mc = elr_maxc(beta);
+      if (depth >= 3 && mc < C->rr) {
+        float q = fmaxf(0.05f, 1.f - mc);
+        if (elr__get1d(S) < q) break;
+        beta = elr_mul(beta, 1.f / (1.f - q));
+      }
+    }
+  }
+  return L;
+}
+
+/* >> tiles and threads */
+typedef struct elr_job {
+  elr_ctx *C;
+  elr_film *film;
+  const elr_render_options *o;
+  int bx0, by0, bx1, by1, tile, ntx, nty, ntiles;
+  pthread_mutex_t mu;
+  int next_tile, next_merge, done;
+  elr_tile **ready;
+  elr_tstats total;
+  double t0, last_print;
+  int failed;
+  const elr_halton *H;
+} elr_job;
+
+static void elr__progress(elr_job *J, int final) {
+  double now = elr_now(), el = now - J->t0, frac = (double)J->done / (double)J->ntiles, rem;
+  int i, w = 40, fill = (int)(frac * w);
+  char bar[64];
+  if (J->o->quiet) return;
+  if (!final && now - J->last_print < 0.1) return;
+  J->last_print = now;
+  for (i = 0; i < w; i++) bar[i] = i < fill ? '=' : (i == fill ? '>' : ' ');
+  bar[w] = 0;
+  rem = frac > 0 ? el / frac - el : 0.0;
+  fprintf(stderr, "\r[%s] %3d%%  %.1fs elapsed, %.1fs remaining   ", bar, (int)(frac * 100.0 + 0.5), el, final ? 0.0 : rem);
+  if (final) fprintf(stderr, "\n");
+  fflush(stderr);
+}
+
+static void *elr__worker(void *arg) {
+  elr_job *J = (elr_job *)arg;
+  elr_ctx *C = J->C;
+  elr_sampler S;
+  elr_tstats ts;
+  memset(&S, 0, sizeof S);
+  memset(&ts, 0, sizeof ts);
+  S.kind = C->s->d.sampler; S.spp = C->spp; S.xs = C->s->d.xs; S.ys = C->s->d.ys; S.jitter = C->s->d.jitter;
+  S.dims = C->s->d.dims; S.seed = J->o->seed; S.H = J->H;
+  if (S.kind == ELR_SAMPLER_STRATIFIED) {
+    S.s1d = (float *)malloc(sizeof(float) * (size_t)S.spp * (size_t)(S.dims + 1));
+    S.s2d = (float *)malloc(sizeof(float) * 2 * (size_t)S.spp * (size_t)(S.dims + 1));
+    if (!S.s1d || !S.s2d) { pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu); free(S.s1d); free(S.s2d); return NULL; }
+  }
+  for (;;) {
+    int t, tx, ty, x0, y0, x1, y1, x, y, k;
+    elr_tile *tile;
+    pthread_mutex_lock(&J->mu);
+    t = J->failed ? J->ntiles : J->next_tile++;
+    pthread_mutex_unlock(&J->mu);
+    if (t >= J->ntiles) break;
+    tx = t % J->ntx; ty = t / J->ntx;
+    x0 = J->bx0 + tx * J->tile; y0 = J->by0 + ty * J->tile;
+    x1 = x0 + J->tile < J->bx1 ? x0 + J->tile : J->bx1;
+    y1 = y0 + J->tile < J->by1 ? y0 + J->tile : J->by1;
+    tile = elr_film_tile(J->film, x0, y0, x1, y1);
+    if (!tile) { pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu); break; }
+    for (y = y0; y < y1; y++)
+      for (x = x0; x < x1; x++) {
+        elr__sampler_pixel(&S, x, y);
+        for (k = 0; k < C->spp; k++) {
+          float fx, fy, sx, sy;
+          elr_ray r;
+          elr_v3 dc, L;
+          elr__sampler_start(&S, k);
+          elr__get2d(&S, &fx, &fy);
+          if (S.kind == ELR_SAMPLER_HALTON) S.dim = 5; /* pbrt-v3: time and lens take dimensions 2..4 */
+          fx += (float)x; fy += (float)y;
+          /* <<Compute raster and camera sample positions>> */
+          sx = C->sx0 + fx / (float)C->xres * (C->sx1 - C->sx0);
+          sy = C->sy1 - fy / (float)C->yres * (C->sy1 - C->sy0);
+          dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
+          r.o = elr_xpoint(&C->c2w, elr_v(0, 0, 0));
+          r.d = elr_norm(elr_xvector(&C->c2w, elr_norm(dc)));
+          {
+            float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
+            elr_v3 dx = elr_norm(elr_add(dc, elr_v(dxs, 0, 0))), dy = elr_norm(elr_add(dc, elr_v(0, dys, 0)));
+            elr_v3 dcn = elr_norm(dc);
+            /* ScaleDifferentials(1 / sqrt(spp)) */
+            dx = elr_add(dcn, elr_mul(elr_sub(dx, dcn), C->diff_scale));
+            dy = elr_add(dcn, elr_mul(elr_sub(dy, dcn), C->diff_scale));
+            r.has_diff = 1;
+            r.rxo = r.ryo = r.o;
+            r.rxd = elr_norm(elr_xvector(&C->c2w, dx));
+            r.ryd = elr_norm(elr_xvector(&C->c2w, dy));
+          }
+          ts.camera++;
+          L = C->path ? elr__li_path(C, &S, &r, &ts) : elr__li_direct(C, &S, &r, 0, &ts);
+          elr_tile_add(tile, fx, fy, L);
+          ts.samples++;
+        }
+      }
+    pthread_mutex_lock(&J->mu);
+    /* merge tiles in tile order, whatever order threads finish them: the same sums for any thread count */
+    J->ready[t] = tile;
+    while (J->next_merge < J->ntiles && J->ready[J->next_merge]) {
+      elr_film_merge(J->film, J->ready[J->next_merge]);
+      J->ready[J->next_merge] = NULL;
+      J->next_merge++;
+    }
+    J->done++;
+    elr__progress(J, 0);
+    pthread_mutex_unlock(&J->mu);
+  }
+  pthread_mutex_lock(&J->mu);
+  J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
+  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
+  pthread_mutex_unlock(&J->mu);
+  free(S.s1d); free(S.s2d);
+  return NULL;
+}
+
+void elr_render_options_default(elr_render_options *o) {
+  memset(o, 0, sizeof *o);
+  o->light_sampling = -1; o->compensated = -1;
+}
+
+static int elr__mat_nonspecular(const elr_scene *s) {
+  int i;
+  /* a material with a non-specular lobe, used by some shape */
+  for (i = 0; i < s->nmesh; i++) if (s->mat[s->mesh[i].material].kind != ELR_MAT_MIRROR) return 1;
+  for (i = 0; i < s->nsph; i++) if (s->mat[s->sph[i].material].kind != ELR_MAT_MIRROR) return 1;
+  return 0;
+}
+
+int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
+  elr_ctx C;
+  elr_job J;
+  elr_halton H;
+  elr_film *film = NULL;
+  pthread_t *th = NULL;
+  int i, nthreads, xres = s->d.xres, yres = s->d.yres, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0;
+  double t_start = elr_now(), frame;
+  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H);
+  memset(out, 0, sizeof *out);
+  if (st) memset(st, 0, sizeof *st);
+  C.s = s;
+  C.spp = o->spp > 0 ? o->spp : s->d.spp;
+  if (o->sampler != ELR_SAMPLER_DEFAULT) s->d.sampler = o->sampler;
+  if (s->d.sampler == ELR_SAMPLER_STRATIFIED) {
+    if (o->spp > 0) { /* --spp: the nearest square grid */
+      int q = (int)floor(sqrt((double)o->spp));
+      if (q < 1) q = 1;
+      s->d.xs = q; s->d.ys = (o->spp + q - 1) / q;
+      if (s->d.dims == 0 && o->sampler == ELR_SAMPLER_STRATIFIED) s->d.dims = 4;
+    }
+    if (s->d.xs < 1) s->d.xs = 1;
+    if (s->d.ys < 1) s->d.ys = 1;
+    if (s->d.dims == 0 && o->sampler == ELR_SAMPLER_STRATIFIED) s->d.dims = 4;
+    C.spp = s->d.xs * s->d.ys;
+  }
+  if (C.spp <= 0 || C.spp > (1 << 24)) { snprintf(err, errlen, "samples per pixel %d out of range [1, 16777216]", C.spp); return -1; }
+  C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
+  C.maxdepth = s->d.maxdepth; C.path = s->d.integrator_path; C.rr = s->d.rrthreshold;
+  C.diff_scale = 1.f / sqrtf((float)C.spp);
+  C.xres = xres; C.yres = yres;
+  C.c2w = s->d.cam2world;
+  /* <<Compute screen window>> */
+  frame = s->d.has_frameaspect ? s->d.frameaspect : (double)xres / (double)yres;
+  if (s->d.has_screen) { C.sx0 = s->d.screen[0]; C.sx1 = s->d.screen[1]; C.sy0 = s->d.screen[2]; C.sy1 = s->d.screen[3]; }
+  else if (frame > 1.0) { C.sx0 = (float)-frame; C.sx1 = (float)frame; C.sy0 = -1.f; C.sy1 = 1.f; }
+  else { C.sx0 = -1.f; C.sx1 = 1.f; C.sy0 = (float)(-1.0 / frame); C.sy1 = (float)(1.0 / frame); }
+  C.tanhalf = tanf(s->d.fov * ELR_PI / 360.f);
+  /* <<Compute film image bounds>> (pbrt-v3: ceil of the crop window times the resolution) */
+  x0 = (int)ceil(xres * (double)s->d.crop[0]); x1 = (int)ceil(xres * (double)s->d.crop[1]);
+  y0 = (int)ceil(yres * (double)s->d.crop[2]); y1 = (int)ceil(yres * (double)s->d.crop[3]);
+  if (x1 <= x0 || y1 <= y0) { snprintf(err, errlen, "the crop window covers no pixel"); return -1; }
+  if ((double)(x1 - x0) * (double)(y1 - y0) * (double)C.spp > 1e12) {
+    snprintf(err, errlen, "%d x %d pixels at %d samples is more than 1e12 samples", x1 - x0, y1 - y0, C.spp);
+    return -1;
+  }
+  if (elr_film_create(xres, yres, x0, y0, x1, y1, &s->d.filter, &film, err, errlen) != 0) return -1;
+  /* <<Decide what the scene calls for>> */
+  nonspec = elr__mat_nonspecular(s);
+  {
+    int emits = 0;
+    for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) emits = 1;
+    C.light_sampling = emits && nonspec;
+    for (i = 0; i < s->nlight; i++) {
+      elr_light *l = &s->light[i];
+      if (l->kind == ELR_LIGHT_INFINITE && elr__light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
+        double t0 = elr_now();
+        if (o->compensated >= 0 && o->compensated != l->compensated) {
+          /* a changed strategy needs a new distribution: rebuilt by the glue on prepare */
+          l->compensated = o->compensated;
+        }
+        if (elr_env_prepare(l->env) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
+        if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += elr_env_distribution_bytes(l->env); }
+        env_sampled = 1;
+      }
+    }
+  }
+  if (s->d.sampler == ELR_SAMPLER_HALTON) {
+    int b[4];
+    elr_film_sample_bounds(film, &b[0], &b[1], &b[2], &b[3]);
+    if (elr__halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
+  }
+  nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+  if (nthreads < 1) nthreads = 1;
+  if (nthreads > 1024) nthreads = 1024;
+  J.C = &C; J.film = film; J.o = o; J.H = &H;
+  elr_film_sample_bounds(film, &J.bx0, &J.by0, &J.bx1, &J.by1);
+  J.tile = o->tile_size > 0 ? o->tile_size : 16;
+  J.ntx = (J.bx1 - J.bx0 + J.tile - 1) / J.tile; J.nty = (J.by1 - J.by0 + J.tile - 1) / J.tile;
+  J.ntiles = J.ntx * J.nty;
+  J.ready = (elr_tile **)calloc((size_t)J.ntiles, sizeof(elr_tile *));
+  th = (pthread_t *)calloc((size_t)nthreads, sizeof(pthread_t));
+  if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
+  pthread_mutex_init(&J.mu, NULL);
+  J.t0 = elr_now(); J.last_print = 0;
+  {
+    int started = 0;
+    for (i = 0; i < nthreads; i++) {
+      if (pthread_create(&th[i], NULL, elr__worker, &J) != 0) break;
+      started++;
+    }
+    if (started == 0) elr__worker(&J);
+    for (i = 0; i < started; i++) pthread_join(th[i], NULL);
+  }
+  pthread_mutex_destroy(&J.mu);
+  if (J.failed || J.next_merge != J.ntiles) {
+    for (i = 0; i < J.ntiles; i++) if (J.ready[i]) elr_film_merge(film, J.ready[i]);
+    snprintf(err, errlen, "rendering failed (out of memory for a film tile or sampler)");
+    goto done;
+  }
+  elr__progress(&J, 1);
+  out->width = x1 - x0; out->height = y1 - y0;
+  out->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)out->width * (size_t)out->height);
+  if (!out->rgb) { snprintf(err, errlen, "out of memory"); goto done; }
+  elr_film_rgb(film, out->rgb);
+  if (st) {
+    st->t_parse = s->t_parse; st->t_images = s->t_images; st->t_embree = s->t_embree;
+    st->t_render = elr_now() - J.t0;
+    st->bytes_embree = s->bytes_embree; st->bytes_film = elr_film_bytes(film);
+    st->bytes_splats = elr_film_splat_bytes(film); st->splats_allocated = st->bytes_splats > 0;
+    st->camera_rays = J.total.camera; st->bounce_rays = J.total.bounce; st->shadow_rays = J.total.shadow;
+    st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
+    st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
+    st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
+    st->maxdepth = C.maxdepth; st->integrator_path = C.path;
+    st->rejected_samples = elr_film_rejected(film);
+    for (i = 0; i < s->ntex; i++) {
+      if (s->tex[i].kind == ELR_TEX_IMAGE) {
+        int lv; size_t by;
+        elr_mip_stats(s->tex[i].mip, &lv, &by);
+        st->mip_textures++; st->mip_levels_built += lv; st->bytes_mip += by;
+      }
+    }
+    st->bytes_textures = s->bytes_textures;
+    for (i = 0; i < s->nlight; i++)
+      if (s->light[i].kind == ELR_LIGHT_INFINITE) {
+        st->bytes_textures += elr_env_image_bytes(s->light[i].env);
+        if (env_sampled) st->bytes_distribution = elr_env_distribution_bytes(s->light[i].env);
+      }
+  }
+  rc = 0;
+done:
+  if (st) st->t_total = elr_now() - t_start + s->t_parse;
+  free(J.ready); free(th); free(H.perm);
+  elr_film_free(film);
+  if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }
+  return rc;
+}
+
+void elr_stats_print(const elr_stats *st, void *fp) {
+  FILE *f = (FILE *)fp;
+  uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
+  fprintf(f, "render statistics\n");
+  fprintf(f, "  image              %d x %d, %d spp, %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
+          st->nthreads, st->nthreads == 1 ? "" : "s", st->integrator_path ? "path" : "directlighting", st->maxdepth);
+  fprintf(f, "  parse              %8.3f s (images and meshes read: %.3f s)\n", st->t_parse, st->t_images);
+  fprintf(f, "  embree build       %8.3f s  %10.1f KiB\n", st->t_embree, (double)st->bytes_embree / 1024.0);
+  fprintf(f, "  textures (level 0) %10.1f KiB  (environment map image included)\n", (double)st->bytes_textures / 1024.0);
+  fprintf(f, "  MIP maps           %d image texture%s, %d level%s built, %.1f KiB\n", st->mip_textures,
+          st->mip_textures == 1 ? "" : "s", st->mip_levels_built, st->mip_levels_built == 1 ? "" : "s", (double)st->bytes_mip / 1024.0);
+  fprintf(f, "  light sampling     %s\n", st->light_sampling_used ? "yes" : "no (nothing emits, or no surface has a non-specular lobe)");
+  fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
+          (double)st->bytes_distribution / 1024.0);
+  fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
+          st->splats_allocated ? "allocated" : "not allocated (nothing splats)");
+  fprintf(f, "  render             %8.3f s\n", st->t_render);
+  fprintf(f, "  rays               %llu camera, %llu bounce, %llu shadow (light samples), %llu BSDF-sampled light; %llu total\n",
+          (unsigned long long)st->camera_rays, (unsigned long long)st->bounce_rays, (unsigned long long)st->shadow_rays,
+          (unsigned long long)st->bsdf_light_rays, (unsigned long long)rays);
+  fprintf(f, "  rejected samples   %llu (NaN, infinite or negative radiance)\n", (unsigned long long)st->rejected_samples);
+}
+
+/* >> scene load / free / output */
+static void elr__dirname(const char *path, char *dir, size_t n) {
+  const char *sl = strrchr(path, '/');
+  if (!sl) snprintf(dir, n, ".");
+  else if (sl == path) snprintf(dir, n, "/");
+  else snprintf(dir, n, "%.*s", (int)(sl - path), path);
+}
+int elr_scene_load_string(const char *text, const char *name, const char *base_dir, elr_scene **out, int quiet, char *err,
+                          size_t errlen) {
+  elr_scene *s = (elr_scene *)calloc(1, sizeof *s);
+  double t0 = elr_now();
+  *out = NULL;
+  if (!s) { snprintf(err, errlen, "out of memory"); return -1; }
+  s->quiet = quiet;
+  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0) { elr_scene_free(s); return -1; }
+  s->t_parse = elr_now() - t0;
+  if (elr_scene_build(s, err, errlen) != 0) { elr_scene_free(s); return -1; }
+  *out = s;
+  return 0;
+}
+int elr_scene_load(const char *path, elr_scene **out, int quiet, char *err, size_t errlen) {
+  FILE *f = fopen(path, "rb");
+  long n;
+  char *buf, dir[4096];
+  int r;
+  *out = NULL;
+  if (!f) { snprintf(err, errlen, "%s: cannot open the scene file", path); return -1; }
+  if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 || n > (1L << 30)) {
+    fclose(f); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1;
+  }
+  buf = (char *)malloc((size_t)n + 1);
+  if (!buf || (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n)) { fclose(f); free(buf); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1; }
+  fclose(f);
+  buf[n] = 0;
+  if (strlen(buf) != (size_t)n) { free(buf); snprintf(err, errlen, "%s:1: error: the file contains a NUL byte (not a pbrt-v3 text file)", path); return -1; }
+  elr__dirname(path, dir, sizeof dir);
+  r = elr_scene_load_string(buf, path, dir, out, quiet, err, errlen);
+  free(buf);
+  return r;
+}
+void elr_scene_free(elr_scene *s) {
+  int i;
+  if (!s) return;
+  elr_scene_release(s);
+  for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) elr_mip_free(s->tex[i].mip);
+  for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
+  for (i = 0; i < s->nlight; i++) if (s->light[i].env) elr_env_free(s->light[i].env);
+  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light);
+  free(s);
+}
+int elr_scene_warnings(const elr_scene *s) { return s->warnings; }
+const char *elr_scene_last_warning(const elr_scene *s) { return s->last_warning; }
+const char *elr_scene_film_filename(const elr_scene *s) { return s->d.filename; }
+void elr_scene_resolution(const elr_scene *s, int *w, int *h) {
+  int x0 = (int)ceil(s->d.xres * (double)s->d.crop[0]), x1 = (int)ceil(s->d.xres * (double)s->d.crop[1]);
+  int y0 = (int)ceil(s->d.yres * (double)s->d.crop[2]), y1 = (int)ceil(s->d.yres * (double)s->d.crop[3]);
+  *w = x1 - x0; *h = y1 - y0;
+}
+int elr_scene_spp(const elr_scene *s) { return s->d.spp; }
+
+void elr_image_free(elr_image *img) { if (img) { free(img->rgb); img->rgb = NULL; } }
+int elr_image_write(const elr_image *img, const char *path, char *err, size_t errlen) {
+  const char *ext = el_image_extension(path);
+  if (!strcmp(ext, "png")) {
+    size_t n = (size_t)img->width * (size_t)img->height;
+    unsigned char *b = (unsigned char *)malloc(n * 3);
+    int r;
+    if (!b) { snprintf(err, errlen, "out of memory"); return -1; }
+    elr_srgb8(img->rgb, (int)n, b);
+    r = el_image_write_png(path, b, img->width, img->height, 3, err, errlen);
+    free(b);
+    return r;
+  }
+  if (!strcmp(ext, "exr") || !strcmp(ext, "pfm") || !strcmp(ext, "hdr"))
+    return el_image_write_float(path, img->rgb, img->width, img->height, 3, err, errlen);
+  snprintf(err, errlen, "%s: unknown output format \".%s\" (use .png, .exr, .pfm or .hdr)", path, ext);
+  return -1;
+}

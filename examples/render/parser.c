@@ -1,0 +1,1179 @@
+/* parser.c: the pbrt-v3 scene-file subset (see el_render.h and the issue's list).
+ *
+ * pbrt-v3's api.cpp in miniature: a tokenizer, parameter lists ("type name" value...), the current
+ * transformation matrix (CTM) with its stack, named coordinate systems, the graphics state (material,
+ * named textures) and the render options (camera, film, filter, sampler, integrator). Shapes, lights,
+ * textures and materials are added to the scene as they are read.
+ *
+ * Errors abort the parse with "file:line: message" (longjmp to elr_parse; every allocation of the parse
+ * lives in an arena freed there, scene pieces belong to the scene). Unsupported directives and
+ * parameters are warnings naming file:line and what is ignored. */
+#include "elr_internal.h"
+#include "image_io.h"
+#include <ctype.h>
+#include <errno.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* >> arena */
+typedef struct elr__block { struct elr__block *next; } elr__block;
+
+/* >> tokens */
+enum { T_EOF = 0, T_WORD, T_STRING, T_NUM, T_LBR, T_RBR };
+typedef struct elr__tok { int kind, line; const char *s; size_t len; double num; } elr__tok;
+
+typedef struct elr__lexer {
+  const char *text, *p, *end;
+  const char *file; /* name used in messages */
+  int line;
+} elr__lexer;
+
+typedef struct elr__param {
+  char type[64], name[128];
+  double *num; char **str; int n, isstr, used, line;
+  const char *file;
+} elr__param;
+
+#define ELR_MAX_PARAMS 64
+#define ELR_MAX_INCLUDE 32
+#define ELR_MAX_STACK 1024
+
+typedef struct elr__gstate {
+  int material;
+  int *ftex_names; /* unused: named textures are stored globally with their scope below */
+  int ntex_scope;  /* number of named textures visible */
+  int nnamed_mat;
+  int reverse;
+} elr__gstate;
+
+typedef struct elr__named { char *name; int index; int is_float; } elr__named;
+
+typedef struct elr__parser {
+  elr_scene *s;
+  jmp_buf jb;
+  char *err; size_t errlen;
+  elr__block *arena;
+  elr__lexer lex[ELR_MAX_INCLUDE];
+  int nlex;
+  elr__tok peeked; int has_peek;
+  const char *base_dir;
+  /* state */
+  elr_xform ctm;
+  elr_xform xstack[ELR_MAX_STACK];
+  elr__gstate gs, gstack[ELR_MAX_STACK];
+  char stack_kind[ELR_MAX_STACK]; /* 'a' attribute, 't' transform */
+  int depth;
+  elr__named *ctx; int nctx, capctx; /* named coordinate systems (index into cs_xf) */
+  elr_xform *cs_xf;
+  elr__named *texnames; int ntexn, captexn;
+  elr__named *matnames; int nmatn, capmatn;
+  int in_world, world_ended, seen_camera;
+  elr_xform camera_ctm;
+  elr__param params[ELR_MAX_PARAMS]; int nparams;
+  const char *dir_file; int dir_line; /* current directive, for messages */
+  char dir_name[64];
+} elr__parser;
+
+static void *elr__alloc(elr__parser *P, size_t n) {
+  elr__block *b = (elr__block *)malloc(sizeof(elr__block) + n + 16);
+  if (!b) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+  b->next = P->arena; P->arena = b;
+  return (void *)((char *)b + sizeof(elr__block) + (16 - sizeof(elr__block) % 16) % 16);
+}
+static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
+  char *r = (char *)elr__alloc(P, n + 1);
+  memcpy(r, s, n); r[n] = 0; return r;
+}
+
+static void elr__fail(elr__parser *P, int line, const char *fmt, ...) {
+  char msg[400];
+  va_list ap; va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
+  snprintf(P->err, P->errlen, "%s:%d: error: %s", P->nlex ? P->lex[P->nlex - 1].file : "?", line, msg);
+  longjmp(P->jb, 1);
+}
+
+void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...) {
+  char msg[400];
+  va_list ap; va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
+  snprintf(s->last_warning, sizeof s->last_warning, "%s:%d: warning: %s", file, line, msg);
+  s->warnings++;
+  if (!s->quiet) fprintf(stderr, "%s\n", s->last_warning);
+}
+#define ELR_WARN(P, line, ...) elr_warn((P)->s, (P)->lex[(P)->nlex - 1].file, line, __VA_ARGS__)
+
+/* >> tokenizer */
+static elr__tok elr__lex(elr__parser *P) {
+  elr__tok t; memset(&t, 0, sizeof t);
+  for (;;) {
+    elr__lexer *L;
+    if (P->nlex == 0) { t.kind = T_EOF; return t; }
+    L = &P->lex[P->nlex - 1];
+    while (L->p < L->end) {
+      char c = *L->p;
+      if (c == '\n') { L->line++; L->p++; }
+      else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') L->p++;
+      else if (c == '#') { while (L->p < L->end && *L->p != '\n') L->p++; }
+      else break;
+    }
+    if (L->p >= L->end) {
+      if (P->nlex == 1) { t.kind = T_EOF; t.line = L->line; return t; }
+      P->nlex--; /* end of an included file: continue with the includer */
+      continue;
+    }
+    t.line = L->line;
+    {
+      char c = *L->p;
+      if (c == '[') { t.kind = T_LBR; L->p++; return t; }
+      if (c == ']') { t.kind = T_RBR; L->p++; return t; }
+      if (c == '"') {
+        const char *q = ++L->p;
+        char *buf; size_t n = 0;
+        while (L->p < L->end && *L->p != '"') {
+          if (*L->p == '\n') elr__fail(P, t.line, "unterminated string (a newline inside quotes)");
+          if (*L->p == '\\') L->p++;
+          L->p++;
+        }
+        if (L->p >= L->end) elr__fail(P, t.line, "unterminated string at end of file");
+        buf = (char *)elr__alloc(P, (size_t)(L->p - q) + 1);
+        while (q < L->p) {
+          char ch = *q++;
+          if (ch == '\\' && q < L->p) {
+            ch = *q++;
+            if (ch == 'n') ch = '\n'; else if (ch == 't') ch = '\t';
+          }
+          buf[n++] = ch;
+        }
+        buf[n] = 0; L->p++;
+        t.kind = T_STRING; t.s = buf; t.len = n; return t;
+      }
+      if (isdigit((unsigned char)c) || c == '-' || c == '+' || c == '.') {
+        char tmp[80]; size_t n = 0; char *endp;
+        const char *q = L->p;
+        while (q < L->end && (isalnum((unsigned char)*q) || *q == '-' || *q == '+' || *q == '.')) q++;
+        n = (size_t)(q - L->p);
+        if (n >= sizeof tmp) elr__fail(P, t.line, "number too long");
+        memcpy(tmp, L->p, n); tmp[n] = 0;
+        errno = 0;
+        t.num = strtod(tmp, &endp);
+        if (*endp != 0 || endp == tmp) elr__fail(P, t.line, "malformed number \"%s\"", tmp);
+        if (!isfinite(t.num)) elr__fail(P, t.line, "number \"%s\" is not finite", tmp);
+        L->p = q; t.kind = T_NUM; t.s = NULL; return t;
+      }
+      if (isalpha((unsigned char)c) || c == '_') {
+        const char *q = L->p;
+        while (q < L->end && (isalnum((unsigned char)*q) || *q == '_')) q++;
+        t.kind = T_WORD; t.s = L->p; t.len = (size_t)(q - L->p); L->p = q; return t;
+      }
+      if ((unsigned char)c < 32 || (unsigned char)c >= 127)
+        elr__fail(P, t.line, "unexpected byte 0x%02x (is this a pbrt-v3 text file?)", (unsigned char)c);
+      elr__fail(P, t.line, "unexpected character '%c'", c);
+    }
+  }
+}
+static elr__tok elr__next(elr__parser *P) {
+  if (P->has_peek) { P->has_peek = 0; return P->peeked; }
+  return elr__lex(P);
+}
+static elr__tok elr__peek(elr__parser *P) {
+  if (!P->has_peek) { P->peeked = elr__lex(P); P->has_peek = 1; }
+  return P->peeked;
+}
+static int elr__wordis(const elr__tok *t, const char *w) {
+  return t->kind == T_WORD && strlen(w) == t->len && memcmp(t->s, w, t->len) == 0;
+}
+static const char *elr__curfile(elr__parser *P) { return P->lex[P->nlex - 1].file; }
+
+static double elr__num(elr__parser *P, const char *what) {
+  elr__tok t = elr__next(P);
+  if (t.kind != T_NUM) elr__fail(P, t.kind == T_EOF ? P->dir_line : t.line, "%s: expected a number%s", what,
+                                 t.kind == T_EOF ? " (file ends early)" : "");
+  return t.num;
+}
+static const char *elr__str(elr__parser *P, const char *what) {
+  elr__tok t = elr__next(P);
+  if (t.kind != T_STRING) elr__fail(P, t.kind == T_EOF ? P->dir_line : t.line, "%s: expected a quoted string%s",
+                                    what, t.kind == T_EOF ? " (file ends early)" : "");
+  return t.s;
+}
+/* Transform / ConcatTransform: 16 numbers, in brackets or not. */
+static void elr__nums16(elr__parser *P, double *m, const char *what) {
+  int i, br = 0;
+  if (elr__peek(P).kind == T_LBR) { elr__next(P); br = 1; }
+  for (i = 0; i < 16; i++) m[i] = elr__num(P, what);
+  if (br) {
+    elr__tok t = elr__next(P);
+    if (t.kind != T_RBR) elr__fail(P, t.line, "%s: expected ']' after 16 numbers", what);
+  }
+}
+
+/* >> parameter lists */
+static const char *elr__canon_type(const char *t) {
+  if (!strcmp(t, "point")) return "point3";
+  if (!strcmp(t, "normal")) return "normal3";
+  if (!strcmp(t, "normal3")) return "normal3";
+  if (!strcmp(t, "vector")) return "vector3";
+  if (!strcmp(t, "color")) return "rgb";
+  return t;
+}
+static void elr__read_params(elr__parser *P) {
+  P->nparams = 0;
+  for (;;) {
+    elr__tok t = elr__peek(P), v;
+    elr__param *pp;
+    char ty[64], nm[128];
+    int nv = 0, cap = 8, isstr = -1;
+    double *nums; char **strs;
+    if (t.kind != T_STRING) break;
+    elr__next(P);
+    if (P->nparams >= ELR_MAX_PARAMS) elr__fail(P, t.line, "too many parameters (more than %d)", ELR_MAX_PARAMS);
+    if (sscanf(t.s, "%63s %127s", ty, nm) != 2)
+      elr__fail(P, t.line, "parameter declaration \"%s\" is not \"type name\"", t.s);
+    {
+      const char *ct = elr__canon_type(ty);
+      static const char *known[] = {"integer", "float", "point2", "vector2", "point3", "vector3", "normal3",
+                                    "rgb", "spectrum", "xyz", "blackbody", "bool", "string", "texture", "point4"};
+      int k, ok = 0;
+      for (k = 0; k < (int)(sizeof known / sizeof known[0]); k++) if (!strcmp(ct, known[k])) ok = 1;
+      if (!ok) elr__fail(P, t.line, "unknown parameter type \"%s\" in \"%s\"", ty, t.s);
+      pp = &P->params[P->nparams++];
+      memset(pp, 0, sizeof *pp);
+      snprintf(pp->type, sizeof pp->type, "%s", ct);
+      snprintf(pp->name, sizeof pp->name, "%s", nm);
+      pp->line = t.line; pp->file = elr__curfile(P);
+    }
+    nums = (double *)elr__alloc(P, sizeof(double) * (size_t)cap);
+    strs = (char **)elr__alloc(P, sizeof(char *) * (size_t)cap);
+    v = elr__next(P);
+    if (v.kind == T_LBR) {
+      for (;;) {
+        v = elr__next(P);
+        if (v.kind == T_RBR) break;
+        if (v.kind == T_EOF) elr__fail(P, t.line, "parameter \"%s\": file ends inside [ ]", t.s);
+        if (v.kind == T_LBR) elr__fail(P, v.line, "parameter \"%s\": nested '['", t.s);
+        if (nv == cap) {
+          double *n2; char **s2;
+          if (cap > (1 << 27)) elr__fail(P, v.line, "parameter \"%s\": too many values", t.s);
+          n2 = (double *)elr__alloc(P, sizeof(double) * (size_t)cap * 2);
+          s2 = (char **)elr__alloc(P, sizeof(char *) * (size_t)cap * 2);
+          memcpy(n2, nums, sizeof(double) * (size_t)nv); memcpy(s2, strs, sizeof(char *) * (size_t)nv);
+          nums = n2; strs = s2; cap *= 2;
+        }
+        if (v.kind == T_NUM) {
+          if (isstr == 1) elr__fail(P, v.line, "parameter \"%s\": numbers mixed with strings", t.s);
+          isstr = 0; nums[nv++] = v.num;
+        } else if (v.kind == T_STRING || elr__wordis(&v, "true") || elr__wordis(&v, "false")) {
+          if (isstr == 0) elr__fail(P, v.line, "parameter \"%s\": strings mixed with numbers", t.s);
+          isstr = 1; strs[nv++] = v.kind == T_STRING ? (char *)v.s : elr__strdup(P, v.s, v.len);
+        } else {
+          elr__fail(P, v.line, "parameter \"%s\": unexpected token in value list (missing ']'?)", t.s);
+        }
+      }
+    } else if (v.kind == T_NUM) {
+      isstr = 0; nums[nv++] = v.num;
+    } else if (v.kind == T_STRING || elr__wordis(&v, "true") || elr__wordis(&v, "false")) {
+      isstr = 1; strs[nv++] = v.kind == T_STRING ? (char *)v.s : elr__strdup(P, v.s, v.len);
+    } else {
+      elr__fail(P, v.kind == T_EOF ? t.line : v.line, "parameter \"%s\" has no value%s", t.s,
+                v.kind == T_EOF ? " (file ends early)" : "");
+    }
+    pp->num = nums; pp->str = strs; pp->n = nv; pp->isstr = isstr == 1;
+    {
+      int wants_str = !strcmp(pp->type, "string") || !strcmp(pp->type, "texture") || !strcmp(pp->type, "bool");
+      if (nv > 0 && wants_str != pp->isstr && strcmp(pp->type, "spectrum") != 0)
+        elr__fail(P, t.line, "parameter \"%s %s\": %s values expected", pp->type, pp->name,
+                  wants_str ? "string" : "numeric");
+      if (!strcmp(pp->type, "bool")) {
+        int i;
+        for (i = 0; i < nv; i++)
+          if (strcmp(strs[i], "true") && strcmp(strs[i], "false"))
+            elr__fail(P, t.line, "parameter \"bool %s\": value \"%s\" is neither true nor false", pp->name, strs[i]);
+      }
+      if (!strcmp(pp->type, "integer")) {
+        int i;
+        for (i = 0; i < nv; i++)
+          if (nums[i] != floor(nums[i]) || fabs(nums[i]) > 2147483647.0)
+            elr__fail(P, t.line, "parameter \"integer %s\": %g is not an integer", pp->name, nums[i]);
+      }
+    }
+  }
+}
+
+static elr__param *elr__find(elr__parser *P, const char *name) {
+  int i;
+  for (i = 0; i < P->nparams; i++) if (!strcmp(P->params[i].name, name)) return &P->params[i];
+  return NULL;
+}
+static elr__param *elr__findt(elr__parser *P, const char *name, const char *type, int count) {
+  elr__param *p = elr__find(P, name);
+  if (!p) return NULL;
+  if (strcmp(p->type, type) != 0)
+    elr__fail(P, p->line, "%s: parameter \"%s\" has type \"%s\", expected \"%s\"", P->dir_name, name, p->type, type);
+  if (count > 0 && p->n != count)
+    elr__fail(P, p->line, "%s: parameter \"%s %s\" takes %d value%s, got %d", P->dir_name, type, name, count,
+              count == 1 ? "" : "s", p->n);
+  if (count < 0 && p->n % (-count) != 0)
+    elr__fail(P, p->line, "%s: parameter \"%s %s\" needs a multiple of %d values, got %d", P->dir_name, type, name,
+              -count, p->n);
+  p->used = 1;
+  return p;
+}
+static double elr__pfloat(elr__parser *P, const char *name, double def) {
+  elr__param *p = elr__find(P, name);
+  if (p && !strcmp(p->type, "integer")) { /* pbrt-v3 would ignore it; we accept an integer for a float */
+    if (p->n != 1) elr__findt(P, name, "integer", 1);
+    p->used = 1; return p->num[0];
+  }
+  p = elr__findt(P, name, "float", 1);
+  return p ? p->num[0] : def;
+}
+static int elr__pint(elr__parser *P, const char *name, int def) {
+  elr__param *p = elr__findt(P, name, "integer", 1);
+  return p ? (int)p->num[0] : def;
+}
+static int elr__pbool(elr__parser *P, const char *name, int def) {
+  elr__param *p = elr__findt(P, name, "bool", 1);
+  return p ? !strcmp(p->str[0], "true") : def;
+}
+static const char *elr__pstring(elr__parser *P, const char *name, const char *def) {
+  elr__param *p = elr__findt(P, name, "string", 1);
+  return p ? p->str[0] : def;
+}
+static elr_v3 elr__prgb(elr__parser *P, const char *name, elr_v3 def) {
+  elr__param *p = elr__find(P, name);
+  if (p && (!strcmp(p->type, "spectrum") || !strcmp(p->type, "blackbody") || !strcmp(p->type, "xyz"))) {
+    ELR_WARN(P, p->line, "%s: parameter \"%s %s\": only rgb colours are supported; using the default", P->dir_name,
+             p->type, name);
+    p->used = 1; return def;
+  }
+  if (p && !strcmp(p->type, "float") && p->n == 1) { p->used = 1; return elr_v((float)p->num[0], (float)p->num[0], (float)p->num[0]); }
+  p = elr__findt(P, name, "rgb", 3);
+  return p ? elr_v((float)p->num[0], (float)p->num[1], (float)p->num[2]) : def;
+}
+static elr_v3 elr__ppoint(elr__parser *P, const char *name, const char *type, elr_v3 def) {
+  elr__param *p = elr__findt(P, name, type, 3);
+  return p ? elr_v((float)p->num[0], (float)p->num[1], (float)p->num[2]) : def;
+}
+static void elr__report_unused(elr__parser *P) {
+  int i;
+  for (i = 0; i < P->nparams; i++)
+    if (!P->params[i].used)
+      elr_warn(P->s, P->params[i].file, P->params[i].line, "%s: parameter \"%s %s\" is not supported and is ignored",
+               P->dir_name, P->params[i].type, P->params[i].name);
+}
+static void elr__check_range(elr__parser *P, const char *name, double v, double lo, double hi) {
+  elr__param *p = elr__find(P, name);
+  if (!(v >= lo && v <= hi))
+    elr__fail(P, p ? p->line : P->dir_line, "%s: \"%s\" = %g is out of range [%g, %g]", P->dir_name, name, v, lo, hi);
+}
+
+/* >> scene growth */
+#define ELR_PUSH(P, arr, n, cap, T)                                                              \
+  do {                                                                                           \
+    if ((n) == (cap)) {                                                                          \
+      int nc = (cap) ? (cap) * 2 : 8;                                                           \
+      T *na = (T *)realloc((arr), sizeof(T) * (size_t)nc);                                       \
+      if (!na) { snprintf((P)->err, (P)->errlen, "out of memory"); longjmp((P)->jb, 1); }        \
+      (arr) = na; (cap) = nc;                                                                    \
+    }                                                                                            \
+    memset(&(arr)[(n)], 0, sizeof(T));                                                           \
+    (n)++;                                                                                       \
+  } while (0)
+
+static int elr__const_tex(elr__parser *P, elr_v3 v) {
+  elr_scene *s = P->s;
+  elr_texture *t;
+  ELR_PUSH(P, s->tex, s->ntex, s->captex, elr_texture);
+  t = &s->tex[s->ntex - 1];
+  t->kind = ELR_TEX_CONST; t->value = v; t->su = t->sv = 1.f;
+  return s->ntex - 1;
+}
+static int elr__lookup_named(elr__named *arr, int n, const char *name) {
+  int i;
+  for (i = n - 1; i >= 0; i--) if (!strcmp(arr[i].name, name)) return i;
+  return -1;
+}
+/* A texture-valued parameter ("rgb Kd", "float roughness" or "texture Kd" naming a texture). */
+static int elr__ptex(elr__parser *P, const char *name, elr_v3 def, int is_float) {
+  elr__param *p = elr__find(P, name);
+  if (p && !strcmp(p->type, "texture")) {
+    int k;
+    elr__findt(P, name, "texture", 1);
+    k = elr__lookup_named(P->texnames, P->gs.ntex_scope, p->str[0]);
+    if (k < 0) {
+      ELR_WARN(P, p->line, "%s: texture \"%s\" is not defined; using the default %s", P->dir_name, p->str[0], name);
+      return elr__const_tex(P, def);
+    }
+    if (P->texnames[k].is_float != is_float)
+      ELR_WARN(P, p->line, "%s: texture \"%s\" is a %s texture used for %s parameter \"%s\"", P->dir_name, p->str[0],
+               P->texnames[k].is_float ? "float" : "spectrum", is_float ? "a float" : "a spectrum", name);
+    return P->texnames[k].index;
+  }
+  if (is_float) {
+    double v = elr__pfloat(P, name, def.x);
+    return elr__const_tex(P, elr_v((float)v, (float)v, (float)v));
+  }
+  return elr__const_tex(P, elr__prgb(P, name, def));
+}
+
+static char *elr__resolve(elr__parser *P, const char *name) {
+  size_t n;
+  char *r;
+  if (name[0] == '/' || !P->base_dir || !P->base_dir[0]) return elr__strdup(P, name, strlen(name));
+  n = strlen(P->base_dir) + strlen(name) + 2;
+  r = (char *)elr__alloc(P, n);
+  snprintf(r, n, "%s/%s", P->base_dir, name);
+  return r;
+}
+
+static void elr__load_image(elr__parser *P, const char *file, int line, el_image *img) {
+  char e[512];
+  double t0 = elr_now();
+  if (el_image_load(file, img, e, sizeof e) != 0) elr__fail(P, line, "%s: cannot read image: %s", P->dir_name, e);
+  P->s->t_images += elr_now() - t0;
+  if (img->width <= 0 || img->height <= 0 || img->width > 65536 || img->height > 65536) {
+    el_image_free(img);
+    elr__fail(P, line, "%s: image \"%s\" has an absurd size", P->dir_name, file);
+  }
+}
+/* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. */
+static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale) {
+  size_t n = (size_t)img->width * (size_t)img->height, i;
+  float *rgb = (float *)malloc(n * 3 * sizeof(float));
+  if (!rgb) { el_image_free(img); snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+  for (i = 0; i < n; i++) {
+    int c;
+    for (c = 0; c < 3; c++) {
+      int src = img->channels >= 3 ? c : 0;
+      float v = img->pixels[i * (size_t)img->channels + (size_t)src];
+      if (img->is_8bit && gamma)
+        v = v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
+      if (!isfinite(v)) v = 0.f;
+      rgb[i * 3 + (size_t)c] = v * scale;
+    }
+  }
+  return rgb;
+}
+
+/* >> directives */
+static void elr__camera(elr__parser *P, const char *type) {
+  elr_scene_desc *d = &P->s->d;
+  elr__param *sw;
+  if (strcmp(type, "perspective") != 0) {
+    ELR_WARN(P, P->dir_line, "Camera \"%s\" is not supported; using \"perspective\"", type);
+  }
+  d->fov = (float)elr__pfloat(P, "fov", 90.0);
+  elr__check_range(P, "fov", d->fov, 1e-4, 179.99);
+  if (elr__find(P, "frameaspectratio")) {
+    d->frameaspect = (float)elr__pfloat(P, "frameaspectratio", 1.0);
+    elr__check_range(P, "frameaspectratio", d->frameaspect, 1e-6, 1e6);
+    d->has_frameaspect = 1;
+  }
+  sw = elr__findt(P, "screenwindow", "float", 4);
+  if (sw) {
+    int i;
+    for (i = 0; i < 4; i++) d->screen[i] = (float)sw->num[i];
+    if (!(d->screen[1] > d->screen[0]) || !(d->screen[3] > d->screen[2]))
+      elr__fail(P, sw->line, "Camera: screenwindow must be [xmin xmax ymin ymax] with xmin < xmax and ymin < ymax");
+    d->has_screen = 1;
+  }
+  if (elr__find(P, "lensradius")) {
+    double lr = elr__pfloat(P, "lensradius", 0.0);
+    if (lr != 0.0) ELR_WARN(P, P->dir_line, "Camera: \"lensradius\" %g ignored (pinhole camera only)", lr);
+  }
+  if (elr__find(P, "focaldistance")) elr__pfloat(P, "focaldistance", 1e6);
+  elr_xform_invert(&d->cam2world, &P->ctm);
+  P->seen_camera = 1;
+  /* named coordinate system "camera" */
+  {
+    int k = elr__lookup_named(P->ctx, P->nctx, "camera");
+    if (k < 0) {
+      ELR_PUSH(P, P->ctx, P->nctx, P->capctx, elr__named);
+      P->cs_xf = (elr_xform *)realloc(P->cs_xf, sizeof(elr_xform) * (size_t)P->capctx);
+      if (!P->cs_xf) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+      k = P->nctx - 1;
+      P->ctx[k].name = elr__strdup(P, "camera", 6);
+    }
+    P->cs_xf[k] = d->cam2world;
+  }
+}
+
+static void elr__film(elr__parser *P, const char *type) {
+  elr_scene_desc *d = &P->s->d;
+  elr__param *cw;
+  const char *fn;
+  if (strcmp(type, "image") != 0) ELR_WARN(P, P->dir_line, "Film \"%s\" is not supported; using \"image\"", type);
+  d->xres = elr__pint(P, "xresolution", 1280);
+  d->yres = elr__pint(P, "yresolution", 720);
+  elr__check_range(P, "xresolution", d->xres, 1, 32768);
+  elr__check_range(P, "yresolution", d->yres, 1, 32768);
+  fn = elr__pstring(P, "filename", "pbrt.exr");
+  if (strlen(fn) >= sizeof d->filename) elr__fail(P, P->dir_line, "Film: filename too long");
+  snprintf(d->filename, sizeof d->filename, "%s", fn);
+  cw = elr__findt(P, "cropwindow", "float", 4);
+  if (cw) {
+    int i;
+    for (i = 0; i < 4; i++) {
+      d->crop[i] = (float)cw->num[i];
+      if (!(d->crop[i] >= 0.f && d->crop[i] <= 1.f))
+        elr__fail(P, cw->line, "Film: cropwindow values must lie in [0, 1]");
+    }
+    { /* pbrt-v3 sorts each pair */
+      float t;
+      if (d->crop[0] > d->crop[1]) { t = d->crop[0]; d->crop[0] = d->crop[1]; d->crop[1] = t; }
+      if (d->crop[2] > d->crop[3]) { t = d->crop[2]; d->crop[2] = d->crop[3]; d->crop[3] = t; }
+    }
+  }
+  if (elr__find(P, "scale")) {
+    double sc = elr__pfloat(P, "scale", 1.0);
+    if (sc != 1.0) ELR_WARN(P, P->dir_line, "Film: \"scale\" %g ignored", sc);
+  }
+  if (elr__find(P, "diagonal")) elr__pfloat(P, "diagonal", 35.0);
+}
+
+static void elr__filter(elr__parser *P, const char *type) {
+  elr_filter_desc *f = &P->s->d.filter;
+  float defw = 2.f;
+  memset(f, 0, sizeof *f);
+  if (!strcmp(type, "box")) { f->type = ELR_PF_BOX; defw = 0.5f; }
+  else if (!strcmp(type, "triangle")) f->type = ELR_PF_TRIANGLE;
+  else if (!strcmp(type, "gaussian")) { f->type = ELR_PF_GAUSSIAN; f->alpha = (float)elr__pfloat(P, "alpha", 2.0); }
+  else if (!strcmp(type, "mitchell")) {
+    f->type = ELR_PF_MITCHELL;
+    f->b = (float)elr__pfloat(P, "B", 1.0 / 3.0); f->c = (float)elr__pfloat(P, "C", 1.0 / 3.0);
+  } else if (!strcmp(type, "sinc")) { f->type = ELR_PF_SINC; defw = 4.f; f->tau = (float)elr__pfloat(P, "tau", 3.0); }
+  else {
+    ELR_WARN(P, P->dir_line, "PixelFilter \"%s\" is not supported; using \"box\"", type);
+    f->type = ELR_PF_BOX; defw = 0.5f;
+  }
+  f->xw = (float)elr__pfloat(P, "xwidth", defw);
+  f->yw = (float)elr__pfloat(P, "ywidth", defw);
+  elr__check_range(P, "xwidth", f->xw, 1e-3, 16);
+  elr__check_range(P, "ywidth", f->yw, 1e-3, 16);
+}
+
+static void elr__sampler(elr__parser *P, const char *type) {
+  elr_scene_desc *d = &P->s->d;
+  if (!strcmp(type, "random")) {
+    d->sampler = ELR_SAMPLER_RANDOM;
+    d->spp = elr__pint(P, "pixelsamples", 4);
+  } else if (!strcmp(type, "stratified")) {
+    d->sampler = ELR_SAMPLER_STRATIFIED;
+    d->jitter = elr__pbool(P, "jitter", 1);
+    d->xs = elr__pint(P, "xsamples", 4);
+    d->ys = elr__pint(P, "ysamples", 4);
+    d->dims = elr__pint(P, "dimensions", 4);
+    elr__check_range(P, "xsamples", d->xs, 1, 4096);
+    elr__check_range(P, "ysamples", d->ys, 1, 4096);
+    elr__check_range(P, "dimensions", d->dims, 0, 64);
+    d->spp = d->xs * d->ys;
+  } else {
+    if (strcmp(type, "halton") != 0)
+      ELR_WARN(P, P->dir_line, "Sampler \"%s\" is not supported; using \"halton\"", type);
+    d->sampler = ELR_SAMPLER_HALTON;
+    d->spp = elr__pint(P, "pixelsamples", 16);
+    if (elr__find(P, "samplepixelcenter") && elr__pbool(P, "samplepixelcenter", 0))
+      ELR_WARN(P, P->dir_line, "Sampler: \"samplepixelcenter\" ignored");
+  }
+  elr__check_range(P, "pixelsamples", d->spp, 1, 1 << 24);
+}
+
+static void elr__integrator(elr__parser *P, const char *type) {
+  elr_scene_desc *d = &P->s->d;
+  const char *ls;
+  if (!strcmp(type, "directlighting")) {
+    d->integrator_path = 0;
+    {
+      const char *st = elr__pstring(P, "strategy", "all");
+      if (strcmp(st, "all") != 0) ELR_WARN(P, P->dir_line, "Integrator: strategy \"%s\" ignored (\"all\" is used)", st);
+    }
+  } else {
+    if (strcmp(type, "path") != 0) ELR_WARN(P, P->dir_line, "Integrator \"%s\" is not supported; using \"path\"", type);
+    d->integrator_path = 1;
+    d->rrthreshold = (float)elr__pfloat(P, "rrthreshold", 1.0);
+    if (elr__find(P, "lightsamplestrategy")) {
+      const char *st = elr__pstring(P, "lightsamplestrategy", "spatial");
+      ELR_WARN(P, P->dir_line, "Integrator: lightsamplestrategy \"%s\" ignored (every light is sampled at every vertex)", st);
+    }
+  }
+  d->maxdepth = elr__pint(P, "maxdepth", 5);
+  elr__check_range(P, "maxdepth", d->maxdepth, 0, 100000);
+  /* envlight's extension: which strategies estimate direct light (a test and benchmark hook) */
+  ls = elr__pstring(P, "lightsampling", "mis");
+  if (!strcmp(ls, "mis")) d->light_sampling = ELR_LS_MIS;
+  else if (!strcmp(ls, "light")) d->light_sampling = ELR_LS_LIGHT;
+  else if (!strcmp(ls, "bsdf")) d->light_sampling = ELR_LS_BSDF;
+  else elr__fail(P, elr__find(P, "lightsampling")->line, "Integrator: lightsampling must be \"mis\", \"light\" or \"bsdf\"");
+  if (elr__find(P, "pixelbounds")) ELR_WARN(P, P->dir_line, "Integrator: \"pixelbounds\" ignored");
+  if (elr__find(P, "pixelbounds")) elr__find(P, "pixelbounds")->used = 1;
+}
+
+static void elr__light(elr__parser *P, const char *type) {
+  elr_scene *s = P->s;
+  elr_light *l;
+  elr_v3 sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
+  ELR_PUSH(P, s->light, s->nlight, s->caplight, elr_light);
+  l = &s->light[s->nlight - 1];
+  if (!strcmp(type, "infinite")) {
+    const char *map = elr__pstring(P, "mapname", "");
+    float m3[9];
+    int i, j;
+    elr_v3 L = elr__prgb(P, "L", elr_v(1, 1, 1));
+    char e[512];
+    float scale3[3];
+    float *rgb = NULL;
+    int w = 1, h = 1;
+    l->kind = ELR_LIGHT_INFINITE;
+    l->nsamples = elr__pint(P, "samples", 1);
+    elr__check_range(P, "samples", l->nsamples, 1, 1 << 16);
+    l->compensated = elr__pbool(P, "compensated", 0);
+    l->L = elr_vmul(L, sc);
+    scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
+    /* the light-to-world rotation: the CTM's upper 3x3 (pbrt-v3 allows only rotations here) */
+    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m3[i * 3 + j] = (float)P->ctm.m[i][j];
+    if (map[0]) {
+      el_image img;
+      char *path = elr__resolve(P, map);
+      elr__load_image(P, path, P->dir_line, &img);
+      rgb = elr__to_rgb(P, &img, 0, 1.f);
+      w = img.width; h = img.height;
+      el_image_free(&img);
+      l->has_map = 1;
+    } else {
+      rgb = (float *)malloc(3 * sizeof(float));
+      if (!rgb) elr__fail(P, P->dir_line, "out of memory");
+      rgb[0] = rgb[1] = rgb[2] = 1.f;
+    }
+    {
+      double t0 = elr_now();
+      int r = elr_env_create(rgb, w, h, scale3, m3, l->compensated, &l->env, e, sizeof e);
+      free(rgb);
+      if (r != 0) elr__fail(P, P->dir_line, "LightSource \"infinite\": %s", e);
+      s->t_images += elr_now() - t0;
+    }
+  } else if (!strcmp(type, "point")) {
+    elr_v3 I = elr__prgb(P, "I", elr_v(1, 1, 1));
+    elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
+    l->kind = ELR_LIGHT_POINT;
+    l->L = elr_vmul(I, sc);
+    l->pos = elr_xpoint(&P->ctm, from);
+    l->nsamples = 1;
+  } else if (!strcmp(type, "distant")) {
+    elr_v3 L = elr__prgb(P, "L", elr_v(1, 1, 1));
+    elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
+    elr_v3 to = elr__ppoint(P, "to", "point3", elr_v(0, 0, 1));
+    l->kind = ELR_LIGHT_DISTANT;
+    l->L = elr_vmul(L, sc);
+    l->dir = elr_norm(elr_xvector(&P->ctm, elr_sub(from, to)));
+    l->nsamples = 1;
+  } else {
+    ELR_WARN(P, P->dir_line, "LightSource \"%s\" is not supported and is ignored", type);
+    s->nlight--;
+    { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
+  }
+}
+
+static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
+  elr_scene *s = P->s;
+  int i;
+  for (i = 0; i < m->nvert; i++) {
+    elr_v3 p = elr_xpoint(&P->ctm, elr_v(m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]));
+    m->p[3 * i] = p.x; m->p[3 * i + 1] = p.y; m->p[3 * i + 2] = p.z;
+    if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+      free(m->idx); free(m->p); free(m->n); free(m->uv);
+      elr__fail(P, P->dir_line, "Shape: vertex %d is not finite after the transformation", i);
+    }
+    if (m->n) {
+      elr_v3 n = elr_norm(elr_xnormal(&P->ctm, elr_v(m->n[3 * i], m->n[3 * i + 1], m->n[3 * i + 2])));
+      m->n[3 * i] = n.x; m->n[3 * i + 1] = n.y; m->n[3 * i + 2] = n.z;
+    }
+  }
+  m->material = P->gs.material;
+  ELR_PUSH(P, s->mesh, s->nmesh, s->capmesh, elr_mesh);
+  s->mesh[s->nmesh - 1] = *m;
+}
+
+static void elr__shape(elr__parser *P, const char *type) {
+  elr_scene *s = P->s;
+  if (!strcmp(type, "sphere")) {
+    elr_sphere *sp;
+    float r = (float)elr__pfloat(P, "radius", 1.0);
+    elr__check_range(P, "radius", r, 1e-20, 1e20);
+    if (elr__find(P, "zmin") || elr__find(P, "zmax") || elr__find(P, "phimax")) {
+      double zmin = elr__pfloat(P, "zmin", -r), zmax = elr__pfloat(P, "zmax", r), pm = elr__pfloat(P, "phimax", 360.);
+      if (zmin > -r || zmax < r || pm < 360.)
+        ELR_WARN(P, P->dir_line, "Shape \"sphere\": zmin/zmax/phimax ignored (only full spheres)");
+    }
+    ELR_PUSH(P, s->sph, s->nsph, s->capsph, elr_sphere);
+    sp = &s->sph[s->nsph - 1];
+    sp->o2w = P->ctm; sp->radius = r; sp->material = P->gs.material;
+  } else if (!strcmp(type, "trianglemesh")) {
+    elr_mesh m;
+    elr__param *pi = elr__findt(P, "indices", "integer", -3);
+    elr__param *pp = elr__findt(P, "P", "point3", -3);
+    elr__param *pn = elr__find(P, "N") ? elr__findt(P, "N", "normal3", -3) : NULL;
+    elr__param *puv = NULL;
+    int i;
+    const char *uvn = elr__find(P, "uv") ? "uv" : (elr__find(P, "st") ? "st" : NULL);
+    if (uvn) {
+      elr__param *q = elr__find(P, uvn);
+      puv = elr__findt(P, uvn, !strcmp(q->type, "point2") ? "point2" : "float", -2);
+    }
+    if (elr__find(P, "S")) ELR_WARN(P, P->dir_line, "Shape \"trianglemesh\": \"S\" (tangents) ignored"), elr__find(P, "S")->used = 1;
+    if (!pp) elr__fail(P, P->dir_line, "Shape \"trianglemesh\": \"point3 P\" is required");
+    if (!pi) {
+      if (pp->n != 9) elr__fail(P, P->dir_line, "Shape \"trianglemesh\": \"integer indices\" is required");
+    }
+    memset(&m, 0, sizeof m);
+    m.nvert = pp->n / 3;
+    m.ntri = pi ? pi->n / 3 : 1;
+    if (m.ntri == 0) elr__fail(P, P->dir_line, "Shape \"trianglemesh\": no triangles");
+    if (pn && pn->n != pp->n) elr__fail(P, pn->line, "Shape \"trianglemesh\": \"N\" must have as many values as \"P\"");
+    if (puv && puv->n / 2 != m.nvert) elr__fail(P, puv->line, "Shape \"trianglemesh\": \"%s\" must have 2 values per vertex", uvn);
+    for (i = 0; pi && i < pi->n; i++)
+      if (pi->num[i] < 0 || pi->num[i] >= m.nvert)
+        elr__fail(P, pi->line, "Shape \"trianglemesh\": index %g out of range [0, %d)", pi->num[i], m.nvert);
+    m.idx = (unsigned *)malloc(sizeof(unsigned) * 3 * (size_t)m.ntri);
+    m.p = (float *)malloc(sizeof(float) * 3 * (size_t)m.nvert);
+    m.n = pn ? (float *)malloc(sizeof(float) * 3 * (size_t)m.nvert) : NULL;
+    m.uv = puv ? (float *)malloc(sizeof(float) * 2 * (size_t)m.nvert) : NULL;
+    if (!m.idx || !m.p || (pn && !m.n) || (puv && !m.uv)) {
+      free(m.idx); free(m.p); free(m.n); free(m.uv);
+      elr__fail(P, P->dir_line, "out of memory");
+    }
+    for (i = 0; i < 3 * m.ntri; i++) m.idx[i] = pi ? (unsigned)pi->num[i] : (unsigned)i;
+    for (i = 0; i < 3 * m.nvert; i++) m.p[i] = (float)pp->num[i];
+    for (i = 0; pn && i < 3 * m.nvert; i++) m.n[i] = (float)pn->num[i];
+    for (i = 0; puv && i < 2 * m.nvert; i++) m.uv[i] = (float)puv->num[i];
+    elr__add_mesh(P, &m);
+  } else if (!strcmp(type, "plymesh")) {
+    elr_mesh m;
+    char e[600];
+    const char *fn = elr__pstring(P, "filename", "");
+    char *path;
+    double t0 = elr_now();
+    if (!fn[0]) elr__fail(P, P->dir_line, "Shape \"plymesh\": \"string filename\" is required");
+    path = elr__resolve(P, fn);
+    memset(&m, 0, sizeof m);
+    if (elr_ply_load(path, &m, e, sizeof e) != 0) elr__fail(P, P->dir_line, "Shape \"plymesh\": %s", e);
+    P->s->t_images += elr_now() - t0;
+    elr__add_mesh(P, &m);
+  } else {
+    ELR_WARN(P, P->dir_line, "Shape \"%s\" is not supported and is ignored", type);
+    { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
+  }
+  if (elr__find(P, "alpha")) { ELR_WARN(P, P->dir_line, "Shape: \"alpha\" ignored"); elr__find(P, "alpha")->used = 1; }
+}
+
+static int elr__make_material(elr__parser *P, const char *type) {
+  elr_scene *s = P->s;
+  elr_material *m;
+  int kind;
+  if (!strcmp(type, "matte")) kind = ELR_MAT_MATTE;
+  else if (!strcmp(type, "mirror")) kind = ELR_MAT_MIRROR;
+  else if (!strcmp(type, "plastic")) kind = ELR_MAT_PLASTIC;
+  else {
+    if (!strcmp(type, "") || !strcmp(type, "none")) {
+      ELR_WARN(P, P->dir_line, "Material \"%s\" (no surface) is not supported; using \"matte\"", type);
+    } else {
+      ELR_WARN(P, P->dir_line, "Material \"%s\" is not supported; using \"matte\" with its defaults", type);
+    }
+    { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
+    kind = -1;
+  }
+  ELR_PUSH(P, s->mat, s->nmat, s->capmat, elr_material);
+  m = &s->mat[s->nmat - 1];
+  m->kind = kind < 0 ? ELR_MAT_MATTE : kind;
+  m->kd = m->ks = m->kr = m->rough = -1;
+  if (kind < 0) { m->kd = elr__const_tex(P, elr_v(.5f, .5f, .5f)); return s->nmat - 1; }
+  if (kind == ELR_MAT_MATTE) {
+    m->kd = elr__ptex(P, "Kd", elr_v(.5f, .5f, .5f), 0);
+    if (elr__find(P, "sigma")) {
+      elr__param *sg = elr__find(P, "sigma");
+      if (strcmp(sg->type, "float") == 0 && sg->n == 1 && sg->num[0] == 0.0) sg->used = 1;
+      else { sg->used = 1; ELR_WARN(P, sg->line, "Material \"matte\": \"sigma\" ignored (only sigma 0, Lambertian)"); }
+    }
+  } else if (kind == ELR_MAT_MIRROR) {
+    m->kr = elr__ptex(P, "Kr", elr_v(.9f, .9f, .9f), 0);
+  } else {
+    m->kd = elr__ptex(P, "Kd", elr_v(.25f, .25f, .25f), 0);
+    m->ks = elr__ptex(P, "Ks", elr_v(.25f, .25f, .25f), 0);
+    m->rough = elr__ptex(P, "roughness", elr_v(.1f, .1f, .1f), 1);
+    m->remap = elr__pbool(P, "remaproughness", 1);
+  }
+  if (elr__find(P, "bumpmap")) { ELR_WARN(P, P->dir_line, "Material: \"bumpmap\" ignored"); elr__find(P, "bumpmap")->used = 1; }
+  return s->nmat - 1;
+}
+
+static void elr__texture(elr__parser *P, const char *name, const char *vtype, const char *cls) {
+  elr_scene *s = P->s;
+  elr_texture t;
+  int is_float = !strcmp(vtype, "float");
+  const char *mapping;
+  if (!is_float && strcmp(vtype, "spectrum") && strcmp(vtype, "color") && strcmp(vtype, "rgb"))
+    elr__fail(P, P->dir_line, "Texture \"%s\": type \"%s\" must be \"float\" or \"spectrum\"", name, vtype);
+  memset(&t, 0, sizeof t);
+  t.is_float = is_float;
+  mapping = elr__pstring(P, "mapping", "uv");
+  if (strcmp(mapping, "uv") != 0) ELR_WARN(P, P->dir_line, "Texture \"%s\": mapping \"%s\" not supported; using \"uv\"", name, mapping);
+  t.su = (float)elr__pfloat(P, "uscale", 1.0); t.sv = (float)elr__pfloat(P, "vscale", 1.0);
+  t.du = (float)elr__pfloat(P, "udelta", 0.0); t.dv = (float)elr__pfloat(P, "vdelta", 0.0);
+  if (!strcmp(cls, "constant")) {
+    t.kind = ELR_TEX_CONST;
+    if (is_float) { float v = (float)elr__pfloat(P, "value", 1.0); t.value = elr_v(v, v, v); }
+    else t.value = elr__prgb(P, "value", elr_v(1, 1, 1));
+  } else if (!strcmp(cls, "checkerboard")) {
+    int dim = elr__pint(P, "dimension", 2);
+    const char *aa = elr__pstring(P, "aamode", "closedform");
+    if (dim != 2) elr__fail(P, P->dir_line, "Texture \"%s\": checkerboard dimension %d not supported (only 2)", name, dim);
+    t.kind = ELR_TEX_CHECKER;
+    t.tex1 = elr__ptex(P, "tex1", elr_v(1, 1, 1), is_float);
+    t.tex2 = elr__ptex(P, "tex2", elr_v(0, 0, 0), is_float);
+    if (!strcmp(aa, "closedform")) t.aa_closedform = 1;
+    else if (!strcmp(aa, "none")) t.aa_closedform = 0;
+    else elr__fail(P, P->dir_line, "Texture \"%s\": aamode must be \"closedform\" or \"none\"", name);
+  } else if (!strcmp(cls, "imagemap")) {
+    const char *fn = elr__pstring(P, "filename", "");
+    const char *wrap = elr__pstring(P, "wrap", "repeat");
+    float scale = (float)elr__pfloat(P, "scale", 1.0);
+    float maxan = (float)elr__pfloat(P, "maxanisotropy", 8.0);
+    int filter = ELR_FILTER_EWA, wr, gamma;
+    size_t fl = strlen(fn);
+    char e[512];
+    el_image img;
+    float *rgb;
+    char *path;
+    if (elr__find(P, "filter")) {
+      const char *f = elr__pstring(P, "filter", "bilinear");
+      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = ELR_FILTER_EWA;
+      else if (!strcmp(f, "trilinear")) filter = ELR_FILTER_TRILINEAR;
+      else if (!strcmp(f, "bilinear")) filter = ELR_FILTER_BILINEAR;
+      else elr__fail(P, elr__find(P, "filter")->line, "Texture \"%s\": filter must be \"bilinear\", \"trilinear\" or \"ewa\"", name);
+    } else if (elr__find(P, "trilinear")) { /* pbrt-v3's spelling */
+      filter = elr__pbool(P, "trilinear", 0) ? ELR_FILTER_TRILINEAR : ELR_FILTER_EWA;
+    }
+    if (!strcmp(wrap, "repeat")) wr = ELR_WRAP_REPEAT;
+    else if (!strcmp(wrap, "black")) wr = ELR_WRAP_BLACK;
+    else if (!strcmp(wrap, "clamp")) wr = ELR_WRAP_CLAMP;
+    else elr__fail(P, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
+    elr__check_range(P, "maxanisotropy", maxan, 1.0, 1e6);
+    if (!fn[0]) elr__fail(P, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
+    gamma = elr__pbool(P, "gamma", (fl > 4 && (!strcmp(fn + fl - 4, ".png") || !strcmp(fn + fl - 4, ".tga"))));
+    path = elr__resolve(P, fn);
+    elr__load_image(P, path, P->dir_line, &img);
+    rgb = elr__to_rgb(P, &img, gamma, scale);
+    if (is_float) { /* pbrt-v3 converts to float by luminance */
+      size_t i, n = (size_t)img.width * (size_t)img.height;
+      for (i = 0; i < n; i++) {
+        float y = 0.212671f * rgb[3 * i] + 0.715160f * rgb[3 * i + 1] + 0.072169f * rgb[3 * i + 2];
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = y;
+      }
+    }
+    { /* <<Flip image in y; texture coordinate space has (0,0) at the lower left corner>> (pbrt-v3) */
+      int y, W = img.width, H = img.height;
+      size_t row = (size_t)W * 3, k;
+      for (y = 0; y < H / 2; y++)
+        for (k = 0; k < row; k++) {
+          float tmp = rgb[(size_t)y * row + k];
+          rgb[(size_t)y * row + k] = rgb[(size_t)(H - 1 - y) * row + k];
+          rgb[(size_t)(H - 1 - y) * row + k] = tmp;
+        }
+    }
+    t.kind = ELR_TEX_IMAGE;
+    {
+      double t0 = elr_now();
+      int r = elr_mip_create(rgb, img.width, img.height, wr, filter, maxan, &t.mip, e, sizeof e);
+      free(rgb);
+      s->t_images += elr_now() - t0;
+      s->bytes_textures += (size_t)img.width * (size_t)img.height * 3 * sizeof(float);
+      el_image_free(&img);
+      if (r != 0) elr__fail(P, P->dir_line, "Texture \"%s\": %s", name, e);
+    }
+  } else {
+    ELR_WARN(P, P->dir_line, "Texture class \"%s\" is not supported; \"%s\" is a constant %s", cls, name,
+             is_float ? "1" : "(1,1,1)");
+    { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
+    t.kind = ELR_TEX_CONST; t.value = elr_v(1, 1, 1);
+  }
+  ELR_PUSH(P, s->tex, s->ntex, s->captex, elr_texture);
+  s->tex[s->ntex - 1] = t;
+  /* name it in the current scope */
+  if (P->gs.ntex_scope < P->ntexn) P->ntexn = P->gs.ntex_scope; /* drop names of closed scopes */
+  ELR_PUSH(P, P->texnames, P->ntexn, P->captexn, elr__named);
+  P->texnames[P->ntexn - 1].name = elr__strdup(P, name, strlen(name));
+  P->texnames[P->ntexn - 1].index = s->ntex - 1;
+  P->texnames[P->ntexn - 1].is_float = is_float;
+  P->gs.ntex_scope = P->ntexn;
+}
+
+static void elr__parse_file(elr__parser *P, const char *text, size_t len, const char *name) {
+  elr__lexer *L;
+  if (P->nlex >= ELR_MAX_INCLUDE) elr__fail(P, P->dir_line, "Include nested more than %d deep (recursive include?)", ELR_MAX_INCLUDE);
+  L = &P->lex[P->nlex++];
+  L->text = L->p = text; L->end = text + len; L->file = name; L->line = 1;
+}
+
+static char *elr__read_file(elr__parser *P, const char *path, size_t *len, int line) {
+  FILE *f = fopen(path, "rb");
+  long n;
+  char *buf;
+  if (!f) elr__fail(P, line, "cannot open \"%s\": %s", path, strerror(errno));
+  if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+    fclose(f); elr__fail(P, line, "cannot read \"%s\"", path);
+  }
+  if (n > (1L << 30)) { fclose(f); elr__fail(P, line, "\"%s\" is larger than 1 GiB", path); }
+  buf = (char *)elr__alloc(P, (size_t)n + 1);
+  if (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n) { fclose(f); elr__fail(P, line, "cannot read \"%s\"", path); }
+  fclose(f);
+  buf[n] = 0; *len = (size_t)n;
+  return buf;
+}
+
+static void elr__skip_args(elr__parser *P) {
+  for (;;) {
+    elr__tok t = elr__peek(P);
+    if (t.kind == T_EOF) return;
+    if (t.kind == T_WORD && !elr__wordis(&t, "true") && !elr__wordis(&t, "false")) return;
+    elr__next(P);
+  }
+}
+
+static void elr__directive_block(elr__parser *P, int need_world, const char *what) {
+  if (need_world && !P->in_world) {
+    ELR_WARN(P, P->dir_line, "%s before WorldBegin is not allowed; ignoring it", what);
+  }
+  if (!need_world && P->in_world) {
+    ELR_WARN(P, P->dir_line, "%s inside the world block is not allowed; ignoring it", what);
+  }
+}
+
+static void elr__run(elr__parser *P) {
+  static const char *unsupported[] = {"AreaLightSource", "ObjectBegin", "ObjectEnd", "ObjectInstance",
+                                      "MakeNamedMedium", "MediumInterface", "TransformTimes", "ActiveTransform",
+                                      "Accelerator", "ReverseOrientation", "ColorSpace", "Option", "Attribute",
+                                      "AttributeSet", "SurfaceIntegrator", "VolumeIntegrator", "Renderer",
+                                      "Volume", "MakeNamedMaterial"};
+  for (;;) {
+    elr__tok t = elr__next(P);
+    char nm[64];
+    if (t.kind == T_EOF) break;
+    if (t.kind != T_WORD) {
+      if (t.kind == T_STRING) elr__fail(P, t.line, "expected a directive, got the string \"%s\" (a parameter without a directive?)", t.s);
+      elr__fail(P, t.line, "expected a directive, got %s", t.kind == T_NUM ? "a number" : (t.kind == T_LBR ? "'['" : "']'"));
+    }
+    if (t.len >= sizeof nm) elr__fail(P, t.line, "unknown directive \"%.*s\"", 40, t.s);
+    memcpy(nm, t.s, t.len); nm[t.len] = 0;
+    snprintf(P->dir_name, sizeof P->dir_name, "%s", nm);
+    P->dir_line = t.line; P->dir_file = elr__curfile(P);
+    if (P->world_ended) elr__fail(P, t.line, "directive \"%s\" after WorldEnd", nm);
+
+    if (!strcmp(nm, "Translate")) {
+      double x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
+      double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+      elr_xform a, r;
+      m[0][3] = x; m[1][3] = y; m[2][3] = z;
+      elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+    } else if (!strcmp(nm, "Scale")) {
+      double x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
+      double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+      elr_xform a, r;
+      m[0][0] = x; m[1][1] = y; m[2][2] = z;
+      if (x == 0 || y == 0 || z == 0) elr__fail(P, t.line, "Scale %g %g %g is singular", x, y, z);
+      elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+    } else if (!strcmp(nm, "Rotate")) {
+      double ang = elr__num(P, nm), x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
+      double l = sqrt(x * x + y * y + z * z), s, c, m[4][4];
+      elr_xform a, r;
+      if (!(l > 0)) elr__fail(P, t.line, "Rotate: the axis is zero");
+      x /= l; y /= l; z /= l;
+      s = sin(ang * 3.14159265358979323846 / 180.0); c = cos(ang * 3.14159265358979323846 / 180.0);
+      /* pbrt-v3's Rotate(theta, axis) */
+      m[0][0] = x * x + (1 - x * x) * c; m[0][1] = x * y * (1 - c) - z * s; m[0][2] = x * z * (1 - c) + y * s; m[0][3] = 0;
+      m[1][0] = x * y * (1 - c) + z * s; m[1][1] = y * y + (1 - y * y) * c; m[1][2] = y * z * (1 - c) - x * s; m[1][3] = 0;
+      m[2][0] = x * z * (1 - c) - y * s; m[2][1] = y * z * (1 - c) + x * s; m[2][2] = z * z + (1 - z * z) * c; m[2][3] = 0;
+      m[3][0] = m[3][1] = m[3][2] = 0; m[3][3] = 1;
+      elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+    } else if (!strcmp(nm, "LookAt")) {
+      double v[9];
+      int i;
+      elr_v3 pos, look, up, dir, right, nup;
+      double m[4][4];
+      elr_xform c2w, w2c, r;
+      for (i = 0; i < 9; i++) v[i] = elr__num(P, nm);
+      pos = elr_v((float)v[0], (float)v[1], (float)v[2]);
+      look = elr_v((float)v[3], (float)v[4], (float)v[5]);
+      up = elr_v((float)v[6], (float)v[7], (float)v[8]);
+      dir = elr_sub(look, pos);
+      if (elr_len(dir) == 0.f) elr__fail(P, t.line, "LookAt: eye and look-at point coincide");
+      dir = elr_norm(dir);
+      if (elr_len(up) == 0.f || elr_len(elr_cross(elr_norm(up), dir)) == 0.f)
+        elr__fail(P, t.line, "LookAt: the up vector is zero or parallel to the viewing direction");
+      right = elr_norm(elr_cross(elr_norm(up), dir));
+      nup = elr_cross(dir, right);
+      m[0][0] = right.x; m[1][0] = right.y; m[2][0] = right.z; m[3][0] = 0;
+      m[0][1] = nup.x; m[1][1] = nup.y; m[2][1] = nup.z; m[3][1] = 0;
+      m[0][2] = dir.x; m[1][2] = dir.y; m[2][2] = dir.z; m[3][2] = 0;
+      m[0][3] = v[0]; m[1][3] = v[1]; m[2][3] = v[2]; m[3][3] = 1;
+      elr_xform_from_matrix(&c2w, m);
+      elr_xform_invert(&w2c, &c2w);
+      elr_xform_mul(&r, &P->ctm, &w2c); P->ctm = r;
+    } else if (!strcmp(nm, "Transform") || !strcmp(nm, "ConcatTransform")) {
+      double v[16], m[4][4];
+      int i, j;
+      elr_xform a, r;
+      elr__nums16(P, v, nm);
+      for (i = 0; i < 4; i++) for (j = 0; j < 4; j++) m[i][j] = v[j * 4 + i]; /* pbrt: Transpose */
+      if (elr_xform_from_matrix(&a, m) != 0) elr__fail(P, t.line, "%s: the matrix is singular", nm);
+      if (nm[0] == 'T') P->ctm = a;
+      else { elr_xform_mul(&r, &P->ctm, &a); P->ctm = r; }
+    } else if (!strcmp(nm, "Identity")) {
+      elr_xform_identity(&P->ctm);
+    } else if (!strcmp(nm, "CoordinateSystem")) {
+      const char *n = elr__str(P, nm);
+      int k = elr__lookup_named(P->ctx, P->nctx, n);
+      if (k < 0) {
+        ELR_PUSH(P, P->ctx, P->nctx, P->capctx, elr__named);
+        P->cs_xf = (elr_xform *)realloc(P->cs_xf, sizeof(elr_xform) * (size_t)P->capctx);
+        if (!P->cs_xf) elr__fail(P, t.line, "out of memory");
+        k = P->nctx - 1;
+        P->ctx[k].name = elr__strdup(P, n, strlen(n));
+      }
+      P->cs_xf[k] = P->ctm;
+    } else if (!strcmp(nm, "CoordSysTransform")) {
+      const char *n = elr__str(P, nm);
+      int k = elr__lookup_named(P->ctx, P->nctx, n);
+      if (k < 0) ELR_WARN(P, t.line, "CoordSysTransform: coordinate system \"%s\" unknown; ignored", n);
+      else P->ctm = P->cs_xf[k];
+    } else if (!strcmp(nm, "AttributeBegin") || !strcmp(nm, "TransformBegin")) {
+      if (P->depth >= ELR_MAX_STACK) elr__fail(P, t.line, "%s nested more than %d deep", nm, ELR_MAX_STACK);
+      P->xstack[P->depth] = P->ctm;
+      P->gstack[P->depth] = P->gs;
+      P->stack_kind[P->depth] = nm[0] == 'A' ? 'a' : 't';
+      P->depth++;
+    } else if (!strcmp(nm, "AttributeEnd") || !strcmp(nm, "TransformEnd")) {
+      char want = nm[0] == 'A' ? 'a' : 't';
+      if (P->depth == 0) { ELR_WARN(P, t.line, "unmatched %s ignored", nm); continue; }
+      if (P->stack_kind[P->depth - 1] != want)
+        ELR_WARN(P, t.line, "%s closes a %s block", nm, want == 'a' ? "TransformBegin" : "AttributeBegin");
+      P->depth--;
+      P->ctm = P->xstack[P->depth];
+      if (want == 'a') P->gs = P->gstack[P->depth];
+    } else if (!strcmp(nm, "WorldBegin")) {
+      if (P->in_world) elr__fail(P, t.line, "WorldBegin inside the world block");
+      P->in_world = 1;
+      elr_xform_identity(&P->ctm);
+      {
+        int k = elr__lookup_named(P->ctx, P->nctx, "world");
+        if (k < 0) {
+          ELR_PUSH(P, P->ctx, P->nctx, P->capctx, elr__named);
+          P->cs_xf = (elr_xform *)realloc(P->cs_xf, sizeof(elr_xform) * (size_t)P->capctx);
+          if (!P->cs_xf) elr__fail(P, t.line, "out of memory");
+          k = P->nctx - 1; P->ctx[k].name = elr__strdup(P, "world", 5);
+        }
+        P->cs_xf[k] = P->ctm;
+      }
+    } else if (!strcmp(nm, "WorldEnd")) {
+      if (!P->in_world) elr__fail(P, t.line, "WorldEnd without WorldBegin");
+      if (P->depth != 0) ELR_WARN(P, t.line, "%d unclosed AttributeBegin/TransformBegin at WorldEnd", P->depth);
+      P->world_ended = 1;
+    } else if (!strcmp(nm, "Include") || !strcmp(nm, "Import")) {
+      const char *fn = elr__str(P, nm);
+      char *path = elr__resolve(P, fn);
+      size_t len;
+      char *txt = elr__read_file(P, path, &len, t.line);
+      elr__parse_file(P, txt, len, path);
+    } else if (!strcmp(nm, "Camera") || !strcmp(nm, "Film") || !strcmp(nm, "PixelFilter") ||
+               !strcmp(nm, "Sampler") || !strcmp(nm, "Integrator")) {
+      const char *type = elr__str(P, nm);
+      elr__read_params(P);
+      if (P->in_world) { elr__directive_block(P, 0, nm); continue; }
+      if (nm[0] == 'C') elr__camera(P, type);
+      else if (nm[0] == 'F') elr__film(P, type);
+      else if (nm[0] == 'P') elr__filter(P, type);
+      else if (nm[0] == 'S') elr__sampler(P, type);
+      else elr__integrator(P, type);
+      elr__report_unused(P);
+    } else if (!strcmp(nm, "LightSource") || !strcmp(nm, "Shape") || !strcmp(nm, "Material") ||
+               !strcmp(nm, "NamedMaterial")) {
+      const char *type = elr__str(P, nm);
+      elr__read_params(P);
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (nm[0] == 'L') elr__light(P, type);
+      else if (nm[0] == 'S') elr__shape(P, type);
+      else if (nm[0] == 'M') P->gs.material = elr__make_material(P, type);
+      else {
+        int k = elr__lookup_named(P->matnames, P->nmatn, type);
+        if (k < 0) ELR_WARN(P, t.line, "NamedMaterial \"%s\" is not defined; ignored", type);
+        else P->gs.material = P->matnames[k].index;
+      }
+      elr__report_unused(P);
+    } else if (!strcmp(nm, "MakeNamedMaterial")) {
+      const char *name = elr__str(P, nm);
+      const char *type;
+      int idx;
+      elr__read_params(P);
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      type = elr__pstring(P, "type", "");
+      if (!type[0]) elr__fail(P, t.line, "MakeNamedMaterial \"%s\": \"string type\" is required", name);
+      idx = elr__make_material(P, type);
+      ELR_PUSH(P, P->matnames, P->nmatn, P->capmatn, elr__named);
+      P->matnames[P->nmatn - 1].name = elr__strdup(P, name, strlen(name));
+      P->matnames[P->nmatn - 1].index = idx;
+      elr__report_unused(P);
+    } else if (!strcmp(nm, "Texture")) {
+      const char *name = elr__str(P, nm);
+      const char *vtype = elr__str(P, nm);
+      const char *cls = elr__str(P, nm);
+      elr__read_params(P);
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      elr__texture(P, name, vtype, cls);
+      elr__report_unused(P);
+    } else {
+      int i, known = 0;
+      for (i = 0; i < (int)(sizeof unsupported / sizeof unsupported[0]); i++) if (!strcmp(nm, unsupported[i])) known = 1;
+      if (!known) elr__fail(P, t.line, "unknown directive \"%s\"", nm);
+      if (!strcmp(nm, "ReverseOrientation")) continue; /* harmless: materials here are two-sided */
+      ELR_WARN(P, t.line, "directive \"%s\" is not supported and is ignored", nm);
+      elr__skip_args(P);
+    }
+  }
+  if (!P->in_world) elr__fail(P, P->lex[0].line, "the file ends before WorldBegin (truncated?)");
+  if (!P->world_ended) elr__fail(P, P->lex[0].line, "the file ends before WorldEnd (truncated?)");
+}
+
+int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, const char *base_dir, char *err,
+              size_t errlen) {
+  elr__parser *P = (elr__parser *)calloc(1, sizeof(elr__parser));
+  int rc = 0;
+  char dummy[8];
+  if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
+  if (!err || errlen == 0) { err = dummy; errlen = sizeof dummy; }
+  P->s = s; P->err = err; P->errlen = errlen; P->base_dir = base_dir;
+  elr_xform_identity(&P->ctm);
+  /* pbrt-v3's defaults */
+  elr_xform_identity(&s->d.cam2world);
+  s->d.fov = 90.f; s->d.xres = 1280; s->d.yres = 720;
+  s->d.crop[0] = 0; s->d.crop[1] = 1; s->d.crop[2] = 0; s->d.crop[3] = 1;
+  snprintf(s->d.filename, sizeof s->d.filename, "pbrt.exr");
+  s->d.filter.type = ELR_PF_BOX; s->d.filter.xw = s->d.filter.yw = 0.5f;
+  s->d.sampler = ELR_SAMPLER_HALTON; s->d.spp = 16;
+  s->d.integrator_path = 1; s->d.maxdepth = 5; s->d.rrthreshold = 1.f;
+  s->d.light_sampling = ELR_LS_MIS;
+  if (setjmp(P->jb) == 0) {
+    /* the default material: matte, Kd 0.5 */
+    ELR_PUSH(P, s->mat, s->nmat, s->capmat, elr_material);
+    s->mat[0].kind = ELR_MAT_MATTE;
+    s->mat[0].kd = elr__const_tex(P, elr_v(.5f, .5f, .5f));
+    s->mat[0].ks = s->mat[0].kr = s->mat[0].rough = -1;
+    P->gs.material = 0;
+    elr__parse_file(P, text, len, name);
+    elr__run(P);
+  } else {
+    rc = -1;
+  }
+  while (P->arena) { elr__block *b = P->arena; P->arena = b->next; free(b); }
+  free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames);
+  free(P);
+  return rc;
+}
