@@ -320,7 +320,10 @@ static inline float el_tonemap_eval(el_tonemap t, float x, float k) {
 }
 
 /* Linear RGB (width*height*3 floats) to 8-bit sRGB (width*height*3 bytes): exposure, the curve, the
- * exact sRGB encoding, round to nearest (optionally dithered). `o` NULL = all-zero options. NaN, Inf
+ * exact sRGB encoding, round to nearest (optionally dithered). Without dithering the code is found by
+ * comparing the curve's output with the 255 linear thresholds between codes (computed in double per
+ * call): the correctly rounded code, with no pow per value; el_srgb_to_byte (pbrt's float formula)
+ * agrees except for values within float rounding of a threshold (tests/test_film.c counts them). `o` NULL = all-zero options. NaN, Inf
  * and negative inputs are handled (NaN and negatives give 0). EL_ERROR_INVALID_ARGUMENT for NULL buffers,
  * a size <= 0 or an unknown tone mapper; EL_ERROR_SIZE_OVERFLOW for absurd sizes. */
 EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_output_options *o,
@@ -794,10 +797,33 @@ static unsigned el_film__hash(unsigned x) {
   return x;
 }
 
+/* The 255 linear thresholds of the 8-bit sRGB codes: code(y) >= k exactly when y >= decode((k - 0.5)/255),
+ * each rounded UP to a float so that a float comparison decides as exact arithmetic would. */
+static void el_film__srgb_thresholds(float th[256]) {
+  int k;
+  th[0] = 0.0f; /* unused */
+  for (k = 1; k < 256; k++) {
+    double e = (k - 0.5) / 255.0, t;
+    float tf;
+    t = e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+    tf = (float)t;
+    if ((double)tf < t) tf = nextafterf(tf, 2.0f);
+    th[k] = tf;
+  }
+}
+
+/* the code of y: the largest k with y >= th[k] (0 if none; NaN gives 0), by an 8-step search */
+static unsigned char el_film__code(const float th[256], float y) {
+  int c = 0, step;
+  for (step = 128; step > 0; step >>= 1)
+    if (y >= th[c + step]) c += step;
+  return (unsigned char)c;
+}
+
 EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_output_options *o,
                                   unsigned char *out) {
   el_output_options d;
-  float gain;
+  float gain, th[256];
   size_t i, n;
   if (!rgb || !out || width <= 0 || height <= 0) return EL_ERROR_INVALID_ARGUMENT;
   if ((size_t)width > ((size_t)-1) / 3 / sizeof(float) / (size_t)height) return EL_ERROR_SIZE_OVERFLOW;
@@ -806,13 +832,14 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
   if (!el_film__finite(d.exposure)) return EL_ERROR_INVALID_ARGUMENT;
   gain = (float)pow(2.0, (double)d.exposure);
   n = (size_t)width * (size_t)height * 3;
+  if (!d.dither) el_film__srgb_thresholds(th);
   for (i = 0; i < n; i++) {
     float x = rgb[i];
     float y;
     if (gain != 1.0f) x *= gain;
     y = el_tonemap_eval(d.tonemap, x, d.exp_k);
     if (!d.dither) {
-      out[i] = el_srgb_to_byte(y);
+      out[i] = el_film__code(th, y); /* = round(255 encode(y)) in exact arithmetic, without a pow */
     } else {
       /* encode, then add TPDF noise in code units: (u1 - u2) with u uniform in [0,1) */
       float e = 255.0f * el_srgb_encode(y) + 0.5f;

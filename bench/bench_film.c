@@ -7,7 +7,8 @@
  *                                 filter one of box triangle gaussian mitchell lanczos; or srgb8_<tonemap>)
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=cg.N bench_film --callgrind
- * add_mitchell_table N for N = 0 and N = 20000; (Ir(N) - Ir(0)) / N, Ir from the "totals:" line.
+ * add_mitchell_table N for N = 0 and N = 20000; (Ir(N) - Ir(0)) / N, Ir from the "totals:" line
+ * (an srgb8_* call converts a 64x64 block: divide by 4096 more for one pixel).
  *
  * The chart: a 48x48 film of an edge slanted by 5 degrees (radiance 1 on one side, 0.1 on the other).
  *  - "blur RMSE": the filter's converged image (a regular grid of 32x32 samples per pixel) against the
@@ -136,7 +137,7 @@ static int callgrind_mode(const char *op, long n) {
     make_samples(&f);
     run_adds(&f, n);
     el_film_free(&f);
-  } else { /* n calls of el_film_to_srgb8 on a 1x1 pixel: per-pixel instructions */
+  } else { /* n calls of el_film_to_srgb8 on a 64x64 block (NS pixels): divide by NS for one pixel */
     float *rgb = (float *)malloc(sizeof(float) * 3 * NS);
     unsigned char *out = (unsigned char *)malloc(3 * NS);
     el_output_options o;
@@ -145,7 +146,7 @@ static int callgrind_mode(const char *op, long n) {
     memset(&o, 0, sizeof o);
     o.tonemap = (el_tonemap)type;
     for (i = 0; i < 3 * NS; i++) rgb[i] = 4.0f * frand() * frand();
-    for (k = 0; k < n; k++) el_film_to_srgb8(rgb + 3 * (k & (NS - 1)), 1, 1, &o, out);
+    for (k = 0; k < n; k++) el_film_to_srgb8(rgb, 64, NS / 64, &o, out);
     free(rgb);
     free(out);
   }
@@ -263,7 +264,7 @@ int main(int argc, char **argv) {
       t0 = now();
       do { el_film_to_srgb8(rgb, PW, PW, &o, out); reps++; t1 = now(); } while (t1 - t0 < 0.2);
       snprintf(op, sizeof op, "srgb8_%s", tonemap_name[t]);
-      if (use_cg) ir = instr_per_call(argv[0], op, 20000);
+      if (use_cg) ir = instr_per_call(argv[0], op, 100) / NS;
       printf("%-12s %10.2f %11.1f\n", tonemap_name[t], 1e9 * (t1 - t0) / ((double)reps * PW * PW), ir);
     }
     free(rgb);

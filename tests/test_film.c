@@ -320,6 +320,37 @@ static void test_srgb(void) {
   check(ok, "to_byte(decode(i/255)) = i for all 256 codes");
 }
 
+static double enc_d(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055; }
+
+/* el_film_to_srgb8 (threshold search) against the sRGB formula in double, and against el_srgb_to_byte
+ * (pbrt's float formula), over a dense sweep of [0, 1.1] */
+static void test_srgb8_sweep(void) {
+  enum { N = 1 << 20 };
+  float *in = (float *)malloc(sizeof(float) * 3 * N);
+  unsigned char *out = (unsigned char *)malloc(3 * N);
+  int i, bad_exact = 0, diff_float = 0, far = 0;
+  char buf[200];
+  for (i = 0; i < 3 * N; i++) in[i] = 1.1f * (float)i / (3.0f * N);
+  el_film_to_srgb8(in, N, 1, NULL, out);
+  for (i = 0; i < 3 * N; i++) {
+    double v = 255.0 * enc_d(in[i] < 1 ? in[i] : 1) + 0.5;
+    int exact = (int)floor(v);
+    if (exact > 255) exact = 255;
+    if (out[i] != exact && fabs(v - floor(v + 0.5)) > 1e-9) bad_exact++;
+    if (out[i] != el_srgb_to_byte(in[i])) {
+      diff_float++;
+      if (abs(out[i] - el_srgb_to_byte(in[i])) > 1 || fabs(v - floor(v + 0.5)) > 1e-4) far++;
+    }
+  }
+  snprintf(buf, sizeof buf, "to_srgb8 on %d values in [0,1.1]: %d differ from round(255 enc(x)) in double", 3 * N, bad_exact);
+  check(bad_exact == 0, buf);
+  snprintf(buf, sizeof buf, "pbrt's float TO_BYTE differs on %d of them, all by 1 code within 1e-4 code of a rounding tie (%d not)",
+           diff_float, far);
+  check(far == 0, buf);
+  free(in);
+  free(out);
+}
+
 static void test_tonemap(void) {
   float in[3 * 6];
   unsigned char out[3 * 6];
@@ -618,6 +649,7 @@ int main(void) {
   test_double_sums();
   test_srgb();
   test_tonemap();
+  test_srgb8_sweep();
   test_splats();
   test_rejection();
   test_xyz();
