@@ -165,6 +165,8 @@ typedef struct el_distribution1d {
   float bin_width;    /* (x1 - x0) / n */
   float pdf_scale;    /* 2^-24 * n / (x1 - x0), 0 when all_zero: pdf = units * pdf_scale */
   float integral;     /* sum f_i * (x1 - x0) / n (clamped to FLT_MAX) */
+  float last;         /* (float)(n - 1) */
+  int exact;          /* 1 when x0 = 0 and the bin width is a power of two: placing a point needs no check */
 } el_distribution1d;
 
 /* f has n values >= 0. opt may be NULL (all-zero options). On failure *d is zeroed (freeing it is safe). */
@@ -195,6 +197,8 @@ typedef struct el_distribution2d {
   float u_width, v_width; /* (u1-u0) / nu, (v1-v0) / nv */
   float u_pdf_scale, v_pdf_scale; /* 2^-24 * nu / (u1-u0), 2^-24 * nv / (v1-v0); 0 when all_zero */
   float integral;     /* sum f * area / (nu*nv) (clamped to FLT_MAX) */
+  float u_last, v_last; /* (float)(nu - 1), (float)(nv - 1) */
+  int u_exact, v_exact; /* as el_distribution1d.exact, per axis */
 } el_distribution2d;
 
 /* f[v*nu + u], nu columns, nv rows, all >= 0. opt may be NULL. On failure *d is zeroed. */
@@ -219,8 +223,9 @@ EL_DEF size_t el_distribution2d_bytes(const el_distribution2d *d);
                                         same pdf, different points; does NOT keep stratification */
 typedef struct el_distribution_fast_options {
   int method;           /* EL_DISTRIBUTION_FAST_GUIDE (0) or EL_DISTRIBUTION_FAST_ALIAS */
-  int guide_shrink_log2;/* guide: cells per row = next power of two >= nu, divided by 2^this.
-                           0 means the default (2: a quarter as many cells as bins, 1 byte per bin) */
+  int guide_shrink_log2;/* guide: cells per row = (next power of two >= nu) >> s, where s = this value
+                           when > 0, s = 0 when < 0 (as many cells as bins, 4 bytes per bin), and s = 2
+                           when 0 (the default: a quarter as many cells as bins, 1 byte per bin) */
 } el_distribution_fast_options;
 
 typedef struct el_distribution2d_fast {
@@ -230,6 +235,10 @@ typedef struct el_distribution2d_fast {
   const uint32_t *cdf, *marginal;
   float domain[4];
   float u_scale, v_scale, u_width, v_width, u_pdf_scale, v_pdf_scale;
+  float u_last, v_last;
+  int u_exact, v_exact;
+  size_t row_stride;    /* nu + 1 */
+  size_t guide_stride;  /* gu + 1 */
   /* guide table: cell g of a row covers units [g << shift, (g+1) << shift) */
   uint32_t *guide_u;    /* nv rows of gu+1 bin indices */
   uint32_t *guide_v;    /* gv+1 */
@@ -259,16 +268,19 @@ EL_DEF size_t el_distribution2d_fast_bytes(const el_distribution2d_fast *f);
 /* u in [0,1) as a float multiple of 2^-24 resolution: NaN/negative -> 0, >= 1 -> 0x1.fffffep-1. Returns
  * u * 2^24 (exact). */
 static inline float el_distribution2d__units(float u) {
-  if (!(u > 0.0f)) u = 0.0f;
-  if (u > 0.99999994f) u = 0.99999994f; /* 0x1.fffffep-1 */
+  u = u > 0.0f ? u : 0.0f;                 /* NaN -> 0 (maxss) */
+  u = u < 0.99999994f ? u : 0.99999994f;  /* 0x1.fffffep-1 (minss) */
   return u * 16777216.0f;
 }
-/* The bin of x in a domain starting at x0 with n bins of scale n/(x1-x0): clamped, NaN -> 0. */
-static inline int el_distribution2d__bin(float x, float x0, float scale, int n) {
+/* The bin of x in a domain starting at x0, scale = n/(x1-x0), last = (float)(n-1): clamped, NaN -> 0. */
+static inline int el_distribution2d__bin_last(float x, float x0, float scale, float last) {
   float t = (x - x0) * scale;
-  if (!(t > 0.0f)) t = 0.0f;
-  if (t > (float)(n - 1)) t = (float)(n - 1);
+  t = t > 0.0f ? t : 0.0f;
+  t = t < last ? t : last;
   return (int)t;
+}
+static inline int el_distribution2d__bin(float x, float x0, float scale, int n) {
+  return el_distribution2d__bin_last(x, x0, scale, (float)(n - 1));
 }
 /* << inline helpers */
 
@@ -314,21 +326,37 @@ static float el_distribution2d__next_up(float x) {
   return x;
 }
 
-/* Place a point at fraction frac of bin i and make sure it maps back to bin i and stays below x1. */
-static inline float el_distribution2d__place(int i, float frac, float x0, float x1, float width, float scale, int n) {
-  float x = x0 + ((float)i + frac) * width;
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_DISTRIBUTION2D__NOINLINE __attribute__((noinline))
+#else
+#define EL_DISTRIBUTION2D__NOINLINE
+#endif
+
+/* General domains: x = x0 + t * width, then nudge x by ulps until it maps back to bin i, below x1. */
+static EL_DISTRIBUTION2D__NOINLINE float el_distribution2d__place_general(int i, float t, float x0, float x1, float width, float scale, float last) {
+  float x = x0 + t * width;
   int b, guard;
   if (x >= x1) x = el_distribution2d__next_down(x1);
-  b = el_distribution2d__bin(x, x0, scale, n);
+  b = el_distribution2d__bin_last(x, x0, scale, last);
   for (guard = 0; b > i && guard < 64; ++guard) {
     x = el_distribution2d__next_down(x);
-    b = el_distribution2d__bin(x, x0, scale, n);
+    b = el_distribution2d__bin_last(x, x0, scale, last);
   }
   for (guard = 0; b < i && guard < 64; ++guard) {
     x = el_distribution2d__next_up(x);
-    b = el_distribution2d__bin(x, x0, scale, n);
+    b = el_distribution2d__bin_last(x, x0, scale, last);
   }
   return x;
+}
+static EL_DISTRIBUTION2D__NOINLINE float el_distribution2d__below(int i) { return el_distribution2d__next_down((float)(i + 1)); }
+/* Place a point at fraction frac in [0,1] of bin i so that it maps back to bin i and stays below x1.
+ * t = i + frac is kept below i + 1 (rounding could carry it there); on an exact axis (x0 = 0, width a
+ * power of two) x = t * width and (int)(x * scale) = (int)t = i with no rounding at all. */
+static inline float el_distribution2d__place(int i, float frac, float x0, float x1, float width, float scale, float last, int exact) {
+  float t = (float)i + frac;
+  if ((int)t > i) t = el_distribution2d__below(i);
+  if (exact) return t * width;
+  return el_distribution2d__place_general(i, t, x0, x1, width, scale, last);
 }
 
 /* Last i in [lo, lo+len-1] with c[i] <= k, given c[lo] <= k. Branch-free binary search. */
@@ -428,6 +456,14 @@ static el_result el_distribution2d__domain(float a, float b, int n, float *scale
   return EL_SUCCESS;
 }
 
+/* 1 when x0 = 0, width = (x1-x0)/n is a power of two (not tiny) and n * width == x1 exactly */
+static int el_distribution2d__exact(float x0, float x1, float width, float scale, int n) {
+  uint32_t bits;
+  if (x0 != 0.0f || !(width >= 1e-30f) || !(width <= 1e30f)) return 0;
+  memcpy(&bits, &width, 4);
+  return (bits & 0x7fffffu) == 0 && (double)width * (double)n == (double)x1 && (double)scale * (double)width == 1.0;
+}
+
 static float el_distribution2d__clamp_float(double x) { return x <= (double)FLT_MAX ? (float)x : FLT_MAX; }
 
 /* << private helpers */
@@ -456,6 +492,8 @@ EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, in
   d->x1 = b;
   r = el_distribution2d__domain(a, b, n, &d->bin_scale, &d->bin_width, &d->pdf_scale);
   if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); return r; }
+  d->last = (float)(n - 1);
+  d->exact = el_distribution2d__exact(a, b, d->bin_width, d->bin_scale, n);
   r = el_distribution2d__scan(f, (size_t)n, opt->clamp_bad_values, &sum, &m, &bad);
   if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); opt->bad_index = (int)bad; return r; }
   d->cdf = (uint32_t *)EL_MALLOC(((size_t)n + 1) * sizeof(uint32_t));
@@ -479,10 +517,9 @@ EL_DEF float el_distribution1d_sample_continuous(const el_distribution1d *d, flo
   int i = el_distribution2d__search(d->cdf, 0, d->n, k);
   w = (float)(d->cdf[i + 1] - d->cdf[i]);
   frac = (x - (float)d->cdf[i]) / w;
-  if (frac > 0.99999994f) frac = 0.99999994f;
   if (pdf) *pdf = w * d->pdf_scale;
   if (offset) *offset = i;
-  return el_distribution2d__place(i, frac, d->x0, d->x1, d->bin_width, d->bin_scale, d->n);
+  return el_distribution2d__place(i, frac, d->x0, d->x1, d->bin_width, d->bin_scale, d->last, d->exact);
 }
 
 EL_DEF int el_distribution1d_sample_discrete(const el_distribution1d *d, float u, float *pmf, float *u_remapped) {
@@ -498,12 +535,12 @@ EL_DEF int el_distribution1d_sample_discrete(const el_distribution1d *d, float u
 }
 
 EL_DEF float el_distribution1d_pdf(const el_distribution1d *d, float x) {
-  int i = el_distribution2d__bin(x, d->x0, d->bin_scale, d->n);
+  int i = el_distribution2d__bin_last(x, d->x0, d->bin_scale, d->last);
   return (float)(d->cdf[i + 1] - d->cdf[i]) * d->pdf_scale;
 }
 
 EL_DEF float el_distribution1d_invert(const el_distribution1d *d, float x) {
-  int i = el_distribution2d__bin(x, d->x0, d->bin_scale, d->n);
+  int i = el_distribution2d__bin_last(x, d->x0, d->bin_scale, d->last);
   float t = (x - d->x0) * d->bin_scale - (float)i, r;
   if (!(t > 0.0f)) t = 0.0f;
   if (t > 0.99999994f) t = 0.99999994f;
@@ -552,6 +589,10 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   if (r == EL_SUCCESS) r = el_distribution2d__domain(v0, v1, nv, &d->v_scale, &d->v_width, &d->v_pdf_scale);
   if (r == EL_SUCCESS && !((double)d->u_pdf_scale * (double)d->v_pdf_scale * 281474976710656.0 <= FLT_MAX)) r = EL_ERROR_INVALID_ARGUMENT;
   if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); return r; }
+  d->u_last = (float)(nu - 1);
+  d->v_last = (float)(nv - 1);
+  d->u_exact = el_distribution2d__exact(u0, u1, d->u_width, d->u_scale, nu);
+  d->v_exact = el_distribution2d__exact(v0, v1, d->v_width, d->v_scale, nv);
   d->cdf = (uint32_t *)EL_MALLOC(bytes);
   d->marginal = (uint32_t *)EL_MALLOC(((size_t)nv + 1) * sizeof(uint32_t));
   rowsum = (double *)EL_MALLOC((size_t)nv * sizeof(double));
@@ -608,24 +649,22 @@ EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float
   wu = (float)(row[iu + 1] - row[iu]);
   fv = (xv - (float)d->marginal[iv]) / wv;
   fu = (xu - (float)row[iu]) / wu;
-  if (fv > 0.99999994f) fv = 0.99999994f;
-  if (fu > 0.99999994f) fu = 0.99999994f;
-  *out_u = el_distribution2d__place(iu, fu, d->domain[0], d->domain[2], d->u_width, d->u_scale, d->nu);
-  *out_v = el_distribution2d__place(iv, fv, d->domain[1], d->domain[3], d->v_width, d->v_scale, d->nv);
+  *out_u = el_distribution2d__place(iu, fu, d->domain[0], d->domain[2], d->u_width, d->u_scale, d->u_last, d->u_exact);
+  *out_v = el_distribution2d__place(iv, fv, d->domain[1], d->domain[3], d->v_width, d->v_scale, d->v_last, d->v_exact);
   *pdf = (wv * d->v_pdf_scale) * (wu * d->u_pdf_scale);
 }
 
 EL_DEF float el_distribution2d_pdf(const el_distribution2d *d, float u, float v) {
-  int iu = el_distribution2d__bin(u, d->domain[0], d->u_scale, d->nu);
-  int iv = el_distribution2d__bin(v, d->domain[1], d->v_scale, d->nv);
+  int iu = el_distribution2d__bin_last(u, d->domain[0], d->u_scale, d->u_last);
+  int iv = el_distribution2d__bin_last(v, d->domain[1], d->v_scale, d->v_last);
   const uint32_t *row = d->cdf + (size_t)iv * ((size_t)d->nu + 1);
   float wv = (float)(d->marginal[iv + 1] - d->marginal[iv]);
   float wu = (float)(row[iu + 1] - row[iu]);
   return (wv * d->v_pdf_scale) * (wu * d->u_pdf_scale);
 }
 
-static float el_distribution2d__invert1(const uint32_t *c, int n, float x, float x0, float scale) {
-  int i = el_distribution2d__bin(x, x0, scale, n);
+static float el_distribution2d__invert1(const uint32_t *c, float last, float x, float x0, float scale) {
+  int i = el_distribution2d__bin_last(x, x0, scale, last);
   float t = (x - x0) * scale - (float)i, r;
   if (!(t > 0.0f)) t = 0.0f;
   if (t > 0.99999994f) t = 0.99999994f;
@@ -634,9 +673,9 @@ static float el_distribution2d__invert1(const uint32_t *c, int n, float x, float
 }
 
 EL_DEF void el_distribution2d_invert(const el_distribution2d *d, float u, float v, float *out_u0, float *out_u1) {
-  int iv = el_distribution2d__bin(v, d->domain[1], d->v_scale, d->nv);
-  *out_u1 = el_distribution2d__invert1(d->marginal, d->nv, v, d->domain[1], d->v_scale);
-  *out_u0 = el_distribution2d__invert1(d->cdf + (size_t)iv * ((size_t)d->nu + 1), d->nu, u, d->domain[0], d->u_scale);
+  int iv = el_distribution2d__bin_last(v, d->domain[1], d->v_scale, d->v_last);
+  *out_u1 = el_distribution2d__invert1(d->marginal, d->v_last, v, d->domain[1], d->v_scale);
+  *out_u0 = el_distribution2d__invert1(d->cdf + (size_t)iv * ((size_t)d->nu + 1), d->u_last, u, d->domain[0], d->u_scale);
 }
 
 EL_DEF float el_distribution2d_integral(const el_distribution2d *d) { return d->integral; }
@@ -711,7 +750,7 @@ EL_DEF el_result el_distribution2d_fast_init(el_distribution2d_fast *f, const el
 
 EL_DEF el_result el_distribution2d_fast_init_ex(el_distribution2d_fast *f, const el_distribution2d *d, const el_distribution_fast_options *opt) {
   int method = opt ? opt->method : EL_DISTRIBUTION_FAST_GUIDE;
-  int shrink = (opt && opt->guide_shrink_log2 > 0) ? opt->guide_shrink_log2 : 2;
+  int shrink = !opt || opt->guide_shrink_log2 == 0 ? 2 : opt->guide_shrink_log2 < 0 ? 0 : opt->guide_shrink_log2;
   int v;
   size_t row_entries;
   if (!f) return EL_ERROR_INVALID_ARGUMENT;
@@ -725,12 +764,16 @@ EL_DEF el_result el_distribution2d_fast_init_ex(el_distribution2d_fast *f, const
   f->u_scale = d->u_scale; f->v_scale = d->v_scale;
   f->u_width = d->u_width; f->v_width = d->v_width;
   f->u_pdf_scale = d->u_pdf_scale; f->v_pdf_scale = d->v_pdf_scale;
+  f->u_last = d->u_last; f->v_last = d->v_last;
+  f->u_exact = d->u_exact; f->v_exact = d->v_exact;
+  f->row_stride = (size_t)d->nu + 1;
   row_entries = (size_t)d->nu + 1;
   if (method == EL_DISTRIBUTION_FAST_GUIDE) {
     size_t gu1;
     f->gu = el_distribution2d__guide_cells(d->nu, shrink, &f->shift_u);
     f->gv = el_distribution2d__guide_cells(d->nv, shrink, &f->shift_v);
     gu1 = (size_t)f->gu + 1;
+    f->guide_stride = gu1;
     if ((size_t)d->nv > ((size_t)-1) / sizeof(uint32_t) / gu1) { memset(f, 0, sizeof *f); return EL_ERROR_SIZE_OVERFLOW; }
     f->guide_u = (uint32_t *)EL_MALLOC((size_t)d->nv * gu1 * sizeof(uint32_t));
     f->guide_v = (uint32_t *)EL_MALLOC(((size_t)f->gv + 1) * sizeof(uint32_t));
@@ -777,7 +820,9 @@ EL_DEF void el_distribution2d_fast_free(el_distribution2d_fast *f) {
 static inline int el_distribution2d__guide_find(const uint32_t *c, const uint32_t *g, int shift, uint32_t k) {
   uint32_t cell = k >> shift;
   int lo = (int)g[cell], hi = (int)g[cell + 1];
-  return el_distribution2d__search(c, lo, hi - lo + 1, k);
+  if (hi - lo > 8) return el_distribution2d__search(c, lo, hi - lo + 1, k); /* many tiny bins: O(log) */
+  while (c[lo + 1] <= k) ++lo; /* stops by hi: c[hi + 1] > (cell+1) << shift > k, and c[n] = 2^24 */
+  return lo;
 }
 
 /* One dimension of the alias table: bin and the position of x within the bin's piece, in [0,1). */
@@ -794,34 +839,37 @@ static inline int el_distribution2d__alias_find(const uint32_t *cells, const uin
 }
 
 EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float u0, float u1, float *out_u, float *out_v, float *pdf) {
-  float xv = el_distribution2d__units(u1), xu = el_distribution2d__units(u0), wv, wu, fv, fu;
+  float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f, wv, wu, fv, fu;
   int iv, iu;
   const uint32_t *row;
+  if (!(xv >= 0.0f && xv < 16777216.0f)) xv = el_distribution2d__units(u1); /* NaN, < 0, >= 1 */
+  if (!(xu >= 0.0f && xu < 16777216.0f)) xu = el_distribution2d__units(u0);
   if (f->method == EL_DISTRIBUTION_FAST_GUIDE) {
-    iv = el_distribution2d__guide_find(f->marginal, f->guide_v, f->shift_v, (uint32_t)xv);
-    row = f->cdf + (size_t)iv * ((size_t)f->nu + 1);
-    iu = el_distribution2d__guide_find(row, f->guide_u + (size_t)iv * ((size_t)f->gu + 1), f->shift_u, (uint32_t)xu);
-    wv = (float)(f->marginal[iv + 1] - f->marginal[iv]);
-    wu = (float)(row[iu + 1] - row[iu]);
-    fv = (xv - (float)f->marginal[iv]) / wv;
-    fu = (xu - (float)row[iu]) / wu;
-    if (fv > 0.99999994f) fv = 0.99999994f;
-    if (fu > 0.99999994f) fu = 0.99999994f;
+    int32_t cv, cu;
+    iv = el_distribution2d__guide_find(f->marginal, f->guide_v, f->shift_v, (uint32_t)(int32_t)xv);
+    row = f->cdf + (size_t)iv * f->row_stride;
+    iu = el_distribution2d__guide_find(row, f->guide_u + (size_t)iv * f->guide_stride, f->shift_u, (uint32_t)(int32_t)xu);
+    cv = (int32_t)f->marginal[iv];
+    cu = (int32_t)row[iu];
+    wv = (float)((int32_t)f->marginal[iv + 1] - cv);
+    wu = (float)((int32_t)row[iu + 1] - cu);
+    fv = (xv - (float)cv) / wv;
+    fu = (xu - (float)cu) / wu;
   } else {
     iv = el_distribution2d__alias_find(f->alias_v, f->start_v, f->nv, xv, &fv);
-    row = f->cdf + (size_t)iv * ((size_t)f->nu + 1);
+    row = f->cdf + (size_t)iv * f->row_stride;
     iu = el_distribution2d__alias_find(f->alias_u + (size_t)iv * (size_t)f->nu * 2, f->start_u, f->nu, xu, &fu);
-    wv = (float)(f->marginal[iv + 1] - f->marginal[iv]);
-    wu = (float)(row[iu + 1] - row[iu]);
+    wv = (float)(int32_t)(f->marginal[iv + 1] - f->marginal[iv]);
+    wu = (float)(int32_t)(row[iu + 1] - row[iu]);
   }
-  *out_u = el_distribution2d__place(iu, fu, f->domain[0], f->domain[2], f->u_width, f->u_scale, f->nu);
-  *out_v = el_distribution2d__place(iv, fv, f->domain[1], f->domain[3], f->v_width, f->v_scale, f->nv);
+  *out_u = el_distribution2d__place(iu, fu, f->domain[0], f->domain[2], f->u_width, f->u_scale, f->u_last, f->u_exact);
+  *out_v = el_distribution2d__place(iv, fv, f->domain[1], f->domain[3], f->v_width, f->v_scale, f->v_last, f->v_exact);
   *pdf = (wv * f->v_pdf_scale) * (wu * f->u_pdf_scale);
 }
 
 EL_DEF float el_distribution2d_fast_pdf(const el_distribution2d_fast *f, float u, float v) {
-  int iu = el_distribution2d__bin(u, f->domain[0], f->u_scale, f->nu);
-  int iv = el_distribution2d__bin(v, f->domain[1], f->v_scale, f->nv);
+  int iu = el_distribution2d__bin_last(u, f->domain[0], f->u_scale, f->u_last);
+  int iv = el_distribution2d__bin_last(v, f->domain[1], f->v_scale, f->v_last);
   const uint32_t *row = f->cdf + (size_t)iv * ((size_t)f->nu + 1);
   float wv = (float)(f->marginal[iv + 1] - f->marginal[iv]);
   float wu = (float)(row[iu + 1] - row[iu]);
