@@ -545,15 +545,10 @@ EL_DEF void el_film_tile_free(el_film_tile *t) {
 }
 
 /* Checks a sample; returns 1 to accept, else counts the reason in s and returns 0. */
-static int el_film__accept(el_film_stats *s, float px, float py, const float *rgb, float w) {
+static int el_film__classify(el_film_stats *s, float px, float py, const float *rgb, float w) {
   float v[6];
   int i;
   if (!rgb) { s->rejected_nan++; return 0; }
-  /* fast path: finite positions (x - x is 0 only for finite x), components and weight in [0, FLT_MAX]
-     (every comparison with NaN is false) */
-  if ((px - px == 0.0f) & (py - py == 0.0f) & (rgb[0] >= 0.0f) & (rgb[0] <= FLT_MAX) & (rgb[1] >= 0.0f) &
-      (rgb[1] <= FLT_MAX) & (rgb[2] >= 0.0f) & (rgb[2] <= FLT_MAX) & (w >= 0.0f) & (w <= FLT_MAX))
-    return 1;
   v[0] = px; v[1] = py; v[2] = rgb[0]; v[3] = rgb[1]; v[4] = rgb[2]; v[5] = w;
   for (i = 0; i < 6; i++)
     if (v[i] != v[i]) { s->rejected_nan++; return 0; }
@@ -562,6 +557,23 @@ static int el_film__accept(el_film_stats *s, float px, float py, const float *rg
   for (i = 2; i < 6; i++)
     if (v[i] < 0.0f) { s->rejected_negative++; return 0; }
   return 1;
+}
+
+/* fast path, inlined: finite positions (x - x is 0 only for finite x), components and weight in
+   [0, FLT_MAX] (every comparison with NaN is false); the rare rest is classified and counted */
+static unsigned el_film__bits(float v) { /* the IEEE-754 pattern (memcpy: no aliasing UB) */
+  unsigned u;
+  memcpy(&u, &v, sizeof u);
+  return u;
+}
+static int el_film__accept(el_film_stats *s, float px, float py, const float *rgb, float w) {
+  /* as unsigned patterns, finite non-negative floats are exactly those below 0x7f800000 (+Inf); a
+     finite position of either sign has its magnitude bits below it. -0.0 takes the slow path. */
+  if (rgb && ((el_film__bits(px) & 0x7fffffffu) < 0x7f800000u) & ((el_film__bits(py) & 0x7fffffffu) < 0x7f800000u) &
+                 (el_film__bits(rgb[0]) < 0x7f800000u) & (el_film__bits(rgb[1]) < 0x7f800000u) &
+                 (el_film__bits(rgb[2]) < 0x7f800000u) & (el_film__bits(w) < 0x7f800000u))
+    return 1;
+  return el_film__classify(s, px, py, rgb, w);
 }
 
 /* floor for |x| well inside the int range (callers clip first): no libm call */
@@ -620,15 +632,26 @@ static void el_film__add(const el_film *f, el_film_stats *s, double *buf, int bx
     }
   }
   /* <<Loop over filter support and add sample to pixel arrays>> */
-  for (y = y0; y < y1; y++) {
-    double *row = buf + ((size_t)(y - by0) * (size_t)bw + (size_t)(x0 - bx0)) * 4;
-    const float *trow = f->exact_filter ? NULL : f->table + iy[y - y0] * EL_FILM_TABLE_SIZE;
-    for (x = x0, i = 0; x < x1; x++, i += 4) {
-      double fw = trow ? (double)trow[ix[x - x0]] : (double)wx[x - x0] * (double)wy[y - y0];
-      row[i + 0] += L[0] * fw;
-      row[i + 1] += L[1] * fw;
-      row[i + 2] += L[2] * fw;
-      row[i + 3] += fw;
+  {
+    double l0 = L[0], l1 = L[1], l2 = L[2];
+    size_t stride = (size_t)bw * 4;
+    double *row = buf + ((size_t)(y0 - by0) * (size_t)bw + (size_t)(x0 - bx0)) * 4;
+    int nx = x1 - x0;
+    for (y = y0; y < y1; y++, row += stride) {
+      double *p = row;
+      if (!f->exact_filter) {
+        const float *trow = f->table + iy[y - y0] * EL_FILM_TABLE_SIZE;
+        for (i = 0; i < nx; i++, p += 4) {
+          double fw = trow[ix[i]];
+          p[0] += l0 * fw; p[1] += l1 * fw; p[2] += l2 * fw; p[3] += fw;
+        }
+      } else {
+        double fy = wy[y - y0];
+        for (i = 0; i < nx; i++, p += 4) {
+          double fw = (double)wx[i] * fy;
+          p[0] += l0 * fw; p[1] += l1 * fw; p[2] += l2 * fw; p[3] += fw;
+        }
+      }
     }
   }
 }
