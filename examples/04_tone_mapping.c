@@ -245,6 +245,7 @@ int main(int argc, char **argv) {
         for (sx = sx0; sx < sx1; sx++, n++)
           for (c = 0; c < 3; c++) {
             float v = env.pixels[((size_t)sy * env.width + sx) * env.channels + c];
+            if (env.is_8bit) v = el_srgb_decode(v); /* a PNG/JPEG holds sRGB codes: back to linear */
             s[c] += v == v && v > 0 ? v : 0; /* NaN and negative texels count as 0 */
           }
       for (c = 0; c < 3; c++) panel[3 * (y * PW + x) + c] = (float)(s[c] / n);

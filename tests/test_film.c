@@ -460,6 +460,14 @@ static void test_rejection(void) {
   bad[1] = -0.5f;
   el_film_add_sample(&f, 1.5f, 1.5f, bad, 1.0f);
   el_film_add_sample(&f, 1.5f, 1.5f, good, -1.0f);
+  {
+    el_film g = make_film(3, 3, 0, 0);
+    bad[0] = -0.0f; bad[1] = 0.0f; bad[2] = 1e-40f; /* -0 and a denormal are valid, and accepted */
+    el_film_add_sample(&g, -0.0f, 1.5f, bad, 1.0f);
+    el_film_add_sample(&g, 1.5f, 1.5f, bad, -0.0f);
+    check(g.stats.samples == 2 && el_film_rejected_samples(&g) == 0, "samples with -0.0 and denormals are accepted");
+    el_film_free(&g);
+  }
   check(f.stats.rejected_nan == 3 && f.stats.rejected_inf == 2 && f.stats.rejected_negative == 2 &&
             el_film_rejected_samples(&f) == 7 && f.stats.samples == 1,
         "3 NaN, 2 Inf, 2 negative samples rejected and counted; 1 accepted");
