@@ -150,6 +150,9 @@ int main(void) {
   roundtrip_float("exr", 4, 3); /* alpha dropped by the loader */
   roundtrip_float("pfm", 1, 1);
   roundtrip_float("exr", 1, 1);
+  roundtrip_float("hdr", 1, 1);
+  roundtrip_float("hdr", 4, 3); /* RGBE has no alpha */
+  roundtrip_float("pfm", 4, 3); /* PFM has no alpha */
 
   /* errors name the file */
   make(img, 3);
