@@ -30,9 +30,11 @@
  *    rounding of pbrt's matrices (|M^-1 M - I| is about 1e-6, measured in tests/test_film.c). Set
  *    el_film_options.xyz_round_trip to apply pbrt's two matrices anyway (values then match pbrt's).
  *    Only a spectral renderer (SampledSpectrum) needs XYZ for real; this film takes RGB.
- *  - NaN, infinite and negative samples (any component, or the weight, or the position) are rejected
- *    and COUNTED (el_film_stats, el_film_rejected_samples); pbrt-v3 only logs splats and lets NaN
- *    samples poison a pixel.
+ *  - A sample with a NaN or infinite position, or a NaN, infinite or negative component or weight, is
+ *    rejected whole (it adds no filter weight either) and COUNTED by reason (el_film_stats,
+ *    el_film_rejected_samples). pbrt-v3's integrators log such radiance and replace it by 0, which still
+ *    adds the filter weight and so darkens the pixel; FilmTile::AddSample itself checks nothing, so a
+ *    NaN that reaches it makes the pixel NaN.
  *  - The optional clamp is pbrt-v4's maxcomponentvalue (scale the sample so its largest component is at
  *    most the limit), not pbrt-v3's maxsampleluminance.
  *  - Splats land on floor(p), so p in (-1, 0) never doubles onto the edge pixel (pbrt-v3 once truncated
