@@ -12,7 +12,7 @@
  *   2. What a pixel filter costs and buys. A zone plate (rings whose frequency grows with the radius, so
  *      the outer rings are finer than a pixel) is rendered with 16 random samples per pixel through
  *      film.h twice: with pbrt's default box filter (radius 0.5) and with the Mitchell filter (radius 2,
- *      B = C = 1/3). The box keeps the fine rings' aliases (false rings in the corners) and more noise;
+ *      B = C = 1/3). The box keeps the fine rings' aliases (false rings near the edges) and more noise;
  *      Mitchell fades them, at about twice the time per sample (30 against 55 ns on one run of the test
  *      machine; bench/bench_film.c counts 335 and 821 instructions). The times are printed and drawn.
  *
