@@ -121,6 +121,7 @@ typedef struct el_mipmap {
   float max_anisotropy;       /* after defaulting */
   int resampled;              /* 1 when level 0 was resampled to a power of two */
   int level_width[EL_MIPMAP_MAX_LEVELS], level_height[EL_MIPMAP_MAX_LEVELS];
+  float level_size[EL_MIPMAP_MAX_LEVELS][2]; /* (float)level_width, (float)level_height */
   float *level_data[EL_MIPMAP_MAX_LEVELS]; /* row-major, channels interleaved, row 0 first; [0] always,
                                               the others once built (read them via el_mipmap_level_data) */
   size_t level0_bytes;        /* bytes of level_data[0] */
@@ -224,6 +225,13 @@ static int el_mipmap__cas(long *p, long expected, long desired) {
 #endif
 #endif
 
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_MIPMAP__INLINE static inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define EL_MIPMAP__INLINE static __forceinline
+#else
+#define EL_MIPMAP__INLINE static inline
+#endif
 #define EL_MIPMAP__MAX_SIDE (1 << 24)
 #define EL_MIPMAP__STATE_NONE 0L
 #define EL_MIPMAP__STATE_BUILDING 1L
@@ -257,10 +265,29 @@ static const float el_mipmap__weight_lut[128] = {
   0.0021481365f, 0.0f};
 
 /* >> mipmap: small helpers */
-/* pbrt-v3's Log2(x) = log(x) * (1 / log 2), not log2(): kept so that levels match pbrt's bits. */
-static float el_mipmap__log2(float x) { return logf(x) * 1.442695040888963387004650940071f; }
+/* log2(x) for x >= 1e-8 (or +infinity, which gives 128) without a libm call: exponent from the bits,
+ * mantissa m in [sqrt(1/2), sqrt(2)) through log2(m) = (2/ln 2) atanh(z), z = (m-1)/(m+1), |z| < 0.172,
+ * series to z^9 (truncation 1e-9). Within 2 ulp of log2; pbrt-v3 computes log(x) / log(2) with
+ * its own rounding, so MIP levels agree with pbrt's to float precision rather than to the bit. */
+EL_MIPMAP__INLINE float el_mipmap__log2(float x) {
+  unsigned int b;
+  int e;
+  float mf, z, z2;
+  memcpy(&b, &x, sizeof b);
+  e = (int)(b >> 23) - 127;
+  b = (b & 0x007fffffu) | 0x3f800000u;
+  memcpy(&mf, &b, sizeof mf);
+  if (mf > 1.41421356f) {
+    mf *= 0.5f;
+    e += 1;
+  }
+  z = (mf - 1.0f) / (mf + 1.0f);
+  z2 = z * z;
+  return (float)e + z * (2.88539008f + z2 * (0.961796694f + z2 * (0.577078016f + z2 * (0.412198583f +
+                                                                                   z2 * 0.320598898f))));
+}
 /* floor for |x| < 2^30 without a libm call. */
-static int el_mipmap__ifloor(float x) {
+EL_MIPMAP__INLINE int el_mipmap__ifloor(float x) {
   int i = (int)x;
   return ((float)i > x) ? i - 1 : i;
 }
@@ -311,9 +338,11 @@ static float el_mipmap__sane_d(float d) {
   return d;
 }
 
-/* Two bilinear taps along one axis of size n: indices (wrapped) and weights (0 for Black outside). */
-static void el_mipmap__axis(float s, int n, el_wrap w, int *i0, int *i1, float *w0, float *w1) {
-  float x = el_mipmap__sane(s, w) * (float)n - 0.5f;
+/* Two bilinear taps along one axis of size n: indices (wrapped) and weights (0 for Black outside).
+ * s has been through el_mipmap__sane. */
+EL_MIPMAP__INLINE void el_mipmap__axis(float s, int n, float fn, el_wrap w, int *i0, int *i1, float *w0,
+                                       float *w1) {
+  float x = s * fn - 0.5f;
   int i = el_mipmap__ifloor(x);
   float d = x - (float)i;
   *w0 = 1.0f - d;
@@ -675,6 +704,10 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
     }
   }
   for (i = m->levels; i < EL_MIPMAP_MAX_LEVELS; ++i) m->level_width[i] = m->level_height[i] = 0;
+  for (i = 0; i < m->levels; ++i) {
+    m->level_size[i][0] = (float)m->level_width[i];
+    m->level_size[i][1] = (float)m->level_height[i];
+  }
   m->build_state = (m->levels == 1) ? EL_MIPMAP__STATE_BUILT : EL_MIPMAP__STATE_NONE;
 #if !EL_MIPMAP__LAZY
   if (el_mipmap_build_levels(m) != EL_SUCCESS) {
@@ -752,46 +785,69 @@ EL_DEF void el_mipmap_point(const el_mipmap *m, int level, float s, float t, flo
   el_mipmap__texel(m, level, el_mipmap__ifloor(s), el_mipmap__ifloor(t), out);
 }
 
-/* pbrt's triangle(level, st): (1-ds)(1-dt) T00 + (1-ds) dt T01 + ds (1-dt) T10 + ds dt T11. */
-static void el_mipmap__bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
-  int u0, u1, v0, v1, w = m->level_width[level], C = m->channels;
+/* pbrt's triangle(level, st): (1-ds)(1-dt) T00 + (1-ds) dt T01 + ds (1-dt) T10 + ds dt T11.
+ * s and t have been through el_mipmap__sane. C is the channel count: callers pass a constant where
+ * they can, so that each copy is specialised. */
+EL_MIPMAP__INLINE void el_mipmap__bilerp_c(const el_mipmap *m, int level, float s, float t, float *out,
+                                           int C) {
+  int u0, u1, v0, v1, c, w = m->level_width[level];
   float a0, a1, b0, b1, k00, k01, k10, k11;
-  const float *d = m->level_data[level], *p00, *p01, *p10, *p11;
-  el_mipmap__axis(s, w, m->wrap_u, &u0, &u1, &a0, &a1);
-  el_mipmap__axis(t, m->level_height[level], m->wrap_v, &v0, &v1, &b0, &b1);
+  size_t stride = (size_t)w * (size_t)C, c0, c1;
+  const float *d = m->level_data[level], *r0, *r1;
+  el_mipmap__axis(s, w, m->level_size[level][0], m->wrap_u, &u0, &u1, &a0, &a1);
+  el_mipmap__axis(t, m->level_height[level], m->level_size[level][1], m->wrap_v, &v0, &v1, &b0, &b1);
   k00 = a0 * b0;
   k01 = a0 * b1;
   k10 = a1 * b0;
   k11 = a1 * b1;
-  p00 = d + ((size_t)v0 * (size_t)w + (size_t)u0) * (size_t)C;
-  p01 = d + ((size_t)v1 * (size_t)w + (size_t)u0) * (size_t)C;
-  p10 = d + ((size_t)v0 * (size_t)w + (size_t)u1) * (size_t)C;
-  p11 = d + ((size_t)v1 * (size_t)w + (size_t)u1) * (size_t)C;
-  switch (C) {
-  case 3:
-    out[0] = k00 * p00[0] + k01 * p01[0] + k10 * p10[0] + k11 * p11[0];
-    out[1] = k00 * p00[1] + k01 * p01[1] + k10 * p10[1] + k11 * p11[1];
-    out[2] = k00 * p00[2] + k01 * p01[2] + k10 * p10[2] + k11 * p11[2];
-    break;
-  case 1: out[0] = k00 * p00[0] + k01 * p01[0] + k10 * p10[0] + k11 * p11[0]; break;
-  default: {
-    int c;
-    for (c = 0; c < C; ++c) out[c] = k00 * p00[c] + k01 * p01[c] + k10 * p10[c] + k11 * p11[c];
-  }
+  r0 = d + (size_t)v0 * stride;
+  r1 = d + (size_t)v1 * stride;
+  c0 = (size_t)u0 * (size_t)C;
+  c1 = (size_t)u1 * (size_t)C;
+  for (c = 0; c < C; ++c) out[c] = k00 * r0[c0 + c] + k01 * r1[c0 + c] + k10 * r0[c1 + c] + k11 * r1[c1 + c];
+}
+static void el_mipmap__bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
+  switch (m->channels) {
+  case 1: el_mipmap__bilerp_c(m, level, s, t, out, 1); break;
+  case 2: el_mipmap__bilerp_c(m, level, s, t, out, 2); break;
+  case 3: el_mipmap__bilerp_c(m, level, s, t, out, 3); break;
+  default: el_mipmap__bilerp_c(m, level, s, t, out, 4); break;
   }
 }
 
 EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
   level = el_mipmap__usable(m, el_mipmap__clamp_level(m, level));
-  el_mipmap__bilerp(m, level, s, t, out);
+  el_mipmap__bilerp(m, level, el_mipmap__sane(s, m->wrap_u), el_mipmap__sane(t, m->wrap_v), out);
 }
 
 EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
                                       float width, float *out) {
+  float level;
+  int il;
+  if (filter != EL_FILTER_POINT && filter != EL_FILTER_BILINEAR) {
+    el_mipmap_lookup(m, s, t, width, out);
+    return;
+  }
+  /* pbrt-v4: <<Compute MIPMap level>>, then one level */
+  if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
+  level = (float)(m->levels - 1) + el_mipmap__log2(width);
+  if (level >= (float)(m->levels - 1)) {
+    el_mipmap__texel(m, el_mipmap__usable(m, m->levels - 1), 0, 0, out);
+    return;
+  }
+  il = level < 0 ? 0 : (int)level;
+  if (filter == EL_FILTER_POINT) {
+    el_mipmap_point(m, il, s, t, out);
+    return;
+  }
+  el_mipmap__bilerp(m, el_mipmap__usable(m, il), el_mipmap__sane(s, m->wrap_u), el_mipmap__sane(t, m->wrap_v),
+                    out);
+}
+
+EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out) {
   /* <<Compute MIPMap level for trilinear filtering>> */
-  float level, delta;
-  int il, il1, c, C = m->channels;
-  float a[4], b[4];
+  float level, delta, a[4], b[4];
+  int il, c, C = m->channels;
   if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
   level = (float)(m->levels - 1) + el_mipmap__log2(width);
   /* <<Perform trilinear interpolation at appropriate MIPMap level>> */
@@ -799,88 +855,28 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
     el_mipmap__texel(m, el_mipmap__usable(m, m->levels - 1), 0, 0, out);
     return;
   }
-  if (level < 0) {
-    if (filter == EL_FILTER_POINT) el_mipmap_point(m, 0, s, t, out);
-    else el_mipmap__bilerp(m, 0, s, t, out);
-    return;
-  }
-  il = (int)level;
-  if (filter == EL_FILTER_POINT) {
-    el_mipmap_point(m, il, s, t, out);
-    return;
-  }
-  if (filter == EL_FILTER_BILINEAR) {
-    el_mipmap__bilerp(m, el_mipmap__usable(m, il), s, t, out);
-    return;
-  }
-  delta = level - (float)il;
-  il1 = el_mipmap__usable(m, il + 1);
-  if (il1 == 0) { /* upper levels unavailable (out of memory): bilinear on level 0 */
+  s = el_mipmap__sane(s, m->wrap_u);
+  t = el_mipmap__sane(t, m->wrap_v);
+  if (level < 0 || !el_mipmap__ensure(m)) { /* (levels 1.. are unavailable only when out of memory) */
     el_mipmap__bilerp(m, 0, s, t, out);
     return;
   }
+  il = (int)level;
+  delta = level - (float)il;
+  if (C == 3) { /* the common case, specialised */
+    el_mipmap__bilerp_c(m, il, s, t, a, 3);
+    el_mipmap__bilerp_c(m, il + 1, s, t, b, 3);
+    out[0] = (1 - delta) * a[0] + delta * b[0]; /* pbrt's Lerp */
+    out[1] = (1 - delta) * a[1] + delta * b[1];
+    out[2] = (1 - delta) * a[2] + delta * b[2];
+    return;
+  }
   el_mipmap__bilerp(m, il, s, t, a);
-  el_mipmap__bilerp(m, il1, s, t, b);
-  for (c = 0; c < C; ++c) out[c] = (1 - delta) * a[c] + delta * b[c]; /* pbrt's Lerp */
-}
-
-EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out) {
-  el_mipmap_lookup_filtered(m, EL_FILTER_TRILINEAR, s, t, width, out);
+  el_mipmap__bilerp(m, il + 1, s, t, b);
+  for (c = 0; c < C; ++c) out[c] = (1 - delta) * a[c] + delta * b[c];
 }
 
 /* >> mipmap: EWA */
-/* One row of pbrt's EWA loop, texels lo..hi (row: texel 0 of the wrapped row, NULL for a Black row
- * outside the level). The loop body is pbrt's: r2 = A ss^2 + B ss tt + C tt^2, weight from the table
- * when r2 < 1; the caller has trimmed [lo, hi] to the ellipse's chord (plus a margin), so the texels
- * that pbrt's bounding-box loop visits and this one skips all have r2 >= 1. Specialised per channel
- * count (CH is a constant in each copy). */
-#define EL_MIPMAP__EWA_ROW(CH)                                                                          \
-  static void el_mipmap__ewa_row##CH(const float *row, int lo, int hi, int n, el_wrap wu, float x,     \
-                                     float A, float B, float tt, float ctt, float *acc, float *sumw) { \
-    float a[4], sw = *sumw, fis = (float)lo;                                                           \
-    int is, c;                                                                                         \
-    for (c = 0; c < CH; ++c) a[c] = acc[c];                                                            \
-    if (row && lo >= 0 && hi < n) {                                                                    \
-      const float *p = row + (size_t)lo * CH;                                                          \
-      for (is = lo; is <= hi; ++is, p += CH, fis += 1.0f) {                                            \
-        float ss = fis - x;                                                                            \
-        float r2 = A * ss * ss + B * ss * tt + ctt;                                                    \
-        if (r2 < 1) {                                                                                  \
-          int idx = (int)(r2 * 128);                                                                   \
-          float wgt;                                                                                   \
-          idx = idx > 127 ? 127 : (idx < 0 ? 0 : idx);                                                 \
-          wgt = el_mipmap__weight_lut[idx];                                                            \
-          for (c = 0; c < CH; ++c) a[c] += p[c] * wgt;                                                 \
-          sw += wgt;                                                                                   \
-        }                                                                                              \
-      }                                                                                                \
-    } else {                                                                                           \
-      for (is = lo; is <= hi; ++is, fis += 1.0f) {                                                     \
-        float ss = fis - x;                                                                            \
-        float r2 = A * ss * ss + B * ss * tt + ctt;                                                    \
-        if (r2 < 1) {                                                                                  \
-          int idx = (int)(r2 * 128), col;                                                              \
-          float wgt;                                                                                   \
-          idx = idx > 127 ? 127 : (idx < 0 ? 0 : idx);                                                 \
-          wgt = el_mipmap__weight_lut[idx];                                                            \
-          col = row ? el_mipmap__wrap(is, n, wu) : -1;                                                 \
-          if (col >= 0) {                                                                              \
-            const float *p = row + (size_t)col * CH;                                                   \
-            for (c = 0; c < CH; ++c) a[c] += p[c] * wgt;                                               \
-          }                                                                                            \
-          sw += wgt;                                                                                   \
-        }                                                                                              \
-      }                                                                                                \
-    }                                                                                                  \
-    for (c = 0; c < CH; ++c) acc[c] = a[c];                                                            \
-    *sumw = sw;                                                                                        \
-  }
-EL_MIPMAP__EWA_ROW(1)
-EL_MIPMAP__EWA_ROW(2)
-EL_MIPMAP__EWA_ROW(3)
-EL_MIPMAP__EWA_ROW(4)
-#undef EL_MIPMAP__EWA_ROW
-
 static int el_mipmap__iceil(float x) { return -el_mipmap__ifloor(-x); }
 
 /* Pins a footprint that lies entirely outside a Clamp axis next to the image, moved by a whole number
@@ -891,12 +887,19 @@ static float el_mipmap__pin(float x, float r, int n) {
   return (float)n + ceilf(r) + 1.0f + f;
 }
 
-/* pbrt's EWA(level, st, dst0, dst1). s, t already made safe by el_mipmap__sane_ewa. */
-static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
-                           float d1s, float d1t, float *out) {
-  int C = m->channels, nu, nv, c, s0, s1, t0, t1, it;
-  float x, y, A, B, Cc, F, Fs, cr, invF, det, invDet, ru, rv, inv2A, fourA, acc[4], sumw = 0.0f;
+/* pbrt's EWA(level, st, dst0, dst1) for C channels (a constant in each inlined copy). s, t already
+ * made safe by el_mipmap__sane_ewa. pbrt loops over the ellipse's bounding box and keeps the texels
+ * with r2 = A ss^2 + B ss tt + C tt^2 < 1; here each row's loop is trimmed to the ellipse's chord in
+ * that row (plus a margin), so the skipped texels all have r2 >= 1, and each kept texel gets pbrt's
+ * r2, computed with the same operations in the same order, hence the same table weight. */
+EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, float t, float d0s,
+                                        float d0t, float d1s, float d1t, float *out, int C) {
+  int nu, nv, c, t0, t1, it;
+  float fit, x, y, A, B, Cc, F, cr, invF, det, invDet, ru, rv, inv2A, fourA, mg, acc[4], sumw = 0.0f;
   const float *data;
+  el_wrap wu = m->wrap_u;
+  size_t rowstride;
+  int well;
   if (level >= m->levels) {
     el_mipmap__texel(m, m->levels - 1, 0, 0, out);
     return;
@@ -904,33 +907,38 @@ static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, floa
   nu = m->level_width[level];
   nv = m->level_height[level];
   data = m->level_data[level];
+  rowstride = (size_t)nu * (size_t)C;
   /* <<Convert EWA coordinates to appropriate scale for level>> */
-  x = s * (float)nu - 0.5f;
-  y = t * (float)nv - 0.5f;
-  d0s *= (float)nu;
-  d0t *= (float)nv;
-  d1s *= (float)nu;
-  d1t *= (float)nv;
+  x = s * m->level_size[level][0] - 0.5f;
+  y = t * m->level_size[level][1] - 0.5f;
+  d0s *= m->level_size[level][0];
+  d0t *= m->level_size[level][1];
+  d1s *= m->level_size[level][0];
+  d1t *= m->level_size[level][1];
   /* <<Compute ellipse coefficients to bound EWA filter region>> */
   A = d0t * d0t + d1t * d1t + 1;
   B = -2 * (d0s * d0t + d1s * d1t);
   Cc = d0s * d0s + d1s * d1s + 1;
   F = A * Cc - B * B * 0.25f;
-  cr = d0s * d1t - d0t * d1s;
-  Fs = 1 + d0s * d0s + d0t * d0t + d1s * d1s + d1t * d1t + cr * cr; /* the same, without cancellation */
-  if (!(fabsf(F - Fs) <= 1e-3f * Fs)) F = Fs;
+  /* F = (A C - B^2/4) loses about A C / F ulps to cancellation; beyond 1e3 ulps (thin ellipses at high
+   * anisotropy, where pbrt's F can even turn negative) use the same quantity without cancellation,
+   * F = 1 + |dst0|^2 + |dst1|^2 + (dst0 x dst1)^2, and det = 4 / F (what it is exactly). */
+  well = F > 1.25e-4f * (A * Cc);
+  if (!well) {
+    cr = d0s * d1t - d0t * d1s;
+    F = 1 + d0s * d0s + d0t * d0t + d1s * d1s + d1t * d1t + cr * cr;
+  }
   invF = 1 / F;
   A *= invF;
   B *= invF;
   Cc *= invF;
   /* <<Compute the ellipse's (s,t) bounding box in texture space>> */
-  det = -B * B + 4 * A * Cc;
-  if (!(fabsf(det - 4 * invF) <= 4e-3f * invF)) det = 4 * invF;
+  det = well ? -B * B + 4 * A * Cc : 4 * invF;
   invDet = 1 / det;
   ru = 2 * invDet * sqrtf(det * Cc);
   rv = 2 * invDet * sqrtf(A * det);
-  if (m->wrap_u != EL_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
-    if (m->wrap_u == EL_WRAP_BLACK) {
+  if (wu != EL_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
+    if (wu == EL_WRAP_BLACK) {
       for (c = 0; c < C; ++c) out[c] = 0.0f;
       return;
     }
@@ -943,32 +951,54 @@ static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, floa
     }
     y = el_mipmap__pin(y, rv, nv);
   }
-  s0 = el_mipmap__iceil(x - ru);
-  s1 = el_mipmap__ifloor(x + ru);
   t0 = el_mipmap__iceil(y - rv);
   t1 = el_mipmap__ifloor(y + rv);
   /* <<Scan over ellipse bound and compute quadratic equation>>, one chord per row */
-  for (c = 0; c < 4; ++c) acc[c] = 0.0f;
+  for (c = 0; c < C; ++c) acc[c] = 0.0f;
   inv2A = 0.5f / A;
   fourA = 4 * A;
-  for (it = t0; it <= t1; ++it) {
-    float tt = (float)it - y;
+  mg = 0.05f + 1e-6f * (fabsf(x) + ru); /* covers the rounding of the chord's ends */
+  for (it = t0, fit = (float)t0; it <= t1; ++it, fit += 1.0f) {
+    float tt = fit - y; /* fit == (float)it exactly: pbrt's it - st[1] */
     float ctt = Cc * tt * tt, btt = B * tt;
     float disc = btt * btt - fourA * (ctt - 1);
-    float cs = x - btt * inv2A, hw = disc > 0 ? sqrtf(disc) * inv2A : 0.0f;
-    float mg = 0.05f + 1e-6f * (fabsf(x) + hw);
-    int lo = el_mipmap__iceil(cs - hw - mg), hi = el_mipmap__ifloor(cs + hw + mg), row;
+    float cs = x - btt * inv2A, hw = (disc > 0 ? sqrtf(disc) * inv2A : 0.0f) + mg;
+    int lo = el_mipmap__iceil(cs - hw), hi = el_mipmap__ifloor(cs + hw), row, is;
+    float fis;
     const float *rp;
-    if (lo < s0) lo = s0;
-    if (hi > s1) hi = s1;
+    /* (no need to clip [lo, hi] to pbrt's box [s0, s1]: texels outside it have r2 >= 1 but for
+     * rounding at the tangent points, where the table weight is 0 anyway) */
     if (lo > hi) continue;
-    row = el_mipmap__wrap(it, nv, m->wrap_v);
-    rp = row < 0 ? NULL : data + (size_t)row * (size_t)nu * (size_t)C;
-    switch (C) {
-    case 1: el_mipmap__ewa_row1(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
-    case 2: el_mipmap__ewa_row2(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
-    case 3: el_mipmap__ewa_row3(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
-    default: el_mipmap__ewa_row4(rp, lo, hi, nu, m->wrap_u, x, A, B, tt, ctt, acc, &sumw); break;
+    row = (unsigned)it < (unsigned)nv ? it : el_mipmap__wrap(it, nv, m->wrap_v);
+    rp = row < 0 ? NULL : data + (size_t)row * rowstride;
+    fis = (float)lo;
+    if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu && rp) { /* inside: no wrapping */
+      const float *p = rp + (size_t)lo * (size_t)C;
+      for (is = lo; is <= hi; ++is, p += C, fis += 1.0f) {
+        float ss = fis - x;
+        float r2 = A * ss * ss + B * ss * tt + ctt;
+        if (r2 < 1) {
+          /* r2 in [0, 1) up to rounding, so (int)(r2 * 128) is 0..127; & 127 keeps any rounding
+           * accident inside the table */
+          float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+          for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
+          sumw += wgt;
+        }
+      }
+    } else {
+      for (is = lo; is <= hi; ++is, fis += 1.0f) {
+        float ss = fis - x;
+        float r2 = A * ss * ss + B * ss * tt + ctt;
+        if (r2 < 1) {
+          float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+          int col = rp ? el_mipmap__wrap(is, nu, wu) : -1;
+          if (col >= 0) {
+            const float *p = rp + (size_t)col * (size_t)C;
+            for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
+          }
+          sumw += wgt; /* Black texels count with value 0, as in pbrt */
+        }
+      }
     }
   }
   if (!(sumw > 0.0f)) { /* cannot happen (the ellipse holds a disc of radius 1), kept as a guard */
@@ -976,6 +1006,15 @@ static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, floa
     return;
   }
   for (c = 0; c < C; ++c) out[c] = acc[c] / sumw;
+}
+static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
+                           float d1s, float d1t, float *out) {
+  switch (m->channels) {
+  case 1: el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 1); break;
+  case 2: el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 2); break;
+  case 3: el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 3); break;
+  default: el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 4); break;
+  }
 }
 
 EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
@@ -1016,7 +1055,7 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
     minor *= scale;
   }
   if (minor == 0) {
-    el_mipmap__bilerp(m, 0, s, t, out);
+    el_mipmap__bilerp(m, 0, el_mipmap__sane(s, m->wrap_u), el_mipmap__sane(t, m->wrap_v), out);
     return;
   }
   /* <<Choose level of detail for EWA lookup and perform EWA filtering>> */
@@ -1030,6 +1069,15 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
   }
   s = el_mipmap__sane_ewa(s, m->wrap_u);
   t = el_mipmap__sane_ewa(t, m->wrap_v);
+  if (C == 3) { /* the common case, specialised */
+    el_mipmap__ewa_c(m, ilod, s, t, d0s, d0t, d1s, d1t, a, 3);
+    if (f == 0) b[0] = b[1] = b[2] = 0.0f; /* pbrt computes (1 - 0) a + 0 b = a as well */
+    else el_mipmap__ewa_c(m, ilod + 1, s, t, d0s, d0t, d1s, d1t, b, 3);
+    out[0] = (1 - f) * a[0] + f * b[0];
+    out[1] = (1 - f) * a[1] + f * b[1];
+    out[2] = (1 - f) * a[2] + f * b[2];
+    return;
+  }
   el_mipmap__ewa(m, ilod, s, t, d0s, d0t, d1s, d1t, a);
   if (f == 0) { /* pbrt computes (1 - 0) a + 0 b = a as well */
     for (c = 0; c < C; ++c) out[c] = a[c];
