@@ -376,10 +376,32 @@ static inline double el_distribution2d__sanitize(float x) {
 }
 
 /* Check n values; on the first bad one return its error and index (unless clamping). Also the sum
- * (after clamping) and the number of positive values. */
+ * (after clamping) and the number of positive values. Fast path: four independent double sums and one
+ * validity flag (no branch per value); the slow path runs only when some value is bad. */
 static el_result el_distribution2d__scan(const float *f, size_t n, int clamp, double *sum, size_t *positive, size_t *bad) {
-  double s = 0.0;
-  size_t i, m = 0;
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, s = 0.0;
+  size_t i, m = 0, n4 = n & ~(size_t)3;
+  int ok = 1;
+  *sum = 0.0;
+  *positive = 0;
+  for (i = 0; i < n4; i += 4) {
+    float a = f[i], b = f[i + 1], c = f[i + 2], e = f[i + 3];
+    ok &= (a >= 0.0f) & (a <= FLT_MAX) & (b >= 0.0f) & (b <= FLT_MAX) & (c >= 0.0f) & (c <= FLT_MAX) & (e >= 0.0f) & (e <= FLT_MAX);
+    s0 += (double)a; s1 += (double)b; s2 += (double)c; s3 += (double)e;
+    m += (size_t)((a > 0.0f) + (b > 0.0f) + (c > 0.0f) + (e > 0.0f));
+  }
+  for (i = n4; i < n; ++i) {
+    float a = f[i];
+    ok &= (a >= 0.0f) & (a <= FLT_MAX);
+    s0 += (double)a;
+    m += (size_t)(a > 0.0f);
+  }
+  if (ok) {
+    *sum = (s0 + s1) + (s2 + s3);
+    *positive = m;
+    return EL_SUCCESS;
+  }
+  m = 0;
   for (i = 0; i < n; ++i) {
     float x = f[i];
     if (!(x >= 0.0f && x <= FLT_MAX)) {
@@ -401,42 +423,59 @@ static el_result el_distribution2d__scan(const float *f, size_t n, int clamp, do
   return EL_SUCCESS;
 }
 
-/* The integer CDF of n weights (floats or doubles): positive bins get one unit each, the remaining
- * units are shared in proportion to the prefix sums. sum = the same left-to-right double sum the scan
- * computed, m = the number of positive weights. sum == 0: a uniform CDF. */
+/* The integer CDF of n weights: positive bins get one unit each, the remaining R = 2^24 - m units are
+ * shared in proportion to the prefix sums: c[i] = (positive bins before i) + round(R * S_i / sum).
+ * The prefix sums are kept in 64-bit fixed point (2^-24 of a unit): each weight's share is truncated
+ * once, independently (no long floating-point dependency chain; all n truncations together lose less
+ * than n * 2^-24 <= 1/4 unit, so the last positive bin still ends exactly at 2^24). Monotone by
+ * construction; a positive bin is at least one unit wide, a zero bin exactly zero. sum == 0: uniform. */
 static void el_distribution2d__cdf_uniform(uint32_t *c, int n) {
   int i;
   for (i = 0; i <= n; ++i) c[i] = (uint32_t)(((uint64_t)i * EL_DISTRIBUTION_UNITS) / (uint64_t)n);
 }
-static void el_distribution2d__cdf_float(uint32_t *c, const float *f, int n, double sum, uint32_t m) {
-  double q, s = 0.0;
+static void el_distribution2d__cdf_float(uint32_t *c, const float *f, int n, double sum, uint32_t m, int clamp) {
+  double q;
+  int64_t p = 0;
   uint32_t pos = 0;
   int i;
   if (!(sum > 0.0)) { el_distribution2d__cdf_uniform(c, n); return; }
-  q = (double)(EL_DISTRIBUTION_UNITS - m) / sum;
+  q = (double)(EL_DISTRIBUTION_UNITS - m) / sum * 16777216.0;
   c[0] = 0;
-  for (i = 0; i < n; ++i) {
-    double v = el_distribution2d__sanitize(f[i]);
-    s += v;
-    pos += (v > 0.0);
-    c[i + 1] = pos + (uint32_t)(s * q + 0.5);
+  if (!clamp) {
+    for (i = 0; i < n; ++i) { /* values already validated */
+      float x = f[i];
+      p += (int64_t)((double)x * q);
+      pos += (uint32_t)(x > 0.0f);
+      c[i + 1] = pos + (uint32_t)((p + 8388608) >> 24);
+    }
+  } else {
+    for (i = 0; i < n; ++i) {
+      double v = el_distribution2d__sanitize(f[i]);
+      p += (int64_t)(v * q);
+      pos += (uint32_t)(v > 0.0);
+      c[i + 1] = pos + (uint32_t)((p + 8388608) >> 24);
+    }
   }
-  c[n] = EL_DISTRIBUTION_UNITS; /* s == sum, so this is already the value; make it exact regardless */
+  /* trailing zero bins end exactly at 2^24 (a safety net; the bound above already gives it) */
+  c[n] = EL_DISTRIBUTION_UNITS;
+  for (i = n - 1; i > 0 && !(el_distribution2d__sanitize(f[i]) > 0.0); --i) c[i] = EL_DISTRIBUTION_UNITS;
 }
 static void el_distribution2d__cdf_double(uint32_t *c, const double *f, int n, double sum, uint32_t m) {
-  double q, s = 0.0;
+  double q;
+  int64_t p = 0;
   uint32_t pos = 0;
   int i;
   if (!(sum > 0.0)) { el_distribution2d__cdf_uniform(c, n); return; }
-  q = (double)(EL_DISTRIBUTION_UNITS - m) / sum;
+  q = (double)(EL_DISTRIBUTION_UNITS - m) / sum * 16777216.0;
   c[0] = 0;
   for (i = 0; i < n; ++i) {
     double v = f[i];
-    s += v;
-    pos += (v > 0.0);
-    c[i + 1] = pos + (uint32_t)(s * q + 0.5);
+    p += (int64_t)(v * q);
+    pos += (uint32_t)(v > 0.0);
+    c[i + 1] = pos + (uint32_t)((p + 8388608) >> 24);
   }
   c[n] = EL_DISTRIBUTION_UNITS;
+  for (i = n - 1; i > 0 && !(f[i] > 0.0); --i) c[i] = EL_DISTRIBUTION_UNITS;
 }
 
 /* Validate a domain [a, b] with n bins; compute scale, width and the unit pdf scale. */
@@ -498,7 +537,7 @@ EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, in
   if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); opt->bad_index = (int)bad; return r; }
   d->cdf = (uint32_t *)EL_MALLOC(((size_t)n + 1) * sizeof(uint32_t));
   if (!d->cdf) { memset(d, 0, sizeof *d); return EL_ERROR_OUT_OF_MEMORY; }
-  el_distribution2d__cdf_float(d->cdf, f, n, sum, (uint32_t)m);
+  el_distribution2d__cdf_float(d->cdf, f, n, sum, (uint32_t)m, opt->clamp_bad_values);
   d->all_zero = !(sum > 0.0);
   if (d->all_zero) d->pdf_scale = 0.0f;
   d->integral = el_distribution2d__clamp_float(sum * ((double)b - (double)a) / (double)n);
@@ -613,11 +652,11 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
       el_distribution2d_free(d);
       return r;
     }
-    el_distribution2d__cdf_float(d->cdf + (size_t)v * row_entries, row, nu, rowsum[v], (uint32_t)m);
+    el_distribution2d__cdf_float(d->cdf + (size_t)v * row_entries, row, nu, rowsum[v], (uint32_t)m, opt->clamp_bad_values);
     total += rowsum[v];
     rows_positive += (rowsum[v] > 0.0);
   }
-  /* <<Compute marginal sampling distribution>>: rowsum is a left-to-right sum, recomputed identically */
+  /* <<Compute marginal sampling distribution>>: the weights are the row sums */
   {
     double s = 0.0;
     for (v = 0; v < nv; ++v) s += rowsum[v];
