@@ -677,7 +677,8 @@ EL_DEF void el_distribution2d_free(el_distribution2d *d) {
   memset(d, 0, sizeof *d);
 }
 
-EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float u1, float *out_u, float *out_v, float *pdf) {
+/* Any u, any domain. */
+static EL_DISTRIBUTION2D__NOINLINE void el_distribution2d__sample_general(const el_distribution2d *d, float u0, float u1, float *out_u, float *out_v, float *pdf) {
   /* <<Sample the marginal distribution (u1 -> row)>> */
   float xv = el_distribution2d__units(u1), xu = el_distribution2d__units(u0), wv, wu, fv, fu;
   int iv = el_distribution2d__search(d->marginal, 0, d->nv, (uint32_t)xv), iu;
@@ -691,6 +692,34 @@ EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float
   *out_u = el_distribution2d__place(iu, fu, d->domain[0], d->domain[2], d->u_width, d->u_scale, d->u_last, d->u_exact);
   *out_v = el_distribution2d__place(iv, fv, d->domain[1], d->domain[3], d->v_width, d->v_scale, d->v_last, d->v_exact);
   *pdf = (wv * d->v_pdf_scale) * (wu * d->u_pdf_scale);
+}
+
+/* The common case as a leaf function (no calls, so no saved registers): u in [0,1), exact axes, and no
+ * rounding carry into the next bin; anything else goes to the general path, which gives the same
+ * result wherever both apply. */
+EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float u1, float *out_u, float *out_v, float *pdf) {
+  float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f;
+  if ((d->u_exact & d->v_exact) && xv >= 0.0f && xv < 16777216.0f && xu >= 0.0f && xu < 16777216.0f) {
+    uint32_t kv = (uint32_t)(int32_t)xv, ku = (uint32_t)(int32_t)xu;
+    int iv = el_distribution2d__search(d->marginal, 0, d->nv, kv), iu;
+    const uint32_t *row = d->cdf + (size_t)iv * ((size_t)d->nu + 1);
+    int32_t cv, cu;
+    float wv, wu, tv, tu;
+    iu = el_distribution2d__search(row, 0, d->nu, ku);
+    cv = (int32_t)d->marginal[iv];
+    cu = (int32_t)row[iu];
+    wv = (float)((int32_t)d->marginal[iv + 1] - cv);
+    wu = (float)((int32_t)row[iu + 1] - cu);
+    tv = (float)iv + (xv - (float)cv) / wv;
+    tu = (float)iu + (xu - (float)cu) / wu;
+    if ((int)tv == iv && (int)tu == iu) {
+      *out_u = tu * d->u_width;
+      *out_v = tv * d->v_width;
+      *pdf = (wv * d->v_pdf_scale) * (wu * d->u_pdf_scale);
+      return;
+    }
+  }
+  el_distribution2d__sample_general(d, u0, u1, out_u, out_v, pdf);
 }
 
 EL_DEF float el_distribution2d_pdf(const el_distribution2d *d, float u, float v) {
@@ -877,7 +906,8 @@ static inline int el_distribution2d__alias_find(const uint32_t *cells, const uin
   return i;
 }
 
-EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float u0, float u1, float *out_u, float *out_v, float *pdf) {
+/* Any u, any domain. */
+static EL_DISTRIBUTION2D__NOINLINE void el_distribution2d__fast_sample_general(const el_distribution2d_fast *f, float u0, float u1, float *out_u, float *out_v, float *pdf) {
   float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f, wv, wu, fv, fu;
   int iv, iu;
   const uint32_t *row;
@@ -904,6 +934,55 @@ EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float
   *out_u = el_distribution2d__place(iu, fu, f->domain[0], f->domain[2], f->u_width, f->u_scale, f->u_last, f->u_exact);
   *out_v = el_distribution2d__place(iv, fv, f->domain[1], f->domain[3], f->v_width, f->v_scale, f->v_last, f->v_exact);
   *pdf = (wv * f->v_pdf_scale) * (wu * f->u_pdf_scale);
+}
+
+/* Leaf fast path as in el_distribution2d_sample: u in [0,1), exact axes, no carry; else the general path. */
+EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float u0, float u1, float *out_u, float *out_v, float *pdf) {
+  float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f;
+  if ((f->u_exact & f->v_exact) && xv >= 0.0f && xv < 16777216.0f && xu >= 0.0f && xu < 16777216.0f) {
+    int iv, iu;
+    const uint32_t *row;
+    float wv, wu, tv, tu;
+    if (f->method == EL_DISTRIBUTION_FAST_GUIDE) {
+      uint32_t kv = (uint32_t)(int32_t)xv, ku = (uint32_t)(int32_t)xu, cell;
+      const uint32_t *g;
+      int32_t cv, cu;
+      /* guide cell, then a short linear scan; a crowded cell (> 8 bins) takes the general path */
+      cell = kv >> f->shift_v;
+      iv = (int)f->guide_v[cell];
+      if ((int)f->guide_v[cell + 1] - iv > 8) goto general;
+      while (f->marginal[iv + 1] <= kv) ++iv;
+      row = f->cdf + (size_t)iv * f->row_stride;
+      g = f->guide_u + (size_t)iv * f->guide_stride;
+      cell = ku >> f->shift_u;
+      iu = (int)g[cell];
+      if ((int)g[cell + 1] - iu > 8) goto general;
+      while (row[iu + 1] <= ku) ++iu;
+      cv = (int32_t)f->marginal[iv];
+      cu = (int32_t)row[iu];
+      wv = (float)((int32_t)f->marginal[iv + 1] - cv);
+      wu = (float)((int32_t)row[iu + 1] - cu);
+      tv = (float)iv + (xv - (float)cv) / wv;
+      tu = (float)iu + (xu - (float)cu) / wu;
+    } else {
+      float fv, fu;
+      iv = el_distribution2d__alias_find(f->alias_v, f->start_v, f->nv, xv, &fv);
+      row = f->cdf + (size_t)iv * f->row_stride;
+      iu = el_distribution2d__alias_find(f->alias_u + (size_t)iv * (size_t)f->nu * 2, f->start_u, f->nu, xu, &fu);
+      wv = (float)(int32_t)(f->marginal[iv + 1] - f->marginal[iv]);
+      wu = (float)(int32_t)(row[iu + 1] - row[iu]);
+      tv = (float)iv + fv;
+      tu = (float)iu + fu;
+    }
+    if ((int)tv == iv && (int)tu == iu) {
+      *out_u = tu * f->u_width;
+      *out_v = tv * f->v_width;
+      *pdf = (wv * f->v_pdf_scale) * (wu * f->u_pdf_scale);
+      return;
+    }
+  }
+general:
+  el_distribution2d__fast_sample_general(f, u0, u1, out_u, out_v, pdf);
 }
 
 EL_DEF float el_distribution2d_fast_pdf(const el_distribution2d_fast *f, float u, float v) {
