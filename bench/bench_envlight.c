@@ -1,0 +1,433 @@
+/* bench_envlight.c: what the infinite area light's accuracy costs in time and memory.
+ *
+ *   bench_envlight                       every table below (runs itself under callgrind if valgrind exists)
+ *   bench_envlight --no-callgrind        without the instruction counts
+ *   bench_envlight --quick               1024x512 and 2048x1024 only, no callgrind, fewer samples
+ *   bench_envlight --callgrind OP N      only N calls of OP after the setup (a generated 2048x1024 map,
+ *                                        the pbrt-v3 target's size). OP: loop sample_cdf sample_guide
+ *                                        sample_alias sample_guide_rgb pdf le sample_rotated pdf_rotated
+ *
+ * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
+ * build/bin/bench_envlight --callgrind pdf N for N = 0 and N = 200000; (Ir(N) - Ir(0)) / N from the
+ * "Collected" line, minus the "loop" op's count (reading precomputed random numbers, summing the results).
+ *
+ * Tables:
+ *  1. Build and memory, for generated 1024x512, 2048x1024 and 8192x4096 maps (a sky gradient with
+ *     texture noise and a 3e4 sun, like ../shared/envmaps/city): el_envlight_init (copy, check, integrate)
+ *     and the lazy sampling build (importance map + distribution + bin finders + pdf table) for each
+ *     importance choice, their bytes, then sample_li / pdf_li / le throughput per sampler.
+ *     pbrt-v3 on this kind of machine (issue 3): constructor 313 ms and ~100 MB (MIPMap + 4096x2048
+ *     distribution) for 2048x1024; Sample_Li 5.2 M/s and ~470 instructions; Pdf_Li ~300 instructions.
+ *  2. Instructions per call (callgrind) on the 2048x1024 map.
+ *  3. Variance of a direct-lighting estimate: the irradiance (luminance) of a diffuse point at three
+ *     normals, for the maps in ../shared/envmaps (data/envmaps if missing), per strategy: uniform sphere,
+ *     cosine, light sampling with each importance map (CELL_AVERAGE = ours, PBRT_V3 = 2x-resolution point
+ *     lookups, TEXEL = raw texels: biased with a bilinear le, pbrt-v3 issue #62), the compensated density
+ *     with MIS (one light + one cosine sample, balance heuristic, per pair), and the alias sampler. Each
+ *     row: variance per sample relative to E^2, |bias| in standard errors against a quadrature of the
+ *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
+ *     to light sampling with CELL_AVERAGE and the CDF sampler.
+ */
+#define _POSIX_C_SOURCE 199309L /* clock_gettime */
+#define EL_IMPLEMENTATION
+#include "envlight.h"
+#include "image_io.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#ifndef EL_SOURCE_DIR
+#define EL_SOURCE_DIR "."
+#endif
+
+static const double PI = 3.14159265358979323846;
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+static uint32_t hash32(uint32_t x) {
+  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
+  return x;
+}
+
+/* 2^20 precomputed uniform numbers in [0,1) (24 bits), and as many random directions */
+#define NP (1 << 20)
+static float *g_u, *g_dir;
+static void make_random(void) {
+  int i;
+  g_u = (float *)malloc(2 * NP * sizeof(float));
+  g_dir = (float *)malloc(3 * NP * sizeof(float));
+  for (i = 0; i < 2 * NP; ++i) g_u[i] = (float)(hash32((uint32_t)i * 2654435761u + 17u) >> 8) * (1.0f / 16777216.0f);
+  for (i = 0; i < NP; ++i) {
+    float z = 1.0f - 2.0f * g_u[2 * i], r = sqrtf(fmaxf(0.0f, 1.0f - z * z)), ph = 6.2831853f * g_u[2 * i + 1];
+    g_dir[3 * i] = r * cosf(ph); g_dir[3 * i + 1] = r * sinf(ph); g_dir[3 * i + 2] = z;
+  }
+}
+
+/* A city-like map: bright sky gradient above, dark ground below, texture noise, a 3e4 sun. */
+static float *make_map(int w, int h) {
+  float *px = (float *)malloc((size_t)w * h * 3 * sizeof(float));
+  int x, y;
+  const float su = 0.3f, sv = 0.3f, r = 0.004f;
+  for (y = 0; y < h; ++y) {
+    float vv = (y + 0.5f) / h, sky = vv < 0.5f ? 0.3f + 1.4f * vv : 0.05f;
+    for (x = 0; x < w; ++x) {
+      float uu = (x + 0.5f) / w, du = uu - su, dv = (vv - sv) * 0.5f;
+      float noise = (float)(hash32((uint32_t)(y * w + x)) >> 8) * (1.0f / 16777216.0f);
+      float v = sky * (0.6f + 0.8f * noise);
+      float *p = px + ((size_t)y * w + x) * 3;
+      if (du * du + dv * dv < r * r) v = 3e4f;
+      p[0] = v; p[1] = 0.9f * v; p[2] = 0.8f * v;
+    }
+  }
+  return px;
+}
+
+static el_result make_light(el_envlight *l, const float *px, int w, int h, int importance, int sampler, int comp,
+                            const float *m) {
+  el_envlight_options o;
+  memset(&o, 0, sizeof o);
+  o.importance = importance;
+  o.sampler = sampler;
+  o.compensated = comp;
+  if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
+  return el_envlight_init(l, px, w, h, 3, &o);
+}
+
+static const float ROT[9] = {0.80585f, -0.31423f, 0.50187f, 0.45905f, 0.87596f, -0.14818f, -0.37305f, 0.36587f, 0.85219f};
+
+/* ---- throughput loops (also the callgrind bodies) ---- */
+static double run_sample(el_envlight *l, long n, int rgb) {
+  double acc = 0;
+  long k;
+  float wi[3], L[3], p;
+  for (k = 0; k < n; ++k) {
+    el_envlight_sample_li(l, g_u + 2 * (k & (NP - 1)), wi, rgb ? L : NULL, &p);
+    acc += p + wi[0];
+  }
+  return acc;
+}
+static double run_pdf(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  for (k = 0; k < n; ++k) acc += el_envlight_pdf_li(l, g_dir + 3 * (k & (NP - 1)));
+  return acc;
+}
+static double run_le(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  float L[3];
+  for (k = 0; k < n; ++k) { el_envlight_le(l, g_dir + 3 * (k & (NP - 1)), L); acc += L[1]; }
+  return acc;
+}
+static double run_loop(long n) { /* the loop alone: read the inputs, sum */
+  double acc = 0;
+  long k;
+  for (k = 0; k < n; ++k) { const float *u = g_u + 2 * (k & (NP - 1)); acc += u[0] + u[1]; }
+  return acc;
+}
+static double rate(double (*fn)(el_envlight *, long, int), el_envlight *l, int arg) {
+  double best = 1e30;
+  int rep;
+  long n = 1 << 21;
+  volatile double sink;
+  for (rep = 0; rep < 3; ++rep) {
+    double t = now();
+    sink = fn(l, n, arg);
+    t = now() - t;
+    if (t < best) best = t;
+  }
+  (void)sink;
+  return n / best * 1e-6;
+}
+static double fn_sample(el_envlight *l, long n, int rgb) { return run_sample(l, n, rgb); }
+static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l, n); }
+static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
+
+/* ---- --callgrind OP N ---- */
+static int callgrind_mode(const char *op, long n) {
+  static el_envlight l;
+  int w = 2048, h = 1024, sampler = 0, rot = 0;
+  float *px;
+  volatile double sink = 0;
+  make_random();
+  px = make_map(w, h);
+  if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = 1;
+  if (!strcmp(op, "sample_alias")) sampler = 2;
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = 1; rot = 1; }
+  if (make_light(&l, px, w, h, 0, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
+  el_envlight_prepare_sampling(&l);
+  if (!strcmp(op, "loop")) sink = run_loop(n);
+  else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb"));
+  else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
+  else if (!strcmp(op, "le")) sink = run_le(&l, n);
+  else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
+  (void)sink;
+  el_envlight_free(&l);
+  free(px);
+  return 0;
+}
+static double callgrind_ir(const char *self, const char *op, long n) {
+  char cmd[1024], line[512];
+  FILE *fp;
+  double ir = -1;
+  snprintf(cmd, sizeof cmd, "valgrind --tool=callgrind --callgrind-out-file=/dev/null '%s' --callgrind %s %ld 2>&1", self, op, n);
+  fp = popen(cmd, "r");
+  if (!fp) return -1;
+  while (fgets(line, sizeof line, fp)) {
+    char *c = strstr(line, "Collected :");
+    if (c) ir = atof(c + 11);
+  }
+  pclose(fp);
+  return ir;
+}
+static double instr_per_call(const char *self, const char *op, long n) {
+  double a = callgrind_ir(self, op, 0), b = callgrind_ir(self, op, n);
+  return (a < 0 || b < 0) ? -1 : (b - a) / n;
+}
+
+/* ---- variance of the irradiance estimate ---- */
+typedef struct { const float *px; int w, h; } image;
+static double lum3(double r, double g, double b) { return 0.212671 * r + 0.715160 * g + 0.072169 * b; }
+static double img_lum(const image *im, int x, int y) {
+  const float *p;
+  x %= im->w; if (x < 0) x += im->w;
+  if (y < 0) y = 0;
+  if (y > im->h - 1) y = im->h - 1;
+  p = im->px + ((size_t)y * im->w + x) * 3;
+  return lum3(p[0], p[1], p[2]);
+}
+/* E(n) by the midpoint rule on 2x2 sub-cells per texel of the bilinear reconstruction (light space) */
+static void quadrature(const image *im, const double n[][3], int nn, double *E) {
+  int x, y, a, b, k, s = 2;
+  for (k = 0; k < nn; ++k) E[k] = 0;
+  for (y = 0; y < im->h; ++y)
+    for (b = 0; b < s; ++b) {
+      double v0 = (y + (double)b / s) / im->h, v1 = (y + (b + 1.0) / s) / im->h, v = 0.5 * (v0 + v1);
+      double dom = (cos(PI * v0) - cos(PI * v1)) * 2 * PI / (im->w * s), st = sin(PI * v), ct = cos(PI * v);
+      double t = v * im->h - 0.5, fy;
+      int y0 = (int)floor(t);
+      fy = t - y0;
+      for (x = 0; x < im->w; ++x)
+        for (a = 0; a < s; ++a) {
+          double u = (x + (a + 0.5) / s) / im->w, ss = u * im->w - 0.5, fx, L, w[3];
+          int x0 = (int)floor(ss);
+          fx = ss - x0;
+          L = (1 - fy) * ((1 - fx) * img_lum(im, x0, y0) + fx * img_lum(im, x0 + 1, y0)) +
+              fy * ((1 - fx) * img_lum(im, x0, y0 + 1) + fx * img_lum(im, x0 + 1, y0 + 1));
+          w[0] = st * cos(2 * PI * u); w[1] = st * sin(2 * PI * u); w[2] = ct;
+          for (k = 0; k < nn; ++k) {
+            double c = n[k][0] * w[0] + n[k][1] * w[1] + n[k][2] * w[2];
+            if (c > 0) E[k] += L * c * dom;
+          }
+        }
+    }
+}
+
+enum { S_UNIFORM, S_COSINE, S_CELL, S_PBRT, S_TEXEL, S_COMP_MIS, S_ALIAS, S_N };
+static const char *S_NAME[S_N] = {"uniform sphere", "cosine", "light: CELL_AVERAGE (ours)", "light: PBRT_V3 (2x)",
+                                  "light: TEXEL (issue #62)", "compensated + MIS (pair)", "light: alias sampler"};
+
+static void frame(const double n[3], double b1[3], double b2[3]) {
+  double t[3] = {1, 0, 0}, d, len;
+  if (fabs(n[0]) > 0.9) { t[0] = 0; t[1] = 1; }
+  d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+  b1[0] = t[0] - d * n[0]; b1[1] = t[1] - d * n[1]; b1[2] = t[2] - d * n[2];
+  len = sqrt(b1[0] * b1[0] + b1[1] * b1[1] + b1[2] * b1[2]);
+  b1[0] /= len; b1[1] /= len; b1[2] /= len;
+  b2[0] = n[1] * b1[2] - n[2] * b1[1]; b2[1] = n[2] * b1[0] - n[0] * b1[2]; b2[2] = n[0] * b1[1] - n[1] * b1[0];
+}
+
+/* One estimate of E(n) with strategy s from 2 (or 4) uniform numbers u. */
+static double estimate(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u) {
+  float wi[3], L[3], p;
+  double c;
+  if (s == S_UNIFORM) {
+    double z = 1 - 2.0 * u[0], r = sqrt(fmax(0.0, 1 - z * z)), ph = 2 * PI * u[1];
+    wi[0] = (float)(r * cos(ph)); wi[1] = (float)(r * sin(ph)); wi[2] = (float)z;
+    c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+    if (c <= 0) return 0;
+    el_envlight_le(l, wi, L);
+    return lum3(L[0], L[1], L[2]) * c * 4 * PI;
+  }
+  if (s == S_COSINE || s == S_COMP_MIS) {
+    double f = 0;
+    double rr = sqrt((double)u[0]), ph = 2 * PI * u[1], lx = rr * cos(ph), ly = rr * sin(ph), lz = sqrt(fmax(0.0, 1 - u[0]));
+    wi[0] = (float)(lx * b1[0] + ly * b2[0] + lz * n[0]);
+    wi[1] = (float)(lx * b1[1] + ly * b2[1] + lz * n[1]);
+    wi[2] = (float)(lx * b1[2] + ly * b2[2] + lz * n[2]);
+    if (lz > 0) {
+      el_envlight_le(l, wi, L);
+      if (s == S_COSINE) return lum3(L[0], L[1], L[2]) * PI;
+      p = el_envlight_pdf_li(l, wi);
+      f = lum3(L[0], L[1], L[2]) * lz / (lz / PI + p); /* balance heuristic, one sample of each */
+    }
+    /* and the light sample of the pair */
+    el_envlight_sample_li(l, u + 2, wi, L, &p);
+    c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+    if (p > 0 && c > 0) f += lum3(L[0], L[1], L[2]) * c / (p + c / PI);
+    return f;
+  }
+  el_envlight_sample_li(l, u, wi, L, &p);
+  if (!(p > 0)) return 0;
+  c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+  if (c <= 0) return 0;
+  return lum3(L[0], L[1], L[2]) * c / p;
+}
+
+/* PCG32 for the variance runs (independent streams per strategy and normal) */
+typedef struct { uint64_t s; } rng;
+static uint32_t rng_u32(rng *r) {
+  uint64_t old = r->s;
+  uint32_t x, rot;
+  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
+  x = (uint32_t)(((old >> 18) ^ old) >> 27);
+  rot = (uint32_t)(old >> 59);
+  return (x >> rot) | (x << ((32 - rot) & 31));
+}
+static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+
+static void variance_table(const char *path, int nsamp) {
+  el_image img;
+  char err[512];
+  image im;
+  static const double N3[3][3] = {{0, 0, 1}, {1, 0, 0}, {0, 0.6, -0.8}}; /* up, horizon, down-ish (light space) */
+  double E[3];
+  el_envlight lights[S_N];
+  int s, k, ok[S_N];
+  double res_rv[S_N][3], res_bias[S_N][3], res_ns[S_N], res_mean[S_N];
+  if (el_image_load(path, &img, err, sizeof err) != 0) { printf("  (%s)\n", err); return; }
+  im.px = img.pixels; im.w = img.width; im.h = img.height;
+  quadrature(&im, N3, 3, E);
+  for (s = 0; s < S_N; ++s) {
+    int imp = s == S_PBRT ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3 : s == S_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL : 0;
+    ok[s] = make_light(&lights[s], img.pixels, img.width, img.height, imp, s == S_ALIAS ? 2 : 0, s == S_COMP_MIS, NULL) == EL_SUCCESS;
+    if (ok[s]) el_envlight_prepare_sampling(&lights[s]);
+  }
+  printf("\n%s (%dx%d): E(up) = %.4g, E(horizon) = %.4g, E(down) = %.4g; %d samples per cell\n", path, img.width,
+         img.height, E[0], E[1], E[2], nsamp);
+  printf("  %-28s %27s %20s %8s %10s\n", "strategy", "rel. variance (up/hor/down)", "|bias|/SE (u/h/d)", "ns/spl", "efficiency");
+  for (s = 0; s < S_N; ++s) {
+    double *rv = res_rv[s], *bias = res_bias[s], t, mean_rv = 0;
+    if (!ok[s]) continue;
+    t = now();
+    for (k = 0; k < 3; ++k) {
+      double b1[3], b2[3], sum = 0, sum2 = 0, mean, var;
+      long i;
+      rng r;
+      r.s = 0x853c49e6748fea9bULL + 7919u * (uint64_t)(s * 3 + k);
+      frame(N3[k], b1, b2);
+      for (i = 0; i < nsamp; ++i) {
+        float u[4];
+        double f;
+        u[0] = rng_f(&r); u[1] = rng_f(&r); u[2] = rng_f(&r); u[3] = rng_f(&r);
+        f = estimate(s, &lights[s], N3[k], b1, b2, u);
+        sum += f; sum2 += f * f;
+      }
+      mean = sum / nsamp;
+      var = fmax(0.0, sum2 / nsamp - mean * mean);
+      rv[k] = var / (E[k] * E[k]);
+      bias[k] = fabs(mean - E[k]) / sqrt(var / nsamp + 1e-300);
+      mean_rv += rv[k] / 3;
+    }
+    res_ns[s] = (now() - t) / (3.0 * nsamp) * 1e9;
+    res_mean[s] = mean_rv;
+  }
+  for (s = 0; s < S_N; ++s) {
+    if (!ok[s]) { printf("  %-28s init failed\n", S_NAME[s]); continue; }
+    printf("  %-28s %8.3g %8.3g %8.3g  %6.1f %6.1f %6.1f %8.0f %10.3g\n", S_NAME[s], res_rv[s][0], res_rv[s][1],
+           res_rv[s][2], res_bias[s][0], res_bias[s][1], res_bias[s][2], res_ns[s],
+           ok[S_CELL] ? (res_mean[S_CELL] * res_ns[S_CELL]) / (res_mean[s] * res_ns[s]) : 0.0);
+  }
+  for (s = 0; s < S_N; ++s) if (ok[s]) el_envlight_free(&lights[s]);
+  el_image_free(&img);
+}
+
+int main(int argc, char **argv) {
+  int sizes[3][2] = {{1024, 512}, {2048, 1024}, {8192, 4096}}, nsizes = 3, use_cg = 1, nsamp = 200000, i;
+  const char *maps[5] = {"city", "forest", "night", "studio", "sunset"};
+  if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]));
+  if (argc == 2 && !strcmp(argv[1], "--no-callgrind")) use_cg = 0;
+  else if (argc == 2 && !strcmp(argv[1], "--quick")) { use_cg = 0; nsizes = 2; nsamp = 50000; }
+  else if (argc != 1) { fprintf(stderr, "usage: %s [--no-callgrind | --quick | --callgrind OP N]\n", argv[0]); return 2; }
+  if (use_cg && system("valgrind --version >/dev/null 2>&1") != 0) { printf("(valgrind not found: no instruction counts)\n"); use_cg = 0; }
+  make_random();
+
+  printf("1. Build, memory and throughput (generated city-like maps, one thread, -O3, best of 3)\n");
+  printf("   pbrt-v3 reference (issue 3, 2048x1024): constructor 313 ms, ~100 MB, Sample_Li 5.2 M/s\n");
+  for (i = 0; i < nsizes; ++i) {
+    int w = sizes[i][0], h = sizes[i][1], imp;
+    float *px = make_map(w, h);
+    printf("\n  %d x %d\n", w, h);
+    printf("  %-22s %9s %10s %10s %10s %10s\n", "importance map", "init ms", "sampling", "bins", "table MB", "total MB");
+    for (imp = 0; imp < 3; ++imp) {
+      el_envlight l;
+      double t0, t1 = 1e30, t2 = 1e30;
+      int rep;
+      if (imp == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 && w > 2048) continue; /* 16384x8192 bins: pbrt's choice, skipped */
+      for (rep = 0; rep < (w > 2048 ? 1 : 3); ++rep) {
+        t0 = now();
+        if (make_light(&l, px, w, h, imp, 0, 0, NULL) != EL_SUCCESS) { printf("  init failed\n"); break; }
+        t0 = now() - t0; if (t0 < t1) t1 = t0;
+        t0 = now();
+        el_envlight_prepare_sampling(&l);
+        t0 = now() - t0; if (t0 < t2) t2 = t0;
+        if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
+      }
+      printf("  %-22s %9.1f %7.1f ms %4dx%-5d %10.1f %10.1f\n",
+             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : "TEXEL", t1 * 1e3, t2 * 1e3,
+             l.imp_w, l.imp_h, el_envlight_sampling_bytes(&l) / 1048576.0, el_envlight_bytes(&l) / 1048576.0);
+      el_envlight_free(&l);
+    }
+    {
+      int smp;
+      printf("  %-22s %12s %14s %12s %12s\n", "sampler", "sample_li M/s", "+radiance M/s", "pdf_li M/s", "le M/s");
+      for (smp = 0; smp < 3; ++smp) {
+        el_envlight l;
+        if (make_light(&l, px, w, h, 0, smp, 0, NULL) != EL_SUCCESS) continue;
+        el_envlight_prepare_sampling(&l);
+        printf("  %-22s %12.1f %14.1f %12.1f %12.1f\n", smp == 0 ? "CDF (default)" : smp == 1 ? "guide table" : "alias table",
+               rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), rate(fn_le, &l, 0));
+        el_envlight_free(&l);
+      }
+    }
+    free(px);
+  }
+
+  if (use_cg) {
+    static const char *ops[] = {"sample_cdf", "sample_guide", "sample_alias", "sample_guide_rgb", "pdf", "le", "sample_rotated", "pdf_rotated"};
+    static const char *what[] = {"sample_li, CDF sampler, no radiance", "sample_li, guide sampler, no radiance",
+                                 "sample_li, alias sampler, no radiance", "sample_li, guide sampler, with radiance",
+                                 "pdf_li (random directions)", "le (random directions)",
+                                 "sample_li, guide, general rotation", "pdf_li, general rotation"};
+    double loop = instr_per_call(argv[0], "loop", 200000);
+    unsigned k;
+    printf("\n2. Instructions per call (callgrind, 2048x1024, 200000 calls, the loop's %.1f subtracted)\n", loop);
+    printf("   targets: sample_li <= 100 without the radiance lookup (pbrt-v3 ~470), pdf_li <= 80 (pbrt-v3 ~300)\n");
+    for (k = 0; k < sizeof ops / sizeof ops[0]; ++k) {
+      double ipc = instr_per_call(argv[0], ops[k], 200000);
+      printf("  %-44s %8.1f\n", what[k], ipc - loop);
+    }
+  }
+
+  printf("\n3. Variance of a direct-lighting estimate (irradiance, luminance, of a diffuse point; light space\n"
+         "   normals up (0,0,1), horizon (1,0,0), down (0,0.6,-0.8)); efficiency relative to CELL_AVERAGE + CDF\n");
+  for (i = 0; i < 5; ++i) {
+    char path[512];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/../shared/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+    f = fopen(path, "rb");
+    if (!f) {
+      if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
+      snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+    } else fclose(f);
+    variance_table(path, nsamp);
+  }
+  return 0;
+}
