@@ -117,6 +117,164 @@ static int el_io__load_pfm(const char *path, FILE *f, el_image *img, char *err, 
   return 0;
 }
 
+/* ---- Radiance HDR: stb_image reads past the end of a truncated file as zeros and "succeeds", and
+ * converts any 8-bit image named .hdr to float. So we check the header and walk the scanlines' run
+ * lengths first (no decoding): the file must hold every byte of every scanline. */
+static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, size_t errlen) {
+  unsigned char *b;
+  long pos = 0, i;
+  int w = 0, h = 0, y;
+  char line[256];
+  size_t n;
+  if (size < 0) return el_io__fail(err, errlen, path, "cannot determine the file size");
+  b = (unsigned char *)malloc((size_t)size + 1);
+  if (!b) return el_io__fail(err, errlen, path, "out of memory");
+  n = fread(b, 1, (size_t)size, f);
+  if (n != (size_t)size) { free(b); return el_io__fail(err, errlen, path, "cannot read file (%s)", ferror(f) ? strerror(errno) : "short read"); }
+#define EL_IO__HDR_FAIL(...) do { free(b); return el_io__fail(err, errlen, path, __VA_ARGS__); } while (0)
+  if (size < 2 || b[0] != '#' || b[1] != '?') EL_IO__HDR_FAIL("not a Radiance HDR file (no '#?' signature at the start)");
+  /* header lines up to an empty line; FORMAT must be 32-bit_rle_rgbe when present */
+  for (;;) {
+    long s0 = pos;
+    while (pos < size && b[pos] != '\n') ++pos;
+    if (pos >= size) EL_IO__HDR_FAIL("file is truncated (the header has no end)");
+    i = pos - s0 < (long)sizeof line - 1 ? pos - s0 : (long)sizeof line - 1;
+    memcpy(line, b + s0, (size_t)i);
+    line[i] = 0;
+    ++pos;
+    if (i == 0) break;
+    if (!strncmp(line, "FORMAT=", 7) && strcmp(line + 7, "32-bit_rle_rgbe"))
+      EL_IO__HDR_FAIL("unsupported Radiance HDR pixel format '%s' (only 32-bit_rle_rgbe)", line + 7);
+  }
+  { /* resolution line: "-Y h +X w" */
+    long s0 = pos;
+    char *e1, *e2;
+    long hh, ww;
+    while (pos < size && b[pos] != '\n') ++pos;
+    if (pos >= size) EL_IO__HDR_FAIL("file is truncated (no resolution line)");
+    i = pos - s0 < (long)sizeof line - 1 ? pos - s0 : (long)sizeof line - 1;
+    memcpy(line, b + s0, (size_t)i);
+    line[i] = 0;
+    ++pos;
+    if (strncmp(line, "-Y ", 3)) EL_IO__HDR_FAIL("unsupported Radiance HDR orientation '%s' (only '-Y height +X width')", line);
+    hh = strtol(line + 3, &e1, 10);
+    if (strncmp(e1, " +X ", 4)) EL_IO__HDR_FAIL("unsupported Radiance HDR orientation '%s' (only '-Y height +X width')", line);
+    ww = strtol(e1 + 4, &e2, 10);
+    if (*e2 || hh <= 0 || ww <= 0 || hh > (1 << 24) || ww > (1 << 24))
+      EL_IO__HDR_FAIL("bad Radiance HDR resolution line '%s'", line);
+    w = (int)ww; h = (int)hh;
+  }
+  /* scanlines */
+  for (y = 0; y < h; ++y) {
+    if (w >= 8 && w < 32768 && pos + 4 > size)
+      EL_IO__HDR_FAIL("file is truncated (scanline %d of %d is missing)", y + 1, h);
+    if (w < 8 || w >= 32768 || b[pos] != 2 || b[pos + 1] != 2 || (b[pos + 2] & 0x80)) {
+      /* flat (uncompressed) from here on, as stb_image reads it: 4 bytes per remaining pixel */
+      double need = 4.0 * ((double)w * (double)(h - y));
+      if ((double)(size - pos) < need)
+        EL_IO__HDR_FAIL("file is truncated (%ld bytes of flat pixel data from scanline %d of %d, %.0f expected)",
+                        size - pos, y + 1, h, need);
+      break;
+    }
+    {
+      int sw = (int)b[pos + 2] << 8 | (int)b[pos + 3];
+      if (sw != w) EL_IO__HDR_FAIL("corrupt Radiance HDR (scanline %d of %d says width %d, the header %d)", y + 1, h, sw, w);
+    }
+    pos += 4;
+    {
+      int c;
+      for (c = 0; c < 4; ++c) {
+        int x = 0;
+        while (x < w) {
+          int count;
+          if (pos >= size) EL_IO__HDR_FAIL("file is truncated (scanline %d of %d is incomplete)", y + 1, h);
+          count = b[pos++];
+          if (count > 128) { count -= 128; pos += 1; }
+          else pos += count;
+          if (count == 0 || x + count > w)
+            EL_IO__HDR_FAIL("corrupt Radiance HDR (bad run length in scanline %d of %d)", y + 1, h);
+          if (pos > size) EL_IO__HDR_FAIL("file is truncated (scanline %d of %d is incomplete)", y + 1, h);
+          x += count;
+        }
+      }
+    }
+  }
+#undef EL_IO__HDR_FAIL
+  free(b);
+  return 0;
+}
+
+/* ---- OpenEXR: tinyexr reports a truncated file as "Invalid data found when decoding pixels". When it
+ * fails on a single-part scanline file, walk the chunk offset table ourselves to say what is missing. */
+static int el_io__diagnose_exr(const char *path, char *err, size_t errlen) {
+  EXRVersion ver;
+  EXRHeader hdr;
+  const char *msg = NULL;
+  FILE *f;
+  long size, k, n, lines, table;
+  int found = 0;
+  if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS)
+    return el_io__fail(err, errlen, path, "corrupt EXR (bad version field)") , 1;
+  InitEXRHeader(&hdr);
+  if (ParseEXRHeaderFromFile(&hdr, &ver, path, &msg) != TINYEXR_SUCCESS) {
+    el_io__fail(err, errlen, path, "corrupt or truncated EXR header (%s)", msg ? msg : "unknown tinyexr error");
+    if (msg) FreeEXRErrorMessage(msg);
+    FreeEXRHeader(&hdr);
+    return 1;
+  }
+  if (ver.tiled || ver.multipart || ver.non_image) { FreeEXRHeader(&hdr); return 0; }
+  switch (hdr.compression_type) {
+  case TINYEXR_COMPRESSIONTYPE_ZIP: lines = 16; break;
+  case TINYEXR_COMPRESSIONTYPE_PIZ: lines = 32; break;
+  case TINYEXR_COMPRESSIONTYPE_NONE: case TINYEXR_COMPRESSIONTYPE_RLE: case TINYEXR_COMPRESSIONTYPE_ZIPS: lines = 1; break;
+  default: FreeEXRHeader(&hdr); return 0;
+  }
+  n = ((long)hdr.data_window.max_y - hdr.data_window.min_y + 1 + lines - 1) / lines;
+  table = 8 + (long)hdr.header_len;
+  FreeEXRHeader(&hdr);
+  f = fopen(path, "rb");
+  if (!f || n <= 0) { if (f) fclose(f); return 0; }
+  size = el_io__file_size(f);
+  if (size < table + 8 * n) {
+    fclose(f);
+    return el_io__fail(err, errlen, path, "file is truncated (the chunk offset table needs %ld bytes, the file has %ld)", table + 8 * n, size), 1;
+  }
+  fseek(f, table, SEEK_SET);
+  for (k = 0; k < n && !found; ++k) {
+    unsigned char o[8], c[8];
+    unsigned long long off = 0;
+    long here;
+    int i;
+    if (fread(o, 1, 8, f) != 8) break;
+    for (i = 7; i >= 0; --i) off = (off << 8) | o[i];
+    if (off + 8 > (unsigned long long)size) {
+      el_io__fail(err, errlen, path, "file is truncated (pixel chunk %ld of %ld starts at byte %llu, the file has %ld bytes)", k + 1, n, off, size);
+      found = 1;
+      break;
+    }
+    here = ftell(f);
+    if (fseek(f, (long)off + 4, SEEK_SET) == 0 && fread(c, 1, 4, f) == 4) {
+      unsigned long long len = (unsigned long long)c[0] | (unsigned long long)c[1] << 8 | (unsigned long long)c[2] << 16 | (unsigned long long)c[3] << 24;
+      if (off + 8 + len > (unsigned long long)size) {
+        el_io__fail(err, errlen, path, "file is truncated (pixel chunk %ld of %ld ends at byte %llu, the file has %ld bytes)", k + 1, n, off + 8 + len, size);
+        found = 1;
+      }
+    }
+    fseek(f, here, SEEK_SET);
+  }
+  fclose(f);
+  return found;
+}
+
+/* The first bytes of a file (fewer when it is shorter); returns how many were read. */
+static size_t el_io__magic(FILE *f, unsigned char *m, size_t n) {
+  size_t k;
+  if (fseek(f, 0, SEEK_SET) != 0) return 0;
+  k = fread(m, 1, n, f);
+  fseek(f, 0, SEEK_SET);
+  return k;
+}
+
 int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
   const char *ext;
   FILE *f;
@@ -126,7 +284,28 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
   f = fopen(path, "rb");
   if (!f) return el_io__fail(err, errlen, path, "cannot open file (%s)", strerror(errno));
   ext = el_image_extension(path);
-  if (el_io__file_size(f) == 0) { fclose(f); return el_io__fail(err, errlen, path, "file is empty"); }
+  {
+    unsigned char m[8];
+    long size = el_io__file_size(f);
+    errno = 0;
+    if (el_io__magic(f, m, 1) != 1 && ferror(f)) { /* e.g. a directory: fopen succeeds, reading fails */
+      int e = errno;
+      fclose(f);
+      return el_io__fail(err, errlen, path, "cannot read file (%s)", e ? strerror(e) : "read error");
+    }
+    if (size == 0) { fclose(f); return el_io__fail(err, errlen, path, "file is empty"); }
+    if (!strcmp(ext, "exr")) {
+      static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
+      if (el_io__magic(f, m, 4) != 4 || memcmp(m, exr_magic, 4)) {
+        fclose(f);
+        return el_io__fail(err, errlen, path, "not an OpenEXR file (bad magic number)");
+      }
+    }
+    if (!strcmp(ext, "hdr")) {
+      int r = el_io__check_hdr(path, f, size, err, errlen);
+      if (r) { fclose(f); return r; }
+    }
+  }
   if (!strcmp(ext, "pfm")) {
     int r = el_io__load_pfm(path, f, img, err, errlen);
     fclose(f);
@@ -140,7 +319,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
     const char *msg = NULL;
     r = LoadEXR(&rgba, &w, &h, path, &msg);
     if (r != TINYEXR_SUCCESS) {
-      el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
+      char *nl;
+      if (!el_io__diagnose_exr(path, err, errlen))
+        el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
+      while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
       if (msg) FreeEXRErrorMessage(msg);
       free(rgba);
       return -1;
@@ -179,6 +361,7 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
     img->width = w; img->height = h; img->channels = n; img->is_8bit = 1;
     return 0;
   }
+  if (!*ext) return el_io__fail(err, errlen, path, "unsupported image format: the name has no extension (supported: .hdr .exr .pfm .png .jpg .tga .bmp)");
   return el_io__fail(err, errlen, path, "unsupported image format '.%s' (supported: .hdr .exr .pfm .png .jpg .tga .bmp)", ext);
 }
 
