@@ -53,15 +53,17 @@ elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 
 /* >> glue to the library headers (glue.c is the only file that includes them) */
 typedef struct elr_envmap elr_envmap;
-/* rgb: w*h*3 linear floats, top row first (theta = 0 at the top row, pbrt's lat-long mapping);
+/* rgb: w*h*3 linear floats (NULL: a constant light of radiance `scale`), top row first (theta = 0 at the top row, pbrt's lat-long mapping);
  * scale: pbrt's "scale" times "L"; l2w: the light-to-world rotation (3x3, row-major). */
 int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9],
                    int compensated, elr_envmap **out, char *err, size_t errlen);
 void elr_env_free(elr_envmap *e);
 elr_v3 elr_env_le(const elr_envmap *e, elr_v3 dir_world);
-int elr_env_prepare(elr_envmap *e); /* build the sampling distribution now (before threads start) */
+/* build the sampling distribution now (before threads start); compensated -1: as the scene said */
+int elr_env_prepare(elr_envmap *e, int compensated);
 /* Sample a direction towards the environment: radiance, world direction, solid-angle pdf. */
 elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
+void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf); /* no radiance */
 float elr_env_pdf(const elr_envmap *e, elr_v3 wi);
 size_t elr_env_distribution_bytes(const elr_envmap *e);
 size_t elr_env_image_bytes(const elr_envmap *e);
@@ -176,6 +178,8 @@ struct elr_scene {
   unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
   float world_radius;
   elr_v3 world_center;
+  int *mat_textured; /* per material: 1 when a texture varies over the surface (needs uv) */
+  int any_textured;
 };
 
 int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, const char *base_dir,
@@ -193,7 +197,13 @@ typedef struct elr_hit {
   float u, v;          /* texture coordinates */
   int material;
   float eps;           /* offset for spawned rays */
+  /* for elr_hit_uv */
+  int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
+  unsigned prim;
+  float b1, b2;
+  elr_v3 pobj;
 } elr_hit;
+void elr_hit_uv(const elr_scene *s, elr_hit *h); /* u, v, dpdu, dpdv, dndu, dndv (textures, differentials) */
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */

@@ -5,7 +5,13 @@
 #include <string.h>
 
 #define EL_FILM_IMPLEMENTATION
+#define EL_ENVLIGHT_IMPLEMENTATION
+#define EL_DISTRIBUTION2D_IMPLEMENTATION
+#define EL_MIPMAP_IMPLEMENTATION
+#define EL_BLOCKEDARRAY_IMPLEMENTATION
 #include "film.h"
+#include "envlight.h"
+#include "mipmap.h"
 
 /* >> film (film.h: pbrt-v3's Film and FilmTile) */
 struct elr_film { el_film f; };
@@ -20,8 +26,10 @@ int elr_film_create(int xres, int yres, int x0, int y0, int x1, int y1, const el
   if (!f) { snprintf(err, errlen, "out of memory"); return -1; }
   memset(&o, 0, sizeof o);
   o.width = xres; o.height = yres;
-  o.crop[0] = (float)x0 / (float)xres; o.crop[1] = (float)x1 / (float)xres;
-  o.crop[2] = (float)y0 / (float)yres; o.crop[3] = (float)y1 / (float)yres;
+  /* film.h takes pbrt's fractions and applies ceil(res * fraction): half a pixel below each integer
+   * bound gives that bound back whatever the float rounding */
+  o.crop[0] = x0 > 0 ? ((float)x0 - 0.5f) / (float)xres : 0.f; o.crop[1] = ((float)x1 - 0.5f) / (float)xres;
+  o.crop[2] = y0 > 0 ? ((float)y0 - 0.5f) / (float)yres : 0.f; o.crop[3] = ((float)y1 - 0.5f) / (float)yres;
   if (x0 == 0 && y0 == 0 && x1 == xres && y1 == yres) memset(o.crop, 0, sizeof o.crop);
   switch (fd->type) {
   case ELR_PF_TRIANGLE: o.filter.type = EL_FILTER_TRIANGLE; break;
@@ -83,92 +91,130 @@ int elr_srgb8(const float *rgb, int n, unsigned char *out) {
   return 0;
 }
 
-/* >> environment (fallback until envlight.h lands: bilinear lat-long, uniform sphere sampling) */
+/* >> environment (envlight.h: pbrt-v3's InfiniteAreaLight) */
 struct elr_envmap {
-  float *rgb; int w, h;
-  float m[9]; /* light to world */
-  float scale[3];
+  el_envlight plain; /* as the scene asked (compensated or not) */
+  el_envlight other; /* the other density, made on demand by elr_env_prepare (a test/bench hook) */
+  int scene_comp, other_ready, use_other;
 };
 int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9], int compensated,
                    elr_envmap **out, char *err, size_t errlen) {
+  el_envlight_options o;
+  el_result r;
   elr_envmap *e = (elr_envmap *)calloc(1, sizeof *e);
-  (void)compensated;
+  *out = NULL;
   if (!e) { snprintf(err, errlen, "out of memory"); return -1; }
-  e->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
-  if (!e->rgb) { free(e); snprintf(err, errlen, "out of memory"); return -1; }
-  memcpy(e->rgb, rgb, sizeof(float) * 3 * (size_t)w * (size_t)h);
-  e->w = w; e->h = h;
-  memcpy(e->m, l2w, sizeof e->m);
-  memcpy(e->scale, scale, sizeof e->scale);
+  memset(&o, 0, sizeof o);
+  memcpy(o.light_to_world, l2w, sizeof o.light_to_world);
+  o.compensated = compensated;
+  o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
+  o.bad_texel = -1;
+  if (rgb) {
+    o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
+    if (o.scale[0] == 0.f && o.scale[1] == 0.f && o.scale[2] == 0.f) o.scale[0] = o.scale[1] = o.scale[2] = 0.f;
+    if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
+      /* all zero means (1,1,1) to envlight: a black light instead */
+      float z[3] = {0.f, 0.f, 0.f};
+      r = el_envlight_init_constant(&e->plain, z, &o);
+    } else {
+      r = el_envlight_init(&e->plain, rgb, w, h, 3, &o);
+    }
+  } else {
+    r = el_envlight_init_constant(&e->plain, scale, &o);
+  }
+  if (r != EL_SUCCESS) {
+    if (o.bad_texel >= 0)
+      snprintf(err, errlen, "environment map texel (%d, %d) is NaN, infinite or negative", o.bad_texel % (w > 0 ? w : 1), o.bad_texel / (w > 0 ? w : 1));
+    else if (r == EL_ERROR_NOT_ORTHONORMAL)
+      snprintf(err, errlen, "the light's transformation must be a rotation (pbrt-v3 maps the environment with the CTM's rotation)");
+    else
+      snprintf(err, errlen, "environment: %s", el_result_string(r));
+    free(e);
+    return -1;
+  }
+  e->scene_comp = compensated;
   *out = e;
   return 0;
 }
-void elr_env_free(elr_envmap *e) { if (e) { free(e->rgb); free(e); } }
+void elr_env_free(elr_envmap *e) {
+  if (!e) return;
+  el_envlight_free(&e->plain);
+  el_envlight_free(&e->other);
+  free(e);
+}
+static el_envlight *elr__env_s(const elr_envmap *e) { return (el_envlight *)(e->use_other ? &e->other : &e->plain); }
 elr_v3 elr_env_le(const elr_envmap *e, elr_v3 d) {
-  /* world to light: the transpose of the rotation */
-  elr_v3 wl = elr_norm(elr_v(e->m[0] * d.x + e->m[3] * d.y + e->m[6] * d.z, e->m[1] * d.x + e->m[4] * d.y + e->m[7] * d.z,
-                             e->m[2] * d.x + e->m[5] * d.y + e->m[8] * d.z));
-  float theta = acosf(wl.z < -1.f ? -1.f : (wl.z > 1.f ? 1.f : wl.z));
-  float phi = atan2f(wl.y, wl.x);
-  float s, t, x, y, fx, fy;
-  int x0, y0, x1, y1, c;
-  elr_v3 r;
-  float v[3];
-  if (phi < 0) phi += 2.f * ELR_PI;
-  s = phi / (2.f * ELR_PI); t = theta / ELR_PI;
-  x = s * e->w - 0.5f; y = t * e->h - 0.5f;
-  x0 = (int)floorf(x); y0 = (int)floorf(y); fx = x - x0; fy = y - y0;
-  x1 = x0 + 1; y1 = y0 + 1;
-  x0 = ((x0 % e->w) + e->w) % e->w; x1 = ((x1 % e->w) + e->w) % e->w;
-  y0 = ((y0 % e->h) + e->h) % e->h; y1 = ((y1 % e->h) + e->h) % e->h;
-  for (c = 0; c < 3; c++) {
-    v[c] = (1 - fx) * (1 - fy) * e->rgb[3 * ((size_t)y0 * e->w + x0) + c] + fx * (1 - fy) * e->rgb[3 * ((size_t)y0 * e->w + x1) + c] +
-           (1 - fx) * fy * e->rgb[3 * ((size_t)y1 * e->w + x0) + c] + fx * fy * e->rgb[3 * ((size_t)y1 * e->w + x1) + c];
+  float dir[3], c[3];
+  dir[0] = d.x; dir[1] = d.y; dir[2] = d.z;
+  el_envlight_le(&e->plain, dir, c);
+  return elr_v(c[0], c[1], c[2]);
+}
+int elr_env_prepare(elr_envmap *e, int compensated) {
+  e->use_other = 0;
+  if (compensated >= 0 && compensated != e->scene_comp) {
+    if (!e->other_ready) {
+      el_envlight_options o;
+      el_result r;
+      memset(&o, 0, sizeof o);
+      memcpy(o.light_to_world, e->plain.to_world, sizeof o.light_to_world);
+      o.compensated = compensated;
+      o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
+      if (e->plain.width > 0) r = el_envlight_init(&e->other, e->plain.texels, e->plain.width, e->plain.height, 3, &o);
+      else r = el_envlight_init_constant(&e->other, e->plain.constant, &o);
+      if (r != EL_SUCCESS) return -1;
+      e->other_ready = 1;
+    }
+    e->use_other = 1;
   }
-  r = elr_v(v[0] * e->scale[0], v[1] * e->scale[1], v[2] * e->scale[2]);
-  return r;
+  return el_envlight_prepare_sampling(elr__env_s(e)) == EL_SUCCESS ? 0 : -1;
 }
-int elr_env_prepare(elr_envmap *e) { (void)e; return 0; }
 elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf) {
-  float z = 1.f - 2.f * u0, r = sqrtf(fmaxf(0.f, 1.f - z * z)), phi = 2.f * ELR_PI * u1;
-  *wi = elr_v(r * cosf(phi), r * sinf(phi), z);
-  *pdf = 1.f / (4.f * ELR_PI);
-  return elr_env_le(e, *wi);
+  float u[2], w[3], c[3];
+  u[0] = u0; u[1] = u1;
+  el_envlight_sample_li(elr__env_s(e), u, w, c, pdf);
+  *wi = elr_v(w[0], w[1], w[2]);
+  return elr_v(c[0], c[1], c[2]);
 }
-float elr_env_pdf(const elr_envmap *e, elr_v3 wi) { (void)e; (void)wi; return 1.f / (4.f * ELR_PI); }
-size_t elr_env_distribution_bytes(const elr_envmap *e) { (void)e; return 0; }
-size_t elr_env_image_bytes(const elr_envmap *e) { return sizeof(float) * 3 * (size_t)e->w * (size_t)e->h; }
+void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf) {
+  float u[2], w[3];
+  u[0] = u0; u[1] = u1;
+  el_envlight_sample_li(elr__env_s(e), u, w, NULL, pdf);
+  *wi = elr_v(w[0], w[1], w[2]);
+}
+float elr_env_pdf(const elr_envmap *e, elr_v3 wi) {
+  float d[3];
+  d[0] = wi.x; d[1] = wi.y; d[2] = wi.z;
+  return el_envlight_pdf_li(elr__env_s(e), d);
+}
+size_t elr_env_distribution_bytes(const elr_envmap *e) { return el_envlight_sampling_bytes(elr__env_s(e)); }
+size_t elr_env_image_bytes(const elr_envmap *e) { return sizeof(float) * 3 * (size_t)e->plain.width * (size_t)e->plain.height; }
 
-/* >> MIP map (fallback until mipmap.h lands: bilinear level 0) */
-struct elr_mip { float *rgb; int w, h, wrap; };
+/* >> MIP map (mipmap.h: pbrt-v3's MIPMap; upper levels built on the first lookup that needs them) */
+struct elr_mip { el_mipmap m; int filter; };
 int elr_mip_create(const float *rgb, int w, int h, int wrap, int filter, float maxaniso, elr_mip **out, char *err,
                    size_t errlen) {
+  el_mipmap_options o;
+  el_result r;
   elr_mip *m = (elr_mip *)calloc(1, sizeof *m);
-  (void)filter; (void)maxaniso;
+  *out = NULL;
   if (!m) { snprintf(err, errlen, "out of memory"); return -1; }
-  m->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
-  if (!m->rgb) { free(m); snprintf(err, errlen, "out of memory"); return -1; }
-  memcpy(m->rgb, rgb, sizeof(float) * 3 * (size_t)w * (size_t)h);
-  m->w = w; m->h = h; m->wrap = wrap;
+  memset(&o, 0, sizeof o);
+  o.wrap_u = o.wrap_v = wrap == ELR_WRAP_BLACK ? EL_WRAP_BLACK : (wrap == ELR_WRAP_CLAMP ? EL_WRAP_CLAMP : EL_WRAP_REPEAT);
+  o.filter = filter == ELR_FILTER_TRILINEAR ? EL_FILTER_TRILINEAR : (filter == ELR_FILTER_BILINEAR ? EL_FILTER_BILINEAR : EL_FILTER_EWA);
+  o.max_anisotropy = maxaniso;
+  r = el_mipmap_init(&m->m, rgb, w, h, 3, &o);
+  if (r != EL_SUCCESS) { free(m); snprintf(err, errlen, "MIP map: %s", el_result_string(r)); return -1; }
+  m->filter = filter;
   *out = m;
   return 0;
 }
-void elr_mip_free(elr_mip *m) { if (m) { free(m->rgb); free(m); } }
-static elr_v3 elr__texel(const elr_mip *m, int x, int y) {
-  if (m->wrap == ELR_WRAP_REPEAT) { x = ((x % m->w) + m->w) % m->w; y = ((y % m->h) + m->h) % m->h; }
-  else if (m->wrap == ELR_WRAP_CLAMP) { x = x < 0 ? 0 : (x >= m->w ? m->w - 1 : x); y = y < 0 ? 0 : (y >= m->h ? m->h - 1 : y); }
-  else if (x < 0 || y < 0 || x >= m->w || y >= m->h) return elr_v(0, 0, 0);
-  return elr_v(m->rgb[3 * ((size_t)y * m->w + x)], m->rgb[3 * ((size_t)y * m->w + x) + 1], m->rgb[3 * ((size_t)y * m->w + x) + 2]);
-}
+void elr_mip_free(elr_mip *m) { if (m) { el_mipmap_free(&m->m); free(m); } }
 elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy) {
-  float x = s * m->w - 0.5f, y = t * m->h - 0.5f, fx, fy;
-  int x0, y0;
-  (void)dsdx; (void)dtdx; (void)dsdy; (void)dtdy;
-  if (!isfinite(x) || !isfinite(y) || fabsf(x) > 1e8f || fabsf(y) > 1e8f) return elr_v(0, 0, 0);
-  x0 = (int)floorf(x); y0 = (int)floorf(y); fx = x - x0; fy = y - y0;
-  return elr_add(elr_add(elr_mul(elr__texel(m, x0, y0), (1 - fx) * (1 - fy)), elr_mul(elr__texel(m, x0 + 1, y0), fx * (1 - fy))),
-                 elr_add(elr_mul(elr__texel(m, x0, y0 + 1), (1 - fx) * fy), elr_mul(elr__texel(m, x0 + 1, y0 + 1), fx * fy)));
+  float c[3];
+  el_mipmap_lookup_differentials(&m->m, s, t, dsdx, dtdx, dsdy, dtdy, c);
+  return elr_v(c[0], c[1], c[2]);
 }
 void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes) {
-  *levels_built = 1; *bytes = sizeof(float) * 3 * (size_t)m->w * (size_t)m->h;
+  *levels_built = el_mipmap_levels_built(&m->m);
+  *bytes = el_mipmap_bytes(&m->m);
 }

@@ -205,6 +205,7 @@ typedef struct elr_ctx {
   elr_scene *s;
   int ls;                 /* ELR_LS_* */
   int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
+  int has_env;            /* an emitting infinite light exists */
   int maxdepth, path;
   float rr;
   /* camera */
@@ -232,10 +233,13 @@ static elr_v3 elr__env_le(const elr_scene *s, elr_v3 d) {
 }
 
 /* <<Compute ray differentials for SurfaceInteraction>> (pbrt-v3 ComputeDifferentials) */
-static void elr__differentials(const elr_ray *r, const elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy) {
-  c->u = h->u; c->v = h->v;
+static void elr__differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy) {
+  c->u = c->v = 0.f;
   c->dudx = c->dudy = c->dvdx = c->dvdy = 0.f;
   *dpdx = *dpdy = elr_v(0, 0, 0);
+  if (!s->any_textured) return; /* nothing reads uv or footprints: skip the parameterisation */
+  elr_hit_uv(s, h);
+  c->u = h->u; c->v = h->v;
   if (r->has_diff) {
     elr_v3 n = h->ng, px, py;
     float d = elr_dot(n, h->p), tx, ty, dnx = elr_dot(n, r->rxd), dny = elr_dot(n, r->ryd);
@@ -309,13 +313,16 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
       if (C->ls != ELR_LS_BSDF) {
         elr_v3 wi, Li, f;
         float lpdf, spdf;
-        Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
-        if (lpdf > 0.f && !elr_isblack(Li)) {
+        /* the radiance is looked up only for an unoccluded sample that the BSDF reflects (an image
+         * lookup is a cache miss in a large map, as expensive as the shadow ray) */
+        elr_env_sample_dir(l->env, ul0, ul1, &wi, &lpdf);
+        if (lpdf > 0.f) {
           f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
           if (!elr_isblack(f)) {
             ts->shadow++;
             if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
               float w = 1.f;
+              Li = elr_env_le(l->env, wi);
               if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
               sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
             }
@@ -329,16 +336,14 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         int spec;
         f = elr_bsdf_sample(b, wo, us0, us1, &wi, &spdf, &spec);
         if (!spec && spdf > 0.f && !elr_isblack(f)) {
-          float w = 1.f;
           f = elr_mul(f, fabsf(elr_dot(wi, b->ns)));
-          if (C->ls == ELR_LS_MIS) {
-            float lpdf = elr_env_pdf(l->env, wi);
-            if (lpdf == 0.f) continue;
-            w = elr__power(spdf, lpdf);
-          }
           ts->bsdfl++;
-          if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY))
+          if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
+            /* pbrt-v3 returns when Pdf_Li is 0; with a compensated density that would drop the dim parts
+             * of the map, which only BSDF sampling covers: the power heuristic then gives weight 1 */
+            float w = C->ls == ELR_LS_MIS ? elr__power(spdf, elr_env_pdf(l->env, wi)) : 1.f;
             sum = elr_add(sum, elr_mul(elr_vmul(f, elr_env_le(l->env, wi)), w / spdf));
+          }
         }
       }
     }
@@ -354,7 +359,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r,
   elr_tex_ctx tc;
   elr_v3 L = elr_v(0, 0, 0), wo, dpdx, dpdy;
   if (!elr_intersect(s, r->o, r->d, INFINITY, &h)) return elr__env_le(s, r->d);
-  elr__differentials(r, &h, &tc, &dpdx, &dpdy);
+  elr__differentials(s, r, &h, &tc, &dpdx, &dpdy);
   elr_bsdf_init(s, &h, &tc, &b);
   wo = elr_mul(r->d, -1.f);
   if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr__direct(C, S, &h, &b, wo, 1, ts);
@@ -368,7 +373,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r,
     f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
     if (spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f) {
       rd.o = elr__offset(&h, wi); rd.d = wi; rd.has_diff = 0;
-      if (r->has_diff) {
+      if (r->has_diff && s->any_textured) {
         elr_v3 ns = b.ns;
         elr_v3 dndx = elr_add(elr_mul(h.dndu, tc.dudx), elr_mul(h.dndv, tc.dvdx));
         elr_v3 dndy = elr_add(elr_mul(h.dndu, tc.dudy), elr_mul(h.dndv, tc.dvdy));
@@ -415,8 +420,12 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
       break;
     }
     if (depth >= C->maxdepth) break;
-    if (depth == 0) elr__differentials(&r, &h, &tc, &dpdx, &dpdy);
-    else { tc.u = h.u; tc.v = h.v; tc.dudx = tc.dudy = tc.dvdx = tc.dvdy = 0.f; }
+    if (depth == 0) elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
+    else {
+      /* pbrt-v3's path tracer spawns later rays without differentials: point-sampled textures */
+      memset(&tc, 0, sizeof tc);
+      if (s->mat_textured[h.material]) { elr_hit_uv(s, &h); tc.u = h.u; tc.v = h.v; }
+    }
     elr_bsdf_init(s, &h, &tc, &b);
     wo = elr_mul(d, -1.f);
     if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 0, ts)));
@@ -426,12 +435,12 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
     specular = spec; prev_pdf = pdf;
     /* the last vertex's continuation only matters for the environment's BSDF-sampled part */
-    if (depth + 1 == C->maxdepth && !spec && (C->ls == ELR_LS_LIGHT && C->light_sampling)) break;
+    if (depth + 1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;
     o = elr__offset(&h, wi); d = wi;
     ts->bounce++;
-    if (depth > 3 || (depth >= 3)) {
+    { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3) */
       float mc = elr_maxc(beta);
-      if (depth >= 3 && mc < C->rr) {
+      if (depth > 3 && mc < C->rr) {
         float q = fmaxf(0.05f, 1.f - mc);
         if (elr__get1d(S) < q) break;
         beta = elr_mul(beta, 1.f / (1.f - q));
@@ -515,7 +524,8 @@ static void *elr__worker(void *arg) {
           dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
           r.o = elr_xpoint(&C->c2w, elr_v(0, 0, 0));
           r.d = elr_norm(elr_xvector(&C->c2w, elr_norm(dc)));
-          {
+          r.has_diff = 0;
+          if (C->s->any_textured) {
             float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
             elr_v3 dx = elr_norm(elr_add(dc, elr_v(dxs, 0, 0))), dy = elr_norm(elr_add(dc, elr_v(0, dys, 0)));
             elr_v3 dcn = elr_norm(dc);
@@ -614,20 +624,28 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   }
   if (elr_film_create(xres, yres, x0, y0, x1, y1, &s->d.filter, &film, err, errlen) != 0) return -1;
   /* <<Decide what the scene calls for>> */
+  if (!s->mat_textured) {
+    s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
+    if (!s->mat_textured) { snprintf(err, errlen, "out of memory"); goto done; }
+    for (i = 0; i < s->nmat; i++) {
+      const elr_material *m = &s->mat[i];
+      int t[4], k;
+      t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
+      for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
+      if (s->mat_textured[i]) s->any_textured = 1;
+    }
+  }
   nonspec = elr__mat_nonspecular(s);
   {
     int emits = 0;
     for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) emits = 1;
+    for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C.has_env = 1;
     C.light_sampling = emits && nonspec;
     for (i = 0; i < s->nlight; i++) {
       elr_light *l = &s->light[i];
       if (l->kind == ELR_LIGHT_INFINITE && elr__light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
         double t0 = elr_now();
-        if (o->compensated >= 0 && o->compensated != l->compensated) {
-          /* a changed strategy needs a new distribution: rebuilt by the glue on prepare */
-          l->compensated = o->compensated;
-        }
-        if (elr_env_prepare(l->env) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
+        if (elr_env_prepare(l->env, o->compensated) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
         if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += elr_env_distribution_bytes(l->env); }
         env_sampled = 1;
       }
@@ -775,7 +793,7 @@ void elr_scene_free(elr_scene *s) {
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) elr_mip_free(s->tex[i].mip);
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) if (s->light[i].env) elr_env_free(s->light[i].env);
-  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light);
+  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
   free(s);
 }
 int elr_scene_warnings(const elr_scene *s) { return s->warnings; }

@@ -631,7 +631,16 @@ static void elr__light(elr__parser *P, const char *type) {
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
     /* the light-to-world rotation: the CTM's upper 3x3 (pbrt-v3 allows only rotations here) */
-    for (i = 0; i < 3; i++) for (j = 0; j < 3; j++) m3[i * 3 + j] = (float)P->ctm.m[i][j];
+    for (i = 0; i < 3; i++)
+      for (j = 0; j < 3; j++) {
+        double v = P->ctm.m[i][j];
+        /* Rotate by multiples of 90 degrees leaves cos = 6e-17 instead of 0: snap, so that envlight sees
+         * the exact signed permutation (its exact and faster path) that the scene meant */
+        if (fabs(v) < 1e-9) v = 0.0;
+        else if (fabs(v - 1.0) < 1e-9) v = 1.0;
+        else if (fabs(v + 1.0) < 1e-9) v = -1.0;
+        m3[i * 3 + j] = (float)v;
+      }
     if (map[0]) {
       el_image img;
       char *path = elr__resolve(P, map);
@@ -641,9 +650,7 @@ static void elr__light(elr__parser *P, const char *type) {
       el_image_free(&img);
       l->has_map = 1;
     } else {
-      rgb = (float *)malloc(3 * sizeof(float));
-      if (!rgb) elr__fail(P, P->dir_line, "out of memory");
-      rgb[0] = rgb[1] = rgb[2] = 1.f;
+      rgb = NULL; /* a constant light */
     }
     {
       double t0 = elr_now();

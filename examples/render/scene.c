@@ -506,6 +506,7 @@ int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax) {
 
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h) {
   struct RTCRayHit rh;
+  float pmax;
   elr__rayhit_init(&rh, o, d, tmax);
 #if RTC_VERSION_MAJOR >= 4
   rtcIntersect1((RTCScene)s->rtscene, &rh, NULL);
@@ -518,42 +519,26 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
 #endif
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
   h->t = rh.ray.tfar;
+  h->prim = rh.hit.primID;
+  h->has_uv = 0;
   if (rh.hit.geomID == s->sphere_geom) {
-    /* <<Refine sphere intersection point>>, pbrt-v3's uv parameterisation and partial derivatives */
+    /* <<Refine sphere intersection point>>: project onto the sphere in object space */
     const elr_sphere *sp = &s->sph[rh.hit.primID];
     elr_v3 pw = elr_add(o, elr_mul(d, h->t));
-    elr_v3 po = elr_xvector_inv(&sp->o2w, elr_v(0, 0, 0)); /* unused translation handled below */
     const double(*mi)[4] = sp->o2w.inv;
     double x = mi[0][0] * pw.x + mi[0][1] * pw.y + mi[0][2] * pw.z + mi[0][3];
     double y = mi[1][0] * pw.x + mi[1][1] * pw.y + mi[1][2] * pw.z + mi[1][3];
     double z = mi[2][0] * pw.x + mi[2][1] * pw.y + mi[2][2] * pw.z + mi[2][3];
-    double r = sp->radius, l = sqrt(x * x + y * y + z * z), phi, theta, cphi, sphi;
-    float pmax = 0.f;
-    (void)po;
+    double r = sp->radius, l = sqrt(x * x + y * y + z * z);
+    elr_v3 pob;
     if (l > 0) { x *= r / l; y *= r / l; z *= r / l; }
-    if (x == 0 && y == 0) x = 1e-5 * r;
-    phi = atan2(y, x); if (phi < 0) phi += 2 * 3.14159265358979323846;
-    theta = acos(z / r < -1 ? -1 : (z / r > 1 ? 1 : z / r));
-    h->u = (float)(phi / (2 * 3.14159265358979323846));
-    h->v = (float)(1.0 - theta / 3.14159265358979323846); /* (theta - thetaZMin)/(thetaZMax - thetaZMin), thetaZMin = pi */
-    {
-      double zr = sqrt(x * x + y * y);
-      cphi = x / zr; sphi = y / zr;
-      elr_v3 dpdu = elr_v((float)(-2 * 3.14159265358979323846 * y), (float)(2 * 3.14159265358979323846 * x), 0.f);
-      elr_v3 dpdv = elr_mul(elr_v((float)(z * cphi), (float)(z * sphi), (float)(-r * sin(theta))), (float)(-3.14159265358979323846));
-      elr_v3 pob = elr_v((float)x, (float)y, (float)z);
-      h->p = elr_xpoint(&sp->o2w, pob);
-      h->dpdu = elr_xvector(&sp->o2w, dpdu);
-      h->dpdv = elr_xvector(&sp->o2w, dpdv);
-      h->ng = elr_norm(elr_xnormal(&sp->o2w, pob));
-      /* Weingarten: for a sphere n = p/r, so dn/du = dp/du / r (object space) */
-      h->dndu = elr_xnormal(&sp->o2w, elr_mul(dpdu, (float)(1.0 / r)));
-      h->dndv = elr_xnormal(&sp->o2w, elr_mul(dpdv, (float)(1.0 / r)));
-    }
+    pob = elr_v((float)x, (float)y, (float)z);
+    h->kind = 1;
+    h->pobj = pob;
+    h->p = elr_xpoint(&sp->o2w, pob);
+    h->ng = elr_norm(elr_xnormal(&sp->o2w, pob));
     h->ns = h->ng;
     h->material = sp->material;
-    pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
-    h->eps = 2e-5f * (1.f + pmax);
   } else {
     const elr_mesh *m = &s->mesh[s->geom_index[rh.hit.geomID]];
     unsigned tri = rh.hit.primID;
@@ -562,30 +547,11 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
     elr_v3 p0 = elr_v(m->p[3 * i0], m->p[3 * i0 + 1], m->p[3 * i0 + 2]);
     elr_v3 p1 = elr_v(m->p[3 * i1], m->p[3 * i1 + 1], m->p[3 * i1 + 2]);
     elr_v3 p2 = elr_v(m->p[3 * i2], m->p[3 * i2 + 1], m->p[3 * i2 + 2]);
-    float uv0[2] = {0, 0}, uv1[2] = {1, 0}, uv2[2] = {1, 1}, pmax;
-    elr_v3 dp02, dp12;
-    float du02, dv02, du12, dv12, det;
-    if (m->uv) {
-      uv0[0] = m->uv[2 * i0]; uv0[1] = m->uv[2 * i0 + 1];
-      uv1[0] = m->uv[2 * i1]; uv1[1] = m->uv[2 * i1 + 1];
-      uv2[0] = m->uv[2 * i2]; uv2[1] = m->uv[2 * i2 + 1];
-    }
+    h->kind = 0;
+    h->mesh = s->geom_index[rh.hit.geomID];
+    h->b1 = b1; h->b2 = b2;
     h->p = elr_add(elr_add(elr_mul(p0, b0), elr_mul(p1, b1)), elr_mul(p2, b2));
-    h->u = b0 * uv0[0] + b1 * uv1[0] + b2 * uv2[0];
-    h->v = b0 * uv0[1] + b1 * uv1[1] + b2 * uv2[1];
-    /* <<Compute triangle partial derivatives>> */
-    dp02 = elr_sub(p0, p2); dp12 = elr_sub(p1, p2);
-    du02 = uv0[0] - uv2[0]; dv02 = uv0[1] - uv2[1]; du12 = uv1[0] - uv2[0]; dv12 = uv1[1] - uv2[1];
-    det = du02 * dv12 - dv02 * du12;
-    h->ng = elr_norm(elr_cross(dp02, dp12));
-    if (fabsf(det) < 1e-12f) {
-      elr_onb(h->ng, &h->dpdu, &h->dpdv);
-    } else {
-      float inv = 1.f / det;
-      h->dpdu = elr_mul(elr_sub(elr_mul(dp02, dv12), elr_mul(dp12, dv02)), inv);
-      h->dpdv = elr_mul(elr_sub(elr_mul(dp12, du02), elr_mul(dp02, du12)), inv);
-    }
-    h->dndu = h->dndv = elr_v(0, 0, 0);
+    h->ng = elr_norm(elr_cross(elr_sub(p0, p2), elr_sub(p1, p2)));
     if (m->n) {
       elr_v3 n0 = elr_v(m->n[3 * i0], m->n[3 * i0 + 1], m->n[3 * i0 + 2]);
       elr_v3 n1 = elr_v(m->n[3 * i1], m->n[3 * i1 + 1], m->n[3 * i1 + 2]);
@@ -594,18 +560,78 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
       ns = elr_len(ns) > 0 ? elr_norm(ns) : h->ng;
       if (elr_dot(ns, h->ng) < 0) h->ng = elr_mul(h->ng, -1.f); /* pbrt: ng on the side of ns */
       h->ns = ns;
-      if (fabsf(det) >= 1e-12f) {
-        elr_v3 dn1 = elr_sub(n0, n2), dn2 = elr_sub(n1, n2);
-        float inv = 1.f / det;
-        h->dndu = elr_mul(elr_sub(elr_mul(dn1, dv12), elr_mul(dn2, dv02)), inv);
-        h->dndv = elr_mul(elr_sub(elr_mul(dn2, du02), elr_mul(dn1, du12)), inv);
-      }
     } else {
       h->ns = h->ng;
     }
     h->material = m->material;
-    pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
-    h->eps = 2e-5f * (1.f + pmax);
   }
+  pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
+  h->eps = 2e-5f * (1.f + pmax);
   return 1;
+}
+
+/* Texture coordinates and the partial derivatives of p and n, only for textured materials and ray
+ * differentials: pbrt-v3's Sphere::Intersect and Triangle::Intersect parameterisations. */
+void elr_hit_uv(const elr_scene *s, elr_hit *h) {
+  if (h->has_uv) return;
+  h->has_uv = 1;
+  if (h->kind == 1) {
+    const elr_sphere *sp = &s->sph[h->prim];
+    double x = h->pobj.x, y = h->pobj.y, z = h->pobj.z, r = sp->radius, phi, theta, zr, cphi, sphi;
+    const double PI = 3.14159265358979323846;
+    elr_v3 dpdu, dpdv;
+    if (x == 0 && y == 0) x = 1e-5 * r;
+    phi = atan2(y, x); if (phi < 0) phi += 2 * PI;
+    theta = acos(z / r < -1 ? -1 : (z / r > 1 ? 1 : z / r));
+    h->u = (float)(phi / (2 * PI));
+    h->v = (float)(1.0 - theta / PI); /* (theta - thetaZMin) / (thetaZMax - thetaZMin), thetaZMin = pi */
+    zr = sqrt(x * x + y * y);
+    cphi = x / zr; sphi = y / zr;
+    dpdu = elr_v((float)(-2 * PI * y), (float)(2 * PI * x), 0.f);
+    dpdv = elr_mul(elr_v((float)(z * cphi), (float)(z * sphi), (float)(-r * sin(theta))), (float)(-PI));
+    h->dpdu = elr_xvector(&sp->o2w, dpdu);
+    h->dpdv = elr_xvector(&sp->o2w, dpdv);
+    /* Weingarten: for a sphere n = p / r, so dn/du = (dp/du) / r in object space */
+    h->dndu = elr_xnormal(&sp->o2w, elr_mul(dpdu, (float)(1.0 / r)));
+    h->dndv = elr_xnormal(&sp->o2w, elr_mul(dpdv, (float)(1.0 / r)));
+  } else {
+    const elr_mesh *m = &s->mesh[h->mesh];
+    unsigned tri = h->prim;
+    unsigned i0 = m->idx[3 * tri], i1 = m->idx[3 * tri + 1], i2 = m->idx[3 * tri + 2];
+    float b1 = h->b1, b2 = h->b2, b0 = 1.f - b1 - b2;
+    elr_v3 p0 = elr_v(m->p[3 * i0], m->p[3 * i0 + 1], m->p[3 * i0 + 2]);
+    elr_v3 p1 = elr_v(m->p[3 * i1], m->p[3 * i1 + 1], m->p[3 * i1 + 2]);
+    elr_v3 p2 = elr_v(m->p[3 * i2], m->p[3 * i2 + 1], m->p[3 * i2 + 2]);
+    float uv0[2] = {0, 0}, uv1[2] = {1, 0}, uv2[2] = {1, 1}; /* pbrt-v3's default uv */
+    elr_v3 dp02, dp12;
+    float du02, dv02, du12, dv12, det;
+    if (m->uv) {
+      uv0[0] = m->uv[2 * i0]; uv0[1] = m->uv[2 * i0 + 1];
+      uv1[0] = m->uv[2 * i1]; uv1[1] = m->uv[2 * i1 + 1];
+      uv2[0] = m->uv[2 * i2]; uv2[1] = m->uv[2 * i2 + 1];
+    }
+    h->u = b0 * uv0[0] + b1 * uv1[0] + b2 * uv2[0];
+    h->v = b0 * uv0[1] + b1 * uv1[1] + b2 * uv2[1];
+    /* <<Compute triangle partial derivatives>> */
+    dp02 = elr_sub(p0, p2); dp12 = elr_sub(p1, p2);
+    du02 = uv0[0] - uv2[0]; dv02 = uv0[1] - uv2[1]; du12 = uv1[0] - uv2[0]; dv12 = uv1[1] - uv2[1];
+    det = du02 * dv12 - dv02 * du12;
+    if (fabsf(det) < 1e-12f) {
+      elr_onb(h->ng, &h->dpdu, &h->dpdv);
+    } else {
+      float inv = 1.f / det;
+      h->dpdu = elr_mul(elr_sub(elr_mul(dp02, dv12), elr_mul(dp12, dv02)), inv);
+      h->dpdv = elr_mul(elr_sub(elr_mul(dp12, du02), elr_mul(dp02, du12)), inv);
+    }
+    h->dndu = h->dndv = elr_v(0, 0, 0);
+    if (m->n && fabsf(det) >= 1e-12f) {
+      elr_v3 n0 = elr_v(m->n[3 * i0], m->n[3 * i0 + 1], m->n[3 * i0 + 2]);
+      elr_v3 n1 = elr_v(m->n[3 * i1], m->n[3 * i1 + 1], m->n[3 * i1 + 2]);
+      elr_v3 n2 = elr_v(m->n[3 * i2], m->n[3 * i2 + 1], m->n[3 * i2 + 2]);
+      elr_v3 dn1 = elr_sub(n0, n2), dn2 = elr_sub(n1, n2);
+      float inv = 1.f / det;
+      h->dndu = elr_mul(elr_sub(elr_mul(dn1, dv12), elr_mul(dn2, dv02)), inv);
+      h->dndv = elr_mul(elr_sub(elr_mul(dn2, du02), elr_mul(dn1, du12)), inv);
+    }
+  }
 }

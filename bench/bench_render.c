@@ -1,0 +1,227 @@
+/* bench_render: what the renderer's accuracy costs in time, on one fixed scene.
+ *
+ * The scene: scenes/bench_city.pbrt, a diffuse sphere on a diffuse plane under the city map
+ * (data/envmaps/city.hdr, CC0, a 3e4 sun), 320 x 240, direct lighting.
+ *
+ * Part 1, ray throughput (one thread). Embree's raw rates on this scene: rtcIntersect1 for the camera
+ * rays through the pixel centres, rtcOccluded1 for shadow rays from their hit points towards directions
+ * drawn from the environment's distribution (arrays prepared beforehand, so only the Embree calls and
+ * the ray struct setup are timed). Then the renderer's direct-lighting loop (16 spp, one thread): its
+ * rays per second, and its EFFICIENCY = the time Embree alone would need for the same rays (camera rays
+ * at the rtcIntersect1 rate, shadow and BSDF-sampled rays at the rtcOccluded1 rate) / the loop's time.
+ * The target is >= 70%: the rest is sampling, shading, MIS, film.
+ *
+ * Part 2, accuracy against time (all threads). A reference of its own: MIS + halton at --ref-spp
+ * (default 1024). Then relative MSE,
+ *     relMSE(x, ref) = mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)
+ * (the definition of bench/mitsuba_compare.py), and wall time, at 16, 64 and 256 spp, for each
+ * sampler (random, stratified, halton) and each light-sampling option (MIS, light only, BSDF only,
+ * MIS with envlight's compensated distribution). relMSE x time is the efficiency (lower is better).
+ *
+ * Run:  build/bin/bench_render [--quick] [--ref-spp N] [--threads N]
+ *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
+ * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
+ * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls) or samples
+ * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
+ * rounded up to whole rows of 320).
+ *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 102400
+ *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 0
+ * instructions per sample = (Ir(102400) - Ir(0)) / 102400. */
+#define _POSIX_C_SOURCE 200809L
+#include "el_render.h"
+#include "elr_internal.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef EL_SOURCE_DIR
+#define EL_SOURCE_DIR "."
+#endif
+
+static double relmse(const float *a, const float *ref, size_t n) {
+  double s = 0;
+  size_t i;
+  for (i = 0; i < n; i++) { double d = (double)a[i] - ref[i]; s += d * d / ((double)ref[i] * ref[i] + 1e-2); }
+  return s / (double)n;
+}
+
+typedef struct { elr_v3 o, d; } bray;
+
+/* camera rays through pixel centres, pbrt-v3's pinhole (the same maths as integrator.c) */
+static void camera_rays(const elr_scene *s, bray *r) {
+  int w = s->d.xres, h = s->d.yres, x, y;
+  double frame = (double)w / h, th = tan(s->d.fov * 3.14159265358979 / 360.0);
+  float sx0 = frame > 1 ? (float)-frame : -1.f, sx1 = -sx0, sy0 = frame > 1 ? -1.f : (float)(-1 / frame), sy1 = -sy0;
+  for (y = 0; y < h; y++)
+    for (x = 0; x < w; x++) {
+      float sx = sx0 + (x + 0.5f) / w * (sx1 - sx0), sy = sy1 - (y + 0.5f) / h * (sy1 - sy0);
+      elr_v3 dc = elr_norm(elr_v(sx * (float)th, sy * (float)th, 1.f));
+      r[y * w + x].o = elr_xpoint(&s->d.cam2world, elr_v(0, 0, 0));
+      r[y * w + x].d = elr_norm(elr_xvector(&s->d.cam2world, dc));
+    }
+}
+
+static elr_envmap *scene_env(elr_scene *s) {
+  int i;
+  for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE) return s->light[i].env;
+  return NULL;
+}
+
+/* shadow rays: from the camera rays' hit points towards environment samples (only those above the
+ * surface, as the loop traces them) */
+static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max) {
+  elr_envmap *env = scene_env(s);
+  int i, k = 0;
+  uint32_t st = 12345;
+  elr_env_prepare(env, -1);
+  for (i = 0; i < n && k < max; i++) {
+    elr_hit h;
+    int tries;
+    if (!elr_intersect(s, cam[i].o, cam[i].d, INFINITY, &h)) continue;
+    for (tries = 0; tries < 8 && k < max; tries++) {
+      float u0, u1, pdf;
+      elr_v3 wi;
+      st = st * 1664525u + 1013904223u; u0 = (st >> 8) * 0x1p-24f;
+      st = st * 1664525u + 1013904223u; u1 = (st >> 8) * 0x1p-24f;
+      elr_env_sample(env, u0, u1, &wi, &pdf);
+      if (pdf > 0 && elr_dot(wi, h.ng) * elr_dot(cam[i].d, h.ng) < 0) {
+        out[k].o = elr_add(h.p, elr_mul(h.ng, elr_dot(wi, h.ng) > 0 ? h.eps : -h.eps));
+        out[k].d = wi;
+        k++;
+        break;
+      }
+    }
+  }
+  return k;
+}
+
+static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int threads, uint64_t seed, elr_image *img,
+                       elr_stats *st) {
+  elr_render_options o;
+  char err[512];
+  elr_render_options_default(&o);
+  o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.nthreads = threads; o.seed = seed;
+  o.quiet = 1;
+  if (elr_render(s, &o, img, st, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return -1; }
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  char path[1024], err[1024];
+  elr_scene *s = NULL;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h;
+  const char *cg_op = NULL;
+  for (i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--quick")) { quick = 1; ref_spp = 256; }
+    else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
+    else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
+    else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples N]\n"); return 1; }
+  }
+  if (ref_spp < 1) ref_spp = 1;
+  snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
+  if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
+  w = s->d.xres; h = s->d.yres;
+
+  if (cg_op) {
+    bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
+    int nsh, k;
+    volatile float sink = 0;
+    camera_rays(s, cam);
+    nsh = shadow_rays(s, cam, w * h, sh, w * h);
+    if (!strcmp(cg_op, "intersect")) {
+      for (k = 0; k < cg_n; k++) { float t; unsigned g; elr_raw_intersect(s, cam[k % (w * h)].o, cam[k % (w * h)].d, &t, &g); sink += t; }
+    } else if (!strcmp(cg_op, "occluded")) {
+      for (k = 0; k < cg_n && nsh > 0; k++) sink += (float)elr_occluded(s, sh[k % nsh].o, sh[k % nsh].d, INFINITY);
+    } else if (!strcmp(cg_op, "samples")) {
+      if (cg_n > 0) {
+        elr_image img;
+        elr_stats st;
+        int rows = (cg_n / 16 + w - 1) / w;
+        if (rows > h) rows = h;
+        /* the middle rows: sphere, plane and sky, like the whole image */
+        s->d.crop[2] = (float)((h - rows) / 2) / (float)h; s->d.crop[3] = (float)((h - rows) / 2 + rows) / (float)h;
+        if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, 1, 1, &img, &st) == 0) elr_image_free(&img);
+      }
+    } else { fprintf(stderr, "bench_render: unknown --callgrind operation \"%s\"\n", cg_op); return 1; }
+    printf("%s x %d done (%g)\n", cg_op, cg_n, (double)sink);
+    free(cam); free(sh); elr_scene_free(s);
+    return 0;
+  }
+
+  printf("bench_render: %s, %d x %d, direct lighting\n\n", path, w, h);
+  /* >> part 1: rays per second, one thread */
+  {
+    bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
+    int nsh, pass;
+    double t0, t_is, t_oc, r_is, r_oc, n_is = 0, n_oc = 0;
+    volatile float sink = 0;
+    elr_image img;
+    elr_stats st;
+    camera_rays(s, cam);
+    nsh = shadow_rays(s, cam, w * h, sh, w * h);
+    t0 = elr_now();
+    for (pass = 0; elr_now() - t0 < 1.0 || pass < 2; pass++) {
+      int k;
+      for (k = 0; k < w * h; k++) { float t; unsigned g; elr_raw_intersect(s, cam[k].o, cam[k].d, &t, &g); sink += t; }
+      n_is += w * h;
+    }
+    t_is = elr_now() - t0;
+    t0 = elr_now();
+    for (pass = 0; elr_now() - t0 < 1.0 || pass < 2; pass++) {
+      int k;
+      for (k = 0; k < nsh; k++) sink += (float)elr_occluded(s, sh[k].o, sh[k].d, INFINITY);
+      n_oc += nsh;
+    }
+    t_oc = elr_now() - t0;
+    r_is = n_is / t_is; r_oc = n_oc / t_oc;
+    printf("Embree raw rates, 1 thread (ray arrays prepared beforehand):\n");
+    printf("  rtcIntersect1  camera rays through pixel centres      %7.2f M rays/s\n", r_is * 1e-6);
+    printf("  rtcOccluded1   shadow rays towards env samples (%d)   %7.2f M rays/s\n", nsh, r_oc * 1e-6);
+    if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, 1, 1, &img, &st) == 0) {
+      double ni = (double)st.camera_rays + st.bounce_rays, no = (double)st.shadow_rays + st.bsdf_light_rays;
+      double raw_t = ni / r_is + no / r_oc;
+      printf("\nrenderer, direct-lighting loop, 16 spp stratified + MIS, 1 thread:\n");
+      printf("  %.0f intersect + %.0f occlusion rays in %.3f s: %.2f M rays/s, %.2f M samples/s\n", ni, no, st.t_render,
+             (ni + no) / st.t_render * 1e-6, (double)st.samples / st.t_render * 1e-6);
+      printf("  Embree alone would take %.3f s for these rays: efficiency %.0f%% of raw (target >= 70%%)\n", raw_t,
+             100.0 * raw_t / st.t_render);
+      elr_image_free(&img);
+    }
+    (void)sink;
+    free(cam); free(sh);
+  }
+  /* >> part 2: relative MSE against time */
+  {
+    elr_image ref;
+    elr_stats st;
+    const char *snames[3] = {"random", "stratified", "halton"};
+    const int samplers[3] = {ELR_SAMPLER_RANDOM, ELR_SAMPLER_STRATIFIED, ELR_SAMPLER_HALTON};
+    const char *lnames[4] = {"MIS", "light only", "BSDF only", "MIS+compensated"};
+    const int ls[4] = {ELR_LS_MIS, ELR_LS_LIGHT, ELR_LS_BSDF, ELR_LS_MIS}, comp[4] = {0, 0, 0, 1};
+    const int spps[3] = {16, 64, 256};
+    int nspp = quick ? 2 : 3, a, b, c;
+    double t0 = elr_now();
+    if (render_once(s, ref_spp, ELR_SAMPLER_HALTON, ELR_LS_MIS, 0, threads, 1000, &ref, &st) != 0) return 1;
+    printf("\nreference: halton + MIS, %d spp, %.1f s (%d threads)\n", ref_spp, elr_now() - t0, st.nthreads);
+    printf("relative MSE against it (seed differs from the reference's), wall time on %d threads:\n\n", st.nthreads);
+    printf("  %-10s %-16s %5s %10s %8s %12s\n", "sampler", "light sampling", "spp", "relMSE", "time s", "relMSE x s");
+    for (a = 0; a < 3; a++)
+      for (b = 0; b < 4; b++)
+        for (c = 0; c < nspp; c++) {
+          elr_image img;
+          double t1 = elr_now(), t, e;
+          if (render_once(s, spps[c], samplers[a], ls[b], comp[b], threads, 7, &img, &st) != 0) continue;
+          t = elr_now() - t1;
+          e = relmse(img.rgb, ref.rgb, (size_t)img.width * img.height * 3);
+          printf("  %-10s %-16s %5d %10.3g %8.3f %12.3g\n", snames[a], lnames[b], spps[c], e, t, e * t);
+          fflush(stdout);
+          elr_image_free(&img);
+        }
+    printf("\n(each relMSE also holds the reference's own noise: for an unbiased estimator about the\n"
+           " halton + MIS 16-spp value x 16 / %d)\n", ref_spp);
+    elr_image_free(&ref);
+  }
+  elr_scene_free(s);
+  return 0;
+}

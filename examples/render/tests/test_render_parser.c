@@ -1,0 +1,328 @@
+/* test_render_parser: the pbrt-v3 subset the renderer reads, directive by directive, and the errors
+ * bad files give (each names file:line and the problem; the `render` program then exits 1 and writes
+ * nothing).
+ *
+ * Expected values are pbrt-v3's semantics worked by hand: LookAt's camera-to-world frame, the CTM
+ * composition order (Translate then Scale applies the scale first), Rotate's right-hand rule in a
+ * left-handed space, Transform's column-major (transposed) matrix, named coordinate systems, attribute
+ * and transform scopes, the defaults of every directive. */
+#include "render_test_util.h"
+
+static int near3(elr_v3 a, float x, float y, float z, float tol) {
+  return fabsf(a.x - x) < tol && fabsf(a.y - y) < tol && fabsf(a.z - z) < tol;
+}
+
+static const char *W(const char *body) { /* a minimal valid file around a world body */
+  static char buf[8192];
+  snprintf(buf, sizeof buf, "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n%sWorldEnd\n", body);
+  return buf;
+}
+
+static void defaults(void) {
+  char err[512];
+  elr_scene *s = rt_load("empty.pbrt", "WorldBegin\nWorldEnd\n", err, sizeof err);
+  if (!s) { rt_check(0, "empty scene: %s", err); return; }
+  rt_check(s->d.xres == 1280 && s->d.yres == 720, "defaults: Film 1280 x 720 (pbrt-v3)");
+  rt_check(!strcmp(s->d.filename, "pbrt.exr"), "defaults: filename pbrt.exr");
+  rt_check(s->d.fov == 90.f, "defaults: fov 90");
+  rt_check(s->d.sampler == ELR_SAMPLER_HALTON && s->d.spp == 16, "defaults: halton, 16 pixel samples");
+  rt_check(s->d.integrator_path == 1 && s->d.maxdepth == 5, "defaults: path, maxdepth 5");
+  rt_check(s->d.filter.type == ELR_PF_BOX && s->d.filter.xw == 0.5f, "defaults: box filter, radius 0.5");
+  rt_check(s->nmat == 1 && s->mat[0].kind == ELR_MAT_MATTE && s->tex[s->mat[0].kd].value.x == 0.5f, "defaults: matte Kd 0.5");
+  elr_scene_free(s);
+}
+
+static void options(void) {
+  char err[512];
+  elr_scene *s;
+  elr_v3 o, f;
+  s = rt_load("opts.pbrt",
+              "LookAt 1 2 3  1 2 4  0 1 0\n"
+              "Camera \"perspective\" \"float fov\" 30 \"float frameaspectratio\" 2 \"float screenwindow\" [ -2 2 -1 1 ]\n"
+              "Film \"image\" \"integer xresolution\" [ 40 ] \"integer yresolution\" [ 20 ] \"string filename\" \"x.pfm\"\n"
+              "  \"float cropwindow\" [ 0.25 0.75 0 0.5 ]\n"
+              "PixelFilter \"mitchell\" \"float xwidth\" 1.5 \"float ywidth\" 2.5 \"float B\" 0.2 \"float C\" 0.4\n"
+              "Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 2 \"bool jitter\" \"false\"\n"
+              "Integrator \"directlighting\" \"integer maxdepth\" [ 7 ]\n"
+              "WorldBegin\nWorldEnd\n", err, sizeof err);
+  if (!s) { rt_check(0, "options scene: %s", err); return; }
+  o = elr_xpoint(&s->d.cam2world, elr_v(0, 0, 0));
+  f = elr_xvector(&s->d.cam2world, elr_v(0, 0, 1));
+  rt_check(near3(o, 1, 2, 3, 1e-6f) && near3(f, 0, 0, 1, 1e-6f), "LookAt: camera at (1,2,3) looking along +z");
+  f = elr_xvector(&s->d.cam2world, elr_v(1, 0, 0));
+  rt_check(near3(f, 1, 0, 0, 1e-6f), "LookAt: camera +x is world +x (left-handed: up x dir)");
+  rt_check(s->d.fov == 30.f && s->d.has_frameaspect && s->d.frameaspect == 2.f && s->d.has_screen && s->d.screen[0] == -2.f,
+           "Camera: fov, frameaspectratio, screenwindow");
+  rt_check(s->d.xres == 40 && s->d.yres == 20 && !strcmp(s->d.filename, "x.pfm"), "Film: resolution, filename");
+  {
+    int w, h;
+    elr_scene_resolution(s, &w, &h);
+    rt_check(w == 20 && h == 10, "Film: cropwindow [0.25 0.75 0 0.5] of 40 x 20 gives 20 x 10 (got %d x %d)", w, h);
+  }
+  rt_check(s->d.filter.type == ELR_PF_MITCHELL && s->d.filter.xw == 1.5f && s->d.filter.yw == 2.5f && s->d.filter.b == 0.2f &&
+               s->d.filter.c == 0.4f, "PixelFilter mitchell with widths and B, C");
+  rt_check(s->d.sampler == ELR_SAMPLER_STRATIFIED && s->d.spp == 6 && s->d.jitter == 0, "Sampler stratified 3 x 2, no jitter");
+  rt_check(!s->d.integrator_path && s->d.maxdepth == 7, "Integrator directlighting maxdepth 7");
+  elr_scene_free(s);
+  {
+    const char *filters[5] = {"box", "triangle", "gaussian", "mitchell", "sinc"};
+    float defw[5] = {0.5f, 2.f, 2.f, 2.f, 4.f};
+    int k;
+    for (k = 0; k < 5; k++) {
+      char buf[512];
+      snprintf(buf, sizeof buf, "PixelFilter \"%s\"\nSampler \"random\" \"integer pixelsamples\" 3\nIntegrator \"path\"\nWorldBegin\nWorldEnd\n", filters[k]);
+      s = rt_load("f.pbrt", buf, err, sizeof err);
+      rt_check(s && s->d.filter.type == k && s->d.filter.xw == defw[k] && s->d.sampler == ELR_SAMPLER_RANDOM && s->d.spp == 3,
+               "PixelFilter \"%s\": default radius %g; Sampler random", filters[k], defw[k]);
+      elr_scene_free(s);
+    }
+  }
+}
+
+static void transforms_and_shapes(void) {
+  char err[512];
+  elr_scene *s;
+  {
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s/inc'", rt_dir);
+    if (system(cmd) != 0) printf("mkdir failed\n");
+  }
+  rt_write("inc/part.pbrt", "# included\nShape \"sphere\" \"float radius\" 0.25\n");
+  rt_write("quad.ply",
+           "ply\nformat ascii 1.0\ncomment a unit quad\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+           "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
+  {
+    /* binary little endian: one triangle with normals */
+    FILE *f = fopen(rt_path("tri.ply"), "wb");
+    float v[3][6] = {{0, 0, 0, 0, 0, 1}, {2, 0, 0, 0, 0, 1}, {0, 2, 0, 0, 0, 1}};
+    unsigned char n = 3;
+    int idx[3] = {0, 1, 2};
+    fputs("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+          "property float nx\nproperty float ny\nproperty float nz\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n", f);
+    fwrite(v, sizeof v, 1, f);
+    fwrite(&n, 1, 1, f);
+    fwrite(idx, sizeof idx, 1, f);
+    fclose(f);
+  }
+  s = rt_load("xf.pbrt", W(
+      "AttributeBegin\n"
+      "  Translate 1 0 0\n  Scale 2 2 2\n"
+      "  Shape \"sphere\" \"float radius\" 0.5\n"                 /* sphere 0: centre (1,0,0), world radius 1 */
+      "  CoordinateSystem \"mine\"\n"
+      "AttributeEnd\n"
+      "TransformBegin\n  Rotate 90 0 0 1\n"
+      "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 ] \"point P\" [ 1 0 0  0 1 0  0 0 1 ]\n" /* mesh 0 */
+      "TransformEnd\n"
+      "Transform [ 1 0 0 0  0 1 0 0  0 0 1 0  5 6 7 1 ]\n"
+      "Shape \"sphere\"\n"                                          /* sphere 1: centre (5,6,7) */
+      "ConcatTransform [ 2 0 0 0  0 2 0 0  0 0 2 0  0 0 0 1 ]\n"
+      "Shape \"sphere\"\n"                                          /* sphere 2: centre (5,6,7), scale 2 */
+      "Identity\nCoordSysTransform \"mine\"\n"
+      "Include \"inc/part.pbrt\"\n"                                 /* sphere 3 in \"mine\" */
+      "Identity\n"
+      "Shape \"plymesh\" \"string filename\" \"quad.ply\"\n"          /* mesh 1: 2 triangles */
+      "Translate 0 0 3\n"
+      "Shape \"plymesh\" \"string filename\" \"tri.ply\"\n"           /* mesh 2 */
+      "LightSource \"point\" \"point from\" [ 0 1 0 ] \"rgb I\" [ 3 3 3 ]\n"
+      "LightSource \"distant\" \"point from\" [ 0 0 0 ] \"point to\" [ 0 0 1 ] \"rgb L\" [ 2 2 2 ]\n"
+      "ReverseOrientation\n"), err, sizeof err);
+  if (!s) { rt_check(0, "transforms scene: %s", err); return; }
+  rt_check(s->nsph == 4 && s->nmesh == 3 && s->nlight == 2, "4 spheres, 3 meshes, 2 lights (got %d, %d, %d)", s->nsph, s->nmesh, s->nlight);
+  if (s->nsph == 4 && s->nmesh == 3 && s->nlight == 2) {
+    elr_v3 c0 = elr_xpoint(&s->sph[0].o2w, elr_v(0, 0, 0)), e0 = elr_xpoint(&s->sph[0].o2w, elr_v(0.5f, 0, 0));
+    rt_check(near3(c0, 1, 0, 0, 1e-6f) && near3(e0, 2, 0, 0, 1e-6f), "Translate then Scale: sphere centre (1,0,0), surface point (2,0,0)");
+    rt_check(near3(elr_v(s->mesh[0].p[0], s->mesh[0].p[1], s->mesh[0].p[2]), 0, 1, 0, 1e-6f) &&
+                 near3(elr_v(s->mesh[0].p[3], s->mesh[0].p[4], s->mesh[0].p[5]), -1, 0, 0, 1e-6f),
+             "Rotate 90 about z: (1,0,0) -> (0,1,0), (0,1,0) -> (-1,0,0)");
+    rt_check(near3(elr_xpoint(&s->sph[1].o2w, elr_v(0, 0, 0)), 5, 6, 7, 1e-6f), "Transform: column-major matrix, translation (5,6,7)");
+    rt_check(near3(elr_xpoint(&s->sph[2].o2w, elr_v(1, 0, 0)), 7, 6, 7, 1e-6f), "ConcatTransform: scale 2 after the translation");
+    rt_check(near3(elr_xpoint(&s->sph[3].o2w, elr_v(0.25f, 0, 0)), 1.5f, 0, 0, 1e-6f) && s->sph[3].radius == 0.25f,
+             "CoordinateSystem / CoordSysTransform + Include: the included sphere in the saved frame");
+    rt_check(s->mesh[1].ntri == 2 && s->mesh[1].uv && s->mesh[1].uv[4] == 1.f, "plymesh ASCII: a quad becomes 2 triangles, uv read");
+    rt_check(s->mesh[2].ntri == 1 && s->mesh[2].n && s->mesh[2].p[5] == 3.f && s->mesh[2].p[3] == 2.f,
+             "plymesh binary: 1 triangle with normals, moved by Translate 0 0 3");
+    rt_check(s->light[0].kind == ELR_LIGHT_POINT && near3(s->light[0].pos, 0, 1, 3, 1e-6f) && s->light[0].L.x == 3.f, "point light: from (0,1,0) moved by the CTM to (0,1,3), I");
+    rt_check(s->light[1].kind == ELR_LIGHT_DISTANT && near3(s->light[1].dir, 0, 0, -1, 1e-6f) && s->light[1].L.x == 2.f,
+             "distant light: direction towards the light = from - to");
+  }
+  rt_check(elr_scene_warnings(s) == 0, "no warnings for supported directives (%d: %s)", elr_scene_warnings(s), elr_scene_last_warning(s));
+  elr_scene_free(s);
+}
+
+static void materials_textures(void) {
+  char err[512];
+  elr_scene *s;
+  unsigned char png[4 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 128, 128, 128, 0, 0, 0, 10, 20, 30, 40, 50, 60};
+  float hdr[3 * 2 * 2] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+  el_image_write_png(rt_path("tex.png"), png, 4, 2, 3, err, sizeof err);
+  el_image_write_hdr(rt_path("env.hdr"), hdr, 2, 2, 3, err, sizeof err);
+  el_image_write_exr(rt_path("env.exr"), hdr, 2, 2, 3, err, sizeof err);
+  s = rt_load("mat.pbrt", W(
+      "Texture \"c\" \"spectrum\" \"checkerboard\" \"float uscale\" 4 \"float vscale\" 2 \"rgb tex1\" [ 1 0 0 ] \"rgb tex2\" [ 0 0 1 ]\n"
+      "Texture \"k\" \"spectrum\" \"constant\" \"rgb value\" [ 0.1 0.2 0.3 ]\n"
+      "Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\" \"string filter\" \"trilinear\" \"string wrap\" \"clamp\"\n"
+      "   \"float maxanisotropy\" 4 \"float scale\" 2 \"bool gamma\" \"false\"\n"
+      "Texture \"r\" \"float\" \"constant\" \"float value\" 0.3\n"
+      "Material \"matte\" \"texture Kd\" \"c\" \"float sigma\" 0\n"
+      "Material \"mirror\" \"rgb Kr\" [ 0.5 0.6 0.7 ]\n"
+      "Material \"plastic\" \"texture Kd\" \"img\" \"texture Ks\" \"k\" \"texture roughness\" \"r\" \"bool remaproughness\" \"false\"\n"
+      "MakeNamedMaterial \"gold\" \"string type\" \"plastic\" \"rgb Kd\" [ 0.9 0.7 0.1 ]\n"
+      "NamedMaterial \"gold\"\n"
+      "Shape \"sphere\"\n"
+      "LightSource \"infinite\" \"string mapname\" \"env.hdr\" \"integer samples\" 4\n"
+      "LightSource \"infinite\" \"string mapname\" \"env.exr\" \"bool compensated\" \"true\"\n"), err, sizeof err);
+  if (!s) { rt_check(0, "materials scene: %s", err); return; }
+  {
+    int n = s->nmat;
+    elr_tex_ctx c;
+    elr_v3 v;
+    memset(&c, 0, sizeof c);
+    rt_check(n == 5 && s->mat[1].kind == ELR_MAT_MATTE && s->mat[2].kind == ELR_MAT_MIRROR && s->mat[3].kind == ELR_MAT_PLASTIC &&
+                 s->mat[4].kind == ELR_MAT_PLASTIC, "materials matte, mirror, plastic, named plastic");
+    rt_check(s->sph[0].material == 4, "NamedMaterial binds the named material to the next shape");
+    c.u = 0.1f; c.v = 0.1f; /* st = (0.4, 0.2): cell (0,0) even -> tex1 */
+    v = elr_tex_eval(s, s->mat[1].kd, &c);
+    c.u = 0.3f; /* st = (1.2, 0.2): cell (1,0) odd -> tex2 */
+    rt_check(near3(v, 1, 0, 0, 1e-6f) && near3(elr_tex_eval(s, s->mat[1].kd, &c), 0, 0, 1, 1e-6f), "checkerboard with uscale/vscale");
+    rt_check(near3(elr_tex_eval(s, s->mat[2].kr, &c), 0.5f, 0.6f, 0.7f, 1e-6f), "mirror Kr");
+    rt_check(near3(elr_tex_eval(s, s->mat[3].ks, &c), 0.1f, 0.2f, 0.3f, 1e-6f) && elr_tex_eval(s, s->mat[3].rough, &c).x == 0.3f &&
+                 s->mat[3].remap == 0, "plastic: constant textures for Ks and roughness, remaproughness false");
+    /* imagemap: row 0 of the file is the TOP, pbrt-v3 flips so t = 0 is the bottom row; texel centres */
+    c.u = 0.125f; c.v = 0.75f; /* texel (0, top row) = red, x scale 2, no gamma */
+    v = elr_tex_eval(s, s->mat[3].kd, &c);
+    rt_check(near3(v, 2, 0, 0, 1e-5f), "imagemap: top-left texel at (u,v) = (0.125, 0.75), scaled by 2 (got %g %g %g)", v.x, v.y, v.z);
+    c.u = 0.875f; c.v = 0.25f; /* bottom right texel (40,50,60)/255 * 2 */
+    v = elr_tex_eval(s, s->mat[3].kd, &c);
+    rt_check(near3(v, 80 / 255.f, 100 / 255.f, 120 / 255.f, 1e-5f), "imagemap: bottom-right texel at (0.875, 0.25)");
+    rt_check(s->nlight == 2 && s->light[0].nsamples == 4 && s->light[0].has_map && s->light[1].compensated == 1,
+             "infinite lights from .hdr (samples 4) and .exr (compensated)");
+  }
+  elr_scene_free(s);
+  /* gamma: an 8-bit PNG is sRGB-decoded by default (pbrt-v3) */
+  s = rt_load("gam.pbrt", W("Texture \"img\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.png\"\nMaterial \"matte\" \"texture Kd\" \"img\"\n"), err, sizeof err);
+  if (s) {
+    elr_tex_ctx c;
+    elr_v3 v;
+    memset(&c, 0, sizeof c);
+    c.u = 0.125f; c.v = 0.25f; /* the bottom row's first texel, (128, 128, 128) */
+    v = elr_tex_eval(s, s->mat[1].kd, &c);
+    {
+      double e = pow((128 / 255.0 + 0.055) / 1.055, 2.4);
+      rt_check(fabs(v.x - e) < 1e-4, "imagemap PNG: sRGB decoded by default (%.5f, expect %.5f)", v.x, e);
+    }
+    elr_scene_free(s);
+  } else rt_check(0, "gamma scene: %s", err);
+}
+
+static void warnings(void) {
+  char err[512];
+  elr_scene *s = rt_load("warn.pbrt", W("AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" 1 \"float foo\" 3\n"
+                                        "Material \"glass\"\n"),
+                         err, sizeof err);
+  if (!s) { rt_check(0, "warnings scene: %s", err); return; }
+  rt_check(elr_scene_warnings(s) == 3, "3 warnings: unsupported directive, unknown parameter, unsupported material (%d)", elr_scene_warnings(s));
+  rt_check(strstr(elr_scene_last_warning(s), "warn.pbrt:5:") && strstr(elr_scene_last_warning(s), "glass"),
+           "warning names file:line and what is ignored: \"%s\"", elr_scene_last_warning(s));
+  elr_scene_free(s);
+}
+
+static void expect_error(const char *name, const char *text, const char *where, const char *what) {
+  char err[512];
+  elr_scene *s = rt_load(name, text, err, sizeof err);
+  if (s) { rt_check(0, "%s: expected an error", name); elr_scene_free(s); return; }
+  rt_check(strstr(err, where) != NULL && strstr(err, what) != NULL, "%s: error \"%s\" names %s and %s", name, err, where, what);
+}
+
+static void errors(void) {
+  expect_error("trunc1.pbrt", "Film \"image\" \"integer xresolution\" [ 8 ", "trunc1.pbrt:1:", "file ends");
+  expect_error("trunc2.pbrt", "WorldBegin\nShape \"sphere\"\n", "trunc2.pbrt:", "before WorldEnd");
+  expect_error("trunc3.pbrt", "Film \"image\" \"string filename\" \"abc", "trunc3.pbrt:1:", "unterminated string");
+  expect_error("unknown.pbrt", "WorldBegin\nFoo 1 2 3\nWorldEnd\n", "unknown.pbrt:2:", "unknown directive \"Foo\"");
+  expect_error("type.pbrt", "Camera \"perspective\"\n \"string fov\" \"wide\"\nWorldBegin\nWorldEnd\n", "type.pbrt:2:", "expected \"float\"");
+  expect_error("count.pbrt", "Camera \"perspective\" \"float fov\" [ 30 40 ]\nWorldBegin\nWorldEnd\n", "count.pbrt:1:", "takes 1 value");
+  expect_error("int.pbrt", "Film \"image\" \"integer xresolution\" 10.5\nWorldBegin\nWorldEnd\n", "int.pbrt:1:", "not an integer");
+  expect_error("include.pbrt", "WorldBegin\n\nInclude \"nothere.pbrt\"\nWorldEnd\n", "include.pbrt:3:", "nothere.pbrt");
+  expect_error("image.pbrt", "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"missing.hdr\"\nWorldEnd\n", "image.pbrt:2:", "missing.hdr");
+  expect_error("res.pbrt", "Film \"image\" \"integer xresolution\" 1000000000\nWorldBegin\nWorldEnd\n", "res.pbrt:1:", "out of range");
+  expect_error("spp.pbrt", "Sampler \"halton\" \"integer pixelsamples\" -4\nWorldBegin\nWorldEnd\n", "spp.pbrt:1:", "out of range");
+  expect_error("nan.pbrt", "WorldBegin\nTranslate 1 nan 2\nWorldEnd\n", "nan.pbrt:2:", "expected a number");
+  expect_error("inf.pbrt", "WorldBegin\nTranslate 1 1e999 2\nWorldEnd\n", "inf.pbrt:2:", "not finite");
+  expect_error("idx.pbrt", "WorldBegin\nShape \"trianglemesh\" \"integer indices\" [ 0 1 5 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]\nWorldEnd\n",
+               "idx.pbrt:2:", "out of range");
+  expect_error("pts.pbrt", "WorldBegin\nShape \"trianglemesh\" \"integer indices\" [ 0 1 2 ] \"point P\" [ 0 0 0 1 0 0 0 1 ]\nWorldEnd\n",
+               "pts.pbrt:2:", "multiple of 3");
+  rt_write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n");
+  expect_error("ply.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply\"\nWorldEnd\n", "ply.pbrt:2:", "truncated");
+  rt_write("loop.pbrt", "Include \"loop.pbrt\"\n");
+  expect_error("rec.pbrt", "Include \"loop.pbrt\"\nWorldBegin\nWorldEnd\n", ":1:", "nested");
+  expect_error("scale.pbrt", "WorldBegin\nScale 1 0 1\nWorldEnd\n", "scale.pbrt:2:", "singular");
+  expect_error("after.pbrt", "WorldBegin\nWorldEnd\nShape \"sphere\"\n", "after.pbrt:3:", "after WorldEnd");
+  expect_error("str.pbrt", "WorldBegin\n\"float radius\" 1\nWorldEnd\n", "str.pbrt:2:", "expected a directive");
+}
+
+/* The program: exit codes, no output on error, the Film's filename by default, the output formats. */
+static void cli(void) {
+  char cmd[1024];
+  const char *bin = EL_RENDER_BIN;
+  int r;
+  FILE *f;
+  rt_write("ok.pbrt", "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 6 \"string filename\" \"film_default.pfm\"\n"
+                      "Sampler \"random\" \"integer pixelsamples\" 2\nWorldBegin\nLightSource \"infinite\"\nShape \"sphere\"\nWorldEnd\n");
+  snprintf(cmd, sizeof cmd, "cd '%s' && '%s' ok.pbrt --quiet 2>/dev/null", rt_dir, bin);
+  r = system(cmd);
+  f = fopen(rt_path("film_default.pfm"), "rb");
+  rt_check(r == 0 && f != NULL, "render ok.pbrt: exit 0, writes the Film's filename (film_default.pfm)");
+  if (f) fclose(f);
+  {
+    const char *exts[4] = {"png", "exr", "pfm", "hdr"};
+    int k;
+    for (k = 0; k < 4; k++) {
+      el_image img;
+      char e[256], out[64];
+      snprintf(out, sizeof out, "o.%s", exts[k]);
+      snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --spp 1 --nthreads 1 --seed 5 --quiet 2>/dev/null", bin, rt_path("ok.pbrt"), rt_path(out));
+      r = system(cmd);
+      rt_check(r == 0 && el_image_load(rt_path(out), &img, e, sizeof e) == 0 && img.width == 8 && img.height == 6,
+               "--outfile %s: exit 0 and an 8 x 6 image", out);
+      if (r == 0) el_image_free(&img);
+    }
+  }
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --quiet 2>/dev/null", bin, rt_path("unknown.pbrt"), rt_path("never.png"));
+  r = system(cmd);
+  f = fopen(rt_path("never.png"), "rb");
+  rt_check(r != 0 && WEXITSTATUS(r) == 1 && f == NULL, "render on a bad file: exit 1, no image written");
+  if (f) fclose(f);
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --spp -3 --quiet 2>/dev/null", bin, rt_path("ok.pbrt"));
+  r = system(cmd);
+  rt_check(WEXITSTATUS(r) == 1, "render --spp -3: exit 1");
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --quiet 2>/dev/null", bin, rt_path("ok.pbrt"), rt_path("x.bmp"));
+  r = system(cmd);
+  rt_check(WEXITSTATUS(r) == 1, "render --outfile x.bmp (unknown format): exit 1");
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --spp 1 --stats 2>'%s'", bin, rt_path("ok.pbrt"), rt_path("s.png"), rt_path("log.txt"));
+  r = system(cmd);
+  {
+    char log[8192] = "";
+    size_t n;
+    f = fopen(rt_path("log.txt"), "rb");
+    n = f ? fread(log, 1, sizeof log - 1, f) : 0;
+    log[n] = 0;
+    if (f) fclose(f);
+    rt_check(r == 0 && strstr(log, "elapsed") && strstr(log, "remaining") && strstr(log, "samples/s") && strstr(log, "rays/s") &&
+                 strstr(log, "env distribution"),
+             "progress bar (elapsed, remaining), --stats, closing line with samples/s and rays/s");
+  }
+}
+
+int main(void) {
+  rt_mkdir("test_render_parser");
+  defaults();
+  options();
+  transforms_and_shapes();
+  materials_textures();
+  warnings();
+  errors();
+  cli();
+  return rt_finish("test_render_parser");
+}
