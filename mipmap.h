@@ -291,6 +291,10 @@ EL_MIPMAP__INLINE int el_mipmap__ifloor(float x) {
   int i = (int)x;
   return ((float)i > x) ? i - 1 : i;
 }
+EL_MIPMAP__INLINE int el_mipmap__ifloor_nb(float x) { /* the same without a branch */
+  int i = (int)x;
+  return i - ((float)i > x);
+}
 static int el_mipmap__is_pow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 static int el_mipmap__round_up_pow2(int v) {
   int p = 1;
@@ -963,18 +967,25 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
     float ctt = Cc * tt * tt, btt = B * tt;
     float disc = btt * btt - fourA * (ctt - 1);
     float cs = x - btt * inv2A, hw = (disc > 0 ? sqrtf(disc) * inv2A : 0.0f) + mg;
-    int lo = el_mipmap__iceil(cs - hw), hi = el_mipmap__ifloor(cs + hw), row, is;
+    int lo = -el_mipmap__ifloor_nb(hw - cs), hi = el_mipmap__ifloor_nb(cs + hw), row, is, col;
     float fis;
-    const float *rp;
+    const float *rp, *p, *pend;
     /* (no need to clip [lo, hi] to pbrt's box [s0, s1]: texels outside it have r2 >= 1 but for
      * rounding at the tangent points, where the table weight is 0 anyway) */
     if (lo > hi) continue;
     row = (unsigned)it < (unsigned)nv ? it : el_mipmap__wrap(it, nv, m->wrap_v);
-    rp = row < 0 ? NULL : data + (size_t)row * rowstride;
     fis = (float)lo;
-    if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu && rp) { /* inside: no wrapping */
-      const float *p = rp + (size_t)lo * (size_t)C;
-      for (is = lo; is <= hi; ++is, p += C, fis += 1.0f) {
+    if (row < 0) { /* a Black row: texels count with value 0, as in pbrt */
+      for (is = lo; is <= hi; ++is, fis += 1.0f) {
+        float ss = fis - x;
+        float r2 = A * ss * ss + B * ss * tt + ctt;
+        if (r2 < 1) sumw += el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+      }
+      continue;
+    }
+    rp = data + (size_t)row * rowstride;
+    if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu) { /* inside: no wrapping */
+      for (p = rp + (size_t)lo * (size_t)C, pend = rp + (size_t)hi * (size_t)C; p <= pend; p += C, fis += 1.0f) {
         float ss = fis - x;
         float r2 = A * ss * ss + B * ss * tt + ctt;
         if (r2 < 1) {
@@ -985,15 +996,27 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
           sumw += wgt;
         }
       }
+    } else if (wu == EL_WRAP_REPEAT) { /* the column index walks and wraps */
+      for (is = lo, col = el_mipmap__wrap(lo, nu, wu); is <= hi; ++is, fis += 1.0f) {
+        float ss = fis - x;
+        float r2 = A * ss * ss + B * ss * tt + ctt;
+        if (r2 < 1) {
+          float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+          p = rp + (size_t)col * (size_t)C;
+          for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
+          sumw += wgt;
+        }
+        if (++col == nu) col = 0;
+      }
     } else {
       for (is = lo; is <= hi; ++is, fis += 1.0f) {
         float ss = fis - x;
         float r2 = A * ss * ss + B * ss * tt + ctt;
         if (r2 < 1) {
           float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
-          int col = rp ? el_mipmap__wrap(is, nu, wu) : -1;
+          col = el_mipmap__wrap(is, nu, wu);
           if (col >= 0) {
-            const float *p = rp + (size_t)col * (size_t)C;
+            p = rp + (size_t)col * (size_t)C;
             for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
           }
           sumw += wgt; /* Black texels count with value 0, as in pbrt */
