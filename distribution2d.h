@@ -381,21 +381,28 @@ static inline double el_distribution2d__sanitize(float x) {
 static el_result el_distribution2d__scan(const float *f, size_t n, int clamp, double *sum, size_t *positive, size_t *bad) {
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, s = 0.0;
   size_t i, m = 0, n4 = n & ~(size_t)3;
-  int ok = 1;
+  uint32_t acc = 0;
+  int ok;
   *sum = 0.0;
   *positive = 0;
+  /* A float is finite and >= +0 exactly when its bits, as an unsigned integer, are below 0x7f800000,
+   * i.e. when neither bits nor bits + 0x00800000 has the top bit set (-0.0 fails too and goes to the
+   * careful loop, which accepts it). Nonzero bits then mean a positive value. */
   for (i = 0; i < n4; i += 4) {
-    float a = f[i], b = f[i + 1], c = f[i + 2], e = f[i + 3];
-    ok &= (a >= 0.0f) & (a <= FLT_MAX) & (b >= 0.0f) & (b <= FLT_MAX) & (c >= 0.0f) & (c <= FLT_MAX) & (e >= 0.0f) & (e <= FLT_MAX);
-    s0 += (double)a; s1 += (double)b; s2 += (double)c; s3 += (double)e;
-    m += (size_t)((a > 0.0f) + (b > 0.0f) + (c > 0.0f) + (e > 0.0f));
+    uint32_t b[4];
+    memcpy(b, f + i, sizeof b);
+    acc |= (b[0] | (b[0] + 0x00800000u)) | (b[1] | (b[1] + 0x00800000u)) | (b[2] | (b[2] + 0x00800000u)) | (b[3] | (b[3] + 0x00800000u));
+    m += (size_t)((b[0] != 0) + (b[1] != 0) + (b[2] != 0) + (b[3] != 0));
+    s0 += (double)f[i]; s1 += (double)f[i + 1]; s2 += (double)f[i + 2]; s3 += (double)f[i + 3];
   }
   for (i = n4; i < n; ++i) {
-    float a = f[i];
-    ok &= (a >= 0.0f) & (a <= FLT_MAX);
-    s0 += (double)a;
-    m += (size_t)(a > 0.0f);
+    uint32_t b0;
+    memcpy(&b0, f + i, sizeof b0);
+    acc |= b0 | (b0 + 0x00800000u);
+    m += (size_t)(b0 != 0);
+    s0 += (double)f[i];
   }
+  ok = !(acc & 0x80000000u);
   if (ok) {
     *sum = (s0 + s1) + (s2 + s3);
     *positive = m;

@@ -287,6 +287,28 @@ static void test_bad_input(void) {
   r = el_distribution1d_init(&d, f, 6, &opt);
   check(r == EL_ERROR_INFINITE && opt.bad_index == 5, "1D -Inf at 5: EL_ERROR_INFINITE, bad_index 5");
   el_distribution1d_free(&d); /* zeroed on failure: safe */
+  {
+    /* every position of the 4-wide validity pass and the tail; -0.0 is a zero, not a negative */
+    float g[11];
+    int pos, k, ok = 1;
+    float bads[4];
+    el_result want[4] = {EL_ERROR_NAN, EL_ERROR_INFINITE, EL_ERROR_NEGATIVE, EL_ERROR_NEGATIVE};
+    bads[0] = (float)NAN; bads[1] = (float)INFINITY; bads[2] = -1e-45f; bads[3] = -(float)FLT_MAX;
+    for (pos = 0; pos < 11; ++pos)
+      for (k = 0; k < 4; ++k) {
+        int j;
+        for (j = 0; j < 11; ++j) g[j] = 1.0f + j;
+        g[pos] = bads[k];
+        if (el_distribution1d_init(&d, g, 11, &opt) != want[k] || opt.bad_index != pos) ok = 0;
+      }
+    check(ok, "NaN, +Inf, -denormal, -FLT_MAX at each of 11 positions: the right error and index");
+    for (k = 0; k < 11; ++k) g[k] = 1.0f;
+    g[0] = -0.0f; g[9] = -0.0f;
+    r = el_distribution1d_init(&d, g, 11, &opt);
+    check(r == EL_SUCCESS && el_distribution1d_pdf(&d, 0.5f / 11) == 0.0f && el_distribution1d_pdf(&d, 9.5f / 11) == 0.0f &&
+          el_distribution1d_pdf(&d, 1.5f / 11) > 0.0f, "-0.0 is accepted as zero: its bins have pdf 0");
+    el_distribution1d_free(&d);
+  }
   /* 2D: f[v*nu+u] with nu = 3, nv = 2: (u=2, v=1) is index 5 */
   f[5] = (float)NAN;
   r = el_distribution2d_init(&d2, f, 3, 2, &opt);
