@@ -203,6 +203,8 @@ typedef struct el_envlight {
   float constant[3];       /* the radiance of a constant light (scaled) */
   float to_world[9];       /* row-major, orthonormal */
   int exact_transform;     /* 1 when to_world is a signed permutation (round trips are exact) */
+  int perm[3], iperm[3];   /* then world[i] = sign[i] * light[perm[i]], light[j] = isign[j] * world[iperm[j]] */
+  float sign[3], isign[3];
   int compensated, importance, sampler, imp_w, imp_h;
   double integral[3];      /* integral of le over the sphere, per channel (for power()) */
   float center[3], radius; /* the scene's bounding sphere (preprocess) */
@@ -217,6 +219,9 @@ typedef struct el_envlight {
   int *u_base, *v_base;
   float *u_edge, *v_edge;
   int u_cells, v_cells;
+  float u_cell_scale, v_cell_scale;
+  float u_margin, v_margin;  /* EL_ENVLIGHT__MARGIN in bin units (plus rounding slack) */
+  float *pdf_table;        /* nu*nv: the distribution's pdf of each bin / (2 pi^2) */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -360,6 +365,21 @@ static inline void el_envlight__mul_transpose(const float m[9], const float a[3]
   b[1] = m[1] * a[0] + m[4] * a[1] + m[7] * a[2];
   b[2] = m[2] * a[0] + m[5] * a[1] + m[8] * a[2];
 }
+/* world -> light and light -> world with the permutation fast path */
+static inline void el_envlight__to_light(const el_envlight *l, const float w[3], float d[3]) {
+  if (l->exact_transform) { /* world[i] = sign[i] * light[perm[i]] */
+    d[0] = l->isign[0] * w[l->iperm[0]];
+    d[1] = l->isign[1] * w[l->iperm[1]];
+    d[2] = l->isign[2] * w[l->iperm[2]];
+  } else el_envlight__mul_transpose(l->to_world, w, d);
+}
+static inline void el_envlight__to_world(const el_envlight *l, const float d[3], float w[3]) {
+  if (l->exact_transform) {
+    w[0] = l->sign[0] * d[l->perm[0]];
+    w[1] = l->sign[1] * d[l->perm[1]];
+    w[2] = l->sign[2] * d[l->perm[2]];
+  } else el_envlight__mul(l->to_world, d, w);
+}
 static inline float el_envlight__clamp_u(float u) {
   if (!(u > 0.0f)) return 0.0f;
   return u < 0.99999994f ? u : 0.99999994f;
@@ -442,6 +462,7 @@ static el_result el_envlight__set_matrix(el_envlight *l, const float *m) {
   if (zero) {
     for (i = 0; i < 9; ++i) l->to_world[i] = (i % 4 == 0) ? 1.0f : 0.0f;
     l->exact_transform = 1;
+    for (i = 0; i < 3; ++i) { l->perm[i] = l->iperm[i] = i; l->sign[i] = l->isign[i] = 1.0f; }
     return EL_SUCCESS;
   }
   for (i = 0; i < 9; ++i) a[i] = m[i];
@@ -469,6 +490,13 @@ static el_result el_envlight__set_matrix(el_envlight *l, const float *m) {
     if (l->to_world[i] != 0.0f && l->to_world[i] != 1.0f && l->to_world[i] != -1.0f) perm = 0;
   }
   l->exact_transform = perm;
+  if (perm)
+    for (i = 0; i < 3; ++i)
+      for (j = 0; j < 3; ++j)
+        if (l->to_world[3 * i + j] != 0.0f) {
+          l->perm[i] = j; l->sign[i] = l->to_world[3 * i + j];
+          l->iperm[j] = i; l->isign[j] = l->to_world[3 * i + j];
+        }
   return EL_SUCCESS;
 }
 
@@ -566,8 +594,16 @@ static el_result el_envlight__finder(int n, int quarters, int **base, float **ed
 static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_fast_free(&l->fast);
   el_distribution2d_free(&l->dist);
-  EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge);
-  l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL;
+  EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge); EL_FREE(l->pdf_table);
+  l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL; l->pdf_table = NULL;
+}
+
+/* The pdf of bin (iu, iv), exactly el_distribution2d_pdf's expression. */
+static inline float el_envlight__bin_pdf(const el_distribution2d *dd, int iu, int iv) {
+  const uint32_t *row = dd->cdf + (size_t)iv * ((size_t)dd->nu + 1);
+  float wv = (float)(dd->marginal[iv + 1] - dd->marginal[iv]);
+  float wu = (float)(row[iu + 1] - row[iu]);
+  return (wv * dd->v_pdf_scale) * (wu * dd->u_pdf_scale);
 }
 
 /* >> construction */
@@ -807,6 +843,15 @@ static el_result el_envlight__build(el_envlight *l) {
   r = el_envlight__finder(nu, 4, &l->u_base, &l->u_edge, &l->u_cells);
   if (r == EL_SUCCESS) r = el_envlight__finder(nv, 1, &l->v_base, &l->v_edge, &l->v_cells);
   if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
+  l->u_margin = EL_ENVLIGHT__MARGIN * (float)nu * 1.0001f;
+  l->v_margin = EL_ENVLIGHT__MARGIN * (float)nv * 1.0001f;
+  l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
+  l->v_cell_scale = (float)(l->v_cells - 2);
+  l->pdf_table = (float *)EL_MALLOC(nb * sizeof(float));
+  if (!l->pdf_table) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
+  for (j = 0; j < nv; ++j)
+    for (i = 0; i < nu; ++i)
+      l->pdf_table[(size_t)j * nu + i] = el_envlight__bin_pdf(&l->dist, i, j) * EL_ENVLIGHT__INV_2PI2;
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
     el_distribution_fast_options fo;
     memset(&fo, 0, sizeof fo);
@@ -877,7 +922,7 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float d[3]) {
 
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]) {
   float d[3], r2, len2, u, v;
-  el_envlight__mul_transpose(l->to_world, dir, d);
+  el_envlight__to_light(l, dir, d);
   r2 = d[0] * d[0] + d[1] * d[1];
   len2 = r2 + d[2] * d[2];
   if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
@@ -890,16 +935,9 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
   el_envlight__bilerp(l, u, v, rgb);
 }
 
-/* The pdf of bin (iu, iv), exactly el_distribution2d_pdf's expression. */
-static inline float el_envlight__bin_pdf(const el_distribution2d *dd, int iu, int iv) {
-  const uint32_t *row = dd->cdf + (size_t)iv * ((size_t)dd->nu + 1);
-  float wv = (float)(dd->marginal[iv + 1] - dd->marginal[iv]);
-  float wu = (float)(row[iu + 1] - row[iu]);
-  return (wv * dd->v_pdf_scale) * (wu * dd->u_pdf_scale);
-}
 
 /* pdf_li for a light-space direction d (not necessarily unit). */
-static float el_envlight__pdf_light(const el_envlight *l, const float dir[3]) {
+static inline float el_envlight__pdf_light(const el_envlight *l, const float dir[3]) {
   float d[3], r2, len2, r, len, p, ax, ay, pu, t, az;
   int iu, iv, c;
   d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2];
@@ -919,21 +957,21 @@ static float el_envlight__pdf_light(const el_envlight *l, const float dir[3]) {
   if (d[1] >= 0.0f) pu = d[0] >= 0.0f ? pu : 2.0f - pu;
   else pu = d[0] < 0.0f ? 2.0f + pu : 4.0f - pu;
   if (pu >= 4.0f) pu = 3.99999976f; /* y < 0 too small to resolve: the last bin before the seam */
-  c = (int)(pu * (float)(l->u_cells - 2) * 0.25f);
-  if (c > l->u_cells - 1) c = l->u_cells - 1;
+  c = (int)(pu * l->u_cell_scale);
+  EL_ASSERT(c >= 0 && c < l->u_cells);
   iu = l->u_base[c] + (pu >= l->u_edge[c]);
   /* <<Find the v bin>>: t = r / (r + |z|) in the folded hemisphere */
   az = fabsf(d[2]);
   t = r / (r + az);
-  c = (int)(t * (float)(l->v_cells - 2));
-  if (c > l->v_cells - 1) c = l->v_cells - 1;
+  c = (int)(t * l->v_cell_scale);
+  EL_ASSERT(c >= 0 && c < l->v_cells);
   iv = l->v_base[c] + (t >= l->v_edge[c]);
   if (d[2] < 0.0f) iv = l->dist.nv - 1 - iv;
   EL_ASSERT(iu >= 0 && iu < l->dist.nu && iv >= 0 && iv < l->dist.nv);
-  p = el_envlight__bin_pdf(&l->dist, iu, iv);
-  /* p / (2 pi^2 sin(theta)), sin(theta) = r / len, floored at SIN_MIN */
+  p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu]; /* mapPdf / (2 pi^2) */
+  /* p / sin(theta), sin(theta) = r / len, floored at SIN_MIN */
   if (r < EL_ENVLIGHT__SIN_MIN * len) r = EL_ENVLIGHT__SIN_MIN * len;
-  p = p * len / r * EL_ENVLIGHT__INV_2PI2;
+  p = p * len / r;
   EL_ASSERT(p >= 0.0f && p <= FLT_MAX);
   return p;
 }
@@ -941,13 +979,13 @@ static float el_envlight__pdf_light(const el_envlight *l, const float dir[3]) {
 EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
   float d[3];
   if (!el_envlight__ensure(l)) return 0.0f;
-  el_envlight__mul_transpose(l->to_world, dir, d);
+  el_envlight__to_light(l, dir, d);
   return el_envlight__pdf_light(l, d);
 }
 
 /* Sample (u, v) and the light-space direction; returns the pdf w.r.t. solid angle (0: no sample). */
 static float el_envlight__sample_light(el_envlight *l, float u0, float u1, float *pu, float *pv, float d[3]) {
-  float u, v, p, lo, sin_t;
+  float u, v, p, t, sin_t;
   int iu, iv;
   if (l->width == 0) { /* constant: uniform sphere, pdf 1 / 4 pi */
     u = el_envlight__clamp_u(u0);
@@ -968,15 +1006,25 @@ static float el_envlight__sample_light(el_envlight *l, float u0, float u1, float
   if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample(&l->dist, u0, u1, &u, &v, &p);
   else el_distribution2d_fast_sample(&l->fast, u0, u1, &u, &v, &p);
   if (!(p > 0.0f)) { d[0] = 0.0f; d[1] = 0.0f; d[2] = 1.0f; *pu = u; *pv = v; return 0.0f; }
-  /* keep the point EL_ENVLIGHT__MARGIN inside its bin: never on an edge, a pole or the seam */
-  iu = el_distribution2d__bin(u, 0.0f, l->dist.u_scale, l->dist.nu);
-  iv = el_distribution2d__bin(v, 0.0f, l->dist.v_scale, l->dist.nv);
-  lo = (float)iu * l->dist.u_width;
-  if (u < lo + EL_ENVLIGHT__MARGIN) u = lo + EL_ENVLIGHT__MARGIN;
-  if (u > lo + l->dist.u_width - EL_ENVLIGHT__MARGIN) u = lo + l->dist.u_width - EL_ENVLIGHT__MARGIN;
-  lo = (float)iv * l->dist.v_width;
-  if (v < lo + EL_ENVLIGHT__MARGIN) v = lo + EL_ENVLIGHT__MARGIN;
-  if (v > lo + l->dist.v_width - EL_ENVLIGHT__MARGIN) v = lo + l->dist.v_width - EL_ENVLIGHT__MARGIN;
+  /* keep the point EL_ENVLIGHT__MARGIN inside its bin: never on an edge, a pole or the seam. The bin is
+   * the distribution's own (u * u_scale, clamped); the fraction within it is almost always far from the
+   * edges, so the clamp is a rarely taken branch. */
+  t = u * l->dist.u_scale;
+  iu = (int)t;
+  if (iu > l->dist.nu - 1) iu = l->dist.nu - 1;
+  t -= (float)iu;
+  if (t < l->u_margin || t > 1.0f - l->u_margin) {
+    t = t < l->u_margin ? l->u_margin : 1.0f - l->u_margin;
+    u = ((float)iu + t) * l->dist.u_width;
+  }
+  t = v * l->dist.v_scale;
+  iv = (int)t;
+  if (iv > l->dist.nv - 1) iv = l->dist.nv - 1;
+  t -= (float)iv;
+  if (t < l->v_margin || t > 1.0f - l->v_margin) {
+    t = t < l->v_margin ? l->v_margin : 1.0f - l->v_margin;
+    v = ((float)iv + t) * l->dist.v_width;
+  }
   /* <<Compute direction for infinite light sample>> */
   sin_t = el_envlight__uv_to_dir(u, v, d);
   *pu = u; *pv = v;
@@ -993,7 +1041,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
     return;
   }
   p = el_envlight__sample_light(l, uu[0], uu[1], &u, &v, d);
-  el_envlight__mul(l->to_world, d, wi);
+  el_envlight__to_world(l, d, wi);
   if (!l->exact_transform && p > 0.0f && l->width > 0) {
     float back[3];
     el_envlight__mul_transpose(l->to_world, wi, back);
@@ -1074,6 +1122,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   if (s != 2 || l->width == 0) return 0;
   b += el_distribution2d_bytes(&l->dist);
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
+  b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) b += el_distribution2d_fast_bytes(&l->fast);
   return b;
 }
