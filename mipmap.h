@@ -265,27 +265,29 @@ static const float el_mipmap__weight_lut[128] = {
   0.0021481365f, 0.0f};
 
 /* >> mipmap: small helpers */
-/* log2(x) for x >= 1e-8 (or +infinity, which gives 128) without a libm call: exponent from the bits,
- * mantissa m in [sqrt(1/2), sqrt(2)) through log2(m) = (2/ln 2) atanh(z), z = (m-1)/(m+1), |z| < 0.172,
- * series to z^9 (truncation 1e-9). Within 2 ulp of log2; pbrt-v3 computes log(x) / log(2) with
- * its own rounding, so MIP levels agree with pbrt's to float precision rather than to the bit. */
-EL_MIPMAP__INLINE float el_mipmap__log2(float x) {
+/* pbrt's MIP level (levels - 1) + log2(x) for x >= 1e-8 (or +infinity), split into its integer part
+ * *il and its fraction *frac in [0, 1), without a libm call: the integer part is the float's exponent,
+ * the fraction log2(m) of its mantissa m in [1, 2), computed as (2/ln 2) atanh(z), z = (m-1)/(m+1) in
+ * [0, 1/3), series to z^15 (truncation 1.3e-9). pbrt-v3 computes log(x) / log(2) with libm and then
+ * level - floor(level), so the fraction agrees with pbrt's to float precision, not to the bit. */
+EL_MIPMAP__INLINE void el_mipmap__level(float x, int levels, int *il, float *frac) {
   unsigned int b;
-  int e;
-  float mf, z, z2;
+  float mf, z, z2, f;
   memcpy(&b, &x, sizeof b);
-  e = (int)(b >> 23) - 127;
+  *il = levels - 1 + ((int)(b >> 23) - 127);
   b = (b & 0x007fffffu) | 0x3f800000u;
   memcpy(&mf, &b, sizeof mf);
-  if (mf > 1.41421356f) {
-    mf *= 0.5f;
-    e += 1;
-  }
   z = (mf - 1.0f) / (mf + 1.0f);
   z2 = z * z;
-  return (float)e + z * (2.88539008f + z2 * (0.961796694f + z2 * (0.577078016f + z2 * (0.412198583f +
-                                                                                   z2 * 0.320598898f))));
+  f = z * (2.88539008f + z2 * (0.961796694f + z2 * (0.577078016f + z2 * (0.412198583f + z2 * (0.320598898f +
+          z2 * (0.262308189f + z2 * (0.221953083f + z2 * 0.192359339f)))))));
+  if (f >= 1.0f) { /* rounding just below the next power of two */
+    *il += 1;
+    f = 0.0f;
+  }
+  *frac = f;
 }
+
 /* floor for |x| < 2^30 without a libm call. */
 EL_MIPMAP__INLINE int el_mipmap__ifloor(float x) {
   int i = (int)x;
@@ -826,7 +828,7 @@ EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, fl
 
 EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
                                       float width, float *out) {
-  float level;
+  float frac;
   int il;
   if (filter != EL_FILTER_POINT && filter != EL_FILTER_BILINEAR) {
     el_mipmap_lookup(m, s, t, width, out);
@@ -834,12 +836,12 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
   }
   /* pbrt-v4: <<Compute MIPMap level>>, then one level */
   if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
-  level = (float)(m->levels - 1) + el_mipmap__log2(width);
-  if (level >= (float)(m->levels - 1)) {
+  el_mipmap__level(width, m->levels, &il, &frac);
+  if (il >= m->levels - 1) {
     el_mipmap__texel(m, el_mipmap__usable(m, m->levels - 1), 0, 0, out);
     return;
   }
-  il = level < 0 ? 0 : (int)level;
+  if (il < 0) il = 0;
   if (filter == EL_FILTER_POINT) {
     el_mipmap_point(m, il, s, t, out);
     return;
@@ -849,24 +851,22 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
 }
 
 EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out) {
-  /* <<Compute MIPMap level for trilinear filtering>> */
-  float level, delta, a[4], b[4];
+  /* <<Compute MIPMap level for trilinear filtering>>: level = il + delta */
+  float delta, a[4], b[4];
   int il, c, C = m->channels;
   if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
-  level = (float)(m->levels - 1) + el_mipmap__log2(width);
+  el_mipmap__level(width, m->levels, &il, &delta);
   /* <<Perform trilinear interpolation at appropriate MIPMap level>> */
-  if (level >= (float)(m->levels - 1)) {
+  if (il >= m->levels - 1) {
     el_mipmap__texel(m, el_mipmap__usable(m, m->levels - 1), 0, 0, out);
     return;
   }
   s = el_mipmap__sane(s, m->wrap_u);
   t = el_mipmap__sane(t, m->wrap_v);
-  if (level < 0 || !el_mipmap__ensure(m)) { /* (levels 1.. are unavailable only when out of memory) */
+  if (il < 0 || !el_mipmap__ensure(m)) { /* (levels 1.. are unavailable only when out of memory) */
     el_mipmap__bilerp(m, 0, s, t, out);
     return;
   }
-  il = (int)level;
-  delta = level - (float)il;
   if (C == 3) { /* the common case, specialised */
     el_mipmap__bilerp_c(m, il, s, t, a, 3);
     el_mipmap__bilerp_c(m, il + 1, s, t, b, 3);
@@ -1044,7 +1044,7 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
                                            float dsdy, float dtdy, float *out) {
   float d0s = el_mipmap__sane_d(dsdx), d0t = el_mipmap__sane_d(dtdx);
   float d1s = el_mipmap__sane_d(dsdy), d1t = el_mipmap__sane_d(dtdy);
-  float l0, l1, major, minor, lod, f, a[4], b[4];
+  float l0, l1, major, minor, f, a[4], b[4];
   int ilod, c, C = m->channels;
   if (m->filter != EL_FILTER_EWA) {
     float w = fabsf(d0s);
@@ -1082,10 +1082,11 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
     return;
   }
   /* <<Choose level of detail for EWA lookup and perform EWA filtering>> */
-  lod = (float)m->levels - (float)1 + el_mipmap__log2(minor);
-  if (lod < 0) lod = 0;
-  ilod = (int)lod;
-  f = lod - (float)ilod;
+  el_mipmap__level(minor, m->levels, &ilod, &f); /* lod = ilod + f */
+  if (ilod < 0) { /* lod = max(0, ...) */
+    ilod = 0;
+    f = 0;
+  }
   if ((ilod > 0 || f > 0) && !el_mipmap__ensure(m)) { /* out of memory: level 0 only */
     ilod = 0;
     f = 0;
