@@ -658,6 +658,82 @@ static void test_alias_exact(void) {
   el_distribution2d_free(&d);
 }
 
+/* ---- fast samplers on a general domain and non-power-of-two sizes ---- */
+static void test_fast_general(void) {
+  enum { NU = 7, NV = 5 };
+  float f[NU * NV];
+  el_distribution2d d;
+  el_distribution2d_fast fg, fa;
+  el_distribution_fast_options fo;
+  el_distribution_options opt;
+  double cc[NU], rc[NV];
+  int i, bad = 0, same = 1, r, c;
+  uint32_t k;
+  for (i = 0; i < NU * NV; ++i) f[i] = (float)((i * 5) % 9);   /* zeros at 0, 9, 18, 27 */
+  memset(&opt, 0, sizeof opt);
+  opt.domain[0] = -1; opt.domain[1] = 10; opt.domain[2] = 2.5f; opt.domain[3] = 10.3f;
+  memset(&fo, 0, sizeof fo);
+  el_distribution2d_init(&d, f, NU, NV, &opt);
+  check(el_distribution2d_fast_init(&fg, &d) == EL_SUCCESS, "7x5 on [-1,2.5]x[10,10.3]: guide builds");
+  fo.method = EL_DISTRIBUTION_FAST_ALIAS;
+  check(el_distribution2d_fast_init_ex(&fa, &d, &fo) == EL_SUCCESS, "7x5 on [-1,2.5]x[10,10.3]: alias builds");
+  for (i = 0; i < 100000; ++i) {
+    float u0 = rndu(), u1 = rndu(), x, y, p, xg, yg, pg, xa, ya, pa;
+    if (i == 0) { u0 = 1.0f; u1 = 1.0f; }
+    if (i == 1) { u0 = 0.0f; u1 = 0.0f; }
+    if (i == 2) { u0 = (float)NAN; u1 = -3.0f; }
+    el_distribution2d_sample(&d, u0, u1, &x, &y, &p);
+    el_distribution2d_fast_sample(&fg, u0, u1, &xg, &yg, &pg);
+    el_distribution2d_fast_sample(&fa, u0, u1, &xa, &ya, &pa);
+    if (xg != x || yg != y || pg != p) same = 0;
+    if (!(xa >= -1 && xa < 2.5f && ya >= 10 && ya < 10.3f && pa > 0 && pa == el_distribution2d_pdf(&d, xa, ya) &&
+          pa == el_distribution2d_fast_pdf(&fa, xa, ya)))
+      ++bad;
+    if (!(x >= -1 && x < 2.5f && y >= 10 && y < 10.3f && p > 0 && p == el_distribution2d_pdf(&d, x, y))) ++bad;
+  }
+  checkf(same && bad == 0, "7x5 general domain: guide == CDF bit for bit, alias and CDF points inside with pdf == pdf() (%g bad)", bad, 0);
+  /* exact alias frequencies with non-power-of-two cells: all 2^24 u1 (rows), then all 2^24 u0 in row 2 */
+  memset(rc, 0, sizeof rc);
+  memset(cc, 0, sizeof cc);
+  for (k = 0; k < 16777216u; ++k) {
+    float x, y, p;
+    el_distribution2d_fast_sample(&fa, 0.5f, (float)k * (1.0f / 16777216.0f), &x, &y, &p);
+    rc[el_distribution2d__bin(y, 10.0f, d.v_scale, NV)] += 1;
+  }
+  {
+    float u1 = -1;
+    for (k = 0; k < 16777216u && u1 < 0; ++k) {
+      float x, y, p;
+      el_distribution2d_fast_sample(&fa, 0.5f, (float)k * (1.0f / 16777216.0f), &x, &y, &p);
+      if (el_distribution2d__bin(y, 10.0f, d.v_scale, NV) == 2) u1 = (float)k * (1.0f / 16777216.0f);
+    }
+    for (k = 0; k < 16777216u; ++k) {
+      float x, y, p;
+      el_distribution2d_fast_sample(&fa, (float)k * (1.0f / 16777216.0f), u1, &x, &y, &p);
+      cc[el_distribution2d__bin(x, -1.0f, d.u_scale, NU)] += 1;
+    }
+  }
+  bad = 0;
+  r = 2;
+  for (c = 0; c < NU; ++c) {
+    /* pdf * bin area = P(row) P(col | row); bin area = (3.5/7) * (0.3/5) */
+    double expect = rc[r] / UNITS * cc[c] / UNITS;
+    double got = (double)el_distribution2d_pdf(&d, -1.0f + 0.5f * (c + 0.5f), 10.0f + 0.06f * (r + 0.5f)) * (3.5 / 7) * (0.3 / 5);
+    if (fabs(got - expect) > 1e-6 * expect || ((f[r * NU + c] > 0) != (cc[c] > 0))) ++bad;
+  }
+  for (r = 0; r < NV; ++r) {
+    double rowsum = 0, expect = rc[r] / UNITS, got = 0;
+    for (c = 0; c < NU; ++c) {
+      rowsum += f[r * NU + c];
+      got += (double)el_distribution2d_pdf(&d, -1.0f + 0.5f * (c + 0.5f), 10.0f + 0.06f * (r + 0.5f)) * (3.5 / 7) * (0.3 / 5);
+    }
+    if (fabs(got - expect) > 1e-6 || (rowsum > 0) != (rc[r] > 0)) ++bad;
+  }
+  checkf(bad == 0, "7x5 alias, all 2^24 u per dimension: row and column frequencies == stated pdf x area (%g bad)", bad, 0);
+  el_distribution2d_fast_free(&fg); el_distribution2d_fast_free(&fa);
+  el_distribution2d_free(&d);
+}
+
 /* ---- 8192 x 4096 with a 1e12 range ---- */
 static void test_large(void) {
   const int nu = 8192, nv = 4096;
@@ -721,6 +797,7 @@ int main(void) {
   test_hand_2d();
   test_chi2_2d();
   test_alias_exact();
+  test_fast_general();
   test_large();
   printf("test_distribution2d: %d passed, %d failed (%.1f s)\n", g_pass, g_fail, now() - t);
   return g_fail != 0;
