@@ -266,21 +266,28 @@ static const float el_mipmap__weight_lut[128] = {
 
 /* >> mipmap: small helpers */
 /* pbrt's MIP level (levels - 1) + log2(x) for x >= 1e-8 (or +infinity), split into its integer part
- * *il and its fraction *frac in [0, 1), without a libm call: the integer part is the float's exponent,
- * the fraction log2(m) of its mantissa m in [1, 2), computed as (2/ln 2) atanh(z), z = (m-1)/(m+1) in
- * [0, 1/3), series to z^15 (truncation 1.3e-9). pbrt-v3 computes log(x) / log(2) with libm and then
- * level - floor(level), so the fraction agrees with pbrt's to float precision, not to the bit. */
+ * *il and its fraction *frac in [0, 1), without a libm call: the integer part is the float's exponent;
+ * the fraction is log2 of the mantissa m in [1, 2): m = (1 + k/16)(1 + r) with k its first 4 bits,
+ * log2(1 + k/16) from a table, log2(1 + r) for 0 <= r < 1/16 from its series to r^5 (truncation 1e-8).
+ * Within about 1e-7 of log2. pbrt-v3 computes log(x) / log(2) with libm and then level - floor(level),
+ * so the fraction agrees with pbrt's to float precision, not to the bit. */
+static const float el_mipmap__log2_head[16] = {
+    0.0f, 0.0874628425f, 0.169925004f, 0.247927517f, 0.321928084f, 0.392317414f, 0.459431618f, 0.523561954f,
+    0.584962487f, 0.643856168f, 0.700439692f, 0.754887521f, 0.807354927f, 0.857980967f, 0.906890571f, 0.954196334f};
+static const float el_mipmap__log2_inv[16] = {
+    1.0f, 0.941176474f, 0.888888896f, 0.842105269f, 0.800000012f, 0.761904776f, 0.727272749f, 0.695652187f,
+    0.666666687f, 0.639999986f, 0.615384638f, 0.592592597f, 0.571428597f, 0.551724136f, 0.533333361f, 0.516129017f};
 EL_MIPMAP__INLINE void el_mipmap__level(float x, int levels, int *il, float *frac) {
-  unsigned int b;
-  float mf, z, z2, f;
+  unsigned int b, k;
+  float mf, r, f;
   memcpy(&b, &x, sizeof b);
   *il = levels - 1 + ((int)(b >> 23) - 127);
+  k = (b >> 19) & 15u;
   b = (b & 0x007fffffu) | 0x3f800000u;
   memcpy(&mf, &b, sizeof mf);
-  z = (mf - 1.0f) / (mf + 1.0f);
-  z2 = z * z;
-  f = z * (2.88539008f + z2 * (0.961796694f + z2 * (0.577078016f + z2 * (0.412198583f + z2 * (0.320598898f +
-          z2 * (0.262308189f + z2 * (0.221953083f + z2 * 0.192359339f)))))));
+  r = mf * el_mipmap__log2_inv[k] - 1.0f;
+  f = el_mipmap__log2_head[k] +
+      r * (1.44269502f + r * (-0.721347511f + r * (0.48089835f + r * (-0.360673755f + r * 0.288539022f))));
   if (f >= 1.0f) { /* rounding just below the next power of two */
     *il += 1;
     f = 0.0f;
