@@ -345,6 +345,7 @@ static float el_mipmap__sane_ewa(float s, el_wrap w) {
 }
 /* A differential: NaN counts as 0, magnitudes are limited to 1e8 (far beyond the 1x1 level). */
 static float el_mipmap__sane_d(float d) {
+  if (fabsf(d) <= 1e8f) return d; /* the common case, one test */
   if (d != d) return 0.0f;
   if (d > 1e8f) return 1e8f;
   if (d < -1e8f) return -1e8f;
@@ -992,12 +993,27 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
     }
     rp = data + (size_t)row * rowstride;
     if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu) { /* inside: no wrapping */
-      for (p = rp + (size_t)lo * (size_t)C, pend = rp + (size_t)hi * (size_t)C; p <= pend; p += C, fis += 1.0f) {
-        float ss = fis - x;
-        float r2 = A * ss * ss + B * ss * tt + ctt;
+      /* two texels per iteration (the same additions in the same order) */
+      for (p = rp + (size_t)lo * (size_t)C, pend = rp + (size_t)hi * (size_t)C; p < pend; p += 2 * C, fis += 2.0f) {
+        float ss = fis - x, ss1 = (fis + 1.0f) - x;
+        float r2 = A * ss * ss + B * ss * tt + ctt, r21 = A * ss1 * ss1 + B * ss1 * tt + ctt;
         if (r2 < 1) {
           /* r2 in [0, 1) up to rounding, so (int)(r2 * 128) is 0..127; & 127 keeps any rounding
            * accident inside the table */
+          float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+          for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
+          sumw += wgt;
+        }
+        if (r21 < 1) {
+          float wgt = el_mipmap__weight_lut[(int)(r21 * 128) & 127];
+          for (c = 0; c < C; ++c) acc[c] += p[C + c] * wgt;
+          sumw += wgt;
+        }
+      }
+      if (p == pend) { /* an odd count: the last texel */
+        float ss = fis - x;
+        float r2 = A * ss * ss + B * ss * tt + ctt;
+        if (r2 < 1) {
           float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
           for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
           sumw += wgt;
