@@ -119,6 +119,7 @@ int main(int argc, char **argv) {
     else { fprintf(stderr, "usage: bench_render [--quick] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples N]\n"); return 1; }
   }
   if (ref_spp < 1) ref_spp = 1;
+  setvbuf(stdout, NULL, _IOLBF, 0);
   snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
   w = s->d.xres; h = s->d.yres;

@@ -176,6 +176,8 @@ struct elr_scene {
   int *geom_index;
   unsigned ngeom;
   unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
+  unsigned builtin_geom; /* geometry id of Embree's sphere primitives (similarity transforms), or ~0u */
+  int *sph_builtin, *sph_user, nbuiltin, nuser; /* primID -> sphere index */
   float world_radius;
   elr_v3 world_center;
   int *mat_textured; /* per material: 1 when a texture varies over the surface (needs uv) */

@@ -66,7 +66,7 @@ typedef struct elr_sampler {
   int px, py, sample;
   elr_rng rng;
   float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
-  int d1, d2, dim;
+  int d1, d2, dim, made1, made2;
   int64_t hindex, hoffset;
 } elr_sampler;
 
@@ -135,24 +135,9 @@ static void elr__sampler_pixel(elr_sampler *S, int px, int py) {
   S->px = px; S->py = py;
   elr__rng_seed(&S->rng, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr__mix(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py ^ (S->seed << 17)));
   if (S->kind == ELR_SAMPLER_STRATIFIED) {
-    int d, i, n = S->spp;
-    for (d = 0; d < S->dims; d++) {
-      float *a = S->s1d + (size_t)d * (size_t)n, *b = S->s2d + (size_t)d * (size_t)n * 2;
-      int x, y;
-      for (i = 0; i < n; i++) a[i] = fminf(((float)i + (S->jitter ? elr__rng_f(&S->rng) : 0.5f)) / (float)n, ELR_ONE_MINUS_EPS);
-      for (i = n - 1; i > 0; i--) { int j = (int)(elr__rng_u32(&S->rng) % (uint32_t)(i + 1)); float t = a[i]; a[i] = a[j]; a[j] = t; }
-      for (y = 0; y < S->ys; y++)
-        for (x = 0; x < S->xs; x++) {
-          float jx = S->jitter ? elr__rng_f(&S->rng) : 0.5f, jy = S->jitter ? elr__rng_f(&S->rng) : 0.5f;
-          b[2 * (y * S->xs + x)] = fminf(((float)x + jx) / (float)S->xs, ELR_ONE_MINUS_EPS);
-          b[2 * (y * S->xs + x) + 1] = fminf(((float)y + jy) / (float)S->ys, ELR_ONE_MINUS_EPS);
-        }
-      for (i = n - 1; i > 0; i--) {
-        int j = (int)(elr__rng_u32(&S->rng) % (uint32_t)(i + 1));
-        float t0 = b[2 * i], t1 = b[2 * i + 1];
-        b[2 * i] = b[2 * j]; b[2 * i + 1] = b[2 * j + 1]; b[2 * j] = t0; b[2 * j + 1] = t1;
-      }
-    }
+    /* strata are made on the first request of each dimension in this pixel (every request of a
+     * dimension comes with sample 0 first), so dimensions a render never asks for cost nothing */
+    S->made1 = S->made2 = 0;
   } else if (S->kind == ELR_SAMPLER_HALTON) {
     const elr_halton *H = S->H;
     int64_t off = 0;
@@ -167,6 +152,35 @@ static void elr__sampler_pixel(elr_sampler *S, int px, int py) {
       off %= H->stride;
     }
     S->hoffset = off;
+  }
+}
+#define ELR_MINF(a, b) ((a) < (b) ? (a) : (b))
+/* <<StratifiedSample1D>>, <<StratifiedSample2D>> and <<Shuffle>> for one dimension of this pixel; the
+ * stream depends on the pixel, the seed and the dimension only */
+static void elr__strat_make(elr_sampler *S, int two, int d) {
+  int i, n = S->spp;
+  elr_rng r;
+  elr__rng_seed(&r, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 3 + (uint64_t)(2 * d + two)),
+                elr__mix(((uint64_t)(uint32_t)S->px << 32) ^ (uint64_t)(uint32_t)S->py));
+  if (!two) {
+    float *a = S->s1d + (size_t)d * (size_t)n;
+    for (i = 0; i < n; i++) a[i] = ELR_MINF(((float)i + (S->jitter ? elr__rng_f(&r) : 0.5f)) / (float)n, ELR_ONE_MINUS_EPS);
+    for (i = n - 1; i > 0; i--) { int j = (int)(elr__rng_u32(&r) % (uint32_t)(i + 1)); float t = a[i]; a[i] = a[j]; a[j] = t; }
+  } else {
+    float *b = S->s2d + (size_t)d * (size_t)n * 2;
+    int x, y;
+    float ix = 1.f / (float)S->xs, iy = 1.f / (float)S->ys;
+    for (y = 0; y < S->ys; y++)
+      for (x = 0; x < S->xs; x++) {
+        float jx = S->jitter ? elr__rng_f(&r) : 0.5f, jy = S->jitter ? elr__rng_f(&r) : 0.5f;
+        b[2 * (y * S->xs + x)] = ELR_MINF(((float)x + jx) * ix, ELR_ONE_MINUS_EPS);
+        b[2 * (y * S->xs + x) + 1] = ELR_MINF(((float)y + jy) * iy, ELR_ONE_MINUS_EPS);
+      }
+    for (i = n - 1; i > 0; i--) {
+      int j = (int)(elr__rng_u32(&r) % (uint32_t)(i + 1));
+      float t0 = b[2 * i], t1 = b[2 * i + 1];
+      b[2 * i] = b[2 * j]; b[2 * i + 1] = b[2 * j + 1]; b[2 * j] = t0; b[2 * j + 1] = t1;
+    }
   }
 }
 static void elr__sampler_start(elr_sampler *S, int sample) {
@@ -185,13 +199,18 @@ static float elr__halton_dim(elr_sampler *S, int dim) {
   return elr__rng_f(&S->rng);
 }
 static float elr__get1d(elr_sampler *S) {
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d1 < S->dims) return S->s1d[(size_t)(S->d1++) * (size_t)S->spp + (size_t)S->sample];
+  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d1 < S->dims) {
+    if (S->d1 >= S->made1) { elr__strat_make(S, 0, S->d1); S->made1 = S->d1 + 1; }
+    return S->s1d[(size_t)(S->d1++) * (size_t)S->spp + (size_t)S->sample];
+  }
   if (S->kind == ELR_SAMPLER_HALTON) return elr__halton_dim(S, S->dim++);
   return elr__rng_f(&S->rng);
 }
 static void elr__get2d(elr_sampler *S, float *u0, float *u1) {
   if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims) {
-    const float *b = S->s2d + ((size_t)S->d2 * (size_t)S->spp + (size_t)S->sample) * 2;
+    const float *b;
+    if (S->d2 >= S->made2) { elr__strat_make(S, 1, S->d2); S->made2 = S->d2 + 1; }
+    b = S->s2d + ((size_t)S->d2 * (size_t)S->spp + (size_t)S->sample) * 2;
     S->d2++; *u0 = b[0]; *u1 = b[1]; return;
   }
   if (S->kind == ELR_SAMPLER_HALTON) { *u0 = elr__halton_dim(S, S->dim); *u1 = elr__halton_dim(S, S->dim + 1); S->dim += 2; return; }
@@ -213,6 +232,7 @@ typedef struct elr_ctx {
   int xres, yres;
   float diff_scale;
   elr_xform c2w;
+  elr_v3 cam_o, cam_x, cam_y, cam_z; /* camera origin and the images of its axes, world space */
   int spp;
 } elr_ctx;
 
@@ -522,8 +542,8 @@ static void *elr__worker(void *arg) {
           sx = C->sx0 + fx / (float)C->xres * (C->sx1 - C->sx0);
           sy = C->sy1 - fy / (float)C->yres * (C->sy1 - C->sy0);
           dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
-          r.o = elr_xpoint(&C->c2w, elr_v(0, 0, 0));
-          r.d = elr_norm(elr_xvector(&C->c2w, elr_norm(dc)));
+          r.o = C->cam_o;
+          r.d = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dc.x), elr_mul(C->cam_y, dc.y)), elr_mul(C->cam_z, dc.z)));
           r.has_diff = 0;
           if (C->s->any_textured) {
             float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
@@ -534,8 +554,8 @@ static void *elr__worker(void *arg) {
             dy = elr_add(dcn, elr_mul(elr_sub(dy, dcn), C->diff_scale));
             r.has_diff = 1;
             r.rxo = r.ryo = r.o;
-            r.rxd = elr_norm(elr_xvector(&C->c2w, dx));
-            r.ryd = elr_norm(elr_xvector(&C->c2w, dy));
+            r.rxd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dx.x), elr_mul(C->cam_y, dx.y)), elr_mul(C->cam_z, dx.z)));
+            r.ryd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dy.x), elr_mul(C->cam_y, dy.y)), elr_mul(C->cam_z, dy.z)));
           }
           ts.camera++;
           L = C->path ? elr__li_path(C, &S, &r, &ts) : elr__li_direct(C, &S, &r, 0, &ts);
@@ -608,6 +628,10 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   C.diff_scale = 1.f / sqrtf((float)C.spp);
   C.xres = xres; C.yres = yres;
   C.c2w = s->d.cam2world;
+  C.cam_o = elr_xpoint(&C.c2w, elr_v(0, 0, 0));
+  C.cam_x = elr_xvector(&C.c2w, elr_v(1, 0, 0));
+  C.cam_y = elr_xvector(&C.c2w, elr_v(0, 1, 0));
+  C.cam_z = elr_xvector(&C.c2w, elr_v(0, 0, 1));
   /* <<Compute screen window>> */
   frame = s->d.has_frameaspect ? s->d.frameaspect : (double)xres / (double)yres;
   if (s->d.has_screen) { C.sx0 = s->d.screen[0]; C.sx1 = s->d.screen[1]; C.sy0 = s->d.screen[2]; C.sy1 = s->d.screen[3]; }

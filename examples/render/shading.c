@@ -149,16 +149,24 @@ static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   return elr__tr_pdf_wh(b->alpha, wo, wh) / (4.f * fabsf(elr_dot(wo, wh)));
 }
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
-  elr_v3 wo = elr__to_local(b, woW), wi = elr__to_local(b, wiW), f = elr_v(0, 0, 0);
+  elr_v3 wo, wi, f = elr_v(0, 0, 0);
   int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
+  if (!b->has_glossy) /* Lambertian alone needs no local frame */
+    return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : f;
+  wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || !reflect) return f;
   if (b->has_diffuse) f = elr_mul(b->kd, ELR_INV_PI);
   if (b->has_glossy) f = elr_add(f, elr__glossy_f(b, wo, wi));
   return f;
 }
 float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
-  elr_v3 wo = elr__to_local(b, woW), wi = elr__to_local(b, wiW);
+  elr_v3 wo, wi;
   float pdf = 0.f;
+  if (!b->has_glossy) {
+    float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
+    return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
+  }
+  wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || b->ncomp == 0) return 0.f;
   if (b->has_diffuse && wo.z * wi.z > 0.f) pdf += fabsf(wi.z) * ELR_INV_PI;
   if (b->has_glossy) pdf += elr__glossy_pdf(b, wo, wi);
@@ -172,7 +180,8 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
   /* pbrt-v3: choose the component with u0, then remap u0 to [0,1) for the component's own sampling */
   comp = (int)(u0 * (float)b->ncomp);
   if (comp >= b->ncomp) comp = b->ncomp - 1;
-  u0 = fminf(u0 * (float)b->ncomp - (float)comp, ELR_ONE_MINUS_EPS);
+  u0 = u0 * (float)b->ncomp - (float)comp;
+  if (u0 > ELR_ONE_MINUS_EPS) u0 = ELR_ONE_MINUS_EPS;
   if (b->has_diffuse) { if (k == comp) which = 0; k++; }
   if (b->has_glossy) { if (k == comp) which = 1; k++; }
   if (b->has_specular) { if (k == comp) which = 2; k++; }

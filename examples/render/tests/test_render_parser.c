@@ -150,6 +150,41 @@ static void transforms_and_shapes(void) {
   elr_scene_free(s);
 }
 
+/* Exact spheres: Embree's sphere primitive for a similarity transform, the object-space user geometry
+ * for an ellipsoid; hits from outside and from inside, at the analytic distances. */
+static void sphere_hits(int embree_spheres) {
+  char err[512];
+  elr_scene *s;
+  if (embree_spheres) setenv("ELR_EMBREE_SPHERES", "1", 1); else unsetenv("ELR_EMBREE_SPHERES");
+  s = rt_load("hits.pbrt", W("AttributeBegin\n  Translate 0 0 10\n  Scale 2 1 1\n  Shape \"sphere\" \"float radius\" 1\nAttributeEnd\n"
+                                          "AttributeBegin\n  Translate 0 0 -10\n  Rotate 30 1 1 0\n  Scale 3 3 3\n  Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"),
+                         err, sizeof err);
+  elr_hit h;
+  if (!s) { rt_check(0, "hits scene: %s", err); return; }
+  if (embree_spheres)
+    rt_check(s->nbuiltin == 1 && s->nuser == 1, "ELR_EMBREE_SPHERES: the similarity sphere on Embree's primitive, the ellipsoid on the user geometry");
+  else
+    rt_check(s->nbuiltin == 0 && s->nuser == 2, "default: both spheres on the object-space user geometry");
+  {
+    int k;
+    k = elr_intersect(s, elr_v(-5, 0, 10), elr_v(1, 0, 0), INFINITY, &h);
+    rt_check(k && fabsf(h.t - 3.f) < 1e-5f && near3(h.ng, -1, 0, 0, 1e-5f), "ellipsoid (Scale 2 1 1): hit at x = -2 (t %.6f), normal -x", h.t);
+    k = elr_intersect(s, elr_v(0, 0, 10), elr_v(0, 1, 0), INFINITY, &h);
+    rt_check(k && fabsf(h.t - 1.f) < 1e-5f, "ellipsoid from inside: hit at y = 1 (t %.6f)", h.t);
+    k = elr_intersect(s, elr_v(0, 5, -10), elr_v(0, -1, 0), INFINITY, &h);
+    rt_check(k && fabsf(h.t - 3.5f) < 1e-5f && near3(h.ng, 0, 1, 0, 1e-5f), "rotated, scaled sphere (radius 0.5 x 3): hit at t = 3.5 (%.6f)", h.t);
+    k = elr_intersect(s, elr_v(0.3f, 0.2f, -14), elr_v(0, 0, 1), INFINITY, &h);
+    rt_check(k && fabsf(h.t - (4.f - sqrtf(1.5f * 1.5f - 0.13f))) < 1e-5f, "sphere: off-centre hit at t = 4 - sqrt(2.25 - 0.13) (%.6f)", h.t);
+    k = elr_intersect(s, elr_v(0, 0, -10), elr_v(0, 0, 1), INFINITY, &h);
+    rt_check(k && fabsf(h.t - 1.5f) < 1e-5f, "sphere from inside: t = 1.5 (%.6f)", h.t);
+  }
+  rt_check(!elr_intersect(s, elr_v(0, 1.6f, -10), elr_v(0, 0, 1), INFINITY, &h) && !elr_occluded(s, elr_v(0, 1.6f, -10), elr_v(0, 0, 1), 15.f),
+           "a ray passing 0.1 above the sphere misses, and is not occluded before the ellipsoid");
+  rt_check(elr_occluded(s, elr_v(-5, 0, 10), elr_v(1, 0, 0), INFINITY) && !elr_occluded(s, elr_v(-5, 0, 10), elr_v(1, 0, 0), 2.9f),
+           "occlusion respects tmax (ellipsoid at t = 3)");
+  elr_scene_free(s);
+}
+
 static void materials_textures(void) {
   char err[512];
   elr_scene *s;
@@ -320,6 +355,9 @@ int main(void) {
   defaults();
   options();
   transforms_and_shapes();
+  sphere_hits(0);
+  sphere_hits(1);
+  unsetenv("ELR_EMBREE_SPHERES");
   materials_textures();
   warnings();
   errors();
