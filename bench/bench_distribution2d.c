@@ -23,6 +23,8 @@
  *  - alias: el_distribution2d_fast with the exact integer alias table (8 bytes per bin; stratification lost).
  * The input is an environment-map-like density: a sky gradient with texture noise, times sin(theta), and
  * a sun of 3e4 covering a few texels (like ../shared/envmaps/city), generated in code at each size.
+ * Stratification: the RMSE of an integral estimated with jittered (16x16) and with independent u, for
+ * the guide table (CDF inversion) and the alias table: what keeping stratification buys.
  * Timing: 2^20 precomputed random (u0, u1) pairs, looped, one thread, gcc -O3; every time is the best of
  * three runs (the machine may be shared).
  */
@@ -245,6 +247,63 @@ static double run_pdfs(const ctx *c, long n) {
   return acc;
 }
 
+/* ---- stratification: does a sampler keep the stratification of jittered u? ----
+ * Estimate I = integral of f * h over [0,1]^2 with samples from the distribution of f: the estimator
+ * f(x) h(x) / pdf(x), h(u,v) = 1 + 0.9 sin(2 pi u) sin(pi v) (smooth). The reference is exact: f is
+ * piecewise constant and h integrates in closed form over each bin. RMSE over 200 estimates of 256
+ * samples each, u jittered on a 16x16 grid or independent. */
+static double h_fun(float u, float v) { return 1.0 + 0.9 * sin(6.283185307179586 * u) * sin(3.141592653589793 * v); }
+static void stratification_table(void) {
+  enum { NU = 1024, NV = 512, T = 200, G = 16 };
+  float *f = make_map(NU, NV);
+  el_distribution2d d;
+  el_distribution2d_fast fg, fa;
+  el_distribution_fast_options fo;
+  double ref = 0, *su = (double *)malloc(NU * sizeof(double)), *sv = (double *)malloc(NV * sizeof(double));
+  int iu, iv, method, jit, t;
+  uint32_t rs = 777u;
+  const double pi = 3.141592653589793;
+  for (iu = 0; iu < NU; ++iu) su[iu] = (cos(2 * pi * iu / NU) - cos(2 * pi * (iu + 1) / NU)) / (2 * pi);
+  for (iv = 0; iv < NV; ++iv) sv[iv] = (cos(pi * iv / NV) - cos(pi * (iv + 1) / NV)) / pi;
+  for (iv = 0; iv < NV; ++iv)
+    for (iu = 0; iu < NU; ++iu) ref += f[(size_t)iv * NU + iu] * (1.0 / ((double)NU * NV) + 0.9 * su[iu] * sv[iv]);
+  el_distribution2d_init(&d, f, NU, NV, NULL);
+  el_distribution2d_fast_init(&fg, &d);
+  memset(&fo, 0, sizeof fo);
+  fo.method = EL_DISTRIBUTION_FAST_ALIAS;
+  el_distribution2d_fast_init_ex(&fa, &d, &fo);
+  printf("stratification (1024x512 map, 256 samples per estimate, 200 estimates; relative RMSE of the integral of f*h):\n");
+  printf("  %-26s %12s %12s\n", "sampler", "jittered u", "random u");
+  for (method = 0; method < 2; ++method) {
+    double rmse[2];
+    for (jit = 0; jit < 2; ++jit) {
+      double se = 0;
+      for (t = 0; t < T; ++t) {
+        double est = 0;
+        int i, j;
+        for (j = 0; j < G; ++j)
+          for (i = 0; i < G; ++i) {
+            float u0, u1, x, y, p;
+            rs = rs * 1664525u + 1013904223u; u0 = (float)(hash32(rs) >> 8) * (1.0f / 16777216.0f);
+            rs = rs * 1664525u + 1013904223u; u1 = (float)(hash32(rs) >> 8) * (1.0f / 16777216.0f);
+            if (jit == 0) { u0 = (i + u0) / G; u1 = (j + u1) / G; if (u0 >= 1) u0 = 0.99999994f; if (u1 >= 1) u1 = 0.99999994f; }
+            el_distribution2d_fast_sample(method == 0 ? &fg : &fa, u0, u1, &x, &y, &p);
+            iu = el_distribution2d__bin(x, 0.0f, d.u_scale, NU);
+            iv = el_distribution2d__bin(y, 0.0f, d.v_scale, NV);
+            est += f[(size_t)iv * NU + iu] * h_fun(x, y) / p;
+          }
+        est /= G * G;
+        se += (est - ref) * (est - ref);
+      }
+      rmse[jit] = sqrt(se / T) / ref;
+    }
+    printf("  %-26s %12.3g %12.3g\n", method == 0 ? "guide (= CDF inversion)" : "alias", rmse[0], rmse[1]);
+  }
+  printf("\n");
+  el_distribution2d_fast_free(&fg); el_distribution2d_fast_free(&fa); el_distribution2d_free(&d);
+  free(su); free(sv); free(f);
+}
+
 /* --callgrind OP N [W H] */
 static int callgrind_mode(const char *op, long n, int nu, int nv) {
   static ctx c;
@@ -301,6 +360,7 @@ int main(int argc, char **argv) {
   make_u();
   printf("2D piecewise-constant sampling: env-map-like density (sky * sin(theta) + a 3e4 sun), one thread, -O3\n");
   printf("build = construction of that method's structures (fast samplers: on top of the CDF's build)\n\n");
+  stratification_table();
   for (s = 0; s < nsizes; ++s) {
     int nu = sizes[s][0], nv = sizes[s][1];
     float *f = make_map(nu, nv);
