@@ -899,6 +899,41 @@ static float el_mipmap__pin(float x, float r, int n) {
   return (float)n + ceilf(r) + 1.0f + f;
 }
 
+/* One row's texels p..pend (inclusive, contiguous, C floats each) of pbrt's EWA loop: r2 with pbrt's
+ * expression, table weight when r2 < 1. Two texels per iteration (the same additions in the same
+ * order as one at a time). */
+EL_MIPMAP__INLINE void el_mipmap__ewa_span(const float *p, const float *pend, float fis, float x, float A,
+                                           float B, float tt, float ctt, float *acc, float *sumw, int C) {
+  int c;
+  float sw = *sumw;
+  for (; p < pend; p += 2 * C, fis += 2.0f) {
+    float ss = fis - x, ss1 = (fis + 1.0f) - x;
+    float r2 = A * ss * ss + B * ss * tt + ctt, r21 = A * ss1 * ss1 + B * ss1 * tt + ctt;
+    if (r2 < 1) {
+      /* r2 in [0, 1) up to rounding, so (int)(r2 * 128) is 0..127; & 127 keeps any rounding accident
+       * inside the table */
+      float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+      for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
+      sw += wgt;
+    }
+    if (r21 < 1) {
+      float wgt = el_mipmap__weight_lut[(int)(r21 * 128) & 127];
+      for (c = 0; c < C; ++c) acc[c] += p[C + c] * wgt;
+      sw += wgt;
+    }
+  }
+  if (p == pend) { /* an odd count: the last texel */
+    float ss = fis - x;
+    float r2 = A * ss * ss + B * ss * tt + ctt;
+    if (r2 < 1) {
+      float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+      for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
+      sw += wgt;
+    }
+  }
+  *sumw = sw;
+}
+
 /* pbrt's EWA(level, st, dst0, dst1) for C channels (a constant in each inlined copy). s, t already
  * made safe by el_mipmap__sane_ewa. pbrt loops over the ellipse's bounding box and keeps the texels
  * with r2 = A ss^2 + B ss tt + C tt^2 < 1; here each row's loop is trimmed to the ellipse's chord in
@@ -970,6 +1005,21 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   inv2A = 0.5f / A;
   fourA = 4 * A;
   mg = 0.05f + 1e-6f * (fabsf(x) + ru); /* covers the rounding of the chord's ends */
+  if (x - ru - mg > 1.0f && x + ru + mg < (float)nu - 2.0f && t0 >= 0 && t1 < nv) {
+    /* the whole ellipse inside the level (the common case): no wrapping on any row */
+    const float *rp = data + (size_t)t0 * rowstride;
+    for (it = t0, fit = (float)t0; it <= t1; ++it, fit += 1.0f, rp += rowstride) {
+      float tt = fit - y;
+      float ctt = Cc * tt * tt, btt = B * tt;
+      float disc = btt * btt - fourA * (ctt - 1);
+      float cs = x - btt * inv2A, hw = (disc > 0 ? sqrtf(disc) * inv2A : 0.0f) + mg;
+      int lo = -el_mipmap__ifloor_nb(hw - cs), hi = el_mipmap__ifloor_nb(cs + hw);
+      if (lo <= hi)
+        el_mipmap__ewa_span(rp + (size_t)lo * (size_t)C, rp + (size_t)hi * (size_t)C, (float)lo, x, A, B, tt, ctt,
+                            acc, &sumw, C);
+    }
+    t1 = t0 - 1; /* done: skip the general loop */
+  }
   for (it = t0, fit = (float)t0; it <= t1; ++it, fit += 1.0f) {
     float tt = fit - y; /* fit == (float)it exactly: pbrt's it - st[1] */
     float ctt = Cc * tt * tt, btt = B * tt;
@@ -977,7 +1027,7 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
     float cs = x - btt * inv2A, hw = (disc > 0 ? sqrtf(disc) * inv2A : 0.0f) + mg;
     int lo = -el_mipmap__ifloor_nb(hw - cs), hi = el_mipmap__ifloor_nb(cs + hw), row, is, col;
     float fis;
-    const float *rp, *p, *pend;
+    const float *rp, *p;
     /* (no need to clip [lo, hi] to pbrt's box [s0, s1]: texels outside it have r2 >= 1 but for
      * rounding at the tangent points, where the table weight is 0 anyway) */
     if (lo > hi) continue;
@@ -993,32 +1043,8 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
     }
     rp = data + (size_t)row * rowstride;
     if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu) { /* inside: no wrapping */
-      /* two texels per iteration (the same additions in the same order) */
-      for (p = rp + (size_t)lo * (size_t)C, pend = rp + (size_t)hi * (size_t)C; p < pend; p += 2 * C, fis += 2.0f) {
-        float ss = fis - x, ss1 = (fis + 1.0f) - x;
-        float r2 = A * ss * ss + B * ss * tt + ctt, r21 = A * ss1 * ss1 + B * ss1 * tt + ctt;
-        if (r2 < 1) {
-          /* r2 in [0, 1) up to rounding, so (int)(r2 * 128) is 0..127; & 127 keeps any rounding
-           * accident inside the table */
-          float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
-          for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
-          sumw += wgt;
-        }
-        if (r21 < 1) {
-          float wgt = el_mipmap__weight_lut[(int)(r21 * 128) & 127];
-          for (c = 0; c < C; ++c) acc[c] += p[C + c] * wgt;
-          sumw += wgt;
-        }
-      }
-      if (p == pend) { /* an odd count: the last texel */
-        float ss = fis - x;
-        float r2 = A * ss * ss + B * ss * tt + ctt;
-        if (r2 < 1) {
-          float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
-          for (c = 0; c < C; ++c) acc[c] += p[c] * wgt;
-          sumw += wgt;
-        }
-      }
+      el_mipmap__ewa_span(rp + (size_t)lo * (size_t)C, rp + (size_t)hi * (size_t)C, fis, x, A, B, tt, ctt, acc, &sumw,
+                          C);
     } else if (wu == EL_WRAP_REPEAT) { /* the column index walks and wraps */
       for (is = lo, col = el_mipmap__wrap(lo, nu, wu); is <= hi; ++is, fis += 1.0f) {
         float ss = fis - x;
