@@ -329,12 +329,12 @@ static int callgrind_mode(const char *op, long n, int nu, int nv) {
   return 0;
 }
 
-static double callgrind_ir(const char *self, const char *op, long n) {
+static double callgrind_ir(const char *self, const char *op, long n, int nu, int nv) {
   char cmd[1024], line[512], file[128];
   FILE *fp;
   double ir = -1;
   snprintf(file, sizeof file, "/tmp/bench_distribution2d_cg.%ld.%ld", (long)time(NULL) % 100000, n);
-  snprintf(cmd, sizeof cmd, "valgrind --tool=callgrind --callgrind-out-file=%s '%s' --callgrind %s %ld >/dev/null 2>&1", file, self, op, n);
+  snprintf(cmd, sizeof cmd, "valgrind --tool=callgrind --callgrind-out-file=%s '%s' --callgrind %s %ld %d %d >/dev/null 2>&1", file, self, op, n, nu, nv);
   if (system(cmd) != 0) return -1;
   fp = fopen(file, "r");
   if (!fp) return -1;
@@ -344,8 +344,8 @@ static double callgrind_ir(const char *self, const char *op, long n) {
   remove(file);
   return ir;
 }
-static double instr_per_call(const char *self, const char *op, long n) {
-  double a = callgrind_ir(self, op, 0), b = callgrind_ir(self, op, n);
+static double instr_per_call(const char *self, const char *op, long n, int nu, int nv) {
+  double a = callgrind_ir(self, op, 0, nu, nv), b = callgrind_ir(self, op, n, nu, nv);
   return (a < 0 || b < 0) ? -1 : (b - a) / n;
 }
 
@@ -419,10 +419,12 @@ int main(int argc, char **argv) {
     const char *ops[7] = {"pbrt_sample", "cdf_sample", "guide0_sample", "guide_sample", "alias_sample", "pbrt_pdf", "pdf"};
     const char *what[7] = {"pbrt-v3 sample", "CDF sample", "guide s=0 sample", "guide s=2 sample (default fast)", "alias sample", "pbrt-v3 pdf", "pdf (all methods)"};
     int i;
-    double loop = instr_per_call(argv[0], "loop", 200000);
+    double loop = instr_per_call(argv[0], "loop", 200000, 4096, 2048);
     printf("instructions per call (callgrind, 4096 x 2048, 200000 calls; the benchmark loop's own %.1f per\n"
            "iteration, measured with OP loop, already subtracted):\n", loop);
-    for (i = 0; i < 7; ++i) printf("  %-34s %7.1f\n", what[i], instr_per_call(argv[0], ops[i], 200000) - loop);
+    for (i = 0; i < 7; ++i) printf("  %-34s %7.1f\n", what[i], instr_per_call(argv[0], ops[i], 200000, 4096, 2048) - loop);
+    printf("  %-34s %7.1f   (a size that is not a power of two: one bin check per axis)\n", "guide s=2 sample at 4000 x 2000",
+           instr_per_call(argv[0], "guide_sample", 200000, 4000, 2000) - loop);
   }
   return 0;
 }
