@@ -728,7 +728,10 @@ static EL_DISTRIBUTION2D__NOINLINE void el_distribution2d__sample_general(const 
  * result wherever both apply. */
 EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float u1, float *out_u, float *out_v, float *pdf) {
   float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f;
-  if (xv >= 0.0f && xv < 16777216.0f && xu >= 0.0f && xu < 16777216.0f) {
+  uint32_t b0, b1;
+  memcpy(&b0, &u0, 4);
+  memcpy(&b1, &u1, 4);
+  if ((b0 > b1 ? b0 : b1) < 0x3f800000u) { /* both in [+0, 1): the bits of 1.0f bound them as integers */
     uint32_t kv = (uint32_t)(int32_t)xv, ku = (uint32_t)(int32_t)xu;
     int iv = el_distribution2d__search(d->marginal, 0, d->nv, kv), iu;
     const uint32_t *row = d->cdf + (size_t)iv * ((size_t)d->nu + 1);
@@ -974,7 +977,10 @@ static EL_DISTRIBUTION2D__NOINLINE void el_distribution2d__fast_sample_general(c
 /* Leaf fast path as in el_distribution2d_sample: u in [0,1), point in its bin at the first try. */
 EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float u0, float u1, float *out_u, float *out_v, float *pdf) {
   float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f;
-  if (xv >= 0.0f && xv < 16777216.0f && xu >= 0.0f && xu < 16777216.0f) {
+  uint32_t b0, b1;
+  memcpy(&b0, &u0, 4);
+  memcpy(&b1, &u1, 4);
+  if ((b0 > b1 ? b0 : b1) < 0x3f800000u) { /* both in [+0, 1): the bits of 1.0f bound them as integers */
     int iv, iu;
     const uint32_t *row;
     float wv, wu, tv, tu;
