@@ -76,6 +76,7 @@
  * that rounding carries out of its bin, takes a general path with the same results.
  *
  * THREADS. Everything after init is read-only: any number of threads may sample and query at once.
+ * Queries need a successful init (a struct zeroed by a failed init may only be freed).
  *
  * LIMITS. At most 2^22 bins per dimension (EL_ERROR_SIZE_OVERFLOW beyond); nu * nv bins must fit in
  * memory (sizes are overflow-checked). A domain must be finite, non-empty, and resolve its bins: each
