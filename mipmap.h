@@ -31,8 +31,10 @@
  * level = nLevels - 1 + log2(max(width, 1e-8)), so width 1 means "the whole texture", the 1x1
  * level), and Lookup(st, dst0, dst1) (EWA with pbrt's 128-entry Gaussian table, alpha 2, anisotropy
  * clamp, default 8). From pbrt-v4 it takes per-axis wrap modes and point / bilinear filters.
- * For power-of-two images levels and lookups equal pbrt-v3's to float precision (the same float
- * operations in the same order; measured against a literal port in bench/bench_mipmap.c).
+ * For power-of-two images levels and lookups equal pbrt-v3's to float precision: the same float
+ * operations in the same order, except the logarithm that picks the level (ours needs no libm call);
+ * measured against a literal port of pbrt-v3 in bench/bench_mipmap.c: levels identical, lookups within
+ * 3e-6 relative.
  *
  * Where it departs from pbrt, and why:
  *  - Levels are built lazily: init builds level 0 only; levels 1.. are allocated and built on the
