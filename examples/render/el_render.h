@@ -67,7 +67,7 @@ typedef struct elr_stats {
   size_t bytes_embree, bytes_textures, bytes_film, bytes_distribution, bytes_splats, bytes_mip;
   uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
-  int nthreads, spp, width, height, maxdepth, integrator_path;
+  int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
   uint64_t rejected_samples;
 } elr_stats;
 

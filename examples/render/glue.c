@@ -215,6 +215,6 @@ elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, floa
   return elr_v(c[0], c[1], c[2]);
 }
 void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes) {
-  *levels_built = el_mipmap_levels_built(&m->m);
+  *levels_built = el_mipmap_levels_built(&m->m) ? el_mipmap_levels(&m->m) : 1; /* level 0 always exists */
   *bytes = el_mipmap_bytes(&m->m);
 }

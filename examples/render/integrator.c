@@ -233,7 +233,7 @@ typedef struct elr_ctx {
   float diff_scale;
   elr_xform c2w;
   elr_v3 cam_o, cam_x, cam_y, cam_z; /* camera origin and the images of its axes, world space */
-  int spp;
+  int spp, sampler, xs, ys, jitter, dims;
 } elr_ctx;
 
 typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats;
@@ -507,8 +507,8 @@ static void *elr__worker(void *arg) {
   elr_tstats ts;
   memset(&S, 0, sizeof S);
   memset(&ts, 0, sizeof ts);
-  S.kind = C->s->d.sampler; S.spp = C->spp; S.xs = C->s->d.xs; S.ys = C->s->d.ys; S.jitter = C->s->d.jitter;
-  S.dims = C->s->d.dims; S.seed = J->o->seed; S.H = J->H;
+  S.kind = C->sampler; S.spp = C->spp; S.xs = C->xs; S.ys = C->ys; S.jitter = C->jitter;
+  S.dims = C->dims; S.seed = J->o->seed; S.H = J->H;
   if (S.kind == ELR_SAMPLER_STRATIFIED) {
     S.s1d = (float *)malloc(sizeof(float) * (size_t)S.spp * (size_t)(S.dims + 1));
     S.s2d = (float *)malloc(sizeof(float) * 2 * (size_t)S.spp * (size_t)(S.dims + 1));
@@ -608,19 +608,18 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
   C.s = s;
+  /* the sampler: the scene's, or the options' (the scene description itself is never changed) */
   C.spp = o->spp > 0 ? o->spp : s->d.spp;
-  if (o->sampler != ELR_SAMPLER_DEFAULT) s->d.sampler = o->sampler;
-  if (s->d.sampler == ELR_SAMPLER_STRATIFIED) {
-    if (o->spp > 0) { /* --spp: the nearest square grid */
-      int q = (int)floor(sqrt((double)o->spp));
+  C.sampler = o->sampler != ELR_SAMPLER_DEFAULT ? o->sampler : s->d.sampler;
+  C.xs = s->d.xs; C.ys = s->d.ys; C.jitter = s->d.jitter; C.dims = s->d.dims;
+  if (C.sampler == ELR_SAMPLER_STRATIFIED) {
+    if (s->d.sampler != ELR_SAMPLER_STRATIFIED) { C.jitter = 1; C.dims = 4; C.xs = C.ys = 0; } /* pbrt-v3's defaults */
+    if (o->spp > 0 || C.xs < 1 || C.ys < 1) { /* the nearest grid to the requested count */
+      int q = (int)floor(sqrt((double)C.spp));
       if (q < 1) q = 1;
-      s->d.xs = q; s->d.ys = (o->spp + q - 1) / q;
-      if (s->d.dims == 0 && o->sampler == ELR_SAMPLER_STRATIFIED) s->d.dims = 4;
+      C.xs = q; C.ys = (C.spp + q - 1) / q;
     }
-    if (s->d.xs < 1) s->d.xs = 1;
-    if (s->d.ys < 1) s->d.ys = 1;
-    if (s->d.dims == 0 && o->sampler == ELR_SAMPLER_STRATIFIED) s->d.dims = 4;
-    C.spp = s->d.xs * s->d.ys;
+    C.spp = C.xs * C.ys;
   }
   if (C.spp <= 0 || C.spp > (1 << 24)) { snprintf(err, errlen, "samples per pixel %d out of range [1, 16777216]", C.spp); return -1; }
   C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
@@ -675,7 +674,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
       }
     }
   }
-  if (s->d.sampler == ELR_SAMPLER_HALTON) {
+  if (C.sampler == ELR_SAMPLER_HALTON) {
     int b[4];
     elr_film_sample_bounds(film, &b[0], &b[1], &b[2], &b[3]);
     if (elr__halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
@@ -722,7 +721,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
     st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
     st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
-    st->maxdepth = C.maxdepth; st->integrator_path = C.path;
+    st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler;
     st->rejected_samples = elr_film_rejected(film);
     for (i = 0; i < s->ntex; i++) {
       if (s->tex[i].kind == ELR_TEX_IMAGE) {
@@ -751,7 +750,8 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   FILE *f = (FILE *)fp;
   uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
   fprintf(f, "render statistics\n");
-  fprintf(f, "  image              %d x %d, %d spp, %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
+  fprintf(f, "  image              %d x %d, %d spp (%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
+          st->sampler == ELR_SAMPLER_RANDOM ? "random" : (st->sampler == ELR_SAMPLER_STRATIFIED ? "stratified" : "halton"),
           st->nthreads, st->nthreads == 1 ? "" : "s", st->integrator_path ? "path" : "directlighting", st->maxdepth);
   fprintf(f, "  parse              %8.3f s (images and meshes read: %.3f s)\n", st->t_parse, st->t_images);
   fprintf(f, "  embree build       %8.3f s  %10.1f KiB\n", st->t_embree, (double)st->bytes_embree / 1024.0);
