@@ -72,8 +72,14 @@
  *    bin and the pdf agree; for a general rotation, rounding in the round trip world -> light can move a
  *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 60
  *    more instructions per sample).
- * 5. Cheap, accurate trigonometry: sinpi/cospi polynomials (1.9e-7 relative) for sampling and an atan
- *    polynomial (2.5e-7 rad) for (u, v) in le / pdf_li: no acos, atan2, sin or cos calls.
+ * 5. No libm trigonometry on the hot paths. sample_li: sinpi/cospi polynomials (1.9e-7 relative).
+ *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
+ *    a monotone "diamond angle" of (x, y) and one over r / (r + |z|) (each cell holds at most one bin
+ *    edge, compared exactly), then a per-bin pdf table: two divisions, two square roots, no atan.
+ *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): see tutorials/03-infinite-light.md.
+ *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
+ *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
+ *    (tiny). 2048x1024: 25 MB + 16 MB (pbrt-v3: ~100 MB).
  * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
  *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
  *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a

@@ -100,7 +100,15 @@ static el_result make_light(el_envlight *l, const float *px, int w, int h, int i
   return el_envlight_init(l, px, w, h, 3, &o);
 }
 
-static const float ROT[9] = {0.80585f, -0.31423f, 0.50187f, 0.45905f, 0.87596f, -0.14818f, -0.37305f, 0.36587f, 0.85219f};
+/* a general rotation: 37 degrees about the axis (1, 2, 3) (Rodrigues) */
+static float ROT[9];
+static void make_rot(void) {
+  double n = sqrt(14.0), x = 1 / n, y = 2 / n, z = 3 / n, a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
+  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
+                 t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+  int i;
+  for (i = 0; i < 9; ++i) ROT[i] = (float)r[i];
+}
 
 /* ---- throughput loops (also the callgrind bodies) ---- */
 static double run_sample(el_envlight *l, long n, int rgb) {
@@ -160,7 +168,7 @@ static int callgrind_mode(const char *op, long n) {
   px = make_map(w, h);
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = 1;
   if (!strcmp(op, "sample_alias")) sampler = 2;
-  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = 1; rot = 1; }
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = 1; rot = 1; make_rot(); }
   if (make_light(&l, px, w, h, 0, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
   el_envlight_prepare_sampling(&l);
   if (!strcmp(op, "loop")) sink = run_loop(n);
