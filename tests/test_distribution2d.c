@@ -472,21 +472,30 @@ static void test_hand_2d(void) {
     el_distribution2d_sample(&d, 0.7f, 1.0f, &x, &y, &p);
     check(p == 1.0f && fabsf(x - 0.7f) < 1e-6f && y < 1.0f && el_distribution2d_integral(&d) == 3.0f, "2D 1x1: uniform, pdf 1, integral 3");
     el_distribution2d_free(&d);
-    check(el_distribution2d_init(&d, line, 5, 1, NULL) == EL_SUCCESS, "2D 5x1: init");
-    for (i = 0; i < 2000; ++i) {
-      el_distribution2d_sample(&d, rndu(), rndu(), &x, &y, &p);
-      u = (int)(x * 5);
-      if (line[u] == 0 || p != el_distribution2d_pdf(&d, x, y) || fabs(p - line[u] / 0.8) > 1e-5) ++bad;
+    int shape, m;
+    for (shape = 0; shape < 3; ++shape) {
+      int nu = shape == 0 ? 5 : 1, nv = shape == 1 ? 5 : 1;
+      el_distribution2d_fast fs[2];
+      el_distribution_fast_options fo;
+      check(el_distribution2d_init(&d, shape == 2 ? &one : line, nu, nv, NULL) == EL_SUCCESS, shape == 0 ? "2D 5x1: init" : shape == 1 ? "2D 1x5: init" : "2D 1x1 again: init");
+      memset(&fo, 0, sizeof fo);
+      el_distribution2d_fast_init(&fs[0], &d);
+      fo.method = EL_DISTRIBUTION_FAST_ALIAS;
+      el_distribution2d_fast_init_ex(&fs[1], &d, &fo);
+      for (m = 0; m < 3; ++m)
+        for (i = 0; i < 2000; ++i) {
+          float u0 = i == 0 ? 1.0f : rndu(), u1 = i == 0 ? 1.0f : rndu();
+          if (m == 0) el_distribution2d_sample(&d, u0, u1, &x, &y, &p);
+          else el_distribution2d_fast_sample(&fs[m - 1], u0, u1, &x, &y, &p);
+          if (!(x >= 0 && x < 1 && y >= 0 && y < 1)) { ++bad; continue; }
+          u = (int)(x * 5 * (nu == 5)) + (int)(y * 5 * (nv == 5));
+          if (shape == 2) { if (p != 1.0f) ++bad; continue; }
+          if (line[u] == 0 || p != el_distribution2d_pdf(&d, x, y) || fabs(p - line[u] / 0.8) > 1e-5) ++bad;
+        }
+      el_distribution2d_fast_free(&fs[0]); el_distribution2d_fast_free(&fs[1]);
+      el_distribution2d_free(&d);
     }
-    el_distribution2d_free(&d);
-    check(el_distribution2d_init(&d, line, 1, 5, NULL) == EL_SUCCESS, "2D 1x5: init");
-    for (i = 0; i < 2000; ++i) {
-      el_distribution2d_sample(&d, rndu(), rndu(), &x, &y, &p);
-      v = (int)(y * 5);
-      if (line[v] == 0 || p != el_distribution2d_pdf(&d, x, y) || fabs(p - line[v] / 0.8) > 1e-5) ++bad;
-    }
-    el_distribution2d_free(&d);
-    checkf(bad == 0, "2D 5x1 and 1x5: only positive bins, pdf == f/integral (%g bad)", bad, 0);
+    checkf(bad == 0, "2D 5x1, 1x5, 1x1 with CDF, guide and alias: only positive bins, pdf == f/integral (%g bad)", bad, 0);
   }
 }
 
