@@ -105,5 +105,47 @@ int main(void) {
       elr_scene_free(s);
     }
   }
+  /* 5. ray differentials reach the texture filters: a checkerboard far finer than the pixels, on a plane
+   * facing the camera under a constant sky (BSDF sampling only: every sample is exactly Kd L), seen at
+   * the pixel centres. Filtered by the footprint (pbrt's closed-form box filter, or EWA on the MIP map
+   * of a 1-texel checker image), every pixel is the checks' mean 0.5; point sampling would give 0 or 1. */
+  {
+    static float chk[3 * 256 * 256];
+    int x, y, k;
+    for (y = 0; y < 256; y++)
+      for (x = 0; x < 256; x++)
+        for (k = 0; k < 3; k++) chk[3 * (y * 256 + x) + k] = (float)((x + y) & 1);
+    el_image_write_pfm(rt_path("chk.pfm"), chk, 256, 256, 3, err, sizeof err);
+    for (k = 0; k < 3; k++) {
+      char buf[2048];
+      const char *tex[3] = {"Texture \"t\" \"spectrum\" \"checkerboard\" \"float uscale\" 230 \"float vscale\" 230\n",
+                            "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"chk.pfm\" \"string filter\" \"ewa\"\n",
+                            "Texture \"t\" \"spectrum\" \"checkerboard\" \"float uscale\" 230 \"float vscale\" 230 \"string aamode\" \"none\"\n"};
+      snprintf(buf, sizeof buf,
+               "LookAt 0 0 -1  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
+               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 24\n"
+               "Sampler \"stratified\" \"integer xsamples\" 1 \"integer ysamples\" 1 \"bool jitter\" \"false\"\n"
+               "Integrator \"directlighting\"\nWorldBegin\nLightSource \"infinite\"\n%s"
+               "Material \"matte\" \"texture Kd\" \"t\"\n"
+               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ]\n"
+               "  \"float uv\" [ 0 0 1 0 1 1 0 1 ]\nWorldEnd\n", tex[k]);
+      s = rt_load("chk.pbrt", buf, err, sizeof err);
+      if (s && rt_render(s, 0, ELR_LS_BSDF, -1, 2, 1, &img, &st) == 0) {
+        double worst = 0;
+        int n01 = 0;
+        for (y = 4; y < 20; y++)
+          for (x = 4; x < 20; x++) {
+            float v = img.rgb[3 * (y * 24 + x)];
+            if (fabs(v - 0.5) > worst) worst = fabs(v - 0.5);
+            if (v < 0.02f || v > 0.98f) n01++;
+          }
+        if (k < 2) rt_check(worst < 0.1, "%s: every pixel near the mean 0.5 (worst |v - 0.5| = %.3f)",
+                            k == 0 ? "checkerboard, closed-form box filter over the ray footprint" : "1-texel checker image, EWA", worst);
+        else rt_check(n01 == 16 * 16, "checkerboard with aamode none (point sampled): every pixel 0 or 1 (%d of 256)", n01);
+        elr_image_free(&img);
+      } else rt_check(0, "checker scene %d: %s", k, err);
+      elr_scene_free(s);
+    }
+  }
   return rt_finish("test_render_pipeline");
 }
