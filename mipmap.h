@@ -1081,6 +1081,10 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   }
   for (c = 0; c < C; ++c) out[c] = acc[c] / sumw;
 }
+static void el_mipmap__ewa3(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
+                            float d1s, float d1t, float *out) {
+  el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 3);
+}
 static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
                            float d1s, float d1t, float *out) {
   switch (m->channels) {
@@ -1145,9 +1149,9 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
   s = el_mipmap__sane_ewa(s, m->wrap_u);
   t = el_mipmap__sane_ewa(t, m->wrap_v);
   if (C == 3) { /* the common case, specialised */
-    el_mipmap__ewa_c(m, ilod, s, t, d0s, d0t, d1s, d1t, a, 3);
+    el_mipmap__ewa3(m, ilod, s, t, d0s, d0t, d1s, d1t, a);
     if (f == 0) b[0] = b[1] = b[2] = 0.0f; /* pbrt computes (1 - 0) a + 0 b = a as well */
-    else el_mipmap__ewa_c(m, ilod + 1, s, t, d0s, d0t, d1s, d1t, b, 3);
+    else el_mipmap__ewa3(m, ilod + 1, s, t, d0s, d0t, d1s, d1t, b);
     out[0] = (1 - f) * a[0] + f * b[0];
     out[1] = (1 - f) * a[1] + f * b[1];
     out[2] = (1 - f) * a[2] + f * b[2];
