@@ -372,41 +372,48 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
   return Ld;
 }
 
-static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r, int depth, elr_tstats *ts) {
+/* pbrt-v3's DirectLightingIntegrator::Li. Its SpecularReflect recursion has one branch (reflection
+ * only: no material here transmits), so it runs as a loop carrying the throughput: no stack growth
+ * whatever maxdepth says. */
+static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts) {
   const elr_scene *s = C->s;
-  elr_hit h;
-  elr_bsdf b;
-  elr_tex_ctx tc;
-  elr_v3 L = elr_v(0, 0, 0), wo, dpdx, dpdy;
-  if (!elr_intersect(s, r->o, r->d, INFINITY, &h)) return elr__env_le(s, r->d);
-  elr__differentials(s, r, &h, &tc, &dpdx, &dpdy);
-  elr_bsdf_init(s, &h, &tc, &b);
-  wo = elr_mul(r->d, -1.f);
-  if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr__direct(C, S, &h, &b, wo, 1, ts);
-  if (depth + 1 < C->maxdepth && b.has_specular) {
-    /* <<SpecularReflect>> */
-    elr_v3 wi, f;
+  elr_v3 L = elr_v(0, 0, 0), beta = elr_v(1, 1, 1);
+  elr_ray r = *r0;
+  int depth;
+  for (depth = 0;; depth++) {
+    elr_hit h;
+    elr_bsdf b;
+    elr_tex_ctx tc;
+    elr_v3 wo, dpdx, dpdy, wi, f;
     float pdf, u0, u1;
     int spec;
     elr_ray rd;
+    if (!elr_intersect(s, r.o, r.d, INFINITY, &h)) return elr_add(L, elr_vmul(beta, elr__env_le(s, r.d)));
+    elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
+    elr_bsdf_init(s, &h, &tc, &b);
+    wo = elr_mul(r.d, -1.f);
+    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 1, ts)));
+    if (!(depth + 1 < C->maxdepth && b.has_specular)) break;
+    /* <<SpecularReflect>> */
     elr__get2d(S, &u0, &u1);
     f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
-    if (spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f) {
-      rd.o = elr__offset(&h, wi); rd.d = wi; rd.has_diff = 0;
-      if (r->has_diff && s->any_textured) {
-        elr_v3 ns = b.ns;
-        elr_v3 dndx = elr_add(elr_mul(h.dndu, tc.dudx), elr_mul(h.dndv, tc.dvdx));
-        elr_v3 dndy = elr_add(elr_mul(h.dndu, tc.dudy), elr_mul(h.dndv, tc.dvdy));
-        elr_v3 dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo), dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
-        float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
-        rd.has_diff = 1;
-        rd.rxo = elr_add(rd.o, dpdx); rd.ryo = elr_add(rd.o, dpdy);
-        rd.rxd = elr_add(elr_sub(wi, dwodx), elr_mul(elr_add(elr_mul(dndx, elr_dot(wo, ns)), elr_mul(ns, dDNdx)), 2.f));
-        rd.ryd = elr_add(elr_sub(wi, dwody), elr_mul(elr_add(elr_mul(dndy, elr_dot(wo, ns)), elr_mul(ns, dDNdy)), 2.f));
-      }
-      ts->bounce++;
-      L = elr_add(L, elr_mul(elr_vmul(f, elr__li_direct(C, S, &rd, depth + 1, ts)), fabsf(elr_dot(wi, b.ns)) / pdf));
+    if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f)) break;
+    rd.o = elr__offset(&h, wi); rd.d = wi; rd.has_diff = 0;
+    if (r.has_diff && s->any_textured) {
+      /* <<Compute ray differential rd for specular reflection>> */
+      elr_v3 ns = b.ns;
+      elr_v3 dndx = elr_add(elr_mul(h.dndu, tc.dudx), elr_mul(h.dndv, tc.dvdx));
+      elr_v3 dndy = elr_add(elr_mul(h.dndu, tc.dudy), elr_mul(h.dndv, tc.dvdy));
+      elr_v3 dwodx = elr_sub(elr_mul(r.rxd, -1.f), wo), dwody = elr_sub(elr_mul(r.ryd, -1.f), wo);
+      float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
+      rd.has_diff = 1;
+      rd.rxo = elr_add(rd.o, dpdx); rd.ryo = elr_add(rd.o, dpdy);
+      rd.rxd = elr_add(elr_sub(wi, dwodx), elr_mul(elr_add(elr_mul(dndx, elr_dot(wo, ns)), elr_mul(ns, dDNdx)), 2.f));
+      rd.ryd = elr_add(elr_sub(wi, dwody), elr_mul(elr_add(elr_mul(dndy, elr_dot(wo, ns)), elr_mul(ns, dDNdy)), 2.f));
     }
+    ts->bounce++;
+    beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
+    r = rd;
   }
   return L;
 }
@@ -558,7 +565,7 @@ static void *elr__worker(void *arg) {
             r.ryd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dy.x), elr_mul(C->cam_y, dy.y)), elr_mul(C->cam_z, dy.z)));
           }
           ts.camera++;
-          L = C->path ? elr__li_path(C, &S, &r, &ts) : elr__li_direct(C, &S, &r, 0, &ts);
+          L = C->path ? elr__li_path(C, &S, &r, &ts) : elr__li_direct(C, &S, &r, &ts);
           elr_tile_add(tile, fx, fy, L);
           ts.samples++;
         }

@@ -508,6 +508,8 @@ static void elr__film(elr__parser *P, const char *type) {
   d->yres = elr__pint(P, "yresolution", 720);
   elr__check_range(P, "xresolution", d->xres, 1, 32768);
   elr__check_range(P, "yresolution", d->yres, 1, 32768);
+  if ((double)d->xres * (double)d->yres > 1e8)
+    elr__fail(P, P->dir_line, "Film: %d x %d is more than 1e8 pixels", d->xres, d->yres);
   fn = elr__pstring(P, "filename", "pbrt.exr");
   if (strlen(fn) >= sizeof d->filename) elr__fail(P, P->dir_line, "Film: filename too long");
   snprintf(d->filename, sizeof d->filename, "%s", fn);
