@@ -133,7 +133,7 @@ static uint64_t elr__inv_ri(int base, uint64_t inverse, int ndigits) {
 
 static void elr__sampler_pixel(elr_sampler *S, int px, int py) {
   S->px = px; S->py = py;
-  elr__rng_seed(&S->rng, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr__mix(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py ^ (S->seed << 17)));
+  elr__rng_seed(&S->rng, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr__mix(elr__mix(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py) ^ S->seed));
   if (S->kind == ELR_SAMPLER_STRATIFIED) {
     /* strata are made on the first request of each dimension in this pixel (every request of a
      * dimension comes with sample 0 first), so dimensions a render never asks for cost nothing */
@@ -188,7 +188,8 @@ static void elr__sampler_start(elr_sampler *S, int sample) {
   if (S->kind == ELR_SAMPLER_HALTON) S->hindex = S->hoffset + (int64_t)sample * S->H->stride;
   if (S->kind == ELR_SAMPLER_RANDOM) {
     /* every pixel sample its own stream: the same numbers whatever the tile order */
-    elr__rng_seed(&S->rng, elr__mix(S->seed ^ 0x632be59bd9b4e019ULL), elr__mix(((uint64_t)(uint32_t)S->px << 40) ^ ((uint64_t)(uint32_t)S->py << 20) ^ (uint64_t)sample ^ (S->seed << 7)));
+    uint64_t k = elr__mix(elr__mix(elr__mix(S->seed ^ 0x632be59bd9b4e019ULL) ^ (uint64_t)(uint32_t)S->px) ^ (uint64_t)(uint32_t)S->py);
+    elr__rng_seed(&S->rng, elr__mix(S->seed + 0x2545f4914f6cdd1dULL), elr__mix(k ^ (uint64_t)(uint32_t)sample));
   }
 }
 static float elr__halton_dim(elr_sampler *S, int dim) {
