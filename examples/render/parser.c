@@ -633,9 +633,13 @@ static void elr__light(elr__parser *P, const char *type) {
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
     /* the light-to-world rotation: the CTM's upper 3x3 (pbrt-v3 allows only rotations here) */
+    /* pbrt-v3 normalises WorldToLight(d): a uniform scale in the CTM does not change the mapping, so
+     * divide it out (envlight takes a rotation or a reflection) */
+    double colscale = sqrt(P->ctm.m[0][0] * P->ctm.m[0][0] + P->ctm.m[1][0] * P->ctm.m[1][0] + P->ctm.m[2][0] * P->ctm.m[2][0]);
+    if (!(colscale > 0)) colscale = 1;
     for (i = 0; i < 3; i++)
       for (j = 0; j < 3; j++) {
-        double v = P->ctm.m[i][j];
+        double v = P->ctm.m[i][j] / colscale;
         /* Rotate by multiples of 90 degrees leaves cos = 6e-17 instead of 0: snap, so that envlight sees
          * the exact signed permutation (its exact and faster path) that the scene meant */
         if (fabs(v) < 1e-9) v = 0.0;

@@ -294,6 +294,13 @@ static void errors(void) {
   expect_error("rec.pbrt", "Include \"loop.pbrt\"\nWorldBegin\nWorldEnd\n", ":1:", "nested");
   expect_error("scale.pbrt", "WorldBegin\nScale 1 0 1\nWorldEnd\n", "scale.pbrt:2:", "singular");
   expect_error("after.pbrt", "WorldBegin\nWorldEnd\nShape \"sphere\"\n", "after.pbrt:3:", "after WorldEnd");
+  expect_error("lightscale.pbrt", "WorldBegin\nScale 1 2 1\nLightSource \"infinite\"\nWorldEnd\n", "lightscale.pbrt:3:", "rotation");
+  {
+    char err[512];
+    elr_scene *s = rt_load("lightuni.pbrt", "WorldBegin\nScale 3 3 3\nRotate 90 1 0 0\nLightSource \"infinite\"\nWorldEnd\n", err, sizeof err);
+    rt_check(s != NULL, "a uniform Scale before LightSource \"infinite\" is divided out (pbrt-v3 normalises the direction)%s%s", s ? "" : ": ", s ? "" : err);
+    elr_scene_free(s);
+  }
   expect_error("str.pbrt", "WorldBegin\n\"float radius\" 1\nWorldEnd\n", "str.pbrt:2:", "expected a directive");
 }
 
