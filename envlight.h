@@ -649,9 +649,30 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   for (y = 0; y < height; ++y) {
     double row[3] = {0.0, 0.0, 0.0}, wgt = el_envlight__row_weight(y, height) / width;
     for (x = 0; x < width; ++x) {
+      float in[3], out[3];
+      uint32_t bits[3];
+      const float *p;
       i = (size_t)y * (size_t)width + (size_t)x;
-      for (c = 0; c < 3; ++c) {
-        float v = pixels[(size_t)channels * i + (channels >= 3 ? (size_t)c : 0)];
+      p = pixels + (size_t)channels * i;
+      in[0] = p[0];
+      in[1] = channels >= 3 ? p[1] : p[0];
+      in[2] = channels >= 3 ? p[2] : p[0];
+      /* fast path: a float is finite and >= +0 when its bits, unsigned, are below 0x7f800000; the OR of
+       * three such patterns is below it only if each is (rarely it is not although each is: the careful
+       * path then accepts them). The same for the scaled products. */
+      memcpy(bits, in, sizeof bits);
+      if ((bits[0] | bits[1] | bits[2]) < 0x7f800000u) {
+        out[0] = in[0] * scale[0]; out[1] = in[1] * scale[1]; out[2] = in[2] * scale[2];
+        memcpy(bits, out, sizeof bits);
+        if ((bits[0] | bits[1] | bits[2]) < 0x7f800000u) {
+          float *t = l->texels + 3 * i;
+          t[0] = out[0]; t[1] = out[1]; t[2] = out[2];
+          row[0] += out[0]; row[1] += out[1]; row[2] += out[2];
+          continue;
+        }
+      }
+      for (c = 0; c < 3; ++c) { /* the careful path: say which texel is bad, or zero it */
+        float v = in[c];
         r = el_envlight__check_value(v);
         if (r != EL_SUCCESS) {
           if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
@@ -751,6 +772,35 @@ static el_result el_envlight__axis_weights(int n, int nb, int wrap, int **start,
 }
 
 /* f[j * nu + i] = mean luminance of the bilinear le over bin (i, j) (no sin yet). */
+/* The same when the bins are the texels: the separable 1/8, 3/4, 1/8 stencil (wrap in u, clamp in v),
+ * on three rolling rows of u-filtered luminance. */
+static el_result el_envlight__cell_average_same(const el_envlight *l, float *f) {
+  int w = l->width, h = l->height, y, x, k;
+  float *rows = (float *)EL_MALLOC((size_t)4 * (size_t)w * sizeof(float)), *lum, *hr[3];
+  if (!rows) return EL_ERROR_OUT_OF_MEMORY;
+  lum = rows + 3 * (size_t)w;
+  for (k = 0; k < 3; ++k) hr[k] = rows + (size_t)k * (size_t)w;
+  for (y = -1; y <= h; ++y) {
+    int src = y < 0 ? 0 : y > h - 1 ? h - 1 : y;
+    const float *t = l->texels + (size_t)src * (size_t)w * 3;
+    float *out = hr[(y + 1) % 3];
+    for (x = 0; x < w; ++x) lum[x] = 0.212671f * t[3 * x] + 0.715160f * t[3 * x + 1] + 0.072169f * t[3 * x + 2];
+    if (w == 1) out[0] = lum[0];
+    else {
+      out[0] = 0.75f * lum[0] + 0.125f * (lum[w - 1] + lum[1]);
+      for (x = 1; x < w - 1; ++x) out[x] = 0.75f * lum[x] + 0.125f * (lum[x - 1] + lum[x + 1]);
+      out[w - 1] = 0.75f * lum[w - 1] + 0.125f * (lum[w - 2] + lum[0]);
+    }
+    if (y >= 1) { /* rows y-2, y-1, y are ready: bin row y-1 */
+      const float *a = hr[(y - 1) % 3], *m = hr[y % 3], *c = hr[(y + 1) % 3];
+      float *dst = f + (size_t)(y - 1) * (size_t)w;
+      for (x = 0; x < w; ++x) dst[x] = 0.75f * m[x] + 0.125f * (a[x] + c[x]);
+    }
+  }
+  EL_FREE(rows);
+  return EL_SUCCESS;
+}
+
 static el_result el_envlight__cell_average(const el_envlight *l, float *f, int nu, int nv) {
   int w = l->width, h = l->height;
   int *us = NULL, *ui = NULL, *vs = NULL, *vi = NULL, j, i, e, span = 1, cached_hi = -1;
@@ -810,7 +860,8 @@ static el_result el_envlight__build(el_envlight *l) {
   if (!f) return EL_ERROR_OUT_OF_MEMORY;
   /* <<Compute scalar-valued image img from environment map>> */
   if (l->importance == EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE) {
-    r = el_envlight__cell_average(l, f, nu, nv);
+    if (nu == l->width && nv == l->height) r = el_envlight__cell_average_same(l, f);
+    else r = el_envlight__cell_average(l, f, nu, nv);
   } else if (l->importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3) {
     for (j = 0; j < nv; ++j)
       for (i = 0; i < nu; ++i) {
@@ -822,8 +873,8 @@ static el_result el_envlight__build(el_envlight *l) {
     for (q = 0; q < nb; ++q) f[q] = el_envlight__luminance(l->texels + 3 * q);
   }
   if (r != EL_SUCCESS) { EL_FREE(f); return r; }
-  /* clean up rounding: luminance weights are positive, but keep f >= 0 and finite for sure */
-  for (q = 0; q < nb; ++q) if (!(f[q] >= 0.0f)) f[q] = 0.0f; else if (f[q] > FLT_MAX) f[q] = FLT_MAX;
+  /* texels are finite and >= 0 and every weight is >= 0, so f is >= 0 and at worst +Inf (a sum of values
+   * near FLT_MAX); the sin(theta) pass below clamps it to FLT_MAX */
   if (l->compensated) {
     /* <<Initialize compensated PDF>> (pbrt-v4): subtract the solid-angle mean of L, clamp at 0 */
     double sum = 0.0, area = 0.0, mean;
@@ -839,8 +890,11 @@ static el_result el_envlight__build(el_envlight *l) {
     } else l->fell_back = 1;
   }
   for (j = 0; j < nv; ++j) { /* <<times sin(theta)>> at the bin centre (> 0 for every bin) */
-    float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv);
-    for (i = 0; i < nu; ++i) f[(size_t)j * nu + i] *= s;
+    float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv), *row = f + (size_t)j * nu;
+    for (i = 0; i < nu; ++i) {
+      float v = row[i] * s;
+      row[i] = v < FLT_MAX ? v : FLT_MAX;
+    }
   }
   memset(&dopt, 0, sizeof dopt);
   r = el_distribution2d_init(&l->dist, f, nu, nv, &dopt);
@@ -855,9 +909,12 @@ static el_result el_envlight__build(el_envlight *l) {
   l->v_cell_scale = (float)(l->v_cells - 2);
   l->pdf_table = (float *)EL_MALLOC(nb * sizeof(float));
   if (!l->pdf_table) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
-  for (j = 0; j < nv; ++j)
-    for (i = 0; i < nu; ++i)
-      l->pdf_table[(size_t)j * nu + i] = el_envlight__bin_pdf(&l->dist, i, j) * EL_ENVLIGHT__INV_2PI2;
+  for (j = 0; j < nv; ++j) { /* el_envlight__bin_pdf, row by row */
+    const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
+    float wv = (float)(l->dist.marginal[j + 1] - l->dist.marginal[j]) * l->dist.v_pdf_scale;
+    float *dst = l->pdf_table + (size_t)j * nu;
+    for (i = 0; i < nu; ++i) dst[i] = wv * ((float)(row[i + 1] - row[i]) * l->dist.u_pdf_scale) * EL_ENVLIGHT__INV_2PI2;
+  }
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
     el_distribution_fast_options fo;
     memset(&fo, 0, sizeof fo);
