@@ -131,7 +131,8 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
   if (!b) return el_io__fail(err, errlen, path, "out of memory");
   n = fread(b, 1, (size_t)size, f);
   if (n != (size_t)size) { free(b); return el_io__fail(err, errlen, path, "cannot read file (%s)", ferror(f) ? strerror(errno) : "short read"); }
-#define EL_IO__HDR_FAIL(...) do { free(b); return el_io__fail(err, errlen, path, __VA_ARGS__); } while (0)
+/* the message is formatted before b is freed: its arguments may read b */
+#define EL_IO__HDR_FAIL(...) do { el_io__fail(err, errlen, path, __VA_ARGS__); free(b); return -1; } while (0)
   if (size < 2 || b[0] != '#' || b[1] != '?') EL_IO__HDR_FAIL("not a Radiance HDR file (no '#?' signature at the start)");
   /* header lines up to an empty line; FORMAT must be 32-bit_rle_rgbe when present */
   for (;;) {
