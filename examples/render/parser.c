@@ -464,6 +464,10 @@ static void elr__camera(elr__parser *P, const char *type) {
     ELR_WARN(P, P->dir_line, "Camera \"%s\" is not supported; using \"perspective\"", type);
   }
   d->fov = (float)elr__pfloat(P, "fov", 90.0);
+  if (elr__find(P, "halffov")) { /* pbrt-v3: halffov > 0 overrides fov */
+    double hf = elr__pfloat(P, "halffov", -1.0);
+    if (hf > 0) d->fov = (float)(2.0 * hf);
+  }
   elr__check_range(P, "fov", d->fov, 1e-4, 179.99);
   if (elr__find(P, "frameaspectratio")) {
     d->frameaspect = (float)elr__pfloat(P, "frameaspectratio", 1.0);
