@@ -433,6 +433,56 @@ static void test_chi2(const el_image *studio, const el_image *city) {
 }
 
 /* ======================================================================================== */
+/* 3b. The importance map is the exact mean of the bilinear le over each bin, times sin(theta) */
+/* ======================================================================================== */
+/* Expected density of bin (i, j): the mean of our own bilinear reconstruction over the bin by a
+ * 32x32 midpoint rule (exact for a bilinear function on sub-cells that do not straddle its kinks, which
+ * 32 sub-cells per bin do not when bins are texels or halves of texels), times sin(theta_c), normalised. */
+static void test_importance_map(void) {
+  enum { W = 8, H = 4 };
+  float px[W * H * 3];
+  image im;
+  int k, res;
+  rng r = rng_make(99);
+  for (k = 0; k < W * H * 3; ++k) px[k] = rng_f(&r) * (k % 5 == 0 ? 100.0f : 1.0f);
+  im.px = px; im.w = W; im.h = H;
+  for (res = 0; res < 3; ++res) {
+    int nu = res == 0 ? W : res == 1 ? 2 * W : 5, nv = res == 0 ? H : res == 1 ? 2 * H : 3, i, j, a, b, S = 32;
+    double *want = (double *)malloc((size_t)nu * nv * sizeof(double)), total = 0, worst = 0;
+    el_envlight l;
+    el_envlight_options o;
+    memset(&o, 0, sizeof o);
+    o.importance_width = nu; o.importance_height = nv;
+    el_envlight_init(&l, px, W, H, 3, &o);
+    for (j = 0; j < nv; ++j)
+      for (i = 0; i < nu; ++i) {
+        double m = 0;
+        for (b = 0; b < S; ++b)
+          for (a = 0; a < S; ++a) {
+            double u = (i + (a + 0.5) / S) / nu, v = (j + (b + 0.5) / S) / nv;
+            m += lum3(ref_bilerp(&im, u, v, 0), ref_bilerp(&im, u, v, 1), ref_bilerp(&im, u, v, 2));
+          }
+        want[j * nu + i] = m / (S * S) * sin(PI * (j + 0.5) / nv);
+        total += want[j * nu + i];
+      }
+    for (j = 0; j < nv; ++j)
+      for (i = 0; i < nu; ++i) {
+        double d[3], p_uv, expect = want[j * nu + i] / total * nu * nv, v = (j + 0.5) / nv;
+        float fd[3];
+        ref_uv_to_dir((i + 0.5) / nu, v, d);
+        fd[0] = (float)d[0]; fd[1] = (float)d[1]; fd[2] = (float)d[2];
+        p_uv = el_envlight_pdf_li(&l, fd) * 2 * PI * PI * sin(PI * v); /* back to a density over (u, v) */
+        worst = fmax(worst, fabs(p_uv - expect) / expect);
+      }
+    check(worst < 1e-4,
+          "importance map %dx%d of an 8x4 map = the mean of the bilinear le over each bin x sin(theta): worst rel err %.2g",
+          nu, nv, worst);
+    el_envlight_free(&l);
+    free(want);
+  }
+}
+
+/* ======================================================================================== */
 /* 4. pdf_li integrates to 1 (a grid NOT aligned with the bins)                              */
 /* ======================================================================================== */
 static void test_pdf_integral(const el_image *studio) {
@@ -956,6 +1006,7 @@ int main(void) {
   test_orientation();
   test_le(&studio);
   test_chi2(&studio, &city);
+  test_importance_map();
   test_pdf_integral(&studio);
   test_unbiased(&studio, &city);
   test_power(&studio);
