@@ -229,10 +229,13 @@ static int el_mipmap__cas(long *p, long expected, long desired) {
 
 #if defined(__GNUC__) || defined(__clang__)
 #define EL_MIPMAP__INLINE static inline __attribute__((always_inline))
+#define EL_MIPMAP__NOINLINE static __attribute__((noinline))
 #elif defined(_MSC_VER)
 #define EL_MIPMAP__INLINE static __forceinline
+#define EL_MIPMAP__NOINLINE static __declspec(noinline)
 #else
 #define EL_MIPMAP__INLINE static inline
+#define EL_MIPMAP__NOINLINE static
 #endif
 #define EL_MIPMAP__MAX_SIDE (1 << 24)
 #define EL_MIPMAP__STATE_NONE 0L
@@ -860,12 +863,24 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
                     out);
 }
 
-EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out) {
-  /* <<Compute MIPMap level for trilinear filtering>>: level = il + delta */
-  float delta, a[4], b[4];
-  int il, c, C = m->channels;
-  if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
-  el_mipmap__level(width, m->levels, &il, &delta);
+/* pbrt's triangle() for 3 channels at level coordinates (x, y) = (s w - 0.5, t h - 0.5) that are known
+ * to lie in [0, w - 1) x [0, h - 1): no wrapping, (int) is floor, and the four texels are two runs of
+ * 6 contiguous floats, one row apart. The same operations in the same order as el_mipmap__bilerp_c. */
+EL_MIPMAP__INLINE void el_mipmap__bilerp3_inside(const float *data, int w, float x, float y, float *out) {
+  int i = (int)x, j = (int)y;
+  float ds = x - (float)i, dt = y - (float)j;
+  float k00 = (1.0f - ds) * (1.0f - dt), k01 = (1.0f - ds) * dt, k10 = ds * (1.0f - dt), k11 = ds * dt;
+  const float *r0 = data + ((size_t)j * (size_t)w + (size_t)i) * 3, *r1 = r0 + (size_t)w * 3;
+  out[0] = k00 * r0[0] + k01 * r1[0] + k10 * r0[3] + k11 * r1[3];
+  out[1] = k00 * r0[1] + k01 * r1[1] + k10 * r0[4] + k11 * r1[4];
+  out[2] = k00 * r0[2] + k01 * r1[2] + k10 * r0[5] + k11 * r1[5];
+}
+
+/* Every trilinear case but the common one below: any channel count, borders, levels out of range.
+ * Out of line, so that the common case needs no callee-saved registers. */
+EL_MIPMAP__NOINLINE void el_mipmap__lookup_general(const el_mipmap *m, int il, float delta, float s, float t, float *out) {
+  float a[4], b[4];
+  int c, C = m->channels;
   /* <<Perform trilinear interpolation at appropriate MIPMap level>> */
   if (il >= m->levels - 1) {
     el_mipmap__texel(m, el_mipmap__usable(m, m->levels - 1), 0, 0, out);
@@ -877,17 +892,43 @@ EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, 
     el_mipmap__bilerp(m, 0, s, t, out);
     return;
   }
-  if (C == 3) { /* the common case, specialised */
+  if (C == 3) {
     el_mipmap__bilerp_c(m, il, s, t, a, 3);
     el_mipmap__bilerp_c(m, il + 1, s, t, b, 3);
-    out[0] = (1 - delta) * a[0] + delta * b[0]; /* pbrt's Lerp */
-    out[1] = (1 - delta) * a[1] + delta * b[1];
-    out[2] = (1 - delta) * a[2] + delta * b[2];
-    return;
+  } else {
+    el_mipmap__bilerp(m, il, s, t, a);
+    el_mipmap__bilerp(m, il + 1, s, t, b);
   }
-  el_mipmap__bilerp(m, il, s, t, a);
-  el_mipmap__bilerp(m, il + 1, s, t, b);
-  for (c = 0; c < C; ++c) out[c] = (1 - delta) * a[c] + delta * b[c];
+  for (c = 0; c < C; ++c) out[c] = (1 - delta) * a[c] + delta * b[c]; /* pbrt's Lerp */
+}
+
+EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out) {
+  /* <<Compute MIPMap level for trilinear filtering>>: level = il + delta */
+  float delta;
+  int il;
+  if (!(width > 1e-8f)) width = 1e-8f; /* also NaN and negative widths */
+  el_mipmap__level(width, m->levels, &il, &delta);
+  /* The common case, in one piece: 3 channels, 0 <= il < levels - 1, levels built, and (s, t) inside
+   * the interior of level il + 1: x1 = s w1 - 0.5 in [0, w1 - 1), and the same for y1. Then (s, t) is
+   * inside the interior of level il too, because w >= 2 w1 (w1 = floor(w / 2) once w1 >= 2):
+   * x1 >= 0 gives s w >= 1, so x >= 0.5; x1 < w1 - 1 gives s w1 < w1 - 0.5, so s w < w - w / (2 w1) <= w - 1
+   * and x < w - 1.5 (half a texel of slack on each side covers every rounding). NaN fails the tests. */
+  if (m->channels == 3 && (unsigned)il < (unsigned)(m->levels - 1) &&
+      el_mipmap__load(&m->build_state) == EL_MIPMAP__STATE_BUILT) {
+    const float *size1 = m->level_size[il + 1];
+    float x1 = s * size1[0] - 0.5f, y1 = t * size1[1] - 0.5f;
+    if (x1 >= 0.0f && x1 < size1[0] - 1.0f && y1 >= 0.0f && y1 < size1[1] - 1.0f) {
+      float a[3], b[3];
+      el_mipmap__bilerp3_inside(m->level_data[il], m->level_width[il], s * m->level_size[il][0] - 0.5f,
+                                t * m->level_size[il][1] - 0.5f, a);
+      el_mipmap__bilerp3_inside(m->level_data[il + 1], m->level_width[il + 1], x1, y1, b);
+      out[0] = (1 - delta) * a[0] + delta * b[0]; /* pbrt's Lerp */
+      out[1] = (1 - delta) * a[1] + delta * b[1];
+      out[2] = (1 - delta) * a[2] + delta * b[2];
+      return;
+    }
+  }
+  el_mipmap__lookup_general(m, il, delta, s, t, out);
 }
 
 /* >> mipmap: EWA */
