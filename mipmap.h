@@ -977,35 +977,25 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_span(const float *p, const float *pend, fl
   *sumw = sw;
 }
 
-/* pbrt's EWA(level, st, dst0, dst1) for C channels (a constant in each inlined copy). s, t already
- * made safe by el_mipmap__sane_ewa. pbrt loops over the ellipse's bounding box and keeps the texels
- * with r2 = A ss^2 + B ss tt + C tt^2 < 1; here each row's loop is trimmed to the ellipse's chord in
- * that row (plus a margin), so the skipped texels all have r2 >= 1, and each kept texel gets pbrt's
- * r2, computed with the same operations in the same order, hence the same table weight. */
-EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, float t, float d0s,
-                                        float d0t, float d1s, float d1t, float *out, int C) {
-  int nu, nv, c, t0, t1, it;
-  float fit, x, y, A, B, Cc, F, cr, invF, det, invDet, ru, rv, inv2A, fourA, mg, acc[4], sumw = 0.0f;
-  const float *data;
-  el_wrap wu = m->wrap_u;
-  size_t rowstride;
+/* <<Convert EWA coordinates to appropriate scale for level>>, <<Compute ellipse coefficients to bound
+ * EWA filter region>> and the half-sizes of <<Compute the ellipse's (s,t) bounding box in texture
+ * space>>: pbrt's operations in pbrt's order, but for F when pbrt's loses too much (below). */
+typedef struct el_mipmap__ellipse {
+  float x, y;    /* the centre in texel units of the level: s w - 0.5, t h - 0.5 */
+  float A, B, C; /* r2 = A ss^2 + B ss tt + C tt^2, normalised so that r2 = 1 on the ellipse */
+  float det;     /* 4 A C - B^2 */
+  float ru, rv;  /* half-sizes of the bounding box (pbrt's 2 invDet uSqrt, 2 invDet vSqrt) */
+} el_mipmap__ellipse;
+EL_MIPMAP__INLINE void el_mipmap__ellipse_init(const float *size, float s, float t, float d0s, float d0t,
+                                               float d1s, float d1t, el_mipmap__ellipse *e) {
+  float A, B, Cc, F, cr, invF, det, invDet;
   int well;
-  if (level >= m->levels) {
-    el_mipmap__texel(m, m->levels - 1, 0, 0, out);
-    return;
-  }
-  nu = m->level_width[level];
-  nv = m->level_height[level];
-  data = m->level_data[level];
-  rowstride = (size_t)nu * (size_t)C;
-  /* <<Convert EWA coordinates to appropriate scale for level>> */
-  x = s * m->level_size[level][0] - 0.5f;
-  y = t * m->level_size[level][1] - 0.5f;
-  d0s *= m->level_size[level][0];
-  d0t *= m->level_size[level][1];
-  d1s *= m->level_size[level][0];
-  d1t *= m->level_size[level][1];
-  /* <<Compute ellipse coefficients to bound EWA filter region>> */
+  e->x = s * size[0] - 0.5f;
+  e->y = t * size[1] - 0.5f;
+  d0s *= size[0];
+  d0t *= size[1];
+  d1s *= size[0];
+  d1t *= size[1];
   A = d0t * d0t + d1t * d1t + 1;
   B = -2 * (d0s * d0t + d1s * d1t);
   Cc = d0s * d0s + d1s * d1s + 1;
@@ -1022,11 +1012,46 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   A *= invF;
   B *= invF;
   Cc *= invF;
-  /* <<Compute the ellipse's (s,t) bounding box in texture space>> */
   det = well ? -B * B + 4 * A * Cc : 4 * invF;
   invDet = 1 / det;
-  ru = 2 * invDet * sqrtf(det * Cc);
-  rv = 2 * invDet * sqrtf(A * det);
+  e->A = A;
+  e->B = B;
+  e->C = Cc;
+  e->det = det;
+  e->ru = 2 * invDet * sqrtf(det * Cc);
+  e->rv = 2 * invDet * sqrtf(A * det);
+}
+
+/* pbrt's EWA(level, st, dst0, dst1) for C channels (a constant in each inlined copy), any position and
+ * wrap mode. s, t already made safe by el_mipmap__sane_ewa. pbrt loops over the ellipse's bounding
+ * box and keeps the texels with r2 = A ss^2 + B ss tt + C tt^2 < 1; here each row's loop is trimmed to
+ * the ellipse's chord in that row (plus a margin), so the skipped texels all have r2 >= 1 (or r2 so
+ * close to 1 that their table weight is 0, see el_mipmap__ewa3_inside), and each kept texel gets
+ * pbrt's r2, computed with the same operations in the same order, hence the same table weight. */
+EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, float t, float d0s,
+                                        float d0t, float d1s, float d1t, float *out, int C) {
+  int nu, nv, c, t0, t1, it;
+  float fit, x, y, A, B, Cc, ru, rv, inv2A, fourA, mg, acc[4], sumw = 0.0f;
+  const float *data;
+  el_wrap wu = m->wrap_u;
+  size_t rowstride;
+  el_mipmap__ellipse e;
+  if (level >= m->levels) {
+    el_mipmap__texel(m, m->levels - 1, 0, 0, out);
+    return;
+  }
+  nu = m->level_width[level];
+  nv = m->level_height[level];
+  data = m->level_data[level];
+  rowstride = (size_t)nu * (size_t)C;
+  el_mipmap__ellipse_init(m->level_size[level], s, t, d0s, d0t, d1s, d1t, &e);
+  x = e.x;
+  y = e.y;
+  A = e.A;
+  B = e.B;
+  Cc = e.C;
+  ru = e.ru;
+  rv = e.rv;
   if (wu != EL_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
     if (wu == EL_WRAP_BLACK) {
       for (c = 0; c < C; ++c) out[c] = 0.0f;
@@ -1122,9 +1147,96 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   }
   for (c = 0; c < C; ++c) out[c] = acc[c] / sumw;
 }
-static void el_mipmap__ewa3(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
-                            float d1s, float d1t, float *out) {
+EL_MIPMAP__NOINLINE void el_mipmap__ewa3(const el_mipmap *m, int level, float s, float t, float d0s,
+                                         float d0t, float d1s, float d1t, float *out) {
   el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 3);
+}
+
+/* n texels of one row from p on (3 floats each) for el_mipmap__ewa3_inside; ss is the first one's
+ * is - x. Each texel is read as 4 floats, its 3 channels and the next texel's first, so that the
+ * accumulation is one 4-wide multiply-add (lane 3 is thrown away); the caller keeps a texel after
+ * the last one. Two texels per iteration. */
+EL_MIPMAP__INLINE void el_mipmap__ewa3_span(const float *p, int n, float ss, float A, float B, float tt,
+                                            float ctt, float *acc, float *sumw) {
+  int c;
+  float sw = *sumw;
+  for (; n >= 2; n -= 2, p += 6, ss += 2.0f) {
+    float ss1 = ss + 1.0f;
+    float r2 = A * ss * ss + B * ss * tt + ctt, r21 = A * ss1 * ss1 + B * ss1 * tt + ctt;
+    if (r2 < 1) {
+      /* r2 in [0, 1) up to rounding, so (int)(r2 * 128) is 0..127; & 127 keeps any rounding accident
+       * inside the table */
+      float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+      for (c = 0; c < 4; ++c) acc[c] += p[c] * wgt;
+      sw += wgt;
+    }
+    if (r21 < 1) {
+      float wgt = el_mipmap__weight_lut[(int)(r21 * 128) & 127];
+      for (c = 0; c < 4; ++c) acc[c] += p[3 + c] * wgt;
+      sw += wgt;
+    }
+  }
+  if (n > 0) {
+    float r2 = A * ss * ss + B * ss * tt + ctt;
+    if (r2 < 1) {
+      float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
+      for (c = 0; c < 4; ++c) acc[c] += p[c] * wgt;
+      sw += wgt;
+    }
+  }
+  *sumw = sw;
+}
+
+/* pbrt's EWA() on one level for 3 channels when the ellipse lies inside the level with room to spare
+ * (the common case): pbrt's box [s0, s1] x [t0, t1] with 2 <= s0, s1 <= w - 3, 0 <= t0, t1 < h.
+ * Returns 0, having written nothing, otherwise. No wrapping, and:
+ *  - is - x is exact (x > 1 + ru, so |is - x| < x < 2^24 ulp(x), and is is a multiple of ulp(x)), so
+ *    each row steps ss by 1 from its first texel and gets pbrt's ss bit for bit;
+ *  - each row's chord comes from the ellipse's equation solved for ss: centre x - B tt / (2 A), half
+ *    width sqrt(1/A - det tt^2 / (4 A^2)) plus the margin mg, clipped to pbrt's [s0, s1]. Its error
+ *    (the cancellation in det, below 2e-3 relative since F is well conditioned, times 1/A) is below
+ *    the gap between the chords of r2 = 127/128 and r2 = 1, which is (1/A)/128 in half width squared:
+ *    a texel it leaves out has r2 >= 127/128 by pbrt's arithmetic, whose table weight is 0, which
+ *    pbrt adds as 0. */
+EL_MIPMAP__INLINE int el_mipmap__ewa3_inside(const el_mipmap *m, int level, float s, float t, float d0s,
+                                             float d0t, float d1s, float d1t, float *out) {
+  el_mipmap__ellipse e;
+  const float *rp;
+  float mg, P, Q, K, fit, acc[4] = {0.0f, 0.0f, 0.0f, 0.0f}, sumw = 0.0f;
+  int nu, s0, s1, t0, t1, it;
+  size_t stride;
+  if (level >= m->levels) return 0;
+  nu = m->level_width[level];
+  el_mipmap__ellipse_init(m->level_size[level], s, t, d0s, d0t, d1s, d1t, &e);
+  mg = 0.05f + 1e-6f * (fabsf(e.x) + e.ru); /* covers the rounding of the chord's centre */
+  if (!(e.x - e.ru - mg > 1.0f && e.x + e.ru + mg < (float)nu - 2.0f && e.y - e.rv > -1.0f &&
+        e.y + e.rv < m->level_size[level][1]))
+    return 0; /* (also NaN) */
+  /* <<Compute the ellipse's (s,t) bounding box in texture space>> */
+  s0 = el_mipmap__iceil(e.x - e.ru);
+  s1 = el_mipmap__ifloor(e.x + e.ru);
+  t0 = el_mipmap__iceil(e.y - e.rv);
+  t1 = el_mipmap__ifloor(e.y + e.rv);
+  P = 1 / e.A;                /* the half width squared of the centre row */
+  Q = e.det * 0.25f * P * P; /* its decrease per tt^2 */
+  K = -0.5f * e.B * P;        /* the chord's centre moves by K per row */
+  stride = (size_t)nu * 3;
+  rp = m->level_data[level] + (size_t)t0 * stride;
+  /* <<Scan over ellipse bound and compute quadratic equation>>, one chord per row */
+  for (it = t0, fit = (float)t0; it <= t1; ++it, fit += 1.0f, rp += stride) {
+    float tt = fit - e.y; /* fit == (float)it exactly: pbrt's it - st[1] */
+    float ctt = e.C * tt * tt, h2 = P - Q * (tt * tt), cs = e.x + K * tt;
+    float hw = (h2 > 0.0f ? sqrtf(h2) : 0.0f) + mg;
+    int lo = (int)(cs - hw) + 1, hi = (int)(cs + hw); /* ceil and floor where it matters (> 0) */
+    if (lo < s0) lo = s0;
+    if (hi > s1) hi = s1;
+    if (lo <= hi) el_mipmap__ewa3_span(rp + 3 * (size_t)lo, hi - lo + 1, (float)lo - e.x, e.A, e.B, tt, ctt, acc, &sumw);
+  }
+  if (!(sumw > 0.0f)) return 0; /* cannot happen (the ellipse holds a disc of radius 1), kept as a guard */
+  out[0] = acc[0] / sumw;
+  out[1] = acc[1] / sumw;
+  out[2] = acc[2] / sumw;
+  return 1;
 }
 static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
                            float d1s, float d1t, float *out) {
@@ -1189,10 +1301,12 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
   }
   s = el_mipmap__sane_ewa(s, m->wrap_u);
   t = el_mipmap__sane_ewa(t, m->wrap_v);
-  if (C == 3) { /* the common case, specialised */
-    el_mipmap__ewa3(m, ilod, s, t, d0s, d0t, d1s, d1t, a);
-    if (f == 0) b[0] = b[1] = b[2] = 0.0f; /* pbrt computes (1 - 0) a + 0 b = a as well */
-    else el_mipmap__ewa3(m, ilod + 1, s, t, d0s, d0t, d1s, d1t, b);
+  if (C == 3) { /* the common case, specialised: one inlined copy for both levels */
+    int k;
+    b[0] = b[1] = b[2] = 0.0f; /* when f == 0: pbrt computes (1 - 0) a + 0 b = a as well */
+    for (k = 0; k <= (f > 0); ++k)
+      if (!el_mipmap__ewa3_inside(m, ilod + k, s, t, d0s, d0t, d1s, d1t, k ? b : a))
+        el_mipmap__ewa3(m, ilod + k, s, t, d0s, d0t, d1s, d1t, k ? b : a);
     out[0] = (1 - f) * a[0] + f * b[0];
     out[1] = (1 - f) * a[1] + f * b[1];
     out[2] = (1 - f) * a[2] + f * b[2];
