@@ -1152,85 +1152,87 @@ EL_MIPMAP__NOINLINE void el_mipmap__ewa3(const el_mipmap *m, int level, float s,
   el_mipmap__ewa_c(m, level, s, t, d0s, d0t, d1s, d1t, out, 3);
 }
 
-/* n texels of one row from p on (3 floats each) for el_mipmap__ewa3_inside; ss is the first one's
- * is - x. Each texel is read as 4 floats, its 3 channels and the next texel's first, so that the
- * accumulation is one 4-wide multiply-add (lane 3 is thrown away); the caller keeps a texel after
- * the last one. Two texels per iteration. */
-EL_MIPMAP__INLINE void el_mipmap__ewa3_span(const float *p, int n, float ss, float A, float B, float tt,
-                                            float ctt, float *acc, float *sumw) {
+/* The texels p..last (inclusive, 3 floats each) of one row for el_mipmap__ewa3_inside; ss is the
+ * first one's is - x. Two texels per iteration. */
+EL_MIPMAP__INLINE void el_mipmap__ewa3_span(const float *p, const float *last, float ss, float A, float B,
+                                            float tt, float ctt, float *acc, float *sumw) {
   int c;
   float sw = *sumw;
-  for (; n >= 2; n -= 2, p += 6, ss += 2.0f) {
+  for (; p < last; p += 6, ss += 2.0f) {
     float ss1 = ss + 1.0f;
     float r2 = A * ss * ss + B * ss * tt + ctt, r21 = A * ss1 * ss1 + B * ss1 * tt + ctt;
     if (r2 < 1) {
       /* r2 in [0, 1) up to rounding, so (int)(r2 * 128) is 0..127; & 127 keeps any rounding accident
        * inside the table */
       float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
-      for (c = 0; c < 4; ++c) acc[c] += p[c] * wgt;
+      for (c = 0; c < 3; ++c) acc[c] += p[c] * wgt;
       sw += wgt;
     }
     if (r21 < 1) {
       float wgt = el_mipmap__weight_lut[(int)(r21 * 128) & 127];
-      for (c = 0; c < 4; ++c) acc[c] += p[3 + c] * wgt;
+      for (c = 0; c < 3; ++c) acc[c] += p[3 + c] * wgt;
       sw += wgt;
     }
   }
-  if (n > 0) {
+  if (p == last) { /* an odd count: the last texel */
     float r2 = A * ss * ss + B * ss * tt + ctt;
     if (r2 < 1) {
       float wgt = el_mipmap__weight_lut[(int)(r2 * 128) & 127];
-      for (c = 0; c < 4; ++c) acc[c] += p[c] * wgt;
+      for (c = 0; c < 3; ++c) acc[c] += p[c] * wgt;
       sw += wgt;
     }
   }
   *sumw = sw;
 }
 
-/* pbrt's EWA() on one level for 3 channels when the ellipse lies inside the level with room to spare
- * (the common case): pbrt's box [s0, s1] x [t0, t1] with 2 <= s0, s1 <= w - 3, 0 <= t0, t1 < h.
+/* pbrt's EWA() on one level for 3 channels when the ellipse lies inside the level with a texel to
+ * spare on every side (the common case): x - ru > 1, y - rv > 1, x + ru < w - 2, y + rv < h - 1.
  * Returns 0, having written nothing, otherwise. No wrapping, and:
  *  - is - x is exact (x > 1 + ru, so |is - x| < x < 2^24 ulp(x), and is is a multiple of ulp(x)), so
- *    each row steps ss by 1 from its first texel and gets pbrt's ss bit for bit;
+ *    each row steps ss by 1 from its first texel and gets pbrt's ss bit for bit; the same holds for
+ *    it - y, so tt steps by 1 from row to row;
+ *  - all the bounds are positive, so (int) is floor: pbrt's box is s0 = ceil(x - ru) .. s1 =
+ *    floor(x + ru) and t0 .. t1; (int)(v) + 1 is ceil(v) unless v is an integer, and then it leaves
+ *    out the column or row that touches the ellipse, where r2 >= 1 (or within rounding of 1, where the
+ *    table weight is 0, which pbrt adds as 0);
  *  - each row's chord comes from the ellipse's equation solved for ss: centre x - B tt / (2 A), half
  *    width sqrt(1/A - det tt^2 / (4 A^2)) plus the margin mg, clipped to pbrt's [s0, s1]. Its error
  *    (the cancellation in det, below 2e-3 relative since F is well conditioned, times 1/A) is below
  *    the gap between the chords of r2 = 127/128 and r2 = 1, which is (1/A)/128 in half width squared:
- *    a texel it leaves out has r2 >= 127/128 by pbrt's arithmetic, whose table weight is 0, which
- *    pbrt adds as 0. */
+ *    a texel it leaves out has r2 >= 127/128 by pbrt's arithmetic, whose table weight is 0. */
 EL_MIPMAP__INLINE int el_mipmap__ewa3_inside(const el_mipmap *m, int level, float s, float t, float d0s,
                                              float d0t, float d1s, float d1t, float *out) {
   el_mipmap__ellipse e;
   const float *rp;
-  float mg, P, Q, K, fit, acc[4] = {0.0f, 0.0f, 0.0f, 0.0f}, sumw = 0.0f;
-  int nu, s0, s1, t0, t1, it;
+  float mg, P, Q, K, tt, acc[3] = {0.0f, 0.0f, 0.0f}, sumw = 0.0f;
+  int s0, s1, it, t1;
   size_t stride;
   if (level >= m->levels) return 0;
-  nu = m->level_width[level];
   el_mipmap__ellipse_init(m->level_size[level], s, t, d0s, d0t, d1s, d1t, &e);
-  mg = 0.05f + 1e-6f * (fabsf(e.x) + e.ru); /* covers the rounding of the chord's centre */
-  if (!(e.x - e.ru - mg > 1.0f && e.x + e.ru + mg < (float)nu - 2.0f && e.y - e.rv > -1.0f &&
-        e.y + e.rv < m->level_size[level][1]))
+  mg = 0.05f + 1e-6f * (e.x + e.ru); /* covers the rounding of the chord's centre */
+  if (!(e.x - e.ru - mg > 1.0f && e.x + e.ru + mg < m->level_size[level][0] - 2.0f && e.y - e.rv > 1.0f &&
+        e.y + e.rv < m->level_size[level][1] - 1.0f))
     return 0; /* (also NaN) */
   /* <<Compute the ellipse's (s,t) bounding box in texture space>> */
-  s0 = el_mipmap__iceil(e.x - e.ru);
-  s1 = el_mipmap__ifloor(e.x + e.ru);
-  t0 = el_mipmap__iceil(e.y - e.rv);
-  t1 = el_mipmap__ifloor(e.y + e.rv);
-  P = 1 / e.A;                /* the half width squared of the centre row */
+  s0 = (int)(e.x - e.ru) + 1;
+  s1 = (int)(e.x + e.ru);
+  it = (int)(e.y - e.rv) + 1;
+  t1 = (int)(e.y + e.rv);
+  P = 1 / e.A;               /* the half width squared of the centre row */
   Q = e.det * 0.25f * P * P; /* its decrease per tt^2 */
-  K = -0.5f * e.B * P;        /* the chord's centre moves by K per row */
-  stride = (size_t)nu * 3;
-  rp = m->level_data[level] + (size_t)t0 * stride;
+  K = -0.5f * e.B * P;       /* the chord's centre moves by K per row */
+  stride = (size_t)m->level_width[level] * 3;
+  rp = m->level_data[level] + (size_t)it * stride;
   /* <<Scan over ellipse bound and compute quadratic equation>>, one chord per row */
-  for (it = t0, fit = (float)t0; it <= t1; ++it, fit += 1.0f, rp += stride) {
-    float tt = fit - e.y; /* fit == (float)it exactly: pbrt's it - st[1] */
+  for (tt = (float)it - e.y; it <= t1; ++it, tt += 1.0f, rp += stride) {
     float ctt = e.C * tt * tt, h2 = P - Q * (tt * tt), cs = e.x + K * tt;
     float hw = (h2 > 0.0f ? sqrtf(h2) : 0.0f) + mg;
     int lo = (int)(cs - hw) + 1, hi = (int)(cs + hw); /* ceil and floor where it matters (> 0) */
     if (lo < s0) lo = s0;
     if (hi > s1) hi = s1;
-    if (lo <= hi) el_mipmap__ewa3_span(rp + 3 * (size_t)lo, hi - lo + 1, (float)lo - e.x, e.A, e.B, tt, ctt, acc, &sumw);
+    if (lo <= hi)
+      el_mipmap__ewa3_span(rp + 3 * (size_t)lo, rp + 3 * (size_t)hi, (float)lo - e.x, e.A, e.B, tt, ctt, acc,
+                           &sumw);
   }
   if (!(sumw > 0.0f)) return 0; /* cannot happen (the ellipse holds a disc of radius 1), kept as a guard */
   out[0] = acc[0] / sumw;
@@ -1238,6 +1240,7 @@ EL_MIPMAP__INLINE int el_mipmap__ewa3_inside(const el_mipmap *m, int level, floa
   out[2] = acc[2] / sumw;
   return 1;
 }
+
 static void el_mipmap__ewa(const el_mipmap *m, int level, float s, float t, float d0s, float d0t,
                            float d1s, float d1t, float *out) {
   switch (m->channels) {
