@@ -115,10 +115,52 @@ static void closed_sphere(void) {
   }
 }
 
+/* 3. A distant light (pbrt-v3: radiance L arriving from direction from - to) on a matte plane: every
+ * pixel on the plane is (rho / pi) L cos(theta), exactly (a delta light: no sampling noise); a sphere
+ * standing on the plane casts a shadow in which the plane is black. */
+static void distant(void) {
+  char err[512], buf[2048];
+  elr_scene *s;
+  elr_image img;
+  elr_stats st;
+  double rho = 0.6, L = 2.0, c = cos(60.0 * 3.14159265358979 / 180.0), expect = rho / 3.14159265358979 * L * c, worst = 0;
+  int x, y, lit = 0, dark = 0;
+  snprintf(buf, sizeof buf,
+           "LookAt 0 5 0  0 0 0  0 0 1\n"
+           "Camera \"perspective\" \"float fov\" 60\n"
+           "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 24\n"
+           "Sampler \"random\" \"integer pixelsamples\" 2\n"
+           "Integrator \"directlighting\"\n"
+           "WorldBegin\n"
+           "LightSource \"distant\" \"point from\" [ 0 0 0 ] \"point to\" [ -0.8660254 -0.5 0 ] \"rgb L\" [ %g %g %g ]\n"
+           "Material \"matte\" \"rgb Kd\" [ %g %g %g ]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -50 0 -50  50 0 -50  50 0 50  -50 0 50 ]\n"
+           "Translate 0 1 0\nShape \"sphere\" \"float radius\" 0.5\n"
+           "WorldEnd\n", L, L, L, rho, rho, rho);
+  s = rt_load("distant.pbrt", buf, err, sizeof err);
+  if (!s) { rt_check(0, "distant scene: %s", err); return; }
+  if (rt_render(s, 0, -1, -1, 2, 1, &img, &st) == 0) {
+    for (y = 0; y < 24; y++)
+      for (x = 0; x < 24; x++) {
+        double v = img.rgb[3 * (y * 24 + x)];
+        if (fabs(v - expect) < 1e-4 * expect) lit++;
+        else if (v == 0.0) dark++;
+        else if (fabs(v - expect) > worst) worst = fabs(v - expect);
+      }
+    /* mixed pixels (sphere edge, shadow edge, sphere itself) are neither; most are lit plane */
+    rt_check(lit > 300 && dark > 5, "distant light at 60 deg from the normal: %d plane pixels = rho L cos / pi = %.5f exactly, %d in shadow", lit,
+             expect, dark);
+    rt_check(st.distribution_built == 0 && st.shadow_rays > 0, "delta light only: no distribution, %llu shadow rays", (unsigned long long)st.shadow_rays);
+    elr_image_free(&img);
+  }
+  elr_scene_free(s);
+}
+
 int main(void) {
   rt_mkdir("test_render_furnace");
   convex_furnace("directlighting");
   convex_furnace("path");
   closed_sphere();
+  distant();
   return rt_finish("test_render_furnace");
 }
