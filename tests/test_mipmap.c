@@ -4,7 +4,8 @@
  * computed here in double from the input texels; means of whole levels; the Lanczos resampling weights
  * written out again in double; hand-computed bilinear blends at texel centres and edges; a
  * brute-force, supersampled Gaussian footprint (the filter EWA approximates) on an anisotropic
- * checkerboard. Nothing is compared with an earlier output of mipmap.h.
+ * checkerboard; pbrt-v3's trilinear and EWA lookups transcribed here in float (the issue asks for
+ * pbrt's results to float precision). Nothing is compared with an earlier output of mipmap.h.
  */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
@@ -447,6 +448,168 @@ static void test_ewa(void) {
   free(img);
 }
 
+/* ---- lookups against pbrt-v3's algorithm, transcribed here in float ------------------------------ */
+/* pbrt-v3's Texel, triangle, Lookup(st, width) and EWA / Lookup(st, dst0, dst1) (src/core/mipmap.h),
+ * written out again line by line over the levels (which test_box_levels checks against box averages),
+ * with Repeat in u and Clamp in v. mipmap.h must give the same results to float precision: it trims
+ * each EWA row to the ellipse's chord, walks ss and tt incrementally and has fast paths for footprints
+ * inside a level, all of which must leave every texel's weight as pbrt's. (The only intended
+ * difference is the level's logarithm, within about 1e-7 of log2f, which moves the blend between two
+ * levels in its last bits.) */
+static void ref_texel(const el_mipmap *m, int l, int s, int t, float *o) {
+  int w = el_mipmap_level_width(m, l), h = el_mipmap_level_height(m, l), c;
+  const float *p;
+  s = ((s % w) + w) % w;             /* Repeat */
+  t = t < 0 ? 0 : (t >= h ? h - 1 : t); /* Clamp */
+  p = el_mipmap_level_data(m, l) + 3 * ((size_t)t * (size_t)w + (size_t)s);
+  for (c = 0; c < 3; ++c) o[c] = p[c];
+}
+static void ref_triangle(const el_mipmap *m, int l, float s, float t, float *o) {
+  float a[3], b[3], cc[3], d[3], ds, dt;
+  int s0, t0, c;
+  l = l < 0 ? 0 : (l >= el_mipmap_levels(m) ? el_mipmap_levels(m) - 1 : l);
+  s = s * el_mipmap_level_width(m, l) - 0.5f;
+  t = t * el_mipmap_level_height(m, l) - 0.5f;
+  s0 = (int)floorf(s);
+  t0 = (int)floorf(t);
+  ds = s - s0;
+  dt = t - t0;
+  ref_texel(m, l, s0, t0, a);
+  ref_texel(m, l, s0, t0 + 1, b);
+  ref_texel(m, l, s0 + 1, t0, cc);
+  ref_texel(m, l, s0 + 1, t0 + 1, d);
+  for (c = 0; c < 3; ++c)
+    o[c] = (1 - ds) * (1 - dt) * a[c] + (1 - ds) * dt * b[c] + ds * (1 - dt) * cc[c] + ds * dt * d[c];
+}
+static void ref_trilinear(const el_mipmap *m, float s, float t, float width, float *o) {
+  int n = el_mipmap_levels(m), il, c;
+  float level = n - 1 + log2f(width > 1e-8f ? width : 1e-8f), a[3], b[3], delta;
+  if (level < 0) {
+    ref_triangle(m, 0, s, t, o);
+    return;
+  }
+  if (level >= n - 1) {
+    ref_texel(m, n - 1, 0, 0, o);
+    return;
+  }
+  il = (int)floorf(level);
+  delta = level - il;
+  ref_triangle(m, il, s, t, a);
+  ref_triangle(m, il + 1, s, t, b);
+  for (c = 0; c < 3; ++c) o[c] = (1 - delta) * a[c] + delta * b[c];
+}
+static void ref_ewa_level(const el_mipmap *m, int l, float s, float t, float d00, float d01, float d10,
+                          float d11, float *o) {
+  float A, B, C, invF, det, invDet, uSqrt, vSqrt, sum[3] = {0, 0, 0}, sumWts = 0, lut[128], w, h;
+  int s0, s1, t0, t1, it, is, i, c;
+  if (l >= el_mipmap_levels(m)) {
+    ref_texel(m, el_mipmap_levels(m) - 1, 0, 0, o);
+    return;
+  }
+  for (i = 0; i < 128; ++i) lut[i] = expf(-2.0f * ((float)i / 127.0f)) - expf(-2.0f);
+  w = (float)el_mipmap_level_width(m, l);
+  h = (float)el_mipmap_level_height(m, l);
+  s = s * w - 0.5f;
+  t = t * h - 0.5f;
+  d00 *= w;
+  d01 *= h;
+  d10 *= w;
+  d11 *= h;
+  A = d01 * d01 + d11 * d11 + 1;
+  B = -2 * (d00 * d01 + d10 * d11);
+  C = d00 * d00 + d10 * d10 + 1;
+  invF = 1 / (A * C - B * B * 0.25f);
+  A *= invF;
+  B *= invF;
+  C *= invF;
+  det = -B * B + 4 * A * C;
+  invDet = 1 / det;
+  uSqrt = sqrtf(det * C);
+  vSqrt = sqrtf(A * det);
+  s0 = (int)ceilf(s - 2 * invDet * uSqrt);
+  s1 = (int)floorf(s + 2 * invDet * uSqrt);
+  t0 = (int)ceilf(t - 2 * invDet * vSqrt);
+  t1 = (int)floorf(t + 2 * invDet * vSqrt);
+  for (it = t0; it <= t1; ++it) {
+    float tt = it - t;
+    for (is = s0; is <= s1; ++is) {
+      float ss = is - s, r2 = A * ss * ss + B * ss * tt + C * tt * tt, wt, tx[3];
+      if (r2 >= 1) continue;
+      i = (int)(r2 * 128);
+      wt = lut[i > 127 ? 127 : i];
+      ref_texel(m, l, is, it, tx);
+      for (c = 0; c < 3; ++c) sum[c] += tx[c] * wt;
+      sumWts += wt;
+    }
+  }
+  for (c = 0; c < 3; ++c) o[c] = sum[c] / sumWts;
+}
+static void ref_ewa(const el_mipmap *m, float s, float t, float d00, float d01, float d10, float d11, float *o) {
+  float major, minor, lod, a[3], b[3];
+  int ilod, c;
+  if (d00 * d00 + d01 * d01 < d10 * d10 + d11 * d11) {
+    float x = d00, y = d01;
+    d00 = d10;
+    d01 = d11;
+    d10 = x;
+    d11 = y;
+  }
+  major = sqrtf(d00 * d00 + d01 * d01);
+  minor = sqrtf(d10 * d10 + d11 * d11);
+  if (minor * 8 < major && minor > 0) { /* max anisotropy 8 */
+    float scale = major / (minor * 8);
+    d10 *= scale;
+    d11 *= scale;
+    minor *= scale;
+  }
+  lod = el_mipmap_levels(m) - (float)1 + log2f(minor);
+  if (lod < 0) lod = 0;
+  ilod = (int)floorf(lod);
+  ref_ewa_level(m, ilod, s, t, d00, d01, d10, d11, a);
+  ref_ewa_level(m, ilod + 1, s, t, d00, d01, d10, d11, b);
+  for (c = 0; c < 3; ++c) o[c] = (1 - (lod - ilod)) * a[c] + (lod - ilod) * b[c];
+}
+static float max_rel3(const float *a, const float *b) {
+  float d = 0;
+  int c;
+  for (c = 0; c < 3; ++c) {
+    float e = fabsf(a[c] - b[c]) / (fabsf(b[c]) > 1e-3f ? fabsf(b[c]) : 1e-3f);
+    if (e > d) d = e;
+  }
+  return d;
+}
+static void test_pbrt_algorithm(void) {
+  /* 128x64 RGB, Repeat in u and Clamp in v (an environment map's modes). Coordinates in [-0.15, 1.15]
+   * and footprints from a third of a texel to a fifth of the texture, so that lookups fall inside
+   * levels (the fast paths), across their borders and seams (the general paths), and on the coarsest
+   * levels. */
+  float *img = random_image(128, 64, 3), o[3], r[3], dtri = 0, dewa = 0;
+  el_mipmap m;
+  el_mipmap_options op = opts(EL_WRAP_REPEAT, EL_WRAP_CLAMP, 0);
+  int i;
+  el_mipmap_init(&m, img, 128, 64, 3, &op);
+  for (i = 0; i < 3000; ++i) {
+    float s = -0.15f + 1.3f * frand(), t = -0.15f + 1.3f * frand();
+    float len = powf(10.0f, -2.6f + 1.9f * frand()), ratio = 1 + 11 * frand();
+    float ang = 6.2831853f * frand(), e;
+    float d0s = len * cosf(ang), d0t = len * sinf(ang), d1s = -len / ratio * sinf(ang), d1t = len / ratio * cosf(ang);
+    el_mipmap_lookup(&m, s, t, 2 * len, o);
+    ref_trilinear(&m, s, t, 2 * len, r);
+    e = max_rel3(o, r);
+    if (e > dtri) dtri = e;
+    el_mipmap_lookup_differentials(&m, s, t, d0s, d0t, d1s, d1t, o);
+    ref_ewa(&m, s, t, d0s, d0t, d1s, d1t, r);
+    e = max_rel3(o, r);
+    if (e > dewa) dewa = e;
+  }
+  /* A texel weighted wrongly, or one row or column more or less, moves a result by 1e-3 or more. */
+  CHECKF(dtri < 2e-5f, "trilinear equals pbrt-v3's algorithm to float precision (3000 lookups, max rel. diff %.2g)",
+         dtri);
+  CHECKF(dewa < 2e-5f, "EWA equals pbrt-v3's algorithm to float precision (3000 lookups, max rel. diff %.2g)", dewa);
+  el_mipmap_free(&m);
+  free(img);
+}
+
 /* ---- resampling against the Lanczos weights written out again ---------------------------------- */
 static double lanczos_d(double x) { /* windowed sinc, tau = 2, on [-1, 1] as pbrt's Lanczos(x, 2) */
   const double pi = 3.14159265358979323846;
@@ -615,6 +778,7 @@ int main(void) {
   test_centres();
   test_wrap();
   test_ewa();
+  test_pbrt_algorithm();
   test_resample();
   test_hard_inputs();
   test_errors();
