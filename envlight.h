@@ -235,7 +235,8 @@ typedef struct el_envlight {
  * options); it is written only for bad_texel. On failure *l is zeroed (freeing it is safe). */
 EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width, int height, int channels,
                                   el_envlight_options *opt);
-/* A constant-radiance light (pbrt-v3's InfiniteAreaLight without a map): uniform sphere sampling. */
+/* A constant-radiance light (pbrt-v3's InfiniteAreaLight without a map): uniform sphere sampling, pdf
+ * 1 / 4 pi (0 when rgb is black); options.compensated has no effect (the map would fall back anyway). */
 EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], el_envlight_options *opt);
 EL_DEF void el_envlight_free(el_envlight *l);
 /* Build the sampling tables now (they are otherwise built on first need). Returns their build result;
