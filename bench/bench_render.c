@@ -16,7 +16,8 @@
  *     relMSE(x, ref) = mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)
  * (the definition of bench/mitsuba_compare.py), and wall time, at 16, 64 and 256 spp, for each
  * sampler (random, stratified, halton) and each light-sampling option (MIS, light only, BSDF only,
- * MIS with envlight's compensated distribution). relMSE x time is the efficiency (lower is better).
+ * MIS with envlight's compensated distribution, MIS with pbrt-v3's importance map: twice the image's
+ * resolution from point lookups instead of envlight's default cell averages). relMSE x time is the efficiency (lower is better).
  *
  * Run:  build/bin/bench_render [--quick] [--ref-spp N] [--threads N]
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
@@ -73,7 +74,7 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   elr_envmap *env = scene_env(s);
   int i, k = 0;
   uint32_t st = 12345;
-  elr_env_prepare(env, -1);
+  elr_env_prepare(env, -1, -1);
   for (i = 0; i < n && k < max; i++) {
     elr_hit h;
     int tries;
@@ -95,12 +96,13 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   return k;
 }
 
-static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int threads, uint64_t seed, elr_image *img,
-                       elr_stats *st) {
+static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int imp, int threads, uint64_t seed,
+                       elr_image *img, elr_stats *st) {
   elr_render_options o;
   char err[512];
   elr_render_options_default(&o);
-  o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.nthreads = threads; o.seed = seed;
+  o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.importance = imp; o.nthreads = threads;
+  o.seed = seed;
   o.quiet = 1;
   if (elr_render(s, &o, img, st, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return -1; }
   return 0;
@@ -142,7 +144,7 @@ int main(int argc, char **argv) {
         if (rows > h) rows = h;
         /* the middle rows: sphere, plane and sky, like the whole image */
         s->d.crop[2] = (float)((h - rows) / 2) / (float)h; s->d.crop[3] = (float)((h - rows) / 2 + rows) / (float)h;
-        if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, 1, 1, &img, &st) == 0) elr_image_free(&img);
+        if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) elr_image_free(&img);
       }
     } else { fprintf(stderr, "bench_render: unknown --callgrind operation \"%s\"\n", cg_op); return 1; }
     printf("%s x %d done (%g)\n", cg_op, cg_n, (double)sink);
@@ -179,7 +181,7 @@ int main(int argc, char **argv) {
     printf("Embree raw rates, 1 thread (ray arrays prepared beforehand):\n");
     printf("  rtcIntersect1  camera rays through pixel centres      %7.2f M rays/s\n", r_is * 1e-6);
     printf("  rtcOccluded1   shadow rays towards env samples (%d)   %7.2f M rays/s\n", nsh, r_oc * 1e-6);
-    if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, 1, 1, &img, &st) == 0) {
+    if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
       double ni = (double)st.camera_rays + st.bounce_rays, no = (double)st.shadow_rays + st.bsdf_light_rays;
       double raw_t = ni / r_is + no / r_oc;
       printf("\nrenderer, direct-lighting loop, 16 spp stratified + MIS, 1 thread:\n");
@@ -198,24 +200,24 @@ int main(int argc, char **argv) {
     elr_stats st;
     const char *snames[3] = {"random", "stratified", "halton"};
     const int samplers[3] = {ELR_SAMPLER_RANDOM, ELR_SAMPLER_STRATIFIED, ELR_SAMPLER_HALTON};
-    const char *lnames[4] = {"MIS", "light only", "BSDF only", "MIS+compensated"};
-    const int ls[4] = {ELR_LS_MIS, ELR_LS_LIGHT, ELR_LS_BSDF, ELR_LS_MIS}, comp[4] = {0, 0, 0, 1};
+    const char *lnames[5] = {"MIS", "light only", "BSDF only", "MIS+compensated", "MIS+pbrt-v3 map"};
+    const int ls[5] = {ELR_LS_MIS, ELR_LS_LIGHT, ELR_LS_BSDF, ELR_LS_MIS, ELR_LS_MIS}, comp[5] = {0, 0, 0, 1, 0}, imp[5] = {0, 0, 0, 0, 1};
     const int spps[3] = {16, 64, 256};
     int nspp = quick ? 2 : 3, a, b, c;
     double t0 = elr_now();
     /* the reference: stratified + MIS (its jitter and shuffles depend on the seed, so it is independent of
      * every image of the table; halton's pixel positions do not depend on the seed, as in pbrt-v3, and a
      * halton reference would share them with the halton rows) */
-    if (render_once(s, ref_spp, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, 0, threads, 1000, &ref, &st) != 0) return 1;
+    if (render_once(s, ref_spp, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, 0, 0, threads, 1000, &ref, &st) != 0) return 1;
     printf("\nreference: stratified + MIS, %d spp, %.1f s (%d threads)\n", ref_spp, elr_now() - t0, st.nthreads);
     printf("relative MSE against it (seed differs from the reference's), wall time on %d threads:\n\n", st.nthreads);
     printf("  %-10s %-16s %5s %10s %8s %12s\n", "sampler", "light sampling", "spp", "relMSE", "time s", "relMSE x s");
     for (a = 0; a < 3; a++)
-      for (b = 0; b < 4; b++)
+      for (b = 0; b < 5; b++)
         for (c = 0; c < nspp; c++) {
           elr_image img;
           double t1 = elr_now(), t, e;
-          if (render_once(s, spps[c], samplers[a], ls[b], comp[b], threads, 7, &img, &st) != 0) continue;
+          if (render_once(s, spps[c], samplers[a], ls[b], comp[b], imp[b], threads, 7, &img, &st) != 0) continue;
           t = elr_now() - t1;
           e = relmse(img.rgb, ref.rgb, (size_t)img.width * img.height * 3);
           printf("  %-10s %-16s %5d %10.3g %8.3f %12.3g\n", snames[a], lnames[b], spps[c], e, t, e * t);

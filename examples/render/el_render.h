@@ -57,6 +57,7 @@ typedef struct elr_render_options {
   int quiet;          /* no progress bar */
   int light_sampling; /* -1: the scene's, else ELR_LS_* */
   int compensated;    /* -1: the scene's, else 0/1 (envlight's compensated distribution) */
+  int importance;     /* -1: the scene's, else 0 cell average (envlight's default), 1 pbrt-v3 (2x res), 2 texel */
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
   int tile_size;      /* 0: 16 */
 } elr_render_options;

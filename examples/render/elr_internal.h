@@ -55,12 +55,13 @@ elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 typedef struct elr_envmap elr_envmap;
 /* rgb: w*h*3 linear floats (NULL: a constant light of radiance `scale`), top row first (theta = 0 at the top row, pbrt's lat-long mapping);
  * scale: pbrt's "scale" times "L"; l2w: the light-to-world rotation (3x3, row-major). */
+enum { ELR_IMPORTANCE_CELL_AVERAGE = 0, ELR_IMPORTANCE_PBRT_V3 = 1, ELR_IMPORTANCE_TEXEL = 2 };
 int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9],
-                   int compensated, elr_envmap **out, char *err, size_t errlen);
+                   int compensated, int importance, elr_envmap **out, char *err, size_t errlen);
 void elr_env_free(elr_envmap *e);
 elr_v3 elr_env_le(const elr_envmap *e, elr_v3 dir_world);
-/* build the sampling distribution now (before threads start); compensated -1: as the scene said */
-int elr_env_prepare(elr_envmap *e, int compensated);
+/* build the sampling distribution now (before threads start); -1: as the scene said */
+int elr_env_prepare(elr_envmap *e, int compensated, int importance);
 /* Sample a direction towards the environment: radiance, world direction, solid-angle pdf. */
 elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
 void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf); /* no radiance */
@@ -137,7 +138,7 @@ typedef struct elr_light {
   elr_v3 pos, dir;   /* point: world position; distant: world direction towards the light */
   int nsamples;
   elr_envmap *env;   /* infinite light (a constant L is a 1x1 map) */
-  int compensated;
+  int compensated, importance;
   int has_map;
 } elr_light;
 

@@ -93,12 +93,16 @@ int elr_srgb8(const float *rgb, int n, unsigned char *out) {
 
 /* >> environment (envlight.h: pbrt-v3's InfiniteAreaLight) */
 struct elr_envmap {
-  el_envlight plain; /* as the scene asked (compensated or not) */
-  el_envlight other; /* the other density, made on demand by elr_env_prepare (a test/bench hook) */
-  int scene_comp, other_ready, use_other;
+  el_envlight plain; /* as the scene asked */
+  el_envlight other; /* another density (compensated / importance map), made on demand by elr_env_prepare */
+  int scene_comp, scene_imp, other_comp, other_imp, other_ready, use_other;
 };
+static int elr__imp(int importance) {
+  return importance == ELR_IMPORTANCE_PBRT_V3 ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3
+       : importance == ELR_IMPORTANCE_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL : EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
+}
 int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9], int compensated,
-                   elr_envmap **out, char *err, size_t errlen) {
+                   int importance, elr_envmap **out, char *err, size_t errlen) {
   el_envlight_options o;
   el_result r;
   elr_envmap *e = (elr_envmap *)calloc(1, sizeof *e);
@@ -107,11 +111,11 @@ int elr_env_create(const float *rgb, int w, int h, const float scale[3], const f
   memset(&o, 0, sizeof o);
   memcpy(o.light_to_world, l2w, sizeof o.light_to_world);
   o.compensated = compensated;
+  o.importance = elr__imp(importance);
   o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
   o.bad_texel = -1;
   if (rgb) {
     o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
-    if (o.scale[0] == 0.f && o.scale[1] == 0.f && o.scale[2] == 0.f) o.scale[0] = o.scale[1] = o.scale[2] = 0.f;
     if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
       /* all zero means (1,1,1) to envlight: a black light instead */
       float z[3] = {0.f, 0.f, 0.f};
@@ -133,6 +137,7 @@ int elr_env_create(const float *rgb, int w, int h, const float scale[3], const f
     return -1;
   }
   e->scene_comp = compensated;
+  e->scene_imp = importance;
   *out = e;
   return 0;
 }
@@ -149,20 +154,27 @@ elr_v3 elr_env_le(const elr_envmap *e, elr_v3 d) {
   el_envlight_le(&e->plain, dir, c);
   return elr_v(c[0], c[1], c[2]);
 }
-int elr_env_prepare(elr_envmap *e, int compensated) {
+int elr_env_prepare(elr_envmap *e, int compensated, int importance) {
+  if (compensated < 0) compensated = e->scene_comp;
+  if (importance < 0) importance = e->scene_imp;
   e->use_other = 0;
-  if (compensated >= 0 && compensated != e->scene_comp) {
+  if (compensated != e->scene_comp || importance != e->scene_imp) {
+    if (e->other_ready && (e->other_comp != compensated || e->other_imp != importance)) {
+      el_envlight_free(&e->other);
+      e->other_ready = 0;
+    }
     if (!e->other_ready) {
       el_envlight_options o;
       el_result r;
       memset(&o, 0, sizeof o);
       memcpy(o.light_to_world, e->plain.to_world, sizeof o.light_to_world);
       o.compensated = compensated;
+      o.importance = elr__imp(importance);
       o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
       if (e->plain.width > 0) r = el_envlight_init(&e->other, e->plain.texels, e->plain.width, e->plain.height, 3, &o);
       else r = el_envlight_init_constant(&e->other, e->plain.constant, &o);
       if (r != EL_SUCCESS) return -1;
-      e->other_ready = 1;
+      e->other_ready = 1; e->other_comp = compensated; e->other_imp = importance;
     }
     e->use_other = 1;
   }

@@ -593,7 +593,7 @@ static void *elr__worker(void *arg) {
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1;
 }
 
 static int elr__mat_nonspecular(const elr_scene *s) {
@@ -676,7 +676,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
       elr_light *l = &s->light[i];
       if (l->kind == ELR_LIGHT_INFINITE && elr__light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
         double t0 = elr_now();
-        if (elr_env_prepare(l->env, o->compensated) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
+        if (elr_env_prepare(l->env, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
         if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += elr_env_distribution_bytes(l->env); }
         env_sampled = 1;
       }

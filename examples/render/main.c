@@ -10,7 +10,8 @@
  * (nothing is written then).
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
- * --sampler random|stratified|halton. */
+ * --sampler random|stratified|halton, --importance cellaverage|pbrt-v3|texel (the environment's
+ * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -65,6 +66,11 @@ int main(int argc, char **argv) {
     } else if (!strcmp(a, "--compensated") && i + 1 < argc) {
       if (parse_int(argv[++i], 0, 1, &v)) { fprintf(stderr, "render: --compensated 0|1\n"); return 1; }
       o.compensated = (int)v;
+    } else if (!strcmp(a, "--importance") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "cellaverage")) o.importance = 0; else if (!strcmp(m, "pbrt-v3")) o.importance = 1;
+      else if (!strcmp(m, "texel")) o.importance = 2;
+      else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel\n"); return 1; }
     } else if (!strcmp(a, "--sampler") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "random")) o.sampler = 1; else if (!strcmp(m, "stratified")) o.sampler = 2;

@@ -634,6 +634,18 @@ static void elr__light(elr__parser *P, const char *type) {
     l->nsamples = elr__pint(P, "samples", 1);
     elr__check_range(P, "samples", l->nsamples, 1, 1 << 16);
     l->compensated = elr__pbool(P, "compensated", 0);
+    {
+      /* envlight's extension: the importance map. Default "pbrt-v3" (pbrt-v3's own: twice the image
+       * resolution from point lookups of le); "cellaverage" is envlight's default (exact bin averages of
+       * the bilinear le, a quarter of the bins). Measured on city.hdr (a 3e4 sun), the relative variance
+       * of lum(le) / pdf per light sample is 0.024 for pbrt-v3's map and 0.098 for cell averages: the
+       * piecewise-constant density cannot follow the bilinear ramp around the sun at image resolution. */
+      const char *im = elr__pstring(P, "importance", "pbrt-v3");
+      if (!strcmp(im, "cellaverage")) l->importance = ELR_IMPORTANCE_CELL_AVERAGE;
+      else if (!strcmp(im, "pbrt-v3")) l->importance = ELR_IMPORTANCE_PBRT_V3;
+      else if (!strcmp(im, "texel")) l->importance = ELR_IMPORTANCE_TEXEL;
+      else elr__fail(P, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\" or \"texel\"");
+    }
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
     /* the light-to-world rotation: the CTM's upper 3x3 (pbrt-v3 allows only rotations here) */
@@ -664,7 +676,7 @@ static void elr__light(elr__parser *P, const char *type) {
     }
     {
       double t0 = elr_now();
-      int r = elr_env_create(rgb, w, h, scale3, m3, l->compensated, &l->env, e, sizeof e);
+      int r = elr_env_create(rgb, w, h, scale3, m3, l->compensated, l->importance, &l->env, e, sizeof e);
       free(rgb);
       if (r != 0) elr__fail(P, P->dir_line, "LightSource \"infinite\": %s", e);
       s->t_images += elr_now() - t0;

@@ -58,16 +58,21 @@ static void blocks(const elr_image *img, double *b /* 17: 16 blocks + mean */) {
 static void run(const char *integ) {
   char err[512];
   elr_scene *s = rt_load("strat.pbrt", scene_text(integ), err, sizeof err);
-  const char *names[4] = {"MIS", "light sampling only", "BSDF sampling only", "MIS + compensated distribution"};
-  int spp[4] = {512, 512, 2048, 512};
-  double ref[17], res[4][17], spread = 0;
+  const char *names[5] = {"MIS", "light sampling only", "BSDF sampling only", "MIS + compensated distribution",
+                          "light sampling only, pbrt-v3 importance map"};
+  int spp[5] = {512, 512, 2048, 512, 512};
+  double ref[17], res[5][17], spread = 0;
   int k, i;
   if (!s) { rt_check(0, "load: %s", err); return; }
   /* the seed-to-seed spread of MIS at this sample count: the scale of the tolerances */
-  for (k = 0; k < 4; k++) {
+  for (k = 0; k < 5; k++) {
     elr_image img;
     elr_stats st;
-    if (rt_render(s, spp[k], k == 3 ? 0 : k, k == 3 ? 1 : 0, 2, 11 + k, &img, &st) != 0) { rt_check(0, "render %s", names[k]); elr_scene_free(s); return; }
+    elr_render_options o;
+    elr_render_options_default(&o);
+    o.spp = spp[k]; o.light_sampling = k == 3 ? 0 : (k == 4 ? 1 : k); o.compensated = k == 3 ? 1 : 0; o.importance = k == 4 ? 1 : 0;
+    o.nthreads = 2; o.seed = (uint64_t)(11 + k); o.quiet = 1;
+    if (elr_render(s, &o, &img, &st, err, sizeof err) != 0) { rt_check(0, "render %s", names[k]); elr_scene_free(s); return; }
     blocks(&img, res[k]);
     if (k == 0) {
       elr_image img2;
@@ -87,7 +92,7 @@ static void run(const char *integ) {
   }
   memcpy(ref, res[0], sizeof ref);
   printf("      %s: MIS seed-to-seed spread of block means %.2f%%\n", integ, 100 * spread);
-  for (k = 1; k < 4; k++) {
+  for (k = 1; k < 5; k++) {
     double worst = 0, dm = fabs(res[k][16] - ref[16]) / ref[16];
     for (i = 0; i < 16; i++) if (fabs(res[k][i] - ref[i]) / ref[i] > worst) worst = fabs(res[k][i] - ref[i]) / ref[i];
     rt_check(dm < 0.02, "%s: %s image mean %.4f vs MIS %.4f (%.2f%%, tolerance 2%%)", integ, names[k], res[k][16], ref[16], 100 * dm);
