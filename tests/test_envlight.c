@@ -256,6 +256,41 @@ static void test_orientation(void) {
 }
 
 /* ======================================================================================== */
+/* 1b. The polynomial mapping against libm in double                                         */
+/* ======================================================================================== */
+static void test_mapping_accuracy(void) {
+  rng r = rng_make(5);
+  int i, n = 200000;
+  double worst_dir = 0, worst_u = 0, worst_v = 0, worst_len = 0;
+  for (i = 0; i < n; ++i) {
+    double u = rng_f(&r), v = rng_f(&r), d[3], du, dv, uu, vv, dot, len;
+    float fd[3], fu, fv;
+    if (i < 4) { u = (i & 1) ? 0.99999994 : 0.0; v = (i & 2) ? 1.0 : 0.0; }
+    ref_uv_to_dir(u, v, d);
+    el_envlight_uv_to_dir((float)u, (float)v, fd);
+    len = sqrt((double)fd[0] * fd[0] + (double)fd[1] * fd[1] + (double)fd[2] * fd[2]);
+    dot = (fd[0] * d[0] + fd[1] * d[1] + fd[2] * d[2]) / len;
+    worst_dir = fmax(worst_dir, acos(fmin(1.0, dot)) > 0 ? sqrt(fmax(0.0, 2 * (1 - dot))) : 0.0);
+    worst_len = fmax(worst_len, fabs(len - 1));
+    /* the inverse, away from the poles where u is undefined */
+    fd[0] = (float)d[0]; fd[1] = (float)d[1]; fd[2] = (float)d[2];
+    el_envlight_dir_to_uv(fd, &fu, &fv);
+    {
+      double dd[3] = {fd[0], fd[1], fd[2]};
+      ref_dir_to_uv(dd, &uu, &vv);
+    }
+    du = fabs(fu - uu); if (du > 0.5) du = 1 - du;
+    dv = fabs(fv - vv);
+    if (sin(PI * vv) > 1e-3) worst_u = fmax(worst_u, du * sin(PI * vv)); /* as an angle on the sphere / 2pi */
+    worst_v = fmax(worst_v, dv);
+  }
+  check(worst_dir < 1e-6 && worst_len < 1e-6, "mapping: uv -> dir polynomials within %.2g rad of libm (double), |dir| - 1 within %.2g, "
+        "over %d random (u, v) and the corners", worst_dir, worst_len, n);
+  check(worst_u < 1e-7 && worst_v < 2e-7, "mapping: dir -> uv (atan polynomial) within %.2g (u, times sin theta) and %.2g (v) of libm",
+        worst_u, worst_v);
+}
+
+/* ======================================================================================== */
 /* 2. le                                                                                     */
 /* ======================================================================================== */
 static void test_le(const el_image *studio) {
@@ -1004,6 +1039,7 @@ int main(void) {
     return 1;
   }
   test_orientation();
+  test_mapping_accuracy();
   test_le(&studio);
   test_chi2(&studio, &city);
   test_importance_map();
