@@ -34,7 +34,10 @@
  * For power-of-two images levels and lookups equal pbrt-v3's to float precision: the same float
  * operations in the same order, except the logarithm that picks the level (ours needs no libm call);
  * measured against a literal port of pbrt-v3 in bench/bench_mipmap.c: levels identical, lookups within
- * 3e-6 relative.
+ * 3e-6 relative (tests/test_mipmap.c checks lookups against pbrt's algorithm written out in float).
+ * Cost (gcc -O3, 2048x1024 RGB, random footprints, bench_mipmap --instructions): 225 instructions per
+ * trilinear lookup and 1,462 per EWA lookup at anisotropy 8, against 913 and 3,981 for the literal
+ * port: 3-channel fast paths for footprints inside a level, EWA rows trimmed to the ellipse's chord.
  *
  * Where it departs from pbrt, and why:
  *  - Levels are built lazily: init builds level 0 only; levels 1.. are allocated and built on the
@@ -1074,7 +1077,8 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   fourA = 4 * A;
   mg = 0.05f + 1e-6f * (fabsf(x) + ru); /* covers the rounding of the chord's ends */
   if (x - ru - mg > 1.0f && x + ru + mg < (float)nu - 2.0f && t0 >= 0 && t1 < nv) {
-    /* the whole ellipse inside the level (the common case): no wrapping on any row */
+    /* the whole ellipse inside the level (the common case; 3 channels try el_mipmap__ewa3_inside
+     * first): no wrapping on any row */
     const float *rp = data + (size_t)t0 * rowstride;
     for (it = t0, fit = (float)t0; it <= t1; ++it, fit += 1.0f, rp += rowstride) {
       float tt = fit - y;
@@ -1197,9 +1201,10 @@ EL_MIPMAP__INLINE void el_mipmap__ewa3_span(const float *p, const float *last, f
  *    table weight is 0, which pbrt adds as 0);
  *  - each row's chord comes from the ellipse's equation solved for ss: centre x - B tt / (2 A), half
  *    width sqrt(1/A - det tt^2 / (4 A^2)) plus the margin mg, clipped to pbrt's [s0, s1]. Its error
- *    (the cancellation in det, below 2e-3 relative since F is well conditioned, times 1/A) is below
- *    the gap between the chords of r2 = 127/128 and r2 = 1, which is (1/A)/128 in half width squared:
- *    a texel it leaves out has r2 >= 127/128 by pbrt's arithmetic, whose table weight is 0. */
+ *    in half width squared (det's cancellation, a few 1e-3 relative at worst since A C / F < 8000 on
+ *    this path and far less at anisotropy 8, times 1/A) is below the gap between the chords of
+ *    r2 = 127/128 and r2 = 1, (1/A)/128: a texel it leaves out has r2 >= 127/128 by pbrt's
+ *    arithmetic too (same A, B, C), whose table weight is 0. */
 EL_MIPMAP__INLINE int el_mipmap__ewa3_inside(const el_mipmap *m, int level, float s, float t, float d0s,
                                              float d0t, float d1s, float d1t, float *out) {
   el_mipmap__ellipse e;
@@ -1209,7 +1214,7 @@ EL_MIPMAP__INLINE int el_mipmap__ewa3_inside(const el_mipmap *m, int level, floa
   size_t stride;
   if (level >= m->levels) return 0;
   el_mipmap__ellipse_init(m->level_size[level], s, t, d0s, d0t, d1s, d1t, &e);
-  mg = 0.05f + 1e-6f * (e.x + e.ru); /* covers the rounding of the chord's centre */
+  mg = 0.05f + 1e-6f * (e.x + e.ru); /* covers the rounding of the chord's centre (x > 0 below) */
   if (!(e.x - e.ru - mg > 1.0f && e.x + e.ru + mg < m->level_size[level][0] - 2.0f && e.y - e.rv > 1.0f &&
         e.y + e.rv < m->level_size[level][1] - 1.0f))
     return 0; /* (also NaN) */
