@@ -14,14 +14,16 @@
  *   It is written for reading, like Embree's tutorials/minimal: every Embree call is commented.
  *
  * WHICH PART OF PBRT IT MIRRORS
- *   pbrt-v3, section 12.6 "Infinite Area Lights" (src/lights/infinite.h, infinite.cpp): the light, with
+ *   pbrt-v3, section 12.6 "Infinite Area Lights" and 14.2.4 "Infinite Area Lights" (its sampling;
+ *   src/lights/infinite.h, infinite.cpp): the light, with
  *   its fragments <<Compute scalar-valued image img from environment map>>, <<Compute sampling
  *   distributions for rows and columns of image>>, <<Find (u,v) sample coordinates in infinite light
  *   texture>>, <<Convert infinite light sample point to direction>>, <<Compute PDF for
  *   sampled infinite light direction>>, <<Return radiance value for infinite light direction>> all live
  *   in envlight.h; this file only calls them. Section 14.3.1 "Estimating the Direct Lighting Integral"
  *   (src/core/integrator.cpp, EstimateDirect) for the shading below, with its fragments named where
- *   they happen. Section 6.2.3 (PerspectiveCamera) and 2.7.7 (LookAt) for the camera.
+ *   they happen; 13.10.1 for the power heuristic. Sections 6.2.2 (PerspectiveCamera) and 2.7.7 (LookAt)
+ *   for the camera.
  *   pbrt-v3's conventions are kept: a LEFT-handed camera (LookAt's "right" is cross(up, dir)), the field
  *   of view on the shorter image axis, raster y pointing down, and the light's mapping: in light space
  *   +z is "up", (u, v) = (phi / 2pi, theta / pi), row 0 of the map is the zenith.
@@ -41,7 +43,8 @@
  *   tutorials/03-infinite-light-render.md measures the noise of each strategy against time.
  *
  * WHAT IT WRITES
- *   The image (400x300), and on stdout its path, the time and the number of rays.
+ *   The image (400x300), and on stdout the sampling distribution's size and build time, the image's
+ *   path, the render time and the ray rate.
  */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf under -std=c99 */
 #define EL_IMPLEMENTATION       /* this file compiles the envlight implementations (all headers) */
@@ -510,10 +513,14 @@ int main(int argc, char **argv) {
     return 1;
   }
 
-  /* 2. The light: pbrt-v3's InfiniteAreaLight constructor. envlight.h builds the MIP map of the
-   *    texels, <<Compute scalar-valued image img from environment map>> (the filtered luminance, times
-   *    sin(theta) for the lat-long map's stretched poles) and the 2D piecewise-constant distribution
-   *    that Sample_Li inverts. LightToWorld here: a rotation about +z. */
+  /* 2. The light: pbrt-v3's InfiniteAreaLight constructor. pbrt keeps the texels in a MIPMap
+   *    (its Lmap) but only ever looks them up at level 0, bilinearly; envlight.h keeps the level-0
+   *    image and does the same lookup without building a pyramid. <<Initialize sampling PDFs for
+   *    infinite area light>>: <<Compute scalar-valued image img from environment map>> (the luminance
+   *    of the bilinear image averaged over each bin, times sin(theta) for the lat-long map's stretched
+   *    poles) and <<Compute sampling distributions for rows and columns of image>> (the 2D
+   *    piecewise-constant distribution that Sample_Li inverts) happen in envlight.h, on first use or
+   *    in prepare_sampling below. LightToWorld here: a rotation about +z. */
   {
     el_envlight_options lo;
     float a = LIGHT_ROTATE_Z_DEG * PI_F / 180.0f;
