@@ -48,7 +48,6 @@ void elr_xform_invert(elr_xform *out, const elr_xform *a);
 elr_v3 elr_xpoint(const elr_xform *t, elr_v3 p);
 elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
-elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 
 /* >> glue to the library headers (glue.c is the only file that includes them) */

@@ -104,7 +104,6 @@ elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n) {
   return elr_v((float)(mi[0][0] * n.x + mi[1][0] * n.y + mi[2][0] * n.z), (float)(mi[0][1] * n.x + mi[1][1] * n.y + mi[2][1] * n.z),
                (float)(mi[0][2] * n.x + mi[1][2] * n.y + mi[2][2] * n.z));
 }
-elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p) { elr_xform i; elr_xform_invert(&i, t); return elr_xpoint(&i, p); }
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v) {
   const double(*m)[4] = t->inv;
   return elr_v((float)(m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z), (float)(m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z),
@@ -395,7 +394,6 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   RTCScene sc;
   int i;
   double t0 = elr_now();
-  float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
   elr__embree_bytes = 0;
   dev = rtcNewDevice("verbose=0");
   if (!dev) { snprintf(err, errlen, "Embree: cannot create a device (error %d)", (int)rtcGetDeviceError(NULL)); return -1; }
@@ -415,11 +413,9 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     float *vb = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), (size_t)m->nvert);
     unsigned *ib = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), (size_t)m->ntri);
     unsigned id;
-    int k;
     if (!vb || !ib) { rtcReleaseGeometry(g); snprintf(err, errlen, "Embree: out of memory for mesh %d", i); return -1; }
     memcpy(vb, m->p, sizeof(float) * 3 * (size_t)m->nvert);
     memcpy(ib, m->idx, sizeof(unsigned) * 3 * (size_t)m->ntri);
-    for (k = 0; k < 3 * m->nvert; k++) { if (m->p[k] < lo[k % 3]) lo[k % 3] = m->p[k]; if (m->p[k] > hi[k % 3]) hi[k % 3] = m->p[k]; }
     rtcCommitGeometry(g);
     id = rtcAttachGeometry(sc, g);
     rtcReleaseGeometry(g);
@@ -500,7 +496,6 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
       s->world_center = elr_v(0, 0, 0); s->world_radius = 1.f;
     }
   }
-  (void)lo; (void)hi;
   s->t_embree = elr_now() - t0;
   s->bytes_embree = elr__embree_bytes;
   return 0;

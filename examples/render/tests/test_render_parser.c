@@ -304,6 +304,37 @@ static void errors(void) {
   expect_error("str.pbrt", "WorldBegin\n\"float radius\" 1\nWorldEnd\n", "str.pbrt:2:", "expected a directive");
 }
 
+/* Every prefix of a file that uses most directives (truncated at every byte) must load or fail with a
+ * "file:line: error" message; never crash (the suite also runs under AddressSanitizer). Only the whole
+ * file, and prefixes that end after WorldEnd, load. */
+static void truncations(void) {
+  const char *full =
+      "# every directive\nLookAt 0 1 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\n"
+      "Film \"image\" \"integer xresolution\" [ 8 ] \"integer yresolution\" 8 \"string filename\" \"t.png\"\n"
+      "PixelFilter \"gaussian\" \"float alpha\" 2\nSampler \"halton\" \"integer pixelsamples\" 4\n"
+      "Integrator \"path\" \"integer maxdepth\" 3\nWorldBegin\nAttributeBegin\n  Rotate -90 1 0 0\n"
+      "  LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\nAttributeEnd\nTransformBegin\n  Translate 0 1 0\n  Scale 1 1 1\n"
+      "  CoordinateSystem \"a\"\nTransformEnd\nCoordSysTransform \"a\"\n"
+      "Texture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [ 1 0 0 ]\nMaterial \"plastic\" \"texture Kd\" \"c\"\n"
+      "Shape \"sphere\" \"float radius\" 0.5\nIdentity\nConcatTransform [ 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1 ]\n"
+      "Material \"matte\"\nShape \"trianglemesh\" \"integer indices\" [ 0 1 2 ] \"point P\" [ 0 0 0 1 0 0 0 0 1 ]\n"
+      "WorldEnd\n";
+  size_t n = strlen(full), k;
+  int loaded = 0, errors = 0, bad = 0;
+  char err[512];
+  for (k = 0; k <= n; k++) {
+    char *pre = (char *)malloc(k + 1);
+    elr_scene *s = NULL;
+    memcpy(pre, full, k); pre[k] = 0;
+    if (elr_scene_load_string(pre, "trunc.pbrt", rt_dir, &s, 1, err, sizeof err) == 0) { loaded++; elr_scene_free(s); }
+    else if (strstr(err, "trunc.pbrt:") && strstr(err, "error")) errors++;
+    else { bad++; if (bad < 3) printf("      prefix %zu: unexpected message \"%s\"\n", k, err); }
+    free(pre);
+  }
+  rt_check(bad == 0 && loaded >= 1 && loaded <= 2 && loaded + errors == (int)n + 1,
+           "all %zu prefixes of a %zu-byte file: %d load (the whole file), %d fail with file:line errors", n + 1, n, loaded, errors);
+}
+
 /* The program: exit codes, no output on error, the Film's filename by default, the output formats. */
 static void cli(void) {
   char cmd[1024];
@@ -368,6 +399,7 @@ int main(void) {
   materials_textures();
   warnings();
   errors();
+  truncations();
   cli();
   return rt_finish("test_render_parser");
 }
