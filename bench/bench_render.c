@@ -153,43 +153,50 @@ int main(int argc, char **argv) {
   }
 
   printf("bench_render: %s, %d x %d, direct lighting\n\n", path, w, h);
-  /* >> part 1: rays per second, one thread */
+  /* >> part 1: rays per second, one thread. Three rounds, each timing the raw calls and the loop back
+   * to back; the best of each is kept (on a shared machine the minimum time is the least disturbed). */
   {
     bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
-    int nsh, pass;
-    double t0, t_is, t_oc, r_is, r_oc, n_is = 0, n_oc = 0;
+    int nsh, pass, round;
+    double r_is = 0, r_oc = 0, t_loop = 1e30, ni = 0, no = 0, samples = 0;
     volatile float sink = 0;
-    elr_image img;
-    elr_stats st;
     camera_rays(s, cam);
     nsh = shadow_rays(s, cam, w * h, sh, w * h);
-    t0 = elr_now();
-    for (pass = 0; elr_now() - t0 < 1.0 || pass < 2; pass++) {
-      int k;
-      for (k = 0; k < w * h; k++) { float t; unsigned g; elr_raw_intersect(s, cam[k].o, cam[k].d, &t, &g); sink += t; }
-      n_is += w * h;
+    for (round = 0; round < 3; round++) {
+      double t0, n_is = 0, n_oc = 0;
+      elr_image img;
+      elr_stats st;
+      t0 = elr_now();
+      for (pass = 0; elr_now() - t0 < 0.5 || pass < 2; pass++) {
+        int k;
+        for (k = 0; k < w * h; k++) { float t; unsigned g; elr_raw_intersect(s, cam[k].o, cam[k].d, &t, &g); sink += t; }
+        n_is += w * h;
+      }
+      if (n_is / (elr_now() - t0) > r_is) r_is = n_is / (elr_now() - t0);
+      t0 = elr_now();
+      for (pass = 0; elr_now() - t0 < 0.5 || pass < 2; pass++) {
+        int k;
+        for (k = 0; k < nsh; k++) sink += (float)elr_occluded(s, sh[k].o, sh[k].d, INFINITY);
+        n_oc += nsh;
+      }
+      if (n_oc / (elr_now() - t0) > r_oc) r_oc = n_oc / (elr_now() - t0);
+      if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
+        ni = (double)st.camera_rays + st.bounce_rays; no = (double)st.shadow_rays + st.bsdf_light_rays;
+        samples = (double)st.samples;
+        if (st.t_render < t_loop) t_loop = st.t_render;
+        elr_image_free(&img);
+      }
     }
-    t_is = elr_now() - t0;
-    t0 = elr_now();
-    for (pass = 0; elr_now() - t0 < 1.0 || pass < 2; pass++) {
-      int k;
-      for (k = 0; k < nsh; k++) sink += (float)elr_occluded(s, sh[k].o, sh[k].d, INFINITY);
-      n_oc += nsh;
-    }
-    t_oc = elr_now() - t0;
-    r_is = n_is / t_is; r_oc = n_oc / t_oc;
-    printf("Embree raw rates, 1 thread (ray arrays prepared beforehand):\n");
+    printf("Embree raw rates, 1 thread (ray arrays prepared beforehand; best of 3 rounds):\n");
     printf("  rtcIntersect1  camera rays through pixel centres      %7.2f M rays/s\n", r_is * 1e-6);
     printf("  rtcOccluded1   shadow rays towards env samples (%d)   %7.2f M rays/s\n", nsh, r_oc * 1e-6);
-    if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
-      double ni = (double)st.camera_rays + st.bounce_rays, no = (double)st.shadow_rays + st.bsdf_light_rays;
+    if (t_loop < 1e30) {
       double raw_t = ni / r_is + no / r_oc;
-      printf("\nrenderer, direct-lighting loop, 16 spp stratified + MIS, 1 thread:\n");
-      printf("  %.0f intersect + %.0f occlusion rays in %.3f s: %.2f M rays/s, %.2f M samples/s\n", ni, no, st.t_render,
-             (ni + no) / st.t_render * 1e-6, (double)st.samples / st.t_render * 1e-6);
+      printf("\nrenderer, direct-lighting loop, 16 spp stratified + MIS, 1 thread (best of 3):\n");
+      printf("  %.0f intersect + %.0f occlusion rays in %.3f s: %.2f M rays/s, %.2f M samples/s\n", ni, no, t_loop,
+             (ni + no) / t_loop * 1e-6, samples / t_loop * 1e-6);
       printf("  Embree alone would take %.3f s for these rays: efficiency %.0f%% of raw (target >= 70%%)\n", raw_t,
-             100.0 * raw_t / st.t_render);
-      elr_image_free(&img);
+             100.0 * raw_t / t_loop);
     }
     (void)sink;
     free(cam); free(sh);
