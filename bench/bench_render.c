@@ -19,7 +19,8 @@
  * MIS with envlight's compensated distribution, MIS with pbrt-v3's importance map: twice the image's
  * resolution from point lookups instead of envlight's default cell averages). relMSE x time is the efficiency (lower is better).
  *
- * Run:  build/bin/bench_render [--quick] [--ref-spp N] [--threads N]
+ * Run:  build/bin/bench_render [--quick] [--rays-only] [--ref-spp N] [--threads N]
+ *       --rays-only: part 1 alone (a few seconds).
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
  * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls) or samples
@@ -111,14 +112,15 @@ static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int
 int main(int argc, char **argv) {
   char path[1024], err[1024];
   elr_scene *s = NULL;
-  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0;
   const char *cg_op = NULL;
   for (i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--quick")) { quick = 1; ref_spp = 256; }
+    else if (!strcmp(argv[i], "--rays-only")) rays_only = 1;
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples N]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--rays-only] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples N]\n"); return 1; }
   }
   if (ref_spp < 1) ref_spp = 1;
   setvbuf(stdout, NULL, _IOLBF, 0);
@@ -202,7 +204,7 @@ int main(int argc, char **argv) {
     free(cam); free(sh);
   }
   /* >> part 2: relative MSE against time */
-  {
+  if (!rays_only) {
     elr_image ref;
     elr_stats st;
     const char *snames[3] = {"random", "stratified", "halton"};
