@@ -842,6 +842,19 @@ EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, fl
   el_mipmap__bilerp(m, level, el_mipmap__sane(s, m->wrap_u), el_mipmap__sane(t, m->wrap_v), out);
 }
 
+/* pbrt's triangle() for 3 channels at level coordinates (x, y) = (s w - 0.5, t h - 0.5) that are known
+ * to lie in [0, w - 1) x [0, h - 1): no wrapping, (int) is floor, and the four texels are two runs of
+ * 6 contiguous floats, one row apart. The same operations in the same order as el_mipmap__bilerp_c. */
+EL_MIPMAP__INLINE void el_mipmap__bilerp3_inside(const float *data, int w, float x, float y, float *out) {
+  int i = (int)x, j = (int)y;
+  float ds = x - (float)i, dt = y - (float)j;
+  float k00 = (1.0f - ds) * (1.0f - dt), k01 = (1.0f - ds) * dt, k10 = ds * (1.0f - dt), k11 = ds * dt;
+  const float *r0 = data + ((size_t)j * (size_t)w + (size_t)i) * 3, *r1 = r0 + (size_t)w * 3;
+  out[0] = k00 * r0[0] + k01 * r1[0] + k10 * r0[3] + k11 * r1[3];
+  out[1] = k00 * r0[1] + k01 * r1[1] + k10 * r0[4] + k11 * r1[4];
+  out[2] = k00 * r0[2] + k01 * r1[2] + k10 * r0[5] + k11 * r1[5];
+}
+
 EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
                                       float width, float *out) {
   float frac;
@@ -862,21 +875,17 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
     el_mipmap_point(m, il, s, t, out);
     return;
   }
+  if (m->channels == 3 && (il == 0 || el_mipmap__load(&m->build_state) == EL_MIPMAP__STATE_BUILT)) {
+    /* the common case: 3 channels, (s, t) inside the level's interior (no wrapping; NaN fails) */
+    const float *size = m->level_size[il];
+    float x = s * size[0] - 0.5f, y = t * size[1] - 0.5f;
+    if (x >= 0.0f && x < size[0] - 1.0f && y >= 0.0f && y < size[1] - 1.0f) {
+      el_mipmap__bilerp3_inside(m->level_data[il], m->level_width[il], x, y, out);
+      return;
+    }
+  }
   el_mipmap__bilerp(m, el_mipmap__usable(m, il), el_mipmap__sane(s, m->wrap_u), el_mipmap__sane(t, m->wrap_v),
                     out);
-}
-
-/* pbrt's triangle() for 3 channels at level coordinates (x, y) = (s w - 0.5, t h - 0.5) that are known
- * to lie in [0, w - 1) x [0, h - 1): no wrapping, (int) is floor, and the four texels are two runs of
- * 6 contiguous floats, one row apart. The same operations in the same order as el_mipmap__bilerp_c. */
-EL_MIPMAP__INLINE void el_mipmap__bilerp3_inside(const float *data, int w, float x, float y, float *out) {
-  int i = (int)x, j = (int)y;
-  float ds = x - (float)i, dt = y - (float)j;
-  float k00 = (1.0f - ds) * (1.0f - dt), k01 = (1.0f - ds) * dt, k10 = ds * (1.0f - dt), k11 = ds * dt;
-  const float *r0 = data + ((size_t)j * (size_t)w + (size_t)i) * 3, *r1 = r0 + (size_t)w * 3;
-  out[0] = k00 * r0[0] + k01 * r1[0] + k10 * r0[3] + k11 * r1[3];
-  out[1] = k00 * r0[1] + k01 * r1[1] + k10 * r0[4] + k11 * r1[4];
-  out[2] = k00 * r0[2] + k01 * r1[2] + k10 * r0[5] + k11 * r1[5];
 }
 
 /* Every trilinear case but the common one below: any channel count, borders, levels out of range.

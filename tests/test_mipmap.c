@@ -449,13 +449,13 @@ static void test_ewa(void) {
 }
 
 /* ---- lookups against pbrt-v3's algorithm, transcribed here in float ------------------------------ */
-/* pbrt-v3's Texel, triangle, Lookup(st, width) and EWA / Lookup(st, dst0, dst1) (src/core/mipmap.h),
- * written out again line by line over the levels (which test_box_levels checks against box averages),
- * with Repeat in u and Clamp in v. mipmap.h must give the same results to float precision: it trims
- * each EWA row to the ellipse's chord, walks ss and tt incrementally and has fast paths for footprints
- * inside a level, all of which must leave every texel's weight as pbrt's. (The only intended
- * difference is the level's logarithm, within about 1e-7 of log2f, which moves the blend between two
- * levels in its last bits.) */
+/* pbrt-v3's Texel, triangle, Lookup(st, width) and EWA / Lookup(st, dst0, dst1) (src/core/mipmap.h)
+ * and pbrt-v4's bilinear Lookup (Bilerp on level max(0, floor(level))), written out again line by line
+ * over the levels (which test_box_levels checks against box averages), with Repeat in u and Clamp in
+ * v. mipmap.h must give the same results to float precision: it trims each EWA row to the ellipse's
+ * chord, walks ss and tt incrementally and has fast paths for footprints inside a level, all of which
+ * must leave every texel's weight as pbrt's. (The only intended difference is the level's logarithm,
+ * within about 1e-7 of log2f, which moves the blend between two levels in its last bits.) */
 static void ref_texel(const el_mipmap *m, int l, int s, int t, float *o) {
   int w = el_mipmap_level_width(m, l), h = el_mipmap_level_height(m, l), c;
   const float *p;
@@ -497,6 +497,15 @@ static void ref_trilinear(const el_mipmap *m, float s, float t, float width, flo
   ref_triangle(m, il, s, t, a);
   ref_triangle(m, il + 1, s, t, b);
   for (c = 0; c < 3; ++c) o[c] = (1 - delta) * a[c] + delta * b[c];
+}
+static void ref_bilinear(const el_mipmap *m, float s, float t, float width, float *o) { /* pbrt-v4 */
+  int n = el_mipmap_levels(m);
+  float level = n - 1 + log2f(width > 1e-8f ? width : 1e-8f);
+  if (level >= n - 1) {
+    ref_texel(m, n - 1, 0, 0, o);
+    return;
+  }
+  ref_triangle(m, level < 0 ? 0 : (int)floorf(level), s, t, o);
 }
 static void ref_ewa_level(const el_mipmap *m, int l, float s, float t, float d00, float d01, float d10,
                           float d11, float *o) {
@@ -583,7 +592,7 @@ static void test_pbrt_algorithm(void) {
    * and footprints from a third of a texel to a fifth of the texture, so that lookups fall inside
    * levels (the fast paths), across their borders and seams (the general paths), and on the coarsest
    * levels. */
-  float *img = random_image(128, 64, 3), o[3], r[3], dtri = 0, dewa = 0;
+  float *img = random_image(128, 64, 3), o[3], r[3], dtri = 0, dewa = 0, dbil = 0;
   el_mipmap m;
   el_mipmap_options op = opts(EL_WRAP_REPEAT, EL_WRAP_CLAMP, 0);
   int i;
@@ -597,6 +606,10 @@ static void test_pbrt_algorithm(void) {
     ref_trilinear(&m, s, t, 2 * len, r);
     e = max_rel3(o, r);
     if (e > dtri) dtri = e;
+    el_mipmap_lookup_filtered(&m, EL_FILTER_BILINEAR, s, t, 2 * len, o);
+    ref_bilinear(&m, s, t, 2 * len, r);
+    e = max_rel3(o, r);
+    if (e > dbil) dbil = e;
     el_mipmap_lookup_differentials(&m, s, t, d0s, d0t, d1s, d1t, o);
     ref_ewa(&m, s, t, d0s, d0t, d1s, d1t, r);
     e = max_rel3(o, r);
@@ -605,6 +618,8 @@ static void test_pbrt_algorithm(void) {
   /* A texel weighted wrongly, or one row or column more or less, moves a result by 1e-3 or more. */
   CHECKF(dtri < 2e-5f, "trilinear equals pbrt-v3's algorithm to float precision (3000 lookups, max rel. diff %.2g)",
          dtri);
+  CHECKF(dbil < 2e-5f, "bilinear (pbrt-v4's filter) equals its algorithm to float precision (max rel. diff %.2g)",
+         dbil);
   CHECKF(dewa < 2e-5f, "EWA equals pbrt-v3's algorithm to float precision (3000 lookups, max rel. diff %.2g)", dewa);
   el_mipmap_free(&m);
   free(img);
