@@ -26,7 +26,7 @@
  *     with MIS (one light + one cosine sample, balance heuristic, per pair), and the alias sampler. Each
  *     row: variance per sample relative to E^2, |bias| in standard errors against a quadrature of the
  *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
- *     to light sampling with CELL_AVERAGE and the CDF sampler.
+ *     to light sampling with CELL_AVERAGE and the default (guide) sampler.
  */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #define EL_IMPLEMENTATION
@@ -168,16 +168,17 @@ static int callgrind_mode(const char *op, long n) {
   volatile double sink = 0;
   make_random();
   px = make_map(w, h);
-  if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = 1;
-  if (!strcmp(op, "sample_alias")) sampler = 2;
-  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = 1; rot = 1; make_rot(); }
+  if (!strcmp(op, "sample_cdf")) sampler = EL_ENVLIGHT_SAMPLER_CDF;
+  if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
+  if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot(); }
   if (make_light(&l, px, w, h, 0, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
   el_envlight_prepare_sampling(&l);
   if (!strcmp(op, "build")) { /* n constructions (init + sampling tables) of the same light */
     long k;
     for (k = 0; k < n; ++k) {
       el_envlight b;
-      make_light(&b, px, w, h, 0, 0, 0, NULL);
+      make_light(&b, px, w, h, 0, EL_ENVLIGHT_SAMPLER_GUIDE, 0, NULL);
       el_envlight_prepare_sampling(&b);
       el_envlight_free(&b);
     }
@@ -325,7 +326,7 @@ static void variance_table(const char *path, int nsamp) {
   quadrature(&im, N3, 3, E);
   for (s = 0; s < S_N; ++s) {
     int imp = s == S_PBRT ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3 : s == S_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL : 0;
-    ok[s] = make_light(&lights[s], img.pixels, img.width, img.height, imp, s == S_ALIAS ? 2 : 0, s == S_COMP_MIS, NULL) == EL_SUCCESS;
+    ok[s] = make_light(&lights[s], img.pixels, img.width, img.height, imp, s == S_ALIAS ? EL_ENVLIGHT_SAMPLER_ALIAS : EL_ENVLIGHT_SAMPLER_GUIDE, s == S_COMP_MIS, NULL) == EL_SUCCESS;
     if (ok[s]) el_envlight_prepare_sampling(&lights[s]);
   }
   printf("\n%s (%dx%d): E(up) = %.4g, E(horizon) = %.4g, E(down) = %.4g; %d samples per cell\n", path, img.width,
@@ -410,7 +411,7 @@ int main(int argc, char **argv) {
         el_envlight l;
         if (make_light(&l, px, w, h, 0, smp, 0, NULL) != EL_SUCCESS) continue;
         el_envlight_prepare_sampling(&l);
-        printf("  %-22s %12.1f %14.1f %12.1f %12.1f\n", smp == 0 ? "CDF (default)" : smp == 1 ? "guide table" : "alias table",
+        printf("  %-22s %12.1f %14.1f %12.1f %12.1f\n", smp == EL_ENVLIGHT_SAMPLER_GUIDE ? "guide table (default)" : smp == EL_ENVLIGHT_SAMPLER_CDF ? "CDF" : "alias table",
                rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), rate(fn_le, &l, 0));
         el_envlight_free(&l);
       }
@@ -432,11 +433,11 @@ int main(int argc, char **argv) {
       double ipc = instr_per_call(argv[0], ops[k], 200000);
       printf("  %-44s %8.1f\n", what[k], ipc - loop);
     }
-    printf("  %-44s %8.1f M (%.1f per texel)\n", "construction: init + sampling tables (CDF)", build * 1e-6, build / (2048.0 * 1024.0));
+    printf("  %-44s %8.1f M (%.1f per texel)\n", "construction: init + tables (default: guide)", build * 1e-6, build / (2048.0 * 1024.0));
   }
 
   printf("\n3. Variance of a direct-lighting estimate (irradiance, luminance, of a diffuse point; light space\n"
-         "   normals up (0,0,1), horizon (1,0,0), down (0,0.6,-0.8)); efficiency relative to CELL_AVERAGE + CDF\n");
+         "   normals up (0,0,1), horizon (1,0,0), down (0,0.6,-0.8)); efficiency relative to CELL_AVERAGE + guide\n");
   for (i = 0; i < 5; ++i) {
     char path[512];
     FILE *f;

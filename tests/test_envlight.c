@@ -435,7 +435,7 @@ static void chi2_map(const char *name, const float *px, int w, int h, int gu, in
   if (rotate) some_rotation(m); else identity(m);
   res = make_light(&l, px, w, h, m, comp, sampler);
   snprintf(label, sizeof label, "%s%s%s%s", name, comp ? " compensated" : "", rotate ? " rotated" : "",
-           sampler == 1 ? " guide" : sampler == 2 ? " alias" : "");
+           sampler == EL_ENVLIGHT_SAMPLER_CDF ? " CDF" : sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? " alias" : "");
   if (res != EL_SUCCESS) { check(0, "chi2 %s: init failed (%s)", label, el_result_string(res)); return; }
   chi2_light(label, &l, m, gu, gv, n, seed);
   el_envlight_free(&l);
@@ -459,8 +459,8 @@ static void test_chi2(const el_image *studio, const el_image *city) {
       chi2_map("hot texel 64x32", hot, HW, HH, 64, 32, n, comp, rot, 0, 31 + comp + 2 * rot);
       chi2_map("hot pole rows 64x32", poles, HW, HH, 64, 32, n, comp, rot, 0, 41 + comp + 2 * rot);
     }
-  chi2_map("city", city->pixels, city->width, city->height, 64, 32, n, 0, 0, 1, 51);
-  chi2_map("city", city->pixels, city->width, city->height, 64, 32, n, 0, 1, 2, 52);
+  chi2_map("city", city->pixels, city->width, city->height, 64, 32, n, 0, 0, EL_ENVLIGHT_SAMPLER_CDF, 51);
+  chi2_map("city", city->pixels, city->width, city->height, 64, 32, n, 0, 1, EL_ENVLIGHT_SAMPLER_ALIAS, 52);
   check(g_chi2_tests == CHI2_TESTS_PLANNED,
         "chi2: %d goodness-of-fit tests, Bonferroni over %d", g_chi2_tests, CHI2_TESTS_PLANNED);
   free(hot);
@@ -1012,6 +1012,25 @@ static void *thread_fn(void *p) {
   }
   return NULL;
 }
+/* The default guide sampler returns CDF inversion's points (pbrt's samples), bit for bit. */
+static void test_guide_equals_cdf(const el_image *city) {
+  el_envlight a, b;
+  rng r = rng_make(77);
+  int i, same = 0, n = 100000;
+  make_light(&a, city->pixels, city->width, city->height, NULL, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
+  make_light(&b, city->pixels, city->width, city->height, NULL, 0, EL_ENVLIGHT_SAMPLER_CDF);
+  for (i = 0; i < n; ++i) {
+    float uu[2], wa[3], wb[3], La[3], Lb[3], pa, pb;
+    uu[0] = rng_f(&r); uu[1] = rng_f(&r);
+    el_envlight_sample_li(&a, uu, wa, La, &pa);
+    el_envlight_sample_li(&b, uu, wb, Lb, &pb);
+    same += memcmp(wa, wb, sizeof wa) == 0 && pa == pb && memcmp(La, Lb, sizeof La) == 0;
+  }
+  check(same == n, "the default guide sampler returns exactly the CDF sampler's direction, pdf and radiance (%d of %d)", same, n);
+  el_envlight_free(&a);
+  el_envlight_free(&b);
+}
+
 static void test_threads(const el_image *city) {
   el_envlight l;
   thread_arg a[2];
@@ -1047,6 +1066,7 @@ int main(void) {
   test_unbiased(&studio, &city);
   test_power(&studio);
   test_hard_cases();
+  test_guide_equals_cdf(&city);
   test_threads(&city);
   el_image_free(&studio);
   el_image_free(&city);
