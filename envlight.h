@@ -79,7 +79,7 @@
  *    edge, compared exactly), then a per-bin pdf table: two divisions, two square roots, no atan.
  *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): sample_li 305 instructions with
  *    the guide sampler (about half in distribution2d.h), 467 with CDF inversion; pdf_li 115; le 253;
- *    construction 180 M (pbrt-v3: ~470, ~300, 313 ms). More in tutorials/03-infinite-light.md.
+ *    construction 206 M, about 15 ms (pbrt-v3: ~470, ~300, 313 ms). More in tutorials/03-infinite-light.md.
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
  *    (tiny). 2048x1024: 25 MB + 18 MB with the default guide table (pbrt-v3: ~100 MB).
