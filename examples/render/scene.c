@@ -241,6 +241,12 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
     int px = -1, py = -1, pz = -1, nx = -1, ny = -1, nz = -1, pu = -1, pv = -1, j;
     long i;
     double vals[32];
+    {
+      /* every element takes at least one byte per property (binary) or two characters (ASCII): a count
+       * the rest of the file cannot hold is a truncated or corrupt file, not an allocation to attempt */
+      double need = (double)E->count * (double)(E->nprop > 0 ? E->nprop : 1) * (rd.format == 0 ? 2.0 : 1.0);
+      if (need > (double)(rd.end - rd.p) + 1.0) PLY_FAIL("\"%s\": file is truncated (%ld %s elements announced)", path, E->count, E->name);
+    }
     if (isv) {
       if (m->p) PLY_FAIL("\"%s\": two vertex elements", path);
       for (j = 0; j < E->nprop; j++) {

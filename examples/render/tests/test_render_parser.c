@@ -290,6 +290,9 @@ static void errors(void) {
   rt_write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n");
   expect_error("ply.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply\"\nWorldEnd\n", "ply.pbrt:2:", "truncated");
+  rt_write("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 200000000\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n");
+  expect_error("hugeply.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"huge.ply\"\nWorldEnd\n", "hugeply.pbrt:2:", "truncated");
   rt_write("loop.pbrt", "Include \"loop.pbrt\"\n");
   expect_error("rec.pbrt", "Include \"loop.pbrt\"\nWorldBegin\nWorldEnd\n", ":1:", "nested");
   expect_error("scale.pbrt", "WorldBegin\nScale 1 0 1\nWorldEnd\n", "scale.pbrt:2:", "singular");
