@@ -250,6 +250,26 @@ static void materials_textures(void) {
   } else rt_check(0, "gamma scene: %s", err);
 }
 
+/* binary big endian PLY: bytes written in reverse order by hand */
+static void ply_big_endian(void) {
+  char err[512];
+  elr_scene *s;
+  FILE *f = fopen(rt_path("be.ply"), "wb");
+  float v[9] = {0, 0, 0, 3, 0, 0, 0, 0, 5};
+  int idx[3] = {0, 1, 2}, i, k;
+  unsigned char n = 3;
+  fputs("ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n", f);
+  for (i = 0; i < 9; i++) { unsigned char b[4], r[4]; memcpy(b, &v[i], 4); for (k = 0; k < 4; k++) r[k] = b[3 - k]; fwrite(r, 1, 4, f); }
+  fwrite(&n, 1, 1, f);
+  for (i = 0; i < 3; i++) { unsigned char b[4], r[4]; memcpy(b, &idx[i], 4); for (k = 0; k < 4; k++) r[k] = b[3 - k]; fwrite(r, 1, 4, f); }
+  fclose(f);
+  s = rt_load("be.pbrt", W("Shape \"plymesh\" \"string filename\" \"be.ply\"\n"), err, sizeof err);
+  rt_check(s && s->nmesh == 1 && s->mesh[0].ntri == 1 && s->mesh[0].p[3] == 3.f && s->mesh[0].p[8] == 5.f && s->mesh[0].idx[2] == 2,
+           "plymesh binary big endian: vertices and indices byte-swapped correctly%s%s", s ? "" : ": ", s ? "" : err);
+  elr_scene_free(s);
+}
+
 static void warnings(void) {
   char err[512];
   elr_scene *s = rt_load("warn.pbrt", W("AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" 1 \"float foo\" 3\n"
@@ -400,6 +420,7 @@ int main(void) {
   sphere_hits(1);
   unsetenv("ELR_EMBREE_SPHERES");
   materials_textures();
+  ply_big_endian();
   warnings();
   errors();
   truncations();
