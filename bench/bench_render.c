@@ -16,11 +16,13 @@
  *     relMSE(x, ref) = mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)
  * (the definition of bench/mitsuba_compare.py), and wall time, at 16, 64 and 256 spp, for each
  * sampler (random, stratified, halton) and each light-sampling option (MIS, light only, BSDF only,
- * MIS with envlight's compensated distribution, MIS with pbrt-v3's importance map: twice the image's
- * resolution from point lookups instead of envlight's default cell averages). relMSE x time is the efficiency (lower is better).
+ * MIS with envlight's compensated distribution), all sampling pbrt-v3's importance map (twice the
+ * image's resolution from point lookups: the renderer's default); --full adds MIS with envlight's
+ * default map of cell averages. relMSE x time is the efficiency (lower is better).
  *
- * Run:  build/bin/bench_render [--quick] [--rays-only] [--ref-spp N] [--threads N]
- *       --rays-only: part 1 alone (a few seconds).
+ * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--ref-spp N] [--threads N]
+ *       --rays-only: part 1 alone (a few seconds). The default run renders about 390 M camera samples
+ *       (about 4 minutes on 2 idle cores; 12 minutes measured on the shared 2-core machine under load 6).
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
  * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls) or samples
@@ -112,15 +114,16 @@ static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int
 int main(int argc, char **argv) {
   char path[1024], err[1024];
   elr_scene *s = NULL;
-  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0;
   const char *cg_op = NULL;
   for (i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--quick")) { quick = 1; ref_spp = 256; }
     else if (!strcmp(argv[i], "--rays-only")) rays_only = 1;
+    else if (!strcmp(argv[i], "--full")) full = 1;
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--rays-only] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples N]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples N]\n"); return 1; }
   }
   if (ref_spp < 1) ref_spp = 1;
   setvbuf(stdout, NULL, _IOLBF, 0);
@@ -209,20 +212,22 @@ int main(int argc, char **argv) {
     elr_stats st;
     const char *snames[3] = {"random", "stratified", "halton"};
     const int samplers[3] = {ELR_SAMPLER_RANDOM, ELR_SAMPLER_STRATIFIED, ELR_SAMPLER_HALTON};
-    const char *lnames[5] = {"MIS", "light only", "BSDF only", "MIS+compensated", "MIS+pbrt-v3 map"};
-    const int ls[5] = {ELR_LS_MIS, ELR_LS_LIGHT, ELR_LS_BSDF, ELR_LS_MIS, ELR_LS_MIS}, comp[5] = {0, 0, 0, 1, 0}, imp[5] = {0, 0, 0, 0, 1};
+    /* importance map 1 = pbrt-v3's (the renderer's default), 0 = envlight's cell averages (--full) */
+    const char *lnames[5] = {"MIS", "light only", "BSDF only", "MIS+compensated", "MIS+cell-avg map"};
+    const int ls[5] = {ELR_LS_MIS, ELR_LS_LIGHT, ELR_LS_BSDF, ELR_LS_MIS, ELR_LS_MIS}, comp[5] = {0, 0, 0, 1, 0}, imp[5] = {1, 1, 1, 1, 0};
+    int nopt = full ? 5 : 4;
     const int spps[3] = {16, 64, 256};
     int nspp = quick ? 2 : 3, a, b, c;
     double t0 = elr_now();
     /* the reference: stratified + MIS (its jitter and shuffles depend on the seed, so it is independent of
      * every image of the table; halton's pixel positions do not depend on the seed, as in pbrt-v3, and a
      * halton reference would share them with the halton rows) */
-    if (render_once(s, ref_spp, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, 0, 0, threads, 1000, &ref, &st) != 0) return 1;
-    printf("\nreference: stratified + MIS, %d spp, %.1f s (%d threads)\n", ref_spp, elr_now() - t0, st.nthreads);
+    if (render_once(s, ref_spp, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, 0, 1, threads, 1000, &ref, &st) != 0) return 1;
+    printf("\nreference: stratified + MIS (pbrt-v3 importance map), %d spp, %.1f s (%d threads)\n", ref_spp, elr_now() - t0, st.nthreads);
     printf("relative MSE against it (seed differs from the reference's), wall time on %d threads:\n\n", st.nthreads);
     printf("  %-10s %-16s %5s %10s %8s %12s\n", "sampler", "light sampling", "spp", "relMSE", "time s", "relMSE x s");
     for (a = 0; a < 3; a++)
-      for (b = 0; b < 5; b++)
+      for (b = 0; b < nopt; b++)
         for (c = 0; c < nspp; c++) {
           elr_image img;
           double t1 = elr_now(), t, e;
