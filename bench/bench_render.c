@@ -21,9 +21,9 @@
  * default map of cell averages. relMSE x time is the efficiency (lower is better).
  *
  * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--ref-spp N] [--threads N]
- *       --rays-only: part 1 alone (a few seconds). The default run renders about 390 M camera samples;
- *       --full (465 M) took 12 minutes on the shared 2-core development machine at load average 6, where
- *       the renderer alone reaches 0.9 M samples/s per thread.
+ *       --rays-only: part 1 alone (a few seconds). The default run renders about 390 M camera samples:
+ *       6 minutes measured on the shared 2-core development machine (load average about 4); --full
+ *       (465 M) took 12 minutes there at load average 6.
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
  * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls) or samples
