@@ -23,10 +23,12 @@
  *     normals, for the maps in ../shared/envmaps (data/envmaps if missing), per strategy: uniform sphere,
  *     cosine, light sampling with each importance map (CELL_AVERAGE = ours, PBRT_V3 = 2x-resolution point
  *     lookups, TEXEL = raw texels: biased with a bilinear le, pbrt-v3 issue #62), the compensated density
- *     with MIS (one light + one cosine sample, balance heuristic, per pair), and the alias sampler. Each
+ *     with MIS (one light + one cosine sample, balance heuristic, per pair), and the alias sampler; also
+ *     CELL_AVERAGE at twice the image's resolution (importance_width/height). Each
  *     row: variance per sample relative to E^2, |bias| in standard errors against a quadrature of the
  *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
- *     to light sampling with CELL_AVERAGE and the default (guide) sampler.
+ *     to light sampling with CELL_AVERAGE and the default (guide) sampler; and, for light sampling, the
+ *     relative variance of lum(le) / pdf (how well the density matches the map, whatever the cosine).
  */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #define EL_IMPLEMENTATION
@@ -249,8 +251,9 @@ static void quadrature(const image *im, const double n[][3], int nn, double *E) 
     }
 }
 
-enum { S_UNIFORM, S_COSINE, S_CELL, S_PBRT, S_TEXEL, S_COMP_MIS, S_ALIAS, S_N };
-static const char *S_NAME[S_N] = {"uniform sphere", "cosine", "light: CELL_AVERAGE (ours)", "light: PBRT_V3 (2x)",
+enum { S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_COMP_MIS, S_ALIAS, S_N };
+static const char *S_NAME[S_N] = {"uniform sphere", "cosine", "light: CELL_AVERAGE (ours)", "light: CELL_AVERAGE 2x",
+                                  "light: PBRT_V3 (2x)",
                                   "light: TEXEL (issue #62)", "compensated + MIS (pair)", "light: alias sampler"};
 
 static void frame(const double n[3], double b1[3], double b2[3]) {
@@ -326,12 +329,19 @@ static void variance_table(const char *path, int nsamp) {
   quadrature(&im, N3, 3, E);
   for (s = 0; s < S_N; ++s) {
     int imp = s == S_PBRT ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3 : s == S_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL : 0;
-    ok[s] = make_light(&lights[s], img.pixels, img.width, img.height, imp, s == S_ALIAS ? EL_ENVLIGHT_SAMPLER_ALIAS : EL_ENVLIGHT_SAMPLER_GUIDE, s == S_COMP_MIS, NULL) == EL_SUCCESS;
+    el_envlight_options o;
+    memset(&o, 0, sizeof o);
+    o.importance = imp;
+    o.sampler = s == S_ALIAS ? EL_ENVLIGHT_SAMPLER_ALIAS : EL_ENVLIGHT_SAMPLER_GUIDE;
+    o.compensated = s == S_COMP_MIS;
+    if (s == S_CELL2) { o.importance_width = 2 * img.width; o.importance_height = 2 * img.height; }
+    ok[s] = el_envlight_init(&lights[s], img.pixels, img.width, img.height, 3, &o) == EL_SUCCESS;
     if (ok[s]) el_envlight_prepare_sampling(&lights[s]);
   }
   printf("\n%s (%dx%d): E(up) = %.4g, E(horizon) = %.4g, E(down) = %.4g; %d samples per cell\n", path, img.width,
          img.height, E[0], E[1], E[2], nsamp);
-  printf("  %-28s %27s %20s %8s %10s\n", "strategy", "rel. variance (up/hor/down)", "|bias|/SE (u/h/d)", "ns/spl", "efficiency");
+  printf("  %-28s %27s %20s %8s %10s %10s\n", "strategy", "rel. variance (up/hor/down)", "|bias|/SE (u/h/d)", "ns/spl",
+         "efficiency", "lum/pdf");
   for (s = 0; s < S_N; ++s) {
     double *rv = res_rv[s], *bias = res_bias[s], t, mean_rv = 0;
     if (!ok[s]) continue;
@@ -360,9 +370,26 @@ static void variance_table(const char *path, int nsamp) {
   }
   for (s = 0; s < S_N; ++s) {
     if (!ok[s]) { printf("  %-28s init failed\n", S_NAME[s]); continue; }
-    printf("  %-28s %8.3g %8.3g %8.3g  %6.1f %6.1f %6.1f %8.0f %10.3g\n", S_NAME[s], res_rv[s][0], res_rv[s][1],
+    printf("  %-28s %8.3g %8.3g %8.3g  %6.1f %6.1f %6.1f %8.0f %10.3g", S_NAME[s], res_rv[s][0], res_rv[s][1],
            res_rv[s][2], res_bias[s][0], res_bias[s][1], res_bias[s][2], res_ns[s],
            ok[S_CELL] ? (res_mean[S_CELL] * res_ns[S_CELL]) / (res_mean[s] * res_ns[s]) : 0.0);
+    if (s >= S_CELL && s != S_COMP_MIS) { /* how well the density matches le alone: rel. variance of lum(le)/pdf */
+      double sum = 0, sum2 = 0, m;
+      long i;
+      rng r;
+      r.s = 0x1234567ULL + (uint64_t)s;
+      for (i = 0; i < nsamp; ++i) {
+        float u[2], wi[3], L[3], p;
+        double f = 0;
+        u[0] = rng_f(&r); u[1] = rng_f(&r);
+        el_envlight_sample_li(&lights[s], u, wi, L, &p);
+        if (p > 0) f = lum3(L[0], L[1], L[2]) / p;
+        sum += f; sum2 += f * f;
+      }
+      m = sum / nsamp;
+      printf(" %10.3g", m > 0 ? fmax(0.0, sum2 / nsamp - m * m) / (m * m) : 0.0);
+    }
+    printf("\n");
   }
   for (s = 0; s < S_N; ++s) if (ok[s]) el_envlight_free(&lights[s]);
   el_image_free(&img);
