@@ -67,8 +67,9 @@ Running everything from scratch takes about 15 CPU minutes (the two 8192-spp ref
 
 Measured here (2 cores shared with other jobs; tutorials/03-infinite-light-render.md has the table):
 background check relMSE 1.7e-4 (mirrored 2.0, upside down 5.5); the references agree to 1.6e-4 in the
-mean and 0.27% in mean absolute difference; at 64 spp Mitsuba 0.91 CPU s and relMSE 1.56e-3, ours
-4.33 CPU s and relMSE 2.29e-3: our relMSE at equal CPU time is 7.0x Mitsuba's (target: 0.5x).
+mean and 0.27% in mean absolute difference; at 64 spp Mitsuba 0.70 CPU s and relMSE 1.56e-3, ours
+(commit 8d2dae0) 3.58 CPU s and relMSE 1.64e-3: our relMSE at equal CPU time is 5.4x Mitsuba's
+(target: 0.5x); the gap is speed per sample, not accuracy per sample.
 """
 import argparse
 import hashlib
