@@ -30,7 +30,9 @@
 #define _POSIX_C_SOURCE 200809L /* mkdir */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
+#include "film.h"     /* el_srgb_to_byte: the exact sRGB curve (declarations only) */
 #include "image_io.h" /* examples/common: PNG writing */
+#include "picture.h"  /* examples/common: the test image and labels */
 
 #include <errno.h>
 #include <math.h>
@@ -42,36 +44,13 @@
 #define W 400
 #define H 235
 
-/* The tutorial's test image, with fine detail: a checkerboard of rising frequency over a colour ramp.
- * Linear RGB in [0, 1]. */
-static void make_image(float *rgb) {
-  int x, y;
-  for (y = 0; y < H; ++y)
-    for (x = 0; x < W; ++x) {
-      float u = (x + 0.5f) / W, v = (y + 0.5f) / H;
-      float checks = 4.0f * powf(16.0f, u); /* 4 checks across at the left, 64 at the right */
-      int odd = ((int)floorf(u * checks) + (int)floorf(v * checks * H / W)) & 1;
-      float k = odd ? 1.0f : 0.15f, *p = rgb + 3 * (y * W + x);
-      p[0] = k * (0.2f + 0.8f * u);
-      p[1] = k * (0.2f + 0.8f * v);
-      p[2] = k * (1.0f - 0.8f * u);
-    }
-}
 
-/* linear [0,1] -> 8-bit sRGB */
-static unsigned char srgb8(float v) {
-  float e;
-  if (!(v > 0.0f)) return 0;
-  if (v >= 1.0f) return 255;
-  e = v <= 0.0031308f ? 12.92f * v : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f;
-  return (unsigned char)(255.0f * e + 0.5f);
-}
 
 static int write_rgb(const char *path, const float *rgb, int w, int h) {
   unsigned char *b = (unsigned char *)malloc((size_t)w * h * 3);
   char err[256];
   int i, r;
-  for (i = 0; i < w * h * 3; ++i) b[i] = srgb8(rgb[i]);
+  for (i = 0; i < w * h * 3; ++i) b[i] = el_srgb_to_byte(rgb[i]);
   r = el_image_write_png(path, b, w, h, 3, err, sizeof err);
   if (r != 0) fprintf(stderr, "01_mipmap_pyramid: %s\n", err);
   else printf("wrote %s\n", path);
@@ -106,7 +85,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "01_mipmap_pyramid: cannot create directory %s: %s\n", dir, strerror(errno));
     return 1;
   }
-  make_image(img);
+  el_test_image(img, W, H);
   snprintf(path, sizeof path, "%s/01_input_%dx%d.png", dir, W, H);
   if (write_rgb(path, img, W, H)) return 1;
 

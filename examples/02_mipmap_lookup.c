@@ -38,7 +38,9 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, mkdir */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
+#include "film.h"     /* el_srgb_to_byte: the exact sRGB curve (declarations only) */
 #include "image_io.h" /* examples/common: PNG writing */
+#include "picture.h"  /* examples/common: the test image and labels */
 
 #include <errno.h>
 #include <math.h>
@@ -58,27 +60,7 @@
 #define CW (5 * PW + 6 * GAP)
 #define CH (TITLE + PH1 + GAP + PH2 + GAP)
 
-static void make_image(float *rgb) { /* the same image as 01_mipmap_pyramid.c */
-  int x, y;
-  for (y = 0; y < TH; ++y)
-    for (x = 0; x < TW; ++x) {
-      float u = (x + 0.5f) / TW, v = (y + 0.5f) / TH;
-      float checks = 4.0f * powf(16.0f, u);
-      int odd = ((int)floorf(u * checks) + (int)floorf(v * checks * TH / TW)) & 1;
-      float k = odd ? 1.0f : 0.15f, *p = rgb + 3 * (y * TW + x);
-      p[0] = k * (0.2f + 0.8f * u);
-      p[1] = k * (0.2f + 0.8f * v);
-      p[2] = k * (1.0f - 0.8f * u);
-    }
-}
 
-static unsigned char srgb8(float v) {
-  float e;
-  if (!(v > 0.0f)) return 0;
-  if (v >= 1.0f) return 255;
-  e = v <= 0.0031308f ? 12.92f * v : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f;
-  return (unsigned char)(255.0f * e + 0.5f);
-}
 
 static double now(void) {
   struct timespec ts;
@@ -86,91 +68,6 @@ static double now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* ---- a tiny 5x7 bitmap font for the labels (upper case, digits, a little punctuation) -------------- */
-typedef struct glyph { char c; const char *rows[7]; } glyph;
-static const glyph FONT[] = {
-  {'A', {".###.", "#...#", "#...#", "#####", "#...#", "#...#", "#...#"}},
-  {'B', {"####.", "#...#", "#...#", "####.", "#...#", "#...#", "####."}},
-  {'C', {".###.", "#...#", "#....", "#....", "#....", "#...#", ".###."}},
-  {'D', {"####.", "#...#", "#...#", "#...#", "#...#", "#...#", "####."}},
-  {'E', {"#####", "#....", "#....", "####.", "#....", "#....", "#####"}},
-  {'F', {"#####", "#....", "#....", "####.", "#....", "#....", "#...."}},
-  {'G', {".###.", "#...#", "#....", "#.###", "#...#", "#...#", ".####"}},
-  {'H', {"#...#", "#...#", "#...#", "#####", "#...#", "#...#", "#...#"}},
-  {'I', {".###.", "..#..", "..#..", "..#..", "..#..", "..#..", ".###."}},
-  {'J', {"..###", "...#.", "...#.", "...#.", "...#.", "#..#.", ".##.."}},
-  {'K', {"#...#", "#..#.", "#.#..", "##...", "#.#..", "#..#.", "#...#"}},
-  {'L', {"#....", "#....", "#....", "#....", "#....", "#....", "#####"}},
-  {'M', {"#...#", "##.##", "#.#.#", "#.#.#", "#...#", "#...#", "#...#"}},
-  {'N', {"#...#", "#...#", "##..#", "#.#.#", "#..##", "#...#", "#...#"}},
-  {'O', {".###.", "#...#", "#...#", "#...#", "#...#", "#...#", ".###."}},
-  {'P', {"####.", "#...#", "#...#", "####.", "#....", "#....", "#...."}},
-  {'Q', {".###.", "#...#", "#...#", "#...#", "#.#.#", "#..#.", ".##.#"}},
-  {'R', {"####.", "#...#", "#...#", "####.", "#.#..", "#..#.", "#...#"}},
-  {'S', {".####", "#....", "#....", ".###.", "....#", "....#", "####."}},
-  {'T', {"#####", "..#..", "..#..", "..#..", "..#..", "..#..", "..#.."}},
-  {'U', {"#...#", "#...#", "#...#", "#...#", "#...#", "#...#", ".###."}},
-  {'V', {"#...#", "#...#", "#...#", "#...#", "#...#", ".#.#.", "..#.."}},
-  {'W', {"#...#", "#...#", "#...#", "#.#.#", "#.#.#", "#.#.#", ".#.#."}},
-  {'X', {"#...#", "#...#", ".#.#.", "..#..", ".#.#.", "#...#", "#...#"}},
-  {'Y', {"#...#", "#...#", ".#.#.", "..#..", "..#..", "..#..", "..#.."}},
-  {'Z', {"#####", "....#", "...#.", "..#..", ".#...", "#....", "#####"}},
-  {'0', {".###.", "#...#", "#..##", "#.#.#", "##..#", "#...#", ".###."}},
-  {'1', {"..#..", ".##..", "..#..", "..#..", "..#..", "..#..", ".###."}},
-  {'2', {".###.", "#...#", "....#", "...#.", "..#..", ".#...", "#####"}},
-  {'3', {"#####", "...#.", "..#..", "...#.", "....#", "#...#", ".###."}},
-  {'4', {"...#.", "..##.", ".#.#.", "#..#.", "#####", "...#.", "...#."}},
-  {'5', {"#####", "#....", "####.", "....#", "....#", "#...#", ".###."}},
-  {'6', {"..##.", ".#...", "#....", "####.", "#...#", "#...#", ".###."}},
-  {'7', {"#####", "....#", "...#.", "..#..", ".#...", ".#...", ".#..."}},
-  {'8', {".###.", "#...#", "#...#", ".###.", "#...#", "#...#", ".###."}},
-  {'9', {".###.", "#...#", "#...#", ".####", "....#", "...#.", ".##.."}},
-  {'.', {".....", ".....", ".....", ".....", ".....", ".##..", ".##.."}},
-  {':', {".....", ".##..", ".##..", ".....", ".##..", ".##..", "....."}},
-  {'(', {"...#.", "..#..", ".#...", ".#...", ".#...", "..#..", "...#."}},
-  {')', {".#...", "..#..", "...#.", "...#.", "...#.", "..#..", ".#..."}},
-  {'/', {".....", "....#", "...#.", "..#..", ".#...", "#....", "....."}},
-  {'+', {".....", "..#..", "..#..", "#####", "..#..", "..#..", "....."}},
-  {'-', {".....", ".....", ".....", "#####", ".....", ".....", "....."}},
-  {'=', {".....", ".....", "#####", ".....", "#####", ".....", "....."}},
-  {',', {".....", ".....", ".....", ".....", ".##..", "..#..", ".#..."}},
-};
-
-/* draws text at (x, y) into an RGB8 image, each font pixel as a scale x scale block */
-static void draw_text(unsigned char *img, int w, int h, int x, int y, int scale, const char *s,
-                      unsigned char r, unsigned char g, unsigned char b) {
-  for (; *s; s++, x += 6 * scale) {
-    char c = *s >= 'a' && *s <= 'z' ? (char)(*s - 'a' + 'A') : *s;
-    size_t k;
-    const glyph *gl = NULL;
-    int gx, gy, sx, sy;
-    for (k = 0; k < sizeof FONT / sizeof FONT[0]; k++)
-      if (FONT[k].c == c) gl = &FONT[k];
-    if (!gl) continue; /* space and unknown characters */
-    for (gy = 0; gy < 7; gy++)
-      for (gx = 0; gx < 5; gx++)
-        if (gl->rows[gy][gx] == '#')
-          for (sy = 0; sy < scale; sy++)
-            for (sx = 0; sx < scale; sx++) {
-              int px = x + gx * scale + sx, py = y + gy * scale + sy;
-              if (px >= 0 && px < w && py >= 0 && py < h) {
-                unsigned char *p = img + 3 * ((size_t)py * w + px);
-                p[0] = r; p[1] = g; p[2] = b;
-              }
-            }
-  }
-}
-
-/* a label on a dark band, so it reads over any picture */
-static void label(unsigned char *img, int w, int h, int x, int y, const char *s) {
-  int bx, by, n = (int)strlen(s) * 12 + 8;
-  for (by = y; by < y + 22 && by < h; by++)
-    for (bx = x; bx < x + n && bx < w; bx++) {
-      unsigned char *p = img + 3 * ((size_t)by * w + bx);
-      p[0] = (unsigned char)(p[0] / 4); p[1] = (unsigned char)(p[1] / 4); p[2] = (unsigned char)(p[2] / 4);
-    }
-  draw_text(img, w, h, x + 4, y + 4, 2, s, 255, 255, 255);
-}
 
 
 /* ---- the plane: camera 1 unit above y = 0, looking along +z, 90 degree horizontal field of view ---- */
@@ -227,7 +124,7 @@ static void blit(unsigned char *canvas, const float *panel, int pw, int ph, int 
   int x, y, c;
   for (y = 0; y < ph; ++y)
     for (x = 0; x < pw; ++x)
-      for (c = 0; c < 3; ++c) canvas[3 * ((size_t)(oy + y) * CW + ox + x) + c] = srgb8(panel[3 * (y * pw + x) + c]);
+      for (c = 0; c < 3; ++c) canvas[3 * ((size_t)(oy + y) * CW + ox + x) + c] = el_srgb_to_byte(panel[3 * (y * pw + x) + c]);
 }
 
 int main(int argc, char **argv) {
@@ -245,7 +142,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "02_mipmap_lookup: cannot create out/: %s\n", strerror(errno));
     return 1;
   }
-  make_image(img);
+  el_test_image(img, TW, TH);
   /* pbrt's defaults: Repeat, EWA, max anisotropy 8; a second map uses pbrt's trilinear option */
   r = el_mipmap_init(&m, img, TW, TH, 3, NULL);
   memset(&o, 0, sizeof o);
@@ -256,7 +153,7 @@ int main(int argc, char **argv) {
     return 1;
   }
   memset(canvas, 24, (size_t)CW * CH * 3);
-  draw_text(canvas, CW, CH, GAP, 8, 2, "MIPMAP LOOKUPS: TRILINEAR WIDTH (TOP), FILTERS ON A RECEDING PLANE (BOTTOM)", 230,
+  el_draw_text(canvas, CW, CH, GAP, 8, 2, "MIPMAP LOOKUPS: TRILINEAR WIDTH (TOP), FILTERS ON A RECEDING PLANE (BOTTOM)", 230,
             230, 230);
   /* row 1: the texture through Lookup(st, width) */
   for (k = 0; k < 5; ++k) {
@@ -264,7 +161,7 @@ int main(int argc, char **argv) {
       for (x = 0; x < PW; ++x) el_mipmap_lookup(&m, (x + 0.5f) / PW, (y + 0.5f) / PH1, widths[k], panel + 3 * (y * PW + x));
     blit(canvas, panel, PW, PH1, GAP + k * (PW + GAP), TITLE);
     snprintf(text, sizeof text, "W = %g", widths[k]);
-    label(canvas, CW, CH, GAP + k * (PW + GAP), TITLE + PH1 - 22, text);
+    el_draw_label(canvas, CW, CH, GAP + k * (PW + GAP), TITLE + PH1 - 22, text);
   }
   /* row 2: the plane */
   render_plane(&m, &mtri, P_REF, ref);
@@ -284,7 +181,7 @@ int main(int argc, char **argv) {
     blit(canvas, panel, PW, PH2, GAP + k * (PW + GAP), TITLE + PH1 + GAP);
     if (k < 4) snprintf(text, sizeof text, "%s %.3f", names[k], e);
     else snprintf(text, sizeof text, "%s", names[k]);
-    label(canvas, CW, CH, GAP + k * (PW + GAP), TITLE + PH1 + GAP + PH2 - 22, text);
+    el_draw_label(canvas, CW, CH, GAP + k * (PW + GAP), TITLE + PH1 + GAP + PH2 - 22, text);
   }
   if (el_image_write_png(out_path, canvas, CW, CH, 3, err, sizeof err) != 0) {
     fprintf(stderr, "02_mipmap_lookup: %s\n", err);

@@ -39,6 +39,7 @@
 #define EL_FILM_IMPLEMENTATION
 #include "film.h"
 #include "image_io.h" /* examples/common: reading .hdr/.exr/.pfm, writing .png */
+#include "picture.h"  /* examples/common: labels */
 
 #include <errno.h>
 #include <math.h>
@@ -52,91 +53,6 @@
 #define EL_SOURCE_DIR "."
 #endif
 
-/* ---- a tiny 5x7 bitmap font for the labels (upper case, digits, a little punctuation) -------------- */
-typedef struct glyph { char c; const char *rows[7]; } glyph;
-static const glyph FONT[] = {
-  {'A', {".###.", "#...#", "#...#", "#####", "#...#", "#...#", "#...#"}},
-  {'B', {"####.", "#...#", "#...#", "####.", "#...#", "#...#", "####."}},
-  {'C', {".###.", "#...#", "#....", "#....", "#....", "#...#", ".###."}},
-  {'D', {"####.", "#...#", "#...#", "#...#", "#...#", "#...#", "####."}},
-  {'E', {"#####", "#....", "#....", "####.", "#....", "#....", "#####"}},
-  {'F', {"#####", "#....", "#....", "####.", "#....", "#....", "#...."}},
-  {'G', {".###.", "#...#", "#....", "#.###", "#...#", "#...#", ".####"}},
-  {'H', {"#...#", "#...#", "#...#", "#####", "#...#", "#...#", "#...#"}},
-  {'I', {".###.", "..#..", "..#..", "..#..", "..#..", "..#..", ".###."}},
-  {'J', {"..###", "...#.", "...#.", "...#.", "...#.", "#..#.", ".##.."}},
-  {'K', {"#...#", "#..#.", "#.#..", "##...", "#.#..", "#..#.", "#...#"}},
-  {'L', {"#....", "#....", "#....", "#....", "#....", "#....", "#####"}},
-  {'M', {"#...#", "##.##", "#.#.#", "#.#.#", "#...#", "#...#", "#...#"}},
-  {'N', {"#...#", "#...#", "##..#", "#.#.#", "#..##", "#...#", "#...#"}},
-  {'O', {".###.", "#...#", "#...#", "#...#", "#...#", "#...#", ".###."}},
-  {'P', {"####.", "#...#", "#...#", "####.", "#....", "#....", "#...."}},
-  {'Q', {".###.", "#...#", "#...#", "#...#", "#.#.#", "#..#.", ".##.#"}},
-  {'R', {"####.", "#...#", "#...#", "####.", "#.#..", "#..#.", "#...#"}},
-  {'S', {".####", "#....", "#....", ".###.", "....#", "....#", "####."}},
-  {'T', {"#####", "..#..", "..#..", "..#..", "..#..", "..#..", "..#.."}},
-  {'U', {"#...#", "#...#", "#...#", "#...#", "#...#", "#...#", ".###."}},
-  {'V', {"#...#", "#...#", "#...#", "#...#", "#...#", ".#.#.", "..#.."}},
-  {'W', {"#...#", "#...#", "#...#", "#.#.#", "#.#.#", "#.#.#", ".#.#."}},
-  {'X', {"#...#", "#...#", ".#.#.", "..#..", ".#.#.", "#...#", "#...#"}},
-  {'Y', {"#...#", "#...#", ".#.#.", "..#..", "..#..", "..#..", "..#.."}},
-  {'Z', {"#####", "....#", "...#.", "..#..", ".#...", "#....", "#####"}},
-  {'0', {".###.", "#...#", "#..##", "#.#.#", "##..#", "#...#", ".###."}},
-  {'1', {"..#..", ".##..", "..#..", "..#..", "..#..", "..#..", ".###."}},
-  {'2', {".###.", "#...#", "....#", "...#.", "..#..", ".#...", "#####"}},
-  {'3', {"#####", "...#.", "..#..", "...#.", "....#", "#...#", ".###."}},
-  {'4', {"...#.", "..##.", ".#.#.", "#..#.", "#####", "...#.", "...#."}},
-  {'5', {"#####", "#....", "####.", "....#", "....#", "#...#", ".###."}},
-  {'6', {"..##.", ".#...", "#....", "####.", "#...#", "#...#", ".###."}},
-  {'7', {"#####", "....#", "...#.", "..#..", ".#...", ".#...", ".#..."}},
-  {'8', {".###.", "#...#", "#...#", ".###.", "#...#", "#...#", ".###."}},
-  {'9', {".###.", "#...#", "#...#", ".####", "....#", "...#.", ".##.."}},
-  {'.', {".....", ".....", ".....", ".....", ".....", ".##..", ".##.."}},
-  {':', {".....", ".##..", ".##..", ".....", ".##..", ".##..", "....."}},
-  {'(', {"...#.", "..#..", ".#...", ".#...", ".#...", "..#..", "...#."}},
-  {')', {".#...", "..#..", "...#.", "...#.", "...#.", "..#..", ".#..."}},
-  {'/', {".....", "....#", "...#.", "..#..", ".#...", "#....", "....."}},
-  {'+', {".....", "..#..", "..#..", "#####", "..#..", "..#..", "....."}},
-  {'-', {".....", ".....", ".....", "#####", ".....", ".....", "....."}},
-  {'=', {".....", ".....", "#####", ".....", "#####", ".....", "....."}},
-  {',', {".....", ".....", ".....", ".....", ".##..", "..#..", ".#..."}},
-};
-
-/* draws text at (x, y) into an RGB8 image, each font pixel as a scale x scale block */
-static void draw_text(unsigned char *img, int w, int h, int x, int y, int scale, const char *s,
-                      unsigned char r, unsigned char g, unsigned char b) {
-  for (; *s; s++, x += 6 * scale) {
-    char c = *s >= 'a' && *s <= 'z' ? (char)(*s - 'a' + 'A') : *s;
-    size_t k;
-    const glyph *gl = NULL;
-    int gx, gy, sx, sy;
-    for (k = 0; k < sizeof FONT / sizeof FONT[0]; k++)
-      if (FONT[k].c == c) gl = &FONT[k];
-    if (!gl) continue; /* space and unknown characters */
-    for (gy = 0; gy < 7; gy++)
-      for (gx = 0; gx < 5; gx++)
-        if (gl->rows[gy][gx] == '#')
-          for (sy = 0; sy < scale; sy++)
-            for (sx = 0; sx < scale; sx++) {
-              int px = x + gx * scale + sx, py = y + gy * scale + sy;
-              if (px >= 0 && px < w && py >= 0 && py < h) {
-                unsigned char *p = img + 3 * ((size_t)py * w + px);
-                p[0] = r; p[1] = g; p[2] = b;
-              }
-            }
-  }
-}
-
-/* a label on a dark band, so it reads over any picture */
-static void label(unsigned char *img, int w, int h, int x, int y, const char *s) {
-  int bx, by, n = (int)strlen(s) * 12 + 8;
-  for (by = y; by < y + 22 && by < h; by++)
-    for (bx = x; bx < x + n && bx < w; bx++) {
-      unsigned char *p = img + 3 * ((size_t)by * w + bx);
-      p[0] = (unsigned char)(p[0] / 4); p[1] = (unsigned char)(p[1] / 4); p[2] = (unsigned char)(p[2] / 4);
-    }
-  draw_text(img, w, h, x + 4, y + 4, 2, s, 255, 255, 255);
-}
 
 static double now(void) {
   struct timespec ts;
@@ -269,10 +185,10 @@ int main(int argc, char **argv) {
     o.exp_k = 1.0f;
     if (el_film_to_srgb8(panel, PW, PH, &o, p8) != EL_SUCCESS) { fprintf(stderr, "04_tone_mapping: encoding failed\n"); return 1; }
     blit(page, W, p8, PW, PH, (i % 2) * PW, (i / 2) * PH, 1);
-    label(page, W, H, (i % 2) * PW + 6, (i / 2) * PH + 6, names[i]);
+    el_draw_label(page, W, H, (i % 2) * PW + 6, (i / 2) * PH + 6, names[i]);
   }
   snprintf(text, sizeof text, "EXPOSURE %+.2f STOPS (KEY 0.18)", exposure);
-  label(page, W, H, 6, 2 * PH - 28, text);
+  el_draw_label(page, W, H, 6, 2 * PH - 28, text);
 
   /* 2. the zone plate through two pixel filters */
   {
@@ -285,11 +201,11 @@ int main(int argc, char **argv) {
     blit(page, W, z8, ZP, ZP, 2 * ZP, y0, 2);
     free(z8);
     snprintf(text, sizeof text, "ZONE PLATE, %d RANDOM SAMPLES PER PIXEL, SHOWN 2X", spp);
-    label(page, W, H, 6, 2 * PH + 5, text);
+    el_draw_label(page, W, H, 6, 2 * PH + 5, text);
     snprintf(text, sizeof text, "BOX R=0.5: %.0f MS", 1e3 * tbox);
-    label(page, W, H, 6, y0 + 6, text);
+    el_draw_label(page, W, H, 6, y0 + 6, text);
     snprintf(text, sizeof text, "MITCHELL R=2 B=C=1/3: %.0f MS", 1e3 * tmit);
-    label(page, W, H, 2 * ZP + 6, y0 + 6, text);
+    el_draw_label(page, W, H, 2 * ZP + 6, y0 + 6, text);
   }
 
   /* write (the folder of the default path is created) */
