@@ -604,6 +604,18 @@ static void el_film__add(const el_film *f, el_film_stats *s, double *buf, int bx
       s->clamped++;
     }
   }
+  /* Box filter of radius 0.5 (pbrt's default film filter): the support [ceil(px - 1), floor(px)] is the
+   * single pixel floor(px), weight 1, unless px or py is an integer (then the general path below adds
+   * to both neighbours, as pbrt does). The same sums as the general path, bit for bit (w = 1 times L). */
+  if (f->filter.type == EL_FILTER_BOX && rx == 0.5 && ry == 0.5 && px >= (float)bx0 && px < (float)bx1 &&
+      py >= (float)by0 && py < (float)by1) {
+    int ixp = (int)px, iyp = (int)py; /* px, py >= bx0, by0 >= 0 here: truncation is floor */
+    if ((float)ixp != px && (float)iyp != py && bx0 >= 0 && by0 >= 0) {
+      double *p = buf + ((size_t)(iyp - by0) * (size_t)bw + (size_t)(ixp - bx0)) * 4;
+      p[0] += (double)L[0]; p[1] += (double)L[1]; p[2] += (double)L[2]; p[3] += 1.0;
+      return;
+    }
+  }
   /* <<Compute sample's raster bounds>> (in double, clipped before converting to int) */
   pdx = (double)px - 0.5;
   pdy = (double)py - 0.5;

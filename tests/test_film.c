@@ -649,12 +649,67 @@ static void test_threads(void) {
   free(sa); free(sb); free(img1); free(img2); free(img3);
 }
 
+/* The box filter of radius 0.5 (pbrt's default): each sample adds rgb and weight 1 to the pixels whose
+ * centre is within 0.5 of it on both axes: one pixel, both neighbours when a coordinate is an integer.
+ * Brute force over every pixel and sample (in the same order, so the double sums agree exactly), for
+ * the film and for a tile merged into a film; positions on quarter pixels (integers and half-integers
+ * included), random ones, and outside the film. */
+static void test_box_one_pixel(void) {
+  enum { W = 7, H = 5, N = 4000 };
+  static float pos[N][2], col[N][3];
+  double expect[H][W][4];
+  el_film f1 = make_film(W, H, 0, 0), f2 = make_film(W, H, 0, 0), f3 = make_film(W, H, 0, 1);
+  el_film_tile t;
+  unsigned st = 2024u;
+  int i, x, y, c, bad1 = 0, bad2 = 0, bad3 = 0, multi = 0;
+  memset(expect, 0, sizeof expect);
+  for (i = 0; i < N; i++) {
+    float q[2];
+    for (c = 0; c < 2; c++) {
+      st = st * 1664525u + 1013904223u;
+      if (i % 2) q[c] = (float)((int)(st >> 16) % 40 - 4) * 0.25f;  /* quarter pixels in [-1, 9) */
+      else q[c] = (float)((st >> 8) * 0x1p-24) * 10.0f - 1.5f;       /* random in [-1.5, 8.5) */
+    }
+    pos[i][0] = q[0]; pos[i][1] = q[1];
+    for (c = 0; c < 3; c++) { st = st * 1664525u + 1013904223u; col[i][c] = (float)((st >> 8) * 0x1p-24); }
+  }
+  el_film_tile_init(&f2, &t, 0, 0, W, H);
+  for (i = 0; i < N; i++) {
+    int n = 0;
+    el_film_add_sample(&f1, pos[i][0], pos[i][1], col[i], 1.0f);
+    el_film_tile_add_sample(&t, pos[i][0], pos[i][1], col[i], 1.0f);
+    el_film_add_sample(&f3, pos[i][0], pos[i][1], col[i], 1.0f);
+    for (y = 0; y < H; y++)
+      for (x = 0; x < W; x++)
+        if (fabs(x + 0.5 - pos[i][0]) <= 0.5 && fabs(y + 0.5 - pos[i][1]) <= 0.5) {
+          for (c = 0; c < 3; c++) expect[y][x][c] += (double)col[i][c];
+          expect[y][x][3] += 1.0;
+          n++;
+        }
+    if (n > 1) multi++;
+  }
+  el_film_merge_tile(&f2, &t);
+  for (y = 0; y < H; y++)
+    for (x = 0; x < W; x++)
+      for (c = 0; c < 4; c++) {
+        bad1 += f1.pixels[(y * W + x) * 4 + c] != expect[y][x][c];
+        bad2 += f2.pixels[(y * W + x) * 4 + c] != expect[y][x][c];
+        bad3 += f3.pixels[(y * W + x) * 4 + c] != expect[y][x][c];
+      }
+  checkf(multi > 100 && bad1 == 0, "box r=0.5, film: %.0f sums differ from brute force (%.0f samples on pixel edges)", bad1, multi);
+  checkf(bad2 == 0, "box r=0.5, tile merged: %.0f of %.0f sums differ from brute force", bad2, (double)(W * H * 4));
+  checkf(bad3 == 0, "box r=0.5, exact filter: %.0f of %.0f sums differ from brute force", bad3, (double)(W * H * 4));
+  el_film_tile_free(&t);
+  el_film_free(&f1); el_film_free(&f2); el_film_free(&f3);
+}
+
 int main(void) {
   test_filters();
   test_table_vs_exact();
   test_constant();
   test_hand_average();
   test_double_sums();
+  test_box_one_pixel();
   test_srgb();
   test_tonemap();
   test_srgb8_sweep();

@@ -334,16 +334,16 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
       if (C->ls != ELR_LS_BSDF) {
         elr_v3 wi, Li, f;
         float lpdf, spdf;
-        /* the radiance is looked up only for an unoccluded sample that the BSDF reflects (an image
-         * lookup is a cache miss in a large map, as expensive as the shadow ray) */
-        elr_env_sample_dir(l->env, ul0, ul1, &wi, &lpdf);
+        /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
+         * (u, v), no second direction-to-(u, v) mapping); its texel loads are issued before the shadow
+         * ray and overlap with it */
+        Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
         if (lpdf > 0.f) {
           f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
           if (!elr_isblack(f)) {
             ts->shadow++;
             if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
               float w = 1.f;
-              Li = elr_env_le(l->env, wi);
               if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
               sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
             }
