@@ -65,6 +65,7 @@ int elr_env_prepare(elr_envmap *e, int compensated, int importance);
 elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
 void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf); /* no radiance */
 float elr_env_pdf(const elr_envmap *e, elr_v3 wi);
+void elr_env_prefetch(const elr_envmap *e, elr_v3 wi); /* the cache lines elr_env_pdf and elr_env_le will read */
 size_t elr_env_distribution_bytes(const elr_envmap *e);
 size_t elr_env_image_bytes(const elr_envmap *e);
 

@@ -193,6 +193,54 @@ void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, flo
   el_envlight_sample_li(elr__env_s(e), u, w, NULL, pdf);
   *wi = elr_v(w[0], w[1], w[2]);
 }
+/* Prefetch the cache lines that elr_env_pdf and elr_env_le will read for world direction wi: the
+ * texels of its bilinear lookup and its pdf bin (approximately: the bin of (u, v); a neighbouring bin
+ * shares the line or costs one more miss later). No effect on any result. */
+/* atan2(y, x) to about 1e-5 rad (a minimax polynomial on [0, 1] and the octant symmetries): enough to
+ * find a cache line, and a fraction of the exact mapping's cost */
+static float elr__atan2_approx(float y, float x) {
+  float ax = fabsf(x), ay = fabsf(y), mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax, a, a2, r;
+  if (!(mx > 0.f)) return 0.f;
+  a = mn / mx; a2 = a * a;
+  r = a * (0.99997726f + a2 * (-0.33262347f + a2 * (0.19354346f + a2 * (-0.11643287f + a2 * (0.05265332f - 0.01172120f * a2)))));
+  if (ay > ax) r = 1.57079637f - r;
+  if (x < 0.f) r = 3.14159274f - r;
+  return y < 0.f ? -r : r;
+}
+void elr_env_prefetch(const elr_envmap *e, elr_v3 wi) {
+#if defined(__GNUC__) || defined(__clang__)
+  const el_envlight *l = elr__env_s(e), *p = &e->plain;
+  const float *m = p->to_world;
+  float d[3], u, v, s, t;
+  int x, y, y1, w = p->width, h = p->height;
+  if (w <= 0 || !p->texels) return;
+  d[0] = m[0] * wi.x + m[3] * wi.y + m[6] * wi.z; /* light space: the transpose of the rotation */
+  d[1] = m[1] * wi.x + m[4] * wi.y + m[7] * wi.z;
+  d[2] = m[2] * wi.x + m[5] * wi.y + m[8] * wi.z;
+  /* pbrt's mapping (phi / 2 pi, theta / pi), approximately */
+  u = elr__atan2_approx(d[1], d[0]) * 0.159154943f;
+  if (u < 0.f) u += 1.f;
+  v = elr__atan2_approx(sqrtf(d[0] * d[0] + d[1] * d[1]), d[2]) * 0.318309886f;
+  if (!(u >= 0.f && u <= 1.f && v >= 0.f && v <= 1.f)) return;
+  s = u * (float)w - 0.5f; t = v * (float)h - 0.5f;
+  x = (int)(s + 1.f) - 1; y = (int)(t + 1.f) - 1;
+  if (x < 0) x = 0;
+  if (x > w - 1) x = w - 1;
+  y1 = y + 1 > h - 1 ? h - 1 : y + 1;
+  if (y < 0) y = 0;
+  if (y > h - 1) y = h - 1;
+  __builtin_prefetch(p->texels + ((size_t)y * (size_t)w + (size_t)x) * 3);
+  __builtin_prefetch(p->texels + ((size_t)y1 * (size_t)w + (size_t)x) * 3);
+  if (l->pdf_table && l->dist.nu > 0 && l->dist.nv > 0) {
+    int iu = (int)(u * (float)l->dist.nu), iv = (int)(v * (float)l->dist.nv);
+    if (iu > l->dist.nu - 1) iu = l->dist.nu - 1;
+    if (iv > l->dist.nv - 1) iv = l->dist.nv - 1;
+    __builtin_prefetch(l->pdf_table + (size_t)iv * (size_t)l->dist.nu + (size_t)iu);
+  }
+#else
+  (void)e; (void)wi;
+#endif
+}
 float elr_env_pdf(const elr_envmap *e, elr_v3 wi) {
   float d[3];
   d[0] = wi.x; d[1] = wi.y; d[2] = wi.z;

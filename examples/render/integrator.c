@@ -330,40 +330,48 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         sum = elr_add(sum, elr_vmul(f, Li));
         continue;
       }
-      /* the environment: light sampling */
-      if (C->ls != ELR_LS_BSDF) {
-        elr_v3 wi, Li, f;
-        float lpdf, spdf;
-        /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
-         * (u, v), no second direction-to-(u, v) mapping); its texel loads are issued before the shadow
-         * ray and overlap with it */
-        Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
-        if (lpdf > 0.f) {
-          f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
-          if (!elr_isblack(f)) {
-            ts->shadow++;
-            if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
-              float w = 1.f;
-              if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
-              sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
+      /* the environment. The BSDF sample is drawn first: when it will need the map's pdf and radiance
+       * (after its shadow ray), their cache lines are prefetched now and arrive while the light sample
+       * and both shadow rays run (a random direction's texels and pdf bin are cache misses in the
+       * multi-megabyte tables). The contributions are added in pbrt-v3's order: light, then BSDF. */
+      {
+        elr_v3 wb = elr_v(0, 0, 0), fb = elr_v(0, 0, 0);
+        float bpdf = 0.f;
+        int bsdf_ray = 0;
+        if (C->ls != ELR_LS_LIGHT && !C->path) { /* in the path integrator the continuation ray plays this part */
+          int spec;
+          fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
+          bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
+          if (bsdf_ray) elr_env_prefetch(l->env, wb);
+        }
+        /* light sampling */
+        if (C->ls != ELR_LS_BSDF) {
+          elr_v3 wi, Li, f;
+          float lpdf, spdf;
+          /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
+           * (u, v), no second direction-to-(u, v) mapping) */
+          Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
+          if (lpdf > 0.f) {
+            f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+            if (!elr_isblack(f)) {
+              ts->shadow++;
+              if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
+                float w = 1.f;
+                if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
+                sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
+              }
             }
           }
         }
-      }
-      /* BSDF sampling (in the path integrator the continuation ray plays this part) */
-      if (C->ls != ELR_LS_LIGHT && !C->path) {
-        elr_v3 wi, f;
-        float spdf;
-        int spec;
-        f = elr_bsdf_sample(b, wo, us0, us1, &wi, &spdf, &spec);
-        if (!spec && spdf > 0.f && !elr_isblack(f)) {
-          f = elr_mul(f, fabsf(elr_dot(wi, b->ns)));
+        /* BSDF sampling */
+        if (bsdf_ray) {
+          fb = elr_mul(fb, fabsf(elr_dot(wb, b->ns)));
           ts->bsdfl++;
-          if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
+          if (!elr_occluded(s, elr__offset(h, wb), wb, INFINITY)) {
             /* pbrt-v3 returns when Pdf_Li is 0; with a compensated density that would drop the dim parts
              * of the map, which only BSDF sampling covers: the power heuristic then gives weight 1 */
-            float w = C->ls == ELR_LS_MIS ? elr__power(spdf, elr_env_pdf(l->env, wi)) : 1.f;
-            sum = elr_add(sum, elr_mul(elr_vmul(f, elr_env_le(l->env, wi)), w / spdf));
+            float w = C->ls == ELR_LS_MIS ? elr__power(bpdf, elr_env_pdf(l->env, wb)) : 1.f;
+            sum = elr_add(sum, elr_mul(elr_vmul(fb, elr_env_le(l->env, wb)), w / bpdf));
           }
         }
       }
