@@ -147,6 +147,7 @@ static inline const char *el_result_string(el_result r) {
 /* << shared declarations */
 
 #include <stdint.h>
+#include <string.h> /* memcpy in the inline bin sampler */
 
 #ifdef __cplusplus
 extern "C" {
@@ -274,6 +275,63 @@ EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float
 EL_DEF float el_distribution2d_fast_pdf(const el_distribution2d_fast *f, float u, float v);
 /* Bytes of the fast sampler's own tables (not counting the shared CDF). */
 EL_DEF size_t el_distribution2d_fast_bytes(const el_distribution2d_fast *f);
+
+/* >> bins instead of points: for callers that map a bin to something else (envlight.h maps it to a
+ * direction through per-row and per-column tables) and so need no float point placement.
+ * (*iu, *iv) is the bin CDF inversion (or the alias table) picks for (u0, u1), chosen with exactly the
+ * sample() probability, and *fu, *fv in [0, 1] the position of u within the bin's interval of units
+ * (the same fractions sample() places its point with; rounding may give exactly 1). u is clamped as in
+ * sample(). The guide-table and CDF versions return identical results for the same u. */
+EL_DEF void el_distribution2d_sample_bins(const el_distribution2d *d, float u0, float u1, int *iu, int *iv, float *fu, float *fv);
+EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv);
+#define EL_DISTRIBUTION__GUIDE_CROWDED 0x80000000u /* a guide cell where more than 8 bins start */
+/* Last i in [lo, lo+len-1] with c[i] <= k, given c[lo] <= k. Branch-free binary search. */
+static inline int el_distribution2d__search(const uint32_t *c, int lo, int len, uint32_t k) {
+  while (len > 1) {
+    int half = len >> 1;
+    lo = (c[lo + half] <= k) ? lo + half : lo;
+    len -= half;
+  }
+  return lo;
+}
+
+/* Inline, no calls: the guide table with u in [0,1) (one table read and a short scan per dimension, a
+ * binary search within a crowded cell); returns 0 without writing anything for any other case (u
+ * outside [0,1) or NaN, the alias method): then call el_distribution2d_fast_sample_bins_general. */
+static inline int el_distribution2d_fast_sample_bins_try(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+  uint32_t b0, b1;
+  memcpy(&b0, &u0, 4);
+  memcpy(&b1, &u1, 4);
+  if ((b0 > b1 ? b0 : b1) < 0x3f800000u && f->method == EL_DISTRIBUTION_FAST_GUIDE) { /* both in [+0, 1) */
+    float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f;
+    uint32_t kv = (uint32_t)(int32_t)xv, ku = (uint32_t)(int32_t)xu;
+    uint32_t cell = kv >> f->shift_v, gv = f->guide_v[cell], gu;
+    const uint32_t *row, *g;
+    int v = (int)(gv & ~EL_DISTRIBUTION__GUIDE_CROWDED), u;
+    int32_t cv, cu;
+    if (gv & EL_DISTRIBUTION__GUIDE_CROWDED) return 0; /* many bins start in this cell: binary search */
+    while (f->marginal[v + 1] <= kv) ++v; /* at most 8 steps */
+    cell = ku >> f->shift_u;
+    g = f->guide_u + (size_t)v * f->guide_stride;
+    gu = g[cell];
+    row = f->cdf + (size_t)v * f->row_stride;
+    u = (int)(gu & ~EL_DISTRIBUTION__GUIDE_CROWDED);
+    if (gu & EL_DISTRIBUTION__GUIDE_CROWDED) return 0;
+    while (row[u + 1] <= ku) ++u;
+    cv = (int32_t)f->marginal[v];
+    cu = (int32_t)row[u];
+    *iv = v;
+    *iu = u;
+    *fv = (xv - (float)cv) / (float)((int32_t)f->marginal[v + 1] - cv);
+    *fu = (xu - (float)cu) / (float)((int32_t)row[u + 1] - cu);
+    return 1;
+  }
+  return 0;
+}
+/* Any u, any method: the same results as the general function. */
+static inline void el_distribution2d_fast_sample_bins(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+  if (!el_distribution2d_fast_sample_bins_try(f, u0, u1, iu, iv, fu, fv)) el_distribution2d_fast_sample_bins_general(f, u0, u1, iu, iv, fu, fv);
+}
 /* << constant-time sampler */
 
 /* >> inline helpers (hot, shared by every translation unit) */
@@ -382,15 +440,6 @@ static inline float el_distribution2d__place(int i, float frac, float x0, float 
   return el_distribution2d__place_general(i, t, x0, x1, width, scale, last);
 }
 
-/* Last i in [lo, lo+len-1] with c[i] <= k, given c[lo] <= k. Branch-free binary search. */
-static inline int el_distribution2d__search(const uint32_t *c, int lo, int len, uint32_t k) {
-  while (len > 1) {
-    int half = len >> 1;
-    lo = (c[lo + half] <= k) ? lo + half : lo;
-    len -= half;
-  }
-  return lo;
-}
 
 /* NaN and negative -> 0, +Inf -> FLT_MAX; valid values unchanged. */
 static inline double el_distribution2d__sanitize(float x) {
@@ -761,6 +810,17 @@ EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float
   el_distribution2d__sample_general(d, u0, u1, out_u, out_v, pdf);
 }
 
+EL_DEF void el_distribution2d_sample_bins(const el_distribution2d *d, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+  float xv = el_distribution2d__units(u1), xu = el_distribution2d__units(u0);
+  int v = el_distribution2d__search(d->marginal, 0, d->nv, (uint32_t)xv), u;
+  const uint32_t *row = d->cdf + (size_t)v * ((size_t)d->nu + 1);
+  u = el_distribution2d__search(row, 0, d->nu, (uint32_t)xu);
+  *iv = v;
+  *iu = u;
+  *fv = (xv - (float)(int32_t)d->marginal[v]) / (float)((int32_t)d->marginal[v + 1] - (int32_t)d->marginal[v]);
+  *fu = (xu - (float)(int32_t)row[u]) / (float)((int32_t)row[u + 1] - (int32_t)row[u]);
+}
+
 EL_DEF float el_distribution2d_pdf(const el_distribution2d *d, float u, float v) {
   int iu = el_distribution2d__bin_last(u, d->domain[0], d->u_scale, d->u_last);
   int iv = el_distribution2d__bin_last(v, d->domain[1], d->v_scale, d->v_last);
@@ -806,6 +866,10 @@ static void el_distribution2d__guide_build(uint32_t *g, int cells, int shift, co
     g[cell] = (uint32_t)i;
   }
   g[cells] = (uint32_t)(n - 1);
+  /* a crowded cell (more than 8 bins start in it) is flagged in bit 31: the inline fast path then
+   * leaves it to the binary search, with one test instead of reading the next entry */
+  for (cell = 0; cell < cells; ++cell)
+    if (g[cell + 1] - g[cell] > 8u) g[cell] |= EL_DISTRIBUTION__GUIDE_CROWDED;
 }
 
 static int el_distribution2d__guide_cells(int n, int shrink, int *shift) {
@@ -878,7 +942,8 @@ EL_DEF el_result el_distribution2d_fast_init_ex(el_distribution2d_fast *f, const
   if (method == EL_DISTRIBUTION_FAST_GUIDE) {
     size_t gu1;
     f->gu = el_distribution2d__guide_cells(d->nu, shrink, &f->shift_u);
-    f->gv = el_distribution2d__guide_cells(d->nv, shrink, &f->shift_v);
+    f->gv = el_distribution2d__guide_cells(d->nv, -2, &f->shift_v); /* 4 cells per row: the marginal is
+                                                                        small and often crowded (a sun) */
     gu1 = (size_t)f->gu + 1;
     f->guide_stride = gu1;
     if ((size_t)d->nv > ((size_t)-1) / sizeof(uint32_t) / gu1) { memset(f, 0, sizeof *f); return EL_ERROR_SIZE_OVERFLOW; }
@@ -926,7 +991,7 @@ EL_DEF void el_distribution2d_fast_free(el_distribution2d_fast *f) {
 /* One dimension of the guide-table search: the bin of unit k, exactly as the binary search finds it. */
 static inline int el_distribution2d__guide_find(const uint32_t *c, const uint32_t *g, int shift, uint32_t k) {
   uint32_t cell = k >> shift;
-  int lo = (int)g[cell], hi = (int)g[cell + 1];
+  int lo = (int)(g[cell] & ~EL_DISTRIBUTION__GUIDE_CROWDED), hi = (int)(g[cell + 1] & ~EL_DISTRIBUTION__GUIDE_CROWDED);
   if (hi - lo > 8) return el_distribution2d__search(c, lo, hi - lo + 1, k); /* many tiny bins: O(log) */
   while (c[lo + 1] <= k) ++lo; /* stops by hi: c[hi + 1] > (cell+1) << shift > k, and c[n] = 2^24 */
   return lo;
@@ -992,13 +1057,13 @@ EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float
       /* guide cell, then a short linear scan; a crowded cell (> 8 bins) takes the general path */
       cell = kv >> f->shift_v;
       iv = (int)f->guide_v[cell];
-      if ((int)f->guide_v[cell + 1] - iv > 8) goto general;
+      if (iv < 0) goto general; /* EL_DISTRIBUTION__GUIDE_CROWDED */
       while (f->marginal[iv + 1] <= kv) ++iv;
       row = f->cdf + (size_t)iv * f->row_stride;
       g = f->guide_u + (size_t)iv * f->guide_stride;
       cell = ku >> f->shift_u;
       iu = (int)g[cell];
-      if ((int)g[cell + 1] - iu > 8) goto general;
+      if (iu < 0) goto general;
       while (row[iu + 1] <= ku) ++iu;
       cv = (int32_t)f->marginal[iv];
       cu = (int32_t)row[iu];
@@ -1031,6 +1096,24 @@ EL_DEF void el_distribution2d_fast_sample(const el_distribution2d_fast *f, float
   }
 general:
   el_distribution2d__fast_sample_general(f, u0, u1, out_u, out_v, pdf);
+}
+
+EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+  float xv = el_distribution2d__units(u1), xu = el_distribution2d__units(u0);
+  const uint32_t *row;
+  if (f->method == EL_DISTRIBUTION_FAST_GUIDE) {
+    int32_t cv, cu;
+    *iv = el_distribution2d__guide_find(f->marginal, f->guide_v, f->shift_v, (uint32_t)(int32_t)xv);
+    row = f->cdf + (size_t)*iv * f->row_stride;
+    *iu = el_distribution2d__guide_find(row, f->guide_u + (size_t)*iv * f->guide_stride, f->shift_u, (uint32_t)(int32_t)xu);
+    cv = (int32_t)f->marginal[*iv];
+    cu = (int32_t)row[*iu];
+    *fv = (xv - (float)cv) / (float)((int32_t)f->marginal[*iv + 1] - cv);
+    *fu = (xu - (float)cu) / (float)((int32_t)row[*iu + 1] - cu);
+  } else {
+    *iv = el_distribution2d__alias_find(f->alias_v, f->start_v, f->nv, xv, fv);
+    *iu = el_distribution2d__alias_find(f->alias_u + (size_t)*iv * (size_t)f->nu * 2, f->start_u, f->nu, xu, fu);
+  }
 }
 
 EL_DEF float el_distribution2d_fast_pdf(const el_distribution2d_fast *f, float u, float v) {

@@ -235,6 +235,18 @@ typedef struct el_envlight {
   float u_cell_scale, v_cell_scale;
   float u_margin, v_margin;  /* EL_ENVLIGHT__MARGIN in bin units (plus rounding slack) */
   float *pdf_table;        /* nu*nv: the distribution's pdf of each bin / (2 pi^2) */
+  /* sample_li's direction tables (maps with nu >= 128 and nv >= 64; else the sinpi/cospi path): row j
+   * holds sin and cos of its edge nearer a pole (theta_j = pi j / nv in the north, pi (j+1) / nv in the
+   * south) and the offset of that edge (0 or -pi / nv); column i holds phi_i = 2 pi i / nu's cos and sin
+   * already multiplied into the matrix (below). The point's angles are edge + fraction * bin angle, by
+   * angle addition. */
+  int dir_tables;
+  float *row_tab;          /* nv * 4: sin theta_ref, cos theta_ref, offset, 0 */
+  float *col_tab;          /* nu * 8: P_i = cos phi_i M0 + sin phi_i M1, Q_i = cos phi_i M1 - sin phi_i M0,
+                              0, 0 (M0, M1: the first two columns of to_world), so that the world
+                              direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
+  float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
+  float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -306,6 +318,12 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 #define EL_ENVLIGHT__ATOMICS 1
 #else
 #define EL_ENVLIGHT__ATOMICS 0
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__NOINLINE __attribute__((noinline))
+#else
+#define EL_ENVLIGHT__NOINLINE
 #endif
 
 #ifdef __cplusplus
@@ -609,7 +627,9 @@ static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_fast_free(&l->fast);
   el_distribution2d_free(&l->dist);
   EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge); EL_FREE(l->pdf_table);
+  EL_FREE(l->row_tab); EL_FREE(l->col_tab);
   l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL; l->pdf_table = NULL;
+  l->row_tab = l->col_tab = NULL; l->dir_tables = 0;
 }
 
 /* The pdf of bin (iu, iv), exactly el_distribution2d_pdf's expression. */
@@ -913,6 +933,40 @@ static el_result el_envlight__build(el_envlight *l) {
   if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
   l->u_margin = EL_ENVLIGHT__MARGIN * (float)nu * 1.0001f;
   l->v_margin = EL_ENVLIGHT__MARGIN * (float)nv * 1.0001f;
+  l->u_margin_hi = 1.0f - l->u_margin;
+  l->v_margin_hi = 1.0f - l->v_margin;
+  l->v_angle = (float)(EL_ENVLIGHT__PI / nv);
+  l->u_angle = (float)(2.0 * EL_ENVLIGHT__PI / nu);
+  if (nu >= 128 && nv >= 64) { /* bin angles <= pi/64 = 0.049: the short sin/cos polynomials of
+                                  el_envlight__sample_light are exact to float precision there */
+    l->row_tab = (float *)EL_MALLOC((size_t)nv * 4 * sizeof(float));
+    l->col_tab = (float *)EL_MALLOC((size_t)nu * 8 * sizeof(float));
+    if (!l->row_tab || !l->col_tab) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
+    for (j = 0; j < nv; ++j) {
+      int north = 2 * j < nv, k = north ? j : j + 1; /* the edge nearer the pole */
+      int kk = k < nv - k ? k : nv - k;              /* sin from the nearer pole: exactly 0 at both */
+      l->row_tab[4 * j] = (float)sin(EL_ENVLIGHT__PI * kk / nv);
+      l->row_tab[4 * j + 1] = 2 * k == nv ? 0.0f : (float)cos(EL_ENVLIGHT__PI * k / nv);
+      l->row_tab[4 * j + 2] = north ? 0.0f : -l->v_angle;
+      l->row_tab[4 * j + 3] = 0.0f;
+    }
+    for (i = 0; i < nu; ++i) {
+      /* float products and sums as sample_li would form them for cp = c cb - s sb, sp = s cb + c sb and
+       * then M (cp, sp, .): exact for a signed permutation M, so the result is the permuted light-space
+       * direction bit for bit */
+      double a = 2.0 * EL_ENVLIGHT__PI * i / nu;
+      float c = 4 * i == nu || 4 * i == 3 * nu ? 0.0f : (float)cos(a), sn = 2 * i == nu ? 0.0f : (float)sin(a);
+      float *t = l->col_tab + 8 * (size_t)i;
+      int k;
+      for (k = 0; k < 3; ++k) {
+        float m0 = l->to_world[3 * k], m1 = l->to_world[3 * k + 1];
+        t[k] = c * m0 + sn * m1;
+        t[3 + k] = c * m1 - sn * m0;
+      }
+      t[6] = t[7] = 0.0f;
+    }
+    l->dir_tables = 1;
+  }
   l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
   l->v_cell_scale = (float)(l->v_cells - 2);
   l->pdf_table = (float *)EL_MALLOC(nb * sizeof(float));
@@ -1007,19 +1061,12 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 }
 
 
-/* pdf_li for a light-space direction d (not necessarily unit). */
-static inline float el_envlight__pdf_light(const el_envlight *l, const float dir[3]) {
-  float d[3], r2, len2, r, len, p, ax, ay, pu, t, az;
+/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
+ * for a map: no calls. */
+static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
+  float d[3], r, len, p, ax, ay, pu, t, az;
   int iu, iv, c;
-  d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2];
-  r2 = d[0] * d[0] + d[1] * d[1];
-  len2 = r2 + d[2] * d[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(d)) return 0.0f;
-    r2 = d[0] * d[0] + d[1] * d[1];
-    len2 = r2 + d[2] * d[2];
-  }
-  if (l->width == 0) return (l->constant[0] > 0.0f || l->constant[1] > 0.0f || l->constant[2] > 0.0f) ? 0.0795774715f : 0.0f;
+  d[0] = x; d[1] = y; d[2] = z;
   r = sqrtf(r2);
   len = sqrtf(len2);
   /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell */
@@ -1047,68 +1094,153 @@ static inline float el_envlight__pdf_light(const el_envlight *l, const float dir
   return p;
 }
 
-EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
+/* The rare cases: a direction whose squared length is not a normal float (rescaled; zero, NaN, Inf: 0),
+ * the constant light. */
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_cold(const el_envlight *l, float x, float y, float z) {
+  float d[3], r2, len2;
+  d[0] = x; d[1] = y; d[2] = z;
+  r2 = d[0] * d[0] + d[1] * d[1];
+  len2 = r2 + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
+    if (!el_envlight__rescale(d)) return 0.0f;
+    r2 = d[0] * d[0] + d[1] * d[1];
+    len2 = r2 + d[2] * d[2];
+  }
+  if (l->width == 0) return (l->constant[0] > 0.0f || l->constant[1] > 0.0f || l->constant[2] > 0.0f) ? 0.0795774715f : 0.0f;
+  return el_envlight__pdf_core(l, d[0], d[1], d[2], r2, len2);
+}
+
+/* pdf_li for a light-space direction d (not necessarily unit). The hot path is a leaf. */
+static inline float el_envlight__pdf_light(const el_envlight *l, const float dir[3]) {
+  float x = dir[0], y = dir[1], z = dir[2];
+  float r2 = x * x + y * y, len2 = r2 + z * z;
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX) || l->width == 0) return el_envlight__pdf_cold(l, x, y, z);
+  return el_envlight__pdf_core(l, x, y, z, r2, len2);
+}
+
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(el_envlight *l, const float dir[3]) {
   float d[3];
   if (!el_envlight__ensure(l)) return 0.0f;
   el_envlight__to_light(l, dir, d);
   return el_envlight__pdf_light(l, d);
 }
 
-/* Sample (u, v) and the light-space direction; returns the pdf w.r.t. solid angle (0: no sample). */
-static float el_envlight__sample_light(el_envlight *l, float u0, float u1, float *pu, float *pv, float d[3]) {
-  float u, v, p, t, sin_t;
+EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
+  float d[3];
+#if EL_ENVLIGHT__ATOMICS
+  if (__atomic_load_n(&l->state, __ATOMIC_ACQUIRE) != 2) return el_envlight__pdf_li_slow(l, dir);
+#else
+  if (l->state != 2) return el_envlight__pdf_li_slow(l, dir);
+#endif
+  el_envlight__to_light(l, dir, d);
+  return el_envlight__pdf_light(l, d);
+}
+
+/* The bin and the fractions within it for (u0, u1), from the light's sampler (no float point
+ * placement); the fractions are kept EL_ENVLIGHT__MARGIN inside the bin: never on an edge, a pole or the
+ * seam. Returns the bin's mapPdf / (2 pi^2). Every sampler goes through here, so samplers that pick the
+ * same bin and fraction (guide and CDF) give the same direction bit for bit. */
+static inline float el_envlight__sample_bin(const el_envlight *l, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+  float a, b;
+  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, u0, u1, iu, iv, &a, &b);
+  else el_distribution2d_fast_sample_bins(&l->fast, u0, u1, iu, iv, &a, &b);
+  a = a > l->u_margin ? a : l->u_margin;
+  *fu = a < l->u_margin_hi ? a : l->u_margin_hi;
+  b = b > l->v_margin ? b : l->v_margin;
+  *fv = b < l->v_margin_hi ? b : l->v_margin_hi;
+  return l->pdf_table[(size_t)*iv * (size_t)l->dist.nu + (size_t)*iu];
+}
+
+/* Sample (u, v) and the light-space direction; returns the pdf w.r.t. solid angle (0: no sample). The
+ * constant light and maps too small for the direction tables (sample_li handles those itself). */
+static float el_envlight__sample_light(const el_envlight *l, float u0, float u1, float *pu, float *pv, float d[3]) {
+  float fu, fv, p, st;
   int iu, iv;
   if (l->width == 0) { /* constant: uniform sphere, pdf 1 / 4 pi */
-    u = el_envlight__clamp_u(u0);
-    v = el_envlight__clamp_u(u1);
-    {
-      float z = 1.0f - 2.0f * v, r = sqrtf(4.0f * v * (1.0f - v)); /* 1 - z^2 without cancellation */
-      float a = 2.0f * u;
-      int n = (int)(a + 0.5f);
-      float t = a - (float)n, sgn = (n & 1) ? -1.0f : 1.0f;
-      d[0] = r * sgn * el_envlight__cospi(t);
-      d[1] = r * sgn * el_envlight__sinpi(t);
-      d[2] = z;
-    }
+    float u = el_envlight__clamp_u(u0), v = el_envlight__clamp_u(u1);
+    float z = 1.0f - 2.0f * v, r = sqrtf(4.0f * v * (1.0f - v)); /* 1 - z^2 without cancellation */
+    float a = 2.0f * u;
+    int n = (int)(a + 0.5f);
+    float t = a - (float)n, sgn = (n & 1) ? -1.0f : 1.0f;
+    d[0] = r * sgn * el_envlight__cospi(t);
+    d[1] = r * sgn * el_envlight__sinpi(t);
+    d[2] = z;
     *pu = u; *pv = v;
     return (l->constant[0] > 0.0f || l->constant[1] > 0.0f || l->constant[2] > 0.0f) ? 0.0795774715f : 0.0f;
   }
   /* <<Find (u, v) sample coordinates in infinite light texture>> */
-  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample(&l->dist, u0, u1, &u, &v, &p);
-  else el_distribution2d_fast_sample(&l->fast, u0, u1, &u, &v, &p);
-  if (!(p > 0.0f)) { d[0] = 0.0f; d[1] = 0.0f; d[2] = 1.0f; *pu = u; *pv = v; return 0.0f; }
-  /* keep the point EL_ENVLIGHT__MARGIN inside its bin: never on an edge, a pole or the seam. The bin is
-   * the distribution's own (u * u_scale, clamped); the fraction within it is almost always far from the
-   * edges, so the clamp is a rarely taken branch. */
-  t = u * l->dist.u_scale;
-  iu = (int)t;
-  if (iu > l->dist.nu - 1) iu = l->dist.nu - 1;
-  t -= (float)iu;
-  if (t < l->u_margin || t > 1.0f - l->u_margin) {
-    t = t < l->u_margin ? l->u_margin : 1.0f - l->u_margin;
-    u = ((float)iu + t) * l->dist.u_width;
-  }
-  t = v * l->dist.v_scale;
-  iv = (int)t;
-  if (iv > l->dist.nv - 1) iv = l->dist.nv - 1;
-  t -= (float)iv;
-  if (t < l->v_margin || t > 1.0f - l->v_margin) {
-    t = t < l->v_margin ? l->v_margin : 1.0f - l->v_margin;
-    v = ((float)iv + t) * l->dist.v_width;
-  }
+  p = el_envlight__sample_bin(l, u0, u1, &iu, &iv, &fu, &fv);
+  *pu = ((float)iu + fu) * l->dist.u_width;
+  *pv = ((float)iv + fv) * l->dist.v_width;
+  if (!(p > 0.0f)) { d[0] = 0.0f; d[1] = 0.0f; d[2] = 1.0f; return 0.0f; }
   /* <<Compute direction for infinite light sample>> */
-  sin_t = el_envlight__uv_to_dir(u, v, d);
-  *pu = u; *pv = v;
+  st = el_envlight__uv_to_dir(*pu, *pv, d);
   /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)) */
-  EL_ASSERT(sin_t >= EL_ENVLIGHT__SIN_MIN);
-  return p / sin_t * EL_ENVLIGHT__INV_2PI2;
+  EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
+  return p / st;
 }
 
-EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+/* The rare parts of the table path: a zero pdf (an all-black map), a general rotation (the pdf is
+ * recomputed from wi), the radiance. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+  float p = *pdf;
+  if (!(p > 0.0f)) { wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f; }
+  else if (!l->exact_transform) {
+    float back[3];
+    el_envlight__mul_transpose(l->to_world, wi, back);
+    *pdf = p = el_envlight__pdf_light(l, back); /* bit-identical to pdf_li(wi) */
+  }
+  if (rgb) {
+    if (p > 0.0f) el_envlight__lookup(l, ((float)iu + fu) * l->dist.u_width, ((float)iv + fv) * l->dist.v_width, rgb);
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
+}
+
+/* sample_li from a bin and its fractions through the direction tables. A leaf (its only call is a tail
+ * call), so it saves no registers; every sampler's result passes through this one function, so equal
+ * bins and fractions give bit-identical directions whatever the compiler's contraction settings. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu]; /* mapPdf / (2 pi^2) */
+  fu = fu > l->u_margin ? fu : l->u_margin; /* EL_ENVLIGHT__MARGIN inside the bin */
+  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
+  fv = fv > l->v_margin ? fv : l->v_margin;
+  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  if (p > 0.0f) {
+    /* <<Compute direction for infinite light sample>>: theta = theta_ref + a, |a| <= pi/64, and
+     * phi = phi_i + b, 0 <= b <= 2 pi/128; there sin x = x - x^3/6 and cos x = 1 - x^2/2 + x^4/24 are
+     * exact to 5e-8 relative. The column table holds phi_i's cos and sin already multiplied into the
+     * matrix: wi = sin theta (cos b P_i + sin b Q_i) + cos theta M2. */
+    const float *rt = l->row_tab + 4 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu;
+    float a = fv * l->v_angle + rt[2], b = fu * l->u_angle;
+    float a2 = a * a, b2 = b * b;
+    float sa = a + a * a2 * -0.166666667f, ca = 1.0f + a2 * (-0.5f + a2 * 0.0416666667f);
+    float sb = b + b * b2 * -0.166666667f, cb = 1.0f + b2 * (-0.5f + b2 * 0.0416666667f);
+    float st = rt[0] * ca + rt[1] * sa; /* both terms >= 0: no cancellation, exact near both poles */
+    float cth = rt[1] * ca - rt[0] * sa;
+    wi[0] = st * (cb * ct[0] + sb * ct[3]) + cth * l->to_world[2];
+    wi[1] = st * (cb * ct[1] + sb * ct[4]) + cth * l->to_world[5];
+    wi[2] = st * (cb * ct[2] + sb * ct[5]) + cth * l->to_world[8];
+    /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)) */
+    EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
+    *pdf = p / st;
+    if (l->exact_transform && !rgb) return;
+  } else *pdf = 0.0f;
+  el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
+}
+
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float d[3], u, v, p;
   if (!el_envlight__ensure(l)) {
     wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
     if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    return;
+  }
+  if (l->dir_tables) {
+    int iu, iv;
+    float fu, fv;
+    if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], &iu, &iv, &fu, &fv);
+    else el_distribution2d_fast_sample_bins_general(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv);
+    el_envlight__sample_table(l, iu, iv, fu, fv, wi, rgb, pdf);
     return;
   }
   p = el_envlight__sample_light(l, uu[0], uu[1], &u, &v, d);
@@ -1123,6 +1255,26 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
     if (p > 0.0f) el_envlight__lookup(l, u, v, rgb);
     else rgb[0] = rgb[1] = rgb[2] = 0.0f;
   }
+}
+
+/* The hot path has no calls but tail calls: the guide table's inline bin search, then the table
+ * direction (el_envlight__sample_table); anything else (tables not built yet, the CDF or alias sampler,
+ * u outside [0,1), the constant light, small maps) goes to el_envlight__sample_li_slow. */
+EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  float fu, fv;
+  int iu, iv;
+#if EL_ENVLIGHT__ATOMICS
+  int ready = __atomic_load_n(&l->state, __ATOMIC_ACQUIRE) == 2;
+#else
+  int ready = l->state == 2;
+#endif
+  if (ready && l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE &&
+      el_distribution2d_fast_sample_bins_try(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv)) {
+    /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
+    el_envlight__sample_table(l, iu, iv, fu, fv, wi, rgb, pdf);
+    return;
+  }
+  el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
 
 /* Duff et al. 2017: an orthonormal basis around unit n. */
@@ -1194,6 +1346,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   b += el_distribution2d_bytes(&l->dist);
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
+  if (l->dir_tables) b += ((size_t)l->dist.nv * 4 + (size_t)l->dist.nu * 8) * sizeof(float);
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) b += el_distribution2d_fast_bytes(&l->fast);
   return b;
 }
