@@ -280,10 +280,12 @@ EL_DEF size_t el_distribution2d_fast_bytes(const el_distribution2d_fast *f);
  * direction through per-row and per-column tables) and so need no float point placement.
  * (*iu, *iv) is the bin CDF inversion (or the alias table) picks for (u0, u1), chosen with exactly the
  * sample() probability, and *fu, *fv in [0, 1] the position of u within the bin's interval of units
- * (the same fractions sample() places its point with; rounding may give exactly 1). u is clamped as in
- * sample(). The guide-table and CDF versions return identical results for the same u. */
-EL_DEF void el_distribution2d_sample_bins(const el_distribution2d *d, float u0, float u1, int *iu, int *iv, float *fu, float *fv);
-EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv);
+ * (the same fractions sample() places its point with; rounding may give exactly 1), and *pdf the bin's
+ * density, exactly el_distribution2d_pdf() at any point of the bin (the same expression, from the CDF
+ * entries the search has just read). u is clamped as in sample(). The guide-table and CDF versions
+ * return identical results for the same u. */
+EL_DEF void el_distribution2d_sample_bins(const el_distribution2d *d, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf);
+EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf);
 #define EL_DISTRIBUTION__GUIDE_CROWDED 0x80000000u /* a guide cell where more than 8 bins start */
 /* Last i in [lo, lo+len-1] with c[i] <= k, given c[lo] <= k. Branch-free binary search. */
 static inline int el_distribution2d__search(const uint32_t *c, int lo, int len, uint32_t k) {
@@ -298,7 +300,7 @@ static inline int el_distribution2d__search(const uint32_t *c, int lo, int len, 
 /* Inline, no calls: the guide table with u in [0,1) (one table read and a short scan per dimension, a
  * binary search within a crowded cell); returns 0 without writing anything for any other case (u
  * outside [0,1) or NaN, the alias method): then call el_distribution2d_fast_sample_bins_general. */
-static inline int el_distribution2d_fast_sample_bins_try(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+static inline int el_distribution2d_fast_sample_bins_try(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
   uint32_t b0, b1;
   memcpy(&b0, &u0, 4);
   memcpy(&b1, &u1, 4);
@@ -322,15 +324,19 @@ static inline int el_distribution2d_fast_sample_bins_try(const el_distribution2d
     cu = (int32_t)row[u];
     *iv = v;
     *iu = u;
-    *fv = (xv - (float)cv) / (float)((int32_t)f->marginal[v + 1] - cv);
-    *fu = (xu - (float)cu) / (float)((int32_t)row[u + 1] - cu);
+    {
+      float wv = (float)((int32_t)f->marginal[v + 1] - cv), wu = (float)((int32_t)row[u + 1] - cu);
+      *fv = (xv - (float)cv) / wv;
+      *fu = (xu - (float)cu) / wu;
+      *pdf = (wv * f->v_pdf_scale) * (wu * f->u_pdf_scale); /* el_distribution2d_pdf's expression */
+    }
     return 1;
   }
   return 0;
 }
 /* Any u, any method: the same results as the general function. */
-static inline void el_distribution2d_fast_sample_bins(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
-  if (!el_distribution2d_fast_sample_bins_try(f, u0, u1, iu, iv, fu, fv)) el_distribution2d_fast_sample_bins_general(f, u0, u1, iu, iv, fu, fv);
+static inline void el_distribution2d_fast_sample_bins(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
+  if (!el_distribution2d_fast_sample_bins_try(f, u0, u1, iu, iv, fu, fv, pdf)) el_distribution2d_fast_sample_bins_general(f, u0, u1, iu, iv, fu, fv, pdf);
 }
 /* << constant-time sampler */
 
@@ -810,15 +816,19 @@ EL_DEF void el_distribution2d_sample(const el_distribution2d *d, float u0, float
   el_distribution2d__sample_general(d, u0, u1, out_u, out_v, pdf);
 }
 
-EL_DEF void el_distribution2d_sample_bins(const el_distribution2d *d, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+EL_DEF void el_distribution2d_sample_bins(const el_distribution2d *d, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
   float xv = el_distribution2d__units(u1), xu = el_distribution2d__units(u0);
   int v = el_distribution2d__search(d->marginal, 0, d->nv, (uint32_t)xv), u;
   const uint32_t *row = d->cdf + (size_t)v * ((size_t)d->nu + 1);
   u = el_distribution2d__search(row, 0, d->nu, (uint32_t)xu);
   *iv = v;
   *iu = u;
-  *fv = (xv - (float)(int32_t)d->marginal[v]) / (float)((int32_t)d->marginal[v + 1] - (int32_t)d->marginal[v]);
-  *fu = (xu - (float)(int32_t)row[u]) / (float)((int32_t)row[u + 1] - (int32_t)row[u]);
+  {
+    float wv = (float)((int32_t)d->marginal[v + 1] - (int32_t)d->marginal[v]), wu = (float)((int32_t)row[u + 1] - (int32_t)row[u]);
+    *fv = (xv - (float)(int32_t)d->marginal[v]) / wv;
+    *fu = (xu - (float)(int32_t)row[u]) / wu;
+    *pdf = (wv * d->v_pdf_scale) * (wu * d->u_pdf_scale);
+  }
 }
 
 EL_DEF float el_distribution2d_pdf(const el_distribution2d *d, float u, float v) {
@@ -1098,7 +1108,7 @@ general:
   el_distribution2d__fast_sample_general(f, u0, u1, out_u, out_v, pdf);
 }
 
-EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
+EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
   float xv = el_distribution2d__units(u1), xu = el_distribution2d__units(u0);
   const uint32_t *row;
   if (f->method == EL_DISTRIBUTION_FAST_GUIDE) {
@@ -1114,6 +1124,8 @@ EL_DEF void el_distribution2d_fast_sample_bins_general(const el_distribution2d_f
     *iv = el_distribution2d__alias_find(f->alias_v, f->start_v, f->nv, xv, fv);
     *iu = el_distribution2d__alias_find(f->alias_u + (size_t)*iv * (size_t)f->nu * 2, f->start_u, f->nu, xu, fu);
   }
+  row = f->cdf + (size_t)*iv * f->row_stride;
+  *pdf = ((float)(int32_t)(f->marginal[*iv + 1] - f->marginal[*iv]) * f->v_pdf_scale) * ((float)(int32_t)(row[*iu + 1] - row[*iu]) * f->u_pdf_scale);
 }
 
 EL_DEF float el_distribution2d_fast_pdf(const el_distribution2d_fast *f, float u, float v) {

@@ -241,6 +241,7 @@ typedef struct el_envlight {
    * already multiplied into the matrix (below). The point's angles are edge + fraction * bin angle, by
    * angle addition. */
   int dir_tables;
+  int hot;                 /* 1 (stored with release after the tables): sample_li's inline guide path is usable */
   float *row_tab;          /* nv * 4: sin theta_ref, cos theta_ref, offset, 0 */
   float *col_tab;          /* nu * 8: P_i = cos phi_i M0 + sin phi_i M1, Q_i = cos phi_i M1 - sin phi_i M0,
                               0, 0 (M0, M1: the first two columns of to_world), so that the world
@@ -995,6 +996,7 @@ static int el_envlight__ensure_slow(el_envlight *l) {
     el_result r = el_envlight__build(l);
     l->sampling_result = r;
     __atomic_store_n(&l->state, r == EL_SUCCESS ? 2 : 3, __ATOMIC_RELEASE);
+    if (r == EL_SUCCESS && l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE) __atomic_store_n(&l->hot, 1, __ATOMIC_RELEASE);
   } else {
     while (__atomic_load_n(&l->state, __ATOMIC_ACQUIRE) == 1) { /* another thread builds */ }
   }
@@ -1004,6 +1006,7 @@ static int el_envlight__ensure_slow(el_envlight *l) {
     el_result r = el_envlight__build(l);
     l->sampling_result = r;
     l->state = r == EL_SUCCESS ? 2 : 3;
+    l->hot = r == EL_SUCCESS && l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE;
   }
   return l->state == 2;
 #endif
@@ -1141,14 +1144,14 @@ EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
  * seam. Returns the bin's mapPdf / (2 pi^2). Every sampler goes through here, so samplers that pick the
  * same bin and fraction (guide and CDF) give the same direction bit for bit. */
 static inline float el_envlight__sample_bin(const el_envlight *l, float u0, float u1, int *iu, int *iv, float *fu, float *fv) {
-  float a, b;
-  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, u0, u1, iu, iv, &a, &b);
-  else el_distribution2d_fast_sample_bins(&l->fast, u0, u1, iu, iv, &a, &b);
+  float a, b, p;
+  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, u0, u1, iu, iv, &a, &b, &p);
+  else el_distribution2d_fast_sample_bins(&l->fast, u0, u1, iu, iv, &a, &b, &p);
   a = a > l->u_margin ? a : l->u_margin;
   *fu = a < l->u_margin_hi ? a : l->u_margin_hi;
   b = b > l->v_margin ? b : l->v_margin;
   *fv = b < l->v_margin_hi ? b : l->v_margin_hi;
-  return l->pdf_table[(size_t)*iv * (size_t)l->dist.nu + (size_t)*iu];
+  return p * EL_ENVLIGHT__INV_2PI2; /* == pdf_table[iv * nu + iu] */
 }
 
 /* Sample (u, v) and the light-space direction; returns the pdf w.r.t. solid angle (0: no sample). The
@@ -1199,8 +1202,10 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envligh
 /* sample_li from a bin and its fractions through the direction tables. A leaf (its only call is a tail
  * call), so it saves no registers; every sampler's result passes through this one function, so equal
  * bins and fractions give bit-identical directions whatever the compiler's contraction settings. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
-  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu]; /* mapPdf / (2 pi^2) */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float rgb[3], float *pdf) {
+  /* mapPdf / (2 pi^2): the bin's pdf from the CDF entries the search read, times 1 / (2 pi^2), which is
+   * pdf_table's expression, so pdf_li finds the same value (and the table is not read: no cache miss) */
+  float p = pb * EL_ENVLIGHT__INV_2PI2;
   fu = fu > l->u_margin ? fu : l->u_margin; /* EL_ENVLIGHT__MARGIN inside the bin */
   fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
   fv = fv > l->v_margin ? fv : l->v_margin;
@@ -1237,10 +1242,10 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
   }
   if (l->dir_tables) {
     int iu, iv;
-    float fu, fv;
-    if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], &iu, &iv, &fu, &fv);
-    else el_distribution2d_fast_sample_bins_general(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv);
-    el_envlight__sample_table(l, iu, iv, fu, fv, wi, rgb, pdf);
+    float fu, fv, pb;
+    if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb);
+    else el_distribution2d_fast_sample_bins_general(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb);
+    el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
     return;
   }
   p = el_envlight__sample_light(l, uu[0], uu[1], &u, &v, d);
@@ -1261,17 +1266,16 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
  * direction (el_envlight__sample_table); anything else (tables not built yet, the CDF or alias sampler,
  * u outside [0,1), the constant light, small maps) goes to el_envlight__sample_li_slow. */
 EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float fu, fv;
+  float fu, fv, pb;
   int iu, iv;
 #if EL_ENVLIGHT__ATOMICS
-  int ready = __atomic_load_n(&l->state, __ATOMIC_ACQUIRE) == 2;
+  int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE); /* built, direction tables, guide sampler */
 #else
-  int ready = l->state == 2;
+  int hot = l->hot;
 #endif
-  if (ready && l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE &&
-      el_distribution2d_fast_sample_bins_try(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv)) {
+  if (hot && el_distribution2d_fast_sample_bins_try(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
     /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
-    el_envlight__sample_table(l, iu, iv, fu, fv, wi, rgb, pdf);
+    el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
     return;
   }
   el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);

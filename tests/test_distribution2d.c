@@ -815,32 +815,32 @@ static void test_sample_bins(void) {
   if (el_distribution2d_init(&d, f, nu, nv, NULL) != EL_SUCCESS || el_distribution2d_fast_init(&g, &d) != EL_SUCCESS ||
       el_distribution2d_fast_init_ex(&a, &d, &fo) != EL_SUCCESS) { check(0, "sample_bins: init"); free(f); return; }
   for (i = 0; i < n + 36; ++i) {
-    float u0, u1, x, y, pdf, fu, fv, gfu, gfv, afu, afv, t;
+    float u0, u1, x, y, pdf, fu, fv, gfu, gfv, afu, afv, t, bp, gp, ap;
     int iu, iv, giu, giv, aiu, aiv;
     if (i < n) {
       u0 = rndu(); u1 = rndu();
     } else { u0 = edge[(i - n) % 6]; u1 = edge[(i - n) / 6]; }
-    el_distribution2d_sample_bins(&d, u0, u1, &iu, &iv, &fu, &fv);
+    el_distribution2d_sample_bins(&d, u0, u1, &iu, &iv, &fu, &fv, &bp);
     el_distribution2d_sample(&d, u0, u1, &x, &y, &pdf);
     /* sample() places its point at (bin + fraction) / n on this exact [0,1]^2 (one ulp lower on a carry) */
     t = (float)iu + fu;
     if ((int)(x * nu) != iu || (int)(y * nv) != iv || !(fu >= 0.0f && fu <= 1.0f && fv >= 0.0f && fv <= 1.0f) ||
-        ((int)t == iu && x != t / nu) || pdf != el_distribution2d_pdf(&d, x, y) || !(pdf > 0.0f)) ++bad_point;
+        ((int)t == iu && x != t / nu) || pdf != el_distribution2d_pdf(&d, x, y) || !(pdf > 0.0f) || bp != pdf) ++bad_point;
     if (i < n && u0 >= 0.0f && u0 < 1.0f && u1 >= 0.0f && u1 < 1.0f) {
       ++tried;
-      if (!el_distribution2d_fast_sample_bins_try(&g, u0, u1, &giu, &giv, &gfu, &gfv)) ++fell_back;
+      if (!el_distribution2d_fast_sample_bins_try(&g, u0, u1, &giu, &giv, &gfu, &gfv, &gp)) ++fell_back;
     }
-    el_distribution2d_fast_sample_bins(&g, u0, u1, &giu, &giv, &gfu, &gfv);
-    if (giu != iu || giv != iv || gfu != fu || gfv != fv) ++bad_guide;
-    el_distribution2d_fast_sample_bins(&a, u0, u1, &aiu, &aiv, &afu, &afv);
-    if (!(el_distribution2d_pdf(&d, (aiu + 0.5f) / nu, (aiv + 0.5f) / nv) > 0.0f) || !(afu >= 0.0f && afu <= 1.0f && afv >= 0.0f && afv <= 1.0f)) ++bad_alias;
+    el_distribution2d_fast_sample_bins(&g, u0, u1, &giu, &giv, &gfu, &gfv, &gp);
+    if (giu != iu || giv != iv || gfu != fu || gfv != fv || gp != bp) ++bad_guide;
+    el_distribution2d_fast_sample_bins(&a, u0, u1, &aiu, &aiv, &afu, &afv, &ap);
+    if (!(ap > 0.0f) || ap != el_distribution2d_pdf(&d, (aiu + 0.5f) / nu, (aiv + 0.5f) / nv) || !(afu >= 0.0f && afu <= 1.0f && afv >= 0.0f && afv <= 1.0f)) ++bad_alias;
   }
-  snprintf(buf, sizeof buf, "sample_bins: the bin of sample()'s point, its fraction, a positive pdf (%d bad of %d, edge u included)", bad_point, n + 36);
+  snprintf(buf, sizeof buf, "sample_bins: the bin of sample()'s point, its fraction, its pdf, > 0 (%d bad of %d, edge u included)", bad_point, n + 36);
   check(bad_point == 0, buf);
   snprintf(buf, sizeof buf, "fast_sample_bins (guide) == sample_bins bit for bit (%d bad); the inline path ran %d times and fell back %d times",
            bad_guide, tried - fell_back, fell_back);
   check(bad_guide == 0 && fell_back > 0 && tried - fell_back > 0, buf);
-  snprintf(buf, sizeof buf, "fast_sample_bins (alias): positive bins, fractions in [0,1] (%d bad)", bad_alias);
+  snprintf(buf, sizeof buf, "fast_sample_bins (alias): positive bins, their pdf() exactly, fractions in [0,1] (%d bad)", bad_alias);
   check(bad_alias == 0, buf);
   el_distribution2d_fast_free(&a);
   el_distribution2d_fast_free(&g);
