@@ -67,8 +67,12 @@
  * the same u: a bin of w units has at least w distinct positions (more when u < 0.5).
  *
  * COST (bench/bench_distribution2d.c, 4096x2048, gcc -O3, callgrind): a 2D sample with its pdf takes
- * about 120-130 instructions with the guide table or the alias table and about 300 with the binary
- * searches (pbrt-v3: about 350); pdf() about 32 (pbrt-v3: 13, from its second array). Memory: CDF 4
+ * about 106 instructions with the guide table, 125 with the alias table and about 300 with the binary
+ * searches (pbrt-v3: about 350); pdf() about 32 (pbrt-v3: 13, from its second array). A guide cell in
+ * which more than 8 bins start is flagged in the table (bit 31) and searched by bisection; the marginal's
+ * guide has 4 cells per row (a sun crowds it), the rows' one a quarter cell per bin. Callers that need
+ * the bin rather than a point (envlight.h) use el_distribution2d_fast_sample_bins: bin, fractions and
+ * pdf, no point placement, inline (about 75 instructions of envlight's sample_li). Memory: CDF 4
  * bytes per bin, guide table +1 byte per bin (default), alias table +8 bytes per bin. Building runs
  * two passes over the values (about 1 and 2.4 ns per bin). The fast paths take u in [0,1); an "exact"
  * axis (domain starting at 0, power-of-two bin width: any power-of-two size on [0,1]) needs no check

@@ -66,25 +66,34 @@
  *    itself (binary searches) or an alias table (constant time, does NOT keep the stratification of
  *    low-discrepancy input).
  * 3. Poles. sinf(pi) is -8.7e-8, so pbrt-v3's "if (sinTheta == 0) pdf = 0" never fires at the south pole
- *    and its pdf can be negative or huge. Here sin(theta) comes from sinpi(min(v, 1 - v)) (exact
- *    argument), sampled points stay at least 2^-21 (in u and v) inside their bin (so never on a pole or a
+ *    and its pdf can be negative or huge. Here sample_li's sin(theta) is built from the bin edge nearer
+ *    the pole (sin exactly 0 there) plus a positive term, never a difference (small maps: sinpi(min(v,
+ *    1 - v)), an exact argument), sampled points stay at least 2^-21 (in u and v) inside their bin (so never on a pole or a
  *    bin edge), and pdf_li clamps sin(theta) below at 1.4e-6 (the value at v = 2^-21). Every pdf returned
  *    is finite and >= 0.
  * 4. pdf_li(sample_li(u).dir) == the sampled pdf. For signed-permutation matrices (identity, y-up, z-up)
  *    the 2^-21 margin exceeds every rounding error of the direction and of pdf_li's own bin search, so
  *    the bin and the pdf agree; for a general rotation, rounding in the round trip world -> light can move a
- *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 120
- *    more instructions per sample: 422 instead of 305 with the guide sampler).
- * 5. No libm trigonometry on the hot paths. sample_li: sinpi/cospi polynomials (1.9e-7 relative).
+ *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 130
+ *    more instructions per sample: 302 instead of 175 with the guide sampler).
+ * 5. No libm trigonometry on the hot paths. sample_li asks distribution2d.h for the BIN and the
+ *    fractions within it (el_distribution2d_fast_sample_bins: no float point placement), then builds
+ *    the direction from per-row tables (sin, cos of the bin's pole-side edge) and per-column tables
+ *    (cos, sin of phi_i already multiplied into light_to_world) by angle addition, with x - x^3/6 and
+ *    1 - x^2/2 + x^4/24 for the in-bin angle (<= pi/64: maps of at least 128x64 bins; smaller maps use
+ *    sinpi/cospi polynomials, 1.9e-7 relative). The pdf is the bin's, from the CDF entries the search
+ *    read, / (2 pi^2 sin theta).
  *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
  *    a monotone "diamond angle" of (x, y) and one over r / (r + |z|) (each cell holds at most one bin
  *    edge, compared exactly), then a per-bin pdf table: two divisions, two square roots, no atan.
- *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): sample_li 305 instructions with
- *    the guide sampler (about half in distribution2d.h), 467 with CDF inversion; pdf_li 115; le 253;
- *    construction 206 M, about 15 ms (pbrt-v3: ~470, ~300, 313 ms). More in tutorials/03-infinite-light.md.
+ *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): sample_li 175 instructions with
+ *    the guide sampler (about 85 for the inline bin search, its checks and register saves, 90 for the
+ *    direction and pdf), 428 with CDF inversion, 274 with the alias table; with the radiance 335;
+ *    pdf_li 114; le 252; construction 209 M, about 15-25 ms (pbrt-v3: ~470, ~300, 313 ms). Targets
+ *    not met: sample_li <= 100 and pdf_li <= 80 (see tutorials/03-infinite-light.md, section 9).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
- *    (tiny). 2048x1024: 25 MB + 18 MB with the default guide table (pbrt-v3: ~100 MB).
+ *    and direction tables (16 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the default guide table (pbrt-v3: ~100 MB).
  * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
  *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
  *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a
@@ -185,7 +194,7 @@ extern "C" {
                                                  bilinear le: kept to measure issue #62) */
 /* Which sampler draws from it (all three have identical pdfs). The default is the guide table: it
  * returns exactly the points of CDF inversion (pbrt's), so all-zero options still mean pbrt's samples,
- * at 305 instead of 467 instructions per sample_li for 1 byte per bin. */
+ * at 175 instead of 428 instructions per sample_li for 1 byte per bin. */
 #define EL_ENVLIGHT_SAMPLER_GUIDE 0 /* default: guide table, O(1) expected; CDF inversion's points */
 #define EL_ENVLIGHT_SAMPLER_CDF 1   /* two binary searches (pbrt's method); the same points */
 #define EL_ENVLIGHT_SAMPLER_ALIAS 2 /* alias table: O(1); does not keep stratification */
