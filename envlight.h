@@ -246,12 +246,12 @@ typedef struct el_envlight {
   float *pdf_table;        /* nu*nv: the distribution's pdf of each bin / (2 pi^2) */
   /* sample_li's direction tables (maps with nu >= 128 and nv >= 64; else the sinpi/cospi path): row j
    * holds sin and cos of its edge nearer a pole (theta_j = pi j / nv in the north, pi (j+1) / nv in the
-   * south) and the offset of that edge (0 or -pi / nv); column i holds phi_i = 2 pi i / nu's cos and sin
+   * south) and the offset of that edge in bins (0 or -1); column i holds phi_i = 2 pi i / nu's cos and sin
    * already multiplied into the matrix (below). The point's angles are edge + fraction * bin angle, by
    * angle addition. */
   int dir_tables;
   int hot;                 /* 1 (stored with release after the tables): sample_li's inline guide path is usable */
-  float *row_tab;          /* nv * 4: sin theta_ref, cos theta_ref, offset, 0 */
+  float *row_tab;          /* nv * 4: sin theta_ref, cos theta_ref, offset (0 or -1 bin), 0 */
   float *col_tab;          /* nu * 8: P_i = cos phi_i M0 + sin phi_i M1, Q_i = cos phi_i M1 - sin phi_i M0,
                               0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
@@ -957,7 +957,7 @@ static el_result el_envlight__build(el_envlight *l) {
       int kk = k < nv - k ? k : nv - k;              /* sin from the nearer pole: exactly 0 at both */
       l->row_tab[4 * j] = (float)sin(EL_ENVLIGHT__PI * kk / nv);
       l->row_tab[4 * j + 1] = 2 * k == nv ? 0.0f : (float)cos(EL_ENVLIGHT__PI * k / nv);
-      l->row_tab[4 * j + 2] = north ? 0.0f : -l->v_angle;
+      l->row_tab[4 * j + 2] = north ? 0.0f : -1.0f;
       l->row_tab[4 * j + 3] = 0.0f;
     }
     for (i = 0; i < nu; ++i) {
@@ -1225,7 +1225,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
      * exact to 5e-8 relative. The column table holds phi_i's cos and sin already multiplied into the
      * matrix: wi = sin theta (cos b P_i + sin b Q_i) + cos theta M2. */
     const float *rt = l->row_tab + 4 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu;
-    float a = fv * l->v_angle + rt[2], b = fu * l->u_angle;
+    float a = (fv + rt[2]) * l->v_angle, b = fu * l->u_angle; /* fv - 1 is exact: no cancellation */
     float a2 = a * a, b2 = b * b;
     float sa = a + a * a2 * -0.166666667f, ca = 1.0f + a2 * (-0.5f + a2 * 0.0416666667f);
     float sb = b + b * b2 * -0.166666667f, cb = 1.0f + b2 * (-0.5f + b2 * 0.0416666667f);

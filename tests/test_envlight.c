@@ -1048,6 +1048,65 @@ static void test_threads(const el_image *city) {
   el_envlight_free(&l);
 }
 
+/* sample_li's table path (maps of at least 128x64 bins: angle addition from per-row and per-column
+ * tables, short polynomials for the in-bin angle) against libm in double: the direction of the point
+ * (bin + fraction) the distribution picked, through the matrix, and its pdf p / (2 pi^2 sin theta).
+ * The bin and fraction come from distribution2d's binary searches on the light's own distribution (the
+ * CDF sampler's, clamped to the documented 2^-21 margin); 128x64 has the largest in-bin angles (pi/64). */
+static void test_table_directions(const el_image *city) {
+  static const int sizes[2][2] = {{128, 64}, {0, 0}};
+  int si, mi;
+  for (si = 0; si < 2; ++si)
+    for (mi = 0; mi < 3; ++mi) {
+      int w = sizes[si][0], h = sizes[si][1], i, n = 50000;
+      float *px = NULL, m[9];
+      const float *pix;
+      el_envlight l;
+      rng r = rng_make(900 + si * 3 + mi);
+      double worst_dir = 0, worst_pdf = 0, worst_len = 0;
+      if (w == 0) { w = city->width; h = city->height; pix = city->pixels; }
+      else {
+        px = (float *)malloc((size_t)w * h * 3 * sizeof(float));
+        for (i = 0; i < w * h * 3; ++i) px[i] = 0.01f + rng_f(&r) * (i % 97 == 5 ? 1000.0f : 1.0f);
+        for (i = 0; i < 3 * w; ++i) { px[i] = 50.0f; px[(size_t)w * h * 3 - 1 - i] = 80.0f; } /* bright pole rows */
+        pix = px;
+      }
+      if (mi == 0) identity(m);
+      else if (mi == 1) el_envlight_yup_matrix(m);
+      else some_rotation(m);
+      make_light(&l, pix, w, h, m, 0, EL_ENVLIGHT_SAMPLER_CDF);
+      el_envlight_prepare_sampling(&l);
+      for (i = 0; i < n; ++i) {
+        float uu[2], wi[3], p, fu, fv, pb;
+        int iu, iv;
+        double u, v, ld[3], d[3], dot, len, ref_pdf;
+        uu[0] = rng_f(&r); uu[1] = rng_f(&r);
+        if (i < 4) { uu[0] = (i & 1) ? 0x1.fffffep-1f : 0.0f; uu[1] = (i & 2) ? 0x1.fffffep-1f : 0.0f; }
+        el_envlight_sample_li(&l, uu, wi, NULL, &p);
+        el_distribution2d_sample_bins(&l.dist, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb);
+        fu = fu < l.u_margin ? l.u_margin : fu > l.u_margin_hi ? l.u_margin_hi : fu;
+        fv = fv < l.v_margin ? l.v_margin : fv > l.v_margin_hi ? l.v_margin_hi : fv;
+        u = (iu + (double)fu) / l.dist.nu;
+        v = (iv + (double)fv) / l.dist.nv;
+        ref_uv_to_dir(u, v, ld);
+        mat_mul(m, ld, d); /* m is a float matrix: normalise its result too */
+        len = sqrt((double)wi[0] * wi[0] + (double)wi[1] * wi[1] + (double)wi[2] * wi[2]);
+        dot = (wi[0] * d[0] + wi[1] * d[1] + wi[2] * d[2]) / (len * sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+        worst_dir = fmax(worst_dir, sqrt(fmax(0.0, 2 * (1 - dot))));
+        worst_len = fmax(worst_len, fabs(len - 1));
+        /* a general rotation returns pdf_li(wi) (the world -> light round trip may cross a bin edge) */
+        ref_pdf = mi == 2 ? el_envlight_pdf_li(&l, wi) : pb / (2 * PI * PI * sin(PI * v));
+        worst_pdf = fmax(worst_pdf, fabs(p - ref_pdf) / ref_pdf);
+      }
+      check(l.dir_tables == 1 && worst_dir < 5e-7 && worst_len < 1e-6 && worst_pdf < 2e-6,
+            "sample_li table path, %dx%d, %s: direction within %.2g rad of libm (double), |wi| - 1 within %.2g, pdf within "
+            "%.2g relative of p / (2 pi^2 sin theta) (rotation: of pdf_li(wi)), %d samples incl. u corners", w, h,
+            mi == 0 ? "identity" : mi == 1 ? "y-up" : "rotation", worst_dir, worst_len, worst_pdf, n);
+      el_envlight_free(&l);
+      free(px);
+    }
+}
+
 int main(void) {
   el_image studio, city;
   memset(&studio, 0, sizeof studio);
@@ -1059,6 +1118,7 @@ int main(void) {
   }
   test_orientation();
   test_mapping_accuracy();
+  test_table_directions(&city);
   test_le(&studio);
   test_chi2(&studio, &city);
   test_importance_map();
