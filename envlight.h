@@ -89,7 +89,7 @@
  *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): sample_li 175 instructions with
  *    the guide sampler (about 85 for the inline bin search, its checks and register saves, 90 for the
  *    direction and pdf), 428 with CDF inversion, 274 with the alias table; with the radiance 335;
- *    pdf_li 114; le 252; construction 209 M, about 15-25 ms (pbrt-v3: ~470, ~300, 313 ms). Targets
+ *    pdf_li 113; le 252; construction 209 M, about 15-25 ms (pbrt-v3: ~470, ~300, 313 ms). Targets
  *    not met: sample_li <= 100 and pdf_li <= 80 (see tutorials/03-infinite-light.md, section 9).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
@@ -1083,7 +1083,8 @@ static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y
   len = sqrtf(len2);
   /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell */
   ax = fabsf(d[0]); ay = fabsf(d[1]);
-  pu = ax + ay > 0.0f ? ay / (ax + ay) : 0.0f;        /* quadrant-relative, in [0, 1] */
+  pu = ax + ay;
+  pu = ay / (pu > FLT_MIN ? pu : FLT_MIN);            /* quadrant-relative, in [0, 1]; x = y = 0: 0 */
   if (d[1] >= 0.0f) pu = d[0] >= 0.0f ? pu : 2.0f - pu;
   else pu = d[0] < 0.0f ? 2.0f + pu : 4.0f - pu;
   if (pu >= 4.0f) pu = 3.99999976f; /* y < 0 too small to resolve: the last bin before the seam */

@@ -20,7 +20,7 @@
  *     distribution) for 2048x1024; Sample_Li 5.2 M/s and ~470 instructions; Pdf_Li ~300 instructions.
  *  2. Instructions per call (callgrind) on the 2048x1024 map. Measured (gcc 12 -O3, loop subtracted):
  *     sample_li guide 175 (alias 274, CDF 428, guide + radiance 335, general rotation 302; the version
- *     before the bin + direction-table rewrite: 303, 305, 467, 437, 420), pdf_li 114 (rotation 131),
+ *     before the bin + direction-table rewrite: 303, 305, 467, 437, 420), pdf_li 113 (rotation 130),
  *     le 252, construction 209 M. Targets sample_li <= 100 and pdf_li <= 80 not met; throughput target
  *     (>= 26 M/s) met: guide sample_li 31-36 M/s at 2048x1024 on a quiet machine (before: 23-25 M/s).
  *  3. Variance of a direct-lighting estimate: the irradiance (luminance) of a diffuse point at three
