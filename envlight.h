@@ -812,7 +812,7 @@ static el_result el_envlight__axis_weights(int n, int nb, int wrap, int **start,
 /* f[j * nu + i] = mean luminance of the bilinear le over bin (i, j) (no sin yet). */
 /* The same when the bins are the texels: the separable 1/8, 3/4, 1/8 stencil (wrap in u, clamp in v),
  * on three rolling rows of u-filtered luminance. */
-static el_result el_envlight__cell_average_same(const el_envlight *l, float *f) {
+static el_result el_envlight__cell_average_same(const el_envlight *l, float *f, int times_sin) {
   int w = l->width, h = l->height, y, x, k;
   float *rows = (float *)EL_MALLOC((size_t)4 * (size_t)w * sizeof(float)), *lum, *hr[3];
   if (!rows) return EL_ERROR_OUT_OF_MEMORY;
@@ -832,7 +832,13 @@ static el_result el_envlight__cell_average_same(const el_envlight *l, float *f) 
     if (y >= 1) { /* rows y-2, y-1, y are ready: bin row y-1 */
       const float *a = hr[(y - 1) % 3], *m = hr[y % 3], *c = hr[(y + 1) % 3];
       float *dst = f + (size_t)(y - 1) * (size_t)w;
-      for (x = 0; x < w; ++x) dst[x] = 0.75f * m[x] + 0.125f * (a[x] + c[x]);
+      if (times_sin) { /* the <<times sin(theta)>> pass of el_envlight__build fused in: the same products */
+        float s = (float)sin(EL_ENVLIGHT__PI * ((y - 1) + 0.5) / h);
+        for (x = 0; x < w; ++x) {
+          float v0 = 0.75f * m[x] + 0.125f * (a[x] + c[x]), v = v0 * s;
+          dst[x] = v < FLT_MAX ? v : FLT_MAX;
+        }
+      } else for (x = 0; x < w; ++x) dst[x] = 0.75f * m[x] + 0.125f * (a[x] + c[x]);
     }
   }
   EL_FREE(rows);
@@ -886,7 +892,7 @@ done:
 }
 
 static el_result el_envlight__build(el_envlight *l) {
-  int nu = l->imp_w, nv = l->imp_h, i, j, any = 0;
+  int nu = l->imp_w, nv = l->imp_h, i, j, any = 0, sin_done = 0;
   size_t nb, q;
   float *f;
   el_result r = EL_SUCCESS;
@@ -898,7 +904,7 @@ static el_result el_envlight__build(el_envlight *l) {
   if (!f) return EL_ERROR_OUT_OF_MEMORY;
   /* <<Compute scalar-valued image img from environment map>> */
   if (l->importance == EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE) {
-    if (nu == l->width && nv == l->height) r = el_envlight__cell_average_same(l, f);
+    if (nu == l->width && nv == l->height) { sin_done = !l->compensated; r = el_envlight__cell_average_same(l, f, sin_done); }
     else r = el_envlight__cell_average(l, f, nu, nv);
   } else if (l->importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3) {
     for (j = 0; j < nv; ++j)
@@ -927,7 +933,7 @@ static el_result el_envlight__build(el_envlight *l) {
       for (q = 0; q < nb; ++q) f[q] = (double)f[q] > mean ? (float)((double)f[q] - mean) : 0.0f;
     } else l->fell_back = 1;
   }
-  for (j = 0; j < nv; ++j) { /* <<times sin(theta)>> at the bin centre (> 0 for every bin) */
+  for (j = 0; j < nv && !sin_done; ++j) { /* <<times sin(theta)>> at the bin centre (> 0 for every bin) */
     float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv), *row = f + (size_t)j * nu;
     for (i = 0; i < nu; ++i) {
       float v = row[i] * s;
@@ -936,8 +942,9 @@ static el_result el_envlight__build(el_envlight *l) {
   }
   memset(&dopt, 0, sizeof dopt);
   r = el_distribution2d_init(&l->dist, f, nu, nv, &dopt);
-  EL_FREE(f);
-  if (r != EL_SUCCESS) return r;
+  if (r != EL_SUCCESS) { EL_FREE(f); return r; }
+  /* f is not needed any more: its memory (already paged in) becomes the per-bin pdf table below */
+  l->pdf_table = f;
   r = el_envlight__finder(nu, 4, &l->u_base, &l->u_edge, &l->u_cells);
   if (r == EL_SUCCESS) r = el_envlight__finder(nv, 1, &l->v_base, &l->v_edge, &l->v_cells);
   if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
@@ -979,8 +986,6 @@ static el_result el_envlight__build(el_envlight *l) {
   }
   l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
   l->v_cell_scale = (float)(l->v_cells - 2);
-  l->pdf_table = (float *)EL_MALLOC(nb * sizeof(float));
-  if (!l->pdf_table) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
   for (j = 0; j < nv; ++j) { /* el_envlight__bin_pdf, row by row */
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
     float wv = (float)(l->dist.marginal[j + 1] - l->dist.marginal[j]) * l->dist.v_pdf_scale;
