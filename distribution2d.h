@@ -873,17 +873,24 @@ EL_DEF size_t el_distribution2d_bytes(const el_distribution2d *d) {
 /* >> fast samplers */
 
 static void el_distribution2d__guide_build(uint32_t *g, int cells, int shift, const uint32_t *c, int n) {
-  int cell, i = 0;
+  /* g[cell] = the last bin i starting at or below the cell's first unit cell << shift, i.e. the number
+   * of i in [1, n-1] with c[i] <= cell << shift, i.e. with k_i = ceil(c[i] / 2^shift) <= cell. k_i is
+   * monotone in i (0 <= k_i <= cells), so storing i at g[k_i] leaves there the largest i of that k, and a
+   * running maximum over the cells gives the count. No data-dependent branch (the scan that walked c per
+   * cell mispredicted at every cell boundary). */
+  int cell, i;
+  uint32_t m = 0, add = ((uint32_t)1 << shift) - 1u;
+  for (cell = 0; cell <= cells; ++cell) g[cell] = 0;
+  for (i = 1; i < n; ++i) g[(c[i] + add) >> shift] = (uint32_t)i;
   for (cell = 0; cell < cells; ++cell) {
-    uint32_t target = (uint32_t)cell << shift;
-    while (i + 1 < n && c[i + 1] <= target) ++i;
-    g[cell] = (uint32_t)i;
+    m = g[cell] > m ? g[cell] : m;
+    g[cell] = m;
   }
   g[cells] = (uint32_t)(n - 1);
   /* a crowded cell (more than 8 bins start in it) is flagged in bit 31: the inline fast path then
    * leaves it to the binary search, with one test instead of reading the next entry */
   for (cell = 0; cell < cells; ++cell)
-    if (g[cell + 1] - g[cell] > 8u) g[cell] |= EL_DISTRIBUTION__GUIDE_CROWDED;
+    g[cell] |= (uint32_t)(g[cell + 1] - g[cell] > 8u) << 31;
 }
 
 static int el_distribution2d__guide_cells(int n, int shrink, int *shift) {
