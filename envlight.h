@@ -89,7 +89,8 @@
  *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): sample_li 175 instructions with
  *    the guide sampler (about 85 for the inline bin search, its checks and register saves, 90 for the
  *    direction and pdf), 428 with CDF inversion, 274 with the alias table; with the radiance 335;
- *    pdf_li 113; le 252; construction 209 M, about 15-25 ms (pbrt-v3: ~470, ~300, 313 ms). Targets
+ *    pdf_li 113; le 252; construction 202 M, 31-32 ms with fresh memory, over half of it page faults
+ *    (pbrt-v3: ~470, ~300, 313 ms). Targets
  *    not met: sample_li <= 100 and pdf_li <= 80 (see tutorials/03-infinite-light.md, section 9).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
