@@ -991,7 +991,9 @@ static el_result el_envlight__build(el_envlight *l) {
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
     float wv = (float)(l->dist.marginal[j + 1] - l->dist.marginal[j]) * l->dist.v_pdf_scale;
     float *dst = l->pdf_table + (size_t)j * nu;
-    for (i = 0; i < nu; ++i) dst[i] = wv * ((float)(row[i + 1] - row[i]) * l->dist.u_pdf_scale) * EL_ENVLIGHT__INV_2PI2;
+    float us = l->dist.u_pdf_scale;
+    /* a bin's width is at most 2^24 units: as int32_t it converts to the same float, and the loop vectorises */
+    for (i = 0; i < nu; ++i) dst[i] = wv * ((float)(int32_t)(row[i + 1] - row[i]) * us) * EL_ENVLIGHT__INV_2PI2;
   }
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
     el_distribution_fast_options fo;
