@@ -89,7 +89,7 @@
  *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024): sample_li 175 instructions with
  *    the guide sampler (about 85 for the inline bin search, its checks and register saves, 90 for the
  *    direction and pdf), 428 with CDF inversion, 274 with the alias table; with the radiance 335;
- *    pdf_li 113; le 252; construction 202 M, 31-32 ms with fresh memory, over half of it page faults
+ *    pdf_li 113; le 252; construction 186 M, 30.8 ms with fresh memory, over half of it page faults
  *    (pbrt-v3: ~470, ~300, 313 ms). Targets
  *    not met: sample_li <= 100 and pdf_li <= 80 (see tutorials/03-infinite-light.md, section 9).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
@@ -698,17 +698,16 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
       in[2] = channels >= 3 ? p[2] : p[0];
       /* fast path: a float is finite and >= +0 when its bits, unsigned, are below 0x7f800000; the OR of
        * three such patterns is below it only if each is (rarely it is not although each is: the careful
-       * path then accepts them). The same for the scaled products. */
-      memcpy(bits, in, sizeof bits);
+       * path then accepts them). Only the scaled products are tested: the scale is finite and >= 0, so a
+       * NaN, infinite or negative texel gives a NaN, infinite or sign-bit product (-x * 0 = -0), which
+       * the careful path then judges from the texel itself. */
+      out[0] = in[0] * scale[0]; out[1] = in[1] * scale[1]; out[2] = in[2] * scale[2];
+      memcpy(bits, out, sizeof bits);
       if ((bits[0] | bits[1] | bits[2]) < 0x7f800000u) {
-        out[0] = in[0] * scale[0]; out[1] = in[1] * scale[1]; out[2] = in[2] * scale[2];
-        memcpy(bits, out, sizeof bits);
-        if ((bits[0] | bits[1] | bits[2]) < 0x7f800000u) {
-          float *t = l->texels + 3 * i;
-          t[0] = out[0]; t[1] = out[1]; t[2] = out[2];
-          row[0] += out[0]; row[1] += out[1]; row[2] += out[2];
-          continue;
-        }
+        float *t = l->texels + 3 * i;
+        t[0] = out[0]; t[1] = out[1]; t[2] = out[2];
+        row[0] += out[0]; row[1] += out[1]; row[2] += out[2];
+        continue;
       }
       for (c = 0; c < 3; ++c) { /* the careful path: say which texel is bad, or zero it */
         float v = in[c];
