@@ -251,13 +251,15 @@ typedef struct el_envlight {
    * already multiplied into the matrix (below). The point's angles are edge + fraction * bin angle, by
    * angle addition. */
   int dir_tables;
-  int hot;                 /* 1 (stored with release after the tables): sample_li's inline guide path is usable */
+  int hot;                 /* stored with release after the tables: bit 1 (EL_ENVLIGHT__HOT_SAMPLE) sample_li's
+                              inline guide path is usable, bit 2 (EL_ENVLIGHT__HOT_PDF) pdf_li's */
   float *row_tab;          /* nv * 4: sin theta_ref, cos theta_ref, offset (0 or -1 bin), 0 */
   float *col_tab;          /* nu * 8: P_i = cos phi_i M0 + sin phi_i M1, Q_i = cos phi_i M1 - sin phi_i M0,
                               0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
+  uint32_t nu32;           /* dist.nu, for pdf_li's 32-bit table index */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -346,7 +348,25 @@ extern "C" {
 #define EL_ENVLIGHT__PI 3.14159265358979323846
 #define EL_ENVLIGHT__MARGIN 4.76837158203125e-7f /* 2^-21: sampled points stay this far inside a bin */
 #define EL_ENVLIGHT__SIN_MIN 1.4e-6f             /* pdf_li's floor for sin(theta) (< sin(pi 2^-21)) */
+#define EL_ENVLIGHT__HOT_SAMPLE 1
+#define EL_ENVLIGHT__HOT_PDF 2
 #define EL_ENVLIGHT__INV_2PI2 0.05066059182116889f /* 1 / (2 pi^2) */
+
+/* sqrt without libm's errno branch (sqrtf(x < 0) must set errno, so compilers call it for such x):
+ * the hardware instruction. Callers pass x >= 0. */
+static inline float el_envlight__sqrt(float x) {
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || (defined(__i386__) && defined(__SSE__)))
+  float r;
+  __asm__("sqrtss %1, %0" : "=x"(r) : "x"(x));
+  return r;
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__aarch64__)
+  float r;
+  __asm__("fsqrt %s0, %s1" : "=w"(r) : "w"(x));
+  return r;
+#else
+  return sqrtf(x);
+#endif
+}
 
 /* sin(pi x) for |x| <= 0.5: minimax odd polynomial, max relative error 1.9e-7 in float. */
 static inline float el_envlight__sinpi(float x) {
@@ -587,17 +607,19 @@ static double el_envlight__row_weight(int y, int h) {
   return 2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * s;
 }
 
-/* The parameters the bin finders use: the "diamond angle" p in [0, 4) for phi and t in [0, 1] for
- * theta folded into the northern hemisphere. Both are monotone in the angle with derivative in
- * [1/2, 1] per quarter turn (p = tan(a) / (1 + tan(a)) within each quadrant), so a table of cells of
- * width 1/(2 * bins) (edges are at least pi/bins apart) holds at most one edge per cell. */
+/* The parameters the bin finders use: the "diamond angle" p in [0, 4) for phi and t in [0, 2] for
+ * theta. p = 2 - sign(y) (1 + x / (|x| + |y|)) (sign(+-0) = +); t = 1 - z / (r + |z|) with r = sqrt(x^2
+ * + y^2). Within each quadrant (each hemisphere for t) they are tan(a) / (1 + tan(a)) of the angle a from
+ * the quadrant's start, whose derivative 1 / (cos a + sin a)^2 lies in [1/2, 1] per radian, so a table of
+ * cells of width 1 / (2 bins) per unit (edges are at least pi / bins radians apart) holds at most one edge
+ * per cell. No atan, no branch. */
 static double el_envlight__diamond(double y, double x) {
-  if (y >= 0.0) return x >= 0.0 ? (x + y > 0.0 ? y / (x + y) : 0.0) : 1.0 - x / (y - x);
-  return x < 0.0 ? 2.0 - y / (-x - y) : 3.0 + x / (x - y);
+  double s = fabs(x) + fabs(y), q = 1.0 + (s > 0.0 ? x / s : 0.0);
+  return y >= 0.0 ? 2.0 - q : 2.0 + q;
 }
 static el_result el_envlight__finder(int n, int quarters, int **base, float **edge, int *cells) {
-  /* quarters = 4: phi edges 2 pi b / n over p in [0, 4); quarters = 1: theta edges pi b / n for
-   * theta <= pi/2 over t in [0, 1] */
+  /* quarters = 4: phi edges 2 pi b / n over p in [0, 4); quarters = 2: theta edges pi b / n over
+   * t in [0, 2] */
   int k = 2 * n * quarters + 2, c, b;
   *cells = k;
   *base = (int *)EL_MALLOC((size_t)k * sizeof(int));
@@ -610,15 +632,13 @@ static el_result el_envlight__finder(int n, int quarters, int **base, float **ed
     if (quarters == 4) {
       a = 2.0 * EL_ENVLIGHT__PI * b / n;
       pb = el_envlight__diamond(sin(a), cos(a));
-      if (pb < 0.0) pb = 0.0;
     } else {
       a = EL_ENVLIGHT__PI * b / n;
-      if (2 * b > n) break; /* southern edges mirror the northern ones */
-      pb = 2 * b == n ? 1.0 : tan(a) / (1.0 + tan(a));
+      pb = 2 * b == n ? 1.0 : 1.0 - cos(a) / (sin(a) + fabs(cos(a)));
     }
     cell = (int)(pb * (k - 2) / quarters);
     if (cell > k - 1) cell = k - 1;
-    EL_ASSERT((*edge)[cell] == 5.0f); /* one edge per cell */
+    EL_ASSERT(cell >= 0 && (*edge)[cell] == 5.0f); /* one edge per cell */
     (*edge)[cell] = (float)pb;
     (*base)[cell] = b - 1; /* edges below this one */
   }
@@ -899,7 +919,9 @@ static el_result el_envlight__build(el_envlight *l) {
   el_distribution_options dopt;
   if (l->width == 0) return EL_SUCCESS; /* constant light: uniform sampling, no tables */
   nb = (size_t)nu * (size_t)nv;
-  if (nb > ((size_t)-1) / sizeof(float)) return EL_ERROR_SIZE_OVERFLOW;
+  /* pdf_li indexes the pdf table with 32-bit arithmetic: at most 2^32 - 1 bins (a 16 GB table) */
+  if (nb > ((size_t)-1) / sizeof(float) || (uint64_t)nb > 0xffffffffu) return EL_ERROR_SIZE_OVERFLOW;
+  l->nu32 = (uint32_t)nu;
   f = (float *)EL_MALLOC(nb * sizeof(float));
   if (!f) return EL_ERROR_OUT_OF_MEMORY;
   /* <<Compute scalar-valued image img from environment map>> */
@@ -946,7 +968,7 @@ static el_result el_envlight__build(el_envlight *l) {
   /* f is not needed any more: its memory (already paged in) becomes the per-bin pdf table below */
   l->pdf_table = f;
   r = el_envlight__finder(nu, 4, &l->u_base, &l->u_edge, &l->u_cells);
-  if (r == EL_SUCCESS) r = el_envlight__finder(nv, 1, &l->v_base, &l->v_edge, &l->v_cells);
+  if (r == EL_SUCCESS) r = el_envlight__finder(nv, 2, &l->v_base, &l->v_edge, &l->v_cells);
   if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
   l->u_margin = EL_ENVLIGHT__MARGIN * (float)nu * 1.0001f;
   l->v_margin = EL_ENVLIGHT__MARGIN * (float)nv * 1.0001f;
@@ -985,7 +1007,7 @@ static el_result el_envlight__build(el_envlight *l) {
     l->dir_tables = 1;
   }
   l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
-  l->v_cell_scale = (float)(l->v_cells - 2);
+  l->v_cell_scale = (float)(l->v_cells - 2) * 0.5f;
   for (j = 0; j < nv; ++j) { /* el_envlight__bin_pdf, row by row */
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
     float wv = (float)(l->dist.marginal[j + 1] - l->dist.marginal[j]) * l->dist.v_pdf_scale;
@@ -1004,6 +1026,12 @@ static el_result el_envlight__build(el_envlight *l) {
   return EL_SUCCESS;
 }
 
+/* Which inline fast paths are usable once the tables are built (stored after them, with release). */
+static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
+  if (r != EL_SUCCESS || l->width == 0) return 0;
+  return EL_ENVLIGHT__HOT_PDF | (l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE ? EL_ENVLIGHT__HOT_SAMPLE : 0);
+}
+
 /* The once-scheme: state 0 -> 1 (one builder) -> 2 ready / 3 failed. Returns 1 when tables are usable. */
 static int el_envlight__ensure_slow(el_envlight *l) {
 #if EL_ENVLIGHT__ATOMICS
@@ -1012,7 +1040,7 @@ static int el_envlight__ensure_slow(el_envlight *l) {
     el_result r = el_envlight__build(l);
     l->sampling_result = r;
     __atomic_store_n(&l->state, r == EL_SUCCESS ? 2 : 3, __ATOMIC_RELEASE);
-    if (r == EL_SUCCESS && l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE) __atomic_store_n(&l->hot, 1, __ATOMIC_RELEASE);
+    __atomic_store_n(&l->hot, el_envlight__hot_bits(l, r), __ATOMIC_RELEASE);
   } else {
     while (__atomic_load_n(&l->state, __ATOMIC_ACQUIRE) == 1) { /* another thread builds */ }
   }
@@ -1022,7 +1050,7 @@ static int el_envlight__ensure_slow(el_envlight *l) {
     el_result r = el_envlight__build(l);
     l->sampling_result = r;
     l->state = r == EL_SUCCESS ? 2 : 3;
-    l->hot = r == EL_SUCCESS && l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE;
+    l->hot = el_envlight__hot_bits(l, r);
   }
   return l->state == 2;
 #endif
@@ -1081,34 +1109,28 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 
 
 /* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
- * for a map: no calls. */
+ * for a map: no calls, no branches. */
 static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
-  float d[3], r, len, p, ax, ay, pu, t, az;
-  int iu, iv, c;
-  d[0] = x; d[1] = y; d[2] = z;
-  r = sqrtf(r2);
-  len = sqrtf(len2);
-  /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell */
-  ax = fabsf(d[0]); ay = fabsf(d[1]);
-  pu = ax + ay;
-  pu = ay / (pu > FLT_MIN ? pu : FLT_MIN);            /* quadrant-relative, in [0, 1]; x = y = 0: 0 */
-  if (d[1] >= 0.0f) pu = d[0] >= 0.0f ? pu : 2.0f - pu;
-  else pu = d[0] < 0.0f ? 2.0f + pu : 4.0f - pu;
-  if (pu >= 4.0f) pu = 3.99999976f; /* y < 0 too small to resolve: the last bin before the seam */
-  c = (int)(pu * l->u_cell_scale);
-  EL_ASSERT(c >= 0 && c < l->u_cells);
-  iu = l->u_base[c] + (pu >= l->u_edge[c]);
-  /* <<Find the v bin>>: t = r / (r + |z|) in the folded hemisphere */
-  az = fabsf(d[2]);
-  t = r / (r + az);
-  c = (int)(t * l->v_cell_scale);
-  EL_ASSERT(c >= 0 && c < l->v_cells);
-  iv = l->v_base[c] + (t >= l->v_edge[c]);
-  if (d[2] < 0.0f) iv = l->dist.nv - 1 - iv;
-  EL_ASSERT(iu >= 0 && iu < l->dist.nu && iv >= 0 && iv < l->dist.nv);
-  p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu]; /* mapPdf / (2 pi^2) */
+  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2), pu, t, p;
+  uint32_t iu, iv;
+  size_t c;
+  /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell. + FLT_MIN: x = y = 0 (a pole)
+   * gives pu = 1; it changes x / s only where sin(theta) < 1e-30, far below the floor SIN_MIN. A y of -0
+   * counts as negative: pu = 4 - 0, the seam's other side (a set of measure zero). */
+  pu = 2.0f - copysignf(1.0f + x / (fabsf(x) + fabsf(y) + FLT_MIN), y);
+  pu = pu < 3.99999976f ? pu : 3.99999976f;         /* y < 0 too small to resolve: the last bin */
+  c = (size_t)(int64_t)(pu * l->u_cell_scale);
+  EL_ASSERT(c < (size_t)l->u_cells);
+  iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
+  /* <<Find the v bin>>: t = 1 - z / (r + |z|) over both hemispheres */
+  t = 1.0f - z / (r + fabsf(z));
+  c = (size_t)(int64_t)(t * l->v_cell_scale);
+  EL_ASSERT(c < (size_t)l->v_cells);
+  iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+  EL_ASSERT(iu < (uint32_t)l->dist.nu && iv < (uint32_t)l->dist.nv);
+  p = l->pdf_table[(size_t)(iv * l->nu32 + iu)]; /* mapPdf / (2 pi^2); nu * nv < 2^32 (checked at build) */
   /* p / sin(theta), sin(theta) = r / len, floored at SIN_MIN */
-  if (r < EL_ENVLIGHT__SIN_MIN * len) r = EL_ENVLIGHT__SIN_MIN * len;
+  r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
   p = p * len / r;
   EL_ASSERT(p >= 0.0f && p <= FLT_MAX);
   return p;
@@ -1146,14 +1168,18 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(el_envlight *l, cons
 }
 
 EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
-  float d[3];
+  float d[3], r2, len2;
+  /* the hot bit EL_ENVLIGHT__HOT_PDF: tables built, and a map (not the constant light) */
 #if EL_ENVLIGHT__ATOMICS
-  if (__atomic_load_n(&l->state, __ATOMIC_ACQUIRE) != 2) return el_envlight__pdf_li_slow(l, dir);
+  if (!(__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF)) return el_envlight__pdf_li_slow(l, dir);
 #else
-  if (l->state != 2) return el_envlight__pdf_li_slow(l, dir);
+  if (!(l->hot & EL_ENVLIGHT__HOT_PDF)) return el_envlight__pdf_li_slow(l, dir);
 #endif
   el_envlight__to_light(l, dir, d);
-  return el_envlight__pdf_light(l, d);
+  r2 = d[0] * d[0] + d[1] * d[1];
+  len2 = r2 + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_cold(l, d[0], d[1], d[2]);
+  return el_envlight__pdf_core(l, d[0], d[1], d[2], r2, len2);
 }
 
 /* The bin and the fractions within it for (u0, u1), from the light's sampler (no float point
@@ -1290,7 +1316,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 #else
   int hot = l->hot;
 #endif
-  if (hot && el_distribution2d_fast_sample_bins_try(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
+  if ((hot & EL_ENVLIGHT__HOT_SAMPLE) && el_distribution2d_fast_sample_bins_try(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
     /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
     el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
     return;

@@ -1107,6 +1107,71 @@ static void test_table_directions(const el_image *city) {
     }
 }
 
+/* pdf_li finds a bin from the direction alone (diamond-angle tables, no atan): samples placed at the
+ * very edges of their bins (u at a bin's first and last CDF unit, so the fractions are clamped to the
+ * margin) must still be found in their own bin. The map alternates 1 and 16 (times noise) so a
+ * neighbouring bin's pdf differs by a large factor; rows and columns next to both poles, the equator,
+ * the quadrant boundaries and the seam are all visited. */
+static void test_pdf_bin_edges(void) {
+  static const int sizes[3][2] = {{4096, 2048}, {1000, 500}, {128, 64}};
+  int si, mi;
+  for (si = 0; si < 3; ++si)
+    for (mi = 0; mi < 2; ++mi) {
+      int w = sizes[si][0], h = sizes[si][1], a, b, e0, e1, n = 0, bad = 0;
+      int rows[16], cols[24];
+      float *px = (float *)malloc((size_t)w * h * 3 * sizeof(float)), m[9];
+      el_envlight l;
+      rng r = rng_make(4242 + si * 2 + mi);
+      size_t i;
+      double worst = 0;
+      for (i = 0; i < (size_t)w * h; ++i) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+        float v = (((x + y) & 1) ? 16.0f : 1.0f) * (0.9f + 0.2f * rng_f(&r));
+        px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = v;
+      }
+      if (mi == 0) identity(m); else el_envlight_yup_matrix(m);
+      make_light(&l, px, w, h, m, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
+      el_envlight_prepare_sampling(&l);
+      {
+        int nu = l.dist.nu, nv = l.dist.nv;
+        int rr[16] = {0, 1, 2, nv / 4, nv / 2 - 2, nv / 2 - 1, nv / 2, nv / 2 + 1, 3 * nv / 4, nv - 3, nv - 2, nv - 1, 0, 0, 0, 0};
+        int cc[24] = {0, 1, nu / 8, nu / 4 - 1, nu / 4, nu / 2 - 1, nu / 2, nu / 2 + 1, 3 * nu / 4 - 1, 3 * nu / 4, 7 * nu / 8, nu - 2, nu - 1,
+                      0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        for (a = 12; a < 16; ++a) rr[a] = (int)(rng_f(&r) * nv);
+        for (a = 13; a < 24; ++a) cc[a] = (int)(rng_f(&r) * nu);
+        memcpy(rows, rr, sizeof rows);
+        memcpy(cols, cc, sizeof cols);
+        for (a = 0; a < 16; ++a)
+          for (e1 = 0; e1 < 2; ++e1) {
+            int j = rows[a];
+            uint32_t kv = e1 ? l.dist.marginal[j + 1] - 1 : l.dist.marginal[j];
+            const uint32_t *row = l.dist.cdf + (size_t)j * (size_t)(nu + 1);
+            if (l.dist.marginal[j + 1] == l.dist.marginal[j]) continue;
+            for (b = 0; b < 24; ++b)
+              for (e0 = 0; e0 < 2; ++e0) {
+                int c = cols[b], iu, iv;
+                uint32_t ku = e0 ? row[c + 1] - 1 : row[c];
+                float uu[2], wi[3], p, q, fu, fv, pb;
+                if (row[c + 1] == row[c]) continue;
+                uu[0] = (float)ku / 16777216.0f;
+                uu[1] = (float)kv / 16777216.0f;
+                el_distribution2d_sample_bins(&l.dist, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb);
+                if (iu != c || iv != j) { ++bad; continue; } /* the u chosen do not pick this bin */
+                el_envlight_sample_li(&l, uu, wi, NULL, &p);
+                q = el_envlight_pdf_li(&l, wi);
+                ++n;
+                worst = fmax(worst, fabs((double)q / p - 1));
+                if (!(fabsf(p - q) <= 1e-5f * p)) ++bad;
+              }
+          }
+      }
+      check(bad == 0 && n > 1000, "pdf_li finds the sampled bin for samples at bin edges, %dx%d, %s: %d samples, %d wrong, "
+            "worst relative pdf difference %.2g", w, h, mi == 0 ? "identity" : "y-up", n, bad, worst);
+      el_envlight_free(&l);
+      free(px);
+    }
+}
+
 int main(void) {
   el_image studio, city;
   memset(&studio, 0, sizeof studio);
@@ -1119,6 +1184,7 @@ int main(void) {
   test_orientation();
   test_mapping_accuracy();
   test_table_directions(&city);
+  test_pdf_bin_edges();
   test_le(&studio);
   test_chi2(&studio, &city);
   test_importance_map();
