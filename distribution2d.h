@@ -266,6 +266,7 @@ typedef struct el_distribution2d_fast {
   uint32_t *alias_v;    /* nv (split, alias) pairs */
   uint32_t *start_u;    /* nu+1 */
   uint32_t *start_v;    /* nv+1 */
+  float gu_scale, gv_scale; /* (float)gu, (float)gv: a guide cell is floor(u * cells), as (units >> shift) */
 } el_distribution2d_fast;
 
 /* d must stay alive and unchanged while f is used (f shares its CDF arrays). On failure *f is zeroed. */
@@ -301,41 +302,51 @@ static inline int el_distribution2d__search(const uint32_t *c, int lo, int len, 
   return lo;
 }
 
-/* Inline, no calls: the guide table with u in [0,1) (one table read and a short scan per dimension, a
- * binary search within a crowded cell); returns 0 without writing anything for any other case (u
- * outside [0,1) or NaN, the alias method): then call el_distribution2d_fast_sample_bins_general. */
-static inline int el_distribution2d_fast_sample_bins_try(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
+/* Inline, no calls, for a guide-method sampler and u0, u1 in [+0, 1) only (el_distribution2d_u_in_range):
+ * the guide table (one table read and a short scan per dimension). Returns 0 without writing anything
+ * when a cell is crowded (then call el_distribution2d_fast_sample_bins_general, which binary-searches
+ * it). */
+static inline int el_distribution2d_fast_guide_bins(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
+  /* v first, then u, each finished (fraction, width) before the next starts: few live registers */
+  float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f, wv, wu, av; /* exact */
+  uint32_t kv = (uint32_t)(int32_t)xv, ku, g, c0, c1;
+  const uint32_t *row, *mg = f->marginal;
+  size_t v, u;
+  /* the cell floor(u * cells) equals (units >> shift): cells is a power of two, the product exact */
+  g = f->guide_v[(size_t)(int64_t)(u1 * f->gv_scale)];
+  if (g & EL_DISTRIBUTION__GUIDE_CROWDED) return 0; /* many bins start in this cell: binary search */
+  v = g;
+  while ((c1 = mg[v + 1]) <= kv) ++v; /* at most 8 steps */
+  c0 = mg[v];
+  wv = (float)(int32_t)(c1 - c0);
+  av = (xv - (float)(int32_t)c0) / wv;
+  g = f->guide_u[v * f->guide_stride + (size_t)(int64_t)(u0 * f->gu_scale)];
+  if (g & EL_DISTRIBUTION__GUIDE_CROWDED) return 0;
+  ku = (uint32_t)(int32_t)xu;
+  row = f->cdf + v * f->row_stride;
+  u = g;
+  while ((c1 = row[u + 1]) <= ku) ++u;
+  c0 = row[u];
+  wu = (float)(int32_t)(c1 - c0);
+  *fu = (xu - (float)(int32_t)c0) / wu;
+  *fv = av;
+  *pdf = (wv * f->v_pdf_scale) * (wu * f->u_pdf_scale); /* el_distribution2d_pdf's expression */
+  *iv = (int)v;
+  *iu = (int)u;
+  return 1;
+}
+/* 1 when u0 and u1 both lie in [+0, 1) (not NaN, not -0): one integer comparison of the larger bits. */
+static inline int el_distribution2d_u_in_range(float u0, float u1) {
   uint32_t b0, b1;
   memcpy(&b0, &u0, 4);
   memcpy(&b1, &u1, 4);
-  if ((b0 > b1 ? b0 : b1) < 0x3f800000u && f->method == EL_DISTRIBUTION_FAST_GUIDE) { /* both in [+0, 1) */
-    float xv = u1 * 16777216.0f, xu = u0 * 16777216.0f;
-    uint32_t kv = (uint32_t)(int32_t)xv, ku = (uint32_t)(int32_t)xu;
-    uint32_t cell = kv >> f->shift_v, gv = f->guide_v[cell], gu;
-    const uint32_t *row, *g;
-    int v = (int)(gv & ~EL_DISTRIBUTION__GUIDE_CROWDED), u;
-    int32_t cv, cu;
-    if (gv & EL_DISTRIBUTION__GUIDE_CROWDED) return 0; /* many bins start in this cell: binary search */
-    while (f->marginal[v + 1] <= kv) ++v; /* at most 8 steps */
-    cell = ku >> f->shift_u;
-    g = f->guide_u + (size_t)v * f->guide_stride;
-    gu = g[cell];
-    row = f->cdf + (size_t)v * f->row_stride;
-    u = (int)(gu & ~EL_DISTRIBUTION__GUIDE_CROWDED);
-    if (gu & EL_DISTRIBUTION__GUIDE_CROWDED) return 0;
-    while (row[u + 1] <= ku) ++u;
-    cv = (int32_t)f->marginal[v];
-    cu = (int32_t)row[u];
-    *iv = v;
-    *iu = u;
-    {
-      float wv = (float)((int32_t)f->marginal[v + 1] - cv), wu = (float)((int32_t)row[u + 1] - cu);
-      *fv = (xv - (float)cv) / wv;
-      *fu = (xu - (float)cu) / wu;
-      *pdf = (wv * f->v_pdf_scale) * (wu * f->u_pdf_scale); /* el_distribution2d_pdf's expression */
-    }
-    return 1;
-  }
+  return (b0 > b1 ? b0 : b1) < 0x3f800000u;
+}
+/* Any method, any u: the guide table's inline path, or 0 (u outside [0,1) or NaN, the alias method, a
+ * crowded cell): then call el_distribution2d_fast_sample_bins_general. */
+static inline int el_distribution2d_fast_sample_bins_try(const el_distribution2d_fast *f, float u0, float u1, int *iu, int *iv, float *fu, float *fv, float *pdf) {
+  if (el_distribution2d_u_in_range(u0, u1) && f->method == EL_DISTRIBUTION_FAST_GUIDE)
+    return el_distribution2d_fast_guide_bins(f, u0, u1, iu, iv, fu, fv, pdf);
   return 0;
 }
 /* Any u, any method: the same results as the general function. */
@@ -967,6 +978,8 @@ EL_DEF el_result el_distribution2d_fast_init_ex(el_distribution2d_fast *f, const
                                                                         small and often crowded (a sun) */
     gu1 = (size_t)f->gu + 1;
     f->guide_stride = gu1;
+    f->gu_scale = (float)f->gu;
+    f->gv_scale = (float)f->gv;
     if ((size_t)d->nv > ((size_t)-1) / sizeof(uint32_t) / gu1) { memset(f, 0, sizeof *f); return EL_ERROR_SIZE_OVERFLOW; }
     f->guide_u = (uint32_t *)EL_MALLOC((size_t)d->nv * gu1 * sizeof(uint32_t));
     f->guide_v = (uint32_t *)EL_MALLOC(((size_t)f->gv + 1) * sizeof(uint32_t));

@@ -253,10 +253,18 @@ typedef struct el_envlight {
   int dir_tables;
   int hot;                 /* stored with release after the tables: bit 1 (EL_ENVLIGHT__HOT_SAMPLE) sample_li's
                               inline guide path is usable, bit 2 (EL_ENVLIGHT__HOT_PDF) pdf_li's */
-  float *row_tab;          /* nv * 4: sin theta_ref, cos theta_ref, offset (0 or -1 bin), 0 */
-  float *col_tab;          /* nu * 8: P_i = cos phi_i M0 + sin phi_i M1, Q_i = cos phi_i M1 - sin phi_i M0,
-                              0, 0 (M0, M1: the first two columns of to_world), so that the world
+  float *dir_consts;       /* 16-byte aligned 4-vectors, lanes (v, v, u, u): the margins, 1 - the margins, the
+                              bin angles (pi / nv, 2 pi / nu); M2 = the third column of to_world, 0; the
+                              polynomial coefficients -1/6, 1, -1/2, 1/24 (kept here so that the compiler
+                              uses them from memory) */
+  float *row_tab;          /* nv * 12, aligned: s = sin theta_ref, c = cos theta_ref, 0, 0, then c, -s, 0, 0,
+                              then the offset of the reference edge in bins (0 or -1) twice, 0, 0 */
+  float *col_tab;          /* nu * 8, aligned: P_i = cos phi_i M0 + sin phi_i M1, 0, Q_i = cos phi_i M1 -
+                              sin phi_i M0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
+  void *dir_alloc;         /* the allocation holding the three */
+  int table_done;          /* exact_transform and not all-zero (so every sampled bin has p > 0): the table
+                              direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
   uint32_t nu32;           /* dist.nu, for pdf_li's 32-bit table index */
@@ -326,6 +334,15 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 #include <float.h>
 #include <math.h>
 #include <string.h>
+
+/* sample_li's direction in SSE (x86-64 always has it; define EL_NO_SIMD for the scalar code, which does
+ * the same operations in the same order) */
+#if !defined(EL_NO_SIMD) && (defined(__SSE__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 1))
+#define EL_ENVLIGHT__SSE 1
+#include <xmmintrin.h>
+#else
+#define EL_ENVLIGHT__SSE 0
+#endif
 
 #if !defined(EL_ENVLIGHT_NO_ATOMICS) && (defined(__GNUC__) || defined(__clang__))
 #define EL_ENVLIGHT__ATOMICS 1
@@ -654,13 +671,16 @@ static el_result el_envlight__finder(int n, int quarters, int **base, float **ed
   return EL_SUCCESS;
 }
 
+/* Floats in the direction tables' allocation: 4 constant vectors, 12 per row, 8 per column, alignment slack. */
+static size_t el_envlight__dir_floats(int nu, int nv) { return 32 + (size_t)nv * 12 + (size_t)nu * 8 + 4; }
+
 static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_fast_free(&l->fast);
   el_distribution2d_free(&l->dist);
   EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge); EL_FREE(l->pdf_table);
-  EL_FREE(l->row_tab); EL_FREE(l->col_tab);
+  EL_FREE(l->dir_alloc);
   l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL; l->pdf_table = NULL;
-  l->row_tab = l->col_tab = NULL; l->dir_tables = 0;
+  l->row_tab = l->col_tab = l->dir_consts = NULL; l->dir_alloc = NULL; l->dir_tables = l->table_done = 0;
 }
 
 /* The pdf of bin (iu, iv), exactly el_distribution2d_pdf's expression. */
@@ -978,16 +998,21 @@ static el_result el_envlight__build(el_envlight *l) {
   l->u_angle = (float)(2.0 * EL_ENVLIGHT__PI / nu);
   if (nu >= 128 && nv >= 64) { /* bin angles <= pi/64 = 0.049: the short sin/cos polynomials of
                                   el_envlight__sample_light are exact to float precision there */
-    l->row_tab = (float *)EL_MALLOC((size_t)nv * 4 * sizeof(float));
-    l->col_tab = (float *)EL_MALLOC((size_t)nu * 8 * sizeof(float));
-    if (!l->row_tab || !l->col_tab) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
+    float *dc;
+    l->dir_alloc = EL_MALLOC(el_envlight__dir_floats(nu, nv) * sizeof(float));
+    if (!l->dir_alloc) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
+    dc = l->dir_consts = (float *)l->dir_alloc + ((16u - ((size_t)l->dir_alloc & 15u)) & 15u) / sizeof(float);
+    l->row_tab = dc + 32;
+    l->col_tab = l->row_tab + (size_t)nv * 12;
     for (j = 0; j < nv; ++j) {
       int north = 2 * j < nv, k = north ? j : j + 1; /* the edge nearer the pole */
       int kk = k < nv - k ? k : nv - k;              /* sin from the nearer pole: exactly 0 at both */
-      l->row_tab[4 * j] = (float)sin(EL_ENVLIGHT__PI * kk / nv);
-      l->row_tab[4 * j + 1] = 2 * k == nv ? 0.0f : (float)cos(EL_ENVLIGHT__PI * k / nv);
-      l->row_tab[4 * j + 2] = north ? 0.0f : -1.0f;
-      l->row_tab[4 * j + 3] = 0.0f;
+      float *t = l->row_tab + 12 * (size_t)j;
+      memset(t, 0, 12 * sizeof(float));
+      t[0] = (float)sin(EL_ENVLIGHT__PI * kk / nv);
+      t[1] = 2 * k == nv ? 0.0f : (float)cos(EL_ENVLIGHT__PI * k / nv);
+      t[4] = t[1]; t[5] = -t[0];
+      t[8] = t[9] = north ? 0.0f : -1.0f;
     }
     for (i = 0; i < nu; ++i) {
       /* float products and sums as sample_li would form them for cp = c cb - s sb, sp = s cb + c sb and
@@ -1000,11 +1025,19 @@ static el_result el_envlight__build(el_envlight *l) {
       for (k = 0; k < 3; ++k) {
         float m0 = l->to_world[3 * k], m1 = l->to_world[3 * k + 1];
         t[k] = c * m0 + sn * m1;
-        t[3 + k] = c * m1 - sn * m0;
+        t[4 + k] = c * m1 - sn * m0;
       }
-      t[6] = t[7] = 0.0f;
+      t[3] = t[7] = 0.0f;
     }
+    for (i = 0; i < 2; ++i) {
+      dc[i] = l->v_margin; dc[2 + i] = l->u_margin;
+      dc[4 + i] = l->v_margin_hi; dc[6 + i] = l->u_margin_hi;
+      dc[8 + i] = l->v_angle; dc[10 + i] = l->u_angle;
+    }
+    dc[12] = l->to_world[2]; dc[13] = l->to_world[5]; dc[14] = l->to_world[8]; dc[15] = 0.0f;
+    for (i = 0; i < 4; ++i) { dc[16 + i] = -0.166666667f; dc[20 + i] = 1.0f; dc[24 + i] = -0.5f; dc[28 + i] = 0.0416666667f; }
     l->dir_tables = 1;
+    l->table_done = l->exact_transform && !l->dist.all_zero;
   }
   l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
   l->v_cell_scale = (float)(l->v_cells - 2) * 0.5f;
@@ -1249,30 +1282,53 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   /* mapPdf / (2 pi^2): the bin's pdf from the CDF entries the search read, times 1 / (2 pi^2), which is
    * pdf_table's expression, so pdf_li finds the same value (and the table is not read: no cache miss) */
   float p = pb * EL_ENVLIGHT__INV_2PI2;
-  fu = fu > l->u_margin ? fu : l->u_margin; /* EL_ENVLIGHT__MARGIN inside the bin */
-  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
-  fv = fv > l->v_margin ? fv : l->v_margin;
-  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
-  if (p > 0.0f) {
-    /* <<Compute direction for infinite light sample>>: theta = theta_ref + a, |a| <= pi/64, and
-     * phi = phi_i + b, 0 <= b <= 2 pi/128; there sin x = x - x^3/6 and cos x = 1 - x^2/2 + x^4/24 are
-     * exact to 5e-8 relative. The column table holds phi_i's cos and sin already multiplied into the
-     * matrix: wi = sin theta (cos b P_i + sin b Q_i) + cos theta M2. */
-    const float *rt = l->row_tab + 4 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu;
-    float a = (fv + rt[2]) * l->v_angle, b = fu * l->u_angle; /* fv - 1 is exact: no cancellation */
-    float a2 = a * a, b2 = b * b;
-    float sa = a + a * a2 * -0.166666667f, ca = 1.0f + a2 * (-0.5f + a2 * 0.0416666667f);
-    float sb = b + b * b2 * -0.166666667f, cb = 1.0f + b2 * (-0.5f + b2 * 0.0416666667f);
-    float st = rt[0] * ca + rt[1] * sa; /* both terms >= 0: no cancellation, exact near both poles */
-    float cth = rt[1] * ca - rt[0] * sa;
-    wi[0] = st * (cb * ct[0] + sb * ct[3]) + cth * l->to_world[2];
-    wi[1] = st * (cb * ct[1] + sb * ct[4]) + cth * l->to_world[5];
-    wi[2] = st * (cb * ct[2] + sb * ct[5]) + cth * l->to_world[8];
-    /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)) */
+  const float *rt = l->row_tab + 12 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu, *dc = l->dir_consts;
+  /* <<Compute direction for infinite light sample>>: theta = theta_ref + a, |a| <= pi/64, and
+   * phi = phi_i + b, 0 <= b <= 2 pi/128; there sin x = x - x^3/6 and cos x = 1 - x^2/2 + x^4/24 are
+   * exact to 5e-8 relative. The column table holds phi_i's cos and sin already multiplied into the
+   * matrix: wi = sin theta (cos b P_i + sin b Q_i) + cos theta M2. Lanes: (v, u) = (a, b); the fractions
+   * are kept EL_ENVLIGHT__MARGIN inside the bin; fv - 1 is exact (no cancellation). */
+#if EL_ENVLIGHT__SSE
+  __m128 f = _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)); /* (fv, fv, fu, fu) */
+  __m128 x, x2, sn, cs, t, w;
+  f = _mm_min_ps(_mm_max_ps(f, _mm_load_ps(dc)), _mm_load_ps(dc + 4));
+  x = _mm_mul_ps(_mm_add_ps(f, _mm_load_ps(rt + 8)), _mm_load_ps(dc + 8));        /* (a, a, b, b) */
+  x2 = _mm_mul_ps(x, x);
+  sn = _mm_add_ps(x, _mm_mul_ps(_mm_mul_ps(x, x2), _mm_load_ps(dc + 16)));
+  cs = _mm_add_ps(_mm_load_ps(dc + 20), _mm_mul_ps(x2, _mm_add_ps(_mm_load_ps(dc + 24), _mm_mul_ps(x2, _mm_load_ps(dc + 28)))));
+  /* (sin theta, cos theta) = ca (s, c) + sa (c, -s): both sin terms >= 0, exact near both poles */
+  t = _mm_add_ps(_mm_mul_ps(cs, _mm_load_ps(rt)), _mm_mul_ps(sn, _mm_load_ps(rt + 4)));
+  w = _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(cs, cs, 0xaa), _mm_load_ps(ct)), _mm_mul_ps(_mm_shuffle_ps(sn, sn, 0xaa), _mm_load_ps(ct + 4)));
+  w = _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(t, t, 0), w), _mm_mul_ps(_mm_shuffle_ps(t, t, 0x55), _mm_load_ps(dc + 12)));
+  _mm_storel_pi((__m64 *)(void *)wi, w);
+  _mm_store_ss(wi + 2, _mm_movehl_ps(w, w));
+  /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)); p = 0 gives 0 */
+  EL_ASSERT(_mm_cvtss_f32(t) >= EL_ENVLIGHT__SIN_MIN);
+  *pdf = p / _mm_cvtss_f32(t);
+  if (l->table_done && !rgb) return;
+  fu = _mm_cvtss_f32(_mm_movehl_ps(f, f));
+  fv = _mm_cvtss_f32(f);
+#else
+  {
+    float a, b, a2, b2, sa, ca, sb, cb, st, cth;
+    fv = fv > dc[0] ? fv : dc[0];
+    fv = fv < dc[4] ? fv : dc[4];
+    fu = fu > dc[2] ? fu : dc[2];
+    fu = fu < dc[6] ? fu : dc[6];
+    a = (fv + rt[8]) * dc[8]; b = (fu + 0.0f) * dc[10];
+    a2 = a * a; b2 = b * b;
+    sa = a + a * a2 * dc[16]; ca = dc[20] + a2 * (dc[24] + a2 * dc[28]);
+    sb = b + b * b2 * dc[16]; cb = dc[20] + b2 * (dc[24] + b2 * dc[28]);
+    st = ca * rt[0] + sa * rt[4];
+    cth = ca * rt[1] + sa * rt[5];
+    wi[0] = st * (cb * ct[0] + sb * ct[4]) + cth * dc[12];
+    wi[1] = st * (cb * ct[1] + sb * ct[5]) + cth * dc[13];
+    wi[2] = st * (cb * ct[2] + sb * ct[6]) + cth * dc[14];
     EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
     *pdf = p / st;
-    if (l->exact_transform && !rgb) return;
-  } else *pdf = 0.0f;
+    if (l->table_done && !rgb) return;
+  }
+#endif
   el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
 }
 
@@ -1316,7 +1372,8 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 #else
   int hot = l->hot;
 #endif
-  if ((hot & EL_ENVLIGHT__HOT_SAMPLE) && el_distribution2d_fast_sample_bins_try(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
+  if ((hot & EL_ENVLIGHT__HOT_SAMPLE) && el_distribution2d_u_in_range(uu[0], uu[1]) &&
+      el_distribution2d_fast_guide_bins(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
     /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
     el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
     return;
@@ -1393,7 +1450,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   b += el_distribution2d_bytes(&l->dist);
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
-  if (l->dir_tables) b += ((size_t)l->dist.nv * 4 + (size_t)l->dist.nu * 8) * sizeof(float);
+  if (l->dir_tables) b += el_envlight__dir_floats(l->dist.nu, l->dist.nv) * sizeof(float);
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) b += el_distribution2d_fast_bytes(&l->fast);
   return b;
 }
