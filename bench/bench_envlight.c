@@ -19,10 +19,11 @@
  *     pbrt-v3 on this kind of machine (issue 3): constructor 313 ms and ~100 MB (MIPMap + 4096x2048
  *     distribution) for 2048x1024; Sample_Li 5.2 M/s and ~470 instructions; Pdf_Li ~300 instructions.
  *  2. Instructions per call (callgrind) on the 2048x1024 map. Measured (gcc 12 -O3, loop subtracted):
- *     sample_li guide 175 (alias 274, CDF 428, guide + radiance 335, general rotation 302; the version
- *     before the bin + direction-table rewrite: 303, 305, 467, 437, 420), pdf_li 113 (rotation 130),
- *     le 252, construction 209 M. Targets sample_li <= 100 and pdf_li <= 80 not met; throughput target
- *     (>= 26 M/s) met: guide sample_li 31-36 M/s at 2048x1024 on a quiet machine (before: 23-25 M/s).
+ *     sample_li guide 140 (alias 239, CDF 393, guide + radiance 300, general rotation 248; before the
+ *     SSE direction: 176, 274, 428, 335, 302; before the bin + direction-table rewrite: 303, 305, 467,
+ *     437, 420), pdf_li 76 (rotation 95; before the branch-free bin finders: 114, 131), le 253,
+ *     construction 185 M. Target sample_li <= 100 not met; pdf_li <= 80 met; throughput target
+ *     (>= 26 M/s) met: see README.md for the rates.
  *  3. Variance of a direct-lighting estimate: the irradiance (luminance) of a diffuse point at three
  *     normals, for the maps in ../shared/envmaps (data/envmaps if missing), per strategy: uniform sphere,
  *     cosine, light sampling with each importance map (CELL_AVERAGE = ours, PBRT_V3 = 2x-resolution point
