@@ -260,8 +260,9 @@ typedef struct el_envlight {
                               bin angles (pi / nv, 2 pi / nu); M2 = the third column of to_world, 0; the
                               polynomial coefficients -1/6, 1, -1/2, 1/24 (kept here so that the compiler
                               uses them from memory) */
-  float *row_tab;          /* nv * 12, aligned: s = sin theta_ref, c = cos theta_ref, 0, 0, then c, -s, 0, 0,
-                              then the offset of the reference edge in bins (0 or -1) twice, 0, 0 */
+  float *row_tab;          /* nv * 16, aligned: s = sin theta_ref, c = cos theta_ref, 0, 0, then c, -s, 0, 0,
+                              then the offset of the reference edge in bins (0 or -1) twice, 0, 0; then 0 x 4
+                              (64 bytes: the SSE search scales a byte offset by a shift) */
   float *col_tab;          /* nu * 8, aligned: P_i = cos phi_i M0 + sin phi_i M1, 0, Q_i = cos phi_i M1 -
                               sin phi_i M0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
@@ -340,9 +341,9 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 
 /* sample_li's direction in SSE (x86-64 always has it; define EL_NO_SIMD for the scalar code, which does
  * the same operations in the same order) */
-#if !defined(EL_NO_SIMD) && (defined(__SSE__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 1))
+#if !defined(EL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #define EL_ENVLIGHT__SSE 1
-#include <xmmintrin.h>
+#include <emmintrin.h>
 #else
 #define EL_ENVLIGHT__SSE 0
 #endif
@@ -370,6 +371,7 @@ extern "C" {
 #define EL_ENVLIGHT__SIN_MIN 1.4e-6f             /* pdf_li's floor for sin(theta) (< sin(pi 2^-21)) */
 #define EL_ENVLIGHT__HOT_SAMPLE 1
 #define EL_ENVLIGHT__HOT_PDF 2
+#define EL_ENVLIGHT__HOT_DONE 4 /* table_done (below): the table direction and pdf are final without rgb */
 #define EL_ENVLIGHT__INV_2PI2 0.05066059182116889f /* 1 / (2 pi^2) */
 
 /* sqrt without libm's errno branch (sqrtf(x < 0) must set errno, so compilers call it for such x):
@@ -675,7 +677,7 @@ static el_result el_envlight__finder(int n, int quarters, int **base, float **ed
 }
 
 /* Floats in the direction tables' allocation: 4 constant vectors, 12 per row, 8 per column, alignment slack. */
-static size_t el_envlight__dir_floats(int nu, int nv) { return 32 + (size_t)nv * 12 + (size_t)nu * 8 + 4; }
+static size_t el_envlight__dir_floats(int nu, int nv) { return 48 + (size_t)nv * 16 + (size_t)nu * 8 + 4; }
 
 static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_fast_free(&l->fast);
@@ -1005,13 +1007,13 @@ static el_result el_envlight__build(el_envlight *l) {
     l->dir_alloc = EL_MALLOC(el_envlight__dir_floats(nu, nv) * sizeof(float));
     if (!l->dir_alloc) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
     dc = l->dir_consts = (float *)l->dir_alloc + ((16u - ((size_t)l->dir_alloc & 15u)) & 15u) / sizeof(float);
-    l->row_tab = dc + 32;
-    l->col_tab = l->row_tab + (size_t)nv * 12;
+    l->row_tab = dc + 48;
+    l->col_tab = l->row_tab + (size_t)nv * 16;
     for (j = 0; j < nv; ++j) {
       int north = 2 * j < nv, k = north ? j : j + 1; /* the edge nearer the pole */
       int kk = k < nv - k ? k : nv - k;              /* sin from the nearer pole: exactly 0 at both */
-      float *t = l->row_tab + 12 * (size_t)j;
-      memset(t, 0, 12 * sizeof(float));
+      float *t = l->row_tab + 16 * (size_t)j;
+      memset(t, 0, 16 * sizeof(float));
       t[0] = (float)sin(EL_ENVLIGHT__PI * kk / nv);
       t[1] = 2 * k == nv ? 0.0f : (float)cos(EL_ENVLIGHT__PI * k / nv);
       t[4] = t[1]; t[5] = -t[0];
@@ -1038,7 +1040,11 @@ static el_result el_envlight__build(el_envlight *l) {
       dc[8 + i] = l->v_angle; dc[10 + i] = l->u_angle;
     }
     dc[12] = l->to_world[2]; dc[13] = l->to_world[5]; dc[14] = l->to_world[8]; dc[15] = 0.0f;
+    dc[40] = dc[41] = l->dist.v_pdf_scale; dc[42] = dc[43] = l->dist.u_pdf_scale;
+    dc[44] = dc[45] = dc[46] = dc[47] = 0.0f;
     for (i = 0; i < 4; ++i) { dc[16 + i] = -0.166666667f; dc[20 + i] = 1.0f; dc[24 + i] = -0.5f; dc[28 + i] = 0.0416666667f; }
+    /* sample_li's SSE search: u to units and guide cells (filled in below), the clamp of u, pdf scales */
+    for (i = 0; i < 4; ++i) { dc[32 + i] = 16777216.0f; dc[36 + i] = 0.99999994f; }
     l->dir_tables = 1;
     l->table_done = l->exact_transform && !l->dist.all_zero;
   }
@@ -1058,6 +1064,9 @@ static el_result el_envlight__build(el_envlight *l) {
     fo.method = l->sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? EL_DISTRIBUTION_FAST_ALIAS : EL_DISTRIBUTION_FAST_GUIDE;
     r = el_distribution2d_fast_init_ex(&l->fast, &l->dist, &fo);
     if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
+    if (l->dir_tables && fo.method == EL_DISTRIBUTION_FAST_GUIDE) {
+      l->dir_consts[34] = l->fast.gu_scale; l->dir_consts[35] = l->fast.gv_scale;
+    }
   }
   return EL_SUCCESS;
 }
@@ -1065,7 +1074,8 @@ static el_result el_envlight__build(el_envlight *l) {
 /* Which inline fast paths are usable once the tables are built (stored after them, with release). */
 static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
   if (r != EL_SUCCESS || l->width == 0) return 0;
-  return EL_ENVLIGHT__HOT_PDF | (l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE ? EL_ENVLIGHT__HOT_SAMPLE : 0);
+  return EL_ENVLIGHT__HOT_PDF | (l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE ? EL_ENVLIGHT__HOT_SAMPLE : 0) |
+         (l->table_done ? EL_ENVLIGHT__HOT_DONE : 0);
 }
 
 /* The once-scheme: state 0 -> 1 (one builder) -> 2 ready / 3 failed. Returns 1 when tables are usable. */
@@ -1278,21 +1288,19 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envligh
   }
 }
 
-/* sample_li from a bin and its fractions through the direction tables. A leaf (its only call is a tail
- * call), so it saves no registers; every sampler's result passes through this one function, so equal
- * bins and fractions give bit-identical directions whatever the compiler's contraction settings. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float rgb[3], float *pdf) {
-  /* mapPdf / (2 pi^2): the bin's pdf from the CDF entries the search read, times 1 / (2 pi^2), which is
-   * pdf_table's expression, so pdf_li finds the same value (and the table is not read: no cache miss) */
-  float p = pb * EL_ENVLIGHT__INV_2PI2;
-  const float *rt = l->row_tab + 12 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu, *dc = l->dir_consts;
-  /* <<Compute direction for infinite light sample>>: theta = theta_ref + a, |a| <= pi/64, and
-   * phi = phi_i + b, 0 <= b <= 2 pi/128; there sin x = x - x^3/6 and cos x = 1 - x^2/2 + x^4/24 are
-   * exact to 5e-8 relative. The column table holds phi_i's cos and sin already multiplied into the
-   * matrix: wi = sin theta (cos b P_i + sin b Q_i) + cos theta M2. Lanes: (v, u) = (a, b); the fractions
-   * are kept EL_ENVLIGHT__MARGIN inside the bin; fv - 1 is exact (no cancellation). */
 #if EL_ENVLIGHT__SSE
-  __m128 f = _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)); /* (fv, fv, fu, fu) */
+/* <<Compute direction for infinite light sample>> for bin (iv, iu) (rt, ct: its row and column entries of
+ * the direction tables) and the fractions f = (fv, fv, fu, fu)
+ * within it: theta = theta_ref + a, |a| <= pi/64, and phi = phi_i + b, 0 <= b <= 2 pi/128; there
+ * sin x = x - x^3/6 and cos x = 1 - x^2/2 + x^4/24 are exact to 5e-8 relative. The column table holds
+ * phi_i's cos and sin already multiplied into the matrix: wi = sin theta (cos b P_i + sin b Q_i) +
+ * cos theta M2. Lanes (v, v, u, u) = (a, a, b, b); the fractions are first clamped EL_ENVLIGHT__MARGIN
+ * inside the bin; fv - 1 is exact (no cancellation). Stores wi and *pdf = p / sin(theta) (p = 0 gives
+ * 0); returns the clamped fractions. Inlined into sample_li's hot path and into
+ * el_envlight__sample_table, with the same operations in the same order (SSE has no fused multiply-add
+ * to contract them into), so every sampler gives the same bits for the same bin and fractions. */
+static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt, const float *ct, __m128 f, float p, float wi[3], float *pdf) {
+  const float *dc = l->dir_consts;
   __m128 x, x2, sn, cs, t, w;
   f = _mm_min_ps(_mm_max_ps(f, _mm_load_ps(dc)), _mm_load_ps(dc + 4));
   x = _mm_mul_ps(_mm_add_ps(f, _mm_load_ps(rt + 8)), _mm_load_ps(dc + 8));        /* (a, a, b, b) */
@@ -1305,32 +1313,45 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   w = _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(t, t, 0), w), _mm_mul_ps(_mm_shuffle_ps(t, t, 0x55), _mm_load_ps(dc + 12)));
   _mm_storel_pi((__m64 *)(void *)wi, w);
   _mm_store_ss(wi + 2, _mm_movehl_ps(w, w));
-  /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)); p = 0 gives 0 */
+  /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)) */
   EL_ASSERT(_mm_cvtss_f32(t) >= EL_ENVLIGHT__SIN_MIN);
   *pdf = p / _mm_cvtss_f32(t);
+  return f;
+}
+#endif
+
+/* sample_li from a bin and its fractions through the direction tables (every sampler but sample_li's
+ * inline guide path comes here). A leaf (its only call is a tail call), so it saves no registers. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float rgb[3], float *pdf) {
+  /* mapPdf / (2 pi^2): the bin's pdf from the CDF entries the search read, times 1 / (2 pi^2), which is
+   * pdf_table's expression, so pdf_li finds the same value (and the table is not read: no cache miss) */
+  float p = pb * EL_ENVLIGHT__INV_2PI2;
+#if EL_ENVLIGHT__SSE
+  __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu,
+                                  _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), p, wi, pdf);
   if (l->table_done && !rgb) return;
   fu = _mm_cvtss_f32(_mm_movehl_ps(f, f));
   fv = _mm_cvtss_f32(f);
 #else
-  {
-    float a, b, a2, b2, sa, ca, sb, cb, st, cth;
-    fv = fv > dc[0] ? fv : dc[0];
-    fv = fv < dc[4] ? fv : dc[4];
-    fu = fu > dc[2] ? fu : dc[2];
-    fu = fu < dc[6] ? fu : dc[6];
-    a = (fv + rt[8]) * dc[8]; b = (fu + 0.0f) * dc[10];
-    a2 = a * a; b2 = b * b;
-    sa = a + a * a2 * dc[16]; ca = dc[20] + a2 * (dc[24] + a2 * dc[28]);
-    sb = b + b * b2 * dc[16]; cb = dc[20] + b2 * (dc[24] + b2 * dc[28]);
-    st = ca * rt[0] + sa * rt[4];
-    cth = ca * rt[1] + sa * rt[5];
-    wi[0] = st * (cb * ct[0] + sb * ct[4]) + cth * dc[12];
-    wi[1] = st * (cb * ct[1] + sb * ct[5]) + cth * dc[13];
-    wi[2] = st * (cb * ct[2] + sb * ct[6]) + cth * dc[14];
-    EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
-    *pdf = p / st;
-    if (l->table_done && !rgb) return;
-  }
+  /* the SSE code's operations, lane by lane (see el_envlight__dir_sse) */
+  const float *rt = l->row_tab + 16 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu, *dc = l->dir_consts;
+  float a, b, a2, b2, sa, ca, sb, cb, st, cth;
+  fv = fv > dc[0] ? fv : dc[0];
+  fv = fv < dc[4] ? fv : dc[4];
+  fu = fu > dc[2] ? fu : dc[2];
+  fu = fu < dc[6] ? fu : dc[6];
+  a = (fv + rt[8]) * dc[8]; b = (fu + 0.0f) * dc[10];
+  a2 = a * a; b2 = b * b;
+  sa = a + a * a2 * dc[16]; ca = dc[20] + a2 * (dc[24] + a2 * dc[28]);
+  sb = b + b * b2 * dc[16]; cb = dc[20] + b2 * (dc[24] + b2 * dc[28]);
+  st = ca * rt[0] + sa * rt[4];
+  cth = ca * rt[1] + sa * rt[5];
+  wi[0] = st * (cb * ct[0] + sb * ct[4]) + cth * dc[12];
+  wi[1] = st * (cb * ct[1] + sb * ct[5]) + cth * dc[13];
+  wi[2] = st * (cb * ct[2] + sb * ct[6]) + cth * dc[14];
+  EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
+  *pdf = p / st;
+  if (l->table_done && !rgb) return;
 #endif
   el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
 }
@@ -1365,26 +1386,83 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
 }
 
 /* The hot path has no calls but tail calls: the guide table's inline bin search, then the table
- * direction (el_envlight__sample_table); anything else (tables not built yet, the CDF or alias sampler,
- * u outside [0,1), the constant light, small maps) goes to el_envlight__sample_li_slow. */
+ * direction; anything else (tables not built yet, the CDF or alias sampler, a crowded guide cell, the
+ * constant light, small maps) goes to el_envlight__sample_li_slow. With SSE the search's ends are
+ * vectors: u is clamped, scaled to units and to guide cells in one go, the two CDF entries around each
+ * bin are read as one 8-byte pair, and the fractions come out in the lane order the direction wants. */
 EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float fu, fv, pb;
-  int iu, iv;
 #if EL_ENVLIGHT__ATOMICS
   int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE); /* built, direction tables, guide sampler */
 #else
   int hot = l->hot;
 #endif
-  if ((hot & EL_ENVLIGHT__HOT_SAMPLE) && el_distribution2d_u_in_range(uu[0], uu[1]) &&
-      el_distribution2d_fast_guide_bins(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
-    /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
-    el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
-    return;
+#if EL_ENVLIGHT__SSE
+  if (hot & EL_ENVLIGHT__HOT_SAMPLE) {
+    /* <<Find (u, v) sample coordinates in infinite light texture>>, as a bin and fractions: the guide
+     * table's CDF inversion (el_distribution2d_fast_guide_bins, the same integers and float operations) */
+    const el_distribution2d_fast *fd = &l->fast;
+    const float *dc = l->dir_consts;
+    const uint32_t *pv, *pu, *row;
+    __m128 su, x, c, d, f, pw;
+    __m128i k, a, b;
+    uint32_t ku, kv, g;
+    size_t ov, ou, cu, cv;
+    float p;
+    /* (u0, u1) clamped as el_distribution2d clamps u: NaN, <= 0 -> 0; >= 1 -> 0x1.fffffep-1 */
+    su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
+    su = _mm_min_ps(_mm_max_ps(su, _mm_setzero_ps()), _mm_load_ps(dc + 36));
+    su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32)); /* (u0 2^24, u1 2^24, u0 gu, u1 gv): exact */
+    k = _mm_cvttps_epi32(su);
+    ku = (uint32_t)_mm_cvtsi128_si32(k);
+    kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
+    cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
+    cv = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff));
+    g = fd->guide_v[cv];
+    if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
+      pv = fd->marginal + g;
+      while (pv[1] <= kv) ++pv; /* at most 8 steps */
+      /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
+      ov = (size_t)((const char *)pv - (const char *)fd->marginal);
+      g = *(const uint32_t *)(const void *)((const char *)fd->guide_u + ov * fd->guide_stride + 4 * cu);
+      if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
+        row = (const uint32_t *)(const void *)((const char *)fd->cdf + ov * fd->row_stride);
+        pu = row + g;
+        while (pu[1] <= ku) ++pu;
+        ou = (size_t)((const char *)pu - (const char *)row);
+        /* the bin's CDF entries (c0v, c1v, c0u, c1u) as floats (integers <= 2^24: exact), then
+         * f = (x - c0) / (c1 - c0) per axis in lanes (v, v, u, u), and the bin's pdf
+         * (wv v_pdf_scale) (wu u_pdf_scale), el_distribution2d_pdf's expression */
+        a = _mm_loadl_epi64((const __m128i *)(const void *)pv);
+        b = _mm_loadl_epi64((const __m128i *)(const void *)pu);
+        c = _mm_cvtepi32_ps(_mm_unpacklo_epi64(a, b));
+        d = _mm_shuffle_ps(c, c, _MM_SHUFFLE(2, 2, 0, 0));
+        c = _mm_sub_ps(_mm_shuffle_ps(c, c, _MM_SHUFFLE(3, 3, 1, 1)), d);
+        x = _mm_shuffle_ps(su, su, _MM_SHUFFLE(0, 0, 1, 1));
+        f = _mm_div_ps(_mm_sub_ps(x, d), c);
+        pw = _mm_mul_ps(c, _mm_load_ps(dc + 40));
+        p = _mm_cvtss_f32(_mm_mul_ss(pw, _mm_movehl_ps(pw, pw))) * EL_ENVLIGHT__INV_2PI2;
+        f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
+                                 (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
+        if (l->table_done && !rgb) return;
+        el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
+        return;
+      }
+    }
   }
+#else
+  if ((hot & EL_ENVLIGHT__HOT_SAMPLE) && el_distribution2d_u_in_range(uu[0], uu[1])) {
+    float fu, fv, pb;
+    int iu, iv;
+    if (el_distribution2d_fast_guide_bins(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
+      /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
+      el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
+      return;
+    }
+  }
+#endif
   el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
 
-/* Duff et al. 2017: an orthonormal basis around unit n. */
 static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {
   float sign = n[2] >= 0.0f ? 1.0f : -1.0f;
   float a = -1.0f / (sign + n[2]), b = n[0] * n[1] * a;
