@@ -694,8 +694,8 @@ static inline float el_envlight__bin_pdf(const el_distribution2d *dd, int iu, in
 /* >> construction helpers: SSE2 where available (x86-64 always has it; EL_NO_SIMD gives the scalar
  * code, which does the same operations in the same order, so both give the same bits).
  * Construction at 2048x1024 (bench/bench_envlight.c, every build in fresh memory from the system, so its
- * page faults count as in pbrt's constructor; gcc 12 -O3, no -march): init 10.4-11.6 ms, about 8 of it
- * faulting in the 24 MB of texels; the sampling tables 12.9-15 ms, about 6 of it faulting in their 18 MB;
+ * page faults count as in pbrt's constructor; gcc 12 -O3, no -march): init 10.4-11.6 ms, about 6 of it
+ * faulting in the 24 MB of texels; the sampling tables 12.9-15 ms, about 5 of it faulting in their 18 MB;
  * together 23-26 ms (pbrt-v3: 313 ms) and 118 M instructions (callgrind; 184 M before the SSE2 loops). */
 #if EL_ENVLIGHT__SSE && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #define EL_ENVLIGHT__SSE2 1
