@@ -394,6 +394,15 @@ static inline int el_distribution2d__bin(float x, float x0, float scale, int n) 
 #ifndef EL_DISTRIBUTION2D_IMPLEMENTATION_DONE
 #define EL_DISTRIBUTION2D_IMPLEMENTATION_DONE
 
+/* The constructors' loops in SSE2 where available (x86-64 always has it; EL_NO_SIMD gives the scalar
+ * code, which does the same operations in the same order: both give the same bits). */
+#if !defined(EL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#define EL_DISTRIBUTION2D__BUILD_SSE2 1
+#include <emmintrin.h>
+#else
+#define EL_DISTRIBUTION2D__BUILD_SSE2 0
+#endif
+
 #include <float.h>
 #include <string.h>
 
@@ -465,14 +474,6 @@ static inline float el_distribution2d__place(int i, float frac, float x0, float 
 }
 
 
-/* The constructors' loops in SSE2 where available (x86-64 always has it; EL_NO_SIMD gives the scalar
- * code, which does the same operations in the same order: both give the same bits). */
-#if !defined(EL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#define EL_DISTRIBUTION2D__BUILD_SSE2 1
-#include <emmintrin.h>
-#else
-#define EL_DISTRIBUTION2D__BUILD_SSE2 0
-#endif
 
 /* NaN and negative -> 0, +Inf -> FLT_MAX; valid values unchanged. */
 static inline double el_distribution2d__sanitize(float x) {

@@ -702,12 +702,7 @@ static inline float el_envlight__bin_pdf(const el_distribution2d *dd, int iu, in
  * page faults count as in pbrt's constructor; gcc 12 -O3, no -march): init 10.4-11.6 ms, about 6 of it
  * faulting in the 24 MB of texels; the sampling tables 12.9-15 ms, about 5 of it faulting in their 18 MB;
  * together 23-26 ms (pbrt-v3: 313 ms) and 118 M instructions (callgrind; 184 M before the SSE2 loops). */
-#if EL_ENVLIGHT__SSE && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#define EL_ENVLIGHT__SSE2 1
-#include <emmintrin.h>
-#else
-#define EL_ENVLIGHT__SSE2 0
-#endif
+#define EL_ENVLIGHT__SSE2 EL_ENVLIGHT__SSE /* <emmintrin.h> is included above, outside extern "C" */
 
 /* <<Copy, validate and scale the texels>> of one RGB row (channels == 3) and sum them per channel: the
  * fast path of el_envlight_init, one pass over the row. Blocks of 4 texels are 12 floats in which lane k
