@@ -80,7 +80,7 @@
  *    fractions within it (el_distribution2d_fast_sample_bins: no float point placement), then builds
  *    the direction from per-row tables (sin, cos of the bin's pole-side edge) and per-column tables
  *    (cos, sin of phi_i already multiplied into light_to_world) by angle addition, with x - x^3/6 and
- *    1 - x^2/2 + x^4/24 for the in-bin angle (<= pi/64: maps of at least 128x64 bins; smaller maps use
+ *    1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least 256x128 bins; smaller maps use
  *    sinpi/cospi polynomials, 1.9e-7 relative). With SSE (any x86-64; EL_NO_SIMD turns it off) the two
  *    angles go through the polynomials together and the direction is formed as 4-vectors; the scalar
  *    code does the same operations in the same order. The pdf is the bin's, from the CDF entries the
@@ -258,7 +258,7 @@ typedef struct el_envlight {
                               inline guide path is usable, bit 2 (EL_ENVLIGHT__HOT_PDF) pdf_li's */
   float *dir_consts;       /* 16-byte aligned 4-vectors, lanes (v, v, u, u): the margins, 1 - the margins, the
                               bin angles (pi / nv, 2 pi / nu); M2 = the third column of to_world, 0; the
-                              polynomial coefficients -1/6, 1, -1/2, 1/24 (kept here so that the compiler
+                              polynomial coefficients -1/6, 1, -1/2, 0 (kept here so that the compiler
                               uses them from memory) */
   float *row_tab;          /* nv * 16, aligned: s = sin theta_ref, c = cos theta_ref, 0, 0, then c, -s, 0, 0,
                               then the offset of the reference edge in bins (0 or -1) twice, 0, 0; then 0 x 4
@@ -1090,8 +1090,8 @@ static el_result el_envlight__build(el_envlight *l) {
   l->v_margin_hi = 1.0f - l->v_margin;
   l->v_angle = (float)(EL_ENVLIGHT__PI / nv);
   l->u_angle = (float)(2.0 * EL_ENVLIGHT__PI / nu);
-  if (nu >= 128 && nv >= 64) { /* bin angles <= pi/64 = 0.049: the short sin/cos polynomials of
-                                  el_envlight__sample_light are exact to float precision there */
+  if (nu >= 256 && nv >= 128) { /* bin angles <= pi/128 = 0.0245: there x - x^3/6 and 1 - x^2/2 are sin
+                                   and cos to float precision (x^5/120 <= 7e-11, x^4/24 <= 1.5e-8) */
     float *dc;
     l->dir_alloc = EL_MALLOC(el_envlight__dir_floats(nu, nv) * sizeof(float));
     if (!l->dir_alloc) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
@@ -1131,7 +1131,7 @@ static el_result el_envlight__build(el_envlight *l) {
     dc[12] = l->to_world[2]; dc[13] = l->to_world[5]; dc[14] = l->to_world[8]; dc[15] = 0.0f;
     dc[40] = dc[41] = l->dist.v_pdf_scale; dc[42] = dc[43] = l->dist.u_pdf_scale;
     dc[44] = dc[45] = dc[46] = dc[47] = 0.0f;
-    for (i = 0; i < 4; ++i) { dc[16 + i] = -0.166666667f; dc[20 + i] = 1.0f; dc[24 + i] = -0.5f; dc[28 + i] = 0.0416666667f; }
+    for (i = 0; i < 4; ++i) { dc[16 + i] = -0.166666667f; dc[20 + i] = 1.0f; dc[24 + i] = -0.5f; dc[28 + i] = 0.0f; }
     /* sample_li's SSE search: u to units and guide cells (filled in below), the clamp of u, pdf scales */
     for (i = 0; i < 4; ++i) { dc[32 + i] = 16777216.0f; dc[36 + i] = 0.99999994f; }
     l->dir_tables = 1;
@@ -1378,10 +1378,13 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envligh
 }
 
 #if EL_ENVLIGHT__SSE
+/* _mm_shuffle_ps(a, a, imm) as pshufd: one instruction whatever registers hold a (shufps overwrites its
+ * source, so the compiler adds a copy when a is still needed) */
+#define EL_ENVLIGHT__SPLAT(a, imm) _mm_castsi128_ps(_mm_shuffle_epi32(_mm_castps_si128(a), (imm)))
 /* <<Compute direction for infinite light sample>> for bin (iv, iu) (rt, ct: its row and column entries of
- * the direction tables) and the fractions f = (fv, fv, fu, fu)
- * within it: theta = theta_ref + a, |a| <= pi/64, and phi = phi_i + b, 0 <= b <= 2 pi/128; there
- * sin x = x - x^3/6 and cos x = 1 - x^2/2 + x^4/24 are exact to 5e-8 relative. The column table holds
+ * the direction tables) and the fractions f = (fv, fv, fu, fu) within it: theta = theta_ref + a,
+ * |a| <= pi/128, and phi = phi_i + b, 0 <= b <= 2 pi/256; there sin x = x - x^3/6 and cos x = 1 - x^2/2
+ * are exact to float precision (the next terms are below 1.5e-8 relative). The column table holds
  * phi_i's cos and sin already multiplied into the matrix: wi = sin theta (cos b P_i + sin b Q_i) +
  * cos theta M2. Lanes (v, v, u, u) = (a, a, b, b); the fractions are first clamped EL_ENVLIGHT__MARGIN
  * inside the bin; fv - 1 is exact (no cancellation). Stores wi and *pdf = p / sin(theta) (p = 0 gives
@@ -1395,11 +1398,11 @@ static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt,
   x = _mm_mul_ps(_mm_add_ps(f, _mm_load_ps(rt + 8)), _mm_load_ps(dc + 8));        /* (a, a, b, b) */
   x2 = _mm_mul_ps(x, x);
   sn = _mm_add_ps(x, _mm_mul_ps(_mm_mul_ps(x, x2), _mm_load_ps(dc + 16)));
-  cs = _mm_add_ps(_mm_load_ps(dc + 20), _mm_mul_ps(x2, _mm_add_ps(_mm_load_ps(dc + 24), _mm_mul_ps(x2, _mm_load_ps(dc + 28)))));
+  cs = _mm_add_ps(_mm_load_ps(dc + 20), _mm_mul_ps(x2, _mm_load_ps(dc + 24)));
   /* (sin theta, cos theta) = ca (s, c) + sa (c, -s): both sin terms >= 0, exact near both poles */
   t = _mm_add_ps(_mm_mul_ps(cs, _mm_load_ps(rt)), _mm_mul_ps(sn, _mm_load_ps(rt + 4)));
-  w = _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(cs, cs, 0xaa), _mm_load_ps(ct)), _mm_mul_ps(_mm_shuffle_ps(sn, sn, 0xaa), _mm_load_ps(ct + 4)));
-  w = _mm_add_ps(_mm_mul_ps(_mm_shuffle_ps(t, t, 0), w), _mm_mul_ps(_mm_shuffle_ps(t, t, 0x55), _mm_load_ps(dc + 12)));
+  w = _mm_add_ps(_mm_mul_ps(EL_ENVLIGHT__SPLAT(cs, 0xaa), _mm_load_ps(ct)), _mm_mul_ps(EL_ENVLIGHT__SPLAT(sn, 0xaa), _mm_load_ps(ct + 4)));
+  w = _mm_add_ps(_mm_mul_ps(EL_ENVLIGHT__SPLAT(t, 0), w), _mm_mul_ps(EL_ENVLIGHT__SPLAT(t, 0x55), _mm_load_ps(dc + 12)));
   _mm_storel_pi((__m64 *)(void *)wi, w);
   _mm_store_ss(wi + 2, _mm_movehl_ps(w, w));
   /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)) */
@@ -1431,8 +1434,8 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   fu = fu < dc[6] ? fu : dc[6];
   a = (fv + rt[8]) * dc[8]; b = (fu + 0.0f) * dc[10];
   a2 = a * a; b2 = b * b;
-  sa = a + a * a2 * dc[16]; ca = dc[20] + a2 * (dc[24] + a2 * dc[28]);
-  sb = b + b * b2 * dc[16]; cb = dc[20] + b2 * (dc[24] + b2 * dc[28]);
+  sa = a + a * a2 * dc[16]; ca = dc[20] + a2 * dc[24];
+  sb = b + b * b2 * dc[16]; cb = dc[20] + b2 * dc[24];
   st = ca * rt[0] + sa * rt[4];
   cth = ca * rt[1] + sa * rt[5];
   wi[0] = st * (cb * ct[0] + sb * ct[4]) + cth * dc[12];
@@ -1524,12 +1527,12 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
         a = _mm_loadl_epi64((const __m128i *)(const void *)pv);
         b = _mm_loadl_epi64((const __m128i *)(const void *)pu);
         c = _mm_cvtepi32_ps(_mm_unpacklo_epi64(a, b));
-        d = _mm_shuffle_ps(c, c, _MM_SHUFFLE(2, 2, 0, 0));
-        c = _mm_sub_ps(_mm_shuffle_ps(c, c, _MM_SHUFFLE(3, 3, 1, 1)), d);
-        x = _mm_shuffle_ps(su, su, _MM_SHUFFLE(0, 0, 1, 1));
+        d = EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(2, 2, 0, 0));
+        c = _mm_sub_ps(EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(3, 3, 1, 1)), d);
+        x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
         f = _mm_div_ps(_mm_sub_ps(x, d), c);
         pw = _mm_mul_ps(c, _mm_load_ps(dc + 40));
-        p = _mm_cvtss_f32(_mm_mul_ss(pw, _mm_movehl_ps(pw, pw))) * EL_ENVLIGHT__INV_2PI2;
+        p = _mm_cvtss_f32(_mm_mul_ss(pw, EL_ENVLIGHT__SPLAT(pw, 0xaa))) * EL_ENVLIGHT__INV_2PI2;
         f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
                                  (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
         if (l->table_done && !rgb) return;

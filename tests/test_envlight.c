@@ -1048,13 +1048,13 @@ static void test_threads(const el_image *city) {
   el_envlight_free(&l);
 }
 
-/* sample_li's table path (maps of at least 128x64 bins: angle addition from per-row and per-column
+/* sample_li's table path (maps of at least 256x128 bins: angle addition from per-row and per-column
  * tables, short polynomials for the in-bin angle) against libm in double: the direction of the point
  * (bin + fraction) the distribution picked, through the matrix, and its pdf p / (2 pi^2 sin theta).
  * The bin and fraction come from distribution2d's binary searches on the light's own distribution (the
- * CDF sampler's, clamped to the documented 2^-21 margin); 128x64 has the largest in-bin angles (pi/64). */
+ * CDF sampler's, clamped to the documented 2^-21 margin); 256x128 has the largest in-bin angles (pi/128). */
 static void test_table_directions(const el_image *city) {
-  static const int sizes[2][2] = {{128, 64}, {0, 0}};
+  static const int sizes[2][2] = {{256, 128}, {0, 0}};
   int si, mi;
   for (si = 0; si < 2; ++si)
     for (mi = 0; mi < 3; ++mi) {
