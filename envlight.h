@@ -267,6 +267,8 @@ typedef struct el_envlight {
                               sin phi_i M0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
   void *dir_alloc;         /* the allocation holding the three */
+  const uint32_t **row_ptrs; /* guide sampler with direction tables: per row v, its CDF row and its guide
+                              row (sample_li's SSE search reads both with one index) */
   int table_done;          /* exact_transform and not all-zero (so every sampled bin has p > 0): the table
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
@@ -684,6 +686,8 @@ static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_free(&l->dist);
   EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge); EL_FREE(l->pdf_table);
   EL_FREE(l->dir_alloc);
+  EL_FREE((void *)l->row_ptrs);
+  l->row_ptrs = NULL;
   l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL; l->pdf_table = NULL;
   l->row_tab = l->col_tab = l->dir_consts = NULL; l->dir_alloc = NULL; l->dir_tables = l->table_done = 0;
 }
@@ -1155,6 +1159,12 @@ static el_result el_envlight__build(el_envlight *l) {
     if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
     if (l->dir_tables && fo.method == EL_DISTRIBUTION_FAST_GUIDE) {
       l->dir_consts[34] = l->fast.gu_scale; l->dir_consts[35] = l->fast.gv_scale;
+      l->row_ptrs = (const uint32_t **)EL_MALLOC((size_t)nv * 2 * sizeof *l->row_ptrs);
+      if (!l->row_ptrs) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
+      for (j = 0; j < nv; ++j) {
+        l->row_ptrs[2 * j] = l->fast.cdf + (size_t)j * l->fast.row_stride;
+        l->row_ptrs[2 * j + 1] = l->fast.guide_u + (size_t)j * l->fast.guide_stride;
+      }
     }
   }
   return EL_SUCCESS;
@@ -1494,7 +1504,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
      * table's CDF inversion (el_distribution2d_fast_guide_bins, the same integers and float operations) */
     const el_distribution2d_fast *fd = &l->fast;
     const float *dc = l->dir_consts;
-    const uint32_t *pv, *pu, *row;
+    const uint32_t *pv, *pu, *row, *const *rp;
     __m128 su, x, c, d, f, pw;
     __m128i k, a, b;
     uint32_t ku, kv, g;
@@ -1515,9 +1525,10 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
       while (pv[1] <= kv) ++pv; /* at most 8 steps */
       /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
       ov = (size_t)((const char *)pv - (const char *)fd->marginal);
-      g = *(const uint32_t *)(const void *)((const char *)fd->guide_u + ov * fd->guide_stride + 4 * cu);
+      rp = (const uint32_t *const *)(const void *)((const char *)l->row_ptrs + 4 * ov);
+      g = rp[1][cu];
       if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
-        row = (const uint32_t *)(const void *)((const char *)fd->cdf + ov * fd->row_stride);
+        row = rp[0];
         pu = row + g;
         while (pu[1] <= ku) ++pu;
         ou = (size_t)((const char *)pu - (const char *)row);
@@ -1624,6 +1635,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
   if (l->dir_tables) b += el_envlight__dir_floats(l->dist.nu, l->dist.nv) * sizeof(float);
+  if (l->row_ptrs) b += (size_t)l->dist.nv * 2 * sizeof *l->row_ptrs;
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) b += el_distribution2d_fast_bytes(&l->fast);
   return b;
 }
