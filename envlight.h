@@ -274,6 +274,7 @@ typedef struct el_envlight {
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
   uint32_t nu32;           /* dist.nu, for pdf_li's 32-bit table index */
+  float pdf_k;             /* v_pdf_scale u_pdf_scale / (2 pi^2): a bin's pdf_table entry is (wv wu) pdf_k */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -1133,8 +1134,7 @@ static el_result el_envlight__build(el_envlight *l) {
       dc[8 + i] = l->v_angle; dc[10 + i] = l->u_angle;
     }
     dc[12] = l->to_world[2]; dc[13] = l->to_world[5]; dc[14] = l->to_world[8]; dc[15] = 0.0f;
-    dc[40] = dc[41] = l->dist.v_pdf_scale; dc[42] = dc[43] = l->dist.u_pdf_scale;
-    dc[44] = dc[45] = dc[46] = dc[47] = 0.0f;
+    for (i = 40; i < 48; ++i) dc[i] = 0.0f; /* dc[40] = pdf_k, below */
     for (i = 0; i < 4; ++i) { dc[16 + i] = -0.166666667f; dc[20 + i] = 1.0f; dc[24 + i] = -0.5f; dc[28 + i] = 0.0f; }
     /* sample_li's SSE search: u to units and guide cells (filled in below), the clamp of u, pdf scales */
     for (i = 0; i < 4; ++i) { dc[32 + i] = 16777216.0f; dc[36 + i] = 0.99999994f; }
@@ -1143,13 +1143,17 @@ static el_result el_envlight__build(el_envlight *l) {
   }
   l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
   l->v_cell_scale = (float)(l->v_cells - 2) * 0.5f;
-  for (j = 0; j < nv; ++j) { /* el_envlight__bin_pdf, row by row */
+  /* the pdf of bin (i, j) / (2 pi^2) is (wv wu) K, wv and wu its integer widths (exact as floats) and
+   * K = v_pdf_scale u_pdf_scale / (2 pi^2) (0 when all-zero): the same expression as sample_li's, which
+   * forms it from the CDF entries its search read, so the two agree bit for bit */
+  l->pdf_k = l->dist.v_pdf_scale * l->dist.u_pdf_scale * EL_ENVLIGHT__INV_2PI2;
+  if (l->dir_tables) l->dir_consts[40] = l->pdf_k;
+  for (j = 0; j < nv; ++j) {
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
-    float wv = (float)(l->dist.marginal[j + 1] - l->dist.marginal[j]) * l->dist.v_pdf_scale;
+    float wv = (float)(int32_t)(l->dist.marginal[j + 1] - l->dist.marginal[j]), k = l->pdf_k;
     float *dst = l->pdf_table + (size_t)j * nu;
-    float us = l->dist.u_pdf_scale;
     /* a bin's width is at most 2^24 units: as int32_t it converts to the same float, and the loop vectorises */
-    for (i = 0; i < nu; ++i) dst[i] = wv * ((float)(int32_t)(row[i + 1] - row[i]) * us) * EL_ENVLIGHT__INV_2PI2;
+    for (i = 0; i < nu; ++i) dst[i] = (wv * (float)(int32_t)(row[i + 1] - row[i])) * k;
   }
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
     el_distribution_fast_options fo;
@@ -1335,11 +1339,12 @@ static inline float el_envlight__sample_bin(const el_envlight *l, float u0, floa
   float a, b, p;
   if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, u0, u1, iu, iv, &a, &b, &p);
   else el_distribution2d_fast_sample_bins(&l->fast, u0, u1, iu, iv, &a, &b, &p);
+  (void)p;
   a = a > l->u_margin ? a : l->u_margin;
   *fu = a < l->u_margin_hi ? a : l->u_margin_hi;
   b = b > l->v_margin ? b : l->v_margin;
   *fv = b < l->v_margin_hi ? b : l->v_margin_hi;
-  return p * EL_ENVLIGHT__INV_2PI2; /* == pdf_table[iv * nu + iu] */
+  return l->pdf_table[(size_t)*iv * (size_t)l->dist.nu + (size_t)*iu]; /* mapPdf / (2 pi^2) */
 }
 
 /* Sample (u, v) and the light-space direction; returns the pdf w.r.t. solid angle (0: no sample). The
@@ -1424,10 +1429,10 @@ static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt,
 
 /* sample_li from a bin and its fractions through the direction tables (every sampler but sample_li's
  * inline guide path comes here). A leaf (its only call is a tail call), so it saves no registers. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float rgb[3], float *pdf) {
-  /* mapPdf / (2 pi^2): the bin's pdf from the CDF entries the search read, times 1 / (2 pi^2), which is
-   * pdf_table's expression, so pdf_li finds the same value (and the table is not read: no cache miss) */
-  float p = pb * EL_ENVLIGHT__INV_2PI2;
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+  /* mapPdf / (2 pi^2): the bin's pdf_table entry, the value pdf_li finds (sample_li's inline path forms
+   * the same value from the CDF entries its search read) */
+  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu];
 #if EL_ENVLIGHT__SSE
   __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu,
                                   _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), p, wi, pdf);
@@ -1470,7 +1475,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
     float fu, fv, pb;
     if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb);
     else el_distribution2d_fast_sample_bins_general(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb);
-    el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
+    el_envlight__sample_table(l, iu, iv, fu, fv, wi, rgb, pdf);
     return;
   }
   p = el_envlight__sample_light(l, uu[0], uu[1], &u, &v, d);
@@ -1505,7 +1510,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
     const el_distribution2d_fast *fd = &l->fast;
     const float *dc = l->dir_consts;
     const uint32_t *pv, *pu, *row, *const *rp;
-    __m128 su, x, c, d, f, pw;
+    __m128 su, x, c, d, f;
     __m128i k, a, b;
     uint32_t ku, kv, g;
     size_t ov, ou, cu, cv;
@@ -1542,8 +1547,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
         c = _mm_sub_ps(EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(3, 3, 1, 1)), d);
         x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
         f = _mm_div_ps(_mm_sub_ps(x, d), c);
-        pw = _mm_mul_ps(c, _mm_load_ps(dc + 40));
-        p = _mm_cvtss_f32(_mm_mul_ss(pw, EL_ENVLIGHT__SPLAT(pw, 0xaa))) * EL_ENVLIGHT__INV_2PI2;
+        p = _mm_cvtss_f32(_mm_mul_ss(_mm_mul_ss(c, EL_ENVLIGHT__SPLAT(c, 0xaa)), _mm_load_ss(dc + 40))); /* (wv wu) K */
         f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
                                  (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
         if (l->table_done && !rgb) return;
@@ -1558,7 +1562,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
     int iu, iv;
     if (el_distribution2d_fast_guide_bins(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
       /* <<Find (u, v) sample coordinates in infinite light texture>>: done, as a bin and fractions */
-      el_envlight__sample_table(l, iu, iv, fu, fv, pb, wi, rgb, pdf);
+      el_envlight__sample_table(l, iu, iv, fu, fv, wi, rgb, pdf);
       return;
     }
   }
