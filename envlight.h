@@ -374,7 +374,6 @@ extern "C" {
 #define EL_ENVLIGHT__SIN_MIN 1.4e-6f             /* pdf_li's floor for sin(theta) (< sin(pi 2^-21)) */
 #define EL_ENVLIGHT__HOT_SAMPLE 1
 #define EL_ENVLIGHT__HOT_PDF 2
-#define EL_ENVLIGHT__HOT_DONE 4 /* table_done (below): the table direction and pdf are final without rgb */
 #define EL_ENVLIGHT__INV_2PI2 0.05066059182116889f /* 1 / (2 pi^2) */
 
 /* sqrt without libm's errno branch (sqrtf(x < 0) must set errno, so compilers call it for such x):
@@ -1177,8 +1176,10 @@ static el_result el_envlight__build(el_envlight *l) {
 /* Which inline fast paths are usable once the tables are built (stored after them, with release). */
 static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
   if (r != EL_SUCCESS || l->width == 0) return 0;
-  return EL_ENVLIGHT__HOT_PDF | (l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE ? EL_ENVLIGHT__HOT_SAMPLE : 0) |
-         (l->table_done ? EL_ENVLIGHT__HOT_DONE : 0);
+  /* sample_li's inline path: direction tables (table_done implies them), the guide sampler, a
+   * signed-permutation matrix and a map that is not all black (table_done: the table direction and pdf
+   * are then final) */
+  return EL_ENVLIGHT__HOT_PDF | (l->table_done && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE ? EL_ENVLIGHT__HOT_SAMPLE : 0);
 }
 
 /* The once-scheme: state 0 -> 1 (one builder) -> 2 ready / 3 failed. Returns 1 when tables are usable. */
@@ -1414,9 +1415,10 @@ static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt,
   x2 = _mm_mul_ps(x, x);
   sn = _mm_add_ps(x, _mm_mul_ps(_mm_mul_ps(x, x2), _mm_load_ps(dc + 16)));
   cs = _mm_add_ps(_mm_load_ps(dc + 20), _mm_mul_ps(x2, _mm_load_ps(dc + 24)));
-  /* (sin theta, cos theta) = ca (s, c) + sa (c, -s): both sin terms >= 0, exact near both poles */
-  t = _mm_add_ps(_mm_mul_ps(cs, _mm_load_ps(rt)), _mm_mul_ps(sn, _mm_load_ps(rt + 4)));
+  /* cos b P_i + sin b Q_i, then (sin theta, cos theta) = ca (s, c) + sa (c, -s): both sin terms >= 0,
+   * exact near both poles */
   w = _mm_add_ps(_mm_mul_ps(EL_ENVLIGHT__SPLAT(cs, 0xaa), _mm_load_ps(ct)), _mm_mul_ps(EL_ENVLIGHT__SPLAT(sn, 0xaa), _mm_load_ps(ct + 4)));
+  t = _mm_add_ps(_mm_mul_ps(cs, _mm_load_ps(rt)), _mm_mul_ps(sn, _mm_load_ps(rt + 4)));
   w = _mm_add_ps(_mm_mul_ps(EL_ENVLIGHT__SPLAT(t, 0), w), _mm_mul_ps(EL_ENVLIGHT__SPLAT(t, 0x55), _mm_load_ps(dc + 12)));
   _mm_storel_pi((__m64 *)(void *)wi, w);
   _mm_store_ss(wi + 2, _mm_movehl_ps(w, w));
@@ -1517,7 +1519,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
     float p;
     /* (u0, u1) clamped as el_distribution2d clamps u: NaN, <= 0 -> 0; >= 1 -> 0x1.fffffep-1 */
     su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
-    su = _mm_min_ps(_mm_max_ps(su, _mm_setzero_ps()), _mm_load_ps(dc + 36));
+    su = _mm_min_ps(_mm_max_ps(su, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36)); /* dc + 44: zeros */
     su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32)); /* (u0 2^24, u1 2^24, u0 gu, u1 gv): exact */
     k = _mm_cvttps_epi32(su);
     ku = (uint32_t)_mm_cvtsi128_si32(k);
@@ -1528,6 +1530,10 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
     if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
       pv = fd->marginal + g;
       while (pv[1] <= kv) ++pv; /* at most 8 steps */
+      a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
+#if defined(__GNUC__) || defined(__clang__)
+      __asm__("" : "+x"(a)); /* read here, so pv need not stay in a register through the u search */
+#endif
       /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
       ov = (size_t)((const char *)pv - (const char *)fd->marginal);
       rp = (const uint32_t *const *)(const void *)((const char *)l->row_ptrs + 4 * ov);
@@ -1540,17 +1546,16 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
         /* the bin's CDF entries (c0v, c1v, c0u, c1u) as floats (integers <= 2^24: exact), then
          * f = (x - c0) / (c1 - c0) per axis in lanes (v, v, u, u), and the bin's pdf
          * (wv v_pdf_scale) (wu u_pdf_scale), el_distribution2d_pdf's expression */
-        a = _mm_loadl_epi64((const __m128i *)(const void *)pv);
         b = _mm_loadl_epi64((const __m128i *)(const void *)pu);
         c = _mm_cvtepi32_ps(_mm_unpacklo_epi64(a, b));
         d = EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(2, 2, 0, 0));
         c = _mm_sub_ps(EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(3, 3, 1, 1)), d);
         x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
         f = _mm_div_ps(_mm_sub_ps(x, d), c);
-        p = _mm_cvtss_f32(_mm_mul_ss(_mm_mul_ss(c, EL_ENVLIGHT__SPLAT(c, 0xaa)), _mm_load_ss(dc + 40))); /* (wv wu) K */
+        p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
         f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
                                  (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
-        if (l->table_done && !rgb) return;
+        if (!rgb) return; /* table_done holds here (see el_envlight__hot_bits) */
         el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
         return;
       }
