@@ -255,7 +255,8 @@ typedef struct el_envlight {
    * angle addition. */
   int dir_tables;
   int hot;                 /* stored with release after the tables: bit 1 (EL_ENVLIGHT__HOT_SAMPLE) sample_li's
-                              inline guide path is usable, bit 2 (EL_ENVLIGHT__HOT_PDF) pdf_li's */
+                              inline guide path is usable and final, bit 4 (..._SAMPLE_FINISH) usable with the
+                              pdf recomputed, bit 2 (EL_ENVLIGHT__HOT_PDF) pdf_li's inline path is usable */
   float *dir_consts;       /* 16-byte aligned 4-vectors, lanes (v, v, u, u): the margins, 1 - the margins, the
                               bin angles (pi / nv, 2 pi / nu); M2 = the third column of to_world, 0; the
                               polynomial coefficients -1/6, 1, -1/2, 0 (kept here so that the compiler
@@ -374,6 +375,7 @@ extern "C" {
 #define EL_ENVLIGHT__SIN_MIN 1.4e-6f             /* pdf_li's floor for sin(theta) (< sin(pi 2^-21)) */
 #define EL_ENVLIGHT__HOT_SAMPLE 1
 #define EL_ENVLIGHT__HOT_PDF 2
+#define EL_ENVLIGHT__HOT_SAMPLE_FINISH 4
 #define EL_ENVLIGHT__INV_2PI2 0.05066059182116889f /* 1 / (2 pi^2) */
 
 /* sqrt without libm's errno branch (sqrtf(x < 0) must set errno, so compilers call it for such x):
@@ -1176,10 +1178,11 @@ static el_result el_envlight__build(el_envlight *l) {
 /* Which inline fast paths are usable once the tables are built (stored after them, with release). */
 static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
   if (r != EL_SUCCESS || l->width == 0) return 0;
-  /* sample_li's inline path: direction tables (table_done implies them), the guide sampler, a
-   * signed-permutation matrix and a map that is not all black (table_done: the table direction and pdf
-   * are then final) */
-  return EL_ENVLIGHT__HOT_PDF | (l->table_done && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE ? EL_ENVLIGHT__HOT_SAMPLE : 0);
+  /* sample_li's inline path: direction tables and the guide sampler; HOT_SAMPLE when the table direction
+   * and pdf are final (table_done: a signed-permutation matrix, a map that is not all black), else
+   * HOT_SAMPLE_FINISH (the pdf is then recomputed from wi) */
+  int inl = l->dir_tables && l->sampler == EL_ENVLIGHT_SAMPLER_GUIDE;
+  return EL_ENVLIGHT__HOT_PDF | (inl ? (l->table_done ? EL_ENVLIGHT__HOT_SAMPLE : EL_ENVLIGHT__HOT_SAMPLE_FINISH) : 0);
 }
 
 /* The once-scheme: state 0 -> 1 (one builder) -> 2 ready / 3 failed. Returns 1 when tables are usable. */
@@ -1494,11 +1497,87 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
   }
 }
 
-/* The hot path has no calls but tail calls: the guide table's inline bin search, then the table
- * direction; anything else (tables not built yet, the CDF or alias sampler, a crowded guide cell, the
- * constant light, small maps) goes to el_envlight__sample_li_slow. With SSE the search's ends are
- * vectors: u is clamped, scaled to units and to guide cells in one go, the two CDF entries around each
- * bin are read as one 8-byte pair, and the fractions come out in the lane order the direction wants. */
+#if EL_ENVLIGHT__SSE
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define EL_ENVLIGHT__ALWAYS_INLINE inline
+#endif
+/* sample_li's inline path: the guide table's bin search, then the table direction; returns 0 (nothing
+ * written) for a crowded guide cell. With final = 1 (a signed-permutation matrix and a map that is not
+ * black) the table's direction and pdf are the result; otherwise (a general rotation, a black map)
+ * el_envlight__sample_li_finish recomputes the pdf from wi or sets the black map's result. The search's
+ * ends are vectors: u is clamped, scaled to units and to guide cells in one go, the two CDF entries
+ * around each bin are read as one 8-byte pair, and the fractions come out in the lane order the
+ * direction wants. */
+static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf, int final) {
+  /* <<Find (u, v) sample coordinates in infinite light texture>>, as a bin and fractions: the guide
+   * table's CDF inversion (el_distribution2d_fast_guide_bins, the same integers and float operations) */
+  const el_distribution2d_fast *fd = &l->fast;
+  const float *dc = l->dir_consts;
+  const uint32_t *pv, *pu, *row, *const *rp;
+  __m128 su, x, c, d, f;
+  __m128i k, a, b;
+  uint32_t ku, kv, g;
+  size_t ov, ou, cu, cv;
+  float p;
+  /* (u0, u1) clamped as el_distribution2d clamps u: NaN, <= 0 -> 0; >= 1 -> 0x1.fffffep-1 */
+  su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
+  su = _mm_min_ps(_mm_max_ps(su, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36)); /* dc + 44: zeros */
+  su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32)); /* (u0 2^24, u1 2^24, u0 gu, u1 gv): exact */
+  k = _mm_cvttps_epi32(su);
+  ku = (uint32_t)_mm_cvtsi128_si32(k);
+  kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
+  cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
+  cv = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff));
+  g = fd->guide_v[cv];
+  if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
+    pv = fd->marginal + g;
+    while (pv[1] <= kv) ++pv; /* at most 8 steps */
+    a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
+#if defined(__GNUC__) || defined(__clang__)
+    __asm__("" : "+x"(a)); /* read here, so pv need not stay in a register through the u search */
+#endif
+    /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
+    ov = (size_t)((const char *)pv - (const char *)fd->marginal);
+    rp = (const uint32_t *const *)(const void *)((const char *)l->row_ptrs + 4 * ov);
+    g = rp[1][cu];
+    if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
+      row = rp[0];
+      pu = row + g;
+      while (pu[1] <= ku) ++pu;
+      ou = (size_t)((const char *)pu - (const char *)row);
+      /* the bin's CDF entries (c0v, c1v, c0u, c1u) as floats (integers <= 2^24: exact), then
+       * f = (x - c0) / (c1 - c0) per axis in lanes (v, v, u, u), and the bin's pdf / (2 pi^2),
+       * (wv wu) K, pdf_table's expression */
+      b = _mm_loadl_epi64((const __m128i *)(const void *)pu);
+      c = _mm_cvtepi32_ps(_mm_unpacklo_epi64(a, b));
+      d = EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(2, 2, 0, 0));
+      c = _mm_sub_ps(EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(3, 3, 1, 1)), d);
+      x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
+      f = _mm_div_ps(_mm_sub_ps(x, d), c);
+      p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
+      f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
+                               (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
+      if (final && !rgb) return 1;
+      el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
+/* The inline path with the pdf recomputed (a general rotation, a black map): out of line, so that the
+ * common case's function stays small. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  if (!el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 0)) el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
+}
+#endif
+
+/* The hot path has no calls but tail calls; anything it does not take (tables not built yet, the CDF
+ * or alias sampler, a crowded guide cell, the constant light, small maps) goes to
+ * el_envlight__sample_li_slow. */
 EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
 #if EL_ENVLIGHT__ATOMICS
   int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE); /* built, direction tables, guide sampler */
@@ -1507,62 +1586,13 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 #endif
 #if EL_ENVLIGHT__SSE
   if (hot & EL_ENVLIGHT__HOT_SAMPLE) {
-    /* <<Find (u, v) sample coordinates in infinite light texture>>, as a bin and fractions: the guide
-     * table's CDF inversion (el_distribution2d_fast_guide_bins, the same integers and float operations) */
-    const el_distribution2d_fast *fd = &l->fast;
-    const float *dc = l->dir_consts;
-    const uint32_t *pv, *pu, *row, *const *rp;
-    __m128 su, x, c, d, f;
-    __m128i k, a, b;
-    uint32_t ku, kv, g;
-    size_t ov, ou, cu, cv;
-    float p;
-    /* (u0, u1) clamped as el_distribution2d clamps u: NaN, <= 0 -> 0; >= 1 -> 0x1.fffffep-1 */
-    su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
-    su = _mm_min_ps(_mm_max_ps(su, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36)); /* dc + 44: zeros */
-    su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32)); /* (u0 2^24, u1 2^24, u0 gu, u1 gv): exact */
-    k = _mm_cvttps_epi32(su);
-    ku = (uint32_t)_mm_cvtsi128_si32(k);
-    kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
-    cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
-    cv = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff));
-    g = fd->guide_v[cv];
-    if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
-      pv = fd->marginal + g;
-      while (pv[1] <= kv) ++pv; /* at most 8 steps */
-      a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
-#if defined(__GNUC__) || defined(__clang__)
-      __asm__("" : "+x"(a)); /* read here, so pv need not stay in a register through the u search */
-#endif
-      /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
-      ov = (size_t)((const char *)pv - (const char *)fd->marginal);
-      rp = (const uint32_t *const *)(const void *)((const char *)l->row_ptrs + 4 * ov);
-      g = rp[1][cu];
-      if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
-        row = rp[0];
-        pu = row + g;
-        while (pu[1] <= ku) ++pu;
-        ou = (size_t)((const char *)pu - (const char *)row);
-        /* the bin's CDF entries (c0v, c1v, c0u, c1u) as floats (integers <= 2^24: exact), then
-         * f = (x - c0) / (c1 - c0) per axis in lanes (v, v, u, u), and the bin's pdf
-         * (wv v_pdf_scale) (wu u_pdf_scale), el_distribution2d_pdf's expression */
-        b = _mm_loadl_epi64((const __m128i *)(const void *)pu);
-        c = _mm_cvtepi32_ps(_mm_unpacklo_epi64(a, b));
-        d = EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(2, 2, 0, 0));
-        c = _mm_sub_ps(EL_ENVLIGHT__SPLAT(c, _MM_SHUFFLE(3, 3, 1, 1)), d);
-        x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
-        f = _mm_div_ps(_mm_sub_ps(x, d), c);
-        p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
-        f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
-                                 (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
-        if (!rgb) return; /* table_done holds here (see el_envlight__hot_bits) */
-        el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
-        return;
-      }
-    }
+    if (el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 1)) return;
+  } else if (hot & EL_ENVLIGHT__HOT_SAMPLE_FINISH) {
+    el_envlight__sample_li_finishing(l, uu, wi, rgb, pdf);
+    return;
   }
 #else
-  if ((hot & EL_ENVLIGHT__HOT_SAMPLE) && el_distribution2d_u_in_range(uu[0], uu[1])) {
+  if ((hot & (EL_ENVLIGHT__HOT_SAMPLE | EL_ENVLIGHT__HOT_SAMPLE_FINISH)) && el_distribution2d_u_in_range(uu[0], uu[1])) {
     float fu, fv, pb;
     int iu, iv;
     if (el_distribution2d_fast_guide_bins(&l->fast, uu[0], uu[1], &iu, &iv, &fu, &fv, &pb)) {
