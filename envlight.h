@@ -262,14 +262,13 @@ typedef struct el_envlight {
                               polynomial coefficients -1/6, 1, -1/2, 0 (kept here so that the compiler
                               uses them from memory) */
   float *row_tab;          /* nv * 16, aligned: s = sin theta_ref, c = cos theta_ref, 0, 0, then c, -s, 0, 0,
-                              then the offset of the reference edge in bins (0 or -1) twice, 0, 0; then 0 x 4
-                              (64 bytes: the SSE search scales a byte offset by a shift) */
+                              then the offset of the reference edge in bins (0 or -1) twice, 0, 0; then (guide
+                              sampler) two pointers: the row's CDF row and its guide row, which sample_li's SSE
+                              search reads from the same 64-byte record */
   float *col_tab;          /* nu * 8, aligned: P_i = cos phi_i M0 + sin phi_i M1, 0, Q_i = cos phi_i M1 -
                               sin phi_i M0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
   void *dir_alloc;         /* the allocation holding the three */
-  const uint32_t **row_ptrs; /* guide sampler with direction tables: per row v, its CDF row and its guide
-                              row (sample_li's SSE search reads both with one index) */
   int table_done;          /* exact_transform and not all-zero (so every sampled bin has p > 0): the table
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
@@ -688,8 +687,6 @@ static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_free(&l->dist);
   EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge); EL_FREE(l->pdf_table);
   EL_FREE(l->dir_alloc);
-  EL_FREE((void *)l->row_ptrs);
-  l->row_ptrs = NULL;
   l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL; l->pdf_table = NULL;
   l->row_tab = l->col_tab = l->dir_consts = NULL; l->dir_alloc = NULL; l->dir_tables = l->table_done = 0;
 }
@@ -1164,11 +1161,10 @@ static el_result el_envlight__build(el_envlight *l) {
     if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
     if (l->dir_tables && fo.method == EL_DISTRIBUTION_FAST_GUIDE) {
       l->dir_consts[34] = l->fast.gu_scale; l->dir_consts[35] = l->fast.gv_scale;
-      l->row_ptrs = (const uint32_t **)EL_MALLOC((size_t)nv * 2 * sizeof *l->row_ptrs);
-      if (!l->row_ptrs) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
-      for (j = 0; j < nv; ++j) {
-        l->row_ptrs[2 * j] = l->fast.cdf + (size_t)j * l->fast.row_stride;
-        l->row_ptrs[2 * j + 1] = l->fast.guide_u + (size_t)j * l->fast.guide_stride;
+      for (j = 0; j < nv; ++j) { /* floats 12-15 of the row record: two pointers (8-byte aligned) */
+        const uint32_t **rq = (const uint32_t **)(void *)(l->row_tab + 16 * (size_t)j + 12);
+        rq[0] = l->fast.cdf + (size_t)j * l->fast.row_stride;
+        rq[1] = l->fast.guide_u + (size_t)j * l->fast.guide_stride;
       }
     }
   }
@@ -1516,6 +1512,7 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   const el_distribution2d_fast *fd = &l->fast;
   const float *dc = l->dir_consts;
   const uint32_t *pv, *pu, *row, *const *rp;
+  const float *rt;
   __m128 su, x, c, d, f;
   __m128i k, a, b;
   uint32_t ku, kv, g;
@@ -1540,7 +1537,8 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
 #endif
     /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
     ov = (size_t)((const char *)pv - (const char *)fd->marginal);
-    rp = (const uint32_t *const *)(const void *)((const char *)l->row_ptrs + 4 * ov);
+    rt = (const float *)(const void *)((const char *)l->row_tab + 16 * ov);
+    rp = (const uint32_t *const *)(const void *)(rt + 12);
     g = rp[1][cu];
     if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
       row = rp[0];
@@ -1557,8 +1555,7 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
       x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
       f = _mm_div_ps(_mm_sub_ps(x, d), c);
       p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
-      f = el_envlight__dir_sse(l, (const float *)(const void *)((const char *)l->row_tab + 16 * ov),
-                               (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
+      f = el_envlight__dir_sse(l, rt, (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
       if (final && !rgb) return 1;
       el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
       return 1;
@@ -1674,7 +1671,6 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
   if (l->dir_tables) b += el_envlight__dir_floats(l->dist.nu, l->dist.nv) * sizeof(float);
-  if (l->row_ptrs) b += (size_t)l->dist.nv * 2 * sizeof *l->row_ptrs;
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) b += el_distribution2d_fast_bytes(&l->fast);
   return b;
 }
