@@ -1099,8 +1099,8 @@ static el_result el_envlight__build(el_envlight *l) {
     l->dir_alloc = EL_MALLOC(el_envlight__dir_floats(nu, nv) * sizeof(float));
     if (!l->dir_alloc) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
     dc = l->dir_consts = (float *)l->dir_alloc + ((16u - ((size_t)l->dir_alloc & 15u)) & 15u) / sizeof(float);
-    l->row_tab = dc + 48;
-    l->col_tab = l->row_tab + (size_t)nv * 16;
+    l->col_tab = dc + 48; /* right after the constants: sample_li reaches both from one register */
+    l->row_tab = l->col_tab + (size_t)nu * 8;
     for (j = 0; j < nv; ++j) {
       int north = 2 * j < nv, k = north ? j : j + 1; /* the edge nearer the pole */
       int kk = k < nv - k ? k : nv - k;              /* sin from the nearer pole: exactly 0 at both */
@@ -1555,7 +1555,7 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
       x = EL_ENVLIGHT__SPLAT(su, _MM_SHUFFLE(0, 0, 1, 1));
       f = _mm_div_ps(_mm_sub_ps(x, d), c);
       p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
-      f = el_envlight__dir_sse(l, rt, (const float *)(const void *)((const char *)l->col_tab + 8 * ou), f, p, wi, pdf);
+      f = el_envlight__dir_sse(l, rt, (const float *)(const void *)((const char *)(dc + 48) + 8 * ou), f, p, wi, pdf);
       if (final && !rgb) return 1;
       el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
       return 1;
