@@ -269,6 +269,10 @@ typedef struct el_envlight {
                               sin phi_i M0, 0 (M0, M1: the first two columns of to_world), so that the world
                               direction is sin theta (cos b P_i + sin b Q_i) + cos theta M2 */
   void *dir_alloc;         /* the allocation holding the three */
+  const uint32_t **gv_ptr; /* guide sampler: the marginal guide as pointers into dist.marginal (bit 0 set: a
+                              crowded cell), and the row record of marginal entry p at row_key + 16 p (as
+                              integers; computed once, so sample_li needs neither the marginal's base nor v) */
+  uintptr_t row_key;
   int table_done;          /* exact_transform and not all-zero (so every sampled bin has p > 0): the table
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
@@ -687,6 +691,8 @@ static void el_envlight__free_tables(el_envlight *l) {
   el_distribution2d_free(&l->dist);
   EL_FREE(l->u_base); EL_FREE(l->u_edge); EL_FREE(l->v_base); EL_FREE(l->v_edge); EL_FREE(l->pdf_table);
   EL_FREE(l->dir_alloc);
+  EL_FREE((void *)l->gv_ptr);
+  l->gv_ptr = NULL;
   l->u_base = l->v_base = NULL; l->u_edge = l->v_edge = NULL; l->pdf_table = NULL;
   l->row_tab = l->col_tab = l->dir_consts = NULL; l->dir_alloc = NULL; l->dir_tables = l->table_done = 0;
 }
@@ -1161,6 +1167,14 @@ static el_result el_envlight__build(el_envlight *l) {
     if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
     if (l->dir_tables && fo.method == EL_DISTRIBUTION_FAST_GUIDE) {
       l->dir_consts[34] = l->fast.gu_scale; l->dir_consts[35] = l->fast.gv_scale;
+      l->gv_ptr = (const uint32_t **)EL_MALLOC(((size_t)l->fast.gv + 1) * sizeof *l->gv_ptr);
+      if (!l->gv_ptr) { el_envlight__free_tables(l); return EL_ERROR_OUT_OF_MEMORY; }
+      for (i = 0; i <= l->fast.gv; ++i) {
+        uint32_t g = l->fast.guide_v[i];
+        l->gv_ptr[i] = (const uint32_t *)(const void *)((const char *)(l->fast.marginal + (g & ~EL_DISTRIBUTION__GUIDE_CROWDED)) +
+                                                         ((g & EL_DISTRIBUTION__GUIDE_CROWDED) ? 1 : 0));
+      }
+      l->row_key = (uintptr_t)l->row_tab - ((uintptr_t)l->fast.marginal << 4); /* mod 2^N */
       for (j = 0; j < nv; ++j) { /* floats 12-15 of the row record: two pointers (8-byte aligned) */
         const uint32_t **rq = (const uint32_t **)(void *)(l->row_tab + 16 * (size_t)j + 12);
         rq[0] = l->fast.cdf + (size_t)j * l->fast.row_stride;
@@ -1516,7 +1530,7 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   __m128 su, x, c, d, f;
   __m128i k, a, b;
   uint32_t ku, kv, g;
-  size_t ov, ou, cu, cv;
+  size_t ou, cu, cv;
   float p;
   /* (u0, u1) clamped as el_distribution2d clamps u: NaN, <= 0 -> 0; >= 1 -> 0x1.fffffep-1 */
   su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
@@ -1527,17 +1541,15 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
   cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
   cv = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff));
-  g = fd->guide_v[cv];
-  if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
-    pv = fd->marginal + g;
+  pv = l->gv_ptr[cv];
+  if (!((uintptr_t)pv & 1u)) { /* not a crowded cell (those are binary-searched by the slow path) */
     while (pv[1] <= kv) ++pv; /* at most 8 steps */
     a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
 #if defined(__GNUC__) || defined(__clang__)
     __asm__("" : "+x"(a)); /* read here, so pv need not stay in a register through the u search */
 #endif
-    /* byte offsets: 4 v, then 4 u; the tables' rows are reached by scaling them */
-    ov = (size_t)((const char *)pv - (const char *)fd->marginal);
-    rt = (const float *)(const void *)((const char *)l->row_tab + 16 * ov);
+    /* the row record of v: row_tab + 64 v = row_key + 16 pv (as integers); byte offset 4 u below */
+    rt = (const float *)(uintptr_t)(l->row_key + ((uintptr_t)pv << 4));
     rp = (const uint32_t *const *)(const void *)(rt + 12);
     g = rp[1][cu];
     if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
@@ -1557,7 +1569,7 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
       p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
       f = el_envlight__dir_sse(l, rt, (const float *)(const void *)((const char *)(dc + 48) + 8 * ou), f, p, wi, pdf);
       if (final && !rgb) return 1;
-      el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(ov / 4), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
+      el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(pv - fd->marginal), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
       return 1;
     }
   }
@@ -1671,6 +1683,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
   if (l->dir_tables) b += el_envlight__dir_floats(l->dist.nu, l->dist.nv) * sizeof(float);
+  if (l->gv_ptr) b += ((size_t)l->fast.gv + 1) * sizeof *l->gv_ptr;
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) b += el_distribution2d_fast_bytes(&l->fast);
   return b;
 }
