@@ -1163,6 +1163,9 @@ static el_result el_envlight__build(el_envlight *l) {
     el_distribution_fast_options fo;
     memset(&fo, 0, sizeof fo);
     fo.method = l->sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? EL_DISTRIBUTION_FAST_ALIAS : EL_DISTRIBUTION_FAST_GUIDE;
+    /* guide rows of half as many cells as bins (2 bytes per bin): sample_li's scans get shorter and fewer
+     * cells are crowded (measured on the five CC0 maps: 96 instead of 99-100 instructions per sample) */
+    fo.guide_shrink_log2 = 1;
     r = el_distribution2d_fast_init_ex(&l->fast, &l->dist, &fo);
     if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
     if (l->dir_tables && fo.method == EL_DISTRIBUTION_FAST_GUIDE) {
@@ -1543,7 +1546,7 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   cv = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff));
   pv = l->gv_ptr[cv];
   if (!((uintptr_t)pv & 1u)) { /* not a crowded cell (those are binary-searched by the slow path) */
-    while (pv[1] <= kv) ++pv; /* at most 8 steps */
+    while (pv[1] <= kv) ++pv; /* at most 64 steps */
     a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
 #if defined(__GNUC__) || defined(__clang__)
     __asm__("" : "+x"(a)); /* read here, so pv need not stay in a register through the u search */

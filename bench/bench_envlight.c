@@ -3,9 +3,10 @@
  *   bench_envlight                       every table below (runs itself under callgrind if valgrind exists)
  *   bench_envlight --no-callgrind        without the instruction counts
  *   bench_envlight --quick               1024x512 and 2048x1024 only, no callgrind, fewer samples
- *   bench_envlight --callgrind OP N      only N calls of OP after the setup (a generated 2048x1024 map,
- *                                        the pbrt-v3 target's size). OP: loop sample_cdf sample_guide
- *                                        sample_alias sample_guide_rgb pdf le sample_rotated pdf_rotated
+ *   bench_envlight --callgrind OP N [MAP] only N calls of OP after the setup (a generated 2048x1024 map,
+ *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
+ *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
+ *                                        sample_rotated pdf_rotated build
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
  * build/bin/bench_envlight --callgrind pdf N for N = 0 and N = 200000; (Ir(N) - Ir(0)) / N from the
@@ -172,13 +173,24 @@ static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l,
 static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
 
 /* ---- --callgrind OP N ---- */
-static int callgrind_mode(const char *op, long n) {
+static int callgrind_mode(const char *op, long n, const char *map) {
   static el_envlight l;
   int w = 2048, h = 1024, sampler = 0, rot = 0;
   float *px;
   volatile double sink = 0;
+  el_image img;
   make_random();
-  px = make_map(w, h);
+  memset(&img, 0, sizeof img);
+  if (map) { /* a map file instead of the generated one */
+    char err[256];
+    if (el_image_load(map, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+    if (img.channels != 3) { fprintf(stderr, "%s: %d channels, want RGB\n", map, img.channels); el_image_free(&img); return 1; }
+    w = img.width; h = img.height;
+    px = (float *)malloc((size_t)w * h * 3 * sizeof(float));
+    if (!px) return 1;
+    memcpy(px, img.pixels, (size_t)w * h * 3 * sizeof(float));
+    el_image_free(&img);
+  } else px = make_map(w, h);
   if (!strcmp(op, "sample_cdf")) sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
@@ -410,7 +422,7 @@ int main(int argc, char **argv) {
 #ifdef __GLIBC__
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
-  if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]));
+  if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]), argc >= 5 ? argv[4] : NULL);
   if (argc == 2 && !strcmp(argv[1], "--no-callgrind")) use_cg = 0;
   else if (argc == 2 && !strcmp(argv[1], "--quick")) { use_cg = 0; nsizes = 2; nsamp = 50000; }
   else if (argc != 1) { fprintf(stderr, "usage: %s [--no-callgrind | --quick | --callgrind OP N]\n", argv[0]); return 2; }
