@@ -1013,22 +1013,50 @@ static void *thread_fn(void *p) {
   return NULL;
 }
 /* The default guide sampler returns CDF inversion's points (pbrt's samples), bit for bit. */
+/* The guide sampler (sample_li's inline path) returns exactly the CDF sampler's direction, pdf and
+ * radiance, with and without the radiance, on city and on a generated map whose rows each hold one
+ * 1e5 texel among 1s: the dim bins of every row then crowd a guide cell (more than 64 bins start in
+ * it), so the inline path's fallback to the binary search runs too (counted here). */
 static void test_guide_equals_cdf(const el_image *city) {
-  el_envlight a, b;
-  rng r = rng_make(77);
-  int i, same = 0, n = 100000;
-  make_light(&a, city->pixels, city->width, city->height, NULL, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
-  make_light(&b, city->pixels, city->width, city->height, NULL, 0, EL_ENVLIGHT_SAMPLER_CDF);
-  for (i = 0; i < n; ++i) {
-    float uu[2], wa[3], wb[3], La[3], Lb[3], pa, pb;
-    uu[0] = rng_f(&r); uu[1] = rng_f(&r);
-    el_envlight_sample_li(&a, uu, wa, La, &pa);
-    el_envlight_sample_li(&b, uu, wb, Lb, &pb);
-    same += memcmp(wa, wb, sizeof wa) == 0 && pa == pb && memcmp(La, Lb, sizeof La) == 0;
+  const int cw = 512, ch = 256;
+  float *crowd = (float *)malloc((size_t)cw * ch * 3 * sizeof(float));
+  int mi, i;
+  for (i = 0; i < cw * ch; ++i) {
+    int x = i % cw, y = i / cw;
+    float v = x == (y * 37) % cw ? 1e5f : 1.0f;
+    crowd[3 * i] = crowd[3 * i + 1] = crowd[3 * i + 2] = v;
   }
-  check(same == n, "the default guide sampler returns exactly the CDF sampler's direction, pdf and radiance (%d of %d)", same, n);
-  el_envlight_free(&a);
-  el_envlight_free(&b);
+  for (mi = 0; mi < 2; ++mi) {
+    el_envlight a, b;
+    rng r = rng_make(77 + mi);
+    int same = 0, same_norgb = 0, crowded = 0, n = 100000;
+    const float *px = mi == 0 ? city->pixels : crowd;
+    int w = mi == 0 ? city->width : cw, h = mi == 0 ? city->height : ch;
+    make_light(&a, px, w, h, NULL, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
+    make_light(&b, px, w, h, NULL, 0, EL_ENVLIGHT_SAMPLER_CDF);
+    el_envlight_prepare_sampling(&a);
+    for (i = 0; i < n; ++i) {
+      float uu[2], wa[3], wb[3], La[3], Lb[3], pa, pb, fu, fv, pd;
+      int iu, iv;
+      uu[0] = rng_f(&r); uu[1] = rng_f(&r);
+      el_envlight_sample_li(&a, uu, wa, La, &pa);
+      el_envlight_sample_li(&b, uu, wb, Lb, &pb);
+      same += memcmp(wa, wb, sizeof wa) == 0 && pa == pb && memcmp(La, Lb, sizeof La) == 0;
+      el_envlight_sample_li(&a, uu, wa, NULL, &pa);
+      el_envlight_sample_li(&b, uu, wb, NULL, &pb);
+      same_norgb += memcmp(wa, wb, sizeof wa) == 0 && pa == pb;
+      /* did this u land in a crowded guide cell (marginal or row)? */
+      el_distribution2d_sample_bins(&a.dist, uu[0], uu[1], &iu, &iv, &fu, &fv, &pd);
+      if ((a.fast.guide_v[(int)(uu[1] * a.fast.gv_scale)] & EL_DISTRIBUTION__GUIDE_CROWDED) ||
+          (a.fast.guide_u[(size_t)iv * a.fast.guide_stride + (size_t)(uu[0] * a.fast.gu_scale)] & EL_DISTRIBUTION__GUIDE_CROWDED)) ++crowded;
+    }
+    check(same == n && same_norgb == n && (mi == 0 || crowded > 100),
+          "%s: the default guide sampler returns exactly the CDF sampler's direction, pdf and radiance (%d of %d; without "
+          "the radiance %d of %d; %d samples in crowded guide cells)", mi == 0 ? "city" : "crowded rows", same, n, same_norgb, n, crowded);
+    el_envlight_free(&a);
+    el_envlight_free(&b);
+  }
+  free(crowd);
 }
 
 static void test_threads(const el_image *city) {
