@@ -74,30 +74,33 @@
  * 4. pdf_li(sample_li(u).dir) == the sampled pdf. For signed-permutation matrices (identity, y-up, z-up)
  *    the 2^-21 margin exceeds every rounding error of the direction and of pdf_li's own bin search, so
  *    the bin and the pdf agree; for a general rotation, rounding in the round trip world -> light can move a
- *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 110
- *    more instructions per sample: 248 instead of 140 with the guide sampler).
- * 5. No libm trigonometry on the hot paths. sample_li asks distribution2d.h for the BIN and the
- *    fractions within it (el_distribution2d_fast_sample_bins: no float point placement), then builds
- *    the direction from per-row tables (sin, cos of the bin's pole-side edge) and per-column tables
- *    (cos, sin of phi_i already multiplied into light_to_world) by angle addition, with x - x^3/6 and
- *    1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least 256x128 bins; smaller maps use
- *    sinpi/cospi polynomials, 1.9e-7 relative). With SSE (any x86-64; EL_NO_SIMD turns it off) the two
- *    angles go through the polynomials together and the direction is formed as 4-vectors; the scalar
- *    code does the same operations in the same order. The pdf is the bin's, from the CDF entries the
- *    search read, / (2 pi^2 sin theta).
+ *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 120
+ *    more instructions per sample: 215 instead of 96 with the guide sampler).
+ * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
+ *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
+ *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
+ *    angle addition, with x - x^3/6 and 1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least
+ *    256x128 bins; smaller maps use sinpi/cospi polynomials, 1.9e-7 relative). With SSE2 (any x86-64;
+ *    EL_NO_SIMD turns it off) the guide sampler's search runs inline in sample_li with vector ends (u
+ *    clamped and scaled to units and guide cells at once, each bin's two CDF entries read as one 8-byte
+ *    pair, the fractions computed in the lanes the direction wants), the two angles go through the
+ *    polynomials together and the direction is formed as 4-vectors; the scalar code does the same
+ *    operations in the same order. The pdf is the bin's, (wv wu) K from its integer widths, the pdf
+ *    table's expression, / sin theta.
  *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
  *    a monotone "diamond angle" of (x, y) and one over t = 1 - z / (r + |z|) on both hemispheres (each
  *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
  *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
- *    Costs, measured by bench/bench_envlight.c (callgrind, 2048x1024, gcc 12 -O3, no -march): sample_li
- *    140 instructions with the guide sampler (about 80 for the inline bin search and its checks, 60 for
- *    the direction and pdf), 393 with CDF inversion, 239 with the alias table; with the radiance 300;
- *    pdf_li 76 (general rotation 95); le 253; construction 185 M instructions, 29-37 ms with fresh
- *    memory depending on the machine, over half of it page faults (pbrt-v3: ~470, ~300, 313 ms). Target
- *    not met: sample_li <= 100 (see tutorials/03-infinite-light.md, section 9).
+ *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
+ *    2048x1024 map): sample_li 96 instructions with the guide sampler (97.6-99.6 on the five CC0
+ *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
+ *    alias table; with the radiance 262; pdf_li 76 (general rotation 95); le 253; construction 117 M
+ *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
+ *    313 ms). See tutorials/03-infinite-light.md, section 9.
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
- *    and direction tables (48 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the default guide table (pbrt-v3: ~100 MB).
+ *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
+ *    default guide table (pbrt-v3: ~100 MB).
  * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
  *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
  *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a
