@@ -75,7 +75,7 @@
  * guide has 4 cells per row (a sun crowds it), the rows' one a quarter cell per bin. Callers that need
  * the bin rather than a point (envlight.h) use el_distribution2d_fast_sample_bins: bin, fractions and
  * pdf, no point placement, inline (envlight.h's SSE2 sample_li does the same search with vector ends,
- * in about 55 of its 96 instructions). Memory: CDF 4
+ * in about 55 of its 95 instructions). Memory: CDF 4
  * bytes per bin, guide table +1 byte per bin (default), alias table +8 bytes per bin. Building runs
  * two passes over each row's values, in SSE2 on x86 (EL_NO_SIMD: scalar code giving the same integers):
  * the check and sum, about 4.5 instructions per bin, and the integer CDF, about 14 (scalar: 11 and 17);
@@ -475,7 +475,6 @@ static inline float el_distribution2d__place(int i, float frac, float x0, float 
   if (exact) return t * width;
   return el_distribution2d__place_general(i, t, x0, x1, width, scale, last);
 }
-
 
 
 /* NaN and negative -> 0, +Inf -> FLT_MAX; valid values unchanged. */

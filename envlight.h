@@ -75,7 +75,7 @@
  *    the 2^-21 margin exceeds every rounding error of the direction and of pdf_li's own bin search, so
  *    the bin and the pdf agree; for a general rotation, rounding in the round trip world -> light can move a
  *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 120
- *    more instructions per sample: 215 instead of 96 with the guide sampler).
+ *    more instructions per sample: 214 instead of 95 with the guide sampler).
  * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
  *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
  *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
@@ -92,9 +92,9 @@
  *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
  *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
  *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
- *    2048x1024 map): sample_li 96 instructions with the guide sampler (97.6-99.6 on the five CC0
+ *    2048x1024 map): sample_li 95 instructions with the guide sampler (96.6-98.6 on the five CC0
  *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
- *    alias table; with the radiance 262; pdf_li 76 (general rotation 95); le 253; construction 117 M
+ *    alias table; with the radiance 261; pdf_li 76 (general rotation 95); le 253; construction 117 M
  *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
  *    313 ms). See tutorials/03-infinite-light.md, section 9.
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
@@ -257,13 +257,15 @@ typedef struct el_envlight {
    * already multiplied into the matrix (below). The point's angles are edge + fraction * bin angle, by
    * angle addition. */
   int dir_tables;
-  int hot;                 /* stored with release after the tables: bit 1 (EL_ENVLIGHT__HOT_SAMPLE) sample_li's
-                              inline guide path is usable and final, bit 4 (..._SAMPLE_FINISH) usable with the
-                              pdf recomputed, bit 2 (EL_ENVLIGHT__HOT_PDF) pdf_li's inline path is usable */
-  float *dir_consts;       /* 16-byte aligned 4-vectors, lanes (v, v, u, u): the margins, 1 - the margins, the
-                              bin angles (pi / nv, 2 pi / nu); M2 = the third column of to_world, 0; the
-                              polynomial coefficients -1/6, 1, -1/2, 0 (kept here so that the compiler
-                              uses them from memory) */
+  int hot;                 /* flags stored with release after the tables: EL_ENVLIGHT__HOT_SAMPLE (1) sample_li's
+                              inline guide path is usable and its result final, ..._SAMPLE_FINISH (4) usable
+                              with the pdf recomputed, EL_ENVLIGHT__HOT_PDF (2) pdf_li's inline path is usable */
+  float *dir_consts;       /* 12 16-byte aligned 4-vectors; lanes (v, v, u, u): the margins, 1 - the margins,
+                              the bin angles (pi / nv, 2 pi / nu); M2 = the third column of to_world, 0; the
+                              polynomial coefficients -1/6, 1, -1/2, 0; for the SSE search, lanes (u0, u1,
+                              u0, u1): 2^24, 2^24, guide cells per row, guide cells of the marginal; the
+                              clamp 0x1.fffffep-1; pdf_k, 0, 0, 0; zeros. Kept here (not as constants in the
+                              code) so that the compiler uses them as memory operands */
   float *row_tab;          /* nv * 16, aligned: s = sin theta_ref, c = cos theta_ref, 0, 0, then c, -s, 0, 0,
                               then the offset of the reference edge in bins (0 or -1) twice, 0, 0; then (guide
                               sampler) two pointers: the row's CDF row and its guide row, which sample_li's SSE
@@ -640,7 +642,8 @@ static double el_envlight__row_weight(int y, int h) {
 }
 
 /* The parameters the bin finders use: the "diamond angle" p in [0, 4) for phi and t in [0, 2] for
- * theta. p = 2 - sign(y) (1 + x / (|x| + |y|)) (sign(+-0) = +); t = 1 - z / (r + |z|) with r = sqrt(x^2
+ * theta. p = 2 - sign(y) (1 + x / (|x| + |y|)) (here sign(+0) = +; pdf_li counts y = -0 as negative,
+ * the seam's other side); t = 1 - z / (r + |z|) with r = sqrt(x^2
  * + y^2). Within each quadrant (each hemisphere for t) they are tan(a) / (1 + tan(a)) of the angle a from
  * the quadrant's start, whose derivative 1 / (cos a + sin a)^2 lies in [1/2, 1] per radian, so a table of
  * cells of width 1 / (2 bins) per unit (edges are at least pi / bins radians apart) holds at most one edge
@@ -686,7 +689,7 @@ static el_result el_envlight__finder(int n, int quarters, int **base, float **ed
   return EL_SUCCESS;
 }
 
-/* Floats in the direction tables' allocation: 4 constant vectors, 12 per row, 8 per column, alignment slack. */
+/* Floats in the direction tables' allocation: 12 constant vectors, 16 per row, 8 per column, alignment slack. */
 static size_t el_envlight__dir_floats(int nu, int nv) { return 48 + (size_t)nv * 16 + (size_t)nu * 8 + 4; }
 
 static void el_envlight__free_tables(el_envlight *l) {
@@ -700,22 +703,23 @@ static void el_envlight__free_tables(el_envlight *l) {
   l->row_tab = l->col_tab = l->dir_consts = NULL; l->dir_alloc = NULL; l->dir_tables = l->table_done = 0;
 }
 
-/* The pdf of bin (iu, iv), exactly el_distribution2d_pdf's expression. */
-static inline float el_envlight__bin_pdf(const el_distribution2d *dd, int iu, int iv) {
-  const uint32_t *row = dd->cdf + (size_t)iv * ((size_t)dd->nu + 1);
-  float wv = (float)(dd->marginal[iv + 1] - dd->marginal[iv]);
-  float wu = (float)(row[iu + 1] - row[iu]);
-  return (wv * dd->v_pdf_scale) * (wu * dd->u_pdf_scale);
-}
-
 /* >> construction helpers: SSE2 where available (x86-64 always has it; EL_NO_SIMD gives the scalar
  * code, which does the same operations in the same order, so both give the same bits).
  * Construction at 2048x1024 (bench/bench_envlight.c, every build in fresh memory from the system, so its
- * page faults count as in pbrt's constructor; gcc 12 -O3, no -march): init 10.4-11.6 ms, about 6 of it
- * faulting in the 24 MB of texels; the sampling tables 12.9-15 ms, about 5 of it faulting in their 18 MB;
- * together 23-26 ms (pbrt-v3: 313 ms) and 118 M instructions (callgrind; 184 M before the SSE2 loops). */
+ * page faults count as in pbrt's constructor; gcc 12 -O3, no -march): init 10.4-12.4 ms, about 6 of it
+ * faulting in the 24 MB of texels; the sampling tables 12.9-18.6 ms, about 5 of it faulting in their
+ * 18 MB; together 23-31 ms over many runs (pbrt-v3: 313 ms) and 117 M instructions (callgrind; 184 M
+ * before the SSE2 loops). */
 #define EL_ENVLIGHT__SSE2 EL_ENVLIGHT__SSE /* <emmintrin.h> is included above, outside extern "C" */
 
+/* src * k, with its bits' validity mark (see el_envlight__row3) or-ed into *top */
+static inline float el_envlight__scale1(float src, float k, uint32_t *top) {
+  float v = src * k;
+  uint32_t b;
+  memcpy(&b, &v, sizeof b);
+  *top |= b | (b + 0x00800000u);
+  return v;
+}
 /* <<Copy, validate and scale the texels>> of one RGB row (channels == 3) and sum them per channel: the
  * fast path of el_envlight_init, one pass over the row. Blocks of 4 texels are 12 floats in which lane k
  * holds channel k % 3: k12 is the scale in that pattern. A product's bits b give b | (b + 2^23) with the
@@ -751,24 +755,10 @@ static int el_envlight__row3(const float *src, float *dst, int w, const float *k
 #else
   for (k = 0; k < 12; ++k) acc[k] = 0.0;
   for (; x + 4 <= w; x += 4, src += 12, dst += 12)
-    for (k = 0; k < 12; ++k) {
-      float v = src[k] * k12[k];
-      uint32_t b;
-      memcpy(&b, &v, sizeof b);
-      top |= b | (b + 0x00800000u);
-      dst[k] = v;
-      acc[k] += v;
-    }
+    for (k = 0; k < 12; ++k) acc[k] += dst[k] = el_envlight__scale1(src[k], k12[k], &top);
 #endif
   for (; x < w; ++x, src += 3, dst += 3)
-    for (k = 0; k < 3; ++k) {
-      float v = src[k] * k12[k];
-      uint32_t b;
-      memcpy(&b, &v, sizeof b);
-      top |= b | (b + 0x00800000u);
-      dst[k] = v;
-      t[k] += v;
-    }
+    for (k = 0; k < 3; ++k) t[k] += dst[k] = el_envlight__scale1(src[k], k12[k], &top);
   for (k = 0; k < 3; ++k) sum[k] = ((acc[k] + acc[k + 3]) + (acc[k + 6] + acc[k + 9])) + t[k];
   return !(top & 0x80000000u);
 }
@@ -1143,7 +1133,7 @@ static el_result el_envlight__build(el_envlight *l) {
     dc[12] = l->to_world[2]; dc[13] = l->to_world[5]; dc[14] = l->to_world[8]; dc[15] = 0.0f;
     for (i = 40; i < 48; ++i) dc[i] = 0.0f; /* dc[40] = pdf_k, below */
     for (i = 0; i < 4; ++i) { dc[16 + i] = -0.166666667f; dc[20 + i] = 1.0f; dc[24 + i] = -0.5f; dc[28 + i] = 0.0f; }
-    /* sample_li's SSE search: u to units and guide cells (filled in below), the clamp of u, pdf scales */
+    /* sample_li's SSE search: u to units and guide cells (filled in below), the clamp of u */
     for (i = 0; i < 4; ++i) { dc[32 + i] = 16777216.0f; dc[36 + i] = 0.99999994f; }
     l->dir_tables = 1;
     l->table_done = l->exact_transform && !l->dist.all_zero;
@@ -1425,8 +1415,9 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envligh
  * cos theta M2. Lanes (v, v, u, u) = (a, a, b, b); the fractions are first clamped EL_ENVLIGHT__MARGIN
  * inside the bin; fv - 1 is exact (no cancellation). Stores wi and *pdf = p / sin(theta) (p = 0 gives
  * 0); returns the clamped fractions. Inlined into sample_li's hot path and into
- * el_envlight__sample_table, with the same operations in the same order (SSE has no fused multiply-add
- * to contract them into), so every sampler gives the same bits for the same bin and fractions. */
+ * el_envlight__sample_table from this one source, so every sampler gives the same bits for the same bin
+ * and fractions; a compiler that contracts into fused multiply-adds does so alike in both (test_envlight
+ * passes built with -march=native -ffp-contract=fast, 5 FMAs in each copy). */
 static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt, const float *ct, __m128 f, float p, float wi[3], float *pdf) {
   const float *dc = l->dir_consts;
   __m128 x, x2, sn, cs, t, w;
@@ -1552,9 +1543,6 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   if (!((uintptr_t)pv & 1u)) { /* not a crowded cell (those are binary-searched by the slow path) */
     while (pv[1] <= kv) ++pv; /* at most 64 steps */
     a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
-#if defined(__GNUC__) || defined(__clang__)
-    __asm__("" : "+x"(a)); /* read here, so pv need not stay in a register through the u search */
-#endif
     /* the row record of v: row_tab + 64 v = row_key + 16 pv (as integers); byte offset 4 u below */
     rt = (const float *)(uintptr_t)(l->row_key + ((uintptr_t)pv << 4));
     rp = (const uint32_t *const *)(const void *)(rt + 12);
