@@ -437,10 +437,11 @@ static inline float el_envlight__theta_halfturns(float r, float z) {
   if (z < 0.0f) a = 1.0f - a;
   return a;
 }
-/* Light-space (u, v) in [0,1] -> unit direction, with accurate sin(theta) at both poles; returns
+/* Light-space (u, v) in [0,1] -> unit direction, with accurate sin(theta) at both poles; vp is v's
+ * distance to the nearer pole (min(v, 1 - v), or better when the caller knows it exactly). Returns
  * sin(theta). */
-static inline float el_envlight__uv_to_dir(float u, float v, float d[3]) {
-  float st = el_envlight__sinpi(v < 0.5f ? v : 1.0f - v); /* exact argument: no sinf(pi) = -8.7e-8 */
+static inline float el_envlight__uvp_to_dir(float u, float v, float vp, float d[3]) {
+  float st = el_envlight__sinpi(vp); /* no sinf(pi) = -8.7e-8 */
   float ct = el_envlight__sinpi(0.5f - v);
   float a = 2.0f * u; /* phi = pi a, a in [0, 2] */
   int n = (int)(a + 0.5f); /* 0, 1 or 2 */
@@ -451,6 +452,9 @@ static inline float el_envlight__uv_to_dir(float u, float v, float d[3]) {
   d[1] = st * sp;
   d[2] = ct;
   return st;
+}
+static inline float el_envlight__uv_to_dir(float u, float v, float d[3]) {
+  return el_envlight__uvp_to_dir(u, v, v < 0.5f ? v : 1.0f - v, d);
 }
 static inline void el_envlight__mul(const float m[9], const float a[3], float b[3]) {
   b[0] = m[0] * a[0] + m[1] * a[1] + m[2] * a[2];
@@ -1380,8 +1384,11 @@ static float el_envlight__sample_light(const el_envlight *l, float u0, float u1,
   *pu = ((float)iu + fu) * l->dist.u_width;
   *pv = ((float)iv + fv) * l->dist.v_width;
   if (!(p > 0.0f)) { d[0] = 0.0f; d[1] = 0.0f; d[2] = 1.0f; return 0.0f; }
-  /* <<Compute direction for infinite light sample>> */
-  st = el_envlight__uv_to_dir(*pu, *pv, d);
+  /* <<Compute direction for infinite light sample>>. sin(theta) from the distance to the nearer pole
+   * formed from the bin (1 - fv is exact): at least the margin, whatever the rounding of v = (iv + fv)
+   * / nv when nv is not a power of two (from 1 - v it could come out below the floor SIN_MIN) */
+  st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width; /* the distance to the south pole */
+  st = el_envlight__uvp_to_dir(*pu, *pv, *pv < st ? *pv : st, d);
   /* <<Compute PDF for sampled infinite light direction>>: mapPdf / (2 pi^2 sin(theta)) */
   EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
   return p / st;

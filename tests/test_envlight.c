@@ -787,6 +787,40 @@ static int sample_consistent(el_envlight *l, int n, uint64_t seed, int *finite) 
   return bad;
 }
 
+/* Samples at the very ends of the distribution (u at 0, one ulp below 1, at 1) on small maps whose
+ * importance grid is not a power of two (nv = 17, 31): v = (iv + fv) / nv rounds, so sin(theta) next to
+ * the south pole must come from the bin (1 - fv), not from 1 - v, or it drops below pdf_li's floor and
+ * the two pdfs differ (they did by 27% before the fix). */
+static void test_pole_rounding(void) {
+  static const int imp[3][2] = {{35, 17}, {33, 31}, {64, 32}};
+  const int w = 64, h = 32;
+  float *px = (float *)malloc((size_t)w * h * 3 * sizeof(float));
+  static const float us[5] = {0.0f, 1e-30f, 0.5f, 0x1.fffffep-1f, 1.0f};
+  int k, i, j, bad = 0, n = 0;
+  for (i = 0; i < w * h * 3; ++i) px[i] = 0.5f + (float)(i % 13) * 0.1f;
+  for (k = 0; k < 3; ++k) {
+    el_envlight l;
+    el_envlight_options o;
+    memset(&o, 0, sizeof o);
+    o.importance_width = imp[k][0];
+    o.importance_height = imp[k][1];
+    if (el_envlight_init(&l, px, w, h, 3, &o) != EL_SUCCESS) { ++bad; continue; }
+    for (i = 0; i < 5; ++i)
+      for (j = 0; j < 5; ++j) {
+        float uu[2], wi[3], p, q;
+        uu[0] = us[i]; uu[1] = us[j];
+        el_envlight_sample_li(&l, uu, wi, NULL, &p);
+        q = el_envlight_pdf_li(&l, wi);
+        ++n;
+        if (!(p > 0 && p < 1e30f && fabsf(p - q) <= 1e-4f * p)) ++bad;
+      }
+    el_envlight_free(&l);
+  }
+  free(px);
+  check(bad == 0, "u at 0, 1e-30, 0.5, 1 - 2^-24 and 1 on importance grids 35x17, 33x31, 64x32: pdf_li(wi) == pdf "
+        "(%d of %d differ)", bad, n);
+}
+
 static void test_hard_cases(void) {
   el_envlight l;
   el_envlight_options o;
@@ -1223,6 +1257,7 @@ int main(void) {
   test_unbiased(&studio, &city);
   test_power(&studio);
   test_hard_cases();
+  test_pole_rounding();
   test_guide_equals_cdf(&city);
   test_threads(&city);
   el_image_free(&studio);
