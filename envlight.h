@@ -351,8 +351,8 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 #include <math.h>
 #include <string.h>
 
-/* sample_li's direction in SSE (x86-64 always has it; define EL_NO_SIMD for the scalar code, which does
- * the same operations in the same order) */
+/* SSE2 (x86-64 always has it) for sample_li's search and direction and for the construction loops;
+ * define EL_NO_SIMD for the scalar code, which does the same operations in the same order */
 #if !defined(EL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #define EL_ENVLIGHT__SSE 1
 #include <emmintrin.h>
@@ -714,7 +714,6 @@ static void el_envlight__free_tables(el_envlight *l) {
  * faulting in the 24 MB of texels; the sampling tables 12.9-18.6 ms, about 5 of it faulting in their
  * 18 MB; together 23-31 ms over many runs (pbrt-v3: 313 ms) and 117 M instructions (callgrind; 184 M
  * before the SSE2 loops). */
-#define EL_ENVLIGHT__SSE2 EL_ENVLIGHT__SSE /* <emmintrin.h> is included above, outside extern "C" */
 
 /* src * k, with its bits' validity mark (see el_envlight__row3) or-ed into *top */
 static inline float el_envlight__scale1(float src, float k, uint32_t *top) {
@@ -735,7 +734,7 @@ static int el_envlight__row3(const float *src, float *dst, int w, const float *k
   double acc[12], t[3] = {0.0, 0.0, 0.0};
   uint32_t top = 0;
   int x = 0, k;
-#if EL_ENVLIGHT__SSE2
+#if EL_ENVLIGHT__SSE
   {
     const __m128 k0 = _mm_loadu_ps(k12), k1 = _mm_loadu_ps(k12 + 4), k2 = _mm_loadu_ps(k12 + 8);
     const __m128i h = _mm_set1_epi32(0x00800000);
@@ -947,7 +946,7 @@ static el_result el_envlight__cell_average_same(const el_envlight *l, float *f, 
     const float *t = l->texels + (size_t)src * (size_t)w * 3;
     float *out = hr[(y + 1) % 3];
     x = 0;
-#if EL_ENVLIGHT__SSE2
+#if EL_ENVLIGHT__SSE
     { /* 4 texels (12 floats) at a time: r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3, split into R, G, B by five
          shuffles; the same products and sums as the scalar loop */
       const __m128 wr = _mm_set1_ps(0.212671f), wg = _mm_set1_ps(0.715160f), wb = _mm_set1_ps(0.072169f);
