@@ -282,8 +282,6 @@ typedef struct el_envlight {
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
-  uint32_t nu32;           /* dist.nu, for pdf_li's 32-bit table index */
-  float pdf_k;             /* v_pdf_scale u_pdf_scale / (2 pi^2): a bin's pdf_table entry is (wv wu) pdf_k */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -1032,6 +1030,7 @@ done:
 
 static el_result el_envlight__build(el_envlight *l) {
   int nu = l->imp_w, nv = l->imp_h, i, j, any = 0, sin_done = 0;
+  float pdf_k;
   size_t nb, q;
   float *f;
   el_result r = EL_SUCCESS;
@@ -1040,7 +1039,6 @@ static el_result el_envlight__build(el_envlight *l) {
   nb = (size_t)nu * (size_t)nv;
   /* pdf_li indexes the pdf table with 32-bit arithmetic: at most 2^32 - 1 bins (a 16 GB table) */
   if (nb > ((size_t)-1) / sizeof(float) || (uint64_t)nb > 0xffffffffu) return EL_ERROR_SIZE_OVERFLOW;
-  l->nu32 = (uint32_t)nu;
   f = (float *)EL_MALLOC(nb * sizeof(float));
   if (!f) return EL_ERROR_OUT_OF_MEMORY;
   /* <<Compute scalar-valued image img from environment map>> */
@@ -1146,11 +1144,11 @@ static el_result el_envlight__build(el_envlight *l) {
   /* the pdf of bin (i, j) / (2 pi^2) is (wv wu) K, wv and wu its integer widths (exact as floats) and
    * K = v_pdf_scale u_pdf_scale / (2 pi^2) (0 when all-zero): the same expression as sample_li's, which
    * forms it from the CDF entries its search read, so the two agree bit for bit */
-  l->pdf_k = l->dist.v_pdf_scale * l->dist.u_pdf_scale * EL_ENVLIGHT__INV_2PI2;
-  if (l->dir_tables) l->dir_consts[40] = l->pdf_k;
+  pdf_k = l->dist.v_pdf_scale * l->dist.u_pdf_scale * EL_ENVLIGHT__INV_2PI2;
+  if (l->dir_tables) l->dir_consts[40] = pdf_k; /* sample_li's copy */
   for (j = 0; j < nv; ++j) {
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
-    float wv = (float)(int32_t)(l->dist.marginal[j + 1] - l->dist.marginal[j]), k = l->pdf_k;
+    float wv = (float)(int32_t)(l->dist.marginal[j + 1] - l->dist.marginal[j]), k = pdf_k;
     float *dst = l->pdf_table + (size_t)j * nu;
     /* a bin's width is at most 2^24 units: as int32_t it converts to the same float, and the loop vectorises */
     for (i = 0; i < nu; ++i) dst[i] = (wv * (float)(int32_t)(row[i + 1] - row[i])) * k;
@@ -1291,7 +1289,7 @@ static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y
   EL_ASSERT(c < (size_t)l->v_cells);
   iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
   EL_ASSERT(iu < (uint32_t)l->dist.nu && iv < (uint32_t)l->dist.nv);
-  p = l->pdf_table[(size_t)(iv * l->nu32 + iu)]; /* mapPdf / (2 pi^2); nu * nv < 2^32 (checked at build) */
+  p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)]; /* mapPdf / (2 pi^2); nu * nv < 2^32 (checked at build) */
   /* p / sin(theta), sin(theta) = r / len, floored at SIN_MIN */
   r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
   p = p * len / r;
