@@ -303,6 +303,11 @@ EL_DEF void el_envlight_preprocess(el_envlight *l, const float center[3], float 
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]);
 /* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets le(wi). */
 EL_DEF void el_envlight_sample_li(el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
+/* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
+ * what n calls of sample_li return. For renderers that draw several light samples before using them
+ * (a pixel's samples, a wavefront): the table and texel reads of up to 16 samples are started together
+ * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
+EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
 EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
@@ -1522,7 +1527,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
  * ends are vectors: u is clamped, scaled to units and to guide cells in one go, the two CDF entries
  * around each bin are read as one 8-byte pair, and the fractions come out in the lane order the
  * direction wants. */
-static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf, int final) {
+static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf, int final, float *uvout) {
   /* <<Find (u, v) sample coordinates in infinite light texture>>, as a bin and fractions: the guide
    * table's CDF inversion (el_distribution2d_fast_guide_bins, the same integers and float operations) */
   const el_distribution2d_fast *fd = &l->fast;
@@ -1567,6 +1572,11 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
       f = _mm_div_ps(_mm_sub_ps(x, d), c);
       p = _mm_cvtss_f32(_mm_mul_ss(EL_ENVLIGHT__SPLAT(c, 0xaa), c)) * dc[40]; /* (wv wu) K */
       f = el_envlight__dir_sse(l, rt, (const float *)(const void *)((const char *)(dc + 48) + 8 * ou), f, p, wi, pdf);
+      if (uvout && *pdf > 0.0f) { /* sample_li_n: the (u, v) at which sample_li_finish would look the radiance up */
+        uvout[0] = ((float)(int)(ou / 4) + _mm_cvtss_f32(_mm_movehl_ps(f, f))) * l->dist.u_width;
+        uvout[1] = ((float)(int)(pv - fd->marginal) + _mm_cvtss_f32(f)) * l->dist.v_width;
+        return 2;
+      }
       if (final && !rgb) return 1;
       el_envlight__sample_li_finish(l, (int)(ou / 4), (int)(pv - fd->marginal), _mm_cvtss_f32(_mm_movehl_ps(f, f)), _mm_cvtss_f32(f), wi, rgb, pdf);
       return 1;
@@ -1579,7 +1589,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
 /* The inline path with the pdf recomputed (a general rotation, a black map): out of line, so that the
  * common case's function stays small. */
 static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  if (!el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 0)) el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
+  if (!el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 0, NULL)) el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
 #endif
 
@@ -1594,7 +1604,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 #endif
 #if EL_ENVLIGHT__SSE
   if (hot & EL_ENVLIGHT__HOT_SAMPLE) {
-    if (el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 1)) return;
+    if (el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 1, NULL)) return;
   } else if (hot & EL_ENVLIGHT__HOT_SAMPLE_FINISH) {
     el_envlight__sample_li_finishing(l, uu, wi, rgb, pdf);
     return;
@@ -1611,6 +1621,95 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
   }
 #endif
   el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
+}
+
+#if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
+/* sample_li_n's first two stages: the guide cell of uu (the marginal search of sample_li's inline path:
+ * small tables, in cache) and the address of its guide entry; 0 for a crowded marginal cell */
+static EL_ENVLIGHT__ALWAYS_INLINE const uint32_t *const *el_envlight__guide_cell(const el_envlight *l, const float uu[2], size_t *cu) {
+  const float *dc = l->dir_consts;
+  const uint32_t *pv;
+  __m128 su;
+  __m128i k;
+  uint32_t kv;
+  su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
+  su = _mm_min_ps(_mm_max_ps(su, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36));
+  su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32));
+  k = _mm_cvttps_epi32(su);
+  kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
+  *cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
+  pv = l->gv_ptr[(size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff))];
+  if ((uintptr_t)pv & 1u) return NULL;
+  while (pv[1] <= kv) ++pv;
+  return (const uint32_t *const *)(const void *)((const float *)(uintptr_t)(l->row_key + ((uintptr_t)pv << 4)) + 12);
+}
+#define EL_ENVLIGHT__BATCH 16
+#endif
+
+EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
+  int i;
+#if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
+  int hot;
+#if EL_ENVLIGHT__ATOMICS
+  hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
+#else
+  hot = l->hot;
+#endif
+  if (n > 1 && (hot & EL_ENVLIGHT__HOT_SAMPLE)) {
+    /* Four passes over up to 16 samples; each pass starts the next pass's cache misses for all of
+     * them, so that they overlap: (1) the guide entry, (2) the CDF entries it points to, (3) the sample
+     * itself (sample_li's inline path; its radiance's texels), (4) the radiance. Passes 1, 2 and the
+     * texel prefetch only read; every result comes from the code sample_li runs. */
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      float uv[2 * EL_ENVLIGHT__BATCH];
+      unsigned char done[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) {
+        size_t cu;
+        const uint32_t *const *rp = el_envlight__guide_cell(l, u + 2 * (i0 + i), &cu);
+        if (rp) __builtin_prefetch(rp[1] + cu);
+      }
+      for (i = 0; i < m; ++i) {
+        size_t cu;
+        const uint32_t *const *rp = el_envlight__guide_cell(l, u + 2 * (i0 + i), &cu);
+        uint32_t g;
+        if (!rp) continue;
+        g = rp[1][cu];
+        if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) __builtin_prefetch(rp[0] + g + 1); /* the first pair the search reads */
+      }
+      for (i = 0; i < m; ++i) {
+        const int j = i0 + i;
+        float *c = rgb ? rgb + 3 * j : NULL;
+        int r = el_envlight__sample_guide_sse(l, u + 2 * j, wi + 3 * j, c, pdf + j, 1, c ? uv + 2 * i : NULL);
+        done[i] = 1;
+        if (r == 0) {
+          el_envlight__sample_li_slow(l, u + 2 * j, wi + 3 * j, c, pdf + j);
+        } else if (r == 2) { /* sampled; the radiance is left for pass 4 */
+          /* the texel rows el_envlight__bilerp will read */
+          int w = l->width, h = l->height, x0, y0, y1;
+          float s = uv[2 * i] * (float)w - 0.5f, t = uv[2 * i + 1] * (float)h - 0.5f;
+          x0 = (int)(s + 1.0f) - 1; y0 = (int)(t + 1.0f) - 1;
+          if (x0 < 0) x0 += w;
+          y1 = y0 + 1 > h - 1 ? h - 1 : y0 + 1;
+          y0 = y0 < 0 ? 0 : (y0 > h - 1 ? h - 1 : y0);
+          __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)w + (size_t)x0) * 3);
+          __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)w + (size_t)x0) * 3);
+          done[i] = 0;
+        }
+      }
+      if (rgb)
+        for (i = 0; i < m; ++i) {
+          const int j = i0 + i;
+          if (done[i]) continue;
+          /* what el_envlight__sample_li_finish does with a positive pdf that needs no recomputing */
+          el_envlight__lookup(l, uv[2 * i], uv[2 * i + 1], rgb + 3 * j);
+        }
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) el_envlight_sample_li(l, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
 }
 
 static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {

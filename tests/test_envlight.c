@@ -1093,6 +1093,61 @@ static void test_guide_equals_cdf(const el_image *city) {
   free(crowd);
 }
 
+/* sample_li_n returns exactly what sample_li returns, sample by sample, with and without the radiance:
+ * on city (the staged inline path), on a map whose rows crowd guide cells (the fallback inside a
+ * batch), with a general rotation and with the CDF sampler (the plain loop), on a constant light, a
+ * map too small for the direction tables and an all-black map; before the tables exist (the first call
+ * builds them), for n = 37 (not a multiple of the batch of 16), n = 1 and n = 0, with u outside [0, 1)
+ * and NaN among ordinary values. */
+static void test_sample_li_n(const el_image *city) {
+  enum { N = 37 };
+  const int cw = 512, ch = 256;
+  float *crowd = (float *)malloc((size_t)cw * ch * 3 * sizeof(float)), black[16 * 8 * 3], small[5 * 3 * 3];
+  float rot[9] = {0.36f, 0.48f, -0.8f, -0.8f, 0.6f, 0.0f, 0.48f, 0.64f, 0.6f};
+  int kind, i, same_all = 1, total = 0;
+  for (i = 0; i < cw * ch; ++i) {
+    int x = i % cw, y = i / cw;
+    crowd[3 * i] = crowd[3 * i + 1] = crowd[3 * i + 2] = x == (y * 37) % cw ? 1e5f : 1.0f;
+  }
+  memset(black, 0, sizeof black);
+  for (i = 0; i < 5 * 3 * 3; ++i) small[i] = (float)(1 + i % 7);
+  for (kind = 0; kind < 7; ++kind) {
+    el_envlight l;
+    rng r = rng_make(1234 + kind);
+    int rep, same = 0, n = 0;
+    el_result res;
+    if (kind == 0) res = make_light(&l, city->pixels, city->width, city->height, NULL, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
+    else if (kind == 1) res = make_light(&l, crowd, cw, ch, NULL, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
+    else if (kind == 2) res = make_light(&l, city->pixels, city->width, city->height, rot, 0, EL_ENVLIGHT_SAMPLER_GUIDE);
+    else if (kind == 3) res = make_light(&l, city->pixels, city->width, city->height, NULL, 0, EL_ENVLIGHT_SAMPLER_CDF);
+    else if (kind == 4) { float c[3] = {0.5f, 1.0f, 2.0f}; res = el_envlight_init_constant(&l, c, NULL); }
+    else if (kind == 5) res = make_light(&l, small, 5, 3, NULL, 0, 0);
+    else res = make_light(&l, black, 16, 8, NULL, 0, 0);
+    if (res != EL_SUCCESS) { check(0, "sample_li_n: light %d initialises", kind); continue; }
+    for (rep = 0; rep < 400; ++rep) {
+      float u[2 * N], wa[3 * N], wb[3 * N], La[3 * N], Lb[3 * N], pa[N], pb[N];
+      int m = rep == 1 ? 1 : (rep == 2 ? 0 : N), ok = 1;
+      for (i = 0; i < 2 * N; ++i) u[i] = rng_f(&r);
+      if (rep % 5 == 3) { u[0] = -0.25f; u[3] = 1.0f; u[4] = 0x1.fffffep-1f; u[7] = 2.0f; u[8] = 0.0f / 0.0f; u[11] = 1e30f; }
+      memset(wa, 0x7f, sizeof wa); memset(La, 0x7f, sizeof La); memset(pa, 0x7f, sizeof pa);
+      memcpy(wb, wa, sizeof wa); memcpy(Lb, La, sizeof La); memcpy(pb, pa, sizeof pa);
+      /* rep 0 runs before any table exists: sample_li_n builds them */
+      el_envlight_sample_li_n(&l, m, u, wa, rep % 2 ? NULL : La, pa);
+      for (i = 0; i < m; ++i) el_envlight_sample_li(&l, u + 2 * i, wb + 3 * i, rep % 2 ? NULL : Lb + 3 * i, pb + i);
+      ok = memcmp(wa, wb, sizeof wa) == 0 && memcmp(pa, pb, sizeof pa) == 0 && memcmp(La, Lb, sizeof La) == 0;
+      same += ok; ++n;
+    }
+    same_all &= same == n;
+    total += n;
+    check(same == n, "sample_li_n: light %d (%s): %d of %d batches bit-identical to sample_li", kind,
+          kind == 0 ? "city" : kind == 1 ? "crowded rows" : kind == 2 ? "general rotation" : kind == 3 ? "CDF sampler" :
+          kind == 4 ? "constant" : kind == 5 ? "5x3 map" : "all black", same, n);
+    el_envlight_free(&l);
+  }
+  free(crowd);
+  (void)same_all; (void)total;
+}
+
 static void test_threads(const el_image *city) {
   el_envlight l;
   thread_arg a[2];
@@ -1259,6 +1314,7 @@ int main(void) {
   test_hard_cases();
   test_pole_rounding();
   test_guide_equals_cdf(&city);
+  test_sample_li_n(&city);
   test_threads(&city);
   el_image_free(&studio);
   el_image_free(&city);
