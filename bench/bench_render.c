@@ -116,11 +116,13 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   return k;
 }
 
+static int g_no_batch; /* render_once: elr_render_options.no_batch */
 static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int imp, int threads, uint64_t seed,
                        elr_image *img, elr_stats *st) {
   elr_render_options o;
   char err[512];
   elr_render_options_default(&o);
+  o.no_batch = g_no_batch;
   o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.importance = imp; o.nthreads = threads;
   o.seed = seed;
   o.quiet = 1;
@@ -186,7 +188,8 @@ int main(int argc, char **argv) {
   {
     bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
     int nsh, pass, round;
-    double r_is = 0, r_oc = 0, t_loop = 1e30, ni = 0, no = 0, samples = 0, t_cell = 1e30, ni_c = 0, no_c = 0;
+    double r_is = 0, r_oc = 0, t_loop = 1e30, ni = 0, no = 0, samples = 0, t_cell = 1e30, ni_c = 0, no_c = 0, t_one = 1e30;
+    int same_image = 1;
     volatile float sink = 0;
     camera_rays(s, cam);
     nsh = shadow_rays(s, cam, w * h, sh, w * h);
@@ -209,9 +212,18 @@ int main(int argc, char **argv) {
       }
       if (n_oc / (elr_now() - t0) > r_oc) r_oc = n_oc / (elr_now() - t0);
       if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
+        elr_image one;
         ni = (double)st.camera_rays + st.bounce_rays; no = (double)st.shadow_rays + st.bsdf_light_rays;
         samples = (double)st.samples;
         if (st.t_render < t_loop) t_loop = st.t_render;
+        /* the same loop with each light sample drawn inside its own sample's shading (no batching) */
+        g_no_batch = 1;
+        if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &one, &st) == 0) {
+          if (st.t_render < t_one) t_one = st.t_render;
+          same_image &= memcmp(one.rgb, img.rgb, sizeof(float) * 3 * (size_t)img.width * (size_t)img.height) == 0;
+          elr_image_free(&one);
+        }
+        g_no_batch = 0;
         elr_image_free(&img);
       }
       /* the same loop sampling envlight's cell-average map (1x resolution: a quarter of the tables) */
@@ -231,6 +243,9 @@ int main(int argc, char **argv) {
              (ni + no) / t_loop * 1e-6, samples / t_loop * 1e-6);
       printf("  Embree alone would take %.3f s for these rays: efficiency %.0f%% of raw (target >= 70%%)\n", raw_t,
              100.0 * raw_t / t_loop);
+      if (t_one < 1e30)
+        printf("  light samples one at a time (no_batch): %.3f s, efficiency %.0f%%; %s image\n", t_one, 100.0 * raw_t / t_one,
+               same_image ? "the same" : "a DIFFERENT");
     }
     if (t_cell < 1e30) {
       double raw_t = ni_c / r_is + no_c / r_oc;

@@ -60,6 +60,8 @@ typedef struct elr_render_options {
   int importance;     /* -1: the scene's, else 0 cell average (envlight's default), 1 pbrt-v3 (2x res), 2 texel */
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
   int tile_size;      /* 0: 16 */
+  int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
+                         1: one at a time inside each sample's shading; the same image either way */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
 
@@ -68,6 +70,7 @@ typedef struct elr_stats {
   size_t bytes_embree, bytes_textures, bytes_film, bytes_distribution, bytes_splats, bytes_mip;
   uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
+  int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
   uint64_t rejected_samples;
 } elr_stats;

@@ -64,6 +64,9 @@ int elr_env_prepare(elr_envmap *e, int compensated, int importance);
 /* Sample a direction towards the environment: radiance, world direction, solid-angle pdf. */
 elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
 void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf); /* no radiance */
+/* n samples at once (envlight's sample_li_n: the same results as n elr_env_sample calls, with their
+ * table and texel reads overlapped); u: 2n floats, wi and L: 3n floats (L may be NULL), pdf: n */
+void elr_env_sample_n(const elr_envmap *e, int n, const float *u, float *wi, float *L, float *pdf);
 float elr_env_pdf(const elr_envmap *e, elr_v3 wi);
 void elr_env_prefetch(const elr_envmap *e, elr_v3 wi); /* the cache lines elr_env_pdf and elr_env_le will read */
 size_t elr_env_distribution_bytes(const elr_envmap *e);

@@ -214,6 +214,9 @@ elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float
   *wi = elr_v(w[0], w[1], w[2]);
   return elr_v(c[0], c[1], c[2]);
 }
+void elr_env_sample_n(const elr_envmap *e, int n, const float *u, float *wi, float *L, float *pdf) {
+  el_envlight_sample_li_n(elr__env_s(e), n, u, wi, L, pdf);
+}
 void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf) {
   float u[2], w[3];
   u[0] = u0; u[1] = u1;

@@ -235,7 +235,28 @@ typedef struct elr_ctx {
   elr_xform c2w;
   elr_v3 cam_o, cam_x, cam_y, cam_z; /* camera origin and the images of its axes, world space */
   int spp, sampler, xs, ys, jitter, dims;
+  /* batched light samples (elr__pixel_batched): the one emitting light, an environment, whose first
+   * light sample is each camera sample's second 2D draw; NULL: one sample at a time */
+  const elr_envmap *batch_env;
 } elr_ctx;
+
+/* A camera sample's first vertex and light sample, computed ahead by elr__pixel_batched: the camera
+ * ray's hit (hit = 0: it left the scene) and the environment sample for the first draw of light
+ * sampling at that hit (ul = 1 when it was made). */
+typedef struct elr_first {
+  int hit, ul;
+  const elr_hit *h;
+  elr_v3 wi, L;
+  float pdf;
+  /* the direct-lighting integrator's: the hit's texture footprint and BSDF, and (bs = 1) the BSDF
+   * sample of the first draw of light sampling (its environment lines already prefetched) */
+  int has_b, bs, spec;
+  elr_tex_ctx tc;
+  elr_v3 dpdx, dpdy;
+  elr_bsdf b;
+  elr_v3 fb, wb;
+  float bpdf;
+} elr_first;
 
 typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats;
 
@@ -293,7 +314,7 @@ static void elr__differentials(const elr_scene *s, const elr_ray *r, elr_hit *h,
 /* Direct light at a surface point from every light: pbrt-v3's EstimateDirect for each light, with
  * the strategies ctx->ls selects. `nsamples_all`: use each light's sample count (directlighting). */
 static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
-                          elr_tstats *ts) {
+                          elr_tstats *ts, const elr_first *first) {
   const elr_scene *s = C->s;
   elr_v3 Ld = elr_v(0, 0, 0);
   int li;
@@ -340,9 +361,14 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         int bsdf_ray = 0;
         if (C->ls != ELR_LS_LIGHT && !C->path) { /* in the path integrator the continuation ray plays this part */
           int spec;
-          fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
-          bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
-          if (bsdf_ray) elr_env_prefetch(l->env, wb);
+          if (first && k == 0 && first->bs && l->env == C->batch_env) { /* drawn ahead, from (us0, us1) */
+            fb = first->fb; wb = first->wb; bpdf = first->bpdf; spec = first->spec;
+            bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
+          } else {
+            fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
+            bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
+            if (bsdf_ray) elr_env_prefetch(l->env, wb);
+          }
         }
         /* light sampling */
         if (C->ls != ELR_LS_BSDF) {
@@ -350,7 +376,8 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
           float lpdf, spdf;
           /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
            * (u, v), no second direction-to-(u, v) mapping) */
-          Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
+          if (first && k == 0 && first->ul && l->env == C->batch_env) { Li = first->L; wi = first->wi; lpdf = first->pdf; } /* drawn ahead, from (ul0, ul1) */
+          else Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
           if (lpdf > 0.f) {
             f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
             if (!elr_isblack(f)) {
@@ -384,7 +411,7 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
 /* pbrt-v3's DirectLightingIntegrator::Li. Its SpecularReflect recursion has one branch (reflection
  * only: no material here transmits), so it runs as a loop carrying the throughput: no stack growth
  * whatever maxdepth says. */
-static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts) {
+static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts, const elr_first *first) {
   const elr_scene *s = C->s;
   elr_v3 L = elr_v(0, 0, 0), beta = elr_v(1, 1, 1);
   elr_ray r = *r0;
@@ -397,11 +424,16 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0
     float pdf, u0, u1;
     int spec;
     elr_ray rd;
-    if (!elr_intersect(s, r.o, r.d, INFINITY, &h)) return elr_add(L, elr_vmul(beta, elr__env_le(s, r.d)));
-    elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
-    elr_bsdf_init(s, &h, &tc, &b);
+    const elr_first *f0 = depth == 0 ? first : NULL;
+    if (f0 ? !f0->hit : !elr_intersect(s, r.o, r.d, INFINITY, &h)) return elr_add(L, elr_vmul(beta, elr__env_le(s, r.d)));
+    if (f0) h = *f0->h;
+    if (f0 && f0->has_b) { tc = f0->tc; dpdx = f0->dpdx; dpdy = f0->dpdy; b = f0->b; }
+    else {
+      elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
+      elr_bsdf_init(s, &h, &tc, &b);
+    }
     wo = elr_mul(r.d, -1.f);
-    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 1, ts)));
+    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 1, ts, f0)));
     if (!(depth + 1 < C->maxdepth && b.has_specular)) break;
     /* <<SpecularReflect>> */
     elr__get2d(S, &u0, &u1);
@@ -427,7 +459,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0
   return L;
 }
 
-static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts) {
+static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts, const elr_first *first) {
   const elr_scene *s = C->s;
   elr_v3 L = elr_v(0, 0, 0), beta = elr_v(1, 1, 1), o = r0->o, d = r0->d;
   int depth, specular = 0;
@@ -440,7 +472,8 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     elr_v3 wo, wi, f, dpdx, dpdy;
     float pdf, u0, u1;
     int spec;
-    if (!elr_intersect(s, o, d, INFINITY, &h)) {
+    const elr_first *f0 = depth == 0 ? first : NULL;
+    if (f0 ? !f0->hit : !elr_intersect(s, o, d, INFINITY, &h)) {
       /* escaped: the environment, MIS-weighted against light sampling after a non-specular bounce */
       int li;
       for (li = 0; li < s->nlight; li++) {
@@ -455,6 +488,7 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
       }
       break;
     }
+    if (f0) h = *f0->h;
     if (depth >= C->maxdepth) break;
     if (depth == 0) elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
     else {
@@ -464,7 +498,7 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     }
     elr_bsdf_init(s, &h, &tc, &b);
     wo = elr_mul(d, -1.f);
-    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 0, ts)));
+    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 0, ts, f0)));
     elr__get2d(S, &u0, &u1);
     f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
     if (elr_isblack(f) || pdf == 0.f) break;
@@ -484,6 +518,104 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     }
   }
   return L;
+}
+
+/* The sampler at camera sample k of pixel (x, y), its film position drawn (continuous raster
+ * coordinates). Drawing it again gives the same position and leaves the sampler in the same state. */
+static void elr__camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
+  elr__sampler_start(S, k);
+  elr__get2d(S, fx, fy);
+  if (S->kind == ELR_SAMPLER_HALTON) S->dim = 5; /* pbrt-v3: time and lens take dimensions 2..4 */
+  *fx += (float)x; *fy += (float)y;
+}
+
+/* pbrt-v3's PerspectiveCamera::GenerateRayDifferential (pinhole) at raster position (fx, fy) */
+static void elr__camera_ray(const elr_ctx *C, float fx, float fy, elr_ray *r) {
+  float sx, sy;
+  elr_v3 dc;
+  /* <<Compute raster and camera sample positions>> */
+  sx = C->sx0 + fx / (float)C->xres * (C->sx1 - C->sx0);
+  sy = C->sy1 - fy / (float)C->yres * (C->sy1 - C->sy0);
+  dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
+  r->o = C->cam_o;
+  r->d = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dc.x), elr_mul(C->cam_y, dc.y)), elr_mul(C->cam_z, dc.z)));
+  r->has_diff = 0;
+  if (C->s->any_textured) {
+    float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
+    elr_v3 dx = elr_norm(elr_add(dc, elr_v(dxs, 0, 0))), dy = elr_norm(elr_add(dc, elr_v(0, dys, 0)));
+    elr_v3 dcn = elr_norm(dc);
+    /* ScaleDifferentials(1 / sqrt(spp)) */
+    dx = elr_add(dcn, elr_mul(elr_sub(dx, dcn), C->diff_scale));
+    dy = elr_add(dcn, elr_mul(elr_sub(dy, dcn), C->diff_scale));
+    r->has_diff = 1;
+    r->rxo = r->ryo = r->o;
+    r->rxd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dx.x), elr_mul(C->cam_y, dx.y)), elr_mul(C->cam_z, dx.z)));
+    r->ryd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dy.x), elr_mul(C->cam_y, dy.y)), elr_mul(C->cam_z, dy.z)));
+  }
+}
+
+/* One pixel's camera samples with their environment light samples drawn together: for up to 32
+ * samples at a time, (1) the camera rays and their hits, and each hit's light-sample numbers (the
+ * sampler's draws in the order the shading makes them); (2) the light samples in one
+ * elr_env_sample_n call, which overlaps their table and texel cache misses (one at a time, each is a
+ * chain of dependent misses that the shading between them cannot hide); (3) the shading, which takes
+ * the hit and the light sample instead of computing them. The sampler gives every (sample, dimension)
+ * the same number whichever order they are asked in, so the image is bit for bit the one-at-a-time
+ * image (test_render_pipeline checks it). */
+#define ELR_BATCH 32
+static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, elr_tile *tile, elr_tstats *ts) {
+  elr_ray r[ELR_BATCH];
+  elr_hit h[ELR_BATCH];
+  elr_first f[ELR_BATCH];
+  float fx[ELR_BATCH], fy[ELR_BATCH], u[2 * ELR_BATCH], wi[3 * ELR_BATCH], Le[3 * ELR_BATCH], pdf[ELR_BATCH];
+  int idx[ELR_BATCH], k0, k, m, n;
+  for (k0 = 0; k0 < C->spp; k0 += ELR_BATCH) {
+    m = C->spp - k0 < ELR_BATCH ? C->spp - k0 : ELR_BATCH;
+    n = 0;
+    for (k = 0; k < m; k++) {
+      elr__camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
+      elr__camera_ray(C, fx[k], fy[k], &r[k]);
+      ts->camera++;
+      f[k].h = &h[k];
+      f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
+      f[k].ul = f[k].has_b = f[k].bs = 0;
+      idx[k] = -1;
+      if (!f[k].hit) continue;
+      elr__get2d(S, &u[2 * n], &u[2 * n + 1]); /* the first light draw at the hit */
+      idx[k] = n++;
+      if (!C->path) {
+        /* the direct-lighting integrator's shading up to the BSDF sample: its environment lookups (a
+         * random direction's texels and pdf bin) are prefetched now and arrive during the other samples */
+        elr_first *q = &f[k];
+        float us0, us1;
+        elr__differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
+        elr_bsdf_init(C->s, &h[k], &q->tc, &q->b);
+        q->has_b = 1;
+        elr__get2d(S, &us0, &us1); /* the BSDF draw that follows the light draw */
+        if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
+          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us0, us1, &q->wb, &q->bpdf, &q->spec);
+          q->bs = 1;
+          if (!q->spec && q->bpdf > 0.f && !elr_isblack(q->fb)) elr_env_prefetch(C->batch_env, q->wb);
+        }
+      }
+    }
+    elr_env_sample_n(C->batch_env, n, u, wi, Le, pdf);
+    for (k = 0; k < m; k++) {
+      elr_v3 L;
+      float gx, gy;
+      if (idx[k] >= 0) {
+        int j = idx[k];
+        f[k].ul = 1;
+        f[k].wi = elr_v(wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]);
+        f[k].L = elr_v(Le[3 * j], Le[3 * j + 1], Le[3 * j + 2]);
+        f[k].pdf = pdf[j];
+      }
+      elr__camera_sample(S, k0 + k, x, y, &gx, &gy); /* the sampler back at sample k, after its film draw */
+      L = C->path ? elr__li_path(C, S, &r[k], ts, &f[k]) : elr__li_direct(C, S, &r[k], ts, &f[k]);
+      elr_tile_add(tile, fx[k], fy[k], L);
+      ts->samples++;
+    }
+  }
 }
 
 /* >> tiles and threads */
@@ -546,38 +678,19 @@ static void *elr__worker(void *arg) {
     for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr__sampler_pixel(&S, x, y);
-        for (k = 0; k < C->spp; k++) {
-          float fx, fy, sx, sy;
-          elr_ray r;
-          elr_v3 dc, L;
-          elr__sampler_start(&S, k);
-          elr__get2d(&S, &fx, &fy);
-          if (S.kind == ELR_SAMPLER_HALTON) S.dim = 5; /* pbrt-v3: time and lens take dimensions 2..4 */
-          fx += (float)x; fy += (float)y;
-          /* <<Compute raster and camera sample positions>> */
-          sx = C->sx0 + fx / (float)C->xres * (C->sx1 - C->sx0);
-          sy = C->sy1 - fy / (float)C->yres * (C->sy1 - C->sy0);
-          dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
-          r.o = C->cam_o;
-          r.d = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dc.x), elr_mul(C->cam_y, dc.y)), elr_mul(C->cam_z, dc.z)));
-          r.has_diff = 0;
-          if (C->s->any_textured) {
-            float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
-            elr_v3 dx = elr_norm(elr_add(dc, elr_v(dxs, 0, 0))), dy = elr_norm(elr_add(dc, elr_v(0, dys, 0)));
-            elr_v3 dcn = elr_norm(dc);
-            /* ScaleDifferentials(1 / sqrt(spp)) */
-            dx = elr_add(dcn, elr_mul(elr_sub(dx, dcn), C->diff_scale));
-            dy = elr_add(dcn, elr_mul(elr_sub(dy, dcn), C->diff_scale));
-            r.has_diff = 1;
-            r.rxo = r.ryo = r.o;
-            r.rxd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dx.x), elr_mul(C->cam_y, dx.y)), elr_mul(C->cam_z, dx.z)));
-            r.ryd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dy.x), elr_mul(C->cam_y, dy.y)), elr_mul(C->cam_z, dy.z)));
+        if (C->batch_env) elr__pixel_batched(C, &S, x, y, tile, &ts);
+        else
+          for (k = 0; k < C->spp; k++) {
+            float fx, fy;
+            elr_ray r;
+            elr_v3 L;
+            elr__camera_sample(&S, k, x, y, &fx, &fy);
+            elr__camera_ray(C, fx, fy, &r);
+            ts.camera++;
+            L = C->path ? elr__li_path(C, &S, &r, &ts, NULL) : elr__li_direct(C, &S, &r, &ts, NULL);
+            elr_tile_add(tile, fx, fy, L);
+            ts.samples++;
           }
-          ts.camera++;
-          L = C->path ? elr__li_path(C, &S, &r, &ts) : elr__li_direct(C, &S, &r, &ts);
-          elr_tile_add(tile, fx, fy, L);
-          ts.samples++;
-        }
       }
     pthread_mutex_lock(&J->mu);
     /* merge tiles in tile order, whatever order threads finish them: the same sums for any thread count */
@@ -689,6 +802,14 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
         env_sampled = 1;
       }
     }
+    /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
+    /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
+     * past them come from the pixel's one random stream, whose order batching would change) */
+    if (env_sampled && !o->no_batch && (C.sampler != ELR_SAMPLER_STRATIFIED || C.dims >= 3)) {
+      int nemit = 0;
+      for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) { nemit++; C.batch_env = s->light[i].env; }
+      if (nemit != 1) C.batch_env = NULL;
+    }
   }
   if (C.sampler == ELR_SAMPLER_HALTON) {
     int b[4];
@@ -736,6 +857,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->camera_rays = J.total.camera; st->bounce_rays = J.total.bounce; st->shadow_rays = J.total.shadow;
     st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
     st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
+    st->light_samples_batched = C.batch_env != NULL;
     st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
     st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler;
     st->rejected_samples = elr_film_rejected(film);
@@ -774,7 +896,8 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   fprintf(f, "  textures (level 0) %10.1f KiB  (environment map image included)\n", (double)st->bytes_textures / 1024.0);
   fprintf(f, "  MIP maps           %d image texture%s, %d level%s built, %.1f KiB\n", st->mip_textures,
           st->mip_textures == 1 ? "" : "s", st->mip_levels_built, st->mip_levels_built == 1 ? "" : "s", (double)st->bytes_mip / 1024.0);
-  fprintf(f, "  light sampling     %s\n", st->light_sampling_used ? "yes" : "no (nothing emits, or no surface has a non-specular lobe)");
+  fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (nothing emits, or no surface has a non-specular lobe)",
+          st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
           (double)st->bytes_distribution / 1024.0);
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,

@@ -147,5 +147,65 @@ int main(void) {
       elr_scene_free(s);
     }
   }
+  /* 8. A pixel's environment light samples drawn together (the default) give the image of drawing
+   * each inside its own sample's shading (no_batch), bit for bit: every sampler, both integrators,
+   * light-only sampling, textures (ray differentials), a mirror (its bounce must not take the first
+   * vertex's light sample), sample counts that are not a multiple of the batch of 32, and the cases
+   * that turn batching off (a second emitting light; stratified strata that cover fewer draws). */
+  {
+    static const char *cases[][2] = {
+      {"Sampler \"stratified\" \"integer xsamples\" 6 \"integer ysamples\" 7\nIntegrator \"directlighting\"\n", "1"},
+      {"Sampler \"halton\" \"integer pixelsamples\" 37\nIntegrator \"directlighting\"\n", "1"},
+      {"Sampler \"random\" \"integer pixelsamples\" 33\nIntegrator \"directlighting\"\n", "1"},
+      {"Sampler \"halton\" \"integer pixelsamples\" 16\nIntegrator \"path\" \"integer maxdepth\" 4\n", "1"},
+      {"Sampler \"stratified\" \"integer xsamples\" 4 \"integer ysamples\" 4\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1"},
+      {"Sampler \"random\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\" \"string strategy\" \"one\"\n", "1"},
+      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3 \"integer dimensions\" 2\nIntegrator \"directlighting\"\n", "0"},
+      {"Sampler \"halton\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\"\n", "0"},
+    };
+    int c;
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      static char buf[4096];
+      elr_image a, b;
+      elr_stats sa, sb;
+      elr_render_options o;
+      int ok = 0, lsmode;
+      snprintf(buf, sizeof buf,
+               "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+               "Film \"image\" \"integer xresolution\" 20 \"integer yresolution\" 16\n%s"
+               "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"env.pfm\" \"float scale\" 2\n%s"
+               "Texture \"chk\" \"spectrum\" \"checkerboard\" \"float uscale\" 8 \"float vscale\" 8\n"
+               "AttributeBegin\nMaterial \"plastic\" \"texture Kd\" \"chk\" \"float roughness\" 0.05\n"
+               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\n"
+               "  \"float uv\" [ 0 0 1 0 1 1 0 1 ]\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0.3 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"mirror\"\nTranslate 0.7 0.5 0.3\nShape \"sphere\" \"float radius\" 0.4\nAttributeEnd\nWorldEnd\n",
+               cases[c][0], c == 7 ? "LightSource \"point\" \"point from\" [ 0 3 0 ] \"rgb I\" [ 2 2 2 ]\n" : "");
+      s = rt_load("batch.pbrt", buf, err, sizeof err);
+      if (!s) { rt_check(0, "batch scene %d: %s", c, err); continue; }
+      for (lsmode = 0; lsmode < (c == 0 ? 2 : 1); lsmode++) {
+        elr_render_options_default(&o);
+        o.nthreads = 2; o.seed = 5; o.quiet = 1;
+        if (lsmode) o.light_sampling = ELR_LS_LIGHT;
+        if (elr_render(s, &o, &a, &sa, err, sizeof err) == 0) {
+          o.no_batch = 1;
+          if (elr_render(s, &o, &b, &sb, err, sizeof err) == 0) {
+            size_t nb = sizeof(float) * 3 * (size_t)a.width * (size_t)a.height;
+            double m = 0;
+            int k;
+            for (k = 0; k < a.width * a.height * 3; k++) m += a.rgb[k];
+            ok = memcmp(a.rgb, b.rgb, nb) == 0 && sa.light_samples_batched == (cases[c][1][0] == '1') && !sb.light_samples_batched &&
+                 sa.shadow_rays == sb.shadow_rays && sa.bounce_rays == sb.bounce_rays && m > 0;
+            rt_check(ok, "batched light samples, case %d%s: %s image as one at a time (batched: %d, expected %s; shadow rays %llu / %llu)",
+                     c, lsmode ? " (light sampling only)" : "", memcmp(a.rgb, b.rgb, nb) == 0 ? "the same" : "a DIFFERENT",
+                     sa.light_samples_batched, cases[c][1], (unsigned long long)sa.shadow_rays, (unsigned long long)sb.shadow_rays);
+            elr_image_free(&b);
+          } else rt_check(0, "batch case %d (one at a time): %s", c, err);
+          elr_image_free(&a);
+        } else rt_check(0, "batch case %d: %s", c, err);
+      }
+      elr_scene_free(s);
+    }
+  }
   return rt_finish("test_render_pipeline");
 }
