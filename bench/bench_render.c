@@ -26,9 +26,10 @@
  *       (465 M) took 12 minutes there at load average 6.
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
- * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls) or samples
+ * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
  * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
- * rounded up to whole rows of 320).
+ * rounded up to whole rows of 320) or samples1 (the same with light samples drawn one at a time:
+ * render_options.no_batch).
  *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 102400
  *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 0
  * instructions per sample = (Ir(102400) - Ir(0)) / 102400 (the run prints the samples it rendered).
@@ -160,7 +161,8 @@ int main(int argc, char **argv) {
       for (k = 0; k < cg_n; k++) { float t; unsigned g; elr_raw_intersect(s, cam[k % (w * h)].o, cam[k % (w * h)].d, &t, &g); sink += t; }
     } else if (!strcmp(cg_op, "occluded")) {
       for (k = 0; k < cg_n && nsh > 0; k++) sink += (float)elr_occluded(s, sh[k % nsh].o, sh[k % nsh].d, INFINITY);
-    } else if (!strcmp(cg_op, "samples")) {
+    } else if (!strcmp(cg_op, "samples") || !strcmp(cg_op, "samples1")) {
+      g_no_batch = !strcmp(cg_op, "samples1");
       if (cg_n > 0) {
         elr_image img;
         elr_stats st;

@@ -218,6 +218,25 @@ static void elr__get2d(elr_sampler *S, float *u0, float *u1) {
   *u0 = elr__rng_f(&S->rng); *u1 = elr__rng_f(&S->rng);
 }
 
+/* the sampler's state after a 2D draw without the draw's work (for draws made ahead) */
+static void elr__skip2d(elr_sampler *S) {
+  float a, b;
+  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims && S->d2 < S->made2) { S->d2++; return; }
+  if (S->kind == ELR_SAMPLER_HALTON && S->dim + 1 < S->H->ndims) { S->dim += 2; return; }
+  elr__get2d(S, &a, &b);
+}
+/* where a camera sample's draws have got to (elr__pixel_batched comes back to it). The random sampler's
+ * stream is the sample's own and part of it; the other samplers' stream (for draws past their strata or
+ * prime bases) is the pixel's, shared by its samples in order, and is left alone. */
+typedef struct elr_spos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_spos;
+static void elr__spos_save(const elr_sampler *S, elr_spos *p) {
+  p->sample = S->sample; p->d1 = S->d1; p->d2 = S->d2; p->dim = S->dim; p->hindex = S->hindex; p->rng = S->rng;
+}
+static void elr__spos_load(elr_sampler *S, const elr_spos *p) {
+  S->sample = p->sample; S->d1 = p->d1; S->d2 = p->d2; S->dim = p->dim; S->hindex = p->hindex;
+  if (S->kind == ELR_SAMPLER_RANDOM) S->rng = p->rng;
+}
+
 /* >> render context */
 typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
 
@@ -324,9 +343,10 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
     elr_v3 sum = elr_v(0, 0, 0);
     if (!elr__light_emits(l)) continue;
     for (k = 0; k < n; k++) {
-      float ul0, ul1, us0, us1;
-      elr__get2d(S, &ul0, &ul1);
-      elr__get2d(S, &us0, &us1);
+      float ul0 = 0.f, ul1 = 0.f, us0 = 0.f, us1 = 0.f;
+      const elr_first *pre = first && k == 0 && l->env == C->batch_env ? first : NULL; /* drawn ahead */
+      if (pre && pre->ul) elr__skip2d(S); else elr__get2d(S, &ul0, &ul1);
+      if (pre && pre->bs) elr__skip2d(S); else elr__get2d(S, &us0, &us1);
       if (l->kind != ELR_LIGHT_INFINITE) {
         /* delta lights: light sampling only */
         elr_v3 wi, Li, f;
@@ -361,8 +381,8 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         int bsdf_ray = 0;
         if (C->ls != ELR_LS_LIGHT && !C->path) { /* in the path integrator the continuation ray plays this part */
           int spec;
-          if (first && k == 0 && first->bs && l->env == C->batch_env) { /* drawn ahead, from (us0, us1) */
-            fb = first->fb; wb = first->wb; bpdf = first->bpdf; spec = first->spec;
+          if (pre && pre->bs) {
+            fb = pre->fb; wb = pre->wb; bpdf = pre->bpdf; spec = pre->spec;
             bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
           } else {
             fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
@@ -376,7 +396,7 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
           float lpdf, spdf;
           /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
            * (u, v), no second direction-to-(u, v) mapping) */
-          if (first && k == 0 && first->ul && l->env == C->batch_env) { Li = first->L; wi = first->wi; lpdf = first->pdf; } /* drawn ahead, from (ul0, ul1) */
+          if (pre && pre->ul) { Li = pre->L; wi = pre->wi; lpdf = pre->pdf; }
           else Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
           if (lpdf > 0.f) {
             f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
@@ -568,12 +588,14 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
   elr_hit h[ELR_BATCH];
   elr_first f[ELR_BATCH];
   float fx[ELR_BATCH], fy[ELR_BATCH], u[2 * ELR_BATCH], wi[3 * ELR_BATCH], Le[3 * ELR_BATCH], pdf[ELR_BATCH];
+  elr_spos pos[ELR_BATCH];
   int idx[ELR_BATCH], k0, k, m, n;
   for (k0 = 0; k0 < C->spp; k0 += ELR_BATCH) {
     m = C->spp - k0 < ELR_BATCH ? C->spp - k0 : ELR_BATCH;
     n = 0;
     for (k = 0; k < m; k++) {
       elr__camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
+      elr__spos_save(S, &pos[k]);
       elr__camera_ray(C, fx[k], fy[k], &r[k]);
       ts->camera++;
       f[k].h = &h[k];
@@ -602,7 +624,6 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
     elr_env_sample_n(C->batch_env, n, u, wi, Le, pdf);
     for (k = 0; k < m; k++) {
       elr_v3 L;
-      float gx, gy;
       if (idx[k] >= 0) {
         int j = idx[k];
         f[k].ul = 1;
@@ -610,7 +631,7 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
         f[k].L = elr_v(Le[3 * j], Le[3 * j + 1], Le[3 * j + 2]);
         f[k].pdf = pdf[j];
       }
-      elr__camera_sample(S, k0 + k, x, y, &gx, &gy); /* the sampler back at sample k, after its film draw */
+      elr__spos_load(S, &pos[k]); /* the sampler back at sample k, after its film draw */
       L = C->path ? elr__li_path(C, S, &r[k], ts, &f[k]) : elr__li_direct(C, S, &r[k], ts, &f[k]);
       elr_tile_add(tile, fx[k], fy[k], L);
       ts->samples++;

@@ -159,6 +159,7 @@ int main(void) {
       {"Sampler \"random\" \"integer pixelsamples\" 33\nIntegrator \"directlighting\"\n", "1"},
       {"Sampler \"halton\" \"integer pixelsamples\" 16\nIntegrator \"path\" \"integer maxdepth\" 4\n", "1"},
       {"Sampler \"stratified\" \"integer xsamples\" 4 \"integer ysamples\" 4\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1"},
+      {"Sampler \"random\" \"integer pixelsamples\" 12\nIntegrator \"path\" \"integer maxdepth\" 6\n", "1"},
       {"Sampler \"random\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\" \"string strategy\" \"one\"\n", "1"},
       {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3 \"integer dimensions\" 2\nIntegrator \"directlighting\"\n", "0"},
       {"Sampler \"halton\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\"\n", "0"},
@@ -180,7 +181,7 @@ int main(void) {
                "  \"float uv\" [ 0 0 1 0 1 1 0 1 ]\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0.3 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"mirror\"\nTranslate 0.7 0.5 0.3\nShape \"sphere\" \"float radius\" 0.4\nAttributeEnd\nWorldEnd\n",
-               cases[c][0], c == 7 ? "LightSource \"point\" \"point from\" [ 0 3 0 ] \"rgb I\" [ 2 2 2 ]\n" : "");
+               cases[c][0], c == 8 ? "LightSource \"point\" \"point from\" [ 0 3 0 ] \"rgb I\" [ 2 2 2 ]\n" : "");
       s = rt_load("batch.pbrt", buf, err, sizeof err);
       if (!s) { rt_check(0, "batch scene %d: %s", c, err); continue; }
       for (lsmode = 0; lsmode < (c == 0 ? 2 : 1); lsmode++) {
