@@ -575,13 +575,14 @@ static void elr__camera_ray(const elr_ctx *C, float fx, float fy, elr_ray *r) {
 }
 
 /* One pixel's camera samples with their environment light samples drawn together: for up to 32
- * samples at a time, (1) the camera rays and their hits, and each hit's light-sample numbers (the
- * sampler's draws in the order the shading makes them); (2) the light samples in one
- * elr_env_sample_n call, which overlaps their table and texel cache misses (one at a time, each is a
- * chain of dependent misses that the shading between them cannot hide); (3) the shading, which takes
- * the hit and the light sample instead of computing them. The sampler gives every (sample, dimension)
- * the same number whichever order they are asked in, so the image is bit for bit the one-at-a-time
- * image (test_render_pipeline checks it). */
+ * samples at a time, (1) the camera rays and their hits, each hit's light-sample numbers (the
+ * sampler's draws in the order the shading makes them) and, for the direct-lighting integrator, its
+ * BSDF and BSDF sample, whose environment texels and pdf bin are prefetched; (2) the light samples in
+ * one elr_env_sample_n call, which overlaps their table and texel cache misses (one at a time, each
+ * is a chain of dependent misses that the shading between them cannot hide); (3) the shading, which
+ * takes all of these instead of computing them, with the sampler put back where sample k's film draw
+ * left it. The sampler gives every (sample, dimension) the same number whichever order they are asked
+ * in, so the image is bit for bit the one-at-a-time image (test_render_pipeline checks it). */
 #define ELR_BATCH 32
 static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, elr_tile *tile, elr_tstats *ts) {
   elr_ray r[ELR_BATCH];
