@@ -268,13 +268,14 @@ typedef struct elr_first {
   elr_v3 wi, L;
   float pdf;
   /* the direct-lighting integrator's: the hit's texture footprint and BSDF, and (bs = 1) the BSDF
-   * sample of the first draw of light sampling (its environment lines already prefetched) */
+   * sample of the first draw of light sampling with the environment's pdf and radiance in its
+   * direction (for a sample that will trace a BSDF ray) */
   int has_b, bs, spec;
   elr_tex_ctx tc;
   elr_v3 dpdx, dpdy;
   elr_bsdf b;
-  elr_v3 fb, wb;
-  float bpdf;
+  elr_v3 fb, wb, Lb;
+  float bpdf, bpdf_env;
 } elr_first;
 
 typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats;
@@ -417,8 +418,11 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
           if (!elr_occluded(s, elr__offset(h, wb), wb, INFINITY)) {
             /* pbrt-v3 returns when Pdf_Li is 0; with a compensated density that would drop the dim parts
              * of the map, which only BSDF sampling covers: the power heuristic then gives weight 1 */
-            float w = C->ls == ELR_LS_MIS ? elr__power(bpdf, elr_env_pdf(l->env, wb)) : 1.f;
-            sum = elr_add(sum, elr_mul(elr_vmul(fb, elr_env_le(l->env, wb)), w / bpdf));
+            float w;
+            elr_v3 Lb;
+            if (pre && pre->bs) { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, pre->bpdf_env) : 1.f; Lb = pre->Lb; }
+            else { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, elr_env_pdf(l->env, wb)) : 1.f; Lb = elr_env_le(l->env, wb); }
+            sum = elr_add(sum, elr_mul(elr_vmul(fb, Lb), w / bpdf));
           }
         }
       }
@@ -618,10 +622,18 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
         if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
           q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us0, us1, &q->wb, &q->bpdf, &q->spec);
           q->bs = 1;
-          if (!q->spec && q->bpdf > 0.f && !elr_isblack(q->fb)) elr_env_prefetch(C->batch_env, q->wb);
         }
       }
     }
+    /* the environment's pdf and radiance in the BSDF samples' directions, for all of them in one pass
+     * (pdf_li has no branch, so their cache misses overlap): used when the BSDF ray is not occluded */
+    if (!C->path)
+      for (k = 0; k < m; k++) {
+        elr_first *q = &f[k];
+        if (!q->bs || q->spec || !(q->bpdf > 0.f) || elr_isblack(q->fb)) continue;
+        q->bpdf_env = elr_env_pdf(C->batch_env, q->wb);
+        q->Lb = elr_env_le(C->batch_env, q->wb);
+      }
     elr_env_sample_n(C->batch_env, n, u, wi, Le, pdf);
     for (k = 0; k < m; k++) {
       elr_v3 L;
