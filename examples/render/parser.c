@@ -368,6 +368,27 @@ static void elr__check_range(elr__parser *P, const char *name, double v, double 
     elr__fail(P, p ? p->line : P->dir_line, "%s: \"%s\" = %g is out of range [%g, %g]", P->dir_name, name, v, lo, hi);
 }
 
+/* World-space coordinates the renderer can trace: Embree refuses (asserts on) a ray whose origin has a
+ * component beyond 1.8e18, and squared distances in float overflow near 1e19. Camera positions, light
+ * positions and geometry must stay within |x| <= ELR_MAX_COORD; a transformation whose matrix or inverse
+ * is not finite (Scale 1e-200 twice, Translate 1e300) is refused at the directive that made it. */
+#define ELR_MAX_COORD 1e15
+static int elr__coord_ok(elr_v3 p) {
+  return fabsf(p.x) <= (float)ELR_MAX_COORD && fabsf(p.y) <= (float)ELR_MAX_COORD && fabsf(p.z) <= (float)ELR_MAX_COORD;
+}
+static void elr__check_point(elr__parser *P, int line, elr_v3 p, const char *what) {
+  if (!elr__coord_ok(p))
+    elr__fail(P, line, "%s: %s (%g, %g, %g) is not finite or outside |x| <= %g", P->dir_name, what, p.x, p.y, p.z, ELR_MAX_COORD);
+}
+static void elr__check_ctm(elr__parser *P, int line) {
+  int i, j;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++)
+      if (!isfinite(P->ctm.m[i][j]) || !isfinite(P->ctm.inv[i][j]) || fabs(P->ctm.m[i][j]) > 1e30 || fabs(P->ctm.inv[i][j]) > 1e30)
+        elr__fail(P, line, "%s: the transformation overflows (a matrix entry or an entry of its inverse is %g, beyond 1e30)",
+                  P->dir_name, isfinite(P->ctm.m[i][j]) && fabs(P->ctm.m[i][j]) > 1e30 ? P->ctm.m[i][j] : P->ctm.inv[i][j]);
+}
+
 /* >> scene growth */
 #define ELR_PUSH(P, arr, n, cap, T)                                                              \
   do {                                                                                           \
@@ -488,6 +509,7 @@ static void elr__camera(elr__parser *P, const char *type) {
   }
   if (elr__find(P, "focaldistance")) elr__pfloat(P, "focaldistance", 1e6);
   elr_xform_invert(&d->cam2world, &P->ctm);
+  elr__check_point(P, P->dir_line, elr_xpoint(&d->cam2world, elr_v(0, 0, 0)), "the camera position");
   P->seen_camera = 1;
   /* named coordinate system "camera" */
   {
@@ -687,6 +709,7 @@ static void elr__light(elr__parser *P, const char *type) {
     l->kind = ELR_LIGHT_POINT;
     l->L = elr_vmul(I, sc);
     l->pos = elr_xpoint(&P->ctm, from);
+    elr__check_point(P, P->dir_line, l->pos, "the light's position");
     l->nsamples = 1;
   } else if (!strcmp(type, "distant")) {
     elr_v3 L = elr__prgb(P, "L", elr_v(1, 1, 1));
@@ -709,9 +732,10 @@ static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
   for (i = 0; i < m->nvert; i++) {
     elr_v3 p = elr_xpoint(&P->ctm, elr_v(m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]));
     m->p[3 * i] = p.x; m->p[3 * i + 1] = p.y; m->p[3 * i + 2] = p.z;
-    if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+    if (!elr__coord_ok(p)) {
       free(m->idx); free(m->p); free(m->n); free(m->uv);
-      elr__fail(P, P->dir_line, "Shape: vertex %d is not finite after the transformation", i);
+      elr__fail(P, P->dir_line, "Shape: vertex %d (%g, %g, %g) is not finite or outside |x| <= %g after the transformation", i,
+                p.x, p.y, p.z, ELR_MAX_COORD);
     }
     if (m->n) {
       elr_v3 n = elr_norm(elr_xnormal(&P->ctm, elr_v(m->n[3 * i], m->n[3 * i + 1], m->n[3 * i + 2])));
@@ -733,6 +757,19 @@ static void elr__shape(elr__parser *P, const char *type) {
       double zmin = elr__pfloat(P, "zmin", -r), zmax = elr__pfloat(P, "zmax", r), pm = elr__pfloat(P, "phimax", 360.);
       if (zmin > -r || zmax < r || pm < 360.)
         ELR_WARN(P, P->dir_line, "Shape \"sphere\": zmin/zmax/phimax ignored (only full spheres)");
+    }
+    { /* the sphere's world-space bounds must be traceable */
+      elr_v3 c = elr_xpoint(&P->ctm, elr_v(0, 0, 0));
+      double sc = 0;
+      int i, j;
+      for (j = 0; j < 3; j++) {
+        double col = 0;
+        for (i = 0; i < 3; i++) col += P->ctm.m[i][j] * P->ctm.m[i][j];
+        if (sqrt(col) > sc) sc = sqrt(col);
+      }
+      elr__check_point(P, P->dir_line, c, "the sphere's centre");
+      if (!(r * sc <= ELR_MAX_COORD))
+        elr__fail(P, P->dir_line, "Shape \"sphere\": the radius in world space (%g) is outside |x| <= %g", r * sc, ELR_MAX_COORD);
     }
     ELR_PUSH(P, s->sph, s->nsph, s->capsph, elr_sphere);
     sp = &s->sph[s->nsph - 1];
@@ -1003,6 +1040,7 @@ static void elr__run(elr__parser *P) {
       elr_xform a, r;
       m[0][3] = x; m[1][3] = y; m[2][3] = z;
       elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Scale")) {
       double x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
       double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
@@ -1010,6 +1048,7 @@ static void elr__run(elr__parser *P) {
       m[0][0] = x; m[1][1] = y; m[2][2] = z;
       if (x == 0 || y == 0 || z == 0) elr__fail(P, t.line, "Scale %g %g %g is singular", x, y, z);
       elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Rotate")) {
       double ang = elr__num(P, nm), x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
       double l = sqrt(x * x + y * y + z * z), s, c, m[4][4];
@@ -1023,6 +1062,7 @@ static void elr__run(elr__parser *P) {
       m[2][0] = x * z * (1 - c) - y * s; m[2][1] = y * z * (1 - c) + x * s; m[2][2] = z * z + (1 - z * z) * c; m[2][3] = 0;
       m[3][0] = m[3][1] = m[3][2] = 0; m[3][3] = 1;
       elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "LookAt")) {
       double v[9];
       int i;
@@ -1030,6 +1070,8 @@ static void elr__run(elr__parser *P) {
       double m[4][4];
       elr_xform c2w, w2c, r;
       for (i = 0; i < 9; i++) v[i] = elr__num(P, nm);
+      for (i = 0; i < 9; i++)
+        if (fabs(v[i]) > ELR_MAX_COORD) elr__fail(P, t.line, "LookAt: %g is outside |x| <= %g", v[i], ELR_MAX_COORD);
       pos = elr_v((float)v[0], (float)v[1], (float)v[2]);
       look = elr_v((float)v[3], (float)v[4], (float)v[5]);
       up = elr_v((float)v[6], (float)v[7], (float)v[8]);
@@ -1044,9 +1086,10 @@ static void elr__run(elr__parser *P) {
       m[0][1] = nup.x; m[1][1] = nup.y; m[2][1] = nup.z; m[3][1] = 0;
       m[0][2] = dir.x; m[1][2] = dir.y; m[2][2] = dir.z; m[3][2] = 0;
       m[0][3] = v[0]; m[1][3] = v[1]; m[2][3] = v[2]; m[3][3] = 1;
-      elr_xform_from_matrix(&c2w, m);
+      if (elr_xform_from_matrix(&c2w, m) != 0) elr__fail(P, t.line, "LookAt: the camera frame is singular");
       elr_xform_invert(&w2c, &c2w);
       elr_xform_mul(&r, &P->ctm, &w2c); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Transform") || !strcmp(nm, "ConcatTransform")) {
       double v[16], m[4][4];
       int i, j;
@@ -1056,6 +1099,7 @@ static void elr__run(elr__parser *P) {
       if (elr_xform_from_matrix(&a, m) != 0) elr__fail(P, t.line, "%s: the matrix is singular", nm);
       if (nm[0] == 'T') P->ctm = a;
       else { elr_xform_mul(&r, &P->ctm, &a); P->ctm = r; }
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Identity")) {
       elr_xform_identity(&P->ctm);
     } else if (!strcmp(nm, "CoordinateSystem")) {

@@ -325,6 +325,15 @@ static void errors(void) {
     elr_scene_free(s);
   }
   expect_error("str.pbrt", "WorldBegin\n\"float radius\" 1\nWorldEnd\n", "str.pbrt:2:", "expected a directive");
+  /* fuzzing: world coordinates Embree cannot trace (it asserts on a ray origin beyond 1.8e18: LookAt
+   * 0 1e300 0 crashed the render) and transformations that overflow are refused where they are made */
+  expect_error("lookat.pbrt", "LookAt 0 1e300 -4.5  0 0.7 0  0 1 0\nWorldBegin\nWorldEnd\n", "lookat.pbrt:1:", "outside");
+  expect_error("campos.pbrt", "Translate 0 0 1e20\nCamera \"perspective\"\nWorldBegin\nWorldEnd\n", "campos.pbrt:2:", "camera position");
+  expect_error("tiny.pbrt", "WorldBegin\nScale 1e-200 1e-200 1e-200\nScale 1e-200 1e-200 1e-200\nWorldEnd\n", "tiny.pbrt:2:", "overflows");
+  expect_error("farsph.pbrt", "WorldBegin\nTranslate 1e20 0 0\nShape \"sphere\"\nWorldEnd\n", "farsph.pbrt:3:", "centre");
+  expect_error("bigsph.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" 1e19\nWorldEnd\n", "bigsph.pbrt:2:", "radius");
+  expect_error("farpt.pbrt", "WorldBegin\nLightSource \"point\" \"point from\" [ 0 1e30 0 ]\nWorldEnd\n", "farpt.pbrt:2:", "position");
+  expect_error("farmesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [ 0 0 0 1e20 0 0 0 1 0 ]\nWorldEnd\n", "farmesh.pbrt:2:", "outside");
 }
 
 /* Every prefix of a file that uses most directives (truncated at every byte) must load or fail with a
