@@ -267,6 +267,77 @@ static int el_io__diagnose_exr(const char *path, char *err, size_t errlen) {
   return found;
 }
 
+/* ---- OpenEXR, single-part scanline files: tinyexr 1.0.1's LoadEXR leaks every channel buffer when
+ * decoding fails (FreeEXRImage frees images[c] for c < num_channels, and num_channels is set only after a
+ * successful decode), so a corrupt chunk leaked (LeakSanitizer). Here the image's num_channels is set
+ * before decoding, so that tinyexr's own clean-up frees them; the RGB conversion is LoadEXR's (R, G, B
+ * by name, layer prefixes ignored; a single channel is grey). Returns 1 when the file is not a
+ * single-part scanline image (LoadEXR handles those), else 0 or -1. */
+static int el_io__load_exr_scanline(const char *path, el_image *img, char *err, size_t errlen) {
+  EXRVersion ver;
+  EXRHeader hdr;
+  EXRImage im;
+  const char *msg = NULL;
+  int c, idx[3] = {-1, -1, -1}, r;
+  size_t i, n;
+  if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS) return el_io__fail(err, errlen, path, "corrupt EXR (bad version field)");
+  if (ver.tiled || ver.multipart || ver.non_image) return 1;
+  InitEXRHeader(&hdr);
+  if (ParseEXRHeaderFromFile(&hdr, &ver, path, &msg) != TINYEXR_SUCCESS) {
+    el_io__fail(err, errlen, path, "corrupt or truncated EXR header (%s)", msg ? msg : "unknown tinyexr error");
+    if (msg) FreeEXRErrorMessage(msg);
+    FreeEXRHeader(&hdr);
+    return -1;
+  }
+  if (hdr.tiled) { FreeEXRHeader(&hdr); return 1; }
+  if (hdr.num_channels < 1) { FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "EXR has no channels"); }
+  for (c = 0; c < hdr.num_channels; c++) {
+    const char *nm = hdr.channels[c].name, *dot = strrchr(nm, '.');
+    if (dot && dot != nm && dot[1]) nm = dot + 1;
+    if (!strcmp(nm, "R") && idx[0] < 0) idx[0] = c;
+    else if (!strcmp(nm, "G") && idx[1] < 0) idx[1] = c;
+    else if (!strcmp(nm, "B") && idx[2] < 0) idx[2] = c;
+    if (hdr.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) hdr.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+  if (hdr.num_channels == 1) idx[0] = idx[1] = idx[2] = 0;
+  else if (idx[0] < 0 || idx[1] < 0 || idx[2] < 0) {
+    FreeEXRHeader(&hdr);
+    return el_io__fail(err, errlen, path, "EXR has %d channels but no R, G and B", hdr.num_channels);
+  }
+  InitEXRImage(&im);
+  im.num_channels = hdr.num_channels; /* see above: tinyexr frees this many channel buffers on failure */
+  r = LoadEXRImageFromFile(&im, &hdr, path, &msg);
+  if (r != TINYEXR_SUCCESS) {
+    char *nl;
+    el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
+    while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
+    if (msg) FreeEXRErrorMessage(msg);
+    FreeEXRHeader(&hdr); /* the image's buffers were freed by tinyexr */
+    return -1;
+  }
+  if (im.width <= 0 || im.height <= 0 || !im.images) {
+    FreeEXRImage(&im); FreeEXRHeader(&hdr);
+    return el_io__fail(err, errlen, path, "EXR has no pixels");
+  }
+  n = (size_t)im.width * (size_t)im.height;
+  img->pixels = (float *)malloc(n * 3 * sizeof(float));
+  if (!img->pixels) { FreeEXRImage(&im); FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "out of memory"); }
+  for (c = 0; c < 3; c++) {
+    const unsigned char *src = im.images[idx[c]];
+    int uint = hdr.requested_pixel_types[idx[c]] == TINYEXR_PIXELTYPE_UINT;
+    for (i = 0; i < n; i++) {
+      float v;
+      if (uint) { unsigned u; memcpy(&u, src + 4 * i, 4); v = (float)u; }
+      else memcpy(&v, src + 4 * i, 4);
+      img->pixels[3 * i + (size_t)c] = v;
+    }
+  }
+  img->width = im.width; img->height = im.height; img->channels = 3; img->is_8bit = 0;
+  FreeEXRImage(&im);
+  FreeEXRHeader(&hdr);
+  return 0;
+}
+
 /* The first bytes of a file (fewer when it is shorter); returns how many were read. */
 static size_t el_io__magic(FILE *f, unsigned char *m, size_t n) {
   size_t k;
@@ -325,6 +396,8 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
       while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
       return -1;
     }
+    r = el_io__load_exr_scanline(path, img, err, errlen);
+    if (r <= 0) return r;
     r = LoadEXR(&rgba, &w, &h, path, &msg);
     if (r != TINYEXR_SUCCESS) {
       char *nl;
