@@ -333,6 +333,23 @@ static void errors(void) {
   expect_error("farsph.pbrt", "WorldBegin\nTranslate 1e20 0 0\nShape \"sphere\"\nWorldEnd\n", "farsph.pbrt:3:", "centre");
   expect_error("bigsph.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" 1e19\nWorldEnd\n", "bigsph.pbrt:2:", "radius");
   expect_error("farpt.pbrt", "WorldBegin\nLightSource \"point\" \"point from\" [ 0 1e30 0 ]\nWorldEnd\n", "farpt.pbrt:2:", "position");
+  /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
+   * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
+   * read (an uninitialised coordinate) */
+  {
+    const char *hdr = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 1\n1 0 1\n0 1 1\n";
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s3 0 1 nan\n", hdr); rt_write("nanidx.ply", buf);
+    snprintf(buf, sizeof buf, "%s3 0 1 1.5\n", hdr); rt_write("fracidx.ply", buf);
+    snprintf(buf, sizeof buf, "%snan 0 1 2\n", hdr); rt_write("nancnt.ply", buf);
+    rt_write("listx.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar float x\nproperty float y\nproperty float z\n"
+                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 1\n0 0 1\n0 1 1\n3 0 1 2\n");
+    expect_error("nanidx.pbrt", W("Shape \"plymesh\" \"string filename\" \"nanidx.ply\"\n"), "nanidx.pbrt:3:", "vertex index nan");
+    expect_error("fracidx.pbrt", W("Shape \"plymesh\" \"string filename\" \"fracidx.ply\"\n"), "fracidx.pbrt:3:", "vertex index 1.5");
+    expect_error("nancnt.pbrt", W("Shape \"plymesh\" \"string filename\" \"nancnt.ply\"\n"), "nancnt.pbrt:3:", "list of nan entries");
+    expect_error("listx.pbrt", W("Shape \"plymesh\" \"string filename\" \"listx.ply\"\n"), "listx.pbrt:3:", "\"x\" is a list");
+  }
   expect_error("farmesh.pbrt", "WorldBegin\nShape \"trianglemesh\" \"point P\" [ 0 0 0 1e20 0 0 0 1 0 ]\nWorldEnd\n", "farmesh.pbrt:2:", "outside");
 }
 
