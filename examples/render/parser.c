@@ -132,7 +132,10 @@ static elr__tok elr__lex(elr__parser *P) {
         char *buf; size_t n = 0;
         while (L->p < L->end && *L->p != '"') {
           if (*L->p == '\n') elr__fail(P, t.line, "unterminated string (a newline inside quotes)");
-          if (*L->p == '\\') L->p++;
+          if (*L->p == '\\' && L->p + 1 < L->end) { /* an escape: the next character is taken as it is */
+            L->p++;
+            if (*L->p == '\n') elr__fail(P, t.line, "unterminated string (a newline inside quotes)");
+          }
           L->p++;
         }
         if (L->p >= L->end) elr__fail(P, t.line, "unterminated string at end of file");
@@ -575,6 +578,10 @@ static void elr__filter(elr__parser *P, const char *type) {
     ELR_WARN(P, P->dir_line, "PixelFilter \"%s\" is not supported; using \"box\"", type);
     f->type = ELR_PF_BOX; defw = 0.5f;
   }
+  /* parameters whose absurd values make every filter weight 0 or overflow (a silently black image) */
+  if (f->type == ELR_PF_GAUSSIAN) elr__check_range(P, "alpha", f->alpha, 1e-4, 1e3);
+  if (f->type == ELR_PF_MITCHELL) { elr__check_range(P, "B", f->b, -100, 100); elr__check_range(P, "C", f->c, -100, 100); }
+  if (f->type == ELR_PF_SINC) elr__check_range(P, "tau", f->tau, 1e-2, 1e3);
   f->xw = (float)elr__pfloat(P, "xwidth", defw);
   f->yw = (float)elr__pfloat(P, "ywidth", defw);
   elr__check_range(P, "xwidth", f->xw, 1e-3, 16);
@@ -708,6 +715,8 @@ static void elr__light(elr__parser *P, const char *type) {
     elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
     l->kind = ELR_LIGHT_POINT;
     l->L = elr_vmul(I, sc);
+    if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
+      elr__fail(P, P->dir_line, "LightSource \"point\": I times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
     l->pos = elr_xpoint(&P->ctm, from);
     elr__check_point(P, P->dir_line, l->pos, "the light's position");
     l->nsamples = 1;
@@ -717,6 +726,8 @@ static void elr__light(elr__parser *P, const char *type) {
     elr_v3 to = elr__ppoint(P, "to", "point3", elr_v(0, 0, 1));
     l->kind = ELR_LIGHT_DISTANT;
     l->L = elr_vmul(L, sc);
+    if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
+      elr__fail(P, P->dir_line, "LightSource \"distant\": L times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
     l->dir = elr_norm(elr_xvector(&P->ctm, elr_sub(from, to)));
     l->nsamples = 1;
   } else {
@@ -985,6 +996,12 @@ static char *elr__read_file(elr__parser *P, const char *path, size_t *len, int l
   long n;
   char *buf;
   if (!f) elr__fail(P, line, "cannot open \"%s\": %s", path, strerror(errno));
+  errno = 0;
+  if (getc(f) == EOF && ferror(f)) { /* a directory opens, but reading it fails (and its size is nonsense) */
+    int e = errno;
+    fclose(f);
+    elr__fail(P, line, "cannot read \"%s\": %s", path, e ? strerror(e) : "read error");
+  }
   if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
     fclose(f); elr__fail(P, line, "cannot read \"%s\"", path);
   }

@@ -333,6 +333,15 @@ static void errors(void) {
   expect_error("farsph.pbrt", "WorldBegin\nTranslate 1e20 0 0\nShape \"sphere\"\nWorldEnd\n", "farsph.pbrt:3:", "centre");
   expect_error("bigsph.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" 1e19\nWorldEnd\n", "bigsph.pbrt:2:", "radius");
   expect_error("farpt.pbrt", "WorldBegin\nLightSource \"point\" \"point from\" [ 0 1e30 0 ]\nWorldEnd\n", "farpt.pbrt:2:", "position");
+  /* fuzzing: unclear errors and silently black images */
+  expect_error("incdir.pbrt", "WorldBegin\nInclude \".\"\nWorldEnd\n", "incdir.pbrt:2:", "Is a directory");
+  expect_error("incempty.pbrt", "WorldBegin\nInclude \"\"\nWorldEnd\n", "incempty.pbrt:2:", "Is a directory");
+  expect_error("bsnl.pbrt", "Film \"image\" \"string filename\" \"a\\\nb.png\"\nWorldBegin\nWorldEnd\n", "bsnl.pbrt:1:", "newline inside quotes");
+  expect_error("pthuge.pbrt", "WorldBegin\nLightSource \"point\" \"rgb I\" [ 3e38 1 1 ] \"rgb scale\" [ 10 1 1 ]\nWorldEnd\n", "pthuge.pbrt:2:", "overflows");
+  expect_error("dsthuge.pbrt", "WorldBegin\nLightSource \"distant\" \"rgb L\" [ 1 3e38 1 ] \"rgb scale\" [ 1 10 1 ]\nWorldEnd\n", "dsthuge.pbrt:2:", "overflows");
+  expect_error("gauss.pbrt", "PixelFilter \"gaussian\" \"float alpha\" 1e38\nWorldBegin\nWorldEnd\n", "gauss.pbrt:1:", "\"alpha\" = 1e+38 is out of range");
+  expect_error("mitch.pbrt", "PixelFilter \"mitchell\" \"float C\" -1e38\nWorldBegin\nWorldEnd\n", "mitch.pbrt:1:", "\"C\" = -1e+38 is out of range");
+  expect_error("sinc.pbrt", "PixelFilter \"sinc\" \"float tau\" 1e-38\nWorldBegin\nWorldEnd\n", "sinc.pbrt:1:", "\"tau\" = 1e-38 is out of range");
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
