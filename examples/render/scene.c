@@ -285,9 +285,10 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
             double v = elr__ply_read(&rd, pr->type);
             if (rd.bad) PLY_FAIL("\"%s\": file is truncated or malformed (element \"%s\" %ld)", path, E->name, i);
             if (isf && (!strcmp(pr->name, "vertex_indices") || !strcmp(pr->name, "vertex_index"))) {
-              unsigned u = (unsigned)v;
+              unsigned u;
               if (!(v >= 0 && v < (double)m->nvert) || v != floor(v) || !m->p) /* NaN too: (unsigned)NaN is undefined */
                 PLY_FAIL("\"%s\": face %ld has vertex index %g out of range", path, i, v);
+              u = (unsigned)v; /* after the check: a negative or huge double is undefined as unsigned */
               if (k == 0) first = u;
               else if (k >= 2) { /* fan triangulation (quads become two triangles, as pbrt-v3) */
                 if (ntri == captri) {
