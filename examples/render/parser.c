@@ -457,8 +457,9 @@ static void elr__load_image(elr__parser *P, const char *file, int line, el_image
   if (el_image_load(file, img, e, sizeof e) != 0) elr__fail(P, line, "%s: cannot read image: %s", P->dir_name, e);
   P->s->t_images += elr_now() - t0;
   if (img->width <= 0 || img->height <= 0 || img->width > 65536 || img->height > 65536) {
+    int w = img->width, h = img->height;
     el_image_free(img);
-    elr__fail(P, line, "%s: image \"%s\" has an absurd size", P->dir_name, file);
+    elr__fail(P, line, "%s: image \"%s\" has an absurd size (%d x %d; 1 to 65536 per side)", P->dir_name, file, w, h);
   }
 }
 /* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. */
