@@ -267,13 +267,13 @@ static int el_io__diagnose_exr(const char *path, char *err, size_t errlen) {
   return found;
 }
 
-/* ---- OpenEXR, single-part scanline files: tinyexr 1.0.1's LoadEXR leaks every channel buffer when
- * decoding fails (FreeEXRImage frees images[c] for c < num_channels, and num_channels is set only after a
- * successful decode), so a corrupt chunk leaked (LeakSanitizer). Here the image's num_channels is set
- * before decoding, so that tinyexr's own clean-up frees them; the RGB conversion is LoadEXR's (R, G, B
- * by name, layer prefixes ignored; a single channel is grey). Returns 1 when the file is not a
- * single-part scanline image (LoadEXR handles those), else 0 or -1. */
-static int el_io__load_exr_scanline(const char *path, el_image *img, char *err, size_t errlen) {
+/* ---- OpenEXR, single-part files (scanline or tiled: level 0): tinyexr 1.0.1's LoadEXR leaks every
+ * channel buffer when decoding fails (FreeEXRImage frees images[c] -- or each tile's -- for c <
+ * num_channels, and num_channels is set only after a successful decode), so a corrupt chunk leaked
+ * (LeakSanitizer). Here the image's num_channels is set before decoding, so that tinyexr's own clean-up
+ * frees them; the RGB conversion is LoadEXR's (R, G, B by name, layer prefixes ignored; a single
+ * channel is grey; tiles placed by their offsets). Returns 0 or -1. */
+static int el_io__load_exr(const char *path, el_image *img, char *err, size_t errlen) {
   EXRVersion ver;
   EXRHeader hdr;
   EXRImage im;
@@ -281,7 +281,8 @@ static int el_io__load_exr_scanline(const char *path, el_image *img, char *err, 
   int c, idx[3] = {-1, -1, -1}, r;
   size_t i, n;
   if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS) return el_io__fail(err, errlen, path, "corrupt EXR (bad version field)");
-  if (ver.tiled || ver.multipart || ver.non_image) return 1;
+  if (ver.multipart || ver.non_image)
+    return el_io__fail(err, errlen, path, "multi-part and deep EXR files are not supported");
   InitEXRHeader(&hdr);
   if (ParseEXRHeaderFromFile(&hdr, &ver, path, &msg) != TINYEXR_SUCCESS) {
     el_io__fail(err, errlen, path, "corrupt or truncated EXR header (%s)", msg ? msg : "unknown tinyexr error");
@@ -289,7 +290,6 @@ static int el_io__load_exr_scanline(const char *path, el_image *img, char *err, 
     FreeEXRHeader(&hdr);
     return -1;
   }
-  if (hdr.tiled) { FreeEXRHeader(&hdr); return 1; }
   if (hdr.num_channels < 1) { FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "EXR has no channels"); }
   for (c = 0; c < hdr.num_channels; c++) {
     const char *nm = hdr.channels[c].name, *dot = strrchr(nm, '.');
@@ -315,21 +315,40 @@ static int el_io__load_exr_scanline(const char *path, el_image *img, char *err, 
     FreeEXRHeader(&hdr); /* the image's buffers were freed by tinyexr */
     return -1;
   }
-  if (im.width <= 0 || im.height <= 0 || !im.images) {
+  if (im.width <= 0 || im.height <= 0 || (hdr.tiled ? !im.tiles || hdr.tile_size_x <= 0 || hdr.tile_size_y <= 0 : !im.images)) {
     FreeEXRImage(&im); FreeEXRHeader(&hdr);
     return el_io__fail(err, errlen, path, "EXR has no pixels");
   }
   n = (size_t)im.width * (size_t)im.height;
   img->pixels = (float *)malloc(n * 3 * sizeof(float));
   if (!img->pixels) { FreeEXRImage(&im); FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "out of memory"); }
+  if (hdr.tiled) memset(img->pixels, 0, n * 3 * sizeof(float)); /* texels no tile covers are black */
   for (c = 0; c < 3; c++) {
-    const unsigned char *src = im.images[idx[c]];
     int uint = hdr.requested_pixel_types[idx[c]] == TINYEXR_PIXELTYPE_UINT;
-    for (i = 0; i < n; i++) {
-      float v;
-      if (uint) { unsigned u; memcpy(&u, src + 4 * i, 4); v = (float)u; }
-      else memcpy(&v, src + 4 * i, 4);
-      img->pixels[3 * i + (size_t)c] = v;
+    if (!hdr.tiled) {
+      const unsigned char *src = im.images[idx[c]];
+      for (i = 0; i < n; i++) {
+        float v;
+        if (uint) { unsigned u; memcpy(&u, src + 4 * i, 4); v = (float)u; }
+        else memcpy(&v, src + 4 * i, 4);
+        img->pixels[3 * i + (size_t)c] = v;
+      }
+    } else {
+      int t, x, y, tw = hdr.tile_size_x, th = hdr.tile_size_y;
+      for (t = 0; t < im.num_tiles; t++) {
+        const EXRTile *tile = &im.tiles[t];
+        const unsigned char *src = tile->images ? tile->images[idx[c]] : NULL;
+        if (!src) continue;
+        for (y = 0; y < th && y < tile->height; y++)
+          for (x = 0; x < tw && x < tile->width; x++) {
+            long ii = (long)tile->offset_x * tw + x, jj = (long)tile->offset_y * th + y;
+            float v;
+            if (ii < 0 || jj < 0 || ii >= im.width || jj >= im.height) continue;
+            if (uint) { unsigned u; memcpy(&u, src + 4 * ((size_t)y * (size_t)tw + (size_t)x), 4); v = (float)u; }
+            else memcpy(&v, src + 4 * ((size_t)y * (size_t)tw + (size_t)x), 4);
+            img->pixels[3 * ((size_t)jj * (size_t)im.width + (size_t)ii) + (size_t)c] = v;
+          }
+      }
     }
   }
   img->width = im.width; img->height = im.height; img->channels = 3; img->is_8bit = 0;
@@ -385,40 +404,14 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
   }
   fclose(f);
   if (!strcmp(ext, "exr")) {
-    float *rgba = NULL;
-    int w = 0, h = 0, r;
-    size_t i, n;
-    const char *msg = NULL;
-    /* Check the chunk table first: tinyexr's decoder leaks its channel buffers when it fails on a
-     * truncated file (LeakSanitizer), so such a file must not reach it. */
+    /* Check the chunk table first: it names what a truncated file lacks (tinyexr's message would be
+     * 'Invalid data found when decoding pixels'). */
     if (el_io__diagnose_exr(path, err, errlen)) {
       char *nl;
       while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
       return -1;
     }
-    r = el_io__load_exr_scanline(path, img, err, errlen);
-    if (r <= 0) return r;
-    r = LoadEXR(&rgba, &w, &h, path, &msg);
-    if (r != TINYEXR_SUCCESS) {
-      char *nl;
-      el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
-      while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
-      if (msg) FreeEXRErrorMessage(msg);
-      free(rgba);
-      return -1;
-    }
-    if (w <= 0 || h <= 0) { free(rgba); return el_io__fail(err, errlen, path, "EXR has no pixels"); }
-    n = (size_t)w * (size_t)h;
-    img->pixels = (float *)malloc(n * 3 * sizeof(float));
-    if (!img->pixels) { free(rgba); return el_io__fail(err, errlen, path, "out of memory"); }
-    for (i = 0; i < n; i++) {
-      img->pixels[3 * i + 0] = rgba[4 * i + 0];
-      img->pixels[3 * i + 1] = rgba[4 * i + 1];
-      img->pixels[3 * i + 2] = rgba[4 * i + 2];
-    }
-    free(rgba);
-    img->width = w; img->height = h; img->channels = 3; img->is_8bit = 0;
-    return 0;
+    return el_io__load_exr(path, img, err, errlen);
   }
   if (!strcmp(ext, "hdr")) {
     int w, h, n;
