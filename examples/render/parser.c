@@ -367,7 +367,8 @@ static void elr__report_unused(elr__parser *P) {
 }
 static void elr__check_range(elr__parser *P, const char *name, double v, double lo, double hi) {
   elr__param *p = elr__find(P, name);
-  if (!(v >= lo && v <= hi))
+  /* a relative float epsilon of slack: many values arrive here as floats, and 0.01f < 0.01 */
+  if (!(v >= lo - fabs(lo) * 1e-6 && v <= hi + fabs(hi) * 1e-6))
     elr__fail(P, p ? p->line : P->dir_line, "%s: \"%s\" = %g is out of range [%g, %g]", P->dir_name, name, v, lo, hi);
 }
 
@@ -488,15 +489,18 @@ static void elr__camera(elr__parser *P, const char *type) {
   if (strcmp(type, "perspective") != 0) {
     ELR_WARN(P, P->dir_line, "Camera \"%s\" is not supported; using \"perspective\"", type);
   }
-  d->fov = (float)elr__pfloat(P, "fov", 90.0);
+  double fov = elr__pfloat(P, "fov", 90.0), fa;
   if (elr__find(P, "halffov")) { /* pbrt-v3: halffov > 0 overrides fov */
     double hf = elr__pfloat(P, "halffov", -1.0);
-    if (hf > 0) d->fov = (float)(2.0 * hf);
+    if (hf > 0) fov = 2.0 * hf;
   }
-  elr__check_range(P, "fov", d->fov, 1e-4, 179.99);
+  /* the ranges are checked on the values as written (as floats, 179.99 is above 179.99) */
+  elr__check_range(P, "fov", fov, 1e-4, 179.99);
+  d->fov = (float)fov;
   if (elr__find(P, "frameaspectratio")) {
-    d->frameaspect = (float)elr__pfloat(P, "frameaspectratio", 1.0);
-    elr__check_range(P, "frameaspectratio", d->frameaspect, 1e-6, 1e6);
+    fa = elr__pfloat(P, "frameaspectratio", 1.0);
+    elr__check_range(P, "frameaspectratio", fa, 1e-6, 1e6);
+    d->frameaspect = (float)fa;
     d->has_frameaspect = 1;
   }
   sw = elr__findt(P, "screenwindow", "float", 4);

@@ -342,6 +342,14 @@ static void errors(void) {
   expect_error("gauss.pbrt", "PixelFilter \"gaussian\" \"float alpha\" 1e38\nWorldBegin\nWorldEnd\n", "gauss.pbrt:1:", "\"alpha\" = 1e+38 is out of range");
   expect_error("mitch.pbrt", "PixelFilter \"mitchell\" \"float C\" -1e38\nWorldBegin\nWorldEnd\n", "mitch.pbrt:1:", "\"C\" = -1e+38 is out of range");
   expect_error("sinc.pbrt", "PixelFilter \"sinc\" \"float tau\" 1e-38\nWorldBegin\nWorldEnd\n", "sinc.pbrt:1:", "\"tau\" = 1e-38 is out of range");
+  { /* range limits are inclusive also for values stored as floats (0.01f < 0.01, 179.99f > 179.99) */
+    char err[512];
+    elr_scene *s = rt_load("edges.pbrt", "Camera \"perspective\" \"float fov\" 179.99 \"float frameaspectratio\" 1e-6\n"
+                                         "PixelFilter \"sinc\" \"float tau\" 0.01\nWorldBegin\nShape \"sphere\" \"float radius\" 1e-20\nWorldEnd\n",
+                           err, sizeof err);
+    rt_check(s != NULL, "fov 179.99, frameaspectratio 1e-6, tau 0.01, radius 1e-20 (the range limits) load%s%s", s ? "" : ": ", s ? "" : err);
+    elr_scene_free(s);
+  }
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
