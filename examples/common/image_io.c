@@ -13,6 +13,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
+#include <zlib.h>
 
 static int el_io__fail(char *err, size_t errlen, const char *path, const char *fmt, ...) {
   if (err && errlen) {
@@ -201,6 +202,87 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
     }
   }
 #undef EL_IO__HDR_FAIL
+  free(b);
+  return 0;
+}
+
+/* ---- PNG: Debian's stb_image (git 2022-09-08) decodes a corrupt zlib stream without noticing (a
+ * distance code 30 or 31, or a length code 286 or 287, indexes past its tables; a distance of 0 copies
+ * bytes not yet written), so a corrupt IDAT "loaded" with pixels from uninitialised memory (a different
+ * image in every run). So the chunks are walked and the image data inflated with zlib first (output
+ * discarded): the stream must be valid and hold every byte the header's size asks for. */
+static int el_io__check_png(const char *path, FILE *f, long size, char *err, size_t errlen) {
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+  unsigned char *b, out[16384];
+  long pos = 8;
+  int seen_ihdr = 0, zr = Z_OK, done = 0;
+  double expect = 0;
+  z_stream z;
+  if (size < 0) return el_io__fail(err, errlen, path, "cannot determine the file size");
+  if (size > (1L << 30)) return el_io__fail(err, errlen, path, "PNG file larger than 1 GiB");
+  b = (unsigned char *)malloc((size_t)size + 1);
+  if (!b) return el_io__fail(err, errlen, path, "out of memory");
+  if (fread(b, 1, (size_t)size, f) != (size_t)size) { free(b); return el_io__fail(err, errlen, path, "cannot read file (short read)"); }
+  if (size < 8 || memcmp(b, sig, 8)) { free(b); return el_io__fail(err, errlen, path, "not a PNG file (bad signature)"); }
+  memset(&z, 0, sizeof z);
+  if (inflateInit(&z) != Z_OK) { free(b); return el_io__fail(err, errlen, path, "cannot initialise zlib"); }
+#define EL_IO__PNG_FAIL(...) do { el_io__fail(err, errlen, path, __VA_ARGS__); inflateEnd(&z); free(b); return -1; } while (0)
+  for (;;) {
+    unsigned long len;
+    const unsigned char *t;
+    if (size - pos < 12) EL_IO__PNG_FAIL("file is truncated (a chunk header is missing%s)", seen_ihdr ? " before IEND" : "");
+    len = (unsigned long)b[pos] << 24 | (unsigned long)b[pos + 1] << 16 | (unsigned long)b[pos + 2] << 8 | b[pos + 3];
+    t = b + pos + 4;
+    if (len > 0x7fffffffUL || (double)len > (double)(size - pos - 12))
+      EL_IO__PNG_FAIL("file is truncated or corrupt (chunk '%c%c%c%c' of %lu bytes at byte %ld)", isprint(t[0]) ? t[0] : '?',
+                      isprint(t[1]) ? t[1] : '?', isprint(t[2]) ? t[2] : '?', isprint(t[3]) ? t[3] : '?', len, pos);
+    if (!seen_ihdr) {
+      static const int chans[7] = {1, 0, 3, 1, 2, 0, 4};
+      const unsigned char *d = t + 4;
+      double w, h;
+      int depth, ct, il, ch, pass;
+      if (memcmp(t, "IHDR", 4) || len != 13) EL_IO__PNG_FAIL("corrupt PNG (the first chunk is not a 13-byte IHDR)");
+      w = (double)((unsigned long)d[0] << 24 | (unsigned long)d[1] << 16 | (unsigned long)d[2] << 8 | d[3]);
+      h = (double)((unsigned long)d[4] << 24 | (unsigned long)d[5] << 16 | (unsigned long)d[6] << 8 | d[7]);
+      depth = d[8]; ct = d[9]; il = d[12];
+      ch = ct <= 6 ? chans[ct] : 0;
+      if (w < 1 || h < 1 || ch == 0 || !(depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16) || il > 1)
+        EL_IO__PNG_FAIL("corrupt PNG header (%.0f x %.0f, bit depth %d, colour type %d, interlace %d)", w, h, depth, ct, il);
+      if (w * h > (double)(1 << 30)) EL_IO__PNG_FAIL("PNG image too large (%.0f x %.0f)", w, h);
+      if (!il) expect = h * (1 + floor((w * ch * depth + 7) / 8));
+      else
+        for (pass = 0; pass < 7; pass++) { /* Adam7: the passes' origins and steps */
+          static const int x0[7] = {0, 4, 0, 2, 0, 1, 0}, y0[7] = {0, 0, 4, 0, 2, 0, 1}, dx[7] = {8, 8, 4, 4, 2, 2, 1}, dy[7] = {8, 8, 8, 4, 4, 2, 2};
+          double pw = floor((w - x0[pass] + dx[pass] - 1) / dx[pass]), ph = floor((h - y0[pass] + dy[pass] - 1) / dy[pass]);
+          if (pw > 0 && ph > 0) expect += ph * (1 + floor((pw * ch * depth + 7) / 8));
+        }
+      seen_ihdr = 1;
+    } else if (!memcmp(t, "IDAT", 4) && !done) {
+      z.next_in = (Bytef *)(b + pos + 8);
+      z.avail_in = (uInt)len;
+      while (z.avail_in > 0 && !done) {
+        z.next_out = out; z.avail_out = sizeof out;
+        zr = inflate(&z, Z_NO_FLUSH);
+        if (zr == Z_STREAM_END) done = 1;
+        else if (zr != Z_OK && zr != Z_BUF_ERROR)
+          EL_IO__PNG_FAIL("corrupt PNG image data (zlib: %s)", z.msg ? z.msg : "invalid stream");
+        else if (zr == Z_BUF_ERROR && z.avail_out != 0) break; /* needs the next IDAT */
+      }
+      while (!done && z.avail_in == 0) { /* flush what zlib holds back */
+        z.next_out = out; z.avail_out = sizeof out;
+        zr = inflate(&z, Z_NO_FLUSH);
+        if (zr == Z_STREAM_END) done = 1;
+        else if (zr != Z_OK && zr != Z_BUF_ERROR) EL_IO__PNG_FAIL("corrupt PNG image data (zlib: %s)", z.msg ? z.msg : "invalid stream");
+        if (z.avail_out != 0) break;
+      }
+    } else if (!memcmp(t, "IEND", 4)) break;
+    pos += 12 + (long)len;
+  }
+  if (!done) EL_IO__PNG_FAIL("file is truncated or corrupt (the image data stream does not end)");
+  if ((double)z.total_out < expect)
+    EL_IO__PNG_FAIL("corrupt PNG (the image data holds %lu bytes, %.0f expected)", (unsigned long)z.total_out, expect);
+#undef EL_IO__PNG_FAIL
+  inflateEnd(&z);
   free(b);
   return 0;
 }
@@ -396,6 +478,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
       int r = el_io__check_hdr(path, f, size, err, errlen);
       if (r) { fclose(f); return r; }
     }
+    if (!strcmp(ext, "png")) {
+      int r = el_io__check_png(path, f, size, err, errlen);
+      if (r) { fclose(f); return r; }
+    }
   }
   if (!strcmp(ext, "pfm")) {
     int r = el_io__load_pfm(path, f, img, err, errlen);
@@ -416,7 +502,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
   if (!strcmp(ext, "hdr")) {
     int w, h, n;
     float *p = stbi_loadf(path, &w, &h, &n, 3);
-    if (!p) return el_io__fail(err, errlen, path, "cannot read Radiance HDR (%s)", stbi_failure_reason());
+    if (!p) {
+      const char *why = stbi_failure_reason();
+      return el_io__fail(err, errlen, path, "cannot read Radiance HDR (%s)", why && why[0] ? why : "corrupt file");
+    }
     img->pixels = p; img->width = w; img->height = h; img->channels = 3; img->is_8bit = 0;
     return 0;
   }
@@ -425,7 +514,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
     int w, h, n;
     size_t i, count;
     unsigned char *p = stbi_load(path, &w, &h, &n, 0);
-    if (!p) return el_io__fail(err, errlen, path, "cannot read image (%s)", stbi_failure_reason());
+    if (!p) {
+      const char *why = stbi_failure_reason();
+      return el_io__fail(err, errlen, path, "cannot read image (%s)", why && why[0] ? why : "corrupt or unsupported file");
+    }
     count = (size_t)w * (size_t)h * (size_t)n;
     img->pixels = (float *)malloc(count * sizeof(float));
     if (!img->pixels) { stbi_image_free(p); return el_io__fail(err, errlen, path, "out of memory"); }
