@@ -608,6 +608,10 @@ static void elr__sampler(elr__parser *P, const char *type) {
     elr__check_range(P, "ysamples", d->ys, 1, 4096);
     elr__check_range(P, "dimensions", d->dims, 0, 64);
     d->spp = d->xs * d->ys;
+    /* every render thread holds xsamples * ysamples * (dimensions + 1) 1D and 2D samples (12 bytes) */
+    if ((double)d->spp * (double)(d->dims + 1) > (double)(1 << 24))
+      elr__fail(P, P->dir_line, "Sampler \"stratified\": %d x %d samples in %d dimensions need %.0f MiB per thread (at most 16777216 "
+                "samples times dimensions + 1)", d->xs, d->ys, d->dims, (double)d->spp * (d->dims + 1) * 12.0 / 1048576.0);
   } else {
     if (strcmp(type, "halton") != 0)
       ELR_WARN(P, P->dir_line, "Sampler \"%s\" is not supported; using \"halton\"", type);

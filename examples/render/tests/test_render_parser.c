@@ -350,6 +350,8 @@ static void errors(void) {
     rt_check(s != NULL, "fov 179.99, frameaspectratio 1e-6, tau 0.01, radius 1e-20 (the range limits) load%s%s", s ? "" : ": ", s ? "" : err);
     elr_scene_free(s);
   }
+  expect_error("strat.pbrt", "Sampler \"stratified\" \"integer xsamples\" 4096 \"integer ysamples\" 4096 \"integer dimensions\" 64\n"
+               "WorldBegin\nWorldEnd\n", "strat.pbrt:1:", "MiB per thread");
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
