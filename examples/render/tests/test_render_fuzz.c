@@ -11,7 +11,7 @@
  * spp, 1 thread) has only finite pixels.
  *
  *   test_render_fuzz                       the ctest run: fixed seed and case counts
- *   test_render_fuzz --seed S --scenes N --images M [--dump DIR] [--only K] [--verbose]
+ *   test_render_fuzz --seed S --scenes N --images M [--dump DIR] [--only K] [--alarm] [--render-all] [--verbose]
  *
  * A longer campaign runs with other seeds; --dump DIR writes each case's input to DIR before it runs
  * (what a crash leaves behind), --only K runs case K alone (every case has its own generator seeded by
@@ -150,6 +150,9 @@ static int fz_isnum(const fz_buf *b, const fz_tok *t) {
   return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
 }
 
+#define FZ_NSEEDS 8
+static fz_buf fz_scene_seed[FZ_NSEEDS];
+static int fz_nscene_seeds;
 #define FZ_MAXTOK 8192
 static fz_tok fz_tok_buf[FZ_MAXTOK];
 
@@ -157,7 +160,7 @@ static fz_tok fz_tok_buf[FZ_MAXTOK];
 static void fz_mutate_scene(fz_buf *b) {
   int nt = fz_tokens(b, fz_tok_buf, FZ_MAXTOK), k, tries;
   fz_tok *t = fz_tok_buf;
-  int op = (int)fz_below(16);
+  int op = (int)fz_below(19);
   if (b->n == 0) { const char *w = fz_words[fz_below(sizeof fz_words / sizeof fz_words[0])]; fz_splice(b, 0, 0, w, strlen(w)); return; }
   switch (op) {
   case 0: { /* byte flips */
@@ -236,6 +239,49 @@ static void fz_mutate_scene(fz_buf *b) {
       }
     }
     break;
+  case 16: /* a parameter's type changed ("float radius" -> "integer radius", "rgb Kd" -> "float Kd") */
+    for (tries = 0; tries < 20 && nt; tries++) {
+      static const char *types[] = {"float", "integer", "rgb", "string", "bool", "texture", "point3", "normal", "point2",
+                                    "spectrum", "blackbody", "vector3", "color", "point"};
+      size_t sp;
+      k = (int)fz_below((size_t)nt);
+      if (b->p[t[k].at] != '"' || t[k].len < 4) continue;
+      for (sp = 1; sp < t[k].len && b->p[t[k].at + sp] != ' '; sp++) {}
+      if (sp >= t[k].len - 1) continue;
+      {
+        const char *ty = types[fz_below(sizeof types / sizeof types[0])];
+        fz_splice(b, t[k].at + 1, sp - 1, ty, strlen(ty));
+      }
+      break;
+    }
+    break;
+  case 17: /* one value dropped from inside a bracketed list */
+    for (tries = 0; tries < 20 && nt > 1; tries++) {
+      k = 1 + (int)fz_below((size_t)nt - 1);
+      if (b->p[t[k - 1].at] == '[' || fz_isnum(b, &t[k - 1])) {
+        if (fz_isnum(b, &t[k]) || b->p[t[k].at] == '"') { fz_splice(b, t[k].at, t[k].len, "", 0); break; }
+      }
+    }
+    break;
+  case 18: { /* a line of another seed spliced in at a line start (crossover) */
+    const fz_buf *o = &fz_scene_seed[fz_below((size_t)fz_nscene_seeds)];
+    size_t a = fz_below(o->n), e2, at = 0;
+    while (a > 0 && o->p[a - 1] != '\n') a--;
+    e2 = a;
+    while (e2 < o->n && o->p[e2] != '\n') e2++;
+    if (e2 < o->n) e2++;
+    for (tries = 0; tries < 20 && nt; tries++) {
+      at = t[fz_below((size_t)nt)].at;
+      if (at == 0 || b->p[at - 1] == '\n') break;
+    }
+    if (e2 > a) {
+      unsigned char *tmp = (unsigned char *)malloc(e2 - a + 1);
+      memcpy(tmp, o->p + a, e2 - a);
+      fz_splice(b, at, 0, tmp, e2 - a);
+      free(tmp);
+    }
+    break;
+  }
   default: { /* a number token multiplied into a long list (huge parameter arrays) */
     for (tries = 0; tries < 20 && nt; tries++) {
       k = (int)fz_below((size_t)nt);
@@ -330,9 +376,6 @@ static void fz_mutate_bytes(fz_buf *b) {
 }
 
 /* >> the seed inputs */
-#define FZ_NSEEDS 8
-static fz_buf fz_scene_seed[FZ_NSEEDS];
-static int fz_nscene_seeds;
 static const char *fz_img_names[] = {"tiny.hdr", "flat.hdr", "tiny.exr", "tiny.pfm", "grey.pfm", "tiny.png", "grey.png", "a.ply", "b.ply", "inc.pbrt"};
 #define FZ_NIMG ((int)(sizeof fz_img_names / sizeof fz_img_names[0]))
 static fz_buf fz_img_seed[FZ_NIMG];
@@ -450,7 +493,7 @@ static void fz_make_seeds(void) {
 }
 
 /* >> running one case */
-static int fz_verbose;
+static int fz_verbose, fz_render_all;
 static const char *fz_dump_dir;
 static long fz_scene_ok, fz_scene_err, fz_rendered, fz_image_ok, fz_image_err, fz_bad;
 
@@ -491,6 +534,15 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
   if (w <= 0 || h <= 0 || w > 8 || h > 8 || s->d.xres > 64 || s->d.yres > 64) return;
   elr_render_options_default(&o);
   o.spp = 1; o.nthreads = 1; o.quiet = 1; o.seed = (uint64_t)kase;
+  if (kase >= 0) { /* the render options' overrides too, varied by case (deterministically) */
+    uint64_t h = (uint64_t)kase * 0x9e3779b97f4a7c15ULL;
+    o.light_sampling = (int)((h >> 20) % 4) - 1;  /* -1 (the scene's), mis, light, bsdf */
+    o.sampler = (int)((h >> 24) % 4);             /* the scene's, random, stratified, halton */
+    o.importance = (int)((h >> 28) % 4) - 1;
+    o.compensated = (int)((h >> 32) % 3) - 1;
+    if ((h >> 36) % 4 == 0) o.spp = 2 + (int)((h >> 40) % 3);
+    if ((h >> 44) % 4 == 0) o.tile_size = 1 + (int)((h >> 48) % 5);
+  }
   err[0] = 0;
   if (elr_render(s, &o, &img, &st, err, sizeof err) != 0) {
     if (!err[0]) fz_bad_case("render", kase, "elr_render failed with an empty message", in->p, in->n);
@@ -529,7 +581,7 @@ static void fz_scene_case(uint64_t seed, long kase, fz_buf *b) {
   if (elr_scene_load_string((const char *)b->p, "fuzz.pbrt", rt_dir, &s, 1, err, sizeof err) == 0) {
     fz_scene_ok++;
     if (!s) { fz_bad_case("scene", kase, "success without a scene", b->p, b->n); return; }
-    if (kase % 3 == 0) fz_render_check(s, kase, b);
+    if (fz_render_all || kase % 3 == 0) fz_render_check(s, kase, b);
     elr_scene_free(s);
   } else {
     fz_scene_err++;
@@ -710,7 +762,8 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--dump") && i + 1 < argc) fz_dump_dir = argv[++i];
     else if (!strcmp(argv[i], "--alarm")) per_case_alarm = 1;
     else if (!strcmp(argv[i], "--verbose")) fz_verbose = 1;
-    else { printf("usage: test_render_fuzz [--seed S] [--scenes N] [--images M] [--only K] [--dump DIR] [--alarm] [--verbose]\n"); return 2; }
+    else if (!strcmp(argv[i], "--render-all")) fz_render_all = 1;
+    else { printf("usage: test_render_fuzz [--seed S] [--scenes N] [--images M] [--only K] [--dump DIR] [--alarm] [--render-all] [--verbose]\n"); return 2; }
   }
   if (per_case_alarm) signal(SIGALRM, fz_alarm);
   rt_mkdir("test_render_fuzz");
