@@ -171,8 +171,12 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
     if (w >= 8 && w < 32768 && pos + 4 > size)
       EL_IO__HDR_FAIL("file is truncated (scanline %d of %d is missing)", y + 1, h);
     if (w < 8 || w >= 32768 || b[pos] != 2 || b[pos + 1] != 2 || (b[pos + 2] & 0x80)) {
-      /* flat (uncompressed) from here on, as stb_image reads it: 4 bytes per remaining pixel */
-      double need = 4.0 * ((double)w * (double)(h - y));
+      /* flat (uncompressed). stb_image then decodes the whole image flat from here -- from row 0 again
+       * when this is not the first scanline, overwriting the rows it had decoded -- so a file that mixes
+       * run-length encoded and flat scanlines would load with wrong pixels: refuse it */
+      double need = 4.0 * ((double)w * (double)h);
+      if (y > 0)
+        EL_IO__HDR_FAIL("unsupported Radiance HDR: scanline %d of %d is flat while the ones before it are run-length encoded", y + 1, h);
       if ((double)(size - pos) < need)
         EL_IO__HDR_FAIL("file is truncated (%ld bytes of flat pixel data from scanline %d of %d, %.0f expected)",
                         size - pos, y + 1, h, need);

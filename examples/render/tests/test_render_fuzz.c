@@ -721,6 +721,28 @@ static void fz_regressions(void) {
              "a PNG with an invalid zlib distance code: an error naming the file and the problem (\"%s\")", r ? err : "loaded");
     if (r == 0) el_image_free(&img);
   }
+  { /* an 8 x 4 Radiance HDR whose first two scanlines are run-length encoded and the last two flat:
+     * stb_image restarts flat decoding at row 0 there, so it loaded with wrong pixels (and read past the
+     * end of the file as zeros) */
+    fz_buf b;
+    int y, c, r;
+    static const char hdr[] = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+    memset(&b, 0, sizeof b);
+    fz_set(&b, hdr, strlen(hdr));
+    for (y = 0; y < 2; y++) {
+      unsigned char line[12];
+      line[0] = 2; line[1] = 2; line[2] = 0; line[3] = 8;
+      for (c = 0; c < 4; c++) { line[4 + 2 * c] = 128 + 8; line[5 + 2 * c] = (unsigned char)(c < 3 ? 100 + 10 * y : 129); }
+      fz_splice(&b, b.n, 0, line, sizeof line);
+    }
+    for (y = 0; y < 16; y++) fz_splice(&b, b.n, 0, "\x78\x78\x78\x81", 4);
+    fz_write_file(rt_path("mixed.hdr"), b.p, b.n);
+    r = el_image_load(rt_path("mixed.hdr"), &img, err, sizeof err);
+    rt_check(r != 0 && strstr(err, "mixed.hdr") && strstr(err, "scanline 3 of 4 is flat"),
+             "an HDR mixing run-length encoded and flat scanlines: an error naming the file and scanline (\"%s\")", r ? err : "loaded");
+    if (r == 0) el_image_free(&img);
+    free(b.p);
+  }
   { /* a checkerboard's box filter with a huge differential: (int)floorf(5e29) in shading.c (undefined;
      * UBSan's float-cast-overflow, on in the sanitizer build) */
     elr_scene sc;
