@@ -296,8 +296,10 @@ static void elr__read_params(elr__parser *P) {
       if (!strcmp(pp->type, "integer")) {
         int i;
         for (i = 0; i < nv; i++)
-          if (nums[i] != floor(nums[i]) || fabs(nums[i]) > 2147483647.0)
+          if (nums[i] != floor(nums[i]))
             elr__fail(P, t.line, "parameter \"integer %s\": %g is not an integer", pp->name, nums[i]);
+          else if (fabs(nums[i]) > 2147483647.0)
+            elr__fail(P, t.line, "parameter \"integer %s\": %.0f is outside the 32-bit integer range", pp->name, nums[i]);
       }
     }
   }

@@ -352,6 +352,8 @@ static void errors(void) {
   }
   expect_error("strat.pbrt", "Sampler \"stratified\" \"integer xsamples\" 4096 \"integer ysamples\" 4096 \"integer dimensions\" 64\n"
                "WorldBegin\nWorldEnd\n", "strat.pbrt:1:", "MiB per thread");
+  expect_error("bigidx.pbrt", "WorldBegin\nShape \"trianglemesh\" \"integer indices\" [ 0 1 4294967296 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]\nWorldEnd\n",
+               "bigidx.pbrt:2:", "4294967296 is outside the 32-bit integer range");
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
