@@ -21,9 +21,14 @@ static int el_io__fail(char *err, size_t errlen, const char *path, const char *f
     int n = snprintf(err, errlen, "%s: ", path ? path : "(null)");
     if (n < 0) n = 0;
     if ((size_t)n < errlen) {
+      char *c;
       va_start(ap, fmt);
       vsnprintf(err + n, errlen - (size_t)n, fmt, ap);
       va_end(ap);
+      /* the message may quote bytes of a corrupt file (a PFM header token): keep it printable ASCII */
+      for (c = err + n; *c; c++)
+        if (*c == '\n' || *c == '\t') *c = ' '; /* tinyexr ends its messages with a newline */
+        else if ((unsigned char)*c < 32 || (unsigned char)*c >= 127) *c = '?';
     }
   }
   return -1;

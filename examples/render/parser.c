@@ -90,6 +90,10 @@ static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
 static void elr__fail(elr__parser *P, int line, const char *fmt, ...) {
   char msg[400];
   va_list ap; va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
+  { /* a quoted string of the scene may hold control characters: keep them off the terminal */
+    char *c;
+    for (c = msg; *c; c++) if ((unsigned char)*c < 32 || *c == 127) *c = *c == '\n' || *c == '\t' ? ' ' : '?';
+  }
   snprintf(P->err, P->errlen, "%s:%d: error: %s", P->nlex ? P->lex[P->nlex - 1].file : "?", line, msg);
   longjmp(P->jb, 1);
 }
@@ -97,6 +101,10 @@ static void elr__fail(elr__parser *P, int line, const char *fmt, ...) {
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...) {
   char msg[400];
   va_list ap; va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
+  {
+    char *c;
+    for (c = msg; *c; c++) if ((unsigned char)*c < 32 || *c == 127) *c = *c == '\n' || *c == '\t' ? ' ' : '?';
+  }
   snprintf(s->last_warning, sizeof s->last_warning, "%s:%d: warning: %s", file, line, msg);
   s->warnings++;
   if (!s->quiet) fprintf(stderr, "%s\n", s->last_warning);

@@ -743,6 +743,22 @@ static void fz_regressions(void) {
     if (r == 0) el_image_free(&img);
     free(b.p);
   }
+  { /* error messages quote bytes of corrupt files: they must stay printable (a PFM scale token of binary
+     * bytes was copied into the message as it was) */
+    int r, k, printable = 1;
+    fz_write_file(rt_path("binscale.pfm"), (const unsigned char *)"PF\n2 1\n\x01\x1b[2J\xff\xfe\n", 16);
+    r = el_image_load(rt_path("binscale.pfm"), &img, err, sizeof err);
+    for (k = 0; err[k]; k++) if ((unsigned char)err[k] < 32 || (unsigned char)err[k] >= 127) printable = 0;
+    rt_check(r != 0 && printable && strstr(err, "bad PFM scale"), "a PFM with a binary scale token: a printable message (\"%s\")", err);
+    if (r == 0) el_image_free(&img);
+    {
+      elr_scene *sc = NULL;
+      r = elr_scene_load_string("WorldBegin\nTexture \"t\" \"\x1b[2J\x07\" \"constant\"\nWorldEnd\n", "ctl.pbrt", rt_dir, &sc, 1, err, sizeof err);
+      for (printable = 1, k = 0; err[k]; k++) if ((unsigned char)err[k] < 32 || (unsigned char)err[k] == 127) printable = 0;
+      rt_check(r != 0 && printable && strstr(err, "ctl.pbrt:2:"), "a scene error quoting control characters: a printable message (\"%s\")", err);
+      if (r == 0) elr_scene_free(sc);
+    }
+  }
   { /* a checkerboard's box filter with a huge differential: (int)floorf(5e29) in shading.c (undefined;
      * UBSan's float-cast-overflow, on in the sanitizer build) */
     elr_scene sc;
