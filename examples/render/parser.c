@@ -953,7 +953,7 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     else if (!strcmp(wrap, "black")) wr = ELR_WRAP_BLACK;
     else if (!strcmp(wrap, "clamp")) wr = ELR_WRAP_CLAMP;
     else elr__fail(P, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
-    elr__check_range(P, "maxanisotropy", maxan, 1.0, 1e6);
+    elr__check_range(P, "maxanisotropy", maxan, 1.0, 1024.0); /* mipmap.h's limit */
     if (!fn[0]) elr__fail(P, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
     gamma = elr__pbool(P, "gamma", (fl > 4 && (!strcmp(fn + fl - 4, ".png") || !strcmp(fn + fl - 4, ".tga"))));
     path = elr__resolve(P, fn);

@@ -354,6 +354,15 @@ static void errors(void) {
                "WorldBegin\nWorldEnd\n", "strat.pbrt:1:", "MiB per thread");
   expect_error("bigidx.pbrt", "WorldBegin\nShape \"trianglemesh\" \"integer indices\" [ 0 1 4294967296 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]\nWorldEnd\n",
                "bigidx.pbrt:2:", "4294967296 is outside the 32-bit integer range");
+  /* maxanisotropy above mipmap.h's 1024 failed with the library's generic 'invalid argument (NULL pointer,
+   * non-positive size, or value out of range)' */
+  {
+    float one[3] = {1, 1, 1};
+    char e[256];
+    if (el_image_write_pfm(rt_path("one.pfm"), one, 1, 1, 3, e, sizeof e) != 0) printf("cannot write one.pfm: %s\n", e);
+  }
+  expect_error("aniso.pbrt", W("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"one.pfm\" \"float maxanisotropy\" 1e6\n"),
+               "aniso.pbrt:3:", "\"maxanisotropy\" = 1e+06 is out of range [1, 1024]");
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
