@@ -12,6 +12,7 @@
 #include "image_io.h"
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -696,6 +697,10 @@ static void elr__light(elr__parser *P, const char *type) {
     }
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
+    for (i = 0; i < 3; i++) /* else envlight reports "texel (0, 0) is NaN, infinite or negative" */
+      if (!(scale3[i] >= 0.f && scale3[i] <= FLT_MAX))
+        elr__fail(P, P->dir_line, "LightSource \"infinite\": L times scale (%g %g %g) must be finite and not negative", scale3[0],
+                  scale3[1], scale3[2]);
     /* the light-to-world rotation: the CTM's upper 3x3 (pbrt-v3 allows only rotations here) */
     /* pbrt-v3 normalises WorldToLight(d): a uniform scale in the CTM does not change the mapping, so
      * divide it out (envlight takes a rotation or a reflection) */

@@ -363,6 +363,8 @@ static void errors(void) {
   }
   expect_error("aniso.pbrt", W("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"one.pfm\" \"float maxanisotropy\" 1e6\n"),
                "aniso.pbrt:3:", "\"maxanisotropy\" = 1e+06 is out of range [1, 1024]");
+  expect_error("envneg.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1 -1 1 ]\n"), "envneg.pbrt:3:", "L times scale (1 -1 1) must be finite and not negative");
+  expect_error("envinf.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1e38 1 1 ] \"rgb scale\" [ 10 1 1 ]\n"), "envinf.pbrt:3:", "must be finite");
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
