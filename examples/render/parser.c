@@ -571,6 +571,11 @@ static void elr__film(elr__parser *P, const char *type) {
       if (d->crop[0] > d->crop[1]) { t = d->crop[0]; d->crop[0] = d->crop[1]; d->crop[1] = t; }
       if (d->crop[2] > d->crop[3]) { t = d->crop[2]; d->crop[2] = d->crop[3]; d->crop[3] = t; }
     }
+    /* the pixel bounds as elr_render computes them (pbrt-v3: ceil of crop times resolution) */
+    if (ceil(d->xres * (double)d->crop[1]) <= ceil(d->xres * (double)d->crop[0]) ||
+        ceil(d->yres * (double)d->crop[3]) <= ceil(d->yres * (double)d->crop[2]))
+      elr__fail(P, cw->line, "Film: cropwindow [ %g %g %g %g ] covers no pixel of the %d x %d film", d->crop[0], d->crop[1], d->crop[2],
+                d->crop[3], d->xres, d->yres);
   }
   if (elr__find(P, "scale")) {
     double sc = elr__pfloat(P, "scale", 1.0);

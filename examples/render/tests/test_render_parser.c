@@ -365,6 +365,8 @@ static void errors(void) {
                "aniso.pbrt:3:", "\"maxanisotropy\" = 1e+06 is out of range [1, 1024]");
   expect_error("envneg.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1 -1 1 ]\n"), "envneg.pbrt:3:", "L times scale (1 -1 1) must be finite and not negative");
   expect_error("envinf.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1e38 1 1 ] \"rgb scale\" [ 10 1 1 ]\n"), "envinf.pbrt:3:", "must be finite");
+  expect_error("crop.pbrt", "Film \"image\" \"integer xresolution\" 8 \"float cropwindow\" [ 0.51 0.55 0 1 ]\nWorldBegin\nWorldEnd\n",
+               "crop.pbrt:1:", "covers no pixel of the 8 x 720 film");
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
