@@ -912,6 +912,18 @@ static int elr__make_material(elr__parser *P, const char *type) {
   return s->nmat - 1;
 }
 
+/* How many textures one evaluation of texture ti may look up: a checkerboard evaluates both of its
+ * sub-textures where its filter straddles an edge (shading.c recurses). Every texture already made has a
+ * cost of at most ELR_MAX_TEX_COST, so this recursion visits at most that many leaves. */
+#define ELR_MAX_TEX_COST 64
+static int elr__tex_cost(const elr_scene *s, int ti) {
+  const elr_texture *t;
+  if (ti < 0 || ti >= s->ntex) return 1;
+  t = &s->tex[ti];
+  if (t->kind != ELR_TEX_CHECKER) return 1;
+  return elr__tex_cost(s, t->tex1) + elr__tex_cost(s, t->tex2);
+}
+
 static void elr__texture(elr__parser *P, const char *name, const char *vtype, const char *cls) {
   elr_scene *s = P->s;
   elr_texture t;
@@ -936,6 +948,13 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     t.kind = ELR_TEX_CHECKER;
     t.tex1 = elr__ptex(P, "tex1", elr_v(1, 1, 1), is_float);
     t.tex2 = elr__ptex(P, "tex2", elr_v(0, 0, 0), is_float);
+    { /* chained checkerboards double the work per level (2^40 lookups from a 40-line file) and recurse
+       * once per level on a render thread's stack (200000 levels overflowed it) */
+      int cost = elr__tex_cost(s, t.tex1) + elr__tex_cost(s, t.tex2);
+      if (cost > ELR_MAX_TEX_COST)
+        elr__fail(P, P->dir_line, "Texture \"%s\": checkerboards nested too deeply (%d texture lookups per evaluation, at most %d)",
+                  name, cost, ELR_MAX_TEX_COST);
+    }
     if (!strcmp(aa, "closedform")) t.aa_closedform = 1;
     else if (!strcmp(aa, "none")) t.aa_closedform = 0;
     else elr__fail(P, P->dir_line, "Texture \"%s\": aamode must be \"closedform\" or \"none\"", name);

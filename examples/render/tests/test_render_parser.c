@@ -367,6 +367,24 @@ static void errors(void) {
   expect_error("envinf.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1e38 1 1 ] \"rgb scale\" [ 10 1 1 ]\n"), "envinf.pbrt:3:", "must be finite");
   expect_error("crop.pbrt", "Film \"image\" \"integer xresolution\" 8 \"float cropwindow\" [ 0.51 0.55 0 1 ]\nWorldBegin\nWorldEnd\n",
                "crop.pbrt:1:", "covers no pixel of the 8 x 720 film");
+  { /* checkerboards of checkerboards: each level doubles the lookups (26 levels took 36 s for 8x8
+     * pixels) and recurses on the render thread's stack (200000 levels crashed it) */
+    char buf[8192];
+    size_t n = 0;
+    int i;
+    n += (size_t)snprintf(buf + n, sizeof buf - n, "WorldBegin\nTexture \"t0\" \"spectrum\" \"checkerboard\"\n");
+    for (i = 1; i < 8; i++)
+      n += (size_t)snprintf(buf + n, sizeof buf - n, "Texture \"t%d\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"t%d\" \"texture tex2\" \"t%d\"\n",
+                            i, i - 1, i - 1);
+    snprintf(buf + n, sizeof buf - n, "WorldEnd\n");
+    expect_error("chain.pbrt", buf, "chain.pbrt:8:", "nested too deeply (128 texture lookups per evaluation, at most 64)");
+    n = 0;
+    n += (size_t)snprintf(buf + n, sizeof buf - n, "WorldBegin\nTexture \"t0\" \"spectrum\" \"checkerboard\"\n");
+    for (i = 1; i < 100; i++)
+      n += (size_t)snprintf(buf + n, sizeof buf - n, "Texture \"t%d\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"t%d\"\n", i, i - 1);
+    snprintf(buf + n, sizeof buf - n, "WorldEnd\n");
+    expect_error("deepchain.pbrt", buf, "deepchain.pbrt:", "nested too deeply");
+  }
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
