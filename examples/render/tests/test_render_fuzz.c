@@ -18,6 +18,7 @@
  * (seed, K), so a case reproduces on its own). */
 #include "render_test_util.h"
 #include <signal.h>
+#include <sys/wait.h>
 
 /* >> random numbers (splitmix64: each case seeds its own) */
 static uint64_t fz_state;
@@ -546,6 +547,7 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
   err[0] = 0;
   if (elr_render(s, &o, &img, &st, err, sizeof err) != 0) {
     if (!err[0]) fz_bad_case("render", kase, "elr_render failed with an empty message", in->p, in->n);
+    else if (fz_verbose) printf("  render -> %s\n", err);
     return;
   }
   fz_rendered++;
@@ -560,6 +562,33 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
       }
   }
   elr_image_free(&img);
+}
+
+/* The render program on a scene that failed to load: exit code 1 and a message on stderr naming the
+ * file, no image written. */
+static long fz_cli_runs;
+static void fz_cli_check(long kase, const fz_buf *b) {
+  char cmd[2048], log[1024] = "";
+  FILE *f;
+  int r;
+  size_t n;
+  fz_write_file(rt_path("cli.pbrt"), b->p, b->n);
+  remove(rt_path("cli_out.pfm"));
+  snprintf(cmd, sizeof cmd, "cd '%s' && '%s' cli.pbrt --outfile cli_out.pfm --quiet --nthreads 1 --spp 1 2>cli.log", rt_dir, EL_RENDER_BIN);
+  r = system(cmd);
+  f = fopen(rt_path("cli.log"), "rb");
+  n = f ? fread(log, 1, sizeof log - 1, f) : 0;
+  log[n] = 0;
+  if (f) fclose(f);
+  fz_cli_runs++;
+  if (r == -1 || !WIFEXITED(r) || WEXITSTATUS(r) != 1 || !strstr(log, "cli.pbrt:")) {
+    char d[1300];
+    snprintf(d, sizeof d, "render exited with status %d (signal %d), stderr \"%s\"", WIFEXITED(r) ? WEXITSTATUS(r) : -1,
+             WIFSIGNALED(r) ? WTERMSIG(r) : 0, log);
+    fz_bad_case("render program", kase, d, b->p, b->n);
+  }
+  f = fopen(rt_path("cli_out.pfm"), "rb");
+  if (f) { fclose(f); fz_bad_case("render program", kase, "an image was written for a scene that does not load", b->p, b->n); }
 }
 
 static void fz_scene_case(uint64_t seed, long kase, fz_buf *b) {
@@ -586,6 +615,7 @@ static void fz_scene_case(uint64_t seed, long kase, fz_buf *b) {
   } else {
     fz_scene_err++;
     if (s) fz_bad_case("scene", kase, "an error with a scene", b->p, b->n);
+    if (kase % 200 == 7) fz_cli_check(kase, b); /* a sample through the program too */
     if (!err[0]) fz_bad_case("scene", kase, "an error with an empty message", b->p, b->n);
     else if (!fz_has_file_line(err)) {
       /* parse errors name file:line; Embree build errors cannot, but name the scene part */
@@ -836,9 +866,9 @@ int main(int argc, char **argv) {
   free(b.p);
   for (i = 0; i < FZ_NSEEDS; i++) free(fz_scene_seed[i].p);
   for (i = 0; i < FZ_NIMG; i++) free(fz_img_seed[i].p);
-  printf("seed %llu: %ld scene cases (%ld loaded, %ld errors, %ld rendered), %ld image cases (%ld loaded, %ld errors) in %.1f s\n",
-         (unsigned long long)seed, only >= 0 ? 1L : nscenes, fz_scene_ok, fz_scene_err, fz_rendered, only >= 0 ? 1L : nimages,
-         fz_image_ok, fz_image_err, elr_now() - t0);
+  printf("seed %llu: %ld scene cases (%ld loaded, %ld errors, %ld rendered, %ld through the render program), %ld image cases "
+         "(%ld loaded, %ld errors) in %.1f s\n", (unsigned long long)seed, only >= 0 ? 1L : nscenes, fz_scene_ok, fz_scene_err,
+         fz_rendered, fz_cli_runs, only >= 0 ? 1L : nimages, fz_image_ok, fz_image_err, elr_now() - t0);
   rt_check(fz_bad == 0, "every mutated input loads or fails with a message naming the file; rendered pixels are finite (%ld bad)", fz_bad);
   return rt_finish("test_render_fuzz");
 }
