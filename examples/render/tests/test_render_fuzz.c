@@ -818,7 +818,7 @@ static void fz_alarm(int sig) {
 
 int main(int argc, char **argv) {
   uint64_t seed = 20261201;
-  long nscenes = 6000, nimages = 6000, only = -1, k;
+  long nscenes = 12000, nimages = 12000, only = -1, k;
   int i, per_case_alarm = 0;
   fz_buf b;
   double t0 = elr_now();
