@@ -15,6 +15,11 @@
 #include <tinyexr.h>
 #include <zlib.h>
 
+/* The most pixels a file may decode to (16384 x 16384): run-length encoded HDR and deflated PNG data
+ * expand by up to 1000 times, so a 64 MB Radiance file of 2^24 x 64 pixels asked stb_image for 12 GB of
+ * floats before anything could refuse its size. */
+#define EL_IO__MAX_PIXELS ((double)(1 << 28))
+
 static int el_io__fail(char *err, size_t errlen, const char *path, const char *fmt, ...) {
   if (err && errlen) {
     va_list ap;
@@ -169,6 +174,8 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
     ww = strtol(e1 + 4, &e2, 10);
     if (*e2 || hh <= 0 || ww <= 0 || hh > (1 << 24) || ww > (1 << 24))
       EL_IO__HDR_FAIL("bad Radiance HDR resolution line '%s'", line);
+    if ((double)hh * (double)ww > EL_IO__MAX_PIXELS)
+      EL_IO__HDR_FAIL("Radiance HDR image too large (%ld x %ld, more than %.0f pixels)", ww, hh, EL_IO__MAX_PIXELS);
     w = (int)ww; h = (int)hh;
   }
   /* scanlines */
@@ -257,7 +264,7 @@ static int el_io__check_png(const char *path, FILE *f, long size, char *err, siz
       ch = ct <= 6 ? chans[ct] : 0;
       if (w < 1 || h < 1 || ch == 0 || !(depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16) || il > 1)
         EL_IO__PNG_FAIL("corrupt PNG header (%.0f x %.0f, bit depth %d, colour type %d, interlace %d)", w, h, depth, ct, il);
-      if (w * h > (double)(1 << 30)) EL_IO__PNG_FAIL("PNG image too large (%.0f x %.0f)", w, h);
+      if (w * h > EL_IO__MAX_PIXELS) EL_IO__PNG_FAIL("PNG image too large (%.0f x %.0f, more than %.0f pixels)", w, h, EL_IO__MAX_PIXELS);
       if (!il) expect = h * (1 + floor((w * ch * depth + 7) / 8));
       else
         for (pass = 0; pass < 7; pass++) { /* Adam7: the passes' origins and steps */
@@ -522,7 +529,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
       !strcmp(ext, "bmp")) {
     int w, h, n;
     size_t i, count;
-    unsigned char *p = stbi_load(path, &w, &h, &n, 0);
+    unsigned char *p;
+    if (stbi_info(path, &w, &h, &n) && (double)w * (double)h > EL_IO__MAX_PIXELS)
+      return el_io__fail(err, errlen, path, "image too large (%d x %d, more than %.0f pixels)", w, h, EL_IO__MAX_PIXELS);
+    p = stbi_load(path, &w, &h, &n, 0);
     if (!p) {
       const char *why = stbi_failure_reason();
       return el_io__fail(err, errlen, path, "cannot read image (%s)", why && why[0] ? why : "corrupt or unsupported file");

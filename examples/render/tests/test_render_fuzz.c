@@ -789,6 +789,20 @@ static void fz_regressions(void) {
       if (r == 0) elr_scene_free(sc);
     }
   }
+  { /* sizes that would decode to more than 2^28 pixels are refused from the header: run-length encoded
+     * HDR and deflated PNG data expand up to 1000 times (a 38 MB HDR of 30000 x 20000 asked for 7 GB) */
+    int r;
+    static const unsigned char png[33] = {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00,
+                                          0x00, 0x40, 0x01, 0x00, 0x00, 0x40, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00};
+    rt_write("big.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16385 +X 16385\n");
+    r = el_image_load(rt_path("big.hdr"), &img, err, sizeof err);
+    rt_check(r != 0 && strstr(err, "big.hdr") && strstr(err, "too large (16385 x 16385"), "an HDR header of 16385 x 16385: too large (\"%s\")", err);
+    if (r == 0) el_image_free(&img);
+    fz_write_file(rt_path("big.png"), png, sizeof png);
+    r = el_image_load(rt_path("big.png"), &img, err, sizeof err);
+    rt_check(r != 0 && strstr(err, "big.png") && strstr(err, "too large (16385 x 16385"), "a PNG header of 16385 x 16385: too large (\"%s\")", err);
+    if (r == 0) el_image_free(&img);
+  }
   { /* a checkerboard's box filter with a huge differential: (int)floorf(5e29) in shading.c (undefined;
      * UBSan's float-cast-overflow, on in the sanitizer build) */
     elr_scene sc;
