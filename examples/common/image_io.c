@@ -389,6 +389,14 @@ static int el_io__load_exr(const char *path, el_image *img, char *err, size_t er
     return -1;
   }
   if (hdr.num_channels < 1) { FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "EXR has no channels"); }
+  { /* tinyexr allocates every channel of the data window before it decodes a chunk */
+    double w = (double)hdr.data_window.max_x - hdr.data_window.min_x + 1, h = (double)hdr.data_window.max_y - hdr.data_window.min_y + 1;
+    if (w < 1 || h < 1 || w * h > EL_IO__MAX_PIXELS) {
+      FreeEXRHeader(&hdr);
+      return el_io__fail(err, errlen, path, "EXR data window of %.0f x %.0f pixels is empty or too large (at most %.0f pixels)", w, h,
+                         EL_IO__MAX_PIXELS);
+    }
+  }
   for (c = 0; c < hdr.num_channels; c++) {
     const char *nm = hdr.channels[c].name, *dot = strrchr(nm, '.');
     if (dot && dot != nm && dot[1]) nm = dot + 1;

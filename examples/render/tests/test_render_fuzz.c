@@ -803,6 +803,48 @@ static void fz_regressions(void) {
     rt_check(r != 0 && strstr(err, "big.png") && strstr(err, "too large (16385 x 16385"), "a PNG header of 16385 x 16385: too large (\"%s\")", err);
     if (r == 0) el_image_free(&img);
   }
+  { /* an EXR whose data window is 2^23 x 33 pixels, with a complete offset table of empty chunks:
+     * tinyexr allocated 3 x 1.1 GB for its channels before decoding anything */
+    fz_buf b;
+    size_t k, hl = 0;
+    int y, r;
+    static const char *wins[2] = {"dataWindow", "displayWindow"};
+    memset(&b, 0, sizeof b);
+    for (k = 0; k + 8 <= fz_img_seed[2].n && !hl; k++) {
+      uint64_t v = 0;
+      int i;
+      for (i = 7; i >= 0; i--) v = (v << 8) | fz_img_seed[2].p[k + (size_t)i];
+      if (v == k + 32) hl = k;
+    }
+    fz_set(&b, fz_img_seed[2].p, hl); /* the header */
+    for (y = 0; y < 2; y++) {
+      size_t at;
+      for (at = 0; at + strlen(wins[y]) < b.n; at++)
+        if (!memcmp(b.p + at, wins[y], strlen(wins[y]) + 1)) {
+          int32_t box[4] = {0, 0, (1 << 23) - 1, 32};
+          memcpy(b.p + at + strlen(wins[y]) + 1 + 6 + 4, box, 16); /* name NUL "box2i" NUL size, then 4 int32 */
+          break;
+        }
+    }
+    for (y = 0; y < 33; y++) {
+      uint64_t off = hl + 33 * 8 + 8 * (uint64_t)y;
+      unsigned char le[8];
+      int i;
+      for (i = 0; i < 8; i++) le[i] = (unsigned char)(off >> (8 * i));
+      fz_splice(&b, b.n, 0, le, 8);
+    }
+    for (y = 0; y < 33; y++) {
+      unsigned char c[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+      c[0] = (unsigned char)y;
+      fz_splice(&b, b.n, 0, c, 8);
+    }
+    fz_write_file(rt_path("bomb.exr"), b.p, b.n);
+    r = el_image_load(rt_path("bomb.exr"), &img, err, sizeof err);
+    rt_check(r != 0 && strstr(err, "bomb.exr") && strstr(err, "8388608 x 33 pixels is empty or too large"),
+             "an EXR of 8388608 x 33 pixels: too large before tinyexr allocates (\"%s\")", err);
+    if (r == 0) el_image_free(&img);
+    free(b.p);
+  }
   { /* a checkerboard's box filter with a huge differential: (int)floorf(5e29) in shading.c (undefined;
      * UBSan's float-cast-overflow, on in the sanitizer build) */
     elr_scene sc;
