@@ -529,8 +529,10 @@ static void elr__load_image(elr__parser *P, const char *file, int line, el_image
     elr__fail(P, line, "%s: image \"%s\" has an absurd size (%d x %d; 1 to 65536 per side)", P->dir_name, file, w, h);
   }
 }
-/* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. */
-static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale) {
+/* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. A NaN or
+ * infinite texel (or one that overflows when scaled) is an error naming the file and the texel: it used
+ * to become 0 silently. */
+static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale, const char *file) {
   size_t n = (size_t)img->width * (size_t)img->height, i;
   float *rgb = (float *)malloc(n * 3 * sizeof(float));
   if (!rgb) { el_image_free(img); snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
@@ -541,7 +543,15 @@ static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale)
       float v = img->pixels[i * (size_t)img->channels + (size_t)src];
       if (img->is_8bit && gamma)
         v = v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
-      if (!isfinite(v)) v = 0.f;
+      if (!isfinite(v) || !isfinite(v * scale)) {
+        int x = (int)(i % (size_t)img->width), y = (int)(i / (size_t)img->width);
+        float bad = v;
+        free(rgb);
+        el_image_free(img);
+        if (!isfinite(bad))
+          elr__fail(P, P->dir_line, "%s: image \"%s\": texel (%d, %d) is %s", P->dir_name, file, x, y, bad != bad ? "NaN" : "infinite");
+        elr__fail(P, P->dir_line, "%s: image \"%s\": texel (%d, %d) times scale %g overflows", P->dir_name, file, x, y, scale);
+      }
       rgb[i * 3 + (size_t)c] = v * scale;
     }
   }
@@ -781,7 +791,7 @@ static void elr__light(elr__parser *P, const char *type) {
       el_image img;
       char *path = elr__resolve(P, map);
       elr__load_image(P, path, P->dir_line, &img);
-      rgb = elr__to_rgb(P, &img, 0, 1.f);
+      rgb = elr__to_rgb(P, &img, 0, 1.f, path);
       w = img.width; h = img.height;
       el_image_free(&img);
       l->has_map = 1;
@@ -1043,7 +1053,7 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     gamma = elr__pbool(P, "gamma", (fl > 4 && (!strcmp(fn + fl - 4, ".png") || !strcmp(fn + fl - 4, ".tga"))));
     path = elr__resolve(P, fn);
     elr__load_image(P, path, P->dir_line, &img);
-    rgb = elr__to_rgb(P, &img, gamma, scale);
+    rgb = elr__to_rgb(P, &img, gamma, scale, path);
     if (is_float) { /* pbrt-v3 converts to float by luminance */
       size_t i, n = (size_t)img.width * (size_t)img.height;
       for (i = 0; i < n; i++) {

@@ -429,6 +429,22 @@ static void errors(void) {
     elr_scene_free(s);
     free(buf);
   }
+  { /* a NaN or infinite texel became 0 silently (the project rule asks for an error) */
+    float px[6] = {1, 1, 1, 1, 1, 1};
+    char e[256];
+    px[4] = NAN;
+    if (el_image_write_pfm(rt_path("nan.pfm"), px, 2, 1, 3, e, sizeof e) != 0) printf("cannot write nan.pfm: %s\n", e);
+    px[4] = INFINITY;
+    if (el_image_write_pfm(rt_path("inf.pfm"), px, 2, 1, 3, e, sizeof e) != 0) printf("cannot write inf.pfm: %s\n", e);
+    px[4] = 3e38f;
+    if (el_image_write_pfm(rt_path("big.pfm"), px, 2, 1, 3, e, sizeof e) != 0) printf("cannot write big.pfm: %s\n", e);
+    expect_error("nantex.pbrt", W("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"nan.pfm\"\n"), "nantex.pbrt:3:",
+                 "nan.pfm\": texel (1, 0) is NaN");
+    expect_error("nanenv.pbrt", W("LightSource \"infinite\" \"string mapname\" \"nan.pfm\"\n"), "nanenv.pbrt:3:", "texel (1, 0) is NaN");
+    expect_error("infenv.pbrt", W("LightSource \"infinite\" \"string mapname\" \"inf.pfm\"\n"), "infenv.pbrt:3:", "texel (1, 0) is infinite");
+    expect_error("bigtex.pbrt", W("Texture \"t\" \"float\" \"imagemap\" \"string filename\" \"big.pfm\" \"float scale\" 10\n"), "bigtex.pbrt:3:",
+                 "texel (1, 0) times scale 10 overflows");
+  }
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
