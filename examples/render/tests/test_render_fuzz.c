@@ -506,15 +506,16 @@ static void fz_bad_case(const char *what, long kase, const char *detail, const u
   }
 }
 
-/* "name:123: " somewhere in the message: a scene error names its file and line */
+/* "name.ext:123: " at the start of the message: a scene error names its file and line (a file name
+ * with an extension: "?:1:" once stood for an unknown file) */
 static int fz_has_file_line(const char *err) {
-  const char *p = err;
-  while ((p = strchr(p, ':')) != NULL) {
-    const char *q = ++p;
-    while (*q >= '0' && *q <= '9') q++;
-    if (q > p && q[0] == ':' && q[1] == ' ' && p - 1 > err) return 1;
-  }
-  return 0;
+  const char *p = err, *dot = NULL;
+  while (*p && *p != ':' && *p != ' ') { if (*p == '.') dot = p; p++; }
+  if (*p != ':' || !dot || dot == err) return 0;
+  p++;
+  if (!(*p >= '0' && *p <= '9')) return 0;
+  while (*p >= '0' && *p <= '9') p++;
+  return p[0] == ':' && p[1] == ' ';
 }
 
 static void fz_dump(const char *name, const unsigned char *p, size_t n) {

@@ -445,6 +445,23 @@ static void errors(void) {
     expect_error("bigtex.pbrt", W("Texture \"t\" \"float\" \"imagemap\" \"string filename\" \"big.pfm\" \"float scale\" 10\n"), "bigtex.pbrt:3:",
                  "texel (1, 0) times scale 10 overflows");
   }
+  /* an error or warning in the last directive of an included file named the includer (with the included
+   * file's line): the lexer had already left the included file when it peeked for more parameters */
+  rt_write("inc_last.pbrt", "# included\n\n\nShape \"trianglemesh\" \"point P\" [ 0 0 0 1 0 0 ]\n");
+  expect_error("incl.pbrt", "WorldBegin\nInclude \"inc_last.pbrt\"\nWorldEnd\n", "inc_last.pbrt:4:", "\"integer indices\" is required");
+  rt_write("inc_last2.pbrt", "# included\nLightSource \"point\" \"rgb I\" [ 1 1 ]\n");
+  expect_error("incl2.pbrt", "WorldBegin\nInclude \"inc_last2.pbrt\"\nWorldEnd\n", "inc_last2.pbrt:2:", "takes 3 values, got 2");
+  rt_write("inc_last3.pbrt", "# included\nTexture \"t\" \"color\" \"imagemap\" \"string filename\" \"nothere.png\"\n");
+  expect_error("incl3.pbrt", "WorldBegin\nInclude \"inc_last3.pbrt\"\nWorldEnd\n", "inc_last3.pbrt:2:", "nothere.png");
+  {
+    char err[512];
+    elr_scene *s;
+    rt_write("inc_last4.pbrt", "# included\n\nMaterial \"glass\"\n");
+    s = rt_load("incl4.pbrt", "WorldBegin\nInclude \"inc_last4.pbrt\"\nWorldEnd\n", err, sizeof err);
+    rt_check(s && strstr(elr_scene_last_warning(s), "inc_last4.pbrt:3: warning") != NULL,
+             "a warning in an included file's last directive names that file: \"%s\"", s ? elr_scene_last_warning(s) : err);
+    elr_scene_free(s);
+  }
   /* fuzzing: PLY values the range checks did not see (NaN compares false): a NaN vertex index was
    * converted to unsigned (undefined), a NaN list count gave "no triangles", a list-valued x was never
    * read (an uninitialised coordinate) */
