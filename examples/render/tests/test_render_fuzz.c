@@ -565,8 +565,8 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
   elr_image_free(&img);
 }
 
-/* The render program on a scene that failed to load: exit code 1 and a message on stderr naming the
- * file, no image written. */
+/* The render program on a scene that failed to load: exit code 1 and a message on stderr naming
+ * file:line, no image written. */
 static long fz_cli_runs;
 static void fz_cli_check(long kase, const fz_buf *b) {
   char cmd[2048], log[1024] = "";
@@ -582,7 +582,7 @@ static void fz_cli_check(long kase, const fz_buf *b) {
   log[n] = 0;
   if (f) fclose(f);
   fz_cli_runs++;
-  if (r == -1 || !WIFEXITED(r) || WEXITSTATUS(r) != 1 || !strstr(log, "cli.pbrt:")) {
+  if (r == -1 || !WIFEXITED(r) || WEXITSTATUS(r) != 1 || !fz_has_file_line(log)) { /* cli.pbrt or a file it includes */
     char d[1300];
     snprintf(d, sizeof d, "render exited with status %d (signal %d), stderr \"%s\"", WIFEXITED(r) ? WEXITSTATUS(r) : -1,
              WIFSIGNALED(r) ? WTERMSIG(r) : 0, log);
