@@ -544,6 +544,7 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
     o.compensated = (int)((h >> 32) % 3) - 1;
     if ((h >> 36) % 4 == 0) o.spp = 2 + (int)((h >> 40) % 3);
     if ((h >> 44) % 4 == 0) o.tile_size = 1 + (int)((h >> 48) % 5);
+    if ((h >> 52) % 8 == 0) o.nthreads = 2 + (int)((h >> 56) % 2); /* tiles on threads too */
   }
   err[0] = 0;
   if (elr_render(s, &o, &img, &st, err, sizeof err) != 0) {
