@@ -111,7 +111,11 @@ static const char *fz_words[] = {
     "Integrator \"path\" \"float rrthreshold\" -1e38", "Integrator \"path\" \"float rrthreshold\" 1e38", "Integrator \"bdpt\"",
     "ObjectBegin \"o\"", "ObjectEnd", "ObjectInstance \"o\"", "Option \"bool x\" \"true\"", "Attribute \"shape\" \"float radius\" 2",
     "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"", "MediumInterface \"\" \"m\"", "ActiveTransform All", "TransformTimes 0 1",
-    "Foo", "[", "]", "\"", "#", "\"float", "1", "-", "\\"};
+    "Foo", "[", "]", "\"", "#", "\"float", "1", "-", "\\",
+    /* PLY header lines (the ASCII PLY seed goes through this mutator too) */
+    "property list uchar float x", "property list uint uint vertex_indices", "property list float int vertex_indices",
+    "element vertex 4294967296", "element face -1", "element face 1000000", "format binary_big_endian 1.0",
+    "property double nx", "property uchar u", "end_header", "element normal 2", "comment end_header"};
 static const char *fz_strings[] = {"\"float radius\"", "\"integer indices\"", "\"point P\"", "\"point3 P\"", "\"normal N\"",
                                    "\"float uv\"", "\"point2 uv\"", "\"float st\"", "\"rgb Kd\"", "\"spectrum Kd\"",
                                    "\"blackbody L\"", "\"texture Kd\"", "\"string filename\"", "\"string mapname\"",
