@@ -704,7 +704,7 @@ static void fz_image_case(uint64_t seed, long kase, fz_buf *b) {
       char d[700];
       snprintf(d, sizeof d, "the message does not name the file: \"%s\"", err);
       fz_bad_case("image scene", kase, d, b->p, !strcmp(ext, ".pbrt") || !strcmp(ext, ".ply") ? b->n : 0);
-    }
+    } else if (fz_verbose) printf("  scene -> %s\n", err);
     free(in.p);
   }
 }
