@@ -871,6 +871,47 @@ static void fz_regressions(void) {
   }
 }
 
+/* Every prefix of every seed image (and of the PLY files through a scene): an error naming the file, or
+ * (only for the whole file) the image. */
+static void fz_truncations(void) {
+  int which, bad = 0, tried = 0;
+  char err[512];
+  for (which = 0; which < FZ_NIMG - 1; which++) {
+    const char *ext = strrchr(fz_img_names[which], '.');
+    size_t k, n = fz_img_seed[which].n;
+    char name[64];
+    snprintf(name, sizeof name, "t%s", ext);
+    for (k = 0; k < n; k++) {
+      size_t j = k;
+      while (j < n && (fz_img_seed[which].p[j] == '\n' || fz_img_seed[which].p[j] == ' ')) j++;
+      if (j == n) break; /* only trailing white space is missing (an ASCII PLY's last newline) */
+      fz_write_file(rt_path(name), fz_img_seed[which].p, k);
+      tried++;
+      if (!strcmp(ext, ".ply")) {
+        char scene[512];
+        elr_scene *sc = NULL;
+        snprintf(scene, sizeof scene, "WorldBegin\nShape \"plymesh\" \"string filename\" \"%s\"\nWorldEnd\n", name);
+        if (elr_scene_load_string(scene, "trunc.pbrt", rt_dir, &sc, 1, err, sizeof err) == 0) {
+          elr_scene_free(sc);
+          if (++bad <= 3) printf("  %s cut to %zu of %zu bytes loads\n", fz_img_names[which], k, n);
+        } else if (!strstr(err, "trunc.pbrt:2:")) {
+          if (++bad <= 3) printf("  %s cut to %zu bytes: \"%s\"\n", fz_img_names[which], k, err);
+        }
+      } else {
+        el_image img;
+        if (el_image_load(rt_path(name), &img, err, sizeof err) == 0) {
+          el_image_free(&img);
+          if (++bad <= 3) printf("  %s cut to %zu of %zu bytes loads\n", fz_img_names[which], k, n);
+        } else if (!strstr(err, name)) {
+          if (++bad <= 3) printf("  %s cut to %zu bytes: \"%s\"\n", fz_img_names[which], k, err);
+        }
+      }
+    }
+  }
+  rt_check(bad == 0, "every proper prefix of the %d seed images and PLY files (%d files) fails with a message naming the file (%d do not)",
+           FZ_NIMG - 1, tried, bad);
+}
+
 static void fz_alarm(int sig) {
   static const char msg[] = "test_render_fuzz: a case ran longer than the time limit (a hang?)\n";
   (void)sig;
@@ -900,6 +941,7 @@ int main(int argc, char **argv) {
   fz_make_seeds();
   memset(&b, 0, sizeof b);
   if (only < 0) fz_regressions();
+  if (only < 0) fz_truncations();
   if (only < 0) { /* the seeds themselves load and render */
     int good = 0;
     for (i = 0; i < fz_nscene_seeds; i++) {
