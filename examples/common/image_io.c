@@ -13,6 +13,12 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
+#include <zlib.h>
+
+/* The most pixels a file may decode to (16384 x 16384): run-length encoded HDR and deflated PNG data
+ * expand by up to 1000 times, so a 64 MB Radiance file of 2^24 x 64 pixels asked stb_image for 12 GB of
+ * floats before anything could refuse its size. */
+#define EL_IO__MAX_PIXELS ((double)(1 << 28))
 
 static int el_io__fail(char *err, size_t errlen, const char *path, const char *fmt, ...) {
   if (err && errlen) {
@@ -20,9 +26,14 @@ static int el_io__fail(char *err, size_t errlen, const char *path, const char *f
     int n = snprintf(err, errlen, "%s: ", path ? path : "(null)");
     if (n < 0) n = 0;
     if ((size_t)n < errlen) {
+      char *c;
       va_start(ap, fmt);
       vsnprintf(err + n, errlen - (size_t)n, fmt, ap);
       va_end(ap);
+      /* the message may quote bytes of a corrupt file (a PFM header token): keep it printable ASCII */
+      for (c = err + n; *c; c++)
+        if (*c == '\n' || *c == '\t') *c = ' '; /* tinyexr ends its messages with a newline */
+        else if ((unsigned char)*c < 32 || (unsigned char)*c >= 127) *c = '?';
     }
   }
   return -1;
@@ -163,6 +174,8 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
     ww = strtol(e1 + 4, &e2, 10);
     if (*e2 || hh <= 0 || ww <= 0 || hh > (1 << 24) || ww > (1 << 24))
       EL_IO__HDR_FAIL("bad Radiance HDR resolution line '%s'", line);
+    if ((double)hh * (double)ww > EL_IO__MAX_PIXELS)
+      EL_IO__HDR_FAIL("Radiance HDR image too large (%ld x %ld, more than %.0f pixels)", ww, hh, EL_IO__MAX_PIXELS);
     w = (int)ww; h = (int)hh;
   }
   /* scanlines */
@@ -170,8 +183,12 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
     if (w >= 8 && w < 32768 && pos + 4 > size)
       EL_IO__HDR_FAIL("file is truncated (scanline %d of %d is missing)", y + 1, h);
     if (w < 8 || w >= 32768 || b[pos] != 2 || b[pos + 1] != 2 || (b[pos + 2] & 0x80)) {
-      /* flat (uncompressed) from here on, as stb_image reads it: 4 bytes per remaining pixel */
-      double need = 4.0 * ((double)w * (double)(h - y));
+      /* flat (uncompressed). stb_image then decodes the whole image flat from here -- from row 0 again
+       * when this is not the first scanline, overwriting the rows it had decoded -- so a file that mixes
+       * run-length encoded and flat scanlines would load with wrong pixels: refuse it */
+      double need = 4.0 * ((double)w * (double)h);
+      if (y > 0)
+        EL_IO__HDR_FAIL("unsupported Radiance HDR: scanline %d of %d is flat while the ones before it are run-length encoded", y + 1, h);
       if ((double)(size - pos) < need)
         EL_IO__HDR_FAIL("file is truncated (%ld bytes of flat pixel data from scanline %d of %d, %.0f expected)",
                         size - pos, y + 1, h, need);
@@ -201,6 +218,87 @@ static int el_io__check_hdr(const char *path, FILE *f, long size, char *err, siz
     }
   }
 #undef EL_IO__HDR_FAIL
+  free(b);
+  return 0;
+}
+
+/* ---- PNG: Debian's stb_image (git 2022-09-08) decodes a corrupt zlib stream without noticing (a
+ * distance code 30 or 31, or a length code 286 or 287, indexes past its tables; a distance of 0 copies
+ * bytes not yet written), so a corrupt IDAT "loaded" with pixels from uninitialised memory (a different
+ * image in every run). So the chunks are walked and the image data inflated with zlib first (output
+ * discarded): the stream must be valid and hold every byte the header's size asks for. */
+static int el_io__check_png(const char *path, FILE *f, long size, char *err, size_t errlen) {
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+  unsigned char *b, out[16384];
+  long pos = 8;
+  int seen_ihdr = 0, zr = Z_OK, done = 0;
+  double expect = 0;
+  z_stream z;
+  if (size < 0) return el_io__fail(err, errlen, path, "cannot determine the file size");
+  if (size > (1L << 30)) return el_io__fail(err, errlen, path, "PNG file larger than 1 GiB");
+  b = (unsigned char *)malloc((size_t)size + 1);
+  if (!b) return el_io__fail(err, errlen, path, "out of memory");
+  if (fread(b, 1, (size_t)size, f) != (size_t)size) { free(b); return el_io__fail(err, errlen, path, "cannot read file (short read)"); }
+  if (size < 8 || memcmp(b, sig, 8)) { free(b); return el_io__fail(err, errlen, path, "not a PNG file (bad signature)"); }
+  memset(&z, 0, sizeof z);
+  if (inflateInit(&z) != Z_OK) { free(b); return el_io__fail(err, errlen, path, "cannot initialise zlib"); }
+#define EL_IO__PNG_FAIL(...) do { el_io__fail(err, errlen, path, __VA_ARGS__); inflateEnd(&z); free(b); return -1; } while (0)
+  for (;;) {
+    unsigned long len;
+    const unsigned char *t;
+    if (size - pos < 12) EL_IO__PNG_FAIL("file is truncated (a chunk header is missing%s)", seen_ihdr ? " before IEND" : "");
+    len = (unsigned long)b[pos] << 24 | (unsigned long)b[pos + 1] << 16 | (unsigned long)b[pos + 2] << 8 | b[pos + 3];
+    t = b + pos + 4;
+    if (len > 0x7fffffffUL || (double)len > (double)(size - pos - 12))
+      EL_IO__PNG_FAIL("file is truncated or corrupt (chunk '%c%c%c%c' of %lu bytes at byte %ld)", isprint(t[0]) ? t[0] : '?',
+                      isprint(t[1]) ? t[1] : '?', isprint(t[2]) ? t[2] : '?', isprint(t[3]) ? t[3] : '?', len, pos);
+    if (!seen_ihdr) {
+      static const int chans[7] = {1, 0, 3, 1, 2, 0, 4};
+      const unsigned char *d = t + 4;
+      double w, h;
+      int depth, ct, il, ch, pass;
+      if (memcmp(t, "IHDR", 4) || len != 13) EL_IO__PNG_FAIL("corrupt PNG (the first chunk is not a 13-byte IHDR)");
+      w = (double)((unsigned long)d[0] << 24 | (unsigned long)d[1] << 16 | (unsigned long)d[2] << 8 | d[3]);
+      h = (double)((unsigned long)d[4] << 24 | (unsigned long)d[5] << 16 | (unsigned long)d[6] << 8 | d[7]);
+      depth = d[8]; ct = d[9]; il = d[12];
+      ch = ct <= 6 ? chans[ct] : 0;
+      if (w < 1 || h < 1 || ch == 0 || !(depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16) || il > 1)
+        EL_IO__PNG_FAIL("corrupt PNG header (%.0f x %.0f, bit depth %d, colour type %d, interlace %d)", w, h, depth, ct, il);
+      if (w * h > EL_IO__MAX_PIXELS) EL_IO__PNG_FAIL("PNG image too large (%.0f x %.0f, more than %.0f pixels)", w, h, EL_IO__MAX_PIXELS);
+      if (!il) expect = h * (1 + floor((w * ch * depth + 7) / 8));
+      else
+        for (pass = 0; pass < 7; pass++) { /* Adam7: the passes' origins and steps */
+          static const int x0[7] = {0, 4, 0, 2, 0, 1, 0}, y0[7] = {0, 0, 4, 0, 2, 0, 1}, dx[7] = {8, 8, 4, 4, 2, 2, 1}, dy[7] = {8, 8, 8, 4, 4, 2, 2};
+          double pw = floor((w - x0[pass] + dx[pass] - 1) / dx[pass]), ph = floor((h - y0[pass] + dy[pass] - 1) / dy[pass]);
+          if (pw > 0 && ph > 0) expect += ph * (1 + floor((pw * ch * depth + 7) / 8));
+        }
+      seen_ihdr = 1;
+    } else if (!memcmp(t, "IDAT", 4) && !done) {
+      z.next_in = (Bytef *)(b + pos + 8);
+      z.avail_in = (uInt)len;
+      while (z.avail_in > 0 && !done) {
+        z.next_out = out; z.avail_out = sizeof out;
+        zr = inflate(&z, Z_NO_FLUSH);
+        if (zr == Z_STREAM_END) done = 1;
+        else if (zr != Z_OK && zr != Z_BUF_ERROR)
+          EL_IO__PNG_FAIL("corrupt PNG image data (zlib: %s)", z.msg ? z.msg : "invalid stream");
+        else if (zr == Z_BUF_ERROR && z.avail_out != 0) break; /* needs the next IDAT */
+      }
+      while (!done && z.avail_in == 0) { /* flush what zlib holds back */
+        z.next_out = out; z.avail_out = sizeof out;
+        zr = inflate(&z, Z_NO_FLUSH);
+        if (zr == Z_STREAM_END) done = 1;
+        else if (zr != Z_OK && zr != Z_BUF_ERROR) EL_IO__PNG_FAIL("corrupt PNG image data (zlib: %s)", z.msg ? z.msg : "invalid stream");
+        if (z.avail_out != 0) break;
+      }
+    } else if (!memcmp(t, "IEND", 4)) break;
+    pos += 12 + (long)len;
+  }
+  if (!done) EL_IO__PNG_FAIL("file is truncated or corrupt (the image data stream does not end)");
+  if ((double)z.total_out < expect)
+    EL_IO__PNG_FAIL("corrupt PNG (the image data holds %lu bytes, %.0f expected)", (unsigned long)z.total_out, expect);
+#undef EL_IO__PNG_FAIL
+  inflateEnd(&z);
   free(b);
   return 0;
 }
@@ -267,6 +365,104 @@ static int el_io__diagnose_exr(const char *path, char *err, size_t errlen) {
   return found;
 }
 
+/* ---- OpenEXR, single-part files (scanline or tiled: level 0): tinyexr 1.0.1's LoadEXR leaks every
+ * channel buffer when decoding fails (FreeEXRImage frees images[c] -- or each tile's -- for c <
+ * num_channels, and num_channels is set only after a successful decode), so a corrupt chunk leaked
+ * (LeakSanitizer). Here the image's num_channels is set before decoding, so that tinyexr's own clean-up
+ * frees them; the RGB conversion is LoadEXR's (R, G, B by name, layer prefixes ignored; a single
+ * channel is grey; tiles placed by their offsets). Returns 0 or -1. */
+static int el_io__load_exr(const char *path, el_image *img, char *err, size_t errlen) {
+  EXRVersion ver;
+  EXRHeader hdr;
+  EXRImage im;
+  const char *msg = NULL;
+  int c, idx[3] = {-1, -1, -1}, r;
+  size_t i, n;
+  if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS) return el_io__fail(err, errlen, path, "corrupt EXR (bad version field)");
+  if (ver.multipart || ver.non_image)
+    return el_io__fail(err, errlen, path, "multi-part and deep EXR files are not supported");
+  InitEXRHeader(&hdr);
+  if (ParseEXRHeaderFromFile(&hdr, &ver, path, &msg) != TINYEXR_SUCCESS) {
+    el_io__fail(err, errlen, path, "corrupt or truncated EXR header (%s)", msg ? msg : "unknown tinyexr error");
+    if (msg) FreeEXRErrorMessage(msg);
+    FreeEXRHeader(&hdr);
+    return -1;
+  }
+  if (hdr.num_channels < 1) { FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "EXR has no channels"); }
+  { /* tinyexr allocates every channel of the data window before it decodes a chunk */
+    double w = (double)hdr.data_window.max_x - hdr.data_window.min_x + 1, h = (double)hdr.data_window.max_y - hdr.data_window.min_y + 1;
+    if (w < 1 || h < 1 || w * h > EL_IO__MAX_PIXELS) {
+      FreeEXRHeader(&hdr);
+      return el_io__fail(err, errlen, path, "EXR data window of %.0f x %.0f pixels is empty or too large (at most %.0f pixels)", w, h,
+                         EL_IO__MAX_PIXELS);
+    }
+  }
+  for (c = 0; c < hdr.num_channels; c++) {
+    const char *nm = hdr.channels[c].name, *dot = strrchr(nm, '.');
+    if (dot && dot != nm && dot[1]) nm = dot + 1;
+    if (!strcmp(nm, "R") && idx[0] < 0) idx[0] = c;
+    else if (!strcmp(nm, "G") && idx[1] < 0) idx[1] = c;
+    else if (!strcmp(nm, "B") && idx[2] < 0) idx[2] = c;
+    if (hdr.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) hdr.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+  if (hdr.num_channels == 1) idx[0] = idx[1] = idx[2] = 0;
+  else if (idx[0] < 0 || idx[1] < 0 || idx[2] < 0) {
+    FreeEXRHeader(&hdr);
+    return el_io__fail(err, errlen, path, "EXR has %d channels but no R, G and B", hdr.num_channels);
+  }
+  InitEXRImage(&im);
+  im.num_channels = hdr.num_channels; /* see above: tinyexr frees this many channel buffers on failure */
+  r = LoadEXRImageFromFile(&im, &hdr, path, &msg);
+  if (r != TINYEXR_SUCCESS) {
+    char *nl;
+    el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
+    while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
+    if (msg) FreeEXRErrorMessage(msg);
+    FreeEXRHeader(&hdr); /* the image's buffers were freed by tinyexr */
+    return -1;
+  }
+  if (im.width <= 0 || im.height <= 0 || (hdr.tiled ? !im.tiles || hdr.tile_size_x <= 0 || hdr.tile_size_y <= 0 : !im.images)) {
+    FreeEXRImage(&im); FreeEXRHeader(&hdr);
+    return el_io__fail(err, errlen, path, "EXR has no pixels");
+  }
+  n = (size_t)im.width * (size_t)im.height;
+  img->pixels = (float *)malloc(n * 3 * sizeof(float));
+  if (!img->pixels) { FreeEXRImage(&im); FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "out of memory"); }
+  if (hdr.tiled) memset(img->pixels, 0, n * 3 * sizeof(float)); /* texels no tile covers are black */
+  for (c = 0; c < 3; c++) {
+    int uint = hdr.requested_pixel_types[idx[c]] == TINYEXR_PIXELTYPE_UINT;
+    if (!hdr.tiled) {
+      const unsigned char *src = im.images[idx[c]];
+      for (i = 0; i < n; i++) {
+        float v;
+        if (uint) { unsigned u; memcpy(&u, src + 4 * i, 4); v = (float)u; }
+        else memcpy(&v, src + 4 * i, 4);
+        img->pixels[3 * i + (size_t)c] = v;
+      }
+    } else {
+      int t, x, y, tw = hdr.tile_size_x, th = hdr.tile_size_y;
+      for (t = 0; t < im.num_tiles; t++) {
+        const EXRTile *tile = &im.tiles[t];
+        const unsigned char *src = tile->images ? tile->images[idx[c]] : NULL;
+        if (!src) continue;
+        for (y = 0; y < th && y < tile->height; y++)
+          for (x = 0; x < tw && x < tile->width; x++) {
+            long ii = (long)tile->offset_x * tw + x, jj = (long)tile->offset_y * th + y;
+            float v;
+            if (ii < 0 || jj < 0 || ii >= im.width || jj >= im.height) continue;
+            if (uint) { unsigned u; memcpy(&u, src + 4 * ((size_t)y * (size_t)tw + (size_t)x), 4); v = (float)u; }
+            else memcpy(&v, src + 4 * ((size_t)y * (size_t)tw + (size_t)x), 4);
+            img->pixels[3 * ((size_t)jj * (size_t)im.width + (size_t)ii) + (size_t)c] = v;
+          }
+      }
+    }
+  }
+  img->width = im.width; img->height = im.height; img->channels = 3; img->is_8bit = 0;
+  FreeEXRImage(&im);
+  FreeEXRHeader(&hdr);
+  return 0;
+}
+
 /* The first bytes of a file (fewer when it is shorter); returns how many were read. */
 static size_t el_io__magic(FILE *f, unsigned char *m, size_t n) {
   size_t k;
@@ -306,6 +502,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
       int r = el_io__check_hdr(path, f, size, err, errlen);
       if (r) { fclose(f); return r; }
     }
+    if (!strcmp(ext, "png")) {
+      int r = el_io__check_png(path, f, size, err, errlen);
+      if (r) { fclose(f); return r; }
+    }
   }
   if (!strcmp(ext, "pfm")) {
     int r = el_io__load_pfm(path, f, img, err, errlen);
@@ -314,43 +514,22 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
   }
   fclose(f);
   if (!strcmp(ext, "exr")) {
-    float *rgba = NULL;
-    int w = 0, h = 0, r;
-    size_t i, n;
-    const char *msg = NULL;
-    /* Check the chunk table first: tinyexr's decoder leaks its channel buffers when it fails on a
-     * truncated file (LeakSanitizer), so such a file must not reach it. */
+    /* Check the chunk table first: it names what a truncated file lacks (tinyexr's message would be
+     * 'Invalid data found when decoding pixels'). */
     if (el_io__diagnose_exr(path, err, errlen)) {
       char *nl;
       while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
       return -1;
     }
-    r = LoadEXR(&rgba, &w, &h, path, &msg);
-    if (r != TINYEXR_SUCCESS) {
-      char *nl;
-      el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
-      while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
-      if (msg) FreeEXRErrorMessage(msg);
-      free(rgba);
-      return -1;
-    }
-    if (w <= 0 || h <= 0) { free(rgba); return el_io__fail(err, errlen, path, "EXR has no pixels"); }
-    n = (size_t)w * (size_t)h;
-    img->pixels = (float *)malloc(n * 3 * sizeof(float));
-    if (!img->pixels) { free(rgba); return el_io__fail(err, errlen, path, "out of memory"); }
-    for (i = 0; i < n; i++) {
-      img->pixels[3 * i + 0] = rgba[4 * i + 0];
-      img->pixels[3 * i + 1] = rgba[4 * i + 1];
-      img->pixels[3 * i + 2] = rgba[4 * i + 2];
-    }
-    free(rgba);
-    img->width = w; img->height = h; img->channels = 3; img->is_8bit = 0;
-    return 0;
+    return el_io__load_exr(path, img, err, errlen);
   }
   if (!strcmp(ext, "hdr")) {
     int w, h, n;
     float *p = stbi_loadf(path, &w, &h, &n, 3);
-    if (!p) return el_io__fail(err, errlen, path, "cannot read Radiance HDR (%s)", stbi_failure_reason());
+    if (!p) {
+      const char *why = stbi_failure_reason();
+      return el_io__fail(err, errlen, path, "cannot read Radiance HDR (%s)", why && why[0] ? why : "corrupt file");
+    }
     img->pixels = p; img->width = w; img->height = h; img->channels = 3; img->is_8bit = 0;
     return 0;
   }
@@ -358,8 +537,14 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
       !strcmp(ext, "bmp")) {
     int w, h, n;
     size_t i, count;
-    unsigned char *p = stbi_load(path, &w, &h, &n, 0);
-    if (!p) return el_io__fail(err, errlen, path, "cannot read image (%s)", stbi_failure_reason());
+    unsigned char *p;
+    if (stbi_info(path, &w, &h, &n) && (double)w * (double)h > EL_IO__MAX_PIXELS)
+      return el_io__fail(err, errlen, path, "image too large (%d x %d, more than %.0f pixels)", w, h, EL_IO__MAX_PIXELS);
+    p = stbi_load(path, &w, &h, &n, 0);
+    if (!p) {
+      const char *why = stbi_failure_reason();
+      return el_io__fail(err, errlen, path, "cannot read image (%s)", why && why[0] ? why : "corrupt or unsupported file");
+    }
     count = (size_t)w * (size_t)h * (size_t)n;
     img->pixels = (float *)malloc(count * sizeof(float));
     if (!img->pixels) { stbi_image_free(p); return el_io__fail(err, errlen, path, "out of memory"); }

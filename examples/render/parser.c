@@ -12,6 +12,7 @@
 #include "image_io.h"
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -48,7 +49,11 @@ typedef struct elr__gstate {
   int reverse;
 } elr__gstate;
 
-typedef struct elr__named { char *name; int index; int is_float; } elr__named;
+typedef struct elr__named { char *name; int index; int is_float; int prev; /* the entry it shadows, or -1 */ } elr__named;
+/* A hash index over a list of names (open addressing; a slot holds the latest entry of its name, -1
+ * empty, -2 removed): a list of 100000 named textures, materials or coordinate systems took 25-75 s to
+ * parse with linear lookups. */
+typedef struct elr__hmap { int *s; int cap, used; } elr__hmap;
 
 typedef struct elr__parser {
   elr_scene *s;
@@ -69,6 +74,7 @@ typedef struct elr__parser {
   elr_xform *cs_xf;
   elr__named *texnames; int ntexn, captexn;
   elr__named *matnames; int nmatn, capmatn;
+  elr__hmap hctx, htex, hmat;
   int in_world, world_ended, seen_camera;
   elr_xform camera_ctm;
   elr__param params[ELR_MAX_PARAMS]; int nparams;
@@ -87,21 +93,45 @@ static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
   memcpy(r, s, n); r[n] = 0; return r;
 }
 
-static void elr__fail(elr__parser *P, int line, const char *fmt, ...) {
+/* An error at file:line. The file is given explicitly wherever the line is a directive's or a
+ * parameter's: the lexer leaves an included file as soon as it peeks past its last token, so the
+ * current file may already be the includer (errors in an included file's last directive named the
+ * includer with the included file's line). */
+static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) {
   char msg[400];
-  va_list ap; va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
-  snprintf(P->err, P->errlen, "%s:%d: error: %s", P->nlex ? P->lex[P->nlex - 1].file : "?", line, msg);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  { /* a quoted string of the scene may hold control characters: keep them off the terminal */
+    char *c;
+    for (c = msg; *c; c++) if ((unsigned char)*c < 32 || *c == 127) *c = *c == '\n' || *c == '\t' ? ' ' : '?';
+  }
+  snprintf(P->err, P->errlen, "%s:%d: error: %s", file ? file : "?", line, msg);
   longjmp(P->jb, 1);
+}
+static void elr__failf(elr__parser *P, const char *file, int line, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  elr__failv(P, file, line, fmt, ap);
+  va_end(ap);
+}
+/* an error at a line of the file being read now (the lexer's errors) */
+static void elr__fail(elr__parser *P, int line, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  elr__failv(P, P->nlex ? P->lex[P->nlex - 1].file : "?", line, fmt, ap);
+  va_end(ap);
 }
 
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...) {
   char msg[400];
   va_list ap; va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
+  {
+    char *c;
+    for (c = msg; *c; c++) if ((unsigned char)*c < 32 || *c == 127) *c = *c == '\n' || *c == '\t' ? ' ' : '?';
+  }
   snprintf(s->last_warning, sizeof s->last_warning, "%s:%d: warning: %s", file, line, msg);
   s->warnings++;
   if (!s->quiet) fprintf(stderr, "%s\n", s->last_warning);
 }
-#define ELR_WARN(P, line, ...) elr_warn((P)->s, (P)->lex[(P)->nlex - 1].file, line, __VA_ARGS__)
 
 /* >> tokenizer */
 static elr__tok elr__lex(elr__parser *P) {
@@ -132,7 +162,10 @@ static elr__tok elr__lex(elr__parser *P) {
         char *buf; size_t n = 0;
         while (L->p < L->end && *L->p != '"') {
           if (*L->p == '\n') elr__fail(P, t.line, "unterminated string (a newline inside quotes)");
-          if (*L->p == '\\') L->p++;
+          if (*L->p == '\\' && L->p + 1 < L->end) { /* an escape: the next character is taken as it is */
+            L->p++;
+            if (*L->p == '\n') elr__fail(P, t.line, "unterminated string (a newline inside quotes)");
+          }
           L->p++;
         }
         if (L->p >= L->end) elr__fail(P, t.line, "unterminated string at end of file");
@@ -187,13 +220,13 @@ static const char *elr__curfile(elr__parser *P) { return P->lex[P->nlex - 1].fil
 
 static double elr__num(elr__parser *P, const char *what) {
   elr__tok t = elr__next(P);
-  if (t.kind != T_NUM) elr__fail(P, t.kind == T_EOF ? P->dir_line : t.line, "%s: expected a number%s", what,
+  if (t.kind != T_NUM) elr__failf(P, t.kind == T_EOF ? P->dir_file : elr__curfile(P), t.kind == T_EOF ? P->dir_line : t.line, "%s: expected a number%s", what,
                                  t.kind == T_EOF ? " (file ends early)" : "");
   return t.num;
 }
 static const char *elr__str(elr__parser *P, const char *what) {
   elr__tok t = elr__next(P);
-  if (t.kind != T_STRING) elr__fail(P, t.kind == T_EOF ? P->dir_line : t.line, "%s: expected a quoted string%s",
+  if (t.kind != T_STRING) elr__failf(P, t.kind == T_EOF ? P->dir_file : elr__curfile(P), t.kind == T_EOF ? P->dir_line : t.line, "%s: expected a quoted string%s",
                                     what, t.kind == T_EOF ? " (file ends early)" : "");
   return t.s;
 }
@@ -282,19 +315,21 @@ static void elr__read_params(elr__parser *P) {
     {
       int wants_str = !strcmp(pp->type, "string") || !strcmp(pp->type, "texture") || !strcmp(pp->type, "bool");
       if (nv > 0 && wants_str != pp->isstr && strcmp(pp->type, "spectrum") != 0)
-        elr__fail(P, t.line, "parameter \"%s %s\": %s values expected", pp->type, pp->name,
+        elr__failf(P, pp->file, t.line, "parameter \"%s %s\": %s values expected", pp->type, pp->name,
                   wants_str ? "string" : "numeric");
       if (!strcmp(pp->type, "bool")) {
         int i;
         for (i = 0; i < nv; i++)
           if (strcmp(strs[i], "true") && strcmp(strs[i], "false"))
-            elr__fail(P, t.line, "parameter \"bool %s\": value \"%s\" is neither true nor false", pp->name, strs[i]);
+            elr__failf(P, pp->file, t.line, "parameter \"bool %s\": value \"%s\" is neither true nor false", pp->name, strs[i]);
       }
       if (!strcmp(pp->type, "integer")) {
         int i;
         for (i = 0; i < nv; i++)
-          if (nums[i] != floor(nums[i]) || fabs(nums[i]) > 2147483647.0)
-            elr__fail(P, t.line, "parameter \"integer %s\": %g is not an integer", pp->name, nums[i]);
+          if (nums[i] != floor(nums[i]))
+            elr__failf(P, pp->file, t.line, "parameter \"integer %s\": %g is not an integer", pp->name, nums[i]);
+          else if (fabs(nums[i]) > 2147483647.0)
+            elr__failf(P, pp->file, t.line, "parameter \"integer %s\": %.0f is outside the 32-bit integer range", pp->name, nums[i]);
       }
     }
   }
@@ -309,12 +344,12 @@ static elr__param *elr__findt(elr__parser *P, const char *name, const char *type
   elr__param *p = elr__find(P, name);
   if (!p) return NULL;
   if (strcmp(p->type, type) != 0)
-    elr__fail(P, p->line, "%s: parameter \"%s\" has type \"%s\", expected \"%s\"", P->dir_name, name, p->type, type);
+    elr__failf(P, p->file, p->line, "%s: parameter \"%s\" has type \"%s\", expected \"%s\"", P->dir_name, name, p->type, type);
   if (count > 0 && p->n != count)
-    elr__fail(P, p->line, "%s: parameter \"%s %s\" takes %d value%s, got %d", P->dir_name, type, name, count,
+    elr__failf(P, p->file, p->line, "%s: parameter \"%s %s\" takes %d value%s, got %d", P->dir_name, type, name, count,
               count == 1 ? "" : "s", p->n);
   if (count < 0 && p->n % (-count) != 0)
-    elr__fail(P, p->line, "%s: parameter \"%s %s\" needs a multiple of %d values, got %d", P->dir_name, type, name,
+    elr__failf(P, p->file, p->line, "%s: parameter \"%s %s\" needs a multiple of %d values, got %d", P->dir_name, type, name,
               -count, p->n);
   p->used = 1;
   return p;
@@ -343,7 +378,7 @@ static const char *elr__pstring(elr__parser *P, const char *name, const char *de
 static elr_v3 elr__prgb(elr__parser *P, const char *name, elr_v3 def) {
   elr__param *p = elr__find(P, name);
   if (p && (!strcmp(p->type, "spectrum") || !strcmp(p->type, "blackbody") || !strcmp(p->type, "xyz"))) {
-    ELR_WARN(P, p->line, "%s: parameter \"%s %s\": only rgb colours are supported; using the default", P->dir_name,
+    elr_warn(P->s, p->file, p->line, "%s: parameter \"%s %s\": only rgb colours are supported; using the default", P->dir_name,
              p->type, name);
     p->used = 1; return def;
   }
@@ -364,8 +399,30 @@ static void elr__report_unused(elr__parser *P) {
 }
 static void elr__check_range(elr__parser *P, const char *name, double v, double lo, double hi) {
   elr__param *p = elr__find(P, name);
-  if (!(v >= lo && v <= hi))
-    elr__fail(P, p ? p->line : P->dir_line, "%s: \"%s\" = %g is out of range [%g, %g]", P->dir_name, name, v, lo, hi);
+  /* a relative float epsilon of slack: many values arrive here as floats, and 0.01f < 0.01 */
+  if (!(v >= lo - fabs(lo) * 1e-6 && v <= hi + fabs(hi) * 1e-6))
+    elr__failf(P, p ? p->file : P->dir_file, p ? p->line : P->dir_line, "%s: \"%s\" = %g is out of range [%g, %g]", P->dir_name, name, v, lo, hi);
+}
+
+/* World-space coordinates the renderer can trace: Embree refuses (asserts on) a ray whose origin has a
+ * component beyond 1.8e18, and squared distances in float overflow near 1e19. Camera positions, light
+ * positions and geometry must stay within |x| <= ELR_MAX_COORD; a transformation whose matrix or inverse
+ * is not finite (Scale 1e-200 twice, Translate 1e300) is refused at the directive that made it. */
+#define ELR_MAX_COORD 1e15
+static int elr__coord_ok(elr_v3 p) {
+  return fabsf(p.x) <= (float)ELR_MAX_COORD && fabsf(p.y) <= (float)ELR_MAX_COORD && fabsf(p.z) <= (float)ELR_MAX_COORD;
+}
+static void elr__check_point(elr__parser *P, int line, elr_v3 p, const char *what) {
+  if (!elr__coord_ok(p))
+    elr__failf(P, P->dir_file, line, "%s: %s (%g, %g, %g) is not finite or outside |x| <= %g", P->dir_name, what, p.x, p.y, p.z, ELR_MAX_COORD);
+}
+static void elr__check_ctm(elr__parser *P, int line) {
+  int i, j;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++)
+      if (!isfinite(P->ctm.m[i][j]) || !isfinite(P->ctm.inv[i][j]) || fabs(P->ctm.m[i][j]) > 1e30 || fabs(P->ctm.inv[i][j]) > 1e30)
+        elr__failf(P, P->dir_file, line, "%s: the transformation overflows (a matrix entry or an entry of its inverse is %g, beyond 1e30)",
+                  P->dir_name, isfinite(P->ctm.m[i][j]) && fabs(P->ctm.m[i][j]) > 1e30 ? P->ctm.m[i][j] : P->ctm.inv[i][j]);
 }
 
 /* >> scene growth */
@@ -389,10 +446,60 @@ static int elr__const_tex(elr__parser *P, elr_v3 v) {
   t->kind = ELR_TEX_CONST; t->value = v; t->su = t->sv = 1.f;
   return s->ntex - 1;
 }
-static int elr__lookup_named(elr__named *arr, int n, const char *name) {
-  int i;
-  for (i = n - 1; i >= 0; i--) if (!strcmp(arr[i].name, name)) return i;
-  return -1;
+static unsigned elr__hash(const char *s) {
+  unsigned h = 2166136261u;
+  while (*s) { h ^= (unsigned char)*s++; h *= 16777619u; }
+  return h;
+}
+/* the slot of name (*found) or the slot to put it in */
+static int elr__hslot(const elr__hmap *h, const elr__named *arr, const char *name, int *found) {
+  int i = (int)(elr__hash(name) & (unsigned)(h->cap - 1)), free_slot = -1;
+  *found = 0;
+  for (;;) {
+    int v = h->s[i];
+    if (v == -1) return free_slot >= 0 ? free_slot : i;
+    if (v == -2) { if (free_slot < 0) free_slot = i; }
+    else if (!strcmp(arr[v].name, name)) { *found = 1; return i; }
+    i = (i + 1) & (h->cap - 1);
+  }
+}
+/* The entry of name among the first n (the latest one), or -1. */
+static int elr__name_find(const elr__hmap *h, const elr__named *arr, int n, const char *name) {
+  int found, k;
+  if (h->cap == 0) return -1;
+  k = h->s[elr__hslot(h, arr, name, &found)];
+  if (!found) return -1;
+  while (k >= n) k = arr[k].prev;
+  return k;
+}
+/* Index entry k (its name set; the latest entry of the list). */
+static void elr__name_add(elr__parser *P, elr__hmap *h, elr__named *arr, int k) {
+  int found, slot;
+  if ((h->used + 1) * 2 > h->cap) { /* grow (and drop removed slots) */
+    elr__hmap g;
+    int i;
+    g.cap = h->cap ? h->cap * 2 : 64;
+    g.used = 0;
+    g.s = (int *)malloc(sizeof(int) * (size_t)g.cap);
+    if (!g.s) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+    for (i = 0; i < g.cap; i++) g.s[i] = -1;
+    for (i = 0; i < h->cap; i++)
+      if (h->s[i] >= 0) { g.s[elr__hslot(&g, arr, arr[h->s[i]].name, &found)] = h->s[i]; g.used++; }
+    free(h->s);
+    *h = g;
+  }
+  slot = elr__hslot(h, arr, arr[k].name, &found);
+  arr[k].prev = found ? h->s[slot] : -1;
+  if (!found && h->s[slot] == -1) h->used++;
+  h->s[slot] = k;
+}
+/* Forget entries [to, from) (names of closed scopes), the latest first. */
+static void elr__name_drop(elr__hmap *h, elr__named *arr, int from, int to) {
+  int k, found, slot;
+  for (k = from - 1; k >= to; k--) {
+    slot = elr__hslot(h, arr, arr[k].name, &found);
+    if (found && h->s[slot] == k) h->s[slot] = arr[k].prev >= 0 ? arr[k].prev : -2;
+  }
 }
 /* A texture-valued parameter ("rgb Kd", "float roughness" or "texture Kd" naming a texture). */
 static int elr__ptex(elr__parser *P, const char *name, elr_v3 def, int is_float) {
@@ -400,13 +507,13 @@ static int elr__ptex(elr__parser *P, const char *name, elr_v3 def, int is_float)
   if (p && !strcmp(p->type, "texture")) {
     int k;
     elr__findt(P, name, "texture", 1);
-    k = elr__lookup_named(P->texnames, P->gs.ntex_scope, p->str[0]);
+    k = elr__name_find(&P->htex, P->texnames, P->gs.ntex_scope, p->str[0]);
     if (k < 0) {
-      ELR_WARN(P, p->line, "%s: texture \"%s\" is not defined; using the default %s", P->dir_name, p->str[0], name);
+      elr_warn(P->s, p->file, p->line, "%s: texture \"%s\" is not defined; using the default %s", P->dir_name, p->str[0], name);
       return elr__const_tex(P, def);
     }
     if (P->texnames[k].is_float != is_float)
-      ELR_WARN(P, p->line, "%s: texture \"%s\" is a %s texture used for %s parameter \"%s\"", P->dir_name, p->str[0],
+      elr_warn(P->s, p->file, p->line, "%s: texture \"%s\" is a %s texture used for %s parameter \"%s\"", P->dir_name, p->str[0],
                P->texnames[k].is_float ? "float" : "spectrum", is_float ? "a float" : "a spectrum", name);
     return P->texnames[k].index;
   }
@@ -430,15 +537,18 @@ static char *elr__resolve(elr__parser *P, const char *name) {
 static void elr__load_image(elr__parser *P, const char *file, int line, el_image *img) {
   char e[512];
   double t0 = elr_now();
-  if (el_image_load(file, img, e, sizeof e) != 0) elr__fail(P, line, "%s: cannot read image: %s", P->dir_name, e);
+  if (el_image_load(file, img, e, sizeof e) != 0) elr__failf(P, P->dir_file, line, "%s: cannot read image: %s", P->dir_name, e);
   P->s->t_images += elr_now() - t0;
   if (img->width <= 0 || img->height <= 0 || img->width > 65536 || img->height > 65536) {
+    int w = img->width, h = img->height;
     el_image_free(img);
-    elr__fail(P, line, "%s: image \"%s\" has an absurd size", P->dir_name, file);
+    elr__failf(P, P->dir_file, line, "%s: image \"%s\" has an absurd size (%d x %d; 1 to 65536 per side)", P->dir_name, file, w, h);
   }
 }
-/* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. */
-static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale) {
+/* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. A NaN or
+ * infinite texel (or one that overflows when scaled) is an error naming the file and the texel: it used
+ * to become 0 silently. */
+static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale, const char *file) {
   size_t n = (size_t)img->width * (size_t)img->height, i;
   float *rgb = (float *)malloc(n * 3 * sizeof(float));
   if (!rgb) { el_image_free(img); snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
@@ -449,7 +559,15 @@ static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale)
       float v = img->pixels[i * (size_t)img->channels + (size_t)src];
       if (img->is_8bit && gamma)
         v = v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
-      if (!isfinite(v)) v = 0.f;
+      if (!isfinite(v) || !isfinite(v * scale)) {
+        int x = (int)(i % (size_t)img->width), y = (int)(i / (size_t)img->width);
+        float bad = v;
+        free(rgb);
+        el_image_free(img);
+        if (!isfinite(bad))
+          elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) is %s", P->dir_name, file, x, y, bad != bad ? "NaN" : "infinite");
+        elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) times scale %g overflows", P->dir_name, file, x, y, scale);
+      }
       rgb[i * 3 + (size_t)c] = v * scale;
     }
   }
@@ -461,17 +579,20 @@ static void elr__camera(elr__parser *P, const char *type) {
   elr_scene_desc *d = &P->s->d;
   elr__param *sw;
   if (strcmp(type, "perspective") != 0) {
-    ELR_WARN(P, P->dir_line, "Camera \"%s\" is not supported; using \"perspective\"", type);
+    elr_warn(P->s, P->dir_file, P->dir_line, "Camera \"%s\" is not supported; using \"perspective\"", type);
   }
-  d->fov = (float)elr__pfloat(P, "fov", 90.0);
+  double fov = elr__pfloat(P, "fov", 90.0), fa;
   if (elr__find(P, "halffov")) { /* pbrt-v3: halffov > 0 overrides fov */
     double hf = elr__pfloat(P, "halffov", -1.0);
-    if (hf > 0) d->fov = (float)(2.0 * hf);
+    if (hf > 0) fov = 2.0 * hf;
   }
-  elr__check_range(P, "fov", d->fov, 1e-4, 179.99);
+  /* the ranges are checked on the values as written (as floats, 179.99 is above 179.99) */
+  elr__check_range(P, "fov", fov, 1e-4, 179.99);
+  d->fov = (float)fov;
   if (elr__find(P, "frameaspectratio")) {
-    d->frameaspect = (float)elr__pfloat(P, "frameaspectratio", 1.0);
-    elr__check_range(P, "frameaspectratio", d->frameaspect, 1e-6, 1e6);
+    fa = elr__pfloat(P, "frameaspectratio", 1.0);
+    elr__check_range(P, "frameaspectratio", fa, 1e-6, 1e6);
+    d->frameaspect = (float)fa;
     d->has_frameaspect = 1;
   }
   sw = elr__findt(P, "screenwindow", "float", 4);
@@ -479,25 +600,27 @@ static void elr__camera(elr__parser *P, const char *type) {
     int i;
     for (i = 0; i < 4; i++) d->screen[i] = (float)sw->num[i];
     if (!(d->screen[1] > d->screen[0]) || !(d->screen[3] > d->screen[2]))
-      elr__fail(P, sw->line, "Camera: screenwindow must be [xmin xmax ymin ymax] with xmin < xmax and ymin < ymax");
+      elr__failf(P, sw->file, sw->line, "Camera: screenwindow must be [xmin xmax ymin ymax] with xmin < xmax and ymin < ymax");
     d->has_screen = 1;
   }
   if (elr__find(P, "lensradius")) {
     double lr = elr__pfloat(P, "lensradius", 0.0);
-    if (lr != 0.0) ELR_WARN(P, P->dir_line, "Camera: \"lensradius\" %g ignored (pinhole camera only)", lr);
+    if (lr != 0.0) elr_warn(P->s, P->dir_file, P->dir_line, "Camera: \"lensradius\" %g ignored (pinhole camera only)", lr);
   }
   if (elr__find(P, "focaldistance")) elr__pfloat(P, "focaldistance", 1e6);
   elr_xform_invert(&d->cam2world, &P->ctm);
+  elr__check_point(P, P->dir_line, elr_xpoint(&d->cam2world, elr_v(0, 0, 0)), "the camera position");
   P->seen_camera = 1;
   /* named coordinate system "camera" */
   {
-    int k = elr__lookup_named(P->ctx, P->nctx, "camera");
+    int k = elr__name_find(&P->hctx, P->ctx, P->nctx, "camera");
     if (k < 0) {
       ELR_PUSH(P, P->ctx, P->nctx, P->capctx, elr__named);
       P->cs_xf = (elr_xform *)realloc(P->cs_xf, sizeof(elr_xform) * (size_t)P->capctx);
       if (!P->cs_xf) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
       k = P->nctx - 1;
       P->ctx[k].name = elr__strdup(P, "camera", 6);
+      elr__name_add(P, &P->hctx, P->ctx, k);
     }
     P->cs_xf[k] = d->cam2world;
   }
@@ -507,15 +630,15 @@ static void elr__film(elr__parser *P, const char *type) {
   elr_scene_desc *d = &P->s->d;
   elr__param *cw;
   const char *fn;
-  if (strcmp(type, "image") != 0) ELR_WARN(P, P->dir_line, "Film \"%s\" is not supported; using \"image\"", type);
+  if (strcmp(type, "image") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Film \"%s\" is not supported; using \"image\"", type);
   d->xres = elr__pint(P, "xresolution", 1280);
   d->yres = elr__pint(P, "yresolution", 720);
   elr__check_range(P, "xresolution", d->xres, 1, 32768);
   elr__check_range(P, "yresolution", d->yres, 1, 32768);
   if ((double)d->xres * (double)d->yres > 1e8)
-    elr__fail(P, P->dir_line, "Film: %d x %d is more than 1e8 pixels", d->xres, d->yres);
+    elr__failf(P, P->dir_file, P->dir_line, "Film: %d x %d is more than 1e8 pixels", d->xres, d->yres);
   fn = elr__pstring(P, "filename", "pbrt.exr");
-  if (strlen(fn) >= sizeof d->filename) elr__fail(P, P->dir_line, "Film: filename too long");
+  if (strlen(fn) >= sizeof d->filename) elr__failf(P, P->dir_file, P->dir_line, "Film: filename too long");
   snprintf(d->filename, sizeof d->filename, "%s", fn);
   cw = elr__findt(P, "cropwindow", "float", 4);
   if (cw) {
@@ -523,17 +646,22 @@ static void elr__film(elr__parser *P, const char *type) {
     for (i = 0; i < 4; i++) {
       d->crop[i] = (float)cw->num[i];
       if (!(d->crop[i] >= 0.f && d->crop[i] <= 1.f))
-        elr__fail(P, cw->line, "Film: cropwindow values must lie in [0, 1]");
+        elr__failf(P, cw->file, cw->line, "Film: cropwindow values must lie in [0, 1]");
     }
     { /* pbrt-v3 sorts each pair */
       float t;
       if (d->crop[0] > d->crop[1]) { t = d->crop[0]; d->crop[0] = d->crop[1]; d->crop[1] = t; }
       if (d->crop[2] > d->crop[3]) { t = d->crop[2]; d->crop[2] = d->crop[3]; d->crop[3] = t; }
     }
+    /* the pixel bounds as elr_render computes them (pbrt-v3: ceil of crop times resolution) */
+    if (ceil(d->xres * (double)d->crop[1]) <= ceil(d->xres * (double)d->crop[0]) ||
+        ceil(d->yres * (double)d->crop[3]) <= ceil(d->yres * (double)d->crop[2]))
+      elr__failf(P, cw->file, cw->line, "Film: cropwindow [ %g %g %g %g ] covers no pixel of the %d x %d film", d->crop[0], d->crop[1], d->crop[2],
+                d->crop[3], d->xres, d->yres);
   }
   if (elr__find(P, "scale")) {
     double sc = elr__pfloat(P, "scale", 1.0);
-    if (sc != 1.0) ELR_WARN(P, P->dir_line, "Film: \"scale\" %g ignored", sc);
+    if (sc != 1.0) elr_warn(P->s, P->dir_file, P->dir_line, "Film: \"scale\" %g ignored", sc);
   }
   if (elr__find(P, "diagonal")) elr__pfloat(P, "diagonal", 35.0);
 }
@@ -550,9 +678,13 @@ static void elr__filter(elr__parser *P, const char *type) {
     f->b = (float)elr__pfloat(P, "B", 1.0 / 3.0); f->c = (float)elr__pfloat(P, "C", 1.0 / 3.0);
   } else if (!strcmp(type, "sinc")) { f->type = ELR_PF_SINC; defw = 4.f; f->tau = (float)elr__pfloat(P, "tau", 3.0); }
   else {
-    ELR_WARN(P, P->dir_line, "PixelFilter \"%s\" is not supported; using \"box\"", type);
+    elr_warn(P->s, P->dir_file, P->dir_line, "PixelFilter \"%s\" is not supported; using \"box\"", type);
     f->type = ELR_PF_BOX; defw = 0.5f;
   }
+  /* parameters whose absurd values make every filter weight 0 or overflow (a silently black image) */
+  if (f->type == ELR_PF_GAUSSIAN) elr__check_range(P, "alpha", f->alpha, 1e-4, 1e3);
+  if (f->type == ELR_PF_MITCHELL) { elr__check_range(P, "B", f->b, -100, 100); elr__check_range(P, "C", f->c, -100, 100); }
+  if (f->type == ELR_PF_SINC) elr__check_range(P, "tau", f->tau, 1e-2, 1e3);
   f->xw = (float)elr__pfloat(P, "xwidth", defw);
   f->yw = (float)elr__pfloat(P, "ywidth", defw);
   elr__check_range(P, "xwidth", f->xw, 1e-3, 16);
@@ -574,13 +706,17 @@ static void elr__sampler(elr__parser *P, const char *type) {
     elr__check_range(P, "ysamples", d->ys, 1, 4096);
     elr__check_range(P, "dimensions", d->dims, 0, 64);
     d->spp = d->xs * d->ys;
+    /* every render thread holds xsamples * ysamples * (dimensions + 1) 1D and 2D samples (12 bytes) */
+    if ((double)d->spp * (double)(d->dims + 1) > (double)(1 << 24))
+      elr__failf(P, P->dir_file, P->dir_line, "Sampler \"stratified\": %d x %d samples in %d dimensions need %.0f MiB per thread (at most 16777216 "
+                "samples times dimensions + 1)", d->xs, d->ys, d->dims, (double)d->spp * (d->dims + 1) * 12.0 / 1048576.0);
   } else {
     if (strcmp(type, "halton") != 0)
-      ELR_WARN(P, P->dir_line, "Sampler \"%s\" is not supported; using \"halton\"", type);
+      elr_warn(P->s, P->dir_file, P->dir_line, "Sampler \"%s\" is not supported; using \"halton\"", type);
     d->sampler = ELR_SAMPLER_HALTON;
     d->spp = elr__pint(P, "pixelsamples", 16);
     if (elr__find(P, "samplepixelcenter") && elr__pbool(P, "samplepixelcenter", 0))
-      ELR_WARN(P, P->dir_line, "Sampler: \"samplepixelcenter\" ignored");
+      elr_warn(P->s, P->dir_file, P->dir_line, "Sampler: \"samplepixelcenter\" ignored");
   }
   elr__check_range(P, "pixelsamples", d->spp, 1, 1 << 24);
 }
@@ -592,15 +728,15 @@ static void elr__integrator(elr__parser *P, const char *type) {
     d->integrator_path = 0;
     {
       const char *st = elr__pstring(P, "strategy", "all");
-      if (strcmp(st, "all") != 0) ELR_WARN(P, P->dir_line, "Integrator: strategy \"%s\" ignored (\"all\" is used)", st);
+      if (strcmp(st, "all") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Integrator: strategy \"%s\" ignored (\"all\" is used)", st);
     }
   } else {
-    if (strcmp(type, "path") != 0) ELR_WARN(P, P->dir_line, "Integrator \"%s\" is not supported; using \"path\"", type);
+    if (strcmp(type, "path") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Integrator \"%s\" is not supported; using \"path\"", type);
     d->integrator_path = 1;
     d->rrthreshold = (float)elr__pfloat(P, "rrthreshold", 1.0);
     if (elr__find(P, "lightsamplestrategy")) {
       const char *st = elr__pstring(P, "lightsamplestrategy", "spatial");
-      ELR_WARN(P, P->dir_line, "Integrator: lightsamplestrategy \"%s\" ignored (every light is sampled at every vertex)", st);
+      elr_warn(P->s, P->dir_file, P->dir_line, "Integrator: lightsamplestrategy \"%s\" ignored (every light is sampled at every vertex)", st);
     }
   }
   d->maxdepth = elr__pint(P, "maxdepth", 5);
@@ -610,8 +746,8 @@ static void elr__integrator(elr__parser *P, const char *type) {
   if (!strcmp(ls, "mis")) d->light_sampling = ELR_LS_MIS;
   else if (!strcmp(ls, "light")) d->light_sampling = ELR_LS_LIGHT;
   else if (!strcmp(ls, "bsdf")) d->light_sampling = ELR_LS_BSDF;
-  else elr__fail(P, elr__find(P, "lightsampling")->line, "Integrator: lightsampling must be \"mis\", \"light\" or \"bsdf\"");
-  if (elr__find(P, "pixelbounds")) ELR_WARN(P, P->dir_line, "Integrator: \"pixelbounds\" ignored");
+  else elr__failf(P, elr__find(P, "lightsampling")->file, elr__find(P, "lightsampling")->line, "Integrator: lightsampling must be \"mis\", \"light\" or \"bsdf\"");
+  if (elr__find(P, "pixelbounds")) elr_warn(P->s, P->dir_file, P->dir_line, "Integrator: \"pixelbounds\" ignored");
   if (elr__find(P, "pixelbounds")) elr__find(P, "pixelbounds")->used = 1;
 }
 
@@ -644,10 +780,14 @@ static void elr__light(elr__parser *P, const char *type) {
       if (!strcmp(im, "cellaverage")) l->importance = ELR_IMPORTANCE_CELL_AVERAGE;
       else if (!strcmp(im, "pbrt-v3")) l->importance = ELR_IMPORTANCE_PBRT_V3;
       else if (!strcmp(im, "texel")) l->importance = ELR_IMPORTANCE_TEXEL;
-      else elr__fail(P, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\" or \"texel\"");
+      else elr__failf(P, elr__find(P, "importance")->file, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\" or \"texel\"");
     }
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
+    for (i = 0; i < 3; i++) /* else envlight reports "texel (0, 0) is NaN, infinite or negative" */
+      if (!(scale3[i] >= 0.f && scale3[i] <= FLT_MAX))
+        elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": L times scale (%g %g %g) must be finite and not negative", scale3[0],
+                  scale3[1], scale3[2]);
     /* the light-to-world rotation: the CTM's upper 3x3 (pbrt-v3 allows only rotations here) */
     /* pbrt-v3 normalises WorldToLight(d): a uniform scale in the CTM does not change the mapping, so
      * divide it out (envlight takes a rotation or a reflection) */
@@ -667,7 +807,7 @@ static void elr__light(elr__parser *P, const char *type) {
       el_image img;
       char *path = elr__resolve(P, map);
       elr__load_image(P, path, P->dir_line, &img);
-      rgb = elr__to_rgb(P, &img, 0, 1.f);
+      rgb = elr__to_rgb(P, &img, 0, 1.f, path);
       w = img.width; h = img.height;
       el_image_free(&img);
       l->has_map = 1;
@@ -678,7 +818,7 @@ static void elr__light(elr__parser *P, const char *type) {
       double t0 = elr_now();
       int r = elr_env_create(rgb, w, h, scale3, m3, l->compensated, l->importance, &l->env, e, sizeof e);
       free(rgb);
-      if (r != 0) elr__fail(P, P->dir_line, "LightSource \"infinite\": %s", e);
+      if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
       s->t_images += elr_now() - t0;
     }
   } else if (!strcmp(type, "point")) {
@@ -686,7 +826,10 @@ static void elr__light(elr__parser *P, const char *type) {
     elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
     l->kind = ELR_LIGHT_POINT;
     l->L = elr_vmul(I, sc);
+    if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
+      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"point\": I times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
     l->pos = elr_xpoint(&P->ctm, from);
+    elr__check_point(P, P->dir_line, l->pos, "the light's position");
     l->nsamples = 1;
   } else if (!strcmp(type, "distant")) {
     elr_v3 L = elr__prgb(P, "L", elr_v(1, 1, 1));
@@ -694,10 +837,12 @@ static void elr__light(elr__parser *P, const char *type) {
     elr_v3 to = elr__ppoint(P, "to", "point3", elr_v(0, 0, 1));
     l->kind = ELR_LIGHT_DISTANT;
     l->L = elr_vmul(L, sc);
+    if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
+      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"distant\": L times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
     l->dir = elr_norm(elr_xvector(&P->ctm, elr_sub(from, to)));
     l->nsamples = 1;
   } else {
-    ELR_WARN(P, P->dir_line, "LightSource \"%s\" is not supported and is ignored", type);
+    elr_warn(P->s, P->dir_file, P->dir_line, "LightSource \"%s\" is not supported and is ignored", type);
     s->nlight--;
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
   }
@@ -709,9 +854,10 @@ static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
   for (i = 0; i < m->nvert; i++) {
     elr_v3 p = elr_xpoint(&P->ctm, elr_v(m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]));
     m->p[3 * i] = p.x; m->p[3 * i + 1] = p.y; m->p[3 * i + 2] = p.z;
-    if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z)) {
+    if (!elr__coord_ok(p)) {
       free(m->idx); free(m->p); free(m->n); free(m->uv);
-      elr__fail(P, P->dir_line, "Shape: vertex %d is not finite after the transformation", i);
+      elr__failf(P, P->dir_file, P->dir_line, "Shape: vertex %d (%g, %g, %g) is not finite or outside |x| <= %g after the transformation", i,
+                p.x, p.y, p.z, ELR_MAX_COORD);
     }
     if (m->n) {
       elr_v3 n = elr_norm(elr_xnormal(&P->ctm, elr_v(m->n[3 * i], m->n[3 * i + 1], m->n[3 * i + 2])));
@@ -732,7 +878,20 @@ static void elr__shape(elr__parser *P, const char *type) {
     if (elr__find(P, "zmin") || elr__find(P, "zmax") || elr__find(P, "phimax")) {
       double zmin = elr__pfloat(P, "zmin", -r), zmax = elr__pfloat(P, "zmax", r), pm = elr__pfloat(P, "phimax", 360.);
       if (zmin > -r || zmax < r || pm < 360.)
-        ELR_WARN(P, P->dir_line, "Shape \"sphere\": zmin/zmax/phimax ignored (only full spheres)");
+        elr_warn(P->s, P->dir_file, P->dir_line, "Shape \"sphere\": zmin/zmax/phimax ignored (only full spheres)");
+    }
+    { /* the sphere's world-space bounds must be traceable */
+      elr_v3 c = elr_xpoint(&P->ctm, elr_v(0, 0, 0));
+      double sc = 0;
+      int i, j;
+      for (j = 0; j < 3; j++) {
+        double col = 0;
+        for (i = 0; i < 3; i++) col += P->ctm.m[i][j] * P->ctm.m[i][j];
+        if (sqrt(col) > sc) sc = sqrt(col);
+      }
+      elr__check_point(P, P->dir_line, c, "the sphere's centre");
+      if (!(r * sc <= ELR_MAX_COORD))
+        elr__failf(P, P->dir_file, P->dir_line, "Shape \"sphere\": the radius in world space (%g) is outside |x| <= %g", r * sc, ELR_MAX_COORD);
     }
     ELR_PUSH(P, s->sph, s->nsph, s->capsph, elr_sphere);
     sp = &s->sph[s->nsph - 1];
@@ -749,27 +908,27 @@ static void elr__shape(elr__parser *P, const char *type) {
       elr__param *q = elr__find(P, uvn);
       puv = elr__findt(P, uvn, !strcmp(q->type, "point2") ? "point2" : "float", -2);
     }
-    if (elr__find(P, "S")) ELR_WARN(P, P->dir_line, "Shape \"trianglemesh\": \"S\" (tangents) ignored"), elr__find(P, "S")->used = 1;
-    if (!pp) elr__fail(P, P->dir_line, "Shape \"trianglemesh\": \"point3 P\" is required");
+    if (elr__find(P, "S")) elr_warn(P->s, P->dir_file, P->dir_line, "Shape \"trianglemesh\": \"S\" (tangents) ignored"), elr__find(P, "S")->used = 1;
+    if (!pp) elr__failf(P, P->dir_file, P->dir_line, "Shape \"trianglemesh\": \"point3 P\" is required");
     if (!pi) {
-      if (pp->n != 9) elr__fail(P, P->dir_line, "Shape \"trianglemesh\": \"integer indices\" is required");
+      if (pp->n != 9) elr__failf(P, P->dir_file, P->dir_line, "Shape \"trianglemesh\": \"integer indices\" is required");
     }
     memset(&m, 0, sizeof m);
     m.nvert = pp->n / 3;
     m.ntri = pi ? pi->n / 3 : 1;
-    if (m.ntri == 0) elr__fail(P, P->dir_line, "Shape \"trianglemesh\": no triangles");
-    if (pn && pn->n != pp->n) elr__fail(P, pn->line, "Shape \"trianglemesh\": \"N\" must have as many values as \"P\"");
-    if (puv && puv->n / 2 != m.nvert) elr__fail(P, puv->line, "Shape \"trianglemesh\": \"%s\" must have 2 values per vertex", uvn);
+    if (m.ntri == 0) elr__failf(P, P->dir_file, P->dir_line, "Shape \"trianglemesh\": no triangles");
+    if (pn && pn->n != pp->n) elr__failf(P, pn->file, pn->line, "Shape \"trianglemesh\": \"N\" must have as many values as \"P\"");
+    if (puv && puv->n / 2 != m.nvert) elr__failf(P, puv->file, puv->line, "Shape \"trianglemesh\": \"%s\" must have 2 values per vertex", uvn);
     for (i = 0; pi && i < pi->n; i++)
       if (pi->num[i] < 0 || pi->num[i] >= m.nvert)
-        elr__fail(P, pi->line, "Shape \"trianglemesh\": index %g out of range [0, %d)", pi->num[i], m.nvert);
+        elr__failf(P, pi->file, pi->line, "Shape \"trianglemesh\": index %g out of range [0, %d)", pi->num[i], m.nvert);
     m.idx = (unsigned *)malloc(sizeof(unsigned) * 3 * (size_t)m.ntri);
     m.p = (float *)malloc(sizeof(float) * 3 * (size_t)m.nvert);
     m.n = pn ? (float *)malloc(sizeof(float) * 3 * (size_t)m.nvert) : NULL;
     m.uv = puv ? (float *)malloc(sizeof(float) * 2 * (size_t)m.nvert) : NULL;
     if (!m.idx || !m.p || (pn && !m.n) || (puv && !m.uv)) {
       free(m.idx); free(m.p); free(m.n); free(m.uv);
-      elr__fail(P, P->dir_line, "out of memory");
+      elr__failf(P, P->dir_file, P->dir_line, "out of memory");
     }
     for (i = 0; i < 3 * m.ntri; i++) m.idx[i] = pi ? (unsigned)pi->num[i] : (unsigned)i;
     for (i = 0; i < 3 * m.nvert; i++) m.p[i] = (float)pp->num[i];
@@ -782,17 +941,17 @@ static void elr__shape(elr__parser *P, const char *type) {
     const char *fn = elr__pstring(P, "filename", "");
     char *path;
     double t0 = elr_now();
-    if (!fn[0]) elr__fail(P, P->dir_line, "Shape \"plymesh\": \"string filename\" is required");
+    if (!fn[0]) elr__failf(P, P->dir_file, P->dir_line, "Shape \"plymesh\": \"string filename\" is required");
     path = elr__resolve(P, fn);
     memset(&m, 0, sizeof m);
-    if (elr_ply_load(path, &m, e, sizeof e) != 0) elr__fail(P, P->dir_line, "Shape \"plymesh\": %s", e);
+    if (elr_ply_load(path, &m, e, sizeof e) != 0) elr__failf(P, P->dir_file, P->dir_line, "Shape \"plymesh\": %s", e);
     P->s->t_images += elr_now() - t0;
     elr__add_mesh(P, &m);
   } else {
-    ELR_WARN(P, P->dir_line, "Shape \"%s\" is not supported and is ignored", type);
+    elr_warn(P->s, P->dir_file, P->dir_line, "Shape \"%s\" is not supported and is ignored", type);
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
   }
-  if (elr__find(P, "alpha")) { ELR_WARN(P, P->dir_line, "Shape: \"alpha\" ignored"); elr__find(P, "alpha")->used = 1; }
+  if (elr__find(P, "alpha")) { elr_warn(P->s, P->dir_file, P->dir_line, "Shape: \"alpha\" ignored"); elr__find(P, "alpha")->used = 1; }
 }
 
 static int elr__make_material(elr__parser *P, const char *type) {
@@ -804,9 +963,9 @@ static int elr__make_material(elr__parser *P, const char *type) {
   else if (!strcmp(type, "plastic")) kind = ELR_MAT_PLASTIC;
   else {
     if (!strcmp(type, "") || !strcmp(type, "none")) {
-      ELR_WARN(P, P->dir_line, "Material \"%s\" (no surface) is not supported; using \"matte\"", type);
+      elr_warn(P->s, P->dir_file, P->dir_line, "Material \"%s\" (no surface) is not supported; using \"matte\"", type);
     } else {
-      ELR_WARN(P, P->dir_line, "Material \"%s\" is not supported; using \"matte\" with its defaults", type);
+      elr_warn(P->s, P->dir_file, P->dir_line, "Material \"%s\" is not supported; using \"matte\" with its defaults", type);
     }
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
     kind = -1;
@@ -821,7 +980,7 @@ static int elr__make_material(elr__parser *P, const char *type) {
     if (elr__find(P, "sigma")) {
       elr__param *sg = elr__find(P, "sigma");
       if (strcmp(sg->type, "float") == 0 && sg->n == 1 && sg->num[0] == 0.0) sg->used = 1;
-      else { sg->used = 1; ELR_WARN(P, sg->line, "Material \"matte\": \"sigma\" ignored (only sigma 0, Lambertian)"); }
+      else { sg->used = 1; elr_warn(P->s, sg->file, sg->line, "Material \"matte\": \"sigma\" ignored (only sigma 0, Lambertian)"); }
     }
   } else if (kind == ELR_MAT_MIRROR) {
     m->kr = elr__ptex(P, "Kr", elr_v(.9f, .9f, .9f), 0);
@@ -831,8 +990,20 @@ static int elr__make_material(elr__parser *P, const char *type) {
     m->rough = elr__ptex(P, "roughness", elr_v(.1f, .1f, .1f), 1);
     m->remap = elr__pbool(P, "remaproughness", 1);
   }
-  if (elr__find(P, "bumpmap")) { ELR_WARN(P, P->dir_line, "Material: \"bumpmap\" ignored"); elr__find(P, "bumpmap")->used = 1; }
+  if (elr__find(P, "bumpmap")) { elr_warn(P->s, P->dir_file, P->dir_line, "Material: \"bumpmap\" ignored"); elr__find(P, "bumpmap")->used = 1; }
   return s->nmat - 1;
+}
+
+/* How many textures one evaluation of texture ti may look up: a checkerboard evaluates both of its
+ * sub-textures where its filter straddles an edge (shading.c recurses). Every texture already made has a
+ * cost of at most ELR_MAX_TEX_COST, so this recursion visits at most that many leaves. */
+#define ELR_MAX_TEX_COST 64
+static int elr__tex_cost(const elr_scene *s, int ti) {
+  const elr_texture *t;
+  if (ti < 0 || ti >= s->ntex) return 1;
+  t = &s->tex[ti];
+  if (t->kind != ELR_TEX_CHECKER) return 1;
+  return elr__tex_cost(s, t->tex1) + elr__tex_cost(s, t->tex2);
 }
 
 static void elr__texture(elr__parser *P, const char *name, const char *vtype, const char *cls) {
@@ -841,11 +1012,11 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
   int is_float = !strcmp(vtype, "float");
   const char *mapping;
   if (!is_float && strcmp(vtype, "spectrum") && strcmp(vtype, "color") && strcmp(vtype, "rgb"))
-    elr__fail(P, P->dir_line, "Texture \"%s\": type \"%s\" must be \"float\" or \"spectrum\"", name, vtype);
+    elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": type \"%s\" must be \"float\" or \"spectrum\"", name, vtype);
   memset(&t, 0, sizeof t);
   t.is_float = is_float;
   mapping = elr__pstring(P, "mapping", "uv");
-  if (strcmp(mapping, "uv") != 0) ELR_WARN(P, P->dir_line, "Texture \"%s\": mapping \"%s\" not supported; using \"uv\"", name, mapping);
+  if (strcmp(mapping, "uv") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Texture \"%s\": mapping \"%s\" not supported; using \"uv\"", name, mapping);
   t.su = (float)elr__pfloat(P, "uscale", 1.0); t.sv = (float)elr__pfloat(P, "vscale", 1.0);
   t.du = (float)elr__pfloat(P, "udelta", 0.0); t.dv = (float)elr__pfloat(P, "vdelta", 0.0);
   if (!strcmp(cls, "constant")) {
@@ -855,13 +1026,20 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
   } else if (!strcmp(cls, "checkerboard")) {
     int dim = elr__pint(P, "dimension", 2);
     const char *aa = elr__pstring(P, "aamode", "closedform");
-    if (dim != 2) elr__fail(P, P->dir_line, "Texture \"%s\": checkerboard dimension %d not supported (only 2)", name, dim);
+    if (dim != 2) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": checkerboard dimension %d not supported (only 2)", name, dim);
     t.kind = ELR_TEX_CHECKER;
     t.tex1 = elr__ptex(P, "tex1", elr_v(1, 1, 1), is_float);
     t.tex2 = elr__ptex(P, "tex2", elr_v(0, 0, 0), is_float);
+    { /* chained checkerboards double the work per level (2^40 lookups from a 40-line file) and recurse
+       * once per level on a render thread's stack (200000 levels overflowed it) */
+      int cost = elr__tex_cost(s, t.tex1) + elr__tex_cost(s, t.tex2);
+      if (cost > ELR_MAX_TEX_COST)
+        elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": checkerboards nested too deeply (%d texture lookups per evaluation, at most %d)",
+                  name, cost, ELR_MAX_TEX_COST);
+    }
     if (!strcmp(aa, "closedform")) t.aa_closedform = 1;
     else if (!strcmp(aa, "none")) t.aa_closedform = 0;
-    else elr__fail(P, P->dir_line, "Texture \"%s\": aamode must be \"closedform\" or \"none\"", name);
+    else elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": aamode must be \"closedform\" or \"none\"", name);
   } else if (!strcmp(cls, "imagemap")) {
     const char *fn = elr__pstring(P, "filename", "");
     const char *wrap = elr__pstring(P, "wrap", "repeat");
@@ -878,20 +1056,20 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
       if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = ELR_FILTER_EWA;
       else if (!strcmp(f, "trilinear")) filter = ELR_FILTER_TRILINEAR;
       else if (!strcmp(f, "bilinear")) filter = ELR_FILTER_BILINEAR;
-      else elr__fail(P, elr__find(P, "filter")->line, "Texture \"%s\": filter must be \"bilinear\", \"trilinear\" or \"ewa\"", name);
+      else elr__failf(P, elr__find(P, "filter")->file, elr__find(P, "filter")->line, "Texture \"%s\": filter must be \"bilinear\", \"trilinear\" or \"ewa\"", name);
     } else if (elr__find(P, "trilinear")) { /* pbrt-v3's spelling */
       filter = elr__pbool(P, "trilinear", 0) ? ELR_FILTER_TRILINEAR : ELR_FILTER_EWA;
     }
     if (!strcmp(wrap, "repeat")) wr = ELR_WRAP_REPEAT;
     else if (!strcmp(wrap, "black")) wr = ELR_WRAP_BLACK;
     else if (!strcmp(wrap, "clamp")) wr = ELR_WRAP_CLAMP;
-    else elr__fail(P, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
-    elr__check_range(P, "maxanisotropy", maxan, 1.0, 1e6);
-    if (!fn[0]) elr__fail(P, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
+    else elr__failf(P, elr__find(P, "wrap")->file, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
+    elr__check_range(P, "maxanisotropy", maxan, 1.0, 1024.0); /* mipmap.h's limit */
+    if (!fn[0]) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
     gamma = elr__pbool(P, "gamma", (fl > 4 && (!strcmp(fn + fl - 4, ".png") || !strcmp(fn + fl - 4, ".tga"))));
     path = elr__resolve(P, fn);
     elr__load_image(P, path, P->dir_line, &img);
-    rgb = elr__to_rgb(P, &img, gamma, scale);
+    rgb = elr__to_rgb(P, &img, gamma, scale, path);
     if (is_float) { /* pbrt-v3 converts to float by luminance */
       size_t i, n = (size_t)img.width * (size_t)img.height;
       for (i = 0; i < n; i++) {
@@ -917,10 +1095,10 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
       s->t_images += elr_now() - t0;
       s->bytes_textures += (size_t)img.width * (size_t)img.height * 3 * sizeof(float);
       el_image_free(&img);
-      if (r != 0) elr__fail(P, P->dir_line, "Texture \"%s\": %s", name, e);
+      if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": %s", name, e);
     }
   } else {
-    ELR_WARN(P, P->dir_line, "Texture class \"%s\" is not supported; \"%s\" is a constant %s", cls, name,
+    elr_warn(P->s, P->dir_file, P->dir_line, "Texture class \"%s\" is not supported; \"%s\" is a constant %s", cls, name,
              is_float ? "1" : "(1,1,1)");
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
     t.kind = ELR_TEX_CONST; t.value = elr_v(1, 1, 1);
@@ -928,9 +1106,13 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
   ELR_PUSH(P, s->tex, s->ntex, s->captex, elr_texture);
   s->tex[s->ntex - 1] = t;
   /* name it in the current scope */
-  if (P->gs.ntex_scope < P->ntexn) P->ntexn = P->gs.ntex_scope; /* drop names of closed scopes */
+  if (P->gs.ntex_scope < P->ntexn) { /* drop names of closed scopes */
+    elr__name_drop(&P->htex, P->texnames, P->ntexn, P->gs.ntex_scope);
+    P->ntexn = P->gs.ntex_scope;
+  }
   ELR_PUSH(P, P->texnames, P->ntexn, P->captexn, elr__named);
   P->texnames[P->ntexn - 1].name = elr__strdup(P, name, strlen(name));
+  elr__name_add(P, &P->htex, P->texnames, P->ntexn - 1);
   P->texnames[P->ntexn - 1].index = s->ntex - 1;
   P->texnames[P->ntexn - 1].is_float = is_float;
   P->gs.ntex_scope = P->ntexn;
@@ -938,7 +1120,7 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
 
 static void elr__parse_file(elr__parser *P, const char *text, size_t len, const char *name) {
   elr__lexer *L;
-  if (P->nlex >= ELR_MAX_INCLUDE) elr__fail(P, P->dir_line, "Include nested more than %d deep (recursive include?)", ELR_MAX_INCLUDE);
+  if (P->nlex >= ELR_MAX_INCLUDE) elr__failf(P, P->dir_file, P->dir_line, "Include nested more than %d deep (recursive include?)", ELR_MAX_INCLUDE);
   L = &P->lex[P->nlex++];
   L->text = L->p = text; L->end = text + len; L->file = name; L->line = 1;
 }
@@ -947,13 +1129,19 @@ static char *elr__read_file(elr__parser *P, const char *path, size_t *len, int l
   FILE *f = fopen(path, "rb");
   long n;
   char *buf;
-  if (!f) elr__fail(P, line, "cannot open \"%s\": %s", path, strerror(errno));
-  if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-    fclose(f); elr__fail(P, line, "cannot read \"%s\"", path);
+  if (!f) elr__failf(P, P->dir_file, line, "cannot open \"%s\": %s", path, strerror(errno));
+  errno = 0;
+  if (getc(f) == EOF && ferror(f)) { /* a directory opens, but reading it fails (and its size is nonsense) */
+    int e = errno;
+    fclose(f);
+    elr__failf(P, P->dir_file, line, "cannot read \"%s\": %s", path, e ? strerror(e) : "read error");
   }
-  if (n > (1L << 30)) { fclose(f); elr__fail(P, line, "\"%s\" is larger than 1 GiB", path); }
+  if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+    fclose(f); elr__failf(P, P->dir_file, line, "cannot read \"%s\"", path);
+  }
+  if (n > (1L << 30)) { fclose(f); elr__failf(P, P->dir_file, line, "\"%s\" is larger than 1 GiB", path); }
   buf = (char *)elr__alloc(P, (size_t)n + 1);
-  if (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n) { fclose(f); elr__fail(P, line, "cannot read \"%s\"", path); }
+  if (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n) { fclose(f); elr__failf(P, P->dir_file, line, "cannot read \"%s\"", path); }
   fclose(f);
   buf[n] = 0; *len = (size_t)n;
   return buf;
@@ -970,10 +1158,10 @@ static void elr__skip_args(elr__parser *P) {
 
 static void elr__directive_block(elr__parser *P, int need_world, const char *what) {
   if (need_world && !P->in_world) {
-    ELR_WARN(P, P->dir_line, "%s before WorldBegin is not allowed; ignoring it", what);
+    elr_warn(P->s, P->dir_file, P->dir_line, "%s before WorldBegin is not allowed; ignoring it", what);
   }
   if (!need_world && P->in_world) {
-    ELR_WARN(P, P->dir_line, "%s inside the world block is not allowed; ignoring it", what);
+    elr_warn(P->s, P->dir_file, P->dir_line, "%s inside the world block is not allowed; ignoring it", what);
   }
 }
 
@@ -987,15 +1175,16 @@ static void elr__run(elr__parser *P) {
     elr__tok t = elr__next(P);
     char nm[64];
     if (t.kind == T_EOF) break;
+    P->dir_line = t.line; P->dir_file = elr__curfile(P); /* the token was read from the current file */
     if (t.kind != T_WORD) {
-      if (t.kind == T_STRING) elr__fail(P, t.line, "expected a directive, got the string \"%s\" (a parameter without a directive?)", t.s);
-      elr__fail(P, t.line, "expected a directive, got %s", t.kind == T_NUM ? "a number" : (t.kind == T_LBR ? "'['" : "']'"));
+      if (t.kind == T_STRING) elr__failf(P, P->dir_file, t.line, "expected a directive, got the string \"%s\" (a parameter without a directive?)", t.s);
+      elr__failf(P, P->dir_file, t.line, "expected a directive, got %s", t.kind == T_NUM ? "a number" : (t.kind == T_LBR ? "'['" : "']'"));
     }
-    if (t.len >= sizeof nm) elr__fail(P, t.line, "unknown directive \"%.*s\"", 40, t.s);
+    if (t.len >= sizeof nm) elr__failf(P, P->dir_file, t.line, "unknown directive \"%.*s\"", 40, t.s);
     memcpy(nm, t.s, t.len); nm[t.len] = 0;
     snprintf(P->dir_name, sizeof P->dir_name, "%s", nm);
     P->dir_line = t.line; P->dir_file = elr__curfile(P);
-    if (P->world_ended) elr__fail(P, t.line, "directive \"%s\" after WorldEnd", nm);
+    if (P->world_ended) elr__failf(P, P->dir_file, t.line, "directive \"%s\" after WorldEnd", nm);
 
     if (!strcmp(nm, "Translate")) {
       double x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
@@ -1003,18 +1192,20 @@ static void elr__run(elr__parser *P) {
       elr_xform a, r;
       m[0][3] = x; m[1][3] = y; m[2][3] = z;
       elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Scale")) {
       double x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
       double m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
       elr_xform a, r;
       m[0][0] = x; m[1][1] = y; m[2][2] = z;
-      if (x == 0 || y == 0 || z == 0) elr__fail(P, t.line, "Scale %g %g %g is singular", x, y, z);
+      if (x == 0 || y == 0 || z == 0) elr__failf(P, P->dir_file, t.line, "Scale %g %g %g is singular", x, y, z);
       elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Rotate")) {
       double ang = elr__num(P, nm), x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
       double l = sqrt(x * x + y * y + z * z), s, c, m[4][4];
       elr_xform a, r;
-      if (!(l > 0)) elr__fail(P, t.line, "Rotate: the axis is zero");
+      if (!(l > 0)) elr__failf(P, P->dir_file, t.line, "Rotate: the axis is zero");
       x /= l; y /= l; z /= l;
       s = sin(ang * 3.14159265358979323846 / 180.0); c = cos(ang * 3.14159265358979323846 / 180.0);
       /* pbrt-v3's Rotate(theta, axis) */
@@ -1023,6 +1214,7 @@ static void elr__run(elr__parser *P) {
       m[2][0] = x * z * (1 - c) - y * s; m[2][1] = y * z * (1 - c) + x * s; m[2][2] = z * z + (1 - z * z) * c; m[2][3] = 0;
       m[3][0] = m[3][1] = m[3][2] = 0; m[3][3] = 1;
       elr_xform_from_matrix(&a, m); elr_xform_mul(&r, &P->ctm, &a); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "LookAt")) {
       double v[9];
       int i;
@@ -1030,81 +1222,87 @@ static void elr__run(elr__parser *P) {
       double m[4][4];
       elr_xform c2w, w2c, r;
       for (i = 0; i < 9; i++) v[i] = elr__num(P, nm);
+      for (i = 0; i < 9; i++)
+        if (fabs(v[i]) > ELR_MAX_COORD) elr__failf(P, P->dir_file, t.line, "LookAt: %g is outside |x| <= %g", v[i], ELR_MAX_COORD);
       pos = elr_v((float)v[0], (float)v[1], (float)v[2]);
       look = elr_v((float)v[3], (float)v[4], (float)v[5]);
       up = elr_v((float)v[6], (float)v[7], (float)v[8]);
       dir = elr_sub(look, pos);
-      if (elr_len(dir) == 0.f) elr__fail(P, t.line, "LookAt: eye and look-at point coincide");
+      if (elr_len(dir) == 0.f) elr__failf(P, P->dir_file, t.line, "LookAt: eye and look-at point coincide");
       dir = elr_norm(dir);
       if (elr_len(up) == 0.f || elr_len(elr_cross(elr_norm(up), dir)) == 0.f)
-        elr__fail(P, t.line, "LookAt: the up vector is zero or parallel to the viewing direction");
+        elr__failf(P, P->dir_file, t.line, "LookAt: the up vector is zero or parallel to the viewing direction");
       right = elr_norm(elr_cross(elr_norm(up), dir));
       nup = elr_cross(dir, right);
       m[0][0] = right.x; m[1][0] = right.y; m[2][0] = right.z; m[3][0] = 0;
       m[0][1] = nup.x; m[1][1] = nup.y; m[2][1] = nup.z; m[3][1] = 0;
       m[0][2] = dir.x; m[1][2] = dir.y; m[2][2] = dir.z; m[3][2] = 0;
       m[0][3] = v[0]; m[1][3] = v[1]; m[2][3] = v[2]; m[3][3] = 1;
-      elr_xform_from_matrix(&c2w, m);
+      if (elr_xform_from_matrix(&c2w, m) != 0) elr__failf(P, P->dir_file, t.line, "LookAt: the camera frame is singular");
       elr_xform_invert(&w2c, &c2w);
       elr_xform_mul(&r, &P->ctm, &w2c); P->ctm = r;
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Transform") || !strcmp(nm, "ConcatTransform")) {
       double v[16], m[4][4];
       int i, j;
       elr_xform a, r;
       elr__nums16(P, v, nm);
       for (i = 0; i < 4; i++) for (j = 0; j < 4; j++) m[i][j] = v[j * 4 + i]; /* pbrt: Transpose */
-      if (elr_xform_from_matrix(&a, m) != 0) elr__fail(P, t.line, "%s: the matrix is singular", nm);
+      if (elr_xform_from_matrix(&a, m) != 0) elr__failf(P, P->dir_file, t.line, "%s: the matrix is singular", nm);
       if (nm[0] == 'T') P->ctm = a;
       else { elr_xform_mul(&r, &P->ctm, &a); P->ctm = r; }
+      elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Identity")) {
       elr_xform_identity(&P->ctm);
     } else if (!strcmp(nm, "CoordinateSystem")) {
       const char *n = elr__str(P, nm);
-      int k = elr__lookup_named(P->ctx, P->nctx, n);
+      int k = elr__name_find(&P->hctx, P->ctx, P->nctx, n);
       if (k < 0) {
         ELR_PUSH(P, P->ctx, P->nctx, P->capctx, elr__named);
         P->cs_xf = (elr_xform *)realloc(P->cs_xf, sizeof(elr_xform) * (size_t)P->capctx);
-        if (!P->cs_xf) elr__fail(P, t.line, "out of memory");
+        if (!P->cs_xf) elr__failf(P, P->dir_file, t.line, "out of memory");
         k = P->nctx - 1;
         P->ctx[k].name = elr__strdup(P, n, strlen(n));
+        elr__name_add(P, &P->hctx, P->ctx, k);
       }
       P->cs_xf[k] = P->ctm;
     } else if (!strcmp(nm, "CoordSysTransform")) {
       const char *n = elr__str(P, nm);
-      int k = elr__lookup_named(P->ctx, P->nctx, n);
-      if (k < 0) ELR_WARN(P, t.line, "CoordSysTransform: coordinate system \"%s\" unknown; ignored", n);
+      int k = elr__name_find(&P->hctx, P->ctx, P->nctx, n);
+      if (k < 0) elr_warn(P->s, P->dir_file, t.line, "CoordSysTransform: coordinate system \"%s\" unknown; ignored", n);
       else P->ctm = P->cs_xf[k];
     } else if (!strcmp(nm, "AttributeBegin") || !strcmp(nm, "TransformBegin")) {
-      if (P->depth >= ELR_MAX_STACK) elr__fail(P, t.line, "%s nested more than %d deep", nm, ELR_MAX_STACK);
+      if (P->depth >= ELR_MAX_STACK) elr__failf(P, P->dir_file, t.line, "%s nested more than %d deep", nm, ELR_MAX_STACK);
       P->xstack[P->depth] = P->ctm;
       P->gstack[P->depth] = P->gs;
       P->stack_kind[P->depth] = nm[0] == 'A' ? 'a' : 't';
       P->depth++;
     } else if (!strcmp(nm, "AttributeEnd") || !strcmp(nm, "TransformEnd")) {
       char want = nm[0] == 'A' ? 'a' : 't';
-      if (P->depth == 0) { ELR_WARN(P, t.line, "unmatched %s ignored", nm); continue; }
+      if (P->depth == 0) { elr_warn(P->s, P->dir_file, t.line, "unmatched %s ignored", nm); continue; }
       if (P->stack_kind[P->depth - 1] != want)
-        ELR_WARN(P, t.line, "%s closes a %s block", nm, want == 'a' ? "TransformBegin" : "AttributeBegin");
+        elr_warn(P->s, P->dir_file, t.line, "%s closes a %s block", nm, want == 'a' ? "TransformBegin" : "AttributeBegin");
       P->depth--;
       P->ctm = P->xstack[P->depth];
       if (want == 'a') P->gs = P->gstack[P->depth];
     } else if (!strcmp(nm, "WorldBegin")) {
-      if (P->in_world) elr__fail(P, t.line, "WorldBegin inside the world block");
+      if (P->in_world) elr__failf(P, P->dir_file, t.line, "WorldBegin inside the world block");
       P->in_world = 1;
       elr_xform_identity(&P->ctm);
       {
-        int k = elr__lookup_named(P->ctx, P->nctx, "world");
+        int k = elr__name_find(&P->hctx, P->ctx, P->nctx, "world");
         if (k < 0) {
           ELR_PUSH(P, P->ctx, P->nctx, P->capctx, elr__named);
           P->cs_xf = (elr_xform *)realloc(P->cs_xf, sizeof(elr_xform) * (size_t)P->capctx);
-          if (!P->cs_xf) elr__fail(P, t.line, "out of memory");
+          if (!P->cs_xf) elr__failf(P, P->dir_file, t.line, "out of memory");
           k = P->nctx - 1; P->ctx[k].name = elr__strdup(P, "world", 5);
+          elr__name_add(P, &P->hctx, P->ctx, k);
         }
         P->cs_xf[k] = P->ctm;
       }
     } else if (!strcmp(nm, "WorldEnd")) {
-      if (!P->in_world) elr__fail(P, t.line, "WorldEnd without WorldBegin");
-      if (P->depth != 0) ELR_WARN(P, t.line, "%d unclosed AttributeBegin/TransformBegin at WorldEnd", P->depth);
+      if (!P->in_world) elr__failf(P, P->dir_file, t.line, "WorldEnd without WorldBegin");
+      if (P->depth != 0) elr_warn(P->s, P->dir_file, t.line, "%d unclosed AttributeBegin/TransformBegin at WorldEnd", P->depth);
       P->world_ended = 1;
     } else if (!strcmp(nm, "Include") || !strcmp(nm, "Import")) {
       const char *fn = elr__str(P, nm);
@@ -1132,8 +1330,8 @@ static void elr__run(elr__parser *P) {
       else if (nm[0] == 'S') elr__shape(P, type);
       else if (nm[0] == 'M') P->gs.material = elr__make_material(P, type);
       else {
-        int k = elr__lookup_named(P->matnames, P->nmatn, type);
-        if (k < 0) ELR_WARN(P, t.line, "NamedMaterial \"%s\" is not defined; ignored", type);
+        int k = elr__name_find(&P->hmat, P->matnames, P->nmatn, type);
+        if (k < 0) elr_warn(P->s, P->dir_file, t.line, "NamedMaterial \"%s\" is not defined; ignored", type);
         else P->gs.material = P->matnames[k].index;
       }
       elr__report_unused(P);
@@ -1144,10 +1342,11 @@ static void elr__run(elr__parser *P) {
       elr__read_params(P);
       if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
       type = elr__pstring(P, "type", "");
-      if (!type[0]) elr__fail(P, t.line, "MakeNamedMaterial \"%s\": \"string type\" is required", name);
+      if (!type[0]) elr__failf(P, P->dir_file, t.line, "MakeNamedMaterial \"%s\": \"string type\" is required", name);
       idx = elr__make_material(P, type);
       ELR_PUSH(P, P->matnames, P->nmatn, P->capmatn, elr__named);
       P->matnames[P->nmatn - 1].name = elr__strdup(P, name, strlen(name));
+      elr__name_add(P, &P->hmat, P->matnames, P->nmatn - 1);
       P->matnames[P->nmatn - 1].index = idx;
       elr__report_unused(P);
     } else if (!strcmp(nm, "Texture")) {
@@ -1161,9 +1360,9 @@ static void elr__run(elr__parser *P) {
     } else {
       int i, known = 0;
       for (i = 0; i < (int)(sizeof unsupported / sizeof unsupported[0]); i++) if (!strcmp(nm, unsupported[i])) known = 1;
-      if (!known) elr__fail(P, t.line, "unknown directive \"%s\"", nm);
+      if (!known) elr__failf(P, P->dir_file, t.line, "unknown directive \"%s\"", nm);
       if (!strcmp(nm, "ReverseOrientation")) continue; /* harmless: materials here are two-sided */
-      ELR_WARN(P, t.line, "directive \"%s\" is not supported and is ignored", nm);
+      elr_warn(P->s, P->dir_file, t.line, "directive \"%s\" is not supported and is ignored", nm);
       elr__skip_args(P);
     }
   }
@@ -1203,6 +1402,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   }
   while (P->arena) { elr__block *b = P->arena; P->arena = b->next; free(b); }
   free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames);
+  free(P->hctx.s); free(P->htex.s); free(P->hmat.s);
   free(P);
   return rc;
 }

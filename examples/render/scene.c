@@ -257,6 +257,13 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
         else if (!strcmp(nm, "v") || !strcmp(nm, "t") || !strcmp(nm, "texture_v") || !strcmp(nm, "texture_t")) pv = j;
       }
       if (px < 0 || py < 0 || pz < 0) PLY_FAIL("\"%s\": vertices have no x, y, z", path);
+      { /* a list-valued coordinate would leave its value unread (uninitialised) */
+        int want[8], w;
+        want[0] = px; want[1] = py; want[2] = pz; want[3] = nx; want[4] = ny; want[5] = nz; want[6] = pu; want[7] = pv;
+        for (w = 0; w < 8; w++)
+          if (want[w] >= 0 && E->prop[want[w]].list)
+            PLY_FAIL("\"%s\": vertex property \"%s\" is a list, not a number", path, E->prop[want[w]].name);
+      }
       m->nvert = (int)E->count;
       m->p = (float *)malloc(sizeof(float) * 3 * (size_t)(E->count ? E->count : 1));
       if (nx >= 0 && ny >= 0 && nz >= 0) m->n = (float *)malloc(sizeof(float) * 3 * (size_t)(E->count ? E->count : 1));
@@ -271,14 +278,17 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
           long c, k;
           unsigned first = 0, prev = 0;
           if (rd.bad) PLY_FAIL("\"%s\": file is truncated or malformed (element \"%s\" %ld)", path, E->name, i);
-          if (cnt < 0 || cnt > 1000) PLY_FAIL("\"%s\": list of %g entries", path, cnt);
+          if (!(cnt >= 0 && cnt <= 1000) || cnt != floor(cnt)) /* NaN too: (long)NaN is undefined */
+            PLY_FAIL("\"%s\": element \"%s\" %ld: list of %g entries (0 to 1000 expected)", path, E->name, i, cnt);
           c = (long)cnt;
           for (k = 0; k < c; k++) {
             double v = elr__ply_read(&rd, pr->type);
             if (rd.bad) PLY_FAIL("\"%s\": file is truncated or malformed (element \"%s\" %ld)", path, E->name, i);
             if (isf && (!strcmp(pr->name, "vertex_indices") || !strcmp(pr->name, "vertex_index"))) {
-              unsigned u = (unsigned)v;
-              if (v < 0 || v >= (double)m->nvert || !m->p) PLY_FAIL("\"%s\": face %ld has vertex index %g out of range", path, i, v);
+              unsigned u;
+              if (!(v >= 0 && v < (double)m->nvert) || v != floor(v) || !m->p) /* NaN too: (unsigned)NaN is undefined */
+                PLY_FAIL("\"%s\": face %ld has vertex index %g out of range", path, i, v);
+              u = (unsigned)v; /* after the check: a negative or huge double is undefined as unsigned */
               if (k == 0) first = u;
               else if (k >= 2) { /* fan triangulation (quads become two triangles, as pbrt-v3) */
                 if (ntri == captri) {

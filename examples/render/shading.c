@@ -30,11 +30,15 @@ elr_v3 elr_tex_eval(const elr_scene *s, int ti, const elr_tex_ctx *c) {
     } else {
       /* <<Apply box filter to checkerboard region>> */
 #define ELR_BUMPINT(x) ((float)(int)floorf((x) / 2) + 2 * fmaxf((x) / 2 - (float)(int)floorf((x) / 2) - 0.5f, 0.f))
-      float sint = ds > 0.f ? (ELR_BUMPINT(s1) - ELR_BUMPINT(s0)) / (2 * ds) : 0.5f;
-      float tint = dt > 0.f ? (ELR_BUMPINT(t1) - ELR_BUMPINT(t0)) / (2 * dt) : 0.5f;
-      float area2 = sint + tint - 2 * sint * tint;
+      /* a filter 1 check or wider averages to 0.5: decided first, so that a huge differential (grazing
+       * angles, a large uscale) never reaches the int conversions below (undefined beyond INT_MAX) */
+      float area2 = 0.5f;
+      if (ds < 1.f && dt < 1.f) {
+        float sint = ds > 0.f ? (ELR_BUMPINT(s1) - ELR_BUMPINT(s0)) / (2 * ds) : 0.5f;
+        float tint = dt > 0.f ? (ELR_BUMPINT(t1) - ELR_BUMPINT(t0)) / (2 * dt) : 0.5f;
+        area2 = sint + tint - 2 * sint * tint;
+      }
 #undef ELR_BUMPINT
-      if (ds >= 1.f || dt >= 1.f) area2 = 0.5f;
       return elr_add(elr_mul(elr_tex_eval(s, t->tex1, c), 1.f - area2), elr_mul(elr_tex_eval(s, t->tex2, c), area2));
     }
   }

@@ -49,6 +49,9 @@ static void rt_write(const char *file, const char *text) {
   fclose(f);
 }
 /* Load a scene written to the temp dir; returns NULL (with err) on failure. */
+#if defined(__GNUC__)
+__attribute__((unused))
+#endif
 static elr_scene *rt_load(const char *file, const char *text, char *err, size_t errlen) {
   elr_scene *s = NULL;
   rt_write(file, text);
