@@ -105,8 +105,9 @@
  *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
  *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
  *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
- *    samples): 114-120 ns one at a time, 58-72 ns batched; the renderer's bench_render loop, which
- *    draws a pixel's light samples together, runs about 1.4x faster with it (the same image).
+ *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
+ *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
+ *    with it (the same image).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
  *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
