@@ -512,16 +512,16 @@ static int el_envlight__rescale(float d[3]) {
   return 1;
 }
 
-/* Bilinear lookup at (u, v) in [0,1]^2: Repeat in u, Clamp in v (pbrt's s*w - 0.5 convention). */
-static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rgb[3]) {
-  int w = l->width, h = l->height, x0, y0, x1, y1, c;
-  float s = u * (float)w - 0.5f, t = v * (float)h - 0.5f, fx, fy;
-  const float *p00, *p01, *p10, *p11;
+/* The four texels of the bilinear lookup at (u, v) in [0,1]^2, Repeat in u, Clamp in v (pbrt's s*w - 0.5
+ * convention), and the weights of the second column and row. */
+static inline void el_envlight__bilerp_texels(const el_envlight *l, float u, float v, const float *p[4], float *fx, float *fy) {
+  int w = l->width, h = l->height, x0, y0, x1, y1;
+  float s = u * (float)w - 0.5f, t = v * (float)h - 0.5f;
   EL_ASSERT(u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f);
   x0 = (int)(s + 1.0f) - 1; /* floor for s >= -1 */
   y0 = (int)(t + 1.0f) - 1;
-  fx = s - (float)x0;
-  fy = t - (float)y0;
+  *fx = s - (float)x0;
+  *fy = t - (float)y0;
   x1 = x0 + 1;
   if (x0 < 0) x0 += w;
   if (x1 >= w) x1 -= w;
@@ -530,10 +530,19 @@ static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rg
   if (y1 > h - 1) y1 = h - 1;
   if (y0 > h - 1) y0 = h - 1;
   EL_ASSERT(x0 >= 0 && x0 < w && x1 >= 0 && x1 < w && y0 >= 0 && y1 < h);
-  p00 = l->texels + ((size_t)y0 * (size_t)w + (size_t)x0) * 3;
-  p01 = l->texels + ((size_t)y0 * (size_t)w + (size_t)x1) * 3;
-  p10 = l->texels + ((size_t)y1 * (size_t)w + (size_t)x0) * 3;
-  p11 = l->texels + ((size_t)y1 * (size_t)w + (size_t)x1) * 3;
+  p[0] = l->texels + ((size_t)y0 * (size_t)w + (size_t)x0) * 3;
+  p[1] = l->texels + ((size_t)y0 * (size_t)w + (size_t)x1) * 3;
+  p[2] = l->texels + ((size_t)y1 * (size_t)w + (size_t)x0) * 3;
+  p[3] = l->texels + ((size_t)y1 * (size_t)w + (size_t)x1) * 3;
+}
+
+/* Bilinear lookup at (u, v) in [0,1]^2: Repeat in u, Clamp in v. */
+static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rgb[3]) {
+  const float *p[4], *p00, *p01, *p10, *p11;
+  float fx, fy;
+  int c;
+  el_envlight__bilerp_texels(l, u, v, p, &fx, &fy);
+  p00 = p[0]; p01 = p[1]; p10 = p[2]; p11 = p[3];
   for (c = 0; c < 3; ++c) {
     float a = p00[c] + fx * (p01[c] - p00[c]);
     float b = p10[c] + fx * (p11[c] - p10[c]);
@@ -1538,6 +1547,35 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, co
  * ends are vectors: u is clamped, scaled to units and to guide cells in one go, the two CDF entries
  * around each bin are read as one 8-byte pair, and the fractions come out in the lane order the
  * direction wants. */
+/* The inline path's first half: (u0, u1) clamped as el_distribution2d clamps u (NaN, <= 0 -> 0;
+ * >= 1 -> 0x1.fffffep-1) and scaled, *su = (u0 2^24, u1 2^24, u0 gu, u1 gv) (exact), *ku = u0 in CDF
+ * units, *cu = u0's guide cell, and the marginal search: returns the marginal CDF entry of the row (NULL
+ * for a crowded marginal guide cell, which the slow path binary-searches). */
+static EL_ENVLIGHT__ALWAYS_INLINE const uint32_t *el_envlight__guide_row(const el_envlight *l, const float uu[2], __m128 *su, uint32_t *ku, size_t *cu) {
+  const float *dc = l->dir_consts;
+  const uint32_t *pv;
+  __m128 s;
+  __m128i k;
+  uint32_t kv;
+  s = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
+  s = _mm_min_ps(_mm_max_ps(s, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36)); /* dc + 44: zeros */
+  s = _mm_mul_ps(_mm_movelh_ps(s, s), _mm_load_ps(dc + 32));
+  k = _mm_cvttps_epi32(s);
+  *su = s;
+  *ku = (uint32_t)_mm_cvtsi128_si32(k);
+  kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
+  *cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
+  pv = l->gv_ptr[(size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff))];
+  if ((uintptr_t)pv & 1u) return NULL;
+  while (pv[1] <= kv) ++pv; /* at most 64 steps */
+  return pv;
+}
+/* the row record of marginal entry pv: row_tab + 64 v = row_key + 16 pv (as integers); its floats 12..15
+ * hold the row's CDF and guide row pointers */
+static EL_ENVLIGHT__ALWAYS_INLINE const float *el_envlight__row_record(const el_envlight *l, const uint32_t *pv) {
+  return (const float *)(uintptr_t)(l->row_key + ((uintptr_t)pv << 4));
+}
+
 static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf, int final, float *uvout) {
   /* <<Find (u, v) sample coordinates in infinite light texture>>, as a bin and fractions: the guide
    * table's CDF inversion (el_distribution2d_fast_guide_bins, the same integers and float operations) */
@@ -1546,25 +1584,14 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   const uint32_t *pv, *pu, *row, *const *rp;
   const float *rt;
   __m128 su, x, c, d, f;
-  __m128i k, a, b;
-  uint32_t ku, kv, g;
-  size_t ou, cu, cv;
+  __m128i a, b;
+  uint32_t ku, g;
+  size_t ou, cu;
   float p;
-  /* (u0, u1) clamped as el_distribution2d clamps u: NaN, <= 0 -> 0; >= 1 -> 0x1.fffffep-1 */
-  su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
-  su = _mm_min_ps(_mm_max_ps(su, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36)); /* dc + 44: zeros */
-  su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32)); /* (u0 2^24, u1 2^24, u0 gu, u1 gv): exact */
-  k = _mm_cvttps_epi32(su);
-  ku = (uint32_t)_mm_cvtsi128_si32(k);
-  kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
-  cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
-  cv = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff));
-  pv = l->gv_ptr[cv];
-  if (!((uintptr_t)pv & 1u)) { /* not a crowded cell (those are binary-searched by the slow path) */
-    while (pv[1] <= kv) ++pv; /* at most 64 steps */
+  pv = el_envlight__guide_row(l, uu, &su, &ku, &cu);
+  if (pv) {
     a = _mm_loadl_epi64((const __m128i *)(const void *)pv); /* (c0v, c1v) */
-    /* the row record of v: row_tab + 64 v = row_key + 16 pv (as integers); byte offset 4 u below */
-    rt = (const float *)(uintptr_t)(l->row_key + ((uintptr_t)pv << 4));
+    rt = el_envlight__row_record(l, pv); /* byte offset 4 u below */
     rp = (const uint32_t *const *)(const void *)(rt + 12);
     g = rp[1][cu];
     if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) {
@@ -1635,25 +1662,6 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 }
 
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-/* sample_li_n's first two stages: the guide cell of uu (the marginal search of sample_li's inline path:
- * small tables, in cache) and the address of its guide entry; 0 for a crowded marginal cell */
-static EL_ENVLIGHT__ALWAYS_INLINE const uint32_t *const *el_envlight__guide_cell(const el_envlight *l, const float uu[2], size_t *cu) {
-  const float *dc = l->dir_consts;
-  const uint32_t *pv;
-  __m128 su;
-  __m128i k;
-  uint32_t kv;
-  su = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)uu));
-  su = _mm_min_ps(_mm_max_ps(su, _mm_load_ps(dc + 44)), _mm_load_ps(dc + 36));
-  su = _mm_mul_ps(_mm_movelh_ps(su, su), _mm_load_ps(dc + 32));
-  k = _mm_cvttps_epi32(su);
-  kv = (uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0x55));
-  *cu = (size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xaa));
-  pv = l->gv_ptr[(size_t)(uint32_t)_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 0xff))];
-  if ((uintptr_t)pv & 1u) return NULL;
-  while (pv[1] <= kv) ++pv;
-  return (const uint32_t *const *)(const void *)((const float *)(uintptr_t)(l->row_key + ((uintptr_t)pv << 4)) + 12);
-}
 #define EL_ENVLIGHT__BATCH 16
 #endif
 
@@ -1678,8 +1686,11 @@ EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float
       const uint32_t *const *rps[EL_ENVLIGHT__BATCH];
       size_t cus[EL_ENVLIGHT__BATCH];
       m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
-      for (i = 0; i < m; ++i) {
-        rps[i] = el_envlight__guide_cell(l, u + 2 * (i0 + i), &cus[i]);
+      for (i = 0; i < m; ++i) { /* the marginal search (small tables, in cache) */
+        __m128 su;
+        uint32_t ku;
+        const uint32_t *pv = el_envlight__guide_row(l, u + 2 * (i0 + i), &su, &ku, &cus[i]);
+        rps[i] = pv ? (const uint32_t *const *)(const void *)(el_envlight__row_record(l, pv) + 12) : NULL;
         if (rps[i]) __builtin_prefetch(rps[i][1] + cus[i]);
       }
       for (i = 0; i < m; ++i) {
@@ -1696,18 +1707,13 @@ EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float
         done[i] = 1;
         if (r == 0) {
           el_envlight__sample_li_slow(l, u + 2 * j, wi + 3 * j, c, pdf + j);
-        } else if (r == 2) { /* sampled; the radiance is left for pass 4 */
-          /* the texel rows el_envlight__bilerp will read */
-          int w = l->width, h = l->height, x0, y0, y1;
-          float s = uv[2 * i] * (float)w - 0.5f, t = uv[2 * i + 1] * (float)h - 0.5f;
-          x0 = (int)(s + 1.0f) - 1; y0 = (int)(t + 1.0f) - 1;
-          if (x0 < 0) x0 += w;
-          y1 = y0 + 1 > h - 1 ? h - 1 : y0 + 1;
-          y0 = y0 < 0 ? 0 : (y0 > h - 1 ? h - 1 : y0);
-          __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)w + (size_t)x0) * 3);
-          __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)w + (size_t)x0) * 3 + 5); /* x0 + 1 (the wrap at x0 = w - 1 reads column 0: rare) */
-          __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)w + (size_t)x0) * 3);
-          __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)w + (size_t)x0) * 3 + 5);
+        } else if (r == 2) { /* sampled; the radiance is left for pass 4, its four texels prefetched */
+          const float *p[4];
+          float fx, fy;
+          int q;
+          el_envlight__bilerp_texels(l, uv[2 * i], uv[2 * i + 1], p, &fx, &fy);
+          /* per row the pair's first float and last float: both lines of the 24 bytes */
+          for (q = 0; q < 4; ++q) __builtin_prefetch(p[q] + 2 * (q & 1));
           done[i] = 0;
         }
       }

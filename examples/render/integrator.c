@@ -268,9 +268,9 @@ typedef struct elr_first {
   elr_v3 wi, L;
   float pdf;
   /* the direct-lighting integrator's: the hit's texture footprint and BSDF, and (bs = 1) the BSDF
-   * sample of the first draw of light sampling with the environment's pdf and radiance in its
-   * direction (for a sample that will trace a BSDF ray) */
-  int has_b, bs, spec;
+   * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
+   * environment's pdf and radiance in its direction */
+  int has_b, bs, bray;
   elr_tex_ctx tc;
   elr_v3 dpdx, dpdy;
   elr_bsdf b;
@@ -381,11 +381,9 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         float bpdf = 0.f;
         int bsdf_ray = 0;
         if (C->ls != ELR_LS_LIGHT && !C->path) { /* in the path integrator the continuation ray plays this part */
-          int spec;
-          if (pre && pre->bs) {
-            fb = pre->fb; wb = pre->wb; bpdf = pre->bpdf; spec = pre->spec;
-            bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
-          } else {
+          if (pre && pre->bs) { fb = pre->fb; wb = pre->wb; bpdf = pre->bpdf; bsdf_ray = pre->bray; }
+          else {
+            int spec;
             fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
             bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
             if (bsdf_ray) elr_env_prefetch(l->env, wb);
@@ -605,7 +603,7 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
       ts->camera++;
       f[k].h = &h[k];
       f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
-      f[k].ul = f[k].has_b = f[k].bs = 0;
+      f[k].ul = f[k].has_b = f[k].bs = f[k].bray = 0;
       idx[k] = -1;
       if (!f[k].hit) continue;
       elr__get2d(S, &u[2 * n], &u[2 * n + 1]); /* the first light draw at the hit */
@@ -620,8 +618,10 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
         q->has_b = 1;
         elr__get2d(S, &us0, &us1); /* the BSDF draw that follows the light draw */
         if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
-          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us0, us1, &q->wb, &q->bpdf, &q->spec);
+          int spec;
+          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us0, us1, &q->wb, &q->bpdf, &spec);
           q->bs = 1;
+          q->bray = !spec && q->bpdf > 0.f && !elr_isblack(q->fb); /* elr__direct's bsdf_ray */
         }
       }
     }
@@ -630,7 +630,7 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
     if (!C->path)
       for (k = 0; k < m; k++) {
         elr_first *q = &f[k];
-        if (!q->bs || q->spec || !(q->bpdf > 0.f) || elr_isblack(q->fb)) continue;
+        if (!q->bray) continue;
         q->bpdf_env = elr_env_pdf(C->batch_env, q->wb);
         q->Lb = elr_env_le(C->batch_env, q->wb);
       }
