@@ -77,7 +77,7 @@
  *    the 2^-21 margin exceeds every rounding error of the direction and of pdf_li's own bin search, so
  *    the bin and the pdf agree; for a general rotation, rounding in the round trip world -> light can move a
  *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 120
- *    more instructions per sample: 214 instead of 95 with the guide sampler).
+ *    more instructions per sample: 218 instead of 93.5 with the guide sampler).
  * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
  *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
  *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
@@ -94,9 +94,9 @@
  *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
  *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
  *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
- *    2048x1024 map): sample_li 95 instructions with the guide sampler (96.6-98.6 on the five CC0
+ *    2048x1024 map): sample_li 93.5 instructions with the guide sampler (95.6-97.6 on the five CC0
  *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
- *    alias table; with the radiance 261; pdf_li 76 (general rotation 95); le 253; construction 117 M
+ *    alias table; with the radiance 257; pdf_li 76 (general rotation 95); le 250; construction 117 M
  *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
  *    313 ms). See tutorials/03-infinite-light.md, section 9.
  *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the

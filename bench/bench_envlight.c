@@ -20,10 +20,11 @@
  *     pbrt-v3 on this kind of machine (issue 3): constructor 313 ms and ~100 MB (MIPMap + 4096x2048
  *     distribution) for 2048x1024; Sample_Li 5.2 M/s and ~470 instructions; Pdf_Li ~300 instructions.
  *  2. Instructions per call (callgrind) on the 2048x1024 map. Measured (gcc 12 -O3, loop subtracted):
- *     sample_li guide 95 (96.6-98.6 on the five CC0 1024x512 maps, with MAP), alias 240, CDF 394, guide
- *     + radiance 261, general rotation 214; at the start of the SSE work: 176, 274, 428, 335, 302; before
+ *     sample_li guide 93.5 (95.6-97.6 on the five CC0 1024x512 maps, with MAP), alias 240, CDF 394, guide
+ *     + radiance 257, general rotation 218 (2026-12-01, after sample_li_n's helpers were shared: 95,
+ *     96.6-98.6, 261, 214 before); at the start of the SSE work: 176, 274, 428, 335, 302; before
  *     the bin + direction-table rewrite: 303, 305, 467, 437, 420. pdf_li 76 (rotation 95; before the
- *     branch-free bin finders: 114, 131), le 253, construction 117 M (before the SSE2 construction loops:
+ *     branch-free bin finders: 114, 131), le 250, construction 117 M (before the SSE2 construction loops:
  *     185 M). Targets sample_li <= 100 and pdf_li <= 80 met; throughput (>= 26 M/s): see README.md.
  *  3. Variance of a direct-lighting estimate: the irradiance (luminance) of a diffuse point at three
  *     normals, for the maps in ../shared/envmaps (data/envmaps if missing), per strategy: uniform sphere,
