@@ -1,6 +1,9 @@
 /* image_io.c: see image_io.h. stb and tinyexr come compiled from Debian (libstb.so, libtinyexr.so);
  * this file includes only their declarations. */
+#define _POSIX_C_SOURCE 200809L /* stat */
 #include "image_io.h"
+
+#include <sys/stat.h>
 
 #include <ctype.h>
 #include <errno.h>
@@ -478,6 +481,10 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
   if (!img) return el_io__fail(err, errlen, path, "no output image given");
   memset(img, 0, sizeof *img);
   if (!path || !*path) return el_io__fail(err, errlen, "(empty path)", "no file name given");
+  {
+    char why[128];
+    if (el_file_is_regular(path, why, sizeof why) != 0) return el_io__fail(err, errlen, path, "cannot open file (%s)", why);
+  }
   f = fopen(path, "rb");
   if (!f) return el_io__fail(err, errlen, path, "cannot open file (%s)", strerror(errno));
   ext = el_image_extension(path);
@@ -627,4 +634,16 @@ int el_image_write_float(const char *path, const float *pixels, int width, int h
   if (!strcmp(ext, "hdr")) return el_image_write_hdr(path, pixels, width, height, channels, err, errlen);
   if (!strcmp(ext, "pfm")) return el_image_write_pfm(path, pixels, width, height, channels, err, errlen);
   return el_io__fail(err, errlen, path, "unsupported float image format '.%s' (use .exr .hdr .pfm)", ext);
+}
+
+int el_file_is_regular(const char *path, char *why, size_t whylen) {
+  struct stat st;
+  const char *w = NULL;
+  if (!path || !*path) w = "no file name given";
+  else if (stat(path, &st) != 0) w = strerror(errno);
+  else if (S_ISDIR(st.st_mode)) w = strerror(EISDIR); /* "Is a directory", as reading one would say */
+  else if (!S_ISREG(st.st_mode)) w = "is not a regular file (a FIFO, device or socket)";
+  if (!w) return 0;
+  if (why && whylen) snprintf(why, whylen, "%s", w);
+  return -1;
 }

@@ -48,6 +48,11 @@ int el_image_write_pfm(const char *path, const float *pixels, int width, int hei
 /* The lower-case extension of path without the dot ("" when there is none), in a static buffer. */
 const char *el_image_extension(const char *path);
 
+/* 0 when path names a regular file (or a symbolic link to one); else -1 and why in `why` (strerror's
+ * "No such file or directory" or "Is a directory", or "is not a regular file (a FIFO, device or socket)"). Checked
+ * before opening an input: opening a FIFO for reading would wait for a writer forever. */
+int el_file_is_regular(const char *path, char *why, size_t whylen);
+
 #ifdef __cplusplus
 }
 #endif

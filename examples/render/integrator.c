@@ -785,6 +785,13 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     C.spp = C.xs * C.ys;
   }
   if (C.spp <= 0 || C.spp > (1 << 24)) { snprintf(err, errlen, "samples per pixel %d out of range [1, 16777216]", C.spp); return -1; }
+  /* the parser's limit, again for a sample count given here: every render thread of the stratified
+   * sampler holds spp * (dimensions + 1) 1D and 2D samples (12 bytes) */
+  if (C.sampler == ELR_SAMPLER_STRATIFIED && (double)C.spp * (double)(C.dims + 1) > (double)(1 << 24)) {
+    snprintf(err, errlen, "stratified sampler: %d samples per pixel in %d dimensions need %.0f MiB per thread (at most 16777216 "
+             "samples times dimensions + 1)", C.spp, C.dims, (double)C.spp * (C.dims + 1) * 12.0 / 1048576.0);
+    return -1;
+  }
   C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
   C.maxdepth = s->d.maxdepth; C.path = s->d.integrator_path; C.rr = s->d.rrthreshold;
   C.diff_scale = 1.f / sqrtf((float)C.spp);
@@ -964,11 +971,13 @@ int elr_scene_load_string(const char *text, const char *name, const char *base_d
   return 0;
 }
 int elr_scene_load(const char *path, elr_scene **out, int quiet, char *err, size_t errlen) {
-  FILE *f = fopen(path, "rb");
+  FILE *f;
   long n;
-  char *buf, dir[4096];
+  char *buf, dir[4096], why[128];
   int r;
   *out = NULL;
+  if (el_file_is_regular(path, why, sizeof why) != 0) { snprintf(err, errlen, "%s: cannot read the scene file: %s", path, why); return -1; }
+  f = fopen(path, "rb");
   if (!f) { snprintf(err, errlen, "%s: cannot open the scene file", path); return -1; }
   if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 || n > (1L << 30)) {
     fclose(f); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1;

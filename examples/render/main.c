@@ -103,6 +103,9 @@ int main(int argc, char **argv) {
     double t = st.t_render;
     unsigned long long rays = st.camera_rays + st.bounce_rays + st.shadow_rays + st.bsdf_light_rays;
     if (stats) elr_stats_print(&st, stderr);
+    if (st.rejected_samples > 0) /* a warning, shown even with --quiet: the image lacks those samples */
+      fprintf(stderr, "render: warning: %llu of %llu samples rejected (NaN, infinite or negative radiance: overflowing texels or "
+              "intensities?); the film left them out\n", (unsigned long long)st.rejected_samples, (unsigned long long)st.samples);
     fprintf(stderr, "render: %s: %d x %d, %d spp in %.3f s (total %.3f s): %.3g samples/s, %.3g rays/s\n", outfile, img.width,
             img.height, st.spp, t, elr_now() - t0, t > 0 ? (double)st.samples / t : 0.0, t > 0 ? (double)rays / t : 0.0);
   }

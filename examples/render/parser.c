@@ -1126,9 +1126,11 @@ static void elr__parse_file(elr__parser *P, const char *text, size_t len, const 
 }
 
 static char *elr__read_file(elr__parser *P, const char *path, size_t *len, int line) {
-  FILE *f = fopen(path, "rb");
+  FILE *f;
   long n;
-  char *buf;
+  char *buf, why[128];
+  if (el_file_is_regular(path, why, sizeof why) != 0) elr__failf(P, P->dir_file, line, "cannot read \"%s\": %s", path, why);
+  f = fopen(path, "rb");
   if (!f) elr__failf(P, P->dir_file, line, "cannot open \"%s\": %s", path, strerror(errno));
   errno = 0;
   if (getc(f) == EOF && ferror(f)) { /* a directory opens, but reading it fails (and its size is nonsense) */

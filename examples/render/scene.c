@@ -6,6 +6,7 @@
  * (pbrt-v3 also transforms mesh vertices to world space when it creates them). */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
+#include "image_io.h"
 #include <embree3/rtcore.h>
 #include <float.h>
 #include <stdlib.h>
@@ -166,7 +167,8 @@ static double elr__ply_read(elr__ply_rd *r, int type) {
 }
 
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
-  FILE *f = fopen(path, "rb");
+  char why[128] = "";
+  FILE *f = el_file_is_regular(path, why, sizeof why) == 0 ? fopen(path, "rb") : NULL;
   long n;
   unsigned char *buf = NULL;
   elr__ply_elem el[8];
@@ -178,7 +180,7 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
   unsigned *idx = NULL;
   memset(m, 0, sizeof *m);
   memset(&rd, 0, sizeof rd);
-  if (!f) { snprintf(err, errlen, "cannot open \"%s\"", path); return -1; }
+  if (!f) { snprintf(err, errlen, "cannot open \"%s\"%s%s", path, why[0] ? ": " : "", why); return -1; }
   if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 || n > (1L << 31)) {
     fclose(f); snprintf(err, errlen, "cannot read \"%s\"", path); return -1;
   }

@@ -7,6 +7,7 @@
  * left-handed space, Transform's column-major (transposed) matrix, named coordinate systems, attribute
  * and transform scopes, the defaults of every directive. */
 #include "render_test_util.h"
+#include <sys/stat.h>
 
 static int near3(elr_v3 a, float x, float y, float z, float tol) {
   return fabsf(a.x - x) < tol && fabsf(a.y - y) < tol && fabsf(a.z - z) < tol;
@@ -289,6 +290,31 @@ static void expect_error(const char *name, const char *text, const char *where, 
   rt_check(strstr(err, where) != NULL && strstr(err, what) != NULL, "%s: error \"%s\" names %s and %s", name, err, where, what);
 }
 
+/* A FIFO given as the scene, an Include, an image or a PLY file: opening it for reading would wait for
+ * a writer forever. Each must fail at once, naming the file (an alarm turns a hang into a failure). */
+static void fifos(void) {
+  const char *names[3] = {"fifo.hdr", "fifo_inc.pbrt", "fifo.ply"};
+  char err[512];
+  elr_scene *s = NULL;
+  int k, made = 1;
+  for (k = 0; k < 3; k++) {
+    unlink(rt_path(names[k]));
+    if (mkfifo(rt_path(names[k]), 0600) != 0) made = 0;
+  }
+  if (!made) { rt_check(0, "mkfifo in %s", rt_dir); return; }
+  alarm(60);
+  expect_error("fifo1.pbrt", "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"fifo.hdr\"\nWorldEnd\n", "fifo1.pbrt:2:",
+               "not a regular file");
+  expect_error("fifo2.pbrt", "Include \"fifo_inc.pbrt\"\nWorldBegin\nWorldEnd\n", "fifo2.pbrt:1:", "not a regular file");
+  expect_error("fifo3.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"fifo.ply\"\nWorldEnd\n", "fifo3.pbrt:2:",
+               "not a regular file");
+  rt_check(elr_scene_load(rt_path("fifo_inc.pbrt"), &s, 1, err, sizeof err) != 0 && strstr(err, "fifo_inc.pbrt") &&
+               strstr(err, "not a regular file"),
+           "a FIFO as the scene file: \"%s\"", err);
+  elr_scene_free(s);
+  alarm(0);
+}
+
 static void errors(void) {
   expect_error("trunc1.pbrt", "Film \"image\" \"integer xresolution\" [ 8 ", "trunc1.pbrt:1:", "file ends");
   expect_error("trunc2.pbrt", "WorldBegin\nShape \"sphere\"\n", "trunc2.pbrt:", "before WorldEnd");
@@ -352,6 +378,22 @@ static void errors(void) {
   }
   expect_error("strat.pbrt", "Sampler \"stratified\" \"integer xsamples\" 4096 \"integer ysamples\" 4096 \"integer dimensions\" 64\n"
                "WorldBegin\nWorldEnd\n", "strat.pbrt:1:", "MiB per thread");
+  { /* the same limit for a sample count given to the render (render --spp): an error, not 12.5 GiB per thread */
+    char err[512];
+    elr_scene *s = rt_load("strat_spp.pbrt", "Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2 \"integer dimensions\" 64\n"
+                                             "WorldBegin\nWorldEnd\n", err, sizeof err);
+    elr_render_options o;
+    elr_image img;
+    int rc = -1;
+    err[0] = 0;
+    elr_render_options_default(&o);
+    o.spp = 16777216; o.quiet = 1; o.nthreads = 1;
+    if (s) rc = elr_render(s, &o, &img, NULL, err, sizeof err);
+    rt_check(s && rc != 0 && strstr(err, "MiB per thread") != NULL,
+             "stratified, 64 dimensions, render spp 16777216: refused before allocating (%s)", err);
+    if (s && rc == 0) elr_image_free(&img);
+    elr_scene_free(s);
+  }
   expect_error("bigidx.pbrt", "WorldBegin\nShape \"trianglemesh\" \"integer indices\" [ 0 1 4294967296 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]\nWorldEnd\n",
                "bigidx.pbrt:2:", "4294967296 is outside the 32-bit integer range");
   /* maxanisotropy above mipmap.h's 1024 failed with the library's generic 'invalid argument (NULL pointer,
@@ -561,8 +603,26 @@ static void cli(void) {
     log[n] = 0;
     if (f) fclose(f);
     rt_check(r == 0 && strstr(log, "elapsed") && strstr(log, "remaining") && strstr(log, "samples/s") && strstr(log, "rays/s") &&
-                 strstr(log, "env distribution"),
-             "progress bar (elapsed, remaining), --stats, closing line with samples/s and rays/s");
+                 strstr(log, "env distribution") && !strstr(log, "warning"),
+             "progress bar (elapsed, remaining), --stats, closing line with samples/s and rays/s; no warning");
+  }
+  /* samples the film rejects (here light-sampled radiance overflowing a float: 3e38 x 4 cos) are said,
+   * even with --quiet: the image lacks them */
+  rt_write("hot.pbrt", "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
+                       "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 6\nSampler \"random\" \"integer pixelsamples\" 2\n"
+                       "Integrator \"directlighting\"\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 3e38 3e38 3e38 ]\n"
+                       "Material \"matte\" \"rgb Kd\" [ 1 1 1 ]\nShape \"sphere\"\nWorldEnd\n");
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --light-sampling light --quiet 2>'%s'", bin, rt_path("hot.pbrt"), rt_path("hot.pfm"),
+           rt_path("hot.txt"));
+  r = system(cmd);
+  {
+    char log[4096] = "";
+    size_t n;
+    f = fopen(rt_path("hot.txt"), "rb");
+    n = f ? fread(log, 1, sizeof log - 1, f) : 0;
+    log[n] = 0;
+    if (f) fclose(f);
+    rt_check(r == 0 && strstr(log, "warning:") && strstr(log, "samples rejected"), "rejected samples: render warns (%s)", log);
   }
 }
 
@@ -579,6 +639,7 @@ int main(void) {
   warnings();
   errors();
   truncations();
+  fifos();
   cli();
   return rt_finish("test_render_parser");
 }
