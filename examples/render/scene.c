@@ -197,15 +197,19 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
     for (;;) {
       size_t k = 0;
       char w0[64] = "", w1[64] = "", w2[64] = "", w3[64] = "", w4[64] = "";
-      int nw;
+      int nw, cut = 0;
       if (p >= buf + n) PLY_FAIL("\"%s\": PLY header has no end_header", path);
       while (p < buf + n && *p != '\n' && k < sizeof line - 1) line[k++] = (char)*p++;
+      /* a line longer than the buffer: its rest is skipped (only a comment may be that long, below) */
+      while (p < buf + n && *p != '\n') { p++; cut = 1; }
       if (p < buf + n && *p == '\n') p++;
       line[k] = 0;
       if (k && line[k - 1] == '\r') line[k - 1] = 0;
       nw = sscanf(line, "%63s %63s %63s %63s %63s", w0, w1, w2, w3, w4);
       if (first) { if (strcmp(w0, "ply") != 0) PLY_FAIL("\"%s\" is not a PLY file", path); first = 0; continue; }
       if (nw <= 0) continue;
+      if (cut && strcmp(w0, "comment") != 0 && strcmp(w0, "obj_info") != 0)
+        PLY_FAIL("\"%s\": PLY header line \"%.40s...\" is longer than %d characters", path, line, (int)sizeof line - 1);
       if (!strcmp(w0, "format")) {
         if (!strcmp(w1, "ascii")) rd.format = 0;
         else if (!strcmp(w1, "binary_little_endian")) rd.format = 1;
@@ -235,6 +239,13 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen) {
       } else if (!strcmp(w0, "end_header")) break;
     }
     if (rd.format < 0) PLY_FAIL("\"%s\": PLY header has no format line", path);
+    for (e = 0; e < nel; e++) { /* faces whose index list has another name would be read and dropped */
+      int j, lists = 0;
+      if (strcmp(el[e].name, "face") != 0 || el[e].count == 0) continue;
+      for (j = 0; j < el[e].nprop; j++)
+        if (el[e].prop[j].list && (!strcmp(el[e].prop[j].name, "vertex_indices") || !strcmp(el[e].prop[j].name, "vertex_index"))) lists++;
+      if (!lists) PLY_FAIL("\"%s\": the face element has no \"vertex_indices\" (or \"vertex_index\") list", path);
+    }
   }
   rd.p = p; rd.end = buf + n;
   for (e = 0; e < nel; e++) {

@@ -271,6 +271,29 @@ static void ply_big_endian(void) {
   elr_scene_free(s);
 }
 
+static void expect_error(const char *name, const char *text, const char *where, const char *what);
+/* PLY headers: a comment longer than the line buffer loads (its rest was read as another header line);
+ * another keyword's line that long, and a face list of another name, are errors that say so */
+static void ply_headers(void) {
+  char err[512], longc[400], hdr[1024];
+  elr_scene *s;
+  memset(longc, 'c', sizeof longc - 1);
+  longc[sizeof longc - 1] = 0;
+  memcpy(longc + 247, "element face 9 ", 15); /* where a 255-character buffer would cut the line: read as a header line */
+  snprintf(hdr, sizeof hdr, "ply\nformat ascii 1.0\ncomment %s\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", longc);
+  rt_write("longc.ply", hdr);
+  s = rt_load("longc.pbrt", W("Shape \"plymesh\" \"string filename\" \"longc.ply\"\n"), err, sizeof err);
+  rt_check(s && s->nmesh == 1 && s->mesh[0].ntri == 1, "PLY with a 400-character comment loads%s%s", s ? "" : ": ", s ? "" : err);
+  elr_scene_free(s);
+  snprintf(hdr, sizeof hdr, "ply\nformat ascii 1.0\nelement vertex 3 %s\nproperty float x\nend_header\n", longc);
+  rt_write("longe.ply", hdr);
+  expect_error("longe.pbrt", W("Shape \"plymesh\" \"string filename\" \"longe.ply\"\n"), "longe.ply", "longer than 255 characters");
+  rt_write("faces.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 1\nproperty list uchar int indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_error("faces.pbrt", W("Shape \"plymesh\" \"string filename\" \"faces.ply\"\n"), "faces.ply", "no \"vertex_indices\"");
+}
+
 static void warnings(void) {
   char err[512];
   elr_scene *s = rt_load("warn.pbrt", W("AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" 1 \"float foo\" 3\n"
@@ -636,6 +659,7 @@ int main(void) {
   unsetenv("ELR_EMBREE_SPHERES");
   materials_textures();
   ply_big_endian();
+  ply_headers();
   warnings();
   errors();
   truncations();
