@@ -828,6 +828,8 @@ static void elr__light(elr__parser *P, const char *type) {
     l->L = elr_vmul(I, sc);
     if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
       elr__failf(P, P->dir_file, P->dir_line, "LightSource \"point\": I times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
+    if (l->L.x < 0.f || l->L.y < 0.f || l->L.z < 0.f) /* the infinite light's rule: negative light would render black, unsaid */
+      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"point\": I times scale (%g %g %g) must not be negative", l->L.x, l->L.y, l->L.z);
     l->pos = elr_xpoint(&P->ctm, from);
     elr__check_point(P, P->dir_line, l->pos, "the light's position");
     l->nsamples = 1;
@@ -839,6 +841,8 @@ static void elr__light(elr__parser *P, const char *type) {
     l->L = elr_vmul(L, sc);
     if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
       elr__failf(P, P->dir_file, P->dir_line, "LightSource \"distant\": L times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
+    if (l->L.x < 0.f || l->L.y < 0.f || l->L.z < 0.f) /* the infinite light's rule: negative light would render black, unsaid */
+      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"distant\": L times scale (%g %g %g) must not be negative", l->L.x, l->L.y, l->L.z);
     l->dir = elr_norm(elr_xvector(&P->ctm, elr_sub(from, to)));
     l->nsamples = 1;
   } else {

@@ -417,6 +417,9 @@ static void errors(void) {
     if (s && rc == 0) elr_image_free(&img);
     elr_scene_free(s);
   }
+  expect_error("negpoint.pbrt", "WorldBegin\nLightSource \"point\" \"rgb I\" [ -1 -1 -1 ]\nWorldEnd\n", "negpoint.pbrt:2:", "must not be negative");
+  expect_error("negdist.pbrt", "WorldBegin\nLightSource \"distant\" \"rgb L\" [ 1 1 1 ] \"float scale\" -2\nWorldEnd\n", "negdist.pbrt:2:",
+               "must not be negative");
   expect_error("bigidx.pbrt", "WorldBegin\nShape \"trianglemesh\" \"integer indices\" [ 0 1 4294967296 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]\nWorldEnd\n",
                "bigidx.pbrt:2:", "4294967296 is outside the 32-bit integer range");
   /* maxanisotropy above mipmap.h's 1024 failed with the library's generic 'invalid argument (NULL pointer,
