@@ -60,6 +60,7 @@ typedef struct elr__parser {
   jmp_buf jb;
   char *err; size_t errlen;
   elr__block *arena;
+  elr__block *growing[2]; /* a parameter's value arrays while they grow (elr__grow), not yet in the arena */
   elr__lexer lex[ELR_MAX_INCLUDE];
   int nlex;
   elr__tok peeked; int has_peek;
@@ -87,6 +88,20 @@ static void *elr__alloc(elr__parser *P, size_t n) {
   if (!b) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
   b->next = P->arena; P->arena = b;
   return (void *)((char *)b + sizeof(elr__block) + (16 - sizeof(elr__block) % 16) % 16);
+}
+/* An arena block that can still grow: slot's block reallocated to hold n bytes (the contents kept, the
+ * data at the same offset as elr__alloc's), then handed to the arena by elr__grow_keep. A parameter of
+ * 1e8 values then costs its final array, not every array of the doublings that led to it. */
+static void *elr__grow(elr__parser *P, int slot, size_t n) {
+  elr__block *b = (elr__block *)realloc(P->growing[slot], sizeof(elr__block) + n + 16);
+  if (!b) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+  P->growing[slot] = b;
+  return (void *)((char *)b + sizeof(elr__block) + (16 - sizeof(elr__block) % 16) % 16);
+}
+static void elr__grow_keep(elr__parser *P, int slot) {
+  elr__block *b = P->growing[slot];
+  P->growing[slot] = NULL;
+  b->next = P->arena; P->arena = b;
 }
 static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
   char *r = (char *)elr__alloc(P, n + 1);
@@ -276,8 +291,8 @@ static void elr__read_params(elr__parser *P) {
       snprintf(pp->name, sizeof pp->name, "%s", nm);
       pp->line = t.line; pp->file = elr__curfile(P);
     }
-    nums = (double *)elr__alloc(P, sizeof(double) * (size_t)cap);
-    strs = (char **)elr__alloc(P, sizeof(char *) * (size_t)cap);
+    nums = (double *)elr__grow(P, 0, sizeof(double) * (size_t)cap);
+    strs = (char **)elr__grow(P, 1, sizeof(char *) * (size_t)cap);
     v = elr__next(P);
     if (v.kind == T_LBR) {
       for (;;) {
@@ -285,13 +300,11 @@ static void elr__read_params(elr__parser *P) {
         if (v.kind == T_RBR) break;
         if (v.kind == T_EOF) elr__fail(P, t.line, "parameter \"%s\": file ends inside [ ]", t.s);
         if (v.kind == T_LBR) elr__fail(P, v.line, "parameter \"%s\": nested '['", t.s);
-        if (nv == cap) {
-          double *n2; char **s2;
+        if (nv == cap) { /* the list's kind is known by now (cap >= 8): only its array grows */
           if (cap > (1 << 27)) elr__fail(P, v.line, "parameter \"%s\": too many values", t.s);
-          n2 = (double *)elr__alloc(P, sizeof(double) * (size_t)cap * 2);
-          s2 = (char **)elr__alloc(P, sizeof(char *) * (size_t)cap * 2);
-          memcpy(n2, nums, sizeof(double) * (size_t)nv); memcpy(s2, strs, sizeof(char *) * (size_t)nv);
-          nums = n2; strs = s2; cap *= 2;
+          cap *= 2;
+          if (isstr == 1) strs = (char **)elr__grow(P, 1, sizeof(char *) * (size_t)cap);
+          else nums = (double *)elr__grow(P, 0, sizeof(double) * (size_t)cap);
         }
         if (v.kind == T_NUM) {
           if (isstr == 1) elr__fail(P, v.line, "parameter \"%s\": numbers mixed with strings", t.s);
@@ -311,6 +324,13 @@ static void elr__read_params(elr__parser *P) {
       elr__fail(P, v.kind == T_EOF ? t.line : v.line, "parameter \"%s\" has no value%s", t.s,
                 v.kind == T_EOF ? " (file ends early)" : "");
     }
+    /* the arrays at their final size, then in the arena */
+    if (nv > 8) {
+      if (isstr == 1) strs = (char **)elr__grow(P, 1, sizeof(char *) * (size_t)nv);
+      else nums = (double *)elr__grow(P, 0, sizeof(double) * (size_t)nv);
+    }
+    elr__grow_keep(P, 0);
+    elr__grow_keep(P, 1);
     pp->num = nums; pp->str = strs; pp->n = nv; pp->isstr = isstr == 1;
     {
       int wants_str = !strcmp(pp->type, "string") || !strcmp(pp->type, "texture") || !strcmp(pp->type, "bool");
@@ -1407,6 +1427,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
     rc = -1;
   }
   while (P->arena) { elr__block *b = P->arena; P->arena = b->next; free(b); }
+  free(P->growing[0]); free(P->growing[1]); /* a parse stopped while a value list grew */
   free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames);
   free(P->hctx.s); free(P->htex.s); free(P->hmat.s);
   free(P);
