@@ -259,8 +259,8 @@ void elr_env_prefetch(const elr_envmap *e, elr_v3 wi) {
   y1 = y + 1 > h - 1 ? h - 1 : y + 1;
   if (y < 0) y = 0;
   if (y > h - 1) y = h - 1;
-  /* both texels of each row: x and x + 1 (the line of the last float of the pair; the same line in
-   * about four cases of five, when the prefetch costs next to nothing) */
+  /* both texels of each row: x and x + 1 (the line of the pair's last float: a 12-byte texel pair
+   * crosses a 64-byte line for 5 columns of 16; for the others it is the same line and costs little) */
   __builtin_prefetch(p->texels + ((size_t)y * (size_t)w + (size_t)x) * 3);
   __builtin_prefetch(p->texels + ((size_t)y * (size_t)w + (size_t)x) * 3 + 5);
   __builtin_prefetch(p->texels + ((size_t)y1 * (size_t)w + (size_t)x) * 3);
