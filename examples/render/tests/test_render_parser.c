@@ -581,6 +581,14 @@ static void truncations(void) {
            "all %zu prefixes of a %zu-byte file: %d load (the whole file), %d fail with file:line errors", n + 1, n, loaded, errors);
 }
 
+/* the start of a file of the test directory as a string ("" when it cannot be read) */
+static void read_text(const char *file, char *buf, size_t cap) {
+  FILE *f = fopen(rt_path(file), "rb");
+  size_t n = f ? fread(buf, 1, cap - 1, f) : 0;
+  buf[n] = 0;
+  if (f) fclose(f);
+}
+
 /* The program: exit codes, no output on error, the Film's filename by default, the output formats. */
 static void cli(void) {
   char cmd[1024];
@@ -622,12 +630,8 @@ static void cli(void) {
   snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --spp 1 --stats 2>'%s'", bin, rt_path("ok.pbrt"), rt_path("s.png"), rt_path("log.txt"));
   r = system(cmd);
   {
-    char log[8192] = "";
-    size_t n;
-    f = fopen(rt_path("log.txt"), "rb");
-    n = f ? fread(log, 1, sizeof log - 1, f) : 0;
-    log[n] = 0;
-    if (f) fclose(f);
+    char log[8192];
+    read_text("log.txt", log, sizeof log);
     rt_check(r == 0 && strstr(log, "elapsed") && strstr(log, "remaining") && strstr(log, "samples/s") && strstr(log, "rays/s") &&
                  strstr(log, "env distribution") && !strstr(log, "warning"),
              "progress bar (elapsed, remaining), --stats, closing line with samples/s and rays/s; no warning");
@@ -642,12 +646,8 @@ static void cli(void) {
            rt_path("hot.txt"));
   r = system(cmd);
   {
-    char log[4096] = "";
-    size_t n;
-    f = fopen(rt_path("hot.txt"), "rb");
-    n = f ? fread(log, 1, sizeof log - 1, f) : 0;
-    log[n] = 0;
-    if (f) fclose(f);
+    char log[4096];
+    read_text("hot.txt", log, sizeof log);
     rt_check(r == 0 && strstr(log, "warning:") && strstr(log, "samples rejected"), "rejected samples: render warns (%s)", log);
   }
 }
