@@ -260,17 +260,17 @@ typedef struct elr_ctx {
 } elr_ctx;
 
 /* A camera sample's first vertex and light sample, computed ahead by elr__pixel_batched: the camera
- * ray's hit (hit = 0: it left the scene) and the environment sample for the first draw of light
- * sampling at that hit (ul = 1 when it was made). */
+ * ray's hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first draw of
+ * light sampling there. */
 typedef struct elr_first {
-  int hit, ul;
+  int hit;
   const elr_hit *h;
   elr_v3 wi, L;
   float pdf;
-  /* the direct-lighting integrator's: the hit's texture footprint and BSDF, and (bs = 1) the BSDF
+  /* the direct-lighting integrator's, at a hit: the texture footprint and BSDF, and (bs = 1) the BSDF
    * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
    * environment's pdf and radiance in its direction */
-  int has_b, bs, bray;
+  int bs, bray;
   elr_tex_ctx tc;
   elr_v3 dpdx, dpdy;
   elr_bsdf b;
@@ -346,7 +346,7 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
     for (k = 0; k < n; k++) {
       float ul0 = 0.f, ul1 = 0.f, us0 = 0.f, us1 = 0.f;
       const elr_first *pre = first && k == 0 && l->env == C->batch_env ? first : NULL; /* drawn ahead */
-      if (pre && pre->ul) elr__skip2d(S); else elr__get2d(S, &ul0, &ul1);
+      if (pre) elr__skip2d(S); else elr__get2d(S, &ul0, &ul1);
       if (pre && pre->bs) elr__skip2d(S); else elr__get2d(S, &us0, &us1);
       if (l->kind != ELR_LIGHT_INFINITE) {
         /* delta lights: light sampling only */
@@ -395,7 +395,7 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
           float lpdf, spdf;
           /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
            * (u, v), no second direction-to-(u, v) mapping) */
-          if (pre && pre->ul) { Li = pre->L; wi = pre->wi; lpdf = pre->pdf; }
+          if (pre) { Li = pre->L; wi = pre->wi; lpdf = pre->pdf; }
           else Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
           if (lpdf > 0.f) {
             f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
@@ -449,7 +449,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0
     const elr_first *f0 = depth == 0 ? first : NULL;
     if (f0 ? !f0->hit : !elr_intersect(s, r.o, r.d, INFINITY, &h)) return elr_add(L, elr_vmul(beta, elr__env_le(s, r.d)));
     if (f0) h = *f0->h;
-    if (f0 && f0->has_b) { tc = f0->tc; dpdx = f0->dpdx; dpdy = f0->dpdy; b = f0->b; }
+    if (f0) { tc = f0->tc; dpdx = f0->dpdx; dpdy = f0->dpdy; b = f0->b; } /* a hit's, made ahead */
     else {
       elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
       elr_bsdf_init(s, &h, &tc, &b);
@@ -603,19 +603,18 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
       ts->camera++;
       f[k].h = &h[k];
       f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
-      f[k].ul = f[k].has_b = f[k].bs = f[k].bray = 0;
+      f[k].bs = f[k].bray = 0;
       idx[k] = -1;
       if (!f[k].hit) continue;
       elr__get2d(S, &u[2 * n], &u[2 * n + 1]); /* the first light draw at the hit */
       idx[k] = n++;
       if (!C->path) {
-        /* the direct-lighting integrator's shading up to the BSDF sample: its environment lookups (a
-         * random direction's texels and pdf bin) are prefetched now and arrive during the other samples */
+        /* the direct-lighting integrator's shading up to the BSDF sample (its environment lookups come
+         * in the pass below) */
         elr_first *q = &f[k];
         float us0, us1;
         elr__differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
         elr_bsdf_init(C->s, &h[k], &q->tc, &q->b);
-        q->has_b = 1;
         elr__get2d(S, &us0, &us1); /* the BSDF draw that follows the light draw */
         if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
           int spec;
@@ -639,7 +638,6 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
       elr_v3 L;
       if (idx[k] >= 0) {
         int j = idx[k];
-        f[k].ul = 1;
         f[k].wi = elr_v(wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]);
         f[k].L = elr_v(Le[3 * j], Le[3 * j + 1], Le[3 * j + 2]);
         f[k].pdf = pdf[j];
