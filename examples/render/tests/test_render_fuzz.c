@@ -730,7 +730,7 @@ static size_t fz_exr_header_length(const fz_buf *e) {
 static void fz_regressions(void) {
   char err[512];
   el_image img;
-  { /* an EXR whose first pixel chunk is corrupt (4 bytes inserted into its data): tinyexr's LoadEXR
+  { /* an EXR whose first pixel chunk is corrupt (4 bytes inserted into its data): an earlier EXR reader
      * failed and leaked its channel buffers (LeakSanitizer in the sanitizer build) */
     fz_buf b;
     uint64_t off = 0;
@@ -744,8 +744,8 @@ static void fz_regressions(void) {
     r = el_image_load(rt_path("corrupt_chunk.exr"), &img, err, sizeof err);
     rt_check(r != 0 && strstr(err, "corrupt_chunk.exr") != NULL, "an EXR with a corrupt pixel chunk: an error naming the file, nothing leaked (\"%s\")", r ? err : "loaded");
     if (r == 0) el_image_free(&img);
-    /* the same with the version field's "tiled" bit set (the header is still a scanline one): this went
-     * to LoadEXR, which leaked the same way */
+    /* the same with the version field's "tiled" bit set (the header is still a scanline one): this took
+     * another path through that reader, which leaked the same way */
     b.p[5] |= 0x02;
     fz_write_file(rt_path("corrupt_tiled.exr"), b.p, b.n);
     r = el_image_load(rt_path("corrupt_tiled.exr"), &img, err, sizeof err);
@@ -821,8 +821,8 @@ static void fz_regressions(void) {
     if (r == 0) el_image_free(&img);
   }
   { /* an EXR whose data window is 2^23 x 33 pixels, with a complete offset table of empty chunks:
-     * tinyexr allocated 3 x 1.1 GB for its channels before decoding anything; now refused from the
-     * header, before OpenEXR reads a chunk */
+     * an earlier EXR reader allocated 3 x 1.1 GB for its channels before decoding anything; refused
+     * from the header, before OpenEXR reads a chunk */
     fz_buf b;
     size_t hl = fz_exr_header_length(&fz_img_seed[2]);
     int y, r;
