@@ -12,12 +12,19 @@
 
 #include <cstdio>
 #include <exception>
+#include <mutex>
 
 namespace {
 // The largest image and tile either reader accepts: image_io.c refuses more than 2^28 pixels, and
 // checks the chunk sizes, before calling us; this keeps the C++ library's own header check in line
 // with it should it read a header differently.
 const int kMaxSide = 1 << 28, kMaxTile = 1 << 16;
+
+std::once_flag limits_once;
+void set_limits() { // process-wide settings of the C++ library: set once, before the first file
+  Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
+  Imf::Header::setMaxTileSize(kMaxTile, kMaxTile);
+}
 
 int fail(char *msg, size_t msglen, const char *what) {
   if (msg && msglen) std::snprintf(msg, msglen, "%s", what);
@@ -28,8 +35,7 @@ int fail(char *msg, size_t msglen, const char *what) {
 extern "C" int el_exr_decode(const char *path, const char *const names[3], int min_x, int min_y, int width,
                              int height, float *rgb, char *msg, size_t msglen) {
   try {
-    Imf::Header::setMaxImageSize(kMaxSide, kMaxSide);
-    Imf::Header::setMaxTileSize(kMaxTile, kMaxTile);
+    std::call_once(limits_once, set_limits);
     Imf::InputFile in(path); // a multi-part file: its part 0
     const Imath::Box2i dw = in.header().dataWindow();
     if (dw.min.x != min_x || dw.min.y != min_y || (long long)dw.max.x - dw.min.x + 1 != width ||
