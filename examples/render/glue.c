@@ -1,44 +1,11 @@
-/* glue.c: the renderer's only contact with envlight's headers (film.h, envlight.h, mipmap.h), which
- * it implements here (EL_*_IMPLEMENTATION) and wraps in the small interface of elr_internal.h. */
-#if defined(__linux__) && !defined(_DEFAULT_SOURCE)
-#define _DEFAULT_SOURCE /* madvise */
-#endif
+/* glue.c: the renderer's wrappers of envlight's headers (film.h, envlight.h, mipmap.h; they are
+ * compiled in envlight_impl.c) in the small interface of elr_internal.h. */
 #include "elr_internal.h"
-#include <stdlib.h>
-#include <string.h>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
-/* The headers' allocations through EL_MALLOC (their documented hook): tables of 2 MiB and more (the
- * environment's texels, its sampling tables, MIP levels) are 2 MiB aligned and asked for transparent
- * huge pages. The renderer reads them at random directions: with 4 KiB pages nearly every such read
- * also missed the TLB (the 6 MB map and the 8 MB pdf and CDF tables of pbrt-v3's importance map span
- * thousands of pages). Smaller blocks and reallocations are plain malloc / realloc; free() takes both. */
-static void *elr__malloc(size_t n) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const size_t huge = (size_t)2 << 20;
-  if (n >= huge) {
-    void *p = NULL;
-    if (posix_memalign(&p, huge, n) != 0) return NULL;
-    (void)madvise(p, n & ~(huge - 1), MADV_HUGEPAGE); /* a hint: without it the pages are just small */
-    return p;
-  }
-#endif
-  return malloc(n);
-}
-#define EL_MALLOC(sz) elr__malloc(sz)
-#define EL_REALLOC(p, newsz) realloc(p, newsz)
-#define EL_FREE(p) free(p)
-
-#define EL_FILM_IMPLEMENTATION
-#define EL_ENVLIGHT_IMPLEMENTATION
-#define EL_DISTRIBUTION2D_IMPLEMENTATION
-#define EL_MIPMAP_IMPLEMENTATION
-#define EL_BLOCKEDARRAY_IMPLEMENTATION
 #include "film.h"
 #include "envlight.h"
 #include "mipmap.h"
+#include <stdlib.h>
+#include <string.h>
 
 /* >> film (film.h: pbrt-v3's Film and FilmTile) */
 struct elr_film { el_film f; };
