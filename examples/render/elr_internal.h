@@ -3,6 +3,7 @@
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
+#include "film.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -31,6 +32,9 @@ static inline elr_v3 elr_norm(elr_v3 a) {
 }
 static inline float elr_maxc(elr_v3 a) { float m = a.x > a.y ? a.x : a.y; return m > a.z ? m : a.z; }
 static inline int elr_isblack(elr_v3 a) { return a.x == 0.f && a.y == 0.f && a.z == 0.f; }
+/* the library's float[3] (envlight.h, film.h, mipmap.h take and return colours and directions so) */
+static inline void elr_to3(elr_v3 a, float f[3]) { f[0] = a.x; f[1] = a.y; f[2] = a.z; }
+static inline elr_v3 elr_from3(const float f[3]) { return elr_v(f[0], f[1], f[2]); }
 /* Orthonormal basis around unit n (Duff et al. 2017). */
 static inline void elr_onb(elr_v3 n, elr_v3 *s, elr_v3 *t) {
   float sign = n.z >= 0.f ? 1.f : -1.f;
@@ -81,26 +85,12 @@ void elr_mip_free(elr_mip *m);
 elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy);
 void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes);
 
-typedef struct elr_film elr_film;
-typedef struct elr_tile elr_tile;
-enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
-typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
-/* full resolution xres x yres; pixel bounds [x0,x1) x [y0,y1) after the crop window */
-int elr_film_create(int xres, int yres, int x0, int y0, int x1, int y1, const elr_filter_desc *f,
-                    elr_film **out, char *err, size_t errlen);
-void elr_film_free(elr_film *f);
-/* the sample bounds of the pixels [x0,x1) x [y0,y1): a tile adds samples for those pixels */
-elr_tile *elr_film_tile(elr_film *f, int x0, int y0, int x1, int y1);
-void elr_tile_add(elr_tile *t, float fx, float fy, elr_v3 L); /* continuous raster position */
-void elr_film_merge(elr_film *f, elr_tile *t);                 /* frees the tile */
-void elr_film_rgb(elr_film *f, float *rgb);                     /* cropped image, top row first */
-void elr_film_sample_bounds(const elr_film *f, int *x0, int *y0, int *x1, int *y1);
-size_t elr_film_bytes(const elr_film *f);
-size_t elr_film_splat_bytes(const elr_film *f);
-uint64_t elr_film_rejected(const elr_film *f);
-int elr_srgb8(const float *rgb, int n, unsigned char *out);
 
 /* >> scene description */
+/* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
+enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
+typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
+
 enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2 };
 typedef struct elr_texture {
   int kind;
@@ -194,6 +184,11 @@ void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree */
 void elr_scene_release(elr_scene *s);
+
+/* >> film (film.c): the scene's Film and PixelFilter as film.h's el_film */
+/* pbrt-v3's croppedPixelBounds: [b[0], b[2]) x [b[1], b[3]) of the full resolution */
+void elr_film_bounds(const elr_scene_desc *d, int b[4]);
+int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
 
 /* >> intersection */
 typedef struct elr_hit {

@@ -1,89 +1,10 @@
-/* glue.c: the renderer's wrappers of envlight's headers (film.h, envlight.h, mipmap.h; they are
+/* glue.c: the renderer's wrappers of envlight's headers (envlight.h, mipmap.h; they are
  * compiled in envlight_impl.c) in the small interface of elr_internal.h. */
 #include "elr_internal.h"
-#include "film.h"
 #include "envlight.h"
 #include "mipmap.h"
 #include <stdlib.h>
 #include <string.h>
-
-/* >> film (film.h: pbrt-v3's Film and FilmTile) */
-struct elr_film { el_film f; };
-struct elr_tile { el_film_tile t; };
-
-int elr_film_create(int xres, int yres, int x0, int y0, int x1, int y1, const elr_filter_desc *fd, elr_film **out,
-                    char *err, size_t errlen) {
-  el_film_options o;
-  elr_film *f = (elr_film *)calloc(1, sizeof *f);
-  el_result r;
-  *out = NULL;
-  if (!f) { snprintf(err, errlen, "out of memory"); return -1; }
-  memset(&o, 0, sizeof o);
-  o.width = xres; o.height = yres;
-  /* film.h takes pbrt's fractions and applies ceil(res * fraction): half a pixel below each integer
-   * bound gives that bound back whatever the float rounding */
-  o.crop[0] = x0 > 0 ? ((float)x0 - 0.5f) / (float)xres : 0.f; o.crop[1] = ((float)x1 - 0.5f) / (float)xres;
-  o.crop[2] = y0 > 0 ? ((float)y0 - 0.5f) / (float)yres : 0.f; o.crop[3] = ((float)y1 - 0.5f) / (float)yres;
-  if (x0 == 0 && y0 == 0 && x1 == xres && y1 == yres) memset(o.crop, 0, sizeof o.crop);
-  switch (fd->type) {
-  case ELR_PF_TRIANGLE: o.filter.type = EL_FILTER_TRIANGLE; break;
-  case ELR_PF_GAUSSIAN: o.filter.type = EL_FILTER_GAUSSIAN; o.filter.gaussian_alpha = fd->alpha; break;
-  case ELR_PF_MITCHELL:
-    o.filter.type = EL_FILTER_MITCHELL;
-    o.filter.mitchell_b = fd->b; o.filter.mitchell_c = fd->c;
-    if (fd->b == 0.f && fd->c == 0.f) o.filter.mitchell_b = o.filter.mitchell_c = 1e-30f;
-    break;
-  case ELR_PF_SINC: o.filter.type = EL_FILTER_LANCZOS; o.filter.lanczos_tau = fd->tau; break;
-  default: o.filter.type = EL_FILTER_BOX; break;
-  }
-  o.filter.radius[0] = fd->xw; o.filter.radius[1] = fd->yw;
-  r = el_film_init(&f->f, &o);
-  if (r != EL_SUCCESS) { free(f); snprintf(err, errlen, "film: %s", el_result_string(r)); return -1; }
-  if (f->f.x0 != x0 || f->f.y0 != y0 || f->f.x1 != x1 || f->f.y1 != y1) {
-    /* the crop fractions we passed must give back our pixel bounds exactly */
-    el_film_free(&f->f); free(f);
-    snprintf(err, errlen, "film: crop window bounds mismatch"); return -1;
-  }
-  *out = f;
-  return 0;
-}
-void elr_film_free(elr_film *f) { if (f) { el_film_free(&f->f); free(f); } }
-elr_tile *elr_film_tile(elr_film *f, int x0, int y0, int x1, int y1) {
-  elr_tile *t = (elr_tile *)calloc(1, sizeof *t);
-  if (!t) return NULL;
-  if (el_film_tile_init(&f->f, &t->t, x0, y0, x1, y1) != EL_SUCCESS) { free(t); return NULL; }
-  return t;
-}
-void elr_tile_add(elr_tile *t, float fx, float fy, elr_v3 L) {
-  float rgb[3];
-  rgb[0] = L.x; rgb[1] = L.y; rgb[2] = L.z;
-  el_film_tile_add_sample(&t->t, fx, fy, rgb, 1.f);
-}
-void elr_film_merge(elr_film *f, elr_tile *t) {
-  if (!t) return;
-  el_film_merge_tile(&f->f, &t->t);
-  el_film_tile_free(&t->t);
-  free(t);
-}
-void elr_film_rgb(elr_film *f, float *rgb) { el_film_get_rgb(&f->f, 1.f, rgb); }
-void elr_film_sample_bounds(const elr_film *f, int *x0, int *y0, int *x1, int *y1) {
-  int b[4] = {0, 0, 0, 0};
-  el_film_sample_bounds(&f->f, b);
-  *x0 = b[0]; *y0 = b[1]; *x1 = b[2]; *y1 = b[3];
-}
-size_t elr_film_bytes(const elr_film *f) { return el_film_bytes(&f->f); }
-size_t elr_film_splat_bytes(const elr_film *f) {
-  return f->f.splats ? (size_t)f->f.width * (size_t)f->f.height * 3 * sizeof(double) : 0;
-}
-uint64_t elr_film_rejected(const elr_film *f) { return el_film_rejected_samples(&f->f); }
-int elr_srgb8(const float *rgb, int n, unsigned char *out) {
-  int i;
-  for (i = 0; i < 3 * n; i++) {
-    float v = el_srgb_encode(rgb[i]) * 255.f + 0.5f;
-    out[i] = (unsigned char)(v < 0.f ? 0.f : (v > 255.f ? 255.f : v));
-  }
-  return 0;
-}
 
 /* >> environment (envlight.h: pbrt-v3's InfiniteAreaLight) */
 struct elr_envmap {

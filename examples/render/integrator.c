@@ -586,12 +586,13 @@ static void elr__camera_ray(const elr_ctx *C, float fx, float fy, elr_ray *r) {
  * left it. The sampler gives every (sample, dimension) the same number whichever order they are asked
  * in, so the image is bit for bit the one-at-a-time image (test_render_pipeline checks it). */
 #define ELR_BATCH 32
-static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, elr_tile *tile, elr_tstats *ts) {
+static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts) {
   elr_ray r[ELR_BATCH];
   elr_hit h[ELR_BATCH];
   elr_first f[ELR_BATCH];
   float fx[ELR_BATCH], fy[ELR_BATCH], u[2 * ELR_BATCH], wi[3 * ELR_BATCH], Le[3 * ELR_BATCH], pdf[ELR_BATCH];
   elr_spos pos[ELR_BATCH];
+  float rgb[3];
   int idx[ELR_BATCH], k0, k, m, n;
   for (k0 = 0; k0 < C->spp; k0 += ELR_BATCH) {
     m = C->spp - k0 < ELR_BATCH ? C->spp - k0 : ELR_BATCH;
@@ -644,7 +645,8 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
       }
       elr__spos_load(S, &pos[k]); /* the sampler back at sample k, after its film draw */
       L = C->path ? elr__li_path(C, S, &r[k], ts, &f[k]) : elr__li_direct(C, S, &r[k], ts, &f[k]);
-      elr_tile_add(tile, fx[k], fy[k], L);
+      elr_to3(L, rgb);
+      el_film_tile_add_sample(tile, fx[k], fy[k], rgb, 1.f);
       ts->samples++;
     }
   }
@@ -653,12 +655,12 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
 /* >> tiles and threads */
 typedef struct elr_job {
   elr_ctx *C;
-  elr_film *film;
+  el_film *film;
   const elr_render_options *o;
   int bx0, by0, bx1, by1, tile, ntx, nty, ntiles;
   pthread_mutex_t mu;
   int next_tile, next_merge, done;
-  elr_tile **ready;
+  el_film_tile **ready; /* finished tiles waiting for their turn to merge */
   elr_tstats total;
   double t0, last_print;
   int failed;
@@ -680,6 +682,13 @@ static void elr__progress(elr_job *J, int final) {
   fflush(stderr);
 }
 
+/* adds a finished tile to the film and frees it */
+static void elr__merge(el_film *film, el_film_tile *t) {
+  el_film_merge_tile(film, t); /* fails only for a splat buffer, and nothing splats */
+  el_film_tile_free(t);
+  free(t);
+}
+
 static void *elr__worker(void *arg) {
   elr_job *J = (elr_job *)arg;
   elr_ctx *C = J->C;
@@ -696,7 +705,7 @@ static void *elr__worker(void *arg) {
   }
   for (;;) {
     int t, tx, ty, x0, y0, x1, y1, x, y, k;
-    elr_tile *tile;
+    el_film_tile *tile;
     pthread_mutex_lock(&J->mu);
     t = J->failed ? J->ntiles : J->next_tile++;
     pthread_mutex_unlock(&J->mu);
@@ -705,22 +714,27 @@ static void *elr__worker(void *arg) {
     x0 = J->bx0 + tx * J->tile; y0 = J->by0 + ty * J->tile;
     x1 = x0 + J->tile < J->bx1 ? x0 + J->tile : J->bx1;
     y1 = y0 + J->tile < J->by1 ? y0 + J->tile : J->by1;
-    tile = elr_film_tile(J->film, x0, y0, x1, y1);
-    if (!tile) { pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu); break; }
+    tile = (el_film_tile *)calloc(1, sizeof *tile);
+    if (!tile || el_film_tile_init(J->film, tile, x0, y0, x1, y1) != EL_SUCCESS) {
+      free(tile);
+      pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
+      break;
+    }
     for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr__sampler_pixel(&S, x, y);
         if (C->batch_env) elr__pixel_batched(C, &S, x, y, tile, &ts);
         else
           for (k = 0; k < C->spp; k++) {
-            float fx, fy;
+            float fx, fy, rgb[3];
             elr_ray r;
             elr_v3 L;
             elr__camera_sample(&S, k, x, y, &fx, &fy);
             elr__camera_ray(C, fx, fy, &r);
             ts.camera++;
             L = C->path ? elr__li_path(C, &S, &r, &ts, NULL) : elr__li_direct(C, &S, &r, &ts, NULL);
-            elr_tile_add(tile, fx, fy, L);
+            elr_to3(L, rgb);
+            el_film_tile_add_sample(tile, fx, fy, rgb, 1.f);
             ts.samples++;
           }
       }
@@ -728,7 +742,7 @@ static void *elr__worker(void *arg) {
     /* merge tiles in tile order, whatever order threads finish them: the same sums for any thread count */
     J->ready[t] = tile;
     while (J->next_merge < J->ntiles && J->ready[J->next_merge]) {
-      elr_film_merge(J->film, J->ready[J->next_merge]);
+      elr__merge(J->film, J->ready[J->next_merge]);
       J->ready[J->next_merge] = NULL;
       J->next_merge++;
     }
@@ -761,11 +775,11 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   elr_ctx C;
   elr_job J;
   elr_halton H;
-  elr_film *film = NULL;
+  el_film film;
   pthread_t *th = NULL;
-  int i, nthreads, xres = s->d.xres, yres = s->d.yres, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0;
+  int i, nthreads, xres = s->d.xres, yres = s->d.yres, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0, fb[4];
   double t_start = elr_now(), frame;
-  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H);
+  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H); memset(&film, 0, sizeof film);
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
   C.s = s;
@@ -805,15 +819,14 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   else if (frame > 1.0) { C.sx0 = (float)-frame; C.sx1 = (float)frame; C.sy0 = -1.f; C.sy1 = 1.f; }
   else { C.sx0 = -1.f; C.sx1 = 1.f; C.sy0 = (float)(-1.0 / frame); C.sy1 = (float)(1.0 / frame); }
   C.tanhalf = tanf(s->d.fov * ELR_PI / 360.f);
-  /* <<Compute film image bounds>> (pbrt-v3: ceil of the crop window times the resolution) */
-  x0 = (int)ceil(xres * (double)s->d.crop[0]); x1 = (int)ceil(xres * (double)s->d.crop[1]);
-  y0 = (int)ceil(yres * (double)s->d.crop[2]); y1 = (int)ceil(yres * (double)s->d.crop[3]);
+  elr_film_bounds(&s->d, fb);
+  x0 = fb[0]; y0 = fb[1]; x1 = fb[2]; y1 = fb[3];
   if (x1 <= x0 || y1 <= y0) { snprintf(err, errlen, "the crop window covers no pixel"); return -1; }
   if ((double)(x1 - x0) * (double)(y1 - y0) * (double)C.spp > 1e12) {
     snprintf(err, errlen, "%d x %d pixels at %d samples is more than 1e12 samples", x1 - x0, y1 - y0, C.spp);
     return -1;
   }
-  if (elr_film_create(xres, yres, x0, y0, x1, y1, &s->d.filter, &film, err, errlen) != 0) return -1;
+  if (elr_film_init(&film, &s->d, fb, err, errlen) != 0) return -1;
   /* <<Decide what the scene calls for>> */
   if (!s->mat_textured) {
     s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
@@ -852,18 +865,22 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   }
   if (C.sampler == ELR_SAMPLER_HALTON) {
     int b[4];
-    elr_film_sample_bounds(film, &b[0], &b[1], &b[2], &b[3]);
+    el_film_sample_bounds(&film, b);
     if (elr__halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
   }
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 1024) nthreads = 1024;
-  J.C = &C; J.film = film; J.o = o; J.H = &H;
-  elr_film_sample_bounds(film, &J.bx0, &J.by0, &J.bx1, &J.by1);
+  J.C = &C; J.film = &film; J.o = o; J.H = &H;
+  {
+    int b[4];
+    el_film_sample_bounds(&film, b);
+    J.bx0 = b[0]; J.by0 = b[1]; J.bx1 = b[2]; J.by1 = b[3];
+  }
   J.tile = o->tile_size > 0 ? o->tile_size : 16;
   J.ntx = (J.bx1 - J.bx0 + J.tile - 1) / J.tile; J.nty = (J.by1 - J.by0 + J.tile - 1) / J.tile;
   J.ntiles = J.ntx * J.nty;
-  J.ready = (elr_tile **)calloc((size_t)J.ntiles, sizeof(elr_tile *));
+  J.ready = (el_film_tile **)calloc((size_t)J.ntiles, sizeof(el_film_tile *));
   th = (pthread_t *)calloc((size_t)nthreads, sizeof(pthread_t));
   if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
   pthread_mutex_init(&J.mu, NULL);
@@ -879,7 +896,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   }
   pthread_mutex_destroy(&J.mu);
   if (J.failed || J.next_merge != J.ntiles) {
-    for (i = 0; i < J.ntiles; i++) if (J.ready[i]) elr_film_merge(film, J.ready[i]);
+    for (i = 0; i < J.ntiles; i++) if (J.ready[i]) elr__merge(&film, J.ready[i]);
     snprintf(err, errlen, "rendering failed (out of memory for a film tile or sampler)");
     goto done;
   }
@@ -887,19 +904,19 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   out->width = x1 - x0; out->height = y1 - y0;
   out->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)out->width * (size_t)out->height);
   if (!out->rgb) { snprintf(err, errlen, "out of memory"); goto done; }
-  elr_film_rgb(film, out->rgb);
+  el_film_get_rgb(&film, 1.f, out->rgb);
   if (st) {
     st->t_parse = s->t_parse; st->t_images = s->t_images; st->t_embree = s->t_embree;
     st->t_render = elr_now() - J.t0;
-    st->bytes_embree = s->bytes_embree; st->bytes_film = elr_film_bytes(film);
-    st->bytes_splats = elr_film_splat_bytes(film); st->splats_allocated = st->bytes_splats > 0;
+    st->bytes_embree = s->bytes_embree; st->bytes_film = el_film_bytes(&film);
+    st->bytes_splats = film.splats ? (size_t)film.width * (size_t)film.height * 3 * sizeof(double) : 0; st->splats_allocated = st->bytes_splats > 0;
     st->camera_rays = J.total.camera; st->bounce_rays = J.total.bounce; st->shadow_rays = J.total.shadow;
     st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
     st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
     st->light_samples_batched = C.batch_env != NULL;
     st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
     st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler;
-    st->rejected_samples = elr_film_rejected(film);
+    st->rejected_samples = el_film_rejected_samples(&film);
     for (i = 0; i < s->ntex; i++) {
       if (s->tex[i].kind == ELR_TEX_IMAGE) {
         int lv; size_t by;
@@ -918,7 +935,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
 done:
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
   free(J.ready); free(th); free(H.perm);
-  elr_film_free(film);
+  el_film_free(&film);
   if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }
   return rc;
 }
@@ -1009,22 +1026,3 @@ void elr_scene_resolution(const elr_scene *s, int *w, int *h) {
   *w = x1 - x0; *h = y1 - y0;
 }
 int elr_scene_spp(const elr_scene *s) { return s->d.spp; }
-
-void elr_image_free(elr_image *img) { if (img) { free(img->rgb); img->rgb = NULL; } }
-int elr_image_write(const elr_image *img, const char *path, char *err, size_t errlen) {
-  const char *ext = el_image_extension(path);
-  if (!strcmp(ext, "png")) {
-    size_t n = (size_t)img->width * (size_t)img->height;
-    unsigned char *b = (unsigned char *)malloc(n * 3);
-    int r;
-    if (!b) { snprintf(err, errlen, "out of memory"); return -1; }
-    elr_srgb8(img->rgb, (int)n, b);
-    r = el_image_write_png(path, b, img->width, img->height, 3, err, errlen);
-    free(b);
-    return r;
-  }
-  if (!strcmp(ext, "exr") || !strcmp(ext, "pfm") || !strcmp(ext, "hdr"))
-    return el_image_write_float(path, img->rgb, img->width, img->height, 3, err, errlen);
-  snprintf(err, errlen, "%s: unknown output format \".%s\" (use .png, .exr, .pfm or .hdr)", path, ext);
-  return -1;
-}
