@@ -4,6 +4,7 @@
 #define ELR_INTERNAL_H
 #include "el_render.h"
 #include "film.h"
+#include "mipmap.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -54,7 +55,7 @@ elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 
-/* >> glue to the library headers (glue.c is the only file that includes them) */
+/* >> glue to envlight.h (glue.c) */
 typedef struct elr_envmap elr_envmap;
 /* rgb: w*h*3 linear floats (NULL: a constant light of radiance `scale`), top row first (theta = 0 at the top row, pbrt's lat-long mapping);
  * scale: pbrt's "scale" times "L"; l2w: the light-to-world rotation (3x3, row-major). */
@@ -76,14 +77,6 @@ void elr_env_prefetch(const elr_envmap *e, elr_v3 wi); /* the cache lines elr_en
 size_t elr_env_distribution_bytes(const elr_envmap *e);
 size_t elr_env_image_bytes(const elr_envmap *e);
 
-typedef struct elr_mip elr_mip;
-enum { ELR_WRAP_REPEAT = 0, ELR_WRAP_BLACK = 1, ELR_WRAP_CLAMP = 2 };
-enum { ELR_FILTER_BILINEAR = 0, ELR_FILTER_TRILINEAR = 1, ELR_FILTER_EWA = 2 };
-int elr_mip_create(const float *rgb, int w, int h, int wrap, int filter, float maxaniso, elr_mip **out,
-                   char *err, size_t errlen);
-void elr_mip_free(elr_mip *m);
-elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy);
-void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes);
 
 
 /* >> scene description */
@@ -98,7 +91,7 @@ typedef struct elr_texture {
   int tex1, tex2;          /* checkerboard: sub-textures */
   int aa_closedform;       /* checkerboard aamode */
   float su, sv, du, dv;    /* uv mapping */
-  elr_mip *mip;            /* imagemap */
+  el_mipmap *mip;          /* imagemap (mipmap.h; upper levels built on the first lookup that needs them) */
   int is_float;
 } elr_texture;
 
@@ -209,7 +202,7 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
 
-/* >> textures and materials */
+/* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
 typedef struct elr_tex_ctx {
   float u, v, dudx, dudy, dvdx, dvdy;
 } elr_tex_ctx;

@@ -1,8 +1,7 @@
-/* glue.c: the renderer's wrappers of envlight's headers (envlight.h, mipmap.h; they are
+/* glue.c: the renderer's wrappers of envlight's headers (envlight.h; they are
  * compiled in envlight_impl.c) in the small interface of elr_internal.h. */
 #include "elr_internal.h"
 #include "envlight.h"
-#include "mipmap.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -170,33 +169,3 @@ float elr_env_pdf(const elr_envmap *e, elr_v3 wi) {
 }
 size_t elr_env_distribution_bytes(const elr_envmap *e) { return el_envlight_sampling_bytes(elr__env_s(e)); }
 size_t elr_env_image_bytes(const elr_envmap *e) { return sizeof(float) * 3 * (size_t)e->plain.width * (size_t)e->plain.height; }
-
-/* >> MIP map (mipmap.h: pbrt-v3's MIPMap; upper levels built on the first lookup that needs them) */
-struct elr_mip { el_mipmap m; int filter; };
-int elr_mip_create(const float *rgb, int w, int h, int wrap, int filter, float maxaniso, elr_mip **out, char *err,
-                   size_t errlen) {
-  el_mipmap_options o;
-  el_result r;
-  elr_mip *m = (elr_mip *)calloc(1, sizeof *m);
-  *out = NULL;
-  if (!m) { snprintf(err, errlen, "out of memory"); return -1; }
-  memset(&o, 0, sizeof o);
-  o.wrap_u = o.wrap_v = wrap == ELR_WRAP_BLACK ? EL_WRAP_BLACK : (wrap == ELR_WRAP_CLAMP ? EL_WRAP_CLAMP : EL_WRAP_REPEAT);
-  o.filter = filter == ELR_FILTER_TRILINEAR ? EL_FILTER_TRILINEAR : (filter == ELR_FILTER_BILINEAR ? EL_FILTER_BILINEAR : EL_FILTER_EWA);
-  o.max_anisotropy = maxaniso;
-  r = el_mipmap_init(&m->m, rgb, w, h, 3, &o);
-  if (r != EL_SUCCESS) { free(m); snprintf(err, errlen, "MIP map: %s", el_result_string(r)); return -1; }
-  m->filter = filter;
-  *out = m;
-  return 0;
-}
-void elr_mip_free(elr_mip *m) { if (m) { el_mipmap_free(&m->m); free(m); } }
-elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy) {
-  float c[3];
-  el_mipmap_lookup_differentials(&m->m, s, t, dsdx, dtdx, dsdy, dtdy, c);
-  return elr_v(c[0], c[1], c[2]);
-}
-void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes) {
-  *levels_built = el_mipmap_levels_built(&m->m) ? el_mipmap_levels(&m->m) : 1; /* level 0 always exists */
-  *bytes = el_mipmap_bytes(&m->m);
-}

@@ -919,9 +919,10 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->rejected_samples = el_film_rejected_samples(&film);
     for (i = 0; i < s->ntex; i++) {
       if (s->tex[i].kind == ELR_TEX_IMAGE) {
-        int lv; size_t by;
-        elr_mip_stats(s->tex[i].mip, &lv, &by);
-        st->mip_textures++; st->mip_levels_built += lv; st->bytes_mip += by;
+        const el_mipmap *m = s->tex[i].mip;
+        st->mip_textures++;
+        st->mip_levels_built += el_mipmap_levels_built(m) ? el_mipmap_levels(m) : 1; /* level 0 always exists */
+        st->bytes_mip += el_mipmap_bytes(m);
       }
     }
     st->bytes_textures = s->bytes_textures;
@@ -1011,7 +1012,7 @@ void elr_scene_free(elr_scene *s) {
   int i;
   if (!s) return;
   elr_scene_release(s);
-  for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) elr_mip_free(s->tex[i].mip);
+  for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) if (s->light[i].env) elr_env_free(s->light[i].env);
   free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
