@@ -162,29 +162,30 @@ static void packet_rates(const elr_scene *s) {
   free(cam); free(blk); free(arr);
 }
 
-static elr_envmap *scene_env(elr_scene *s) {
+static elr_light *scene_env(elr_scene *s) {
   int i;
-  for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE) return s->light[i].env;
+  for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE) return &s->light[i];
   return NULL;
 }
 
 /* shadow rays: from the camera rays' hit points towards environment samples (only those above the
  * surface, as the loop traces them) */
 static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max) {
-  elr_envmap *env = scene_env(s);
+  elr_light *env = scene_env(s);
   int i, k = 0;
   uint32_t st = 12345;
-  elr_env_prepare(env, -1, -1);
+  elr_infinite_prepare(env, -1, -1);
   for (i = 0; i < n && k < max; i++) {
     elr_hit h;
     int tries;
     if (!elr_intersect(s, cam[i].o, cam[i].d, INFINITY, &h)) continue;
     for (tries = 0; tries < 8 && k < max; tries++) {
-      float u0, u1, pdf;
+      float u[2], w3[3], L3[3], pdf;
       elr_v3 wi;
-      st = st * 1664525u + 1013904223u; u0 = (st >> 8) * 0x1p-24f;
-      st = st * 1664525u + 1013904223u; u1 = (st >> 8) * 0x1p-24f;
-      elr_env_sample(env, u0, u1, &wi, &pdf);
+      st = st * 1664525u + 1013904223u; u[0] = (st >> 8) * 0x1p-24f;
+      st = st * 1664525u + 1013904223u; u[1] = (st >> 8) * 0x1p-24f;
+      el_envlight_sample_li(env->env_sample, u, w3, L3, &pdf);
+      wi = elr_from3(w3);
       if (pdf > 0 && elr_dot(wi, h.ng) * elr_dot(cam[i].d, h.ng) < 0) {
         out[k].o = elr_add(h.p, elr_mul(h.ng, elr_dot(wi, h.ng) > 0 ? h.eps : -h.eps));
         out[k].d = wi;
@@ -311,7 +312,7 @@ int main(int argc, char **argv) {
         elr_image_free(&img);
       }
       /* the same loop sampling envlight's cell-average map (1x resolution: a quarter of the tables) */
-      if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, ELR_IMPORTANCE_CELL_AVERAGE, 1, 1, &img, &st) == 0) {
+      if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE, 1, 1, &img, &st) == 0) {
         ni_c = (double)st.camera_rays + st.bounce_rays; no_c = (double)st.shadow_rays + st.bsdf_light_rays;
         if (st.t_render < t_cell) t_cell = st.t_render;
         elr_image_free(&img);

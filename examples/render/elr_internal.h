@@ -3,6 +3,7 @@
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
+#include "envlight.h"
 #include "film.h"
 #include "mipmap.h"
 #include <math.h>
@@ -55,30 +56,6 @@ elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 
-/* >> glue to envlight.h (glue.c) */
-typedef struct elr_envmap elr_envmap;
-/* rgb: w*h*3 linear floats (NULL: a constant light of radiance `scale`), top row first (theta = 0 at the top row, pbrt's lat-long mapping);
- * scale: pbrt's "scale" times "L"; l2w: the light-to-world rotation (3x3, row-major). */
-enum { ELR_IMPORTANCE_CELL_AVERAGE = 0, ELR_IMPORTANCE_PBRT_V3 = 1, ELR_IMPORTANCE_TEXEL = 2 };
-int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9],
-                   int compensated, int importance, elr_envmap **out, char *err, size_t errlen);
-void elr_env_free(elr_envmap *e);
-elr_v3 elr_env_le(const elr_envmap *e, elr_v3 dir_world);
-/* build the sampling distribution now (before threads start); -1: as the scene said */
-int elr_env_prepare(elr_envmap *e, int compensated, int importance);
-/* Sample a direction towards the environment: radiance, world direction, solid-angle pdf. */
-elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
-void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf); /* no radiance */
-/* n samples at once (envlight's sample_li_n: the same results as n elr_env_sample calls, with their
- * table and texel reads overlapped); u: 2n floats, wi and L: 3n floats (L may be NULL), pdf: n */
-void elr_env_sample_n(const elr_envmap *e, int n, const float *u, float *wi, float *L, float *pdf);
-float elr_env_pdf(const elr_envmap *e, elr_v3 wi);
-void elr_env_prefetch(const elr_envmap *e, elr_v3 wi); /* the cache lines elr_env_pdf and elr_env_le will read */
-size_t elr_env_distribution_bytes(const elr_envmap *e);
-size_t elr_env_image_bytes(const elr_envmap *e);
-
-
-
 /* >> scene description */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
@@ -123,8 +100,12 @@ typedef struct elr_light {
   elr_v3 L;          /* L * scale (point: I * scale) */
   elr_v3 pos, dir;   /* point: world position; distant: world direction towards the light */
   int nsamples;
-  elr_envmap *env;   /* infinite light (a constant L is a 1x1 map) */
-  int compensated, importance;
+  /* infinite: envlight.h's light (a constant L is a constant light); lights.c */
+  el_envlight *env;        /* the radiance, as the scene gave it: le */
+  el_envlight *env_sample; /* the density sample_li and pdf_li use: env, or env_alt */
+  el_envlight *env_alt;    /* another density the render options asked for, or NULL */
+  int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
+  int alt_compensated, alt_importance;
   int has_map;
 } elr_light;
 
@@ -201,6 +182,34 @@ void elr_hit_uv(const elr_scene *s, elr_hit *h); /* u, v, dpdu, dpdv, dndu, dndv
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
+/* the origin of a ray leaving h in direction d: offset along the geometric normal to the side d goes
+ * (pbrt-v3's OffsetRayOrigin, with a fixed relative epsilon instead of its error bounds) */
+static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
+  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
+}
+
+/* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
+/* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
+ * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
+ * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
+typedef struct elr_light_sample {
+  elr_v3 L, wi;
+  float pdf;
+  elr_v3 p_light;
+  float dist;
+  int at_point;
+} elr_light_sample;
+int elr_light_emits(const elr_light *l);
+static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
+float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
+elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
+int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
+                      size_t errlen);
+int elr_infinite_prepare(elr_light *l, int compensated, int importance);
+void elr_infinite_prefetch(const elr_light *l, elr_v3 wi);
+void elr_light_free(elr_light *l);
 
 /* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
 typedef struct elr_tex_ctx {

@@ -256,7 +256,7 @@ typedef struct elr_ctx {
   int spp, sampler, xs, ys, jitter, dims;
   /* batched light samples (elr__pixel_batched): the one emitting light, an environment, whose first
    * light sample is each camera sample's second 2D draw; NULL: one sample at a time */
-  const elr_envmap *batch_env;
+  const elr_light *batch_light;
 } elr_ctx;
 
 /* A camera sample's first vertex and light sample, computed ahead by elr__pixel_batched: the camera
@@ -281,16 +281,11 @@ typedef struct elr_first {
 typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats;
 
 static float elr__power(float a, float b) { float a2 = a * a, b2 = b * b; return a2 + b2 > 0.f ? a2 / (a2 + b2) : 0.f; }
-static int elr__light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
-
-static elr_v3 elr__offset(const elr_hit *h, elr_v3 d) {
-  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
-}
 static elr_v3 elr__env_le(const elr_scene *s, elr_v3 d) {
   int i;
   elr_v3 L = elr_v(0, 0, 0);
   for (i = 0; i < s->nlight; i++)
-    if (s->light[i].kind == ELR_LIGHT_INFINITE && elr__light_emits(&s->light[i])) L = elr_add(L, elr_env_le(s->light[i].env, d));
+    if (s->light[i].kind == ELR_LIGHT_INFINITE && elr_light_emits(&s->light[i])) L = elr_add(L, elr_light_le(&s->light[i], d));
   return L;
 }
 
@@ -342,10 +337,10 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
     const elr_light *l = &s->light[li];
     int n = use_counts ? l->nsamples : 1, k;
     elr_v3 sum = elr_v(0, 0, 0);
-    if (!elr__light_emits(l)) continue;
+    if (!elr_light_emits(l)) continue;
     for (k = 0; k < n; k++) {
       float ul0 = 0.f, ul1 = 0.f, us0 = 0.f, us1 = 0.f;
-      const elr_first *pre = first && k == 0 && l->env == C->batch_env ? first : NULL; /* drawn ahead */
+      const elr_first *pre = first && k == 0 && l == C->batch_light ? first : NULL; /* drawn ahead */
       if (pre) elr__skip2d(S); else elr__get2d(S, &ul0, &ul1);
       if (pre && pre->bs) elr__skip2d(S); else elr__get2d(S, &us0, &us1);
       if (l->kind != ELR_LIGHT_INFINITE) {
@@ -364,7 +359,7 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
         if (elr_isblack(f)) continue;
         {
-          elr_v3 o = elr__offset(h, wi);
+          elr_v3 o = elr_spawn_origin(h, wi);
           float tmax = l->kind == ELR_LIGHT_POINT ? elr_len(elr_sub(l->pos, o)) * (1.f - 1e-4f) : dist;
           ts->shadow++;
           if (elr_occluded(s, o, wi, tmax)) continue;
@@ -386,7 +381,7 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
             int spec;
             fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
             bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
-            if (bsdf_ray) elr_env_prefetch(l->env, wb);
+            if (bsdf_ray) elr_infinite_prefetch(l, wb);
           }
         }
         /* light sampling */
@@ -396,12 +391,17 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
           /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
            * (u, v), no second direction-to-(u, v) mapping) */
           if (pre) { Li = pre->L; wi = pre->wi; lpdf = pre->pdf; }
-          else Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
+          else {
+            float u[2], w3[3], L3[3];
+            u[0] = ul0; u[1] = ul1;
+            el_envlight_sample_li(l->env_sample, u, w3, L3, &lpdf);
+            wi = elr_from3(w3); Li = elr_from3(L3);
+          }
           if (lpdf > 0.f) {
             f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
             if (!elr_isblack(f)) {
               ts->shadow++;
-              if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
+              if (!elr_occluded(s, elr_spawn_origin(h, wi), wi, INFINITY)) {
                 float w = 1.f;
                 if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
                 sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
@@ -413,13 +413,13 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
         if (bsdf_ray) {
           fb = elr_mul(fb, fabsf(elr_dot(wb, b->ns)));
           ts->bsdfl++;
-          if (!elr_occluded(s, elr__offset(h, wb), wb, INFINITY)) {
+          if (!elr_occluded(s, elr_spawn_origin(h, wb), wb, INFINITY)) {
             /* pbrt-v3 returns when Pdf_Li is 0; with a compensated density that would drop the dim parts
              * of the map, which only BSDF sampling covers: the power heuristic then gives weight 1 */
             float w;
             elr_v3 Lb;
             if (pre && pre->bs) { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, pre->bpdf_env) : 1.f; Lb = pre->Lb; }
-            else { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, elr_env_pdf(l->env, wb)) : 1.f; Lb = elr_env_le(l->env, wb); }
+            else { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, elr_light_pdf_li(l, h, wb)) : 1.f; Lb = elr_light_le(l, wb); }
             sum = elr_add(sum, elr_mul(elr_vmul(fb, Lb), w / bpdf));
           }
         }
@@ -461,7 +461,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0
     elr__get2d(S, &u0, &u1);
     f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
     if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f)) break;
-    rd.o = elr__offset(&h, wi); rd.d = wi; rd.has_diff = 0;
+    rd.o = elr_spawn_origin(&h, wi); rd.d = wi; rd.has_diff = 0;
     if (r.has_diff && s->any_textured) {
       /* <<Compute ray differential rd for specular reflection>> */
       elr_v3 ns = b.ns;
@@ -501,12 +501,12 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
       for (li = 0; li < s->nlight; li++) {
         const elr_light *l = &s->light[li];
         float w = 1.f;
-        if (l->kind != ELR_LIGHT_INFINITE || !elr__light_emits(l)) continue;
+        if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l)) continue;
         if (depth > 0 && !specular && C->light_sampling) {
           if (C->ls == ELR_LS_LIGHT) continue;
-          if (C->ls == ELR_LS_MIS) w = elr__power(prev_pdf, elr_env_pdf(l->env, d));
+          if (C->ls == ELR_LS_MIS) w = elr__power(prev_pdf, elr_light_pdf_li(l, NULL, d));
         }
-        L = elr_add(L, elr_mul(elr_vmul(beta, elr_env_le(l->env, d)), w));
+        L = elr_add(L, elr_mul(elr_vmul(beta, elr_light_le(l, d)), w));
       }
       break;
     }
@@ -528,7 +528,7 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     specular = spec; prev_pdf = pdf;
     /* the last vertex's continuation only matters for the environment's BSDF-sampled part */
     if (depth + 1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;
-    o = elr__offset(&h, wi); d = wi;
+    o = elr_spawn_origin(&h, wi); d = wi;
     ts->bounce++;
     { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3) */
       float mc = elr_maxc(beta);
@@ -631,10 +631,13 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
       for (k = 0; k < m; k++) {
         elr_first *q = &f[k];
         if (!q->bray) continue;
-        q->bpdf_env = elr_env_pdf(C->batch_env, q->wb);
-        q->Lb = elr_env_le(C->batch_env, q->wb);
+        float d[3], L3[3];
+        elr_to3(q->wb, d);
+        q->bpdf_env = el_envlight_pdf_li(C->batch_light->env_sample, d);
+        el_envlight_le(C->batch_light->env, d, L3);
+        q->Lb = elr_from3(L3);
       }
-    elr_env_sample_n(C->batch_env, n, u, wi, Le, pdf);
+    el_envlight_sample_li_n(C->batch_light->env_sample, n, u, wi, Le, pdf);
     for (k = 0; k < m; k++) {
       elr_v3 L;
       if (idx[k] >= 0) {
@@ -723,7 +726,7 @@ static void *elr__worker(void *arg) {
     for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr__sampler_pixel(&S, x, y);
-        if (C->batch_env) elr__pixel_batched(C, &S, x, y, tile, &ts);
+        if (C->batch_light) elr__pixel_batched(C, &S, x, y, tile, &ts);
         else
           for (k = 0; k < C->spp; k++) {
             float fx, fy, rgb[3];
@@ -842,15 +845,15 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   nonspec = elr__mat_nonspecular(s);
   {
     int emits = 0;
-    for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) emits = 1;
-    for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C.has_env = 1;
+    for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) emits = 1;
+    for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C.has_env = 1;
     C.light_sampling = emits && nonspec;
     for (i = 0; i < s->nlight; i++) {
       elr_light *l = &s->light[i];
-      if (l->kind == ELR_LIGHT_INFINITE && elr__light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
+      if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
         double t0 = elr_now();
-        if (elr_env_prepare(l->env, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
-        if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += elr_env_distribution_bytes(l->env); }
+        if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
+        if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
         env_sampled = 1;
       }
     }
@@ -859,8 +862,8 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
      * past them come from the pixel's one random stream, whose order batching would change) */
     if (env_sampled && !o->no_batch && (C.sampler != ELR_SAMPLER_STRATIFIED || C.dims >= 3)) {
       int nemit = 0;
-      for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) { nemit++; C.batch_env = s->light[i].env; }
-      if (nemit != 1) C.batch_env = NULL;
+      for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C.batch_light = &s->light[i]; }
+      if (nemit != 1) C.batch_light = NULL;
     }
   }
   if (C.sampler == ELR_SAMPLER_HALTON) {
@@ -913,7 +916,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->camera_rays = J.total.camera; st->bounce_rays = J.total.bounce; st->shadow_rays = J.total.shadow;
     st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
     st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
-    st->light_samples_batched = C.batch_env != NULL;
+    st->light_samples_batched = C.batch_light != NULL;
     st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
     st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler;
     st->rejected_samples = el_film_rejected_samples(&film);
@@ -928,8 +931,9 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->bytes_textures = s->bytes_textures;
     for (i = 0; i < s->nlight; i++)
       if (s->light[i].kind == ELR_LIGHT_INFINITE) {
-        st->bytes_textures += elr_env_image_bytes(s->light[i].env);
-        if (env_sampled) st->bytes_distribution = elr_env_distribution_bytes(s->light[i].env);
+        const el_envlight *e = s->light[i].env;
+        st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
+        if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
       }
   }
   rc = 0;
@@ -1014,7 +1018,7 @@ void elr_scene_free(elr_scene *s) {
   elr_scene_release(s);
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
-  for (i = 0; i < s->nlight; i++) if (s->light[i].env) elr_env_free(s->light[i].env);
+  for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
   free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
   free(s);
 }

@@ -797,9 +797,9 @@ static void elr__light(elr__parser *P, const char *type) {
        * of lum(le) / pdf per light sample is 0.024 for pbrt-v3's map and 0.098 for cell averages: the
        * piecewise-constant density cannot follow the bilinear ramp around the sun at image resolution. */
       const char *im = elr__pstring(P, "importance", "pbrt-v3");
-      if (!strcmp(im, "cellaverage")) l->importance = ELR_IMPORTANCE_CELL_AVERAGE;
-      else if (!strcmp(im, "pbrt-v3")) l->importance = ELR_IMPORTANCE_PBRT_V3;
-      else if (!strcmp(im, "texel")) l->importance = ELR_IMPORTANCE_TEXEL;
+      if (!strcmp(im, "cellaverage")) l->importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
+      else if (!strcmp(im, "pbrt-v3")) l->importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
+      else if (!strcmp(im, "texel")) l->importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
       else elr__failf(P, elr__find(P, "importance")->file, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\" or \"texel\"");
     }
     l->L = elr_vmul(L, sc);
@@ -836,7 +836,7 @@ static void elr__light(elr__parser *P, const char *type) {
     }
     {
       double t0 = elr_now();
-      int r = elr_env_create(rgb, w, h, scale3, m3, l->compensated, l->importance, &l->env, e, sizeof e);
+      int r = elr_infinite_init(l, rgb, w, h, scale3, m3, e, sizeof e);
       free(rgb);
       if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
       s->t_images += elr_now() - t0;
