@@ -159,6 +159,72 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree */
 void elr_scene_release(elr_scene *s);
 
+/* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_halton.c) */
+/* PCG32, pbrt-v3's RNG (core/rng.h) */
+typedef struct elr_rng { uint64_t state, inc; } elr_rng;
+static inline uint32_t elr_rng_u32(elr_rng *r) {
+  uint64_t old = r->state;
+  uint32_t xs, rot;
+  r->state = old * 0x5851f42d4c957f2dULL + r->inc;
+  xs = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+  rot = (uint32_t)(old >> 59u);
+  return (xs >> rot) | (xs << ((~rot + 1u) & 31));
+}
+static inline void elr_rng_seed(elr_rng *r, uint64_t seq, uint64_t seed) { /* pbrt's SetSequence */
+  r->state = 0u; r->inc = (seq << 1u) | 1u;
+  elr_rng_u32(r); r->state += seed; elr_rng_u32(r);
+}
+static inline float elr_rng_float(elr_rng *r) { return (float)(elr_rng_u32(r) >> 8) * 0x1p-24f; } /* [0, 1) */
+/* a 64-bit mixer (splitmix64's finaliser, Stafford's variant 13): seeds from (seed, pixel, dimension) */
+static inline uint64_t elr_mix64(uint64_t x) {
+  x ^= x >> 31; x *= 0x7fb5d329728ea185ULL; x ^= x >> 27; x *= 0x81dadef4bc2dd44dULL; x ^= x >> 33;
+  return x;
+}
+
+/* the halton sampler's tables (sampler_halton.c), one per render, shared by its threads */
+#define ELR_HALTON_DIMS 256
+typedef struct elr_halton {
+  int base_scales[2], base_exps[2], mult_inv[2];
+  int64_t stride;
+  int ndims;
+  int primes[ELR_HALTON_DIMS];
+  uint16_t *perm; int perm_off[ELR_HALTON_DIMS];
+} elr_halton;
+int elr_halton_init(elr_halton *H, int w, int h, uint64_t seed);
+void elr_halton_free(elr_halton *H);
+int64_t elr_halton_pixel_offset(const elr_halton *H, int px, int py);
+float elr_halton_sample(const elr_halton *H, int64_t index, int dim, elr_rng *rng);
+
+/* which sampler a render's threads make, with pbrt's parameters (elr_sampler_choose) */
+typedef struct elr_sampler_desc { int kind, spp, xs, ys, jitter, dims; } elr_sampler_desc;
+
+/* one thread's sampler: its parameters and where it is (pixel, sample, dimension) */
+typedef struct elr_sampler {
+  int kind, spp, xs, ys, jitter, dims;
+  uint64_t seed;
+  const elr_halton *H;
+  /* per pixel */
+  int px, py, sample;
+  elr_rng rng;
+  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
+  int d1, d2, dim, made1, made2;
+  int64_t hindex, hoffset;
+} elr_sampler;
+int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
+int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_halton *H);
+void elr_sampler_free(elr_sampler *S);
+void elr_sampler_start_pixel(elr_sampler *S, int px, int py);
+void elr_sampler_start_sample(elr_sampler *S, int sample);
+float elr_sampler_get1d(elr_sampler *S);
+void elr_sampler_get2d(elr_sampler *S, float u[2]);
+void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy);
+void elr_stratified_make(elr_sampler *S, int two, int d);
+/* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
+typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
+void elr_sampler_skip2d(elr_sampler *S);
+void elr_sampler_save(const elr_sampler *S, elr_sampler_pos *p);
+void elr_sampler_restore(elr_sampler *S, const elr_sampler_pos *p);
+
 /* >> film (film.c): the scene's Film and PixelFilter as film.h's el_film */
 /* pbrt-v3's croppedPixelBounds: [b[0], b[2]) x [b[1], b[3]) of the full resolution */
 void elr_film_bounds(const elr_scene_desc *d, int b[4]);

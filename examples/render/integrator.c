@@ -25,218 +25,6 @@
 #include <string.h>
 #include <unistd.h>
 
-/* >> random numbers: PCG32 (pbrt's RNG) */
-typedef struct elr_rng { uint64_t state, inc; } elr_rng;
-static uint32_t elr__rng_u32(elr_rng *r) {
-  uint64_t old = r->state;
-  uint32_t xs, rot;
-  r->state = old * 0x5851f42d4c957f2dULL + r->inc;
-  xs = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-  rot = (uint32_t)(old >> 59u);
-  return (xs >> rot) | (xs << ((~rot + 1u) & 31));
-}
-static void elr__rng_seed(elr_rng *r, uint64_t seq, uint64_t seed) {
-  r->state = 0u; r->inc = (seq << 1u) | 1u;
-  elr__rng_u32(r); r->state += seed; elr__rng_u32(r);
-}
-static float elr__rng_f(elr_rng *r) {
-  float f = (float)(elr__rng_u32(r) >> 8) * 0x1p-24f;
-  return f;
-}
-static uint64_t elr__mix(uint64_t x) {
-  x ^= x >> 31; x *= 0x7fb5d329728ea185ULL; x ^= x >> 27; x *= 0x81dadef4bc2dd44dULL; x ^= x >> 33;
-  return x;
-}
-
-/* >> samplers */
-#define ELR_HALTON_DIMS 256
-typedef struct elr_halton {
-  int base_scales[2], base_exps[2], mult_inv[2];
-  int64_t stride;
-  int ndims;
-  int primes[ELR_HALTON_DIMS];
-  uint16_t *perm; int perm_off[ELR_HALTON_DIMS];
-} elr_halton;
-
-typedef struct elr_sampler {
-  int kind, spp, xs, ys, jitter, dims;
-  uint64_t seed;
-  const elr_halton *H;
-  /* per pixel */
-  int px, py, sample;
-  elr_rng rng;
-  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
-  int d1, d2, dim, made1, made2;
-  int64_t hindex, hoffset;
-} elr_sampler;
-
-static int64_t elr__mod(int64_t a, int64_t b) { int64_t r = a % b; return r < 0 ? r + b : r; }
-static void elr__egcd(int64_t a, int64_t b, int64_t *x, int64_t *y) {
-  int64_t d, xp, yp;
-  if (b == 0) { *x = 1; *y = 0; return; }
-  d = a / b;
-  elr__egcd(b, a % b, &xp, &yp);
-  *x = yp; *y = xp - d * yp;
-}
-static int64_t elr__mulinv(int64_t a, int64_t n) { int64_t x, y; elr__egcd(a, n, &x, &y); return elr__mod(x, n); }
-
-static int elr__halton_init(elr_halton *H, int w, int h, uint64_t seed) {
-  int i, n = 0, total = 0;
-  elr_rng r;
-  memset(H, 0, sizeof *H);
-  for (i = 2; n < ELR_HALTON_DIMS; i++) {
-    int k, p = 1;
-    for (k = 2; k * k <= i; k++) if (i % k == 0) { p = 0; break; }
-    if (p) { H->perm_off[n] = total; total += i; H->primes[n++] = i; }
-  }
-  H->ndims = n;
-  H->perm = (uint16_t *)malloc(sizeof(uint16_t) * (size_t)total);
-  if (!H->perm) return -1;
-  elr__rng_seed(&r, 0x853c49e6748fea9bULL, seed);
-  for (i = 0; i < n; i++) {
-    int b = H->primes[i], k;
-    uint16_t *pp = H->perm + H->perm_off[i];
-    for (k = 0; k < b; k++) pp[k] = (uint16_t)k;
-    for (k = b - 1; k > 0; k--) { int j = (int)(elr__rng_u32(&r) % (uint32_t)(k + 1)); uint16_t t = pp[k]; pp[k] = pp[j]; pp[j] = t; }
-  }
-  /* <<Find radical inverse base scales and exponents that cover sampling area>> */
-  for (i = 0; i < 2; i++) {
-    int base = i == 0 ? 2 : 3, scale = 1, e = 0, res = i == 0 ? w : h;
-    if (res > 128) res = 128;
-    while (scale < res) { scale *= base; ++e; }
-    H->base_scales[i] = scale; H->base_exps[i] = e;
-  }
-  H->stride = (int64_t)H->base_scales[0] * H->base_scales[1];
-  H->mult_inv[0] = (int)elr__mulinv(H->base_scales[1], H->base_scales[0]);
-  H->mult_inv[1] = (int)elr__mulinv(H->base_scales[0], H->base_scales[1]);
-  return 0;
-}
-static double elr__radical_inverse(int base, uint64_t a) {
-  double inv = 1.0 / base, invn = 1.0;
-  uint64_t rev = 0;
-  while (a) { uint64_t next = a / (uint64_t)base, digit = a - next * (uint64_t)base; rev = rev * (uint64_t)base + digit; invn *= inv; a = next; }
-  return (double)rev * invn;
-}
-static float elr__scrambled_ri(int base, uint64_t a, const uint16_t *perm) {
-  double inv = 1.0 / base, invn = 1.0, r;
-  uint64_t rev = 0;
-  while (a) { uint64_t next = a / (uint64_t)base, digit = a - next * (uint64_t)base; rev = rev * (uint64_t)base + perm[digit]; invn *= inv; a = next; }
-  r = invn * ((double)rev + inv * perm[0] / (1.0 - inv));
-  return r < ELR_ONE_MINUS_EPS ? (float)r : ELR_ONE_MINUS_EPS;
-}
-static uint64_t elr__inv_ri(int base, uint64_t inverse, int ndigits) {
-  uint64_t index = 0;
-  int i;
-  for (i = 0; i < ndigits; i++) { uint64_t digit = inverse % (uint64_t)base; inverse /= (uint64_t)base; index = index * (uint64_t)base + digit; }
-  return index;
-}
-
-static void elr__sampler_pixel(elr_sampler *S, int px, int py) {
-  S->px = px; S->py = py;
-  elr__rng_seed(&S->rng, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr__mix(elr__mix(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py) ^ S->seed));
-  if (S->kind == ELR_SAMPLER_STRATIFIED) {
-    /* strata are made on the first request of each dimension in this pixel (every request of a
-     * dimension comes with sample 0 first), so dimensions a render never asks for cost nothing */
-    S->made1 = S->made2 = 0;
-  } else if (S->kind == ELR_SAMPLER_HALTON) {
-    const elr_halton *H = S->H;
-    int64_t off = 0;
-    if (H->stride > 1) {
-      int64_t pm[2];
-      int i;
-      pm[0] = elr__mod(px, 128); pm[1] = elr__mod(py, 128);
-      for (i = 0; i < 2; i++) {
-        uint64_t dimoff = elr__inv_ri(i == 0 ? 2 : 3, (uint64_t)pm[i], H->base_exps[i]);
-        off += (int64_t)dimoff * (H->stride / H->base_scales[i]) * H->mult_inv[i];
-      }
-      off %= H->stride;
-    }
-    S->hoffset = off;
-  }
-}
-#define ELR_MINF(a, b) ((a) < (b) ? (a) : (b))
-/* <<StratifiedSample1D>>, <<StratifiedSample2D>> and <<Shuffle>> for one dimension of this pixel; the
- * stream depends on the pixel, the seed and the dimension only */
-static void elr__strat_make(elr_sampler *S, int two, int d) {
-  int i, n = S->spp;
-  elr_rng r;
-  elr__rng_seed(&r, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 3 + (uint64_t)(2 * d + two)),
-                elr__mix(((uint64_t)(uint32_t)S->px << 32) ^ (uint64_t)(uint32_t)S->py));
-  if (!two) {
-    float *a = S->s1d + (size_t)d * (size_t)n;
-    for (i = 0; i < n; i++) a[i] = ELR_MINF(((float)i + (S->jitter ? elr__rng_f(&r) : 0.5f)) / (float)n, ELR_ONE_MINUS_EPS);
-    for (i = n - 1; i > 0; i--) { int j = (int)(elr__rng_u32(&r) % (uint32_t)(i + 1)); float t = a[i]; a[i] = a[j]; a[j] = t; }
-  } else {
-    float *b = S->s2d + (size_t)d * (size_t)n * 2;
-    int x, y;
-    float ix = 1.f / (float)S->xs, iy = 1.f / (float)S->ys;
-    for (y = 0; y < S->ys; y++)
-      for (x = 0; x < S->xs; x++) {
-        float jx = S->jitter ? elr__rng_f(&r) : 0.5f, jy = S->jitter ? elr__rng_f(&r) : 0.5f;
-        b[2 * (y * S->xs + x)] = ELR_MINF(((float)x + jx) * ix, ELR_ONE_MINUS_EPS);
-        b[2 * (y * S->xs + x) + 1] = ELR_MINF(((float)y + jy) * iy, ELR_ONE_MINUS_EPS);
-      }
-    for (i = n - 1; i > 0; i--) {
-      int j = (int)(elr__rng_u32(&r) % (uint32_t)(i + 1));
-      float t0 = b[2 * i], t1 = b[2 * i + 1];
-      b[2 * i] = b[2 * j]; b[2 * i + 1] = b[2 * j + 1]; b[2 * j] = t0; b[2 * j + 1] = t1;
-    }
-  }
-}
-static void elr__sampler_start(elr_sampler *S, int sample) {
-  S->sample = sample; S->d1 = S->d2 = 0; S->dim = 0;
-  if (S->kind == ELR_SAMPLER_HALTON) S->hindex = S->hoffset + (int64_t)sample * S->H->stride;
-  if (S->kind == ELR_SAMPLER_RANDOM) {
-    /* every pixel sample its own stream: the same numbers whatever the tile order */
-    uint64_t k = elr__mix(elr__mix(elr__mix(S->seed ^ 0x632be59bd9b4e019ULL) ^ (uint64_t)(uint32_t)S->px) ^ (uint64_t)(uint32_t)S->py);
-    elr__rng_seed(&S->rng, elr__mix(S->seed + 0x2545f4914f6cdd1dULL), elr__mix(k ^ (uint64_t)(uint32_t)sample));
-  }
-}
-static float elr__halton_dim(elr_sampler *S, int dim) {
-  const elr_halton *H = S->H;
-  if (dim == 0) return (float)fmin(elr__radical_inverse(2, (uint64_t)S->hindex >> H->base_exps[0]), ELR_ONE_MINUS_EPS);
-  if (dim == 1) return (float)fmin(elr__radical_inverse(3, (uint64_t)S->hindex / (uint64_t)H->base_scales[1]), ELR_ONE_MINUS_EPS);
-  if (dim < H->ndims) return elr__scrambled_ri(H->primes[dim], (uint64_t)S->hindex, H->perm + H->perm_off[dim]);
-  return elr__rng_f(&S->rng);
-}
-static float elr__get1d(elr_sampler *S) {
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d1 < S->dims) {
-    if (S->d1 >= S->made1) { elr__strat_make(S, 0, S->d1); S->made1 = S->d1 + 1; }
-    return S->s1d[(size_t)(S->d1++) * (size_t)S->spp + (size_t)S->sample];
-  }
-  if (S->kind == ELR_SAMPLER_HALTON) return elr__halton_dim(S, S->dim++);
-  return elr__rng_f(&S->rng);
-}
-static void elr__get2d(elr_sampler *S, float *u0, float *u1) {
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims) {
-    const float *b;
-    if (S->d2 >= S->made2) { elr__strat_make(S, 1, S->d2); S->made2 = S->d2 + 1; }
-    b = S->s2d + ((size_t)S->d2 * (size_t)S->spp + (size_t)S->sample) * 2;
-    S->d2++; *u0 = b[0]; *u1 = b[1]; return;
-  }
-  if (S->kind == ELR_SAMPLER_HALTON) { *u0 = elr__halton_dim(S, S->dim); *u1 = elr__halton_dim(S, S->dim + 1); S->dim += 2; return; }
-  *u0 = elr__rng_f(&S->rng); *u1 = elr__rng_f(&S->rng);
-}
-
-/* the sampler's state after a 2D draw without the draw's work (for draws made ahead) */
-static void elr__skip2d(elr_sampler *S) {
-  float a, b;
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims && S->d2 < S->made2) { S->d2++; return; }
-  if (S->kind == ELR_SAMPLER_HALTON && S->dim + 1 < S->H->ndims) { S->dim += 2; return; }
-  elr__get2d(S, &a, &b);
-}
-/* where a camera sample's draws have got to (elr__pixel_batched comes back to it). The random sampler's
- * stream is the sample's own and part of it; the other samplers' stream (for draws past their strata or
- * prime bases) is the pixel's, shared by its samples in order, and is left alone. */
-typedef struct elr_spos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_spos;
-static void elr__spos_save(const elr_sampler *S, elr_spos *p) {
-  p->sample = S->sample; p->d1 = S->d1; p->d2 = S->d2; p->dim = S->dim; p->hindex = S->hindex; p->rng = S->rng;
-}
-static void elr__spos_load(elr_sampler *S, const elr_spos *p) {
-  S->sample = p->sample; S->d1 = p->d1; S->d2 = p->d2; S->dim = p->dim; S->hindex = p->hindex;
-  if (S->kind == ELR_SAMPLER_RANDOM) S->rng = p->rng;
-}
-
 /* >> render context */
 typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
 
@@ -253,7 +41,8 @@ typedef struct elr_ctx {
   float diff_scale;
   elr_xform c2w;
   elr_v3 cam_o, cam_x, cam_y, cam_z; /* camera origin and the images of its axes, world space */
-  int spp, sampler, xs, ys, jitter, dims;
+  elr_sampler_desc sampler;
+  int spp;                /* sampler.spp */
   /* batched light samples (elr__pixel_batched): the one emitting light, an environment, whose first
    * light sample is each camera sample's second 2D draw; NULL: one sample at a time */
   const elr_light *batch_light;
@@ -341,8 +130,8 @@ static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, co
     for (k = 0; k < n; k++) {
       float ul0 = 0.f, ul1 = 0.f, us0 = 0.f, us1 = 0.f;
       const elr_first *pre = first && k == 0 && l == C->batch_light ? first : NULL; /* drawn ahead */
-      if (pre) elr__skip2d(S); else elr__get2d(S, &ul0, &ul1);
-      if (pre && pre->bs) elr__skip2d(S); else elr__get2d(S, &us0, &us1);
+      if (pre) elr_sampler_skip2d(S); else { float u[2]; elr_sampler_get2d(S, u); ul0 = u[0]; ul1 = u[1]; }
+      if (pre && pre->bs) elr_sampler_skip2d(S); else { float u[2]; elr_sampler_get2d(S, u); us0 = u[0]; us1 = u[1]; }
       if (l->kind != ELR_LIGHT_INFINITE) {
         /* delta lights: light sampling only */
         elr_v3 wi, Li, f;
@@ -458,7 +247,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0
     if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 1, ts, f0)));
     if (!(depth + 1 < C->maxdepth && b.has_specular)) break;
     /* <<SpecularReflect>> */
-    elr__get2d(S, &u0, &u1);
+    { float u[2]; elr_sampler_get2d(S, u); u0 = u[0]; u1 = u[1]; }
     f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
     if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f)) break;
     rd.o = elr_spawn_origin(&h, wi); rd.d = wi; rd.has_diff = 0;
@@ -521,7 +310,7 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     elr_bsdf_init(s, &h, &tc, &b);
     wo = elr_mul(d, -1.f);
     if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 0, ts, f0)));
-    elr__get2d(S, &u0, &u1);
+    { float u[2]; elr_sampler_get2d(S, u); u0 = u[0]; u1 = u[1]; }
     f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
     if (elr_isblack(f) || pdf == 0.f) break;
     beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
@@ -534,21 +323,12 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
       float mc = elr_maxc(beta);
       if (depth > 3 && mc < C->rr) {
         float q = fmaxf(0.05f, 1.f - mc);
-        if (elr__get1d(S) < q) break;
+        if (elr_sampler_get1d(S) < q) break;
         beta = elr_mul(beta, 1.f / (1.f - q));
       }
     }
   }
   return L;
-}
-
-/* The sampler at camera sample k of pixel (x, y), its film position drawn (continuous raster
- * coordinates). Drawing it again gives the same position and leaves the sampler in the same state. */
-static void elr__camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
-  elr__sampler_start(S, k);
-  elr__get2d(S, fx, fy);
-  if (S->kind == ELR_SAMPLER_HALTON) S->dim = 5; /* pbrt-v3: time and lens take dimensions 2..4 */
-  *fx += (float)x; *fy += (float)y;
 }
 
 /* pbrt-v3's PerspectiveCamera::GenerateRayDifferential (pinhole) at raster position (fx, fy) */
@@ -591,15 +371,15 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
   elr_hit h[ELR_BATCH];
   elr_first f[ELR_BATCH];
   float fx[ELR_BATCH], fy[ELR_BATCH], u[2 * ELR_BATCH], wi[3 * ELR_BATCH], Le[3 * ELR_BATCH], pdf[ELR_BATCH];
-  elr_spos pos[ELR_BATCH];
+  elr_sampler_pos pos[ELR_BATCH];
   float rgb[3];
   int idx[ELR_BATCH], k0, k, m, n;
   for (k0 = 0; k0 < C->spp; k0 += ELR_BATCH) {
     m = C->spp - k0 < ELR_BATCH ? C->spp - k0 : ELR_BATCH;
     n = 0;
     for (k = 0; k < m; k++) {
-      elr__camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
-      elr__spos_save(S, &pos[k]);
+      elr_sampler_camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
+      elr_sampler_save(S, &pos[k]);
       elr__camera_ray(C, fx[k], fy[k], &r[k]);
       ts->camera++;
       f[k].h = &h[k];
@@ -607,19 +387,19 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
       f[k].bs = f[k].bray = 0;
       idx[k] = -1;
       if (!f[k].hit) continue;
-      elr__get2d(S, &u[2 * n], &u[2 * n + 1]); /* the first light draw at the hit */
+      elr_sampler_get2d(S, &u[2 * n]); /* the first light draw at the hit */
       idx[k] = n++;
       if (!C->path) {
         /* the direct-lighting integrator's shading up to the BSDF sample (its environment lookups come
          * in the pass below) */
         elr_first *q = &f[k];
-        float us0, us1;
+        float us[2];
         elr__differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
         elr_bsdf_init(C->s, &h[k], &q->tc, &q->b);
-        elr__get2d(S, &us0, &us1); /* the BSDF draw that follows the light draw */
+        elr_sampler_get2d(S, us); /* the BSDF draw that follows the light draw */
         if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
           int spec;
-          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us0, us1, &q->wb, &q->bpdf, &spec);
+          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us[0], us[1], &q->wb, &q->bpdf, &spec);
           q->bs = 1;
           q->bray = !spec && q->bpdf > 0.f && !elr_isblack(q->fb); /* elr__direct's bsdf_ray */
         }
@@ -646,7 +426,7 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
         f[k].L = elr_v(Le[3 * j], Le[3 * j + 1], Le[3 * j + 2]);
         f[k].pdf = pdf[j];
       }
-      elr__spos_load(S, &pos[k]); /* the sampler back at sample k, after its film draw */
+      elr_sampler_restore(S, &pos[k]); /* the sampler back at sample k, after its film draw */
       L = C->path ? elr__li_path(C, S, &r[k], ts, &f[k]) : elr__li_direct(C, S, &r[k], ts, &f[k]);
       elr_to3(L, rgb);
       el_film_tile_add_sample(tile, fx[k], fy[k], rgb, 1.f);
@@ -697,14 +477,10 @@ static void *elr__worker(void *arg) {
   elr_ctx *C = J->C;
   elr_sampler S;
   elr_tstats ts;
-  memset(&S, 0, sizeof S);
   memset(&ts, 0, sizeof ts);
-  S.kind = C->sampler; S.spp = C->spp; S.xs = C->xs; S.ys = C->ys; S.jitter = C->jitter;
-  S.dims = C->dims; S.seed = J->o->seed; S.H = J->H;
-  if (S.kind == ELR_SAMPLER_STRATIFIED) {
-    S.s1d = (float *)malloc(sizeof(float) * (size_t)S.spp * (size_t)(S.dims + 1));
-    S.s2d = (float *)malloc(sizeof(float) * 2 * (size_t)S.spp * (size_t)(S.dims + 1));
-    if (!S.s1d || !S.s2d) { pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu); free(S.s1d); free(S.s2d); return NULL; }
+  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->H) != 0) {
+    pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
+    return NULL;
   }
   for (;;) {
     int t, tx, ty, x0, y0, x1, y1, x, y, k;
@@ -725,14 +501,14 @@ static void *elr__worker(void *arg) {
     }
     for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
-        elr__sampler_pixel(&S, x, y);
+        elr_sampler_start_pixel(&S, x, y);
         if (C->batch_light) elr__pixel_batched(C, &S, x, y, tile, &ts);
         else
           for (k = 0; k < C->spp; k++) {
             float fx, fy, rgb[3];
             elr_ray r;
             elr_v3 L;
-            elr__camera_sample(&S, k, x, y, &fx, &fy);
+            elr_sampler_camera_sample(&S, k, x, y, &fx, &fy);
             elr__camera_ray(C, fx, fy, &r);
             ts.camera++;
             L = C->path ? elr__li_path(C, &S, &r, &ts, NULL) : elr__li_direct(C, &S, &r, &ts, NULL);
@@ -757,7 +533,7 @@ static void *elr__worker(void *arg) {
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
   J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
   pthread_mutex_unlock(&J->mu);
-  free(S.s1d); free(S.s2d);
+  elr_sampler_free(&S);
   return NULL;
 }
 
@@ -786,27 +562,8 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
   C.s = s;
-  /* the sampler: the scene's, or the options' (the scene description itself is never changed) */
-  C.spp = o->spp > 0 ? o->spp : s->d.spp;
-  C.sampler = o->sampler != ELR_SAMPLER_DEFAULT ? o->sampler : s->d.sampler;
-  C.xs = s->d.xs; C.ys = s->d.ys; C.jitter = s->d.jitter; C.dims = s->d.dims;
-  if (C.sampler == ELR_SAMPLER_STRATIFIED) {
-    if (s->d.sampler != ELR_SAMPLER_STRATIFIED) { C.jitter = 1; C.dims = 4; C.xs = C.ys = 0; } /* pbrt-v3's defaults */
-    if (o->spp > 0 || C.xs < 1 || C.ys < 1) { /* the nearest grid to the requested count */
-      int q = (int)floor(sqrt((double)C.spp));
-      if (q < 1) q = 1;
-      C.xs = q; C.ys = (C.spp + q - 1) / q;
-    }
-    C.spp = C.xs * C.ys;
-  }
-  if (C.spp <= 0 || C.spp > (1 << 24)) { snprintf(err, errlen, "samples per pixel %d out of range [1, 16777216]", C.spp); return -1; }
-  /* the parser's limit, again for a sample count given here: every render thread of the stratified
-   * sampler holds spp * (dimensions + 1) 1D and 2D samples (12 bytes) */
-  if (C.sampler == ELR_SAMPLER_STRATIFIED && (double)C.spp * (double)(C.dims + 1) > (double)(1 << 24)) {
-    snprintf(err, errlen, "stratified sampler: %d samples per pixel in %d dimensions need %.0f MiB per thread (at most 16777216 "
-             "samples times dimensions + 1)", C.spp, C.dims, (double)C.spp * (C.dims + 1) * 12.0 / 1048576.0);
-    return -1;
-  }
+  if (elr_sampler_choose(&C.sampler, s, o, err, errlen) != 0) return -1;
+  C.spp = C.sampler.spp;
   C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
   C.maxdepth = s->d.maxdepth; C.path = s->d.integrator_path; C.rr = s->d.rrthreshold;
   C.diff_scale = 1.f / sqrtf((float)C.spp);
@@ -860,16 +617,16 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
     /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
      * past them come from the pixel's one random stream, whose order batching would change) */
-    if (env_sampled && !o->no_batch && (C.sampler != ELR_SAMPLER_STRATIFIED || C.dims >= 3)) {
+    if (env_sampled && !o->no_batch && (C.sampler.kind != ELR_SAMPLER_STRATIFIED || C.sampler.dims >= 3)) {
       int nemit = 0;
       for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C.batch_light = &s->light[i]; }
       if (nemit != 1) C.batch_light = NULL;
     }
   }
-  if (C.sampler == ELR_SAMPLER_HALTON) {
+  if (C.sampler.kind == ELR_SAMPLER_HALTON) {
     int b[4];
     el_film_sample_bounds(&film, b);
-    if (elr__halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (elr_halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
   }
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
@@ -918,7 +675,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
     st->light_samples_batched = C.batch_light != NULL;
     st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
-    st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler;
+    st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler.kind;
     st->rejected_samples = el_film_rejected_samples(&film);
     for (i = 0; i < s->ntex; i++) {
       if (s->tex[i].kind == ELR_TEX_IMAGE) {
@@ -939,7 +696,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   rc = 0;
 done:
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
-  free(J.ready); free(th); free(H.perm);
+  free(J.ready); free(th); elr_halton_free(&H);
   el_film_free(&film);
   if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }
   return rc;
