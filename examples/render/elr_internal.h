@@ -159,6 +159,20 @@ int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree */
 void elr_scene_release(elr_scene *s);
 
+/* >> camera (camera.c): pbrt-v3's PerspectiveCamera */
+/* a ray with pbrt-v3's RayDifferential (has_diff: rx and ry, the rays through the next pixels) */
+typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
+typedef struct elr_camera {
+  elr_v3 o, x, y, z;               /* origin and the images of the camera's axes, world space */
+  float sx0, sx1, sy0, sy1;        /* the screen window */
+  float tanhalf;                   /* tan(fov / 2) */
+  int xres, yres;
+  float diff_scale;                /* 1 / sqrt(spp) */
+  int differentials;               /* rays carry differentials (some texture filters over them) */
+} elr_camera;
+void elr_camera_init(elr_camera *C, const elr_scene_desc *d, int spp, int differentials);
+void elr_camera_ray(const elr_camera *C, float fx, float fy, elr_ray *r);
+
 /* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_halton.c) */
 /* PCG32, pbrt-v3's RNG (core/rng.h) */
 typedef struct elr_rng { uint64_t state, inc; } elr_rng;
@@ -254,6 +268,10 @@ static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
   return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
 }
 
+/* >> ray differentials at a hit (interaction.c) */
+typedef struct elr_tex_ctx elr_tex_ctx;
+void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
+
 /* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
 /* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
  * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
@@ -265,7 +283,7 @@ typedef struct elr_light_sample {
   float dist;
   int at_point;
 } elr_light_sample;
-int elr_light_emits(const elr_light *l);
+static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
 static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
 void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
 float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
@@ -278,9 +296,9 @@ void elr_infinite_prefetch(const elr_light *l, elr_v3 wi);
 void elr_light_free(elr_light *l);
 
 /* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
-typedef struct elr_tex_ctx {
+struct elr_tex_ctx { /* where textures are evaluated: (u, v) and its screen-space derivatives */
   float u, v, dudx, dudy, dvdx, dvdy;
-} elr_tex_ctx;
+};
 elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
 
 /* A BSDF in the shading frame: up to one diffuse, one glossy and one specular lobe. */

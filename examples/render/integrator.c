@@ -26,8 +26,6 @@
 #include <unistd.h>
 
 /* >> render context */
-typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
-
 typedef struct elr_ctx {
   elr_scene *s;
   int ls;                 /* ELR_LS_* */
@@ -35,12 +33,7 @@ typedef struct elr_ctx {
   int has_env;            /* an emitting infinite light exists */
   int maxdepth, path;
   float rr;
-  /* camera */
-  float sx0, sx1, sy0, sy1, tanhalf;
-  int xres, yres;
-  float diff_scale;
-  elr_xform c2w;
-  elr_v3 cam_o, cam_x, cam_y, cam_z; /* camera origin and the images of its axes, world space */
+  elr_camera cam;
   elr_sampler_desc sampler;
   int spp;                /* sampler.spp */
   /* batched light samples (elr__pixel_batched): the one emitting light, an environment, whose first
@@ -76,43 +69,6 @@ static elr_v3 elr__env_le(const elr_scene *s, elr_v3 d) {
   for (i = 0; i < s->nlight; i++)
     if (s->light[i].kind == ELR_LIGHT_INFINITE && elr_light_emits(&s->light[i])) L = elr_add(L, elr_light_le(&s->light[i], d));
   return L;
-}
-
-/* <<Compute ray differentials for SurfaceInteraction>> (pbrt-v3 ComputeDifferentials) */
-static void elr__differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy) {
-  c->u = c->v = 0.f;
-  c->dudx = c->dudy = c->dvdx = c->dvdy = 0.f;
-  *dpdx = *dpdy = elr_v(0, 0, 0);
-  if (!s->any_textured) return; /* nothing reads uv or footprints: skip the parameterisation */
-  elr_hit_uv(s, h);
-  c->u = h->u; c->v = h->v;
-  if (r->has_diff) {
-    elr_v3 n = h->ng, px, py;
-    float d = elr_dot(n, h->p), tx, ty, dnx = elr_dot(n, r->rxd), dny = elr_dot(n, r->ryd);
-    float A[2][2], Bx[2], By[2], det;
-    float pa[3], pxa[3], pya[3], dpu[3], dpv[3];
-    int dim0, dim1;
-    if (dnx == 0.f || dny == 0.f) return;
-    tx = -(elr_dot(n, r->rxo) - d) / dnx; ty = -(elr_dot(n, r->ryo) - d) / dny;
-    if (!isfinite(tx) || !isfinite(ty)) return;
-    px = elr_add(r->rxo, elr_mul(r->rxd, tx)); py = elr_add(r->ryo, elr_mul(r->ryd, ty));
-    *dpdx = elr_sub(px, h->p); *dpdy = elr_sub(py, h->p);
-    if (fabsf(n.x) > fabsf(n.y) && fabsf(n.x) > fabsf(n.z)) { dim0 = 1; dim1 = 2; }
-    else if (fabsf(n.y) > fabsf(n.z)) { dim0 = 0; dim1 = 2; }
-    else { dim0 = 0; dim1 = 1; }
-    pa[0] = h->p.x; pa[1] = h->p.y; pa[2] = h->p.z;
-    pxa[0] = px.x; pxa[1] = px.y; pxa[2] = px.z; pya[0] = py.x; pya[1] = py.y; pya[2] = py.z;
-    dpu[0] = h->dpdu.x; dpu[1] = h->dpdu.y; dpu[2] = h->dpdu.z; dpv[0] = h->dpdv.x; dpv[1] = h->dpdv.y; dpv[2] = h->dpdv.z;
-    A[0][0] = dpu[dim0]; A[0][1] = dpv[dim0]; A[1][0] = dpu[dim1]; A[1][1] = dpv[dim1];
-    Bx[0] = pxa[dim0] - pa[dim0]; Bx[1] = pxa[dim1] - pa[dim1];
-    By[0] = pya[dim0] - pa[dim0]; By[1] = pya[dim1] - pa[dim1];
-    det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-    if (fabsf(det) < 1e-10f) return;
-    c->dudx = (A[1][1] * Bx[0] - A[0][1] * Bx[1]) / det; c->dvdx = (A[0][0] * Bx[1] - A[1][0] * Bx[0]) / det;
-    c->dudy = (A[1][1] * By[0] - A[0][1] * By[1]) / det; c->dvdy = (A[0][0] * By[1] - A[1][0] * By[0]) / det;
-    if (!isfinite(c->dudx) || !isfinite(c->dvdx)) c->dudx = c->dvdx = 0.f;
-    if (!isfinite(c->dudy) || !isfinite(c->dvdy)) c->dudy = c->dvdy = 0.f;
-  }
 }
 
 /* Direct light at a surface point from every light: pbrt-v3's EstimateDirect for each light, with
@@ -240,7 +196,7 @@ static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0
     if (f0) h = *f0->h;
     if (f0) { tc = f0->tc; dpdx = f0->dpdx; dpdy = f0->dpdy; b = f0->b; } /* a hit's, made ahead */
     else {
-      elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
+      elr_compute_differentials(s, &r, &h, &tc, &dpdx, &dpdy);
       elr_bsdf_init(s, &h, &tc, &b);
     }
     wo = elr_mul(r.d, -1.f);
@@ -301,7 +257,7 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
     }
     if (f0) h = *f0->h;
     if (depth >= C->maxdepth) break;
-    if (depth == 0) elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
+    if (depth == 0) elr_compute_differentials(s, &r, &h, &tc, &dpdx, &dpdy);
     else {
       /* pbrt-v3's path tracer spawns later rays without differentials: point-sampled textures */
       memset(&tc, 0, sizeof tc);
@@ -331,31 +287,6 @@ static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, 
   return L;
 }
 
-/* pbrt-v3's PerspectiveCamera::GenerateRayDifferential (pinhole) at raster position (fx, fy) */
-static void elr__camera_ray(const elr_ctx *C, float fx, float fy, elr_ray *r) {
-  float sx, sy;
-  elr_v3 dc;
-  /* <<Compute raster and camera sample positions>> */
-  sx = C->sx0 + fx / (float)C->xres * (C->sx1 - C->sx0);
-  sy = C->sy1 - fy / (float)C->yres * (C->sy1 - C->sy0);
-  dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
-  r->o = C->cam_o;
-  r->d = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dc.x), elr_mul(C->cam_y, dc.y)), elr_mul(C->cam_z, dc.z)));
-  r->has_diff = 0;
-  if (C->s->any_textured) {
-    float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
-    elr_v3 dx = elr_norm(elr_add(dc, elr_v(dxs, 0, 0))), dy = elr_norm(elr_add(dc, elr_v(0, dys, 0)));
-    elr_v3 dcn = elr_norm(dc);
-    /* ScaleDifferentials(1 / sqrt(spp)) */
-    dx = elr_add(dcn, elr_mul(elr_sub(dx, dcn), C->diff_scale));
-    dy = elr_add(dcn, elr_mul(elr_sub(dy, dcn), C->diff_scale));
-    r->has_diff = 1;
-    r->rxo = r->ryo = r->o;
-    r->rxd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dx.x), elr_mul(C->cam_y, dx.y)), elr_mul(C->cam_z, dx.z)));
-    r->ryd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dy.x), elr_mul(C->cam_y, dy.y)), elr_mul(C->cam_z, dy.z)));
-  }
-}
-
 /* One pixel's camera samples with their environment light samples drawn together: for up to 32
  * samples at a time, (1) the camera rays and their hits, each hit's light-sample numbers (the
  * sampler's draws in the order the shading makes them) and, for the direct-lighting integrator, its
@@ -380,7 +311,7 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
     for (k = 0; k < m; k++) {
       elr_sampler_camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
       elr_sampler_save(S, &pos[k]);
-      elr__camera_ray(C, fx[k], fy[k], &r[k]);
+      elr_camera_ray(&C->cam, fx[k], fy[k], &r[k]);
       ts->camera++;
       f[k].h = &h[k];
       f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
@@ -394,7 +325,7 @@ static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, e
          * in the pass below) */
         elr_first *q = &f[k];
         float us[2];
-        elr__differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
+        elr_compute_differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
         elr_bsdf_init(C->s, &h[k], &q->tc, &q->b);
         elr_sampler_get2d(S, us); /* the BSDF draw that follows the light draw */
         if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
@@ -509,7 +440,7 @@ static void *elr__worker(void *arg) {
             elr_ray r;
             elr_v3 L;
             elr_sampler_camera_sample(&S, k, x, y, &fx, &fy);
-            elr__camera_ray(C, fx, fy, &r);
+            elr_camera_ray(&C->cam, fx, fy, &r);
             ts.camera++;
             L = C->path ? elr__li_path(C, &S, &r, &ts, NULL) : elr__li_direct(C, &S, &r, &ts, NULL);
             elr_to3(L, rgb);
@@ -556,8 +487,8 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   elr_halton H;
   el_film film;
   pthread_t *th = NULL;
-  int i, nthreads, xres = s->d.xres, yres = s->d.yres, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0, fb[4];
-  double t_start = elr_now(), frame;
+  int i, nthreads, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0, fb[4];
+  double t_start = elr_now();
   memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H); memset(&film, 0, sizeof film);
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
@@ -566,19 +497,6 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   C.spp = C.sampler.spp;
   C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
   C.maxdepth = s->d.maxdepth; C.path = s->d.integrator_path; C.rr = s->d.rrthreshold;
-  C.diff_scale = 1.f / sqrtf((float)C.spp);
-  C.xres = xres; C.yres = yres;
-  C.c2w = s->d.cam2world;
-  C.cam_o = elr_xpoint(&C.c2w, elr_v(0, 0, 0));
-  C.cam_x = elr_xvector(&C.c2w, elr_v(1, 0, 0));
-  C.cam_y = elr_xvector(&C.c2w, elr_v(0, 1, 0));
-  C.cam_z = elr_xvector(&C.c2w, elr_v(0, 0, 1));
-  /* <<Compute screen window>> */
-  frame = s->d.has_frameaspect ? s->d.frameaspect : (double)xres / (double)yres;
-  if (s->d.has_screen) { C.sx0 = s->d.screen[0]; C.sx1 = s->d.screen[1]; C.sy0 = s->d.screen[2]; C.sy1 = s->d.screen[3]; }
-  else if (frame > 1.0) { C.sx0 = (float)-frame; C.sx1 = (float)frame; C.sy0 = -1.f; C.sy1 = 1.f; }
-  else { C.sx0 = -1.f; C.sx1 = 1.f; C.sy0 = (float)(-1.0 / frame); C.sy1 = (float)(1.0 / frame); }
-  C.tanhalf = tanf(s->d.fov * ELR_PI / 360.f);
   elr_film_bounds(&s->d, fb);
   x0 = fb[0]; y0 = fb[1]; x1 = fb[2]; y1 = fb[3];
   if (x1 <= x0 || y1 <= y0) { snprintf(err, errlen, "the crop window covers no pixel"); return -1; }
@@ -599,6 +517,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
       if (s->mat_textured[i]) s->any_textured = 1;
     }
   }
+  elr_camera_init(&C.cam, &s->d, C.spp, s->any_textured);
   nonspec = elr__mat_nonspecular(s);
   {
     int emits = 0;

@@ -14,8 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
-
 /* pbrt-v3's Sample_Li: a point on the light seen from the shading point p, drawn with u. */
 void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls) {
   ls->at_point = 0;
