@@ -11,13 +11,6 @@
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-double elr_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* >> transforms */
 void elr_xform_identity(elr_xform *t) {
@@ -710,3 +703,65 @@ void elr_hit_uv(const elr_scene *s, elr_hit *h) {
     }
   }
 }
+
+/* >> loading and freeing a scene (pbrt-v3 core/api.cpp: pbrtParseFile, then the scene made at WorldEnd) */
+static void elr__dirname(const char *path, char *dir, size_t n) {
+  const char *sl = strrchr(path, '/');
+  if (!sl) snprintf(dir, n, ".");
+  else if (sl == path) snprintf(dir, n, "/");
+  else snprintf(dir, n, "%.*s", (int)(sl - path), path);
+}
+int elr_scene_load_string(const char *text, const char *name, const char *base_dir, elr_scene **out, int quiet, char *err,
+                          size_t errlen) {
+  elr_scene *s = (elr_scene *)calloc(1, sizeof *s);
+  double t0 = elr_now();
+  *out = NULL;
+  if (!s) { snprintf(err, errlen, "out of memory"); return -1; }
+  s->quiet = quiet;
+  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0) { elr_scene_free(s); return -1; }
+  s->t_parse = elr_now() - t0;
+  if (elr_scene_build(s, err, errlen) != 0) { elr_scene_free(s); return -1; }
+  *out = s;
+  return 0;
+}
+int elr_scene_load(const char *path, elr_scene **out, int quiet, char *err, size_t errlen) {
+  FILE *f;
+  long n;
+  char *buf, dir[4096], why[128];
+  int r;
+  *out = NULL;
+  if (el_file_is_regular(path, why, sizeof why) != 0) { snprintf(err, errlen, "%s: cannot read the scene file: %s", path, why); return -1; }
+  f = fopen(path, "rb");
+  if (!f) { snprintf(err, errlen, "%s: cannot open the scene file", path); return -1; }
+  if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 || n > (1L << 30)) {
+    fclose(f); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1;
+  }
+  buf = (char *)malloc((size_t)n + 1);
+  if (!buf || (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n)) { fclose(f); free(buf); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1; }
+  fclose(f);
+  buf[n] = 0;
+  if (strlen(buf) != (size_t)n) { free(buf); snprintf(err, errlen, "%s:1: error: the file contains a NUL byte (not a pbrt-v3 text file)", path); return -1; }
+  elr__dirname(path, dir, sizeof dir);
+  r = elr_scene_load_string(buf, path, dir, out, quiet, err, errlen);
+  free(buf);
+  return r;
+}
+void elr_scene_free(elr_scene *s) {
+  int i;
+  if (!s) return;
+  elr_scene_release(s);
+  for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
+  for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
+  for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
+  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
+  free(s);
+}
+int elr_scene_warnings(const elr_scene *s) { return s->warnings; }
+const char *elr_scene_last_warning(const elr_scene *s) { return s->last_warning; }
+const char *elr_scene_film_filename(const elr_scene *s) { return s->d.filename; }
+void elr_scene_resolution(const elr_scene *s, int *w, int *h) {
+  int b[4];
+  elr_film_bounds(&s->d, b);
+  *w = b[2] - b[0]; *h = b[3] - b[1];
+}
+int elr_scene_spp(const elr_scene *s) { return s->d.spp; }
