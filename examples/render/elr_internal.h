@@ -292,7 +292,7 @@ int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_s
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
                       size_t errlen);
 int elr_infinite_prepare(elr_light *l, int compensated, int importance);
-void elr_infinite_prefetch(const elr_light *l, elr_v3 wi);
+void elr_light_prefetch(const elr_light *l, elr_v3 wi);
 void elr_light_free(elr_light *l);
 
 /* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
@@ -314,5 +314,50 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 /* Returns f; *specular set when the sampled lobe was the specular one. */
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
 float elr_roughness_to_alpha(float r);
+
+/* >> a render (render.c): what it decided, read by every thread */
+typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats; /* one thread's counts */
+typedef struct elr_ctx {
+  elr_scene *s;
+  elr_camera cam;
+  elr_sampler_desc sampler;
+  int spp;                /* sampler.spp */
+  int path, maxdepth;     /* the integrator: path (1) or directlighting (0), and pbrt's maxdepth */
+  float rr;               /* the path tracer's rrthreshold */
+  int ls;                 /* ELR_LS_*: the strategies that estimate direct light */
+  int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
+  int has_env;            /* an emitting infinite light exists */
+  /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
+   * together; NULL: one sample at a time */
+  const elr_light *batch_light;
+} elr_ctx;
+
+/* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
+/* pbrt-v3's PowerHeuristic(1, f, 1, g) */
+static inline float elr_power_heuristic(float f, float g) { float f2 = f * f, g2 = g * g; return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f; }
+/* A path in flight (the locals of pbrt-v3's Li loops): the ray it continues along, the bounces so far,
+ * the radiance gathered and the throughput; for the path tracer whether the last bounce was specular
+ * and its BSDF pdf. */
+typedef struct elr_path_state {
+  elr_ray ray;
+  int depth;
+  elr_v3 L, beta;
+  int specular;
+  float prev_pdf;
+} elr_path_state;
+static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
+  p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
+}
+elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
+void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
+                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld);
+elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
+                                     int sample_bsdf, elr_tstats *ts);
+int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                         elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
+elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+/* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
+void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
 
 #endif

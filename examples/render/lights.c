@@ -166,17 +166,20 @@ static float elr__atan2_approx(float y, float x) {
   return y < 0.f ? -r : r;
 }
 
-/* A hint, no effect on any result: starts loading the cache lines that el_envlight_pdf_li and
- * el_envlight_le will read for world direction wi (the texels of its bilinear lookup and its pdf bin;
- * approximately: the bin of (u, v), where a neighbouring bin shares the line or costs one more miss
- * later). A random direction's texels and pdf bin are cache misses in the multi-megabyte tables; issued
- * before a shadow ray, they arrive while the ray is traced. */
-void elr_infinite_prefetch(const elr_light *l, elr_v3 wi) {
+/* A hint, no effect on any result: starts loading the cache lines that elr_light_pdf_li and
+ * elr_light_le will read for world direction wi. For the environment: the texels of el_envlight_le's
+ * bilinear lookup and el_envlight_pdf_li's pdf bin (approximately: the bin of (u, v), where a
+ * neighbouring bin shares the line or costs one more miss later). A random direction's texels and pdf
+ * bin are cache misses in the multi-megabyte tables; issued before a shadow ray, they arrive while the
+ * ray is traced. Nothing for the other lights. */
+void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
 #if defined(__GNUC__) || defined(__clang__)
-  const el_envlight *e = l->env_sample, *p = l->env;
-  const float *m = p->to_world;
+  const el_envlight *e, *p;
+  const float *m;
   float d[3], u, v, s, t;
-  int x, y, y1, w = p->width, h = p->height;
+  int x, y, y1, w, h;
+  if (l->kind != ELR_LIGHT_INFINITE) return;
+  e = l->env_sample; p = l->env; m = p->to_world; w = p->width; h = p->height;
   if (w <= 0 || !p->texels) return;
   d[0] = m[0] * wi.x + m[3] * wi.y + m[6] * wi.z; /* light space: the transpose of the rotation */
   d[1] = m[1] * wi.x + m[4] * wi.y + m[7] * wi.z;
