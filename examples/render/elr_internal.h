@@ -259,6 +259,15 @@ typedef struct elr_hit {
   elr_v3 pobj;
 } elr_hit;
 void elr_hit_uv(const elr_scene *s, elr_hit *h); /* u, v, dpdu, dpdv, dndu, dndv (textures, differentials) */
+/* shapes.c: the hit records, and the sphere as Embree's user geometry */
+void elr_sphere_hit(const elr_scene *s, int si, elr_v3 o, elr_v3 d, elr_hit *h);
+void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, float b2, elr_hit *h);
+struct RTCBoundsFunctionArguments;
+struct RTCIntersectFunctionNArguments;
+struct RTCOccludedFunctionNArguments;
+void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
+void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
+void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
