@@ -1,5 +1,13 @@
-/* elr_internal.h: the renderer's private declarations (scene description, small vector maths and the
- * glue to envlight's headers). Only examples/render includes it. */
+/* elr_internal.h: the renderer's private declarations, one section per concept; each section names
+ * the file that implements it (README.md's file table says which part of pbrt-v3 each file mirrors).
+ * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
+ * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
+ * them as float[3] (elr_to3, elr_from3).
+ *   vectors, transforms (transform.c)      scene description (parser.c, scene.c)
+ *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
+ *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
+ *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
+ *   integrators (integrator*.c, render_batched.c) */
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
@@ -45,7 +53,7 @@ static inline void elr_onb(elr_v3 n, elr_v3 *s, elr_v3 *t) {
   *t = elr_v(b, sign + n.y * n.y * a, -n.y);
 }
 
-/* >> transforms (pbrt-v3's Transform: a matrix and its inverse, row-major, column vectors) */
+/* >> transforms (transform.c): pbrt-v3's Transform, a matrix and its inverse, row-major, column vectors */
 typedef struct elr_xform { double m[4][4], inv[4][4]; } elr_xform;
 void elr_xform_identity(elr_xform *t);
 int elr_xform_from_matrix(elr_xform *t, double m[4][4]); /* -1 when singular */
@@ -56,7 +64,7 @@ elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 
-/* >> scene description */
+/* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
@@ -155,13 +163,92 @@ struct elr_scene {
 int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, const char *base_dir,
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
-int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen);
-int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree */
+int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
-/* >> camera (camera.c): pbrt-v3's PerspectiveCamera */
+/* >> intersection (scene.c: Embree; shapes.c: each shape's hit record and parameterisation) */
 /* a ray with pbrt-v3's RayDifferential (has_diff: rx and ry, the rays through the next pixels) */
 typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
+typedef struct elr_hit {
+  float t;
+  elr_v3 p, ng, ns;    /* ng, ns unit; ns on the side of ng */
+  elr_v3 dpdu, dpdv, dndu, dndv;
+  float u, v;          /* texture coordinates */
+  int material;
+  float eps;           /* offset for spawned rays */
+  /* for elr_hit_uv */
+  int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
+  unsigned prim;
+  float b1, b2;
+  elr_v3 pobj;
+} elr_hit;
+void elr_hit_uv(const elr_scene *s, elr_hit *h); /* u, v, dpdu, dpdv, dndu, dndv (textures, differentials) */
+/* shapes.c: the hit records, and the sphere as Embree's user geometry */
+void elr_sphere_hit(const elr_scene *s, int si, elr_v3 o, elr_v3 d, elr_hit *h);
+void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, float b2, elr_hit *h);
+struct RTCBoundsFunctionArguments;
+struct RTCIntersectFunctionNArguments;
+struct RTCOccludedFunctionNArguments;
+void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
+void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
+void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
+int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
+int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
+void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
+/* the origin of a ray leaving h in direction d: offset along the geometric normal to the side d goes
+ * (pbrt-v3's OffsetRayOrigin, with a fixed relative epsilon instead of its error bounds) */
+static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
+  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
+}
+
+/* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
+typedef struct elr_tex_ctx { /* where textures are evaluated: (u, v) and its screen-space derivatives */
+  float u, v, dudx, dudy, dvdx, dvdy;
+} elr_tex_ctx;
+elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
+
+/* A BSDF in the shading frame: up to one diffuse, one glossy and one specular lobe. */
+typedef struct elr_bsdf {
+  elr_v3 ns, ss, ts, ng;
+  elr_v3 kd, ks, kr;
+  float alpha;
+  int has_diffuse, has_glossy, has_specular, ncomp;
+} elr_bsdf;
+void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
+elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
+float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
+/* Returns f; *specular set when the sampled lobe was the specular one. */
+elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
+float elr_roughness_to_alpha(float r);
+
+/* >> ray differentials at a hit (interaction.c): the texture footprint */
+void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
+
+/* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
+/* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
+ * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
+ * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
+typedef struct elr_light_sample {
+  elr_v3 L, wi;
+  float pdf;
+  elr_v3 p_light;
+  float dist;
+  int at_point;
+} elr_light_sample;
+static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
+static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
+float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
+elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
+int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
+                      size_t errlen);
+int elr_infinite_prepare(elr_light *l, int compensated, int importance);
+void elr_light_prefetch(const elr_light *l, elr_v3 wi);
+void elr_light_free(elr_light *l);
+
+/* >> camera (camera.c): pbrt-v3's PerspectiveCamera */
 typedef struct elr_camera {
   elr_v3 o, x, y, z;               /* origin and the images of the camera's axes, world space */
   float sx0, sx1, sy0, sy1;        /* the screen window */
@@ -243,86 +330,6 @@ void elr_sampler_restore(elr_sampler *S, const elr_sampler_pos *p);
 /* pbrt-v3's croppedPixelBounds: [b[0], b[2]) x [b[1], b[3]) of the full resolution */
 void elr_film_bounds(const elr_scene_desc *d, int b[4]);
 int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
-
-/* >> intersection */
-typedef struct elr_hit {
-  float t;
-  elr_v3 p, ng, ns;    /* ng, ns unit; ns on the side of ng */
-  elr_v3 dpdu, dpdv, dndu, dndv;
-  float u, v;          /* texture coordinates */
-  int material;
-  float eps;           /* offset for spawned rays */
-  /* for elr_hit_uv */
-  int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
-  unsigned prim;
-  float b1, b2;
-  elr_v3 pobj;
-} elr_hit;
-void elr_hit_uv(const elr_scene *s, elr_hit *h); /* u, v, dpdu, dpdv, dndu, dndv (textures, differentials) */
-/* shapes.c: the hit records, and the sphere as Embree's user geometry */
-void elr_sphere_hit(const elr_scene *s, int si, elr_v3 o, elr_v3 d, elr_hit *h);
-void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, float b2, elr_hit *h);
-struct RTCBoundsFunctionArguments;
-struct RTCIntersectFunctionNArguments;
-struct RTCOccludedFunctionNArguments;
-void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
-void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
-void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
-int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
-int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
-void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
-/* the origin of a ray leaving h in direction d: offset along the geometric normal to the side d goes
- * (pbrt-v3's OffsetRayOrigin, with a fixed relative epsilon instead of its error bounds) */
-static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
-  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
-}
-
-/* >> ray differentials at a hit (interaction.c) */
-typedef struct elr_tex_ctx elr_tex_ctx;
-void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
-
-/* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
-/* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
- * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
- * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
-typedef struct elr_light_sample {
-  elr_v3 L, wi;
-  float pdf;
-  elr_v3 p_light;
-  float dist;
-  int at_point;
-} elr_light_sample;
-static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
-static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
-void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
-float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
-elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
-int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
-int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
-                      size_t errlen);
-int elr_infinite_prepare(elr_light *l, int compensated, int importance);
-void elr_light_prefetch(const elr_light *l, elr_v3 wi);
-void elr_light_free(elr_light *l);
-
-/* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
-struct elr_tex_ctx { /* where textures are evaluated: (u, v) and its screen-space derivatives */
-  float u, v, dudx, dudy, dvdx, dvdy;
-};
-elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
-
-/* A BSDF in the shading frame: up to one diffuse, one glossy and one specular lobe. */
-typedef struct elr_bsdf {
-  elr_v3 ns, ss, ts, ng;
-  elr_v3 kd, ks, kr;
-  float alpha;
-  int has_diffuse, has_glossy, has_specular, ncomp;
-} elr_bsdf;
-void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
-elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
-float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
-/* Returns f; *specular set when the sampled lobe was the specular one. */
-elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
-float elr_roughness_to_alpha(float r);
 
 /* >> a render (render.c): what it decided, read by every thread */
 typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats; /* one thread's counts */
