@@ -74,12 +74,14 @@ static void *elr__worker(void *arg) {
     x0 = J->bx0 + tx * J->tile; y0 = J->by0 + ty * J->tile;
     x1 = x0 + J->tile < J->bx1 ? x0 + J->tile : J->bx1;
     y1 = y0 + J->tile < J->by1 ? y0 + J->tile : J->by1;
+    /* <<Compute sample bounds for tile>>, <<Get FilmTile for tile>> */
     tile = (el_film_tile *)calloc(1, sizeof *tile);
     if (!tile || el_film_tile_init(J->film, tile, x0, y0, x1, y1) != EL_SUCCESS) {
       free(tile);
       pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
       break;
     }
+    /* <<Loop over pixels in tile to render them>> */
     for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr_sampler_start_pixel(&S, x, y);
@@ -104,7 +106,8 @@ static void *elr__worker(void *arg) {
         }
       }
     pthread_mutex_lock(&J->mu);
-    /* merge tiles in tile order, whatever order threads finish them: the same sums for any thread count */
+    /* <<Merge image tile into Film>>, in tile order whatever order threads finish them: the same sums
+     * for any thread count */
     J->ready[t] = tile;
     while (J->next_merge < J->ntiles && J->ready[J->next_merge]) {
       elr__merge(J->film, J->ready[J->next_merge]);
@@ -128,6 +131,24 @@ void elr_render_options_default(elr_render_options *o) {
   o->light_sampling = -1; o->compensated = -1; o->importance = -1;
 }
 
+/* >> what the scene calls for */
+/* per material, whether a texture varies over its surface (then hits need (u, v), camera rays carry
+ * differentials); made once per scene */
+static int elr__find_textured(elr_scene *s) {
+  int i;
+  if (s->mat_textured) return 0;
+  s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
+  if (!s->mat_textured) return -1;
+  for (i = 0; i < s->nmat; i++) {
+    const elr_material *m = &s->mat[i];
+    int t[4], k;
+    t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
+    for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
+    if (s->mat_textured[i]) s->any_textured = 1;
+  }
+  return 0;
+}
+
 static int elr__mat_nonspecular(const elr_scene *s) {
   int i;
   /* a material with a non-specular lobe, used by some shape */
@@ -136,13 +157,73 @@ static int elr__mat_nonspecular(const elr_scene *s) {
   return 0;
 }
 
+/* Whether any light is sampled (some light emits and some surface has a non-specular lobe); the
+ * sampling distributions of the environments that will be sampled, built now (*env_sampled); whether
+ * a pixel's light samples are drawn together (render_batched.c). */
+static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats *st, int *env_sampled, char *err, size_t errlen) {
+  elr_scene *s = C->s;
+  int i, emits = 0;
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) emits = 1;
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C->has_env = 1;
+  C->light_sampling = emits && elr__mat_nonspecular(s);
+  for (i = 0; i < s->nlight; i++) {
+    elr_light *l = &s->light[i];
+    if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->light_sampling && C->ls != ELR_LS_BSDF) {
+      double t0 = elr_now();
+      if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); return -1; }
+      if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
+      *env_sampled = 1;
+    }
+  }
+  /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
+  /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
+   * past them come from the pixel's one random stream, whose order batching would change) */
+  if (*env_sampled && !o->no_batch && (C->sampler.kind != ELR_SAMPLER_STRATIFIED || C->sampler.dims >= 3)) {
+    int nemit = 0;
+    for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
+    if (nemit != 1) C->batch_light = NULL;
+  }
+  return 0;
+}
+
+/* >> statistics: what the render built and what it cost (elr_stats; stats.c prints them) */
+static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C, const elr_tstats *T, const el_film *film, int nthreads,
+                            int env_sampled, const elr_image *out) {
+  int i;
+  st->t_parse = s->t_parse; st->t_images = s->t_images; st->t_embree = s->t_embree;
+  st->bytes_embree = s->bytes_embree; st->bytes_film = el_film_bytes(film);
+  st->bytes_splats = film->splats ? (size_t)film->width * (size_t)film->height * 3 * sizeof(double) : 0; st->splats_allocated = st->bytes_splats > 0;
+  st->camera_rays = T->camera; st->bounce_rays = T->bounce; st->shadow_rays = T->shadow;
+  st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
+  st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
+  st->light_samples_batched = C->batch_light != NULL;
+  st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
+  st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
+  st->rejected_samples = el_film_rejected_samples(film);
+  for (i = 0; i < s->ntex; i++) {
+    if (s->tex[i].kind == ELR_TEX_IMAGE) {
+      const el_mipmap *m = s->tex[i].mip;
+      st->mip_textures++;
+      st->mip_levels_built += el_mipmap_levels_built(m) ? el_mipmap_levels(m) : 1; /* level 0 always exists */
+      st->bytes_mip += el_mipmap_bytes(m);
+    }
+  }
+  st->bytes_textures = s->bytes_textures;
+  for (i = 0; i < s->nlight; i++)
+    if (s->light[i].kind == ELR_LIGHT_INFINITE) {
+      const el_envlight *e = s->light[i].env;
+      st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
+      if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
+    }
+}
+
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
   elr_ctx C;
   elr_job J;
   elr_halton H;
   el_film film;
   pthread_t *th = NULL;
-  int i, nthreads, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0, fb[4];
+  int i, nthreads, x0, y0, x1, y1, rc = -1, env_sampled = 0, fb[4];
   double t_start = elr_now();
   memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H); memset(&film, 0, sizeof film);
   memset(out, 0, sizeof *out);
@@ -161,42 +242,9 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   }
   if (elr_film_init(&film, &s->d, fb, err, errlen) != 0) return -1;
   /* <<Decide what the scene calls for>> */
-  if (!s->mat_textured) {
-    s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
-    if (!s->mat_textured) { snprintf(err, errlen, "out of memory"); goto done; }
-    for (i = 0; i < s->nmat; i++) {
-      const elr_material *m = &s->mat[i];
-      int t[4], k;
-      t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
-      for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
-      if (s->mat_textured[i]) s->any_textured = 1;
-    }
-  }
+  if (elr__find_textured(s) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
   elr_camera_init(&C.cam, &s->d, C.spp, s->any_textured);
-  nonspec = elr__mat_nonspecular(s);
-  {
-    int emits = 0;
-    for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) emits = 1;
-    for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C.has_env = 1;
-    C.light_sampling = emits && nonspec;
-    for (i = 0; i < s->nlight; i++) {
-      elr_light *l = &s->light[i];
-      if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
-        double t0 = elr_now();
-        if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
-        if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
-        env_sampled = 1;
-      }
-    }
-    /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
-    /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
-     * past them come from the pixel's one random stream, whose order batching would change) */
-    if (env_sampled && !o->no_batch && (C.sampler.kind != ELR_SAMPLER_STRATIFIED || C.sampler.dims >= 3)) {
-      int nemit = 0;
-      for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C.batch_light = &s->light[i]; }
-      if (nemit != 1) C.batch_light = NULL;
-    }
-  }
+  if (elr__decide_lights(&C, o, st, &env_sampled, err, errlen) != 0) goto done;
   if (C.sampler.kind == ELR_SAMPLER_HALTON) {
     int b[4];
     el_film_sample_bounds(&film, b);
@@ -211,6 +259,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     el_film_sample_bounds(&film, b);
     J.bx0 = b[0]; J.by0 = b[1]; J.bx1 = b[2]; J.by1 = b[3];
   }
+  /* <<Compute number of tiles, nTiles, to use for parallel rendering>> */
   J.tile = o->tile_size > 0 ? o->tile_size : 16;
   J.ntx = (J.bx1 - J.bx0 + J.tile - 1) / J.tile; J.nty = (J.by1 - J.by0 + J.tile - 1) / J.tile;
   J.ntiles = J.ntx * J.nty;
@@ -219,7 +268,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
   pthread_mutex_init(&J.mu, NULL);
   J.t0 = elr_now(); J.last_print = 0;
-  {
+  { /* <<Render image tiles in parallel>> */
     int started = 0;
     for (i = 0; i < nthreads; i++) {
       if (pthread_create(&th[i], NULL, elr__worker, &J) != 0) break;
@@ -240,32 +289,8 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   if (!out->rgb) { snprintf(err, errlen, "out of memory"); goto done; }
   el_film_get_rgb(&film, 1.f, out->rgb);
   if (st) {
-    st->t_parse = s->t_parse; st->t_images = s->t_images; st->t_embree = s->t_embree;
     st->t_render = elr_now() - J.t0;
-    st->bytes_embree = s->bytes_embree; st->bytes_film = el_film_bytes(&film);
-    st->bytes_splats = film.splats ? (size_t)film.width * (size_t)film.height * 3 * sizeof(double) : 0; st->splats_allocated = st->bytes_splats > 0;
-    st->camera_rays = J.total.camera; st->bounce_rays = J.total.bounce; st->shadow_rays = J.total.shadow;
-    st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
-    st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
-    st->light_samples_batched = C.batch_light != NULL;
-    st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
-    st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler.kind;
-    st->rejected_samples = el_film_rejected_samples(&film);
-    for (i = 0; i < s->ntex; i++) {
-      if (s->tex[i].kind == ELR_TEX_IMAGE) {
-        const el_mipmap *m = s->tex[i].mip;
-        st->mip_textures++;
-        st->mip_levels_built += el_mipmap_levels_built(m) ? el_mipmap_levels(m) : 1; /* level 0 always exists */
-        st->bytes_mip += el_mipmap_bytes(m);
-      }
-    }
-    st->bytes_textures = s->bytes_textures;
-    for (i = 0; i < s->nlight; i++)
-      if (s->light[i].kind == ELR_LIGHT_INFINITE) {
-        const el_envlight *e = s->light[i].env;
-        st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
-        if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
-      }
+    elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
   }
   rc = 0;
 done:
