@@ -51,11 +51,14 @@
  *     but its relative MSE per sample is 11-33% higher (16/64 spp, quick table): pbrt-v3's map stays
  *     the default (lower relMSE at equal time).
  * Measured 2026-12-01 (quiet machine, interleaved runs of this binary and of the previous release's):
- *   a pixel's light samples drawn together (elr__pixel_batched, el_envlight_sample_li_n): loop
+ *   a pixel's light samples drawn together (render_batched.c, el_envlight_sample_li_n): loop
  *     0.366-0.384 s, efficiency 27-28%; the same binary with no_batch 0.432-0.446 s (23-24%), the same
  *     image; the previous release 0.448-0.457 s (23%). callgrind: 4518 instructions per camera sample
  *     batched, 4347 one at a time (samples / samples1). Raw rates 25.4 M intersect, 26.7 M occluded
- *     rays/s: Embree alone takes 0.104 s, 85 ns per camera sample. */
+ *     rays/s: Embree alone takes 0.104 s, 85 ns per camera sample.
+ * Measured 2026-12-01, the renderer laid out by pbrt-v3's concepts (no wrappers around the library's
+ * calls; render_batched.c apart from the reference path), N = 102400: 4485 -> 4319 instructions per
+ * camera sample batched, 4351 -> 4379 one at a time; the same images (examples/render/README.md). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
@@ -77,7 +80,7 @@ static double relmse(const float *a, const float *ref, size_t n) {
 
 typedef struct { elr_v3 o, d; } bray;
 
-/* camera rays through pixel centres, pbrt-v3's pinhole (the same maths as integrator.c) */
+/* camera rays through pixel centres, pbrt-v3's pinhole (the same maths as examples/render/camera.c) */
 static void camera_rays(const elr_scene *s, bray *r) {
   int w = s->d.xres, h = s->d.yres, x, y;
   double frame = (double)w / h, th = tan(s->d.fov * 3.14159265358979 / 360.0);
