@@ -1,4 +1,5 @@
-/* integrator.c: what both integrators share (pbrt-v3 core/integrator.cpp).
+/* integrator.c: what both integrators share (pbrt-v3 core/integrator.cpp; the book's section 14.3,
+ * Direct Lighting).
  *
  *   elr_estimate_direct             EstimateDirect: one light, one light sample and one BSDF sample,
  *                                   combined with the power heuristic (MIS)

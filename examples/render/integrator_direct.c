@@ -1,10 +1,11 @@
-/* integrator_direct.c: pbrt-v3's DirectLightingIntegrator (integrators/directlighting.cpp).
+/* integrator_direct.c: pbrt-v3's DirectLightingIntegrator (integrators/directlighting.cpp; the book's
+ * section 14.3).
  *
  * At each hit, the light from every light source by pbrt-v3's strategy "all" (UniformSampleAllLights:
  * each light's "samples" count, light and BSDF sampling combined with the power heuristic), then the
  * specular reflection followed up to maxdepth. The Integrator directive's "strategy" "one" is not
- * implemented (it is read as "all"). Emission of hit surfaces (area lights, pbrt-v3's isect.Le) would
- * be added at each hit. */
+ * implemented (the parser warns, and "all" is used). Emission of hit surfaces (area lights, pbrt-v3's
+ * isect.Le) would be added at each hit. */
 #include "elr_internal.h"
 
 /* pbrt-v3's DirectLightingIntegrator::Li along the path state p: a camera ray (elr_path_begin) or the

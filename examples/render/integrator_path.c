@@ -1,8 +1,10 @@
-/* integrator_path.c: the path tracer (pbrt-v3's PathIntegrator, integrators/path.cpp).
+/* integrator_path.c: the path tracer (pbrt-v3's PathIntegrator, integrators/path.cpp; the book's section
+ * 14.5).
  *
- * Next-event estimation from every light at every vertex (one sample each: UniformSampleAllLights, as
- * pbrt-v3 with "lightsamplestrategy" "spatial" for one light; pbrt-v3 samples one light per vertex),
- * and the continuation ray's BSDF sample reused as the MIS partner of the light sample: when it leaves
+ * Next-event estimation from every light at every vertex, one sample each (UniformSampleAllLights;
+ * pbrt-v3 samples one light per vertex, chosen by "lightsamplestrategy", which is the same estimator
+ * for a scene of one light), and the continuation ray's BSDF sample reused as the MIS partner of the
+ * light sample: when it leaves
  * the scene, the environment it sees is weighted by the power heuristic against light sampling
  * (pbrt-v4's arrangement: one fewer ray per vertex than pbrt-v3's EstimateDirect, the same
  * expectation). pbrt-v3's Russian roulette: after 3 bounces, when the throughput's largest component

@@ -1,4 +1,5 @@
-/* lights.c: the lights and the one interface the integrators see them through.
+/* lights.c: the lights and the one interface the integrators see them through (the book's chapter 12,
+ * Light Sources, and section 14.2, Sampling Light Sources).
  *
  * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample) and
  * lights/point.cpp (PointLight), lights/distant.cpp (DistantLight), lights/infinite.cpp
