@@ -857,7 +857,7 @@ static void fz_regressions(void) {
     if (r == 0) el_image_free(&img);
     free(b.p);
   }
-  { /* a checkerboard's box filter with a huge differential: (int)floorf(5e29) in shading.c (undefined;
+  { /* a checkerboard's box filter with a huge differential: (int)floorf(5e29) in textures.c (undefined;
      * UBSan's float-cast-overflow, on in the sanitizer build) */
     elr_scene sc;
     elr_texture t[3];
