@@ -17,7 +17,7 @@
  *     el_mipmap m;
  *     el_mipmap_options opt;                         // all-zero = pbrt-v3's defaults:
  *     memset(&opt, 0, sizeof opt);                   //   Repeat, EWA, max anisotropy 8, power of two
- *     opt.wrap_v = EL_WRAP_CLAMP;                    // e.g. an environment map: Repeat u, Clamp v
+ *     opt.wrap_v = EL_MIPMAP_WRAP_CLAMP;                    // e.g. an environment map: Repeat u, Clamp v
  *     if (el_mipmap_init(&m, rgb, 400, 235, 3, &opt) != EL_SUCCESS) ...;
  *     float c[3];
  *     el_mipmap_lookup(&m, 0.3f, 0.7f, 0.15f, c);   // trilinear, filter width 0.15 (in [0,1] units)
@@ -88,25 +88,25 @@ extern "C" {
 /* >> mipmap declarations */
 
 /* pbrt's ImageWrap, chosen per axis. */
-typedef enum el_wrap {
-  EL_WRAP_REPEAT = 0, /* the texture tiles the plane (pbrt's default) */
-  EL_WRAP_BLACK = 1,  /* outside the texture everything is 0 */
-  EL_WRAP_CLAMP = 2   /* outside, the nearest border texel */
-} el_wrap;
+typedef enum el_mipmap_wrap {
+  EL_MIPMAP_WRAP_REPEAT = 0, /* the texture tiles the plane (pbrt's default) */
+  EL_MIPMAP_WRAP_BLACK = 1,  /* outside the texture everything is 0 */
+  EL_MIPMAP_WRAP_CLAMP = 2   /* outside, the nearest border texel */
+} el_mipmap_wrap;
 
 /* The filter of el_mipmap_lookup_differentials (pbrt-v3: doTrilinear false = EWA, the default) and of
  * el_mipmap_lookup_filtered. Zero is pbrt's default, EWA. */
 typedef enum el_mipmap_filter {
-  EL_FILTER_EWA = 0,       /* elliptically weighted average over the footprint of two differentials */
-  EL_FILTER_TRILINEAR = 1, /* bilinear on two levels, blended (pbrt-v3 doTrilinear = true) */
-  EL_FILTER_BILINEAR = 2,  /* bilinear on the level a trilinear lookup would use first (pbrt-v4) */
-  EL_FILTER_POINT = 3      /* the texel containing (s, t) on that level (pbrt-v4) */
+  EL_MIPMAP_FILTER_EWA = 0,       /* elliptically weighted average over the footprint of two differentials */
+  EL_MIPMAP_FILTER_TRILINEAR = 1, /* bilinear on two levels, blended (pbrt-v3 doTrilinear = true) */
+  EL_MIPMAP_FILTER_BILINEAR = 2,  /* bilinear on the level a trilinear lookup would use first (pbrt-v4) */
+  EL_MIPMAP_FILTER_POINT = 3      /* the texel containing (s, t) on that level (pbrt-v4) */
 } el_mipmap_filter;
 
 /* All-zero means pbrt-v3's defaults: Repeat in both axes, EWA, max anisotropy 8, non-power-of-two
  * images resampled up to a power of two. */
 typedef struct el_mipmap_options {
-  el_wrap wrap_u, wrap_v;  /* per axis; u = s along rows, v = t down the rows */
+  el_mipmap_wrap wrap_u, wrap_v;  /* per axis; u = s along rows, v = t down the rows */
   el_mipmap_filter filter; /* for el_mipmap_lookup_differentials */
   float max_anisotropy;    /* EWA eccentricity clamp; 0 -> 8 (pbrt's default); else in [1, 1024] */
   int keep_resolution;     /* 1: level 0 is the input as is, for any size (no power-of-two
@@ -121,7 +121,7 @@ typedef struct el_mipmap {
   int input_width, input_height; /* what el_mipmap_init was given */
   int channels;               /* floats per texel, 1..4 */
   int levels;                 /* levels of the full pyramid: 1 + floor(log2(max(width, height))) */
-  el_wrap wrap_u, wrap_v;
+  el_mipmap_wrap wrap_u, wrap_v;
   el_mipmap_filter filter;
   float max_anisotropy;       /* after defaulting */
   int resampled;              /* 1 when level 0 was resampled to a power of two */
@@ -173,7 +173,7 @@ EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, 
 EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
                                       float width, float *out);
 /* pbrt-v3's Lookup(st, dst0, dst1) with dst0 = (dsdx, dtdx), dst1 = (dsdy, dtdy): EWA when the map's
- * filter is EL_FILTER_EWA, otherwise lookup_filtered with width 2 * max |component|. */
+ * filter is EL_MIPMAP_FILTER_EWA, otherwise lookup_filtered with width 2 * max |component|. */
 EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
                                            float dsdy, float dtdy, float *out);
 /* Heap bytes in use: level 0, plus levels 1.. once built. */
@@ -319,24 +319,24 @@ static int el_mipmap__round_up_pow2(int v) {
   return p;
 }
 /* pbrt's Texel() index remapping for one axis; -1 means "Black: outside, value 0". */
-static int el_mipmap__wrap(int i, int n, el_wrap w) {
+static int el_mipmap__wrap(int i, int n, el_mipmap_wrap w) {
   int r;
   if ((unsigned)i < (unsigned)n) return i;
-  if (w == EL_WRAP_REPEAT) {
+  if (w == EL_MIPMAP_WRAP_REPEAT) {
     r = i % n;
     return r < 0 ? r + n : r;
   }
-  if (w == EL_WRAP_CLAMP) return i < 0 ? 0 : n - 1;
+  if (w == EL_MIPMAP_WRAP_CLAMP) return i < 0 ? 0 : n - 1;
   return -1;
 }
 /* A coordinate (in [0,1] units) made safe for point/bilinear/trilinear lookups: [-1, 2] is used as
  * given (pbrt's arithmetic); beyond it, Repeat keeps the fractional part (exact) and Clamp/Black pin
  * to -1 or 2, which gives the same texels; NaN counts as 0. */
-static float el_mipmap__sane(float s, el_wrap w) {
+static float el_mipmap__sane(float s, el_mipmap_wrap w) {
   float f;
   if (s >= -1.0f && s <= 2.0f) return s;
   if (s != s) return 0.0f;
-  if (w == EL_WRAP_REPEAT) {
+  if (w == EL_MIPMAP_WRAP_REPEAT) {
     if (s > 1e30f || s < -1e30f) return 0.0f; /* also +-infinity */
     f = s - floorf(s);
     return f;
@@ -344,8 +344,8 @@ static float el_mipmap__sane(float s, el_wrap w) {
   return s < 0.0f ? -1.0f : 2.0f;
 }
 /* The same for EWA: Clamp/Black keep far coordinates (the footprint can be wide), only finite. */
-static float el_mipmap__sane_ewa(float s, el_wrap w) {
-  if (w == EL_WRAP_REPEAT) return el_mipmap__sane(s, w);
+static float el_mipmap__sane_ewa(float s, el_mipmap_wrap w) {
+  if (w == EL_MIPMAP_WRAP_REPEAT) return el_mipmap__sane(s, w);
   if (s != s) return 0.0f;
   if (s > 1e20f) return 1e20f;
   if (s < -1e20f) return -1e20f;
@@ -362,7 +362,7 @@ static float el_mipmap__sane_d(float d) {
 
 /* Two bilinear taps along one axis of size n: indices (wrapped) and weights (0 for Black outside).
  * s has been through el_mipmap__sane. */
-EL_MIPMAP__INLINE void el_mipmap__axis(float s, int n, float fn, el_wrap w, int *i0, int *i1, float *w0,
+EL_MIPMAP__INLINE void el_mipmap__axis(float s, int n, float fn, el_mipmap_wrap w, int *i0, int *i1, float *w0,
                                        float *w1) {
   float x = s * fn - 0.5f;
   int i = el_mipmap__ifloor(x);
@@ -557,7 +557,7 @@ static float el_mipmap__lanczos(float x, float tau) {
   l = sinf(x) / x;
   return s * l;
 }
-static void el_mipmap__resample_weights(int oldres, int newres, el_wrap wrap, int *idx, float *wt) {
+static void el_mipmap__resample_weights(int oldres, int newres, el_mipmap_wrap wrap, int *idx, float *wt) {
   int i, j;
   float filterwidth = 2.f;
   for (i = 0; i < newres; ++i) {
@@ -859,7 +859,7 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
                                       float width, float *out) {
   float frac;
   int il;
-  if (filter != EL_FILTER_POINT && filter != EL_FILTER_BILINEAR) {
+  if (filter != EL_MIPMAP_FILTER_POINT && filter != EL_MIPMAP_FILTER_BILINEAR) {
     el_mipmap_lookup(m, s, t, width, out);
     return;
   }
@@ -871,7 +871,7 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
     return;
   }
   if (il < 0) il = 0;
-  if (filter == EL_FILTER_POINT) {
+  if (filter == EL_MIPMAP_FILTER_POINT) {
     el_mipmap_point(m, il, s, t, out);
     return;
   }
@@ -1045,7 +1045,7 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   int nu, nv, c, t0, t1, it;
   float fit, x, y, A, B, Cc, ru, rv, inv2A, fourA, mg, acc[4], sumw = 0.0f;
   const float *data;
-  el_wrap wu = m->wrap_u;
+  el_mipmap_wrap wu = m->wrap_u;
   size_t rowstride;
   el_mipmap__ellipse e;
   if (level >= m->levels) {
@@ -1064,15 +1064,15 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   Cc = e.C;
   ru = e.ru;
   rv = e.rv;
-  if (wu != EL_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
-    if (wu == EL_WRAP_BLACK) {
+  if (wu != EL_MIPMAP_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
+    if (wu == EL_MIPMAP_WRAP_BLACK) {
       for (c = 0; c < C; ++c) out[c] = 0.0f;
       return;
     }
     x = el_mipmap__pin(x, ru, nu);
   }
-  if (m->wrap_v != EL_WRAP_REPEAT && (y + rv < -1.0f || y - rv > (float)nv)) {
-    if (m->wrap_v == EL_WRAP_BLACK) {
+  if (m->wrap_v != EL_MIPMAP_WRAP_REPEAT && (y + rv < -1.0f || y - rv > (float)nv)) {
+    if (m->wrap_v == EL_MIPMAP_WRAP_BLACK) {
       for (c = 0; c < C; ++c) out[c] = 0.0f;
       return;
     }
@@ -1126,7 +1126,7 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
     if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu) { /* inside: no wrapping */
       el_mipmap__ewa_span(rp + (size_t)lo * (size_t)C, rp + (size_t)hi * (size_t)C, fis, x, A, B, tt, ctt, acc, &sumw,
                           C);
-    } else if (wu == EL_WRAP_REPEAT) { /* the column index walks and wraps */
+    } else if (wu == EL_MIPMAP_WRAP_REPEAT) { /* the column index walks and wraps */
       for (is = lo, col = el_mipmap__wrap(lo, nu, wu); is <= hi; ++is, fis += 1.0f) {
         float ss = fis - x;
         float r2 = A * ss * ss + B * ss * tt + ctt;
@@ -1271,7 +1271,7 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
   float d1s = el_mipmap__sane_d(dsdy), d1t = el_mipmap__sane_d(dtdy);
   float l0, l1, major, minor, f, a[4], b[4];
   int ilod, c, C = m->channels;
-  if (m->filter != EL_FILTER_EWA) {
+  if (m->filter != EL_MIPMAP_FILTER_EWA) {
     float w = fabsf(d0s);
     if (fabsf(d0t) > w) w = fabsf(d0t);
     if (fabsf(d1s) > w) w = fabsf(d1s);

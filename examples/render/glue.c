@@ -59,15 +59,15 @@ int elr_film_create(int xres, int yres, int x0, int y0, int x1, int y1, const el
   o.crop[2] = y0 > 0 ? ((float)y0 - 0.5f) / (float)yres : 0.f; o.crop[3] = ((float)y1 - 0.5f) / (float)yres;
   if (x0 == 0 && y0 == 0 && x1 == xres && y1 == yres) memset(o.crop, 0, sizeof o.crop);
   switch (fd->type) {
-  case ELR_PF_TRIANGLE: o.filter.type = EL_FILTER_TRIANGLE; break;
-  case ELR_PF_GAUSSIAN: o.filter.type = EL_FILTER_GAUSSIAN; o.filter.gaussian_alpha = fd->alpha; break;
+  case ELR_PF_TRIANGLE: o.filter.type = EL_FILM_FILTER_TRIANGLE; break;
+  case ELR_PF_GAUSSIAN: o.filter.type = EL_FILM_FILTER_GAUSSIAN; o.filter.gaussian_alpha = fd->alpha; break;
   case ELR_PF_MITCHELL:
-    o.filter.type = EL_FILTER_MITCHELL;
+    o.filter.type = EL_FILM_FILTER_MITCHELL;
     o.filter.mitchell_b = fd->b; o.filter.mitchell_c = fd->c;
     if (fd->b == 0.f && fd->c == 0.f) o.filter.mitchell_b = o.filter.mitchell_c = 1e-30f;
     break;
-  case ELR_PF_SINC: o.filter.type = EL_FILTER_LANCZOS; o.filter.lanczos_tau = fd->tau; break;
-  default: o.filter.type = EL_FILTER_BOX; break;
+  case ELR_PF_SINC: o.filter.type = EL_FILM_FILTER_LANCZOS; o.filter.lanczos_tau = fd->tau; break;
+  default: o.filter.type = EL_FILM_FILTER_BOX; break;
   }
   o.filter.radius[0] = fd->xw; o.filter.radius[1] = fd->yw;
   r = el_film_init(&f->f, &o);
@@ -112,7 +112,7 @@ uint64_t elr_film_rejected(const elr_film *f) { return el_film_rejected_samples(
 int elr_srgb8(const float *rgb, int n, unsigned char *out) {
   int i;
   for (i = 0; i < 3 * n; i++) {
-    float v = el_srgb_encode(rgb[i]) * 255.f + 0.5f;
+    float v = el_film_srgb_encode(rgb[i]) * 255.f + 0.5f;
     out[i] = (unsigned char)(v < 0.f ? 0.f : (v > 255.f ? 255.f : v));
   }
   return 0;
@@ -293,8 +293,8 @@ int elr_mip_create(const float *rgb, int w, int h, int wrap, int filter, float m
   *out = NULL;
   if (!m) { snprintf(err, errlen, "out of memory"); return -1; }
   memset(&o, 0, sizeof o);
-  o.wrap_u = o.wrap_v = wrap == ELR_WRAP_BLACK ? EL_WRAP_BLACK : (wrap == ELR_WRAP_CLAMP ? EL_WRAP_CLAMP : EL_WRAP_REPEAT);
-  o.filter = filter == ELR_FILTER_TRILINEAR ? EL_FILTER_TRILINEAR : (filter == ELR_FILTER_BILINEAR ? EL_FILTER_BILINEAR : EL_FILTER_EWA);
+  o.wrap_u = o.wrap_v = wrap == ELR_WRAP_BLACK ? EL_MIPMAP_WRAP_BLACK : (wrap == ELR_WRAP_CLAMP ? EL_MIPMAP_WRAP_CLAMP : EL_MIPMAP_WRAP_REPEAT);
+  o.filter = filter == ELR_FILTER_TRILINEAR ? EL_MIPMAP_FILTER_TRILINEAR : (filter == ELR_FILTER_BILINEAR ? EL_MIPMAP_FILTER_BILINEAR : EL_MIPMAP_FILTER_EWA);
   o.max_anisotropy = maxaniso;
   r = el_mipmap_init(&m->m, rgb, w, h, 3, &o);
   if (r != EL_SUCCESS) { free(m); snprintf(err, errlen, "MIP map: %s", el_result_string(r)); return -1; }
