@@ -209,14 +209,16 @@ int main(void) {
     collect(s, h, &ns);
     free(s);
   }
-  if (getenv("TEST_NAMES_LIST")) for (i = 0; i < ns.n; ++i) printf("%s %s %d\n", headers[ns.header[i]].file, ns.name[i], ns.enum_id[i]);
+  if (getenv("TEST_NAMES_LIST")) /* TEST_NAMES_LIST=1 test_names: every name found, with its enum */
+    for (i = 0; i < ns.n; ++i) printf("%s %s %d\n", headers[ns.header[i]].file, ns.name[i], ns.enum_id[i]);
   check(ns.n > 100, "the headers' declarations were found (more than 100 defined names)");
   /* 1. module prefixes */
   for (i = 0; i < ns.n; ++i) {
     const header *hd = &headers[ns.header[i]];
+    const char *first = hd->prefixes[0] ? hd->prefixes[0] : "";
     int ok = 0, k;
     for (k = 0; hd->prefixes[k]; ++k) ok |= starts(ns.name[i], hd->prefixes[k]);
-    snprintf(msg, sizeof msg, "%s: %s starts with the module's prefix (%s...)", hd->file, ns.name[i], hd->prefixes[0]);
+    snprintf(msg, sizeof msg, "%s: %s starts with the module's prefix (%s...)", hd->file, ns.name[i], first);
     check(ok, msg);
   }
   /* 2. one enumerator prefix per enum: the common prefix (to its last '_') of an enum's enumerators
