@@ -11,7 +11,7 @@
  *     float f[8] = {1, 2, 0, 1,  4, 0, 0, 1};
  *     el_distribution2d d;
  *     el_distribution_options opt = {0};              // all-zero: [0,1]^2, bad values are errors
- *     if (el_distribution2d_init(&d, f, 4, 2, &opt) != EL_SUCCESS) { opt.bad_index says where }
+ *     if (el_distribution2d_init(&d, f, 4, 2, &opt) != EL_SUCCESS) { d.bad_index says where }
  *     float u, v, pdf;
  *     el_distribution2d_sample(&d, u0, u1, &u, &v, &pdf);   // u1 picks the row, u0 the column (pbrt)
  *     // el_distribution2d_pdf(&d, u, v) == pdf, bit for bit
@@ -45,7 +45,7 @@
  *    the domain's upper end, and pdf() recomputes the same bin with the same expression.
  * 3. All-zero input is valid: pdf 0 everywhere, integral 0, and sample() returns the uniform point
  *    (CDF inversion of a constant function) with pdf 0 - never 0/0 (pbrt-v3 and v4 return NaN).
- * 4. Bad input is an error naming the first bad index (options.bad_index): n == 0 -> EL_ERROR_EMPTY,
+ * 4. Bad input is an error naming the first bad index (d.bad_index): n == 0 -> EL_ERROR_EMPTY,
  *    n < 0 or f == NULL -> EL_ERROR_INVALID_ARGUMENT, NaN -> EL_ERROR_NAN, +-Inf -> EL_ERROR_INFINITE, negative -> EL_ERROR_NEGATIVE (checked in that
  *    order for each value). With options.clamp_bad_values = 1: NaN and negative (including -Inf) count as
  *    0 and +Inf as FLT_MAX.
@@ -171,12 +171,10 @@ extern "C" {
 /* Options for both constructors. All zero = pbrt's behaviour where it is sound: domain [0,1] (1D) or
  * [0,1]^2 (2D), and bad values (NaN, Inf, negative) are errors. */
 typedef struct el_distribution_options {
-  int clamp_bad_values; /* 0: NaN/Inf/negative -> error (see bad_index); 1: NaN and negative (also -Inf)
+  int clamp_bad_values; /* 0: NaN/Inf/negative -> error (d.bad_index); 1: NaN and negative (also -Inf)
                            count as 0, +Inf counts as FLT_MAX */
   float domain[4];      /* u0, v0, u1, v1 (2D: [u0,u1] x [v0,v1]; 1D: [domain[0], domain[2]]).
                            All four zero = the unit square / unit interval. */
-  int bad_index;        /* OUT: when init fails on a value, the index of the first bad value (2D: v*nu+u);
-                           -1 otherwise (also on success). */
 } el_distribution_options;
 
 /* A 1D piecewise-constant distribution over n bins of the domain [x0, x1]. */
@@ -191,10 +189,13 @@ typedef struct el_distribution1d {
   float integral;     /* sum f_i * (x1 - x0) / n (clamped to FLT_MAX) */
   float last;         /* (float)(n - 1) */
   int exact;          /* 1 when x0 = 0 and the bin width is a power of two: placing a point needs no check */
+  int bad_index;      /* after init: the index of the first bad value when init failed on one (EL_ERROR_NAN,
+                         _INFINITE, _NEGATIVE), else -1. A failed init zeroes every other field. */
 } el_distribution1d;
 
-/* f has n values >= 0. opt may be NULL (all-zero options). On failure *d is zeroed (freeing it is safe). */
-EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, el_distribution_options *opt);
+/* f has n values >= 0. opt may be NULL (all-zero options). On failure *d is zeroed but for d->bad_index
+ * (freeing it is safe). */
+EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, const el_distribution_options *opt);
 EL_DEF void el_distribution1d_free(el_distribution1d *d);
 /* A point in [x0, x1) with density *pdf (w.r.t. length; 0 for all-zero input); *offset = its bin.
  * pdf and offset may be NULL. */
@@ -223,10 +224,13 @@ typedef struct el_distribution2d {
   float integral;     /* sum f * area / (nu*nv) (clamped to FLT_MAX) */
   float u_last, v_last; /* (float)(nu - 1), (float)(nv - 1) */
   int u_exact, v_exact; /* as el_distribution1d.exact, per axis */
+  int bad_index;      /* after init: the index v*nu+u of the first bad value when init failed on one, else -1
+                         (capped at INT_MAX). A failed init zeroes every other field. */
 } el_distribution2d;
 
-/* f[v*nu + u], nu columns, nv rows, all >= 0. opt may be NULL. On failure *d is zeroed. */
-EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, el_distribution_options *opt);
+/* f[v*nu + u], nu columns, nv rows, all >= 0. opt may be NULL. On failure *d is zeroed but for
+ * d->bad_index. */
+EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, const el_distribution_options *opt);
 EL_DEF void el_distribution2d_free(el_distribution2d *d);
 /* CDF inversion (stratification-preserving): u1 picks the row (v), u0 the column (u), as in pbrt.
  * (*out_u, *out_v) lies in [u0,u1) x [v0,v1); *pdf is w.r.t. area of the domain and equals
@@ -684,16 +688,23 @@ static float el_distribution2d__clamp_float(double x) { return x <= (double)FLT_
 
 /* >> 1D */
 
-EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, el_distribution_options *opt) {
+/* A failed init: *d zeroed but for bad_index. */
+static el_result el_distribution2d__fail1(el_distribution1d *d, el_result r, int bad_index) {
+  el_distribution1d_free(d);
+  d->bad_index = bad_index;
+  return r;
+}
+
+EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, const el_distribution_options *opt) {
   el_distribution_options zero;
   el_result r;
   double sum;
   size_t m, bad = 0;
   float a = 0.0f, b = 1.0f;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_index = -1;
   if (!d) return EL_ERROR_INVALID_ARGUMENT;
   memset(d, 0, sizeof *d);
+  d->bad_index = -1;
   if (n <= 0) return n == 0 ? EL_ERROR_EMPTY : EL_ERROR_INVALID_ARGUMENT;
   if (!f) return EL_ERROR_INVALID_ARGUMENT;
   if (n > EL_DISTRIBUTION_MAX_BINS) return EL_ERROR_SIZE_OVERFLOW;
@@ -705,13 +716,13 @@ EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, in
   d->x0 = a;
   d->x1 = b;
   r = el_distribution2d__domain(a, b, n, &d->bin_scale, &d->bin_width, &d->pdf_scale);
-  if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); return r; }
+  if (r != EL_SUCCESS) return el_distribution2d__fail1(d, r, -1);
   d->last = (float)(n - 1);
   d->exact = el_distribution2d__exact(a, b, d->bin_width, d->bin_scale, n);
   r = el_distribution2d__scan(f, (size_t)n, opt->clamp_bad_values, &sum, &m, &bad);
-  if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); opt->bad_index = (int)bad; return r; }
+  if (r != EL_SUCCESS) return el_distribution2d__fail1(d, r, (int)bad);
   d->cdf = (uint32_t *)EL_MALLOC(((size_t)n + 1) * sizeof(uint32_t));
-  if (!d->cdf) { memset(d, 0, sizeof *d); return EL_ERROR_OUT_OF_MEMORY; }
+  if (!d->cdf) return el_distribution2d__fail1(d, EL_ERROR_OUT_OF_MEMORY, -1);
   el_distribution2d__cdf_float(d->cdf, f, n, sum, (uint32_t)m, opt->clamp_bad_values);
   d->all_zero = !(sum > 0.0);
   if (d->all_zero) d->pdf_scale = 0.0f;
@@ -772,7 +783,14 @@ EL_DEF size_t el_distribution1d_bytes(const el_distribution1d *d) {
 
 /* >> 2D */
 
-EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, el_distribution_options *opt) {
+/* A failed init: *d zeroed but for bad_index. */
+static el_result el_distribution2d__fail2(el_distribution2d *d, el_result r, int bad_index) {
+  el_distribution2d_free(d);
+  d->bad_index = bad_index;
+  return r;
+}
+
+EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, const el_distribution_options *opt) {
   el_distribution_options zero;
   el_result r;
   double total = 0.0, *rowsum = NULL;
@@ -780,9 +798,9 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   float u0 = 0.0f, v0 = 0.0f, u1 = 1.0f, v1 = 1.0f;
   int v;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_index = -1;
   if (!d) return EL_ERROR_INVALID_ARGUMENT;
   memset(d, 0, sizeof *d);
+  d->bad_index = -1;
   if (nu < 0 || nv < 0) return EL_ERROR_INVALID_ARGUMENT;
   if (nu == 0 || nv == 0) return EL_ERROR_EMPTY;
   if (!f) return EL_ERROR_INVALID_ARGUMENT;
@@ -802,7 +820,7 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   r = el_distribution2d__domain(u0, u1, nu, &d->u_scale, &d->u_width, &d->u_pdf_scale);
   if (r == EL_SUCCESS) r = el_distribution2d__domain(v0, v1, nv, &d->v_scale, &d->v_width, &d->v_pdf_scale);
   if (r == EL_SUCCESS && !((double)d->u_pdf_scale * (double)d->v_pdf_scale * 281474976710656.0 <= FLT_MAX)) r = EL_ERROR_INVALID_ARGUMENT;
-  if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); return r; }
+  if (r != EL_SUCCESS) return el_distribution2d__fail2(d, r, -1);
   d->u_last = (float)(nu - 1);
   d->v_last = (float)(nv - 1);
   d->u_exact = el_distribution2d__exact(u0, u1, d->u_width, d->u_scale, nu);
@@ -812,8 +830,7 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   rowsum = (double *)EL_MALLOC((size_t)nv * sizeof(double));
   if (!d->cdf || !d->marginal || !rowsum) {
     EL_FREE(rowsum);
-    el_distribution2d_free(d);
-    return EL_ERROR_OUT_OF_MEMORY;
+    return el_distribution2d__fail2(d, EL_ERROR_OUT_OF_MEMORY, -1);
   }
   /* <<Compute conditional sampling distribution for each row>>, validating as we go */
   for (v = 0; v < nv; ++v) {
@@ -822,10 +839,8 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
     r = el_distribution2d__scan(row, (size_t)nu, opt->clamp_bad_values, &rowsum[v], &m, &bad);
     if (r != EL_SUCCESS) {
       size_t flat = (size_t)v * (size_t)nu + bad;
-      opt->bad_index = flat <= 2147483647u ? (int)flat : 2147483647;
       EL_FREE(rowsum);
-      el_distribution2d_free(d);
-      return r;
+      return el_distribution2d__fail2(d, r, flat <= 2147483647u ? (int)flat : 2147483647);
     }
     el_distribution2d__cdf_float(d->cdf + (size_t)v * row_entries, row, nu, rowsum[v], (uint32_t)m, opt->clamp_bad_values);
     total += rowsum[v];

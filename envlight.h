@@ -13,7 +13,7 @@
  *     el_envlight light;
  *     el_envlight_options opt = {0};                   // all zero: pbrt-v3's light (see below)
  *     el_envlight_yup_matrix(opt.light_to_world);      // y-up, right-handed world, as Mitsuba shows it
- *     if (el_envlight_init(&light, rgb, width, height, 3, &opt) != EL_SUCCESS) { opt.bad_texel says where }
+ *     if (el_envlight_init(&light, rgb, width, height, 3, &opt) != EL_SUCCESS) { light.bad_index says where }
  *     el_envlight_le(&light, dir, rgb_out);            // a ray escaping along dir (no sampling tables)
  *     float wi[3], L[3], pdf;
  *     el_envlight_sample_li(&light, u, wi, L, &pdf);   // u[2] in [0,1)^2; builds the tables on first use
@@ -120,7 +120,7 @@
  *    After that, every query is read-only and thread-safe. No MIP pyramid is built: le() is a level-0
  *    bilinear lookup; a renderer that wants filtered (ray-differential) lookups builds an el_mipmap
  *    from the same pixels (mipmap.h).
- * 7. Bad input is an error, not a NaN later: NaN / Inf / negative texels (options.bad_texel names the
+ * 7. Bad input is an error, not a NaN later: NaN / Inf / negative texels (light.bad_index names the
  *    first one; or EL_ENVLIGHT_BAD_TEXELS_ZERO turns them into 0), a non-orthonormal matrix, a bad
  *    scale, sizes that overflow.
  *
@@ -217,7 +217,7 @@ extern "C" {
 #define EL_ENVLIGHT_SAMPLER_CDF 1   /* two binary searches (pbrt's method); the same points */
 #define EL_ENVLIGHT_SAMPLER_ALIAS 2 /* alias table: O(1); does not keep stratification */
 /* What init does with NaN, infinite or negative texels. */
-#define EL_ENVLIGHT_BAD_TEXELS_ERROR 0 /* default: an error naming the texel (options.bad_texel) */
+#define EL_ENVLIGHT_BAD_TEXELS_ERROR 0 /* default: an error naming the texel (el_envlight.bad_index) */
 #define EL_ENVLIGHT_BAD_TEXELS_ZERO 1  /* they become 0 */
 
 /* The largest importance-map resolution per axis (the 2^-21 in-bin margin must stay far below a bin). */
@@ -234,7 +234,6 @@ typedef struct el_envlight_options {
   int importance_height;   /*  it), each capped at EL_ENVLIGHT_MAX_IMPORTANCE. TEXEL ignores these. */
   int sampler;             /* EL_ENVLIGHT_SAMPLER_* */
   int bad_texels;          /* EL_ENVLIGHT_BAD_TEXELS_* */
-  int bad_texel;           /* OUT: index y*width+x of the first bad texel when init fails on one, else -1 */
 } el_envlight_options;
 
 typedef struct el_envlight {
@@ -293,16 +292,20 @@ typedef struct el_envlight {
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
+  int bad_index;           /* after init: the index y*width+x of the first bad texel when init failed on one
+                              (EL_ERROR_NAN, _INFINITE, _NEGATIVE), else -1. A failed init zeroes every
+                              other field. */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
  * 2 (grey, alpha) give (g, g, g); 3 and 4 give RGB (alpha ignored, not checked). opt may be NULL (all-zero
- * options); it is written only for bad_texel. On failure *l is zeroed (freeing it is safe). */
+ * options). On failure *l is zeroed but for l->bad_index, which names the first bad texel (or is -1);
+ * freeing it is safe. */
 EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width, int height, int channels,
-                                  el_envlight_options *opt);
+                                  const el_envlight_options *opt);
 /* A constant-radiance light (pbrt-v3's InfiniteAreaLight without a map): uniform sphere sampling, pdf
  * 1 / 4 pi (0 when rgb is black); options.compensated has no effect (the map would fall back anyway). */
-EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], el_envlight_options *opt);
+EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], const el_envlight_options *opt);
 EL_DEF void el_envlight_free(el_envlight *l);
 /* Build the sampling tables now (they are otherwise built on first need). Returns their build result;
  * safe to call more than once and from several threads (see THREAD SAFETY above). */
@@ -313,21 +316,21 @@ EL_DEF void el_envlight_preprocess(el_envlight *l, const float center[3], float 
 /* Radiance arriving along -dir (a ray leaving the scene along dir). Reads only: never builds tables. */
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]);
 /* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets le(wi). */
-EL_DEF void el_envlight_sample_li(el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
+EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
  * (a pixel's samples, a wavefront): the table and texel reads of up to 16 samples are started together
  * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
-EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
+EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
-EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]);
+EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
  * sphere facing it. ray_dir points INTO the scene; normal = ray_dir (pbrt's nLight). pdf_pos is w.r.t.
  * area of the disk (1 / (pi r^2)), pdf_dir w.r.t. solid angle. Before preprocess (radius 0): all zero. */
-EL_DEF void el_envlight_sample_le(el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
+EL_DEF void el_envlight_sample_le(const el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
                                   float normal[3], float rgb[3], float *pdf_pos, float *pdf_dir);
 /* pbrt-v3 Pdf_Le for a ray entering the scene along ray_dir. */
-EL_DEF void el_envlight_pdf_le(el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir);
+EL_DEF void el_envlight_pdf_le(const el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir);
 /* pi r^2 * integral(le) d omega (pbrt-v4's Phi); 0 before preprocess. */
 EL_DEF void el_envlight_power(const el_envlight *l, float rgb[3]);
 /* integral(le) d omega over the sphere, per channel (exact for the bilinear reconstruction). */
@@ -624,7 +627,7 @@ static el_result el_envlight__set_matrix(el_envlight *l, const float *m) {
   return EL_SUCCESS;
 }
 
-static el_result el_envlight__common(el_envlight *l, el_envlight_options *opt, float scale[3]) {
+static el_result el_envlight__common(el_envlight *l, const el_envlight_options *opt, float scale[3]) {
   int c;
   el_result r;
   if (opt->importance < 0 || opt->importance > 2 || opt->sampler < 0 || opt->sampler > 2 ||
@@ -791,8 +794,15 @@ static int el_envlight__row3(const float *src, float *dst, int w, const float *k
 
 /* >> construction */
 
+/* A failed init: *l zeroed but for bad_index. */
+static el_result el_envlight__fail(el_envlight *l, el_result r, int bad_index) {
+  el_envlight_free(l);
+  l->bad_index = bad_index;
+  return r;
+}
+
 EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width, int height, int channels,
-                                  el_envlight_options *opt) {
+                                  const el_envlight_options *opt) {
   el_envlight_options zero;
   float scale[3], k12[12];
   size_t n, i;
@@ -800,18 +810,18 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   int y, x, c;
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   memset(l, 0, sizeof *l);
+  l->bad_index = -1;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_texel = -1;
   if (!pixels || channels < 1 || channels > 4) return EL_ERROR_INVALID_ARGUMENT;
   if (width <= 0 || height <= 0) return width == 0 || height == 0 ? EL_ERROR_EMPTY : EL_ERROR_INVALID_ARGUMENT;
   if ((size_t)width > (size_t)2147483647 / (size_t)height) return EL_ERROR_SIZE_OVERFLOW;
   n = (size_t)width * (size_t)height;
   if (n > ((size_t)-1) / (3 * sizeof(float))) return EL_ERROR_SIZE_OVERFLOW;
   r = el_envlight__common(l, opt, scale);
-  if (r != EL_SUCCESS) { memset(l, 0, sizeof *l); return r; }
+  if (r != EL_SUCCESS) return el_envlight__fail(l, r, -1);
   if (opt->importance == EL_ENVLIGHT_IMPORTANCE_TEXEL) {
     l->imp_w = width; l->imp_h = height;
-    if (l->imp_w > EL_ENVLIGHT_MAX_IMPORTANCE || l->imp_h > EL_ENVLIGHT_MAX_IMPORTANCE) { memset(l, 0, sizeof *l); return EL_ERROR_SIZE_OVERFLOW; }
+    if (l->imp_w > EL_ENVLIGHT_MAX_IMPORTANCE || l->imp_h > EL_ENVLIGHT_MAX_IMPORTANCE) return el_envlight__fail(l, EL_ERROR_SIZE_OVERFLOW, -1);
   } else if (opt->importance_width > 0) {
     l->imp_w = opt->importance_width; l->imp_h = opt->importance_height;
   } else {
@@ -820,7 +830,7 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
     l->imp_h = height <= EL_ENVLIGHT_MAX_IMPORTANCE / k ? k * height : EL_ENVLIGHT_MAX_IMPORTANCE;
   }
   l->texels = (float *)EL_MALLOC(n * 3 * sizeof(float));
-  if (!l->texels) { memset(l, 0, sizeof *l); return EL_ERROR_OUT_OF_MEMORY; }
+  if (!l->texels) return el_envlight__fail(l, EL_ERROR_OUT_OF_MEMORY, -1);
   l->width = width; l->height = height;
   /* <<Copy, validate and scale the texels>> and integrate them over the sphere (power): RGB rows in one
    * vectorised pass each (el_envlight__row3); other channel counts, and a row holding a bad texel, texel
@@ -860,14 +870,14 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
         r = el_envlight__check_value(v);
         if (r != EL_SUCCESS) {
           if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
-          else { opt->bad_texel = (int)i; el_envlight_free(l); return r; }
+          else return el_envlight__fail(l, r, (int)i);
         }
         v *= scale[c];
         if (v > FLT_MAX) { /* scale * texel overflowed */
           if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
-          else { opt->bad_texel = (int)i; el_envlight_free(l); return EL_ERROR_INFINITE; }
+          else return el_envlight__fail(l, EL_ERROR_INFINITE, (int)i);
         }
-        l->texels[3 * i + c] = v;
+        l->texels[3 * i + (size_t)c] = v;
         row[c] += v;
       }
     }
@@ -876,27 +886,27 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   return EL_SUCCESS;
 }
 
-EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], el_envlight_options *opt) {
+EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], const el_envlight_options *opt) {
   el_envlight_options zero;
   float scale[3];
   el_result r;
   int c;
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   memset(l, 0, sizeof *l);
+  l->bad_index = -1;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_texel = -1;
   if (!rgb) return EL_ERROR_INVALID_ARGUMENT;
   r = el_envlight__common(l, opt, scale);
-  if (r != EL_SUCCESS) { memset(l, 0, sizeof *l); return r; }
+  if (r != EL_SUCCESS) return el_envlight__fail(l, r, -1);
   for (c = 0; c < 3; ++c) {
     float v;
     r = el_envlight__check_value(rgb[c]);
     if (r != EL_SUCCESS) {
-      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) { opt->bad_texel = 0; memset(l, 0, sizeof *l); return r; }
+      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, r, 0);
       v = 0.0f;
     } else v = rgb[c] * scale[c];
     if (v > FLT_MAX) {
-      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) { opt->bad_texel = 0; memset(l, 0, sizeof *l); return EL_ERROR_INFINITE; }
+      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, EL_ERROR_INFINITE, 0);
       v = 0.0f;
     }
     l->constant[c] = v;
@@ -1074,8 +1084,8 @@ static el_result el_envlight__build(el_envlight *l) {
     for (j = 0; j < nv; ++j)
       for (i = 0; i < nu; ++i) {
         float rgb[3];
-        el_envlight__bilerp(l, (i + 0.5f) / (float)nu, (j + 0.5f) / (float)nv, rgb);
-        f[(size_t)j * nu + i] = el_envlight__luminance(rgb);
+        el_envlight__bilerp(l, ((float)i + 0.5f) / (float)nu, ((float)j + 0.5f) / (float)nv, rgb);
+        f[(size_t)j * (size_t)nu + (size_t)i] = el_envlight__luminance(rgb);
       }
   } else {
     for (q = 0; q < nb; ++q) f[q] = el_envlight__luminance(l->texels + 3 * q);
@@ -1088,7 +1098,7 @@ static el_result el_envlight__build(el_envlight *l) {
     double sum = 0.0, area = 0.0, mean;
     for (j = 0; j < nv; ++j) {
       double da = cos(EL_ENVLIGHT__PI * j / nv) - cos(EL_ENVLIGHT__PI * (j + 1) / nv), rs = 0.0;
-      for (i = 0; i < nu; ++i) rs += f[(size_t)j * nu + i];
+      for (i = 0; i < nu; ++i) rs += f[(size_t)j * (size_t)nu + (size_t)i];
       sum += rs * da; area += da * nu;
     }
     mean = sum / area;
@@ -1098,7 +1108,7 @@ static el_result el_envlight__build(el_envlight *l) {
     } else l->fell_back = 1;
   }
   for (j = 0; j < nv && !sin_done; ++j) { /* <<times sin(theta)>> at the bin centre (> 0 for every bin) */
-    float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv), *row = f + (size_t)j * nu;
+    float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv), *row = f + (size_t)j * (size_t)nu;
     for (i = 0; i < nu; ++i) {
       float v = row[i] * s;
       row[i] = v < FLT_MAX ? v : FLT_MAX;
@@ -1174,7 +1184,7 @@ static el_result el_envlight__build(el_envlight *l) {
   for (j = 0; j < nv; ++j) {
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
     float wv = (float)(int32_t)(l->dist.marginal[j + 1] - l->dist.marginal[j]), k = pdf_k;
-    float *dst = l->pdf_table + (size_t)j * nu;
+    float *dst = l->pdf_table + (size_t)j * (size_t)nu;
     /* a bin's width is at most 2^24 units: as int32_t it converts to the same float, and the loop vectorises */
     for (i = 0; i < nu; ++i) dst[i] = (wv * (float)(int32_t)(row[i + 1] - row[i])) * k;
   }
@@ -1241,13 +1251,16 @@ static int el_envlight__ensure_slow(el_envlight *l) {
   return l->state == 2;
 #endif
 }
-static inline int el_envlight__ensure(el_envlight *l) {
+/* Queries take a const light and build its tables on first need: the lazy tables are the light's one
+ * mutable part, guarded by the once-flag above (as el_mipmap's upper levels are). The light itself is
+ * never a const object (el_envlight_init wrote it), so writing through the cast is defined. */
+static inline int el_envlight__ensure(const el_envlight *l) {
 #if EL_ENVLIGHT__ATOMICS
   if (__atomic_load_n(&l->state, __ATOMIC_ACQUIRE) == 2) return 1;
 #else
   if (l->state == 2) return 1;
 #endif
-  return el_envlight__ensure_slow(l);
+  return el_envlight__ensure_slow((el_envlight *)l);
 }
 
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l) {
@@ -1346,14 +1359,14 @@ static inline float el_envlight__pdf_light(const el_envlight *l, const float dir
   return el_envlight__pdf_core(l, x, y, z, r2, len2);
 }
 
-static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(el_envlight *l, const float dir[3]) {
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
   float d[3];
   if (!el_envlight__ensure(l)) return 0.0f;
   el_envlight__to_light(l, dir, d);
   return el_envlight__pdf_light(l, d);
 }
 
-EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
+EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3], r2, len2;
   /* the hot bit EL_ENVLIGHT__HOT_PDF: tables built, and a map (not the constant light) */
 #if EL_ENVLIGHT__ATOMICS
@@ -1505,7 +1518,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
 }
 
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float d[3], u, v, p;
   if (!el_envlight__ensure(l)) {
     wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
@@ -1623,10 +1636,10 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   return 0;
 }
 
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
 /* The inline path with the pdf recomputed (a general rotation, a black map): out of line, so that the
  * common case's function stays small. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   if (!el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 0, NULL)) el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
 #endif
@@ -1634,7 +1647,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(el_envlight *
 /* The hot path has no calls but tail calls; anything it does not take (tables not built yet, the CDF
  * or alias sampler, a crowded guide cell, the constant light, small maps) goes to
  * el_envlight__sample_li_slow. */
-EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
 #if EL_ENVLIGHT__ATOMICS
   int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE); /* built, direction tables, guide sampler */
 #else
@@ -1665,7 +1678,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 #define EL_ENVLIGHT__BATCH 16
 #endif
 
-EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
+EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
   int i;
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
   int hot;
@@ -1738,7 +1751,7 @@ static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {
   b2[0] = b; b2[1] = sign + n[1] * n[1] * a; b2[2] = -n[1];
 }
 
-EL_DEF void el_envlight_sample_le(el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
+EL_DEF void el_envlight_sample_le(const el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
                                   float normal[3], float rgb[3], float *pdf_pos, float *pdf_dir) {
   float wi[3], L[3], p, b1[3], b2[3], dx, dy, R = l->radius;
   int k;
@@ -1766,7 +1779,7 @@ EL_DEF void el_envlight_sample_le(el_envlight *l, const float u[4], float ray_or
   *pdf_pos = 1.0f / (float)(EL_ENVLIGHT__PI * (double)R * (double)R);
 }
 
-EL_DEF void el_envlight_pdf_le(el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir) {
+EL_DEF void el_envlight_pdf_le(const el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir) {
   float w[3];
   w[0] = -ray_dir[0]; w[1] = -ray_dir[1]; w[2] = -ray_dir[2];
   if (!(l->radius > 0.0f)) { *pdf_pos = 0.0f; *pdf_dir = 0.0f; return; }

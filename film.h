@@ -463,8 +463,8 @@ EL_DEF el_result el_film_init(el_film *f, const el_film_options *opt) {
   for (y = 0; y < EL_FILM_TABLE_SIZE; y++)
     for (x = 0; x < EL_FILM_TABLE_SIZE; x++)
       f->table[y * EL_FILM_TABLE_SIZE + x] =
-          el_film_filter_eval(&f->filter, (x + 0.5f) * f->filter.radius[0] / EL_FILM_TABLE_SIZE,
-                              (y + 0.5f) * f->filter.radius[1] / EL_FILM_TABLE_SIZE);
+          el_film_filter_eval(&f->filter, ((float)x + 0.5f) * f->filter.radius[0] / EL_FILM_TABLE_SIZE,
+                              ((float)y + 0.5f) * f->filter.radius[1] / EL_FILM_TABLE_SIZE);
   n = (size_t)f->width * (size_t)f->height * 4;
   f->pixels = (double *)EL_MALLOC(n * sizeof(double));
   if (!f->pixels) { memset(f, 0, sizeof *f); return EL_ERROR_OUT_OF_MEMORY; }
@@ -571,10 +571,15 @@ static unsigned el_film__bits(float v) { /* the IEEE-754 pattern (memcpy: no ali
 static int el_film__accept(el_film_stats *s, float px, float py, const float *rgb, float w) {
   /* as unsigned patterns, finite non-negative floats are exactly those below 0x7f800000 (+Inf); a
      finite position of either sign has its magnitude bits below it. -0.0 takes the slow path. */
-  if (rgb && ((el_film__bits(px) & 0x7fffffffu) < 0x7f800000u) & ((el_film__bits(py) & 0x7fffffffu) < 0x7f800000u) &
-                 (el_film__bits(rgb[0]) < 0x7f800000u) & (el_film__bits(rgb[1]) < 0x7f800000u) &
-                 (el_film__bits(rgb[2]) < 0x7f800000u) & (el_film__bits(w) < 0x7f800000u))
-    return 1;
+  if (rgb) {
+    /* all six tests, combined with & rather than && (one branch, not six); the patterns are read first,
+       so that no operand of & has a call in it (clang's -Wbitwise-instead-of-logical) */
+    unsigned bx = el_film__bits(px) & 0x7fffffffu, by = el_film__bits(py) & 0x7fffffffu;
+    unsigned b0 = el_film__bits(rgb[0]), b1 = el_film__bits(rgb[1]), b2 = el_film__bits(rgb[2]), bw = el_film__bits(w);
+    if ((bx < 0x7f800000u) & (by < 0x7f800000u) & (b0 < 0x7f800000u) & (b1 < 0x7f800000u) & (b2 < 0x7f800000u) &
+        (bw < 0x7f800000u))
+      return 1;
+  }
   return el_film__classify(s, px, py, rgb, w);
 }
 
@@ -803,7 +808,7 @@ EL_DEF void el_film_get_rgb(const el_film *f, float splat_scale, float *out) {
     }
     /* <<Add splat value at pixel>> */
     if (f->splats)
-      for (k = 0; k < 3; k++) c[k] += ss * f->splats[i * 3 + k];
+      for (k = 0; k < 3; k++) c[k] += ss * f->splats[i * 3 + (size_t)k];
     if (f->xyz_round_trip) { /* pbrt-v3: ToXYZ on merge, XYZToRGB on output */
       float rgb[3], xyz[3];
       rgb[0] = el_film__finite_clamp(c[0]); rgb[1] = el_film__finite_clamp(c[1]); rgb[2] = el_film__finite_clamp(c[2]);
@@ -812,7 +817,7 @@ EL_DEF void el_film_get_rgb(const el_film *f, float splat_scale, float *out) {
       c[0] = rgb[0]; c[1] = rgb[1]; c[2] = rgb[2];
     }
     /* <<Scale pixel value by scale>> */
-    for (k = 0; k < 3; k++) out[i * 3 + k] = el_film__finite_clamp(c[k] * f->scale);
+    for (k = 0; k < 3; k++) out[i * 3 + (size_t)k] = el_film__finite_clamp(c[k] * f->scale);
   }
 }
 

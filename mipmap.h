@@ -132,6 +132,9 @@ typedef struct el_mipmap {
   size_t level0_bytes;        /* bytes of level_data[0] */
   size_t upper_bytes;         /* bytes of the one allocation holding levels 1.. (0 until built) */
   long build_state;           /* 0 upper levels not built, 1 building, 2 built, 3 out of memory */
+  int bad_index;              /* after init: the index y*width+x of the first NaN or infinite input texel when
+                                 init failed on one (EL_ERROR_NAN, EL_ERROR_INFINITE), else -1 (capped at
+                                 INT_MAX). A failed init zeroes every other field. */
 } el_mipmap;
 
 /* Builds level 0 from `pixels` (width*height*channels floats, row-major, row 0 first, channels 1..4),
@@ -139,7 +142,8 @@ typedef struct el_mipmap {
  * (pbrt's defaults). Levels 1.. are built on first need. Errors: EL_ERROR_INVALID_ARGUMENT (NULL,
  * size < 1, channels outside 1..4, an unknown enum, max_anisotropy negative or outside [1,1024]),
  * EL_ERROR_NAN / EL_ERROR_INFINITE (a texel or max_anisotropy), EL_ERROR_SIZE_OVERFLOW (a side
- * above 2^24, or bytes overflow), EL_ERROR_OUT_OF_MEMORY. On failure *m is zeroed. */
+ * above 2^24, or bytes overflow), EL_ERROR_OUT_OF_MEMORY. On failure *m is zeroed but for m->bad_index,
+ * which names the first NaN or infinite texel (or is -1). */
 EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, int height, int channels,
                                 const el_mipmap_options *opt);
 /* Releases everything and zeroes *m. Safe on a zeroed struct and on NULL. */
@@ -562,7 +566,7 @@ static void el_mipmap__resample_weights(int oldres, int newres, el_mipmap_wrap w
   float filterwidth = 2.f;
   for (i = 0; i < newres; ++i) {
     /* <<Compute image resampling weights for ith texel>> */
-    float center = (i + .5f) * (float)oldres / (float)newres;
+    float center = ((float)i + .5f) * (float)oldres / (float)newres;
     int first = (int)floorf((center - filterwidth) + 0.5f);
     float inv;
     for (j = 0; j < 4; ++j) {
@@ -644,17 +648,20 @@ static el_result el_mipmap__resample(el_mipmap *m, const float *img, int w, int 
   return EL_SUCCESS;
 }
 
-/* EL_SUCCESS when all n floats are finite, else EL_ERROR_NAN / EL_ERROR_INFINITE (the first bad one). */
-static el_result el_mipmap__check_finite(const float *p, size_t n) {
+/* EL_SUCCESS when all n floats are finite, else EL_ERROR_NAN / EL_ERROR_INFINITE for the first bad one,
+ * whose index goes to *bad. */
+static el_result el_mipmap__check_finite(const float *p, size_t n, size_t *bad) {
   float acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   size_t i = 0, j;
   for (; i + 8 <= n; i += 8)
     for (j = 0; j < 8; ++j) acc[j] += p[i + j] - p[i + j]; /* 0 for finite, NaN otherwise */
   for (; i < n; ++i) acc[0] += p[i] - p[i];
   if (acc[0] + acc[1] + acc[2] + acc[3] + acc[4] + acc[5] + acc[6] + acc[7] == 0.0f) return EL_SUCCESS;
-  for (i = 0; i < n; ++i)
+  for (i = 0; i < n; ++i) {
+    *bad = i;
     if (p[i] != p[i]) return EL_ERROR_NAN;
-    else if (p[i] - p[i] != 0.0f) return EL_ERROR_INFINITE;
+    if (p[i] - p[i] != 0.0f) return EL_ERROR_INFINITE;
+  }
   return EL_SUCCESS;
 }
 
@@ -663,10 +670,11 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
                                 const el_mipmap_options *opt) {
   el_mipmap_options o;
   int w, h, i, keep;
-  size_t nfl;
+  size_t nfl, bad = 0;
   el_result r;
   if (!m) return EL_ERROR_INVALID_ARGUMENT;
   memset(m, 0, sizeof *m);
+  m->bad_index = -1;
   if (!pixels || width < 1 || height < 1 || channels < 1 || channels > 4) return EL_ERROR_INVALID_ARGUMENT;
   if (opt) o = *opt;
   else memset(&o, 0, sizeof o);
@@ -685,8 +693,12 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
     return EL_ERROR_SIZE_OVERFLOW; /* level 0 and the resampling buffer must fit */
   if ((size_t)width > ((size_t)-1) / sizeof(float) / (size_t)channels / (size_t)height)
     return EL_ERROR_SIZE_OVERFLOW;
-  r = el_mipmap__check_finite(pixels, (size_t)width * (size_t)height * (size_t)channels);
-  if (r != EL_SUCCESS) return r;
+  r = el_mipmap__check_finite(pixels, (size_t)width * (size_t)height * (size_t)channels, &bad);
+  if (r != EL_SUCCESS) {
+    bad /= (size_t)channels; /* the texel */
+    m->bad_index = bad <= 2147483647u ? (int)bad : 2147483647;
+    return r;
+  }
   m->input_width = width;
   m->input_height = height;
   m->width = w;
@@ -711,6 +723,7 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
   m->level_data[0] = (float *)EL_MALLOC(nfl * sizeof(float));
   if (!m->level_data[0]) {
     memset(m, 0, sizeof *m);
+    m->bad_index = -1;
     return EL_ERROR_OUT_OF_MEMORY;
   }
   m->level0_bytes = nfl * sizeof(float);
@@ -722,6 +735,7 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
     if (r != EL_SUCCESS) {
       EL_FREE(m->level_data[0]);
       memset(m, 0, sizeof *m);
+      m->bad_index = -1;
       return r;
     }
   }
@@ -734,6 +748,7 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
 #if !EL_MIPMAP__LAZY
   if (el_mipmap_build_levels(m) != EL_SUCCESS) {
     el_mipmap_free(m);
+    m->bad_index = -1;
     return EL_ERROR_OUT_OF_MEMORY;
   }
 #endif
@@ -826,7 +841,10 @@ EL_MIPMAP__INLINE void el_mipmap__bilerp_c(const el_mipmap *m, int level, float 
   r1 = d + (size_t)v1 * stride;
   c0 = (size_t)u0 * (size_t)C;
   c1 = (size_t)u1 * (size_t)C;
-  for (c = 0; c < C; ++c) out[c] = k00 * r0[c0 + c] + k01 * r1[c0 + c] + k10 * r0[c1 + c] + k11 * r1[c1 + c];
+  for (c = 0; c < C; ++c) {
+    size_t k = (size_t)c;
+    out[c] = k00 * r0[c0 + k] + k01 * r1[c0 + k] + k10 * r0[c1 + k] + k11 * r1[c1 + k];
+  }
 }
 static void el_mipmap__bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
   switch (m->channels) {

@@ -142,7 +142,7 @@ static void test_hand_1d(void) {
   double tol = 2.0 * 4.0 / UNITS; /* pdf = units * n * 2^-24: 2 units of slack per bin, times n */
   double expect[4] = {0.5, 1.5, 0.0, 2.0}; /* f / integral, integral = 8/4 */
   memset(&opt, 0, sizeof opt);
-  check(el_distribution1d_init(&d, f, 4, &opt) == EL_SUCCESS && opt.bad_index == -1, "1D {1,3,0,4}: init, bad_index -1");
+  check(el_distribution1d_init(&d, f, 4, &opt) == EL_SUCCESS && d.bad_index == -1, "1D {1,3,0,4}: init, bad_index -1");
   for (i = 0; i < 4; ++i) {
     float p = el_distribution1d_pdf(&d, (i + 0.5f) / 4);
     checkf(fabs(p - expect[i]) <= tol, "1D {1,3,0,4}: pdf %.9g vs f/integral %.9g", p, expect[i]);
@@ -276,16 +276,16 @@ static void test_bad_input(void) {
   check(el_distribution2d_init(&d2, f, EL_DISTRIBUTION_MAX_BINS + 1, 1, &opt) == EL_ERROR_SIZE_OVERFLOW, "2D nu > 2^22 -> EL_ERROR_SIZE_OVERFLOW");
   f[4] = (float)NAN; f[2] = -1.0f; /* the NaN is later, so the first bad index is 2 (negative) */
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_NEGATIVE && opt.bad_index == 2, "1D {1,2,-1,4,NaN,6}: EL_ERROR_NEGATIVE at index 2");
+  check(r == EL_ERROR_NEGATIVE && d.bad_index == 2, "1D {1,2,-1,4,NaN,6}: EL_ERROR_NEGATIVE at index 2");
   f[2] = 3.0f;
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_NAN && opt.bad_index == 4, "1D NaN at 4: EL_ERROR_NAN, bad_index 4");
+  check(r == EL_ERROR_NAN && d.bad_index == 4, "1D NaN at 4: EL_ERROR_NAN, bad_index 4");
   f[4] = 5.0f; f[5] = (float)INFINITY;
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_INFINITE && opt.bad_index == 5, "1D +Inf at 5: EL_ERROR_INFINITE, bad_index 5");
+  check(r == EL_ERROR_INFINITE && d.bad_index == 5, "1D +Inf at 5: EL_ERROR_INFINITE, bad_index 5");
   f[5] = -(float)INFINITY;
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_INFINITE && opt.bad_index == 5, "1D -Inf at 5: EL_ERROR_INFINITE, bad_index 5");
+  check(r == EL_ERROR_INFINITE && d.bad_index == 5, "1D -Inf at 5: EL_ERROR_INFINITE, bad_index 5");
   el_distribution1d_free(&d); /* zeroed on failure: safe */
   {
     /* every position of the 4-wide validity pass and the tail; -0.0 is a zero, not a negative */
@@ -299,7 +299,7 @@ static void test_bad_input(void) {
         int j;
         for (j = 0; j < 11; ++j) g[j] = 1.0f + j;
         g[pos] = bads[k];
-        if (el_distribution1d_init(&d, g, 11, &opt) != want[k] || opt.bad_index != pos) ok = 0;
+        if (el_distribution1d_init(&d, g, 11, &opt) != want[k] || d.bad_index != pos) ok = 0;
       }
     check(ok, "NaN, +Inf, -denormal, -FLT_MAX at each of 11 positions: the right error and index");
     for (k = 0; k < 11; ++k) g[k] = 1.0f;
@@ -312,13 +312,13 @@ static void test_bad_input(void) {
   /* 2D: f[v*nu+u] with nu = 3, nv = 2: (u=2, v=1) is index 5 */
   f[5] = (float)NAN;
   r = el_distribution2d_init(&d2, f, 3, 2, &opt);
-  check(r == EL_ERROR_NAN && opt.bad_index == 5 && d2.cdf == NULL, "2D NaN at (u=2,v=1): EL_ERROR_NAN, bad_index 5 = v*nu+u, struct zeroed");
+  check(r == EL_ERROR_NAN && d2.bad_index == 5 && d2.cdf == NULL, "2D NaN at (u=2,v=1): EL_ERROR_NAN, bad_index 5 = v*nu+u, struct zeroed");
   el_distribution2d_free(&d2);
   /* clamp: NaN -> 0, negative -> 0, +Inf -> FLT_MAX */
   opt.clamp_bad_values = 1;
   f[0] = 1; f[1] = (float)NAN; f[2] = -3; f[3] = 1;
   r = el_distribution1d_init(&d, f, 4, &opt);
-  check(r == EL_SUCCESS && opt.bad_index == -1 && el_distribution1d_pdf(&d, 0.3f) == 0.0f && el_distribution1d_pdf(&d, 0.6f) == 0.0f &&
+  check(r == EL_SUCCESS && d.bad_index == -1 && el_distribution1d_pdf(&d, 0.3f) == 0.0f && el_distribution1d_pdf(&d, 0.6f) == 0.0f &&
         el_distribution1d_pdf(&d, 0.1f) == 2.0f && el_distribution1d_pdf(&d, 0.9f) == 2.0f,
         "clamp: {1,NaN,-3,1} acts as {1,0,0,1} (pdf 2, 0, 0, 2 exactly)");
   el_distribution1d_free(&d);

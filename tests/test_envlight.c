@@ -875,13 +875,14 @@ static void test_hard_cases(void) {
     px[5 * 3 + 1] = NAN;
     memset(&o, 0, sizeof o);
     res = el_envlight_init(&l, px, 4, 2, 3, &o);
-    check(res == EL_ERROR_NAN && o.bad_texel == 5, "NaN texel: EL_ERROR_NAN naming texel %d (want 5)", o.bad_texel);
+    check(res == EL_ERROR_NAN && l.bad_index == 5 && l.texels == NULL && l.width == 0,
+          "NaN texel: EL_ERROR_NAN, light.bad_index names texel %d (want 5), the rest zeroed", l.bad_index);
     px[5 * 3 + 1] = 1.0f; px[2 * 3 + 2] = INFINITY;
     res = el_envlight_init(&l, px, 4, 2, 3, &o);
-    check(res == EL_ERROR_INFINITE && o.bad_texel == 2, "Inf texel: EL_ERROR_INFINITE naming texel %d (want 2)", o.bad_texel);
+    check(res == EL_ERROR_INFINITE && l.bad_index == 2, "Inf texel: EL_ERROR_INFINITE naming texel %d (want 2)", l.bad_index);
     px[2 * 3 + 2] = 1.0f; px[7 * 3] = -0.5f;
     res = el_envlight_init(&l, px, 4, 2, 3, &o);
-    check(res == EL_ERROR_NEGATIVE && o.bad_texel == 7, "negative texel: EL_ERROR_NEGATIVE naming texel %d (want 7)", o.bad_texel);
+    check(res == EL_ERROR_NEGATIVE && l.bad_index == 7, "negative texel: EL_ERROR_NEGATIVE naming texel %d (want 7)", l.bad_index);
     px[1] = NAN; px[4] = INFINITY;
     o.bad_texels = EL_ENVLIGHT_BAD_TEXELS_ZERO;
     res = el_envlight_init(&l, px, 4, 2, 3, &o);
@@ -899,7 +900,16 @@ static void test_hard_cases(void) {
     } else check(0, "BAD_TEXELS_ZERO: init failed (%s)", el_result_string(res));
     o.bad_texels = 0;
     res = el_envlight_init(&l, px, 0, 2, 3, &o);
-    check(res == EL_ERROR_EMPTY, "0-wide image: EL_ERROR_EMPTY");
+    check(res == EL_ERROR_EMPTY && l.bad_index == -1, "0-wide image: EL_ERROR_EMPTY, bad_index -1");
+    {
+      float bad_rgb[3] = {1.0f, -1.0f, 1.0f};
+      res = el_envlight_init_constant(&l, bad_rgb, &o);
+      check(res == EL_ERROR_NEGATIVE && l.bad_index == 0, "constant light with a negative component: bad_index 0");
+      bad_rgb[1] = 2.0f;
+      res = el_envlight_init_constant(&l, bad_rgb, &o);
+      check(res == EL_SUCCESS && l.bad_index == -1, "constant light: bad_index -1 on success");
+      el_envlight_free(&l);
+    }
     res = el_envlight_init(&l, px, 4, -2, 3, &o);
     check(res == EL_ERROR_INVALID_ARGUMENT, "negative height: EL_ERROR_INVALID_ARGUMENT");
     res = el_envlight_init(&l, px, 65536, 65536, 3, &o);
@@ -944,7 +954,7 @@ static void test_hard_cases(void) {
     o.scale[0] = 3e38f;
     px[0] = 10.0f;
     res = el_envlight_init(&l, px, 2, 2, 3, &o);
-    check(res == EL_ERROR_INFINITE && o.bad_texel == 0, "scale * texel overflowing float: EL_ERROR_INFINITE naming texel 0");
+    check(res == EL_ERROR_INFINITE && l.bad_index == 0, "scale * texel overflowing float: EL_ERROR_INFINITE naming texel 0");
   }
   /* u at 0, 1 - ulp, 1 (and beyond); NaN u */
   {

@@ -738,16 +738,25 @@ static void test_errors(void) {
   o.max_anisotropy = (float)(HUGE_VAL - HUGE_VAL);
   check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_NAN, "NaN max_anisotropy: EL_ERROR_NAN");
   o.max_anisotropy = 0;
-  img[7] = (float)(HUGE_VAL - HUGE_VAL);
-  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_NAN, "a NaN texel: EL_ERROR_NAN");
+  img[7] = (float)(HUGE_VAL - HUGE_VAL); /* float 7 = texel 2 = (x 0, y 1) */
+  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_NAN && m.bad_index == 2 && m.level_data[0] == NULL,
+        "a NaN texel: EL_ERROR_NAN, m.bad_index names texel 2 (y*width+x), the rest zeroed");
   img[7] = (float)HUGE_VAL;
-  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_INFINITE, "an infinite texel: EL_ERROR_INFINITE");
+  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_INFINITE && m.bad_index == 2,
+        "an infinite texel: EL_ERROR_INFINITE, m.bad_index 2");
+  img[11] = (float)-HUGE_VAL;
+  check(el_mipmap_init(&m, img, 4, 1, 3, &o) == EL_ERROR_INFINITE && m.bad_index == 2,
+        "the first of two bad texels is named");
   img[7] = 8;
-  check(el_mipmap_init(&m, img, (1 << 24) + 1, 1, 1, &o) == EL_ERROR_SIZE_OVERFLOW, "a side above 2^24: size overflow");
+  check(el_mipmap_init(&m, img, 4, 1, 3, &o) == EL_ERROR_INFINITE && m.bad_index == 3, "texel 3 of a 4x1 map");
+  img[11] = 12;
+  check(el_mipmap_init(&m, img, (1 << 24) + 1, 1, 1, &o) == EL_ERROR_SIZE_OVERFLOW && m.bad_index == -1,
+        "a side above 2^24: size overflow, bad_index -1 (no texel to blame)");
   check(m.level_data[0] == NULL && m.levels == 0, "failed init leaves a zeroed map");
   el_mipmap_free(&m);
-  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_SUCCESS && m.max_anisotropy == 8.0f && m.filter == EL_MIPMAP_FILTER_EWA,
-        "all-zero options: EWA, max anisotropy 8 (pbrt's defaults)");
+  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_SUCCESS && m.max_anisotropy == 8.0f && m.filter == EL_MIPMAP_FILTER_EWA &&
+            m.bad_index == -1,
+        "all-zero options: EWA, max anisotropy 8 (pbrt's defaults); bad_index -1");
   el_mipmap_free(&m);
 }
 
