@@ -176,8 +176,10 @@ EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, 
  * TRILINEAR here. */
 EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
                                       float width, float *out);
-/* pbrt-v3's Lookup(st, dst0, dst1) with dst0 = (dsdx, dtdx), dst1 = (dsdy, dtdy): EWA when the map's
- * filter is EL_MIPMAP_FILTER_EWA, otherwise lookup_filtered with width 2 * max |component|. */
+/* pbrt-v3's Lookup(st, dst0, dst1) with dst0 = (dsdx, dtdx), dst1 = (dsdy, dtdy), by the map's filter:
+ * EWA; TRILINEAR: el_mipmap_lookup(st, max |component|), as pbrt-v3 since its commit aaa552a "Fix
+ * trilinear filtering" (the bilinear taps already filter, so 2 max |d| would blur twice); POINT and
+ * BILINEAR, pbrt-v4's filters: lookup_filtered with pbrt-v4's width 2 * max |component|. */
 EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
                                            float dsdy, float dtdy, float *out);
 /* Heap bytes in use: level 0, plus levels 1.. once built. */
@@ -1294,7 +1296,8 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
     if (fabsf(d0t) > w) w = fabsf(d0t);
     if (fabsf(d1s) > w) w = fabsf(d1s);
     if (fabsf(d1t) > w) w = fabsf(d1t);
-    el_mipmap_lookup_filtered(m, m->filter, s, t, 2 * w, out);
+    if (m->filter == EL_MIPMAP_FILTER_TRILINEAR) el_mipmap_lookup(m, s, t, w, out); /* pbrt-v3 (aaa552a) */
+    else el_mipmap_lookup_filtered(m, m->filter, s, t, 2 * w, out);               /* pbrt-v4 */
     return;
   }
   /* <<Compute ellipse minor and major axes>> */

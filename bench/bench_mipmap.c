@@ -302,7 +302,7 @@ static pbrt_rgb pbrt_Lookup_d(const pbrt_mipmap *m, float s, float t, float d00,
     if (fabsf(d01) > width) width = fabsf(d01);
     if (fabsf(d10) > width) width = fabsf(d10);
     if (fabsf(d11) > width) width = fabsf(d11);
-    return pbrt_Lookup_width(m, s, t, 2 * width);
+    return pbrt_Lookup_width(m, s, t, width); /* pbrt-v3 since aaa552a "Fix trilinear filtering" (2 * width before) */
   }
   if (d00 * d00 + d01 * d01 < d10 * d10 + d11 * d11) {
     float x = d00, y = d01;

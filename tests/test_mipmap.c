@@ -625,6 +625,47 @@ static void test_pbrt_algorithm(void) {
   free(img);
 }
 
+/* Differentials with the non-EWA filters, against the pbrt code they follow, written out again:
+ * pbrt-v3 (src/core/mipmap.h, since commit aaa552a "Fix trilinear filtering") computes
+ *     Float width = std::max(std::max(std::abs(dst0[0]), std::abs(dst0[1])),
+ *                            std::max(std::abs(dst1[0]), std::abs(dst1[1])));
+ *     return Lookup(st, width);
+ * for doTrilinear (before that commit it passed 2 * width); pbrt-v4's MIPMap::Filter passes 2 * width
+ * for its point and bilinear filters. */
+static void test_differentials_width(void) {
+  float *img = random_image(128, 64, 3), o[3], r[3], dtri = 0, dbil = 0, dold = 0;
+  el_mipmap mt, mb;
+  el_mipmap_options op = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP, 0);
+  int i;
+  op.filter = EL_MIPMAP_FILTER_TRILINEAR;
+  el_mipmap_init(&mt, img, 128, 64, 3, &op);
+  op.filter = EL_MIPMAP_FILTER_BILINEAR;
+  el_mipmap_init(&mb, img, 128, 64, 3, &op);
+  for (i = 0; i < 2000; ++i) {
+    float s = -0.15f + 1.3f * frand(), t = -0.15f + 1.3f * frand();
+    float len = powf(10.0f, -2.6f + 1.9f * frand()), ratio = 1 + 11 * frand(), ang = 6.2831853f * frand(), e;
+    float d0s = len * cosf(ang), d0t = len * sinf(ang), d1s = -len / ratio * sinf(ang), d1t = len / ratio * cosf(ang);
+    float width = fmaxf(fmaxf(fabsf(d0s), fabsf(d0t)), fmaxf(fabsf(d1s), fabsf(d1t)));
+    el_mipmap_lookup_differentials(&mt, s, t, d0s, d0t, d1s, d1t, o);
+    ref_trilinear(&mt, s, t, width, r); /* pbrt-v3: Lookup(st, width) */
+    e = max_rel3(o, r);
+    if (e > dtri) dtri = e;
+    ref_trilinear(&mt, s, t, 2 * width, r); /* the old formula, which must differ */
+    e = max_rel3(o, r);
+    if (e > dold) dold = e;
+    el_mipmap_lookup_differentials(&mb, s, t, d0s, d0t, d1s, d1t, o);
+    ref_bilinear(&mb, s, t, 2 * width, r); /* pbrt-v4: Lookup(st, 2 * width) */
+    e = max_rel3(o, r);
+    if (e > dbil) dbil = e;
+  }
+  CHECKF(dtri < 2e-5f, "trilinear differentials: pbrt-v3's Lookup(st, max |d|) (2000 lookups, max rel. diff %.2g)", dtri);
+  CHECKF(dold > 1e-2f, "... and not the old Lookup(st, 2 max |d|) (max rel. diff %.2g)", dold);
+  CHECKF(dbil < 2e-5f, "bilinear differentials: pbrt-v4's Lookup(st, 2 max |d|) (max rel. diff %.2g)", dbil);
+  el_mipmap_free(&mt);
+  el_mipmap_free(&mb);
+  free(img);
+}
+
 /* ---- resampling against the Lanczos weights written out again ---------------------------------- */
 static double lanczos_d(double x) { /* windowed sinc, tau = 2, on [-1, 1] as pbrt's Lanczos(x, 2) */
   const double pi = 3.14159265358979323846;
@@ -803,6 +844,7 @@ int main(void) {
   test_wrap();
   test_ewa();
   test_pbrt_algorithm();
+  test_differentials_width();
   test_resample();
   test_hard_inputs();
   test_errors();
