@@ -222,6 +222,10 @@ extern "C" {
 
 /* The largest importance-map resolution per axis (the 2^-21 in-bin margin must stay far below a bin). */
 #define EL_ENVLIGHT_MAX_IMPORTANCE 65536
+/* The radii el_envlight_preprocess accepts: 2^-64 and 2^62, where sample_le's pdf_pos = 1 / (pi r^2)
+ * is still a finite, normal float. */
+#define EL_ENVLIGHT_MIN_RADIUS 5.42101086e-20f
+#define EL_ENVLIGHT_MAX_RADIUS 4.61168602e18f
 
 /* All zero = pbrt-v3's InfiniteAreaLight with the image's own resolution for the importance map. */
 typedef struct el_envlight_options {
@@ -310,8 +314,13 @@ EL_DEF void el_envlight_free(el_envlight *l);
 /* Build the sampling tables now (they are otherwise built on first need). Returns their build result;
  * safe to call more than once and from several threads (see THREAD SAFETY above). */
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l);
-/* pbrt's Preprocess: the scene's bounding sphere, used by sample_le, pdf_le and power only. */
-EL_DEF void el_envlight_preprocess(el_envlight *l, const float center[3], float radius);
+/* pbrt's Preprocess: the scene's bounding sphere, used by sample_le, pdf_le and power only. Accepts a
+ * finite centre and a radius in [EL_ENVLIGHT_MIN_RADIUS, EL_ENVLIGHT_MAX_RADIUS] (2^-64 .. 2^62) that
+ * is at least 2^-20 max|centre[k]| (so that sample_le's disk spans at least 8 float steps around the
+ * centre); then every output of sample_le, pdf_le and power is finite. Otherwise EL_ERROR_NAN,
+ * EL_ERROR_INFINITE (a centre or radius component that is NaN / infinite) or EL_ERROR_INVALID_ARGUMENT
+ * (NULL, a radius <= 0 or outside those bounds), and the light keeps its previous sphere. */
+EL_DEF el_result el_envlight_preprocess(el_envlight *l, const float center[3], float radius);
 
 /* Radiance arriving along -dir (a ray leaving the scene along dir). Reads only: never builds tables. */
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]);
@@ -922,10 +931,27 @@ EL_DEF void el_envlight_free(el_envlight *l) {
   memset(l, 0, sizeof *l);
 }
 
-EL_DEF void el_envlight_preprocess(el_envlight *l, const float center[3], float radius) {
-  if (!l || !center) return;
+EL_DEF el_result el_envlight_preprocess(el_envlight *l, const float center[3], float radius) {
+  float m = 0.0f;
+  int k;
+  el_result r;
+  if (!l || !center) return EL_ERROR_INVALID_ARGUMENT;
+  for (k = 0; k < 3; ++k) {
+    if (center[k] != center[k]) return EL_ERROR_NAN;
+    if (!(fabsf(center[k]) <= FLT_MAX)) return EL_ERROR_INFINITE;
+    if (fabsf(center[k]) > m) m = fabsf(center[k]);
+  }
+  r = el_envlight__check_value(radius); /* NaN, infinite, negative */
+  if (r == EL_ERROR_NEGATIVE) r = EL_ERROR_INVALID_ARGUMENT;
+  if (r != EL_SUCCESS) return r;
+  /* <<Compute scene bounding sphere>> is the caller's; here: pdf_pos = 1 / (pi r^2) must be a finite
+   * normal float, and the origins centre + r (disk point + direction) must resolve the disk. With
+   * r <= 2^62 they cannot overflow: |centre| + 2r rounds to at most FLT_MAX. */
+  if (!(radius >= EL_ENVLIGHT_MIN_RADIUS && radius <= EL_ENVLIGHT_MAX_RADIUS) || radius < m * 9.5367431640625e-7f)
+    return EL_ERROR_INVALID_ARGUMENT;
   l->center[0] = center[0]; l->center[1] = center[1]; l->center[2] = center[2];
-  l->radius = (radius > 0.0f && radius <= FLT_MAX) ? radius : 0.0f;
+  l->radius = radius;
+  return EL_SUCCESS;
 }
 
 /* >> the importance map */

@@ -753,6 +753,67 @@ static void test_power(const el_image *studio) {
   el_envlight_free(&l);
 }
 
+static int finite3(const float *v) { return fabsf(v[0]) <= FLT_MAX && fabsf(v[1]) <= FLT_MAX && fabsf(v[2]) <= FLT_MAX; }
+
+/* The bounding spheres preprocess accepts give finite outputs everywhere; the others are refused (before,
+ * radius 1e-30 gave pdf_pos = +Inf, FLT_MAX gave origins near FLT_MAX and pdf_pos 0, a NaN centre NaN
+ * origins). Radii 2^k for k in [-80, 80] around three centres: accepted exactly when 2^-64 <= r <= 2^62
+ * and r >= 2^-20 max|c| (127, 81 and 14 radii of the three); then 64 sample_le rays each have finite
+ * origins, unit directions, a finite normal-float pdf_pos > 0 equal to pdf_le's, and power() is finite. */
+static void test_preprocess(void) {
+  static const float centres[3][3] = {{0.0f, 0.0f, 0.0f}, {1.0f, -2.0f, 3.0f}, {-3e20f, 1e15f, 7e19f}};
+  float px[8 * 4 * 3], pw[3], ok_c[3] = {0.0f, 0.0f, 0.0f}, bad[3];
+  el_envlight l;
+  int i, k, ci, wrong = 0, tested = 0, accepted = 0, nonfinite = 0;
+  rng r = rng_make(77);
+  for (i = 0; i < 8 * 4 * 3; ++i) px[i] = 0.2f + (float)(i % 7);
+  make_light(&l, px, 8, 4, NULL, 0, 0);
+  for (ci = 0; ci < 3; ++ci)
+    for (k = -80; k <= 80; ++k) {
+      float R = ldexpf(1.0f, k), m = 0.0f;
+      int want, j;
+      el_result res;
+      for (j = 0; j < 3; ++j) m = fabsf(centres[ci][j]) > m ? fabsf(centres[ci][j]) : m;
+      want = k >= -64 && k <= 62 && (double)R >= ldexp((double)m, -20);
+      res = el_envlight_preprocess(&l, centres[ci], R);
+      ++tested;
+      if ((res == EL_SUCCESS) != want || (!want && res != EL_ERROR_INVALID_ARGUMENT)) ++wrong;
+      if (res != EL_SUCCESS) continue;
+      ++accepted;
+      for (j = 0; j < 64; ++j) {
+        float u[4], org[3], dir[3], nrm[3], rgb[3], pp, pd, pp2, pd2, dd;
+        u[0] = rng_f(&r); u[1] = rng_f(&r); u[2] = j == 0 ? 0.0f : j == 1 ? 1.0f : rng_f(&r); u[3] = j < 2 ? 1.0f : rng_f(&r);
+        el_envlight_sample_le(&l, u, org, dir, nrm, rgb, &pp, &pd);
+        el_envlight_pdf_le(&l, dir, &pp2, &pd2);
+        dd = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+        if (!finite3(org) || !finite3(dir) || !finite3(rgb) || !(fabsf(dd - 1.0f) < 1e-5f) || !(pp >= FLT_MIN && pp <= FLT_MAX) ||
+            !(pd > 0.0f && pd <= FLT_MAX) || pp2 != pp || !(pd2 > 0.0f && pd2 <= FLT_MAX))
+          ++nonfinite;
+      }
+      el_envlight_power(&l, pw);
+      if (!finite3(pw) || !(pw[0] > 0.0f)) ++nonfinite;
+    }
+  check(wrong == 0 && accepted == 127 + 81 + 14, "preprocess: %d of %d spheres accepted or refused as documented (%d accepted)", tested - wrong, tested, accepted);
+  check(nonfinite == 0, "preprocess: every accepted sphere gives finite sample_le / pdf_le / power outputs (%d failures)", nonfinite);
+  /* the cases, each refused with the documented error, and the light keeps its sphere */
+  check(el_envlight_preprocess(&l, ok_c, 2.0f) == EL_SUCCESS, "preprocess: centre 0, radius 2 accepted");
+  check(el_envlight_preprocess(&l, ok_c, 1e-30f) == EL_ERROR_INVALID_ARGUMENT, "radius 1e-30: EL_ERROR_INVALID_ARGUMENT");
+  check(el_envlight_preprocess(&l, ok_c, FLT_MAX) == EL_ERROR_INVALID_ARGUMENT, "radius FLT_MAX: EL_ERROR_INVALID_ARGUMENT");
+  check(el_envlight_preprocess(&l, ok_c, INFINITY) == EL_ERROR_INFINITE, "radius +Inf: EL_ERROR_INFINITE");
+  check(el_envlight_preprocess(&l, ok_c, NAN) == EL_ERROR_NAN, "radius NaN: EL_ERROR_NAN");
+  check(el_envlight_preprocess(&l, ok_c, 0.0f) == EL_ERROR_INVALID_ARGUMENT && el_envlight_preprocess(&l, ok_c, -1.0f) == EL_ERROR_INVALID_ARGUMENT,
+        "radius 0 and -1: EL_ERROR_INVALID_ARGUMENT");
+  bad[0] = 0.0f; bad[1] = NAN; bad[2] = 0.0f;
+  check(el_envlight_preprocess(&l, bad, 1.0f) == EL_ERROR_NAN, "a NaN centre: EL_ERROR_NAN");
+  bad[1] = -INFINITY;
+  check(el_envlight_preprocess(&l, bad, 1.0f) == EL_ERROR_INFINITE, "an infinite centre: EL_ERROR_INFINITE");
+  bad[1] = 1e30f;
+  check(el_envlight_preprocess(&l, bad, 1.0f) == EL_ERROR_INVALID_ARGUMENT, "radius 1 at a centre 1e30 away (below its float step): refused");
+  check(el_envlight_preprocess(&l, NULL, 1.0f) == EL_ERROR_INVALID_ARGUMENT, "a NULL centre: EL_ERROR_INVALID_ARGUMENT");
+  check(l.radius == 2.0f && l.center[0] == 0.0f && l.center[1] == 0.0f, "refused spheres leave the light's sphere as it was");
+  el_envlight_free(&l);
+}
+
 /* ======================================================================================== */
 /* 7. Hard cases                                                                             */
 /* ======================================================================================== */
@@ -1318,6 +1379,7 @@ int main(void) {
   test_pdf_integral(&studio);
   test_unbiased(&studio, &city);
   test_power(&studio);
+  test_preprocess();
   test_hard_cases();
   test_pole_rounding();
   test_guide_equals_cdf(&city);
