@@ -64,7 +64,9 @@
  * u AND POINT CONVENTIONS. u outside [0,1) is clamped: NaN and u <= 0 act as 0, u >= 1 acts as
  * 0x1.fffffep-1 (so u = 1 is in range). pdf() and invert() clamp a point outside the domain to it
  * (pbrt's convention) and treat NaN as the domain's lower end. Sample positions within a bin come from
- * the same u: a bin of w units has at least w distinct positions (more when u < 0.5).
+ * the same u through the float t = i + fraction (i the bin), so bin i >= 1 has at most 2^(23 -
+ * floor(log2 i)) distinct positions however many units w it has (4096 in bin 4000); a bin with w units
+ * at most half that many, and bin 0, has w.
  *
  * COST (bench/bench_distribution2d.c, 4096x2048, gcc -O3, callgrind): a 2D sample with its pdf takes
  * about 106 instructions with the guide table, 125 with the alias table and about 300 with the binary
@@ -88,9 +90,11 @@
  * THREADS. Everything after init is read-only: any number of threads may sample and query at once.
  * Queries need a successful init (a struct zeroed by a failed init may only be freed).
  *
- * LIMITS. At most 2^22 bins per dimension (EL_ERROR_SIZE_OVERFLOW beyond); nu * nv bins must fit in
- * memory (sizes are overflow-checked). A domain must be finite, non-empty, and resolve its bins: each
- * bin at least 4 float ulps wide and the largest pdf finite (EL_ERROR_INVALID_ARGUMENT otherwise).
+ * LIMITS. At most 2^22 = EL_DISTRIBUTION_MAX_BINS bins per dimension (EL_ERROR_SIZE_OVERFLOW beyond);
+ * nu * nv bins must fit in memory (sizes are overflow-checked). A domain must be finite, non-empty, and
+ * resolve its bins: each bin at least 4 times as wide as the float step just inside the domain's end of
+ * larger magnitude, and the largest pdf finite (EL_ERROR_INVALID_ARGUMENT otherwise). The unit interval
+ * (2^-24 below 1) takes the full 2^22 bins.
  */
 #ifndef EL_DISTRIBUTION2D_H
 #define EL_DISTRIBUTION2D_H
@@ -664,7 +668,9 @@ static el_result el_distribution2d__domain(float a, float b, int n, float *scale
   w = b - a;
   if (!(w <= FLT_MAX)) return EL_ERROR_INVALID_ARGUMENT;
   m = (a < 0 ? -a : a) > (b < 0 ? -b : b) ? (a < 0 ? -a : a) : (b < 0 ? -b : b);
-  ulp = el_distribution2d__next_up(m) - m;
+  /* the float step just inside the domain's end of larger magnitude (below 1 it is 2^-24, not the
+   * 2^-23 above 1): every bin must hold at least 4 floats, so [0,1] resolves 2^22 bins */
+  ulp = m - el_distribution2d__next_down(m);
   if (!(w / (float)n >= 4.0f * ulp)) return EL_ERROR_INVALID_ARGUMENT;
   *scale = (float)n / w;
   *width = w / (float)n;
