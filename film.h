@@ -325,9 +325,11 @@ static inline float el_film_tonemap_eval(el_film_tonemap t, float x, float k) {
  * exact sRGB encoding, round to nearest (optionally dithered). Without dithering the code is found by
  * comparing the curve's output with the 255 linear thresholds between codes (computed in double per
  * call): the correctly rounded code, with no pow per value; el_film_srgb_to_byte (pbrt's float formula)
- * agrees except for values within float rounding of a threshold (tests/test_film.c counts them). `o` NULL = all-zero options. NaN, Inf
- * and negative inputs are handled (NaN and negatives give 0). EL_ERROR_INVALID_ARGUMENT for NULL buffers,
- * a size <= 0 or an unknown tone mapper; EL_ERROR_SIZE_OVERFLOW for absurd sizes. */
+ * agrees except for values within float rounding of a threshold (tests/test_film.c counts them). `o`
+ * NULL = all-zero options. NaN and negative inputs give 0 and +Inf gives 255, at every exposure (2^exposure
+ * may round to 0 or overflow; it scales finite values only). EL_ERROR_INVALID_ARGUMENT for NULL buffers,
+ * a size <= 0, an unknown tone mapper or an exposure that is NaN or infinite; EL_ERROR_SIZE_OVERFLOW for
+ * absurd sizes. */
 EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_film_output_options *o,
                                   unsigned char *out);
 
@@ -878,7 +880,7 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
   for (i = 0; i < n; i++) {
     float x = rgb[i];
     float y;
-    if (gain != 1.0f) x *= gain;
+    if (gain != 1.0f && x <= FLT_MAX) x *= gain; /* +Inf stays +Inf (Inf * 0 would be NaN), NaN stays NaN */
     y = el_film_tonemap_eval(d.tonemap, x, d.exp_k);
     if (!d.dither) {
       out[i] = el_film__code(th, y); /* = round(255 encode(y)) in exact arithmetic, without a pow */

@@ -382,6 +382,47 @@ static void test_tonemap(void) {
             el_film_to_srgb8(in, 0, 1, NULL, out) == EL_ERROR_INVALID_ARGUMENT,
         "to_srgb8: NULL input and zero width rejected");
   check(el_film_tonemap_eval(EL_FILM_TONEMAP_EXPONENTIAL, 2.0f, 0.5f) - (1 - exp(-1.0)) < 1e-6, "exponential k=0.5 at 2 = 1 - 1/e");
+  {
+    /* extreme exposures: 2^exposure rounds to 0 below -149 stops (and to +Inf from 128): +Inf must stay
+     * the brightest code (it was 0: +Inf * 0 = NaN), NaN, -Inf and 0 stay 0, finite values go to 0 (a
+     * gain of 0) or 255 (an infinite gain); with every curve, dithered or not. NaN and infinite exposures
+     * are errors (documented). */
+    static const float exps[8] = {-149.0f, -150.0f, -200.0f, -1e30f, 0.0f, 127.0f, 200.0f, 1e30f};
+    float v[3 * 7];
+    unsigned char c[3 * 7];
+    int e, t, dith, k, bad = 0, runs = 0;
+    char msg[256];
+    for (k = 0; k < 3; k++) {
+      v[0 + k] = INFINITY; v[3 + k] = NAN; v[6 + k] = -INFINITY; v[9 + k] = 0.0f;
+      v[12 + k] = 1.0f; v[15 + k] = FLT_MAX; v[18 + k] = 1e-45f;
+    }
+    for (e = 0; e < 8; ++e)
+      for (t = 0; t < 4; ++t)
+        for (dith = 0; dith < 2; ++dith) {
+          memset(&o, 0, sizeof o);
+          o.exposure = exps[e];
+          o.tonemap = (el_film_tonemap)t;
+          o.dither = dith;
+          ++runs;
+          if (el_film_to_srgb8(v, 7, 1, &o, c) != EL_SUCCESS) { ++bad; continue; }
+          for (k = 0; k < 3; k++) {
+            if (c[0 + k] != 255 || c[3 + k] != 0 || c[6 + k] != 0 || c[9 + k] != 0) ++bad;
+            if (exps[e] <= -150.0f && (c[12 + k] != 0 || c[15 + k] != 0 || c[18 + k] != 0)) ++bad;
+            if (exps[e] >= 200.0f && (c[12 + k] != 255 || c[15 + k] != 255 || c[18 + k] != 255)) ++bad;
+          }
+        }
+    snprintf(msg, sizeof msg, "exposures -149 .. -1e30 and 127 .. 1e30 stops, every curve, dithered or not: +Inf -> 255, "
+             "NaN / -Inf / 0 -> 0, finite -> 0 (gain 0) or 255 (gain Inf) (%d of %d conversions wrong)", bad, runs);
+    check(bad == 0, msg);
+    memset(&o, 0, sizeof o);
+    o.exposure = NAN;
+    bad = el_film_to_srgb8(v, 7, 1, &o, c) != EL_ERROR_INVALID_ARGUMENT;
+    o.exposure = INFINITY;
+    bad += el_film_to_srgb8(v, 7, 1, &o, c) != EL_ERROR_INVALID_ARGUMENT;
+    o.exposure = -INFINITY;
+    bad += el_film_to_srgb8(v, 7, 1, &o, c) != EL_ERROR_INVALID_ARGUMENT;
+    check(bad == 0, "NaN, +Inf and -Inf exposures: EL_ERROR_INVALID_ARGUMENT (as documented)");
+  }
 
   /* dithering: a flat field whose exact code is fractional averages to that code; 0 and 1 stay exact */
   {
