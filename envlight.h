@@ -130,9 +130,10 @@
  *    first one; or EL_ENVLIGHT_BAD_TEXELS_ZERO turns them into 0), a non-orthonormal matrix, a bad
  *    scale, sizes that overflow.
  *
- * INPUT CONVENTIONS for the queries (which never fail): a direction need not be unit length (it is
- * normalised: the result depends only on its direction); a zero, NaN or infinite direction gives
- * le = 0 and pdf = 0. u outside [0,1) is clamped (NaN -> 0, 1 -> 0x1.fffffep-1). A light with no
+ * INPUT CONVENTIONS for the queries (which never fail): a direction need not be unit length: any finite,
+ * nonzero one is normalised safely (scaled by its largest component first, so components near FLT_MAX
+ * or denormal work under any matrix) and the result depends only on its direction; a zero, NaN or
+ * infinite direction gives le = 0 and pdf = 0. u outside [0,1) is clamped (NaN -> 0, 1 -> 0x1.fffffep-1). A light with no
  * emission (all black) has pdf 0 everywhere and sample_li returns pdf 0, radiance 0.
  * A sample with pdf 0 must be skipped by the caller (as in pbrt).
  * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
@@ -527,6 +528,19 @@ static int el_envlight__rescale(float d[3]) {
   if (fabsf(d[2]) > m) m = fabsf(d[2]);
   if (!(m > 0.0f) || m > FLT_MAX) return 0;
   d[0] /= m; d[1] /= m; d[2] /= m;
+  return 1;
+}
+
+/* Cold path for a WORLD direction whose light-space squared length is not a normal float: a zero, NaN or
+ * infinite direction (returns 0), or finite components so large or so small that their squares, or the
+ * sums of a general rotation, leave the float range. The world direction is scaled by its largest
+ * component first (the results depend only on the direction), then taken to light space, where its
+ * squared length lies in [1, 3]. */
+static EL_ENVLIGHT__NOINLINE int el_envlight__to_light_rescaled(const el_envlight *l, const float w[3], float d[3]) {
+  float s[3];
+  s[0] = w[0]; s[1] = w[1]; s[2] = w[2];
+  if (!el_envlight__rescale(s)) return 0;
+  el_envlight__to_light(l, s, d);
   return 1;
 }
 
@@ -1323,19 +1337,29 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float d[3]) {
   el_envlight__uv_to_dir(u, v, d);
 }
 
-EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]) {
-  float d[3], r2, len2, u, v;
-  el_envlight__to_light(l, dir, d);
-  r2 = d[0] * d[0] + d[1] * d[1];
-  len2 = r2 + d[2] * d[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(d)) { rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
-    r2 = d[0] * d[0] + d[1] * d[1];
-  }
+/* le for the light-space direction d, whose r2 = x^2 + y^2 is given. */
+static inline void el_envlight__le_light(const el_envlight *l, const float d[3], float r2, float rgb[3]) {
+  float u, v;
   if (l->width == 0) { rgb[0] = l->constant[0]; rgb[1] = l->constant[1]; rgb[2] = l->constant[2]; return; }
   u = el_envlight__phi_turns(d[1], d[0]);
   v = el_envlight__theta_halfturns(sqrtf(r2), d[2]);
   el_envlight__bilerp(l, u, v, rgb);
+}
+
+/* le's rare case: a direction that needs el_envlight__to_light_rescaled (zero, NaN, infinite: 0). */
+static EL_ENVLIGHT__NOINLINE void el_envlight__le_cold(const el_envlight *l, const float dir[3], float rgb[3]) {
+  float d[3];
+  if (!el_envlight__to_light_rescaled(l, dir, d)) { rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
+  el_envlight__le_light(l, d, d[0] * d[0] + d[1] * d[1], rgb);
+}
+
+EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]) {
+  float d[3], r2, len2;
+  el_envlight__to_light(l, dir, d);
+  r2 = d[0] * d[0] + d[1] * d[1];
+  len2 = r2 + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) { el_envlight__le_cold(l, dir, rgb); return; }
+  el_envlight__le_light(l, d, r2, rgb);
 }
 
 
@@ -1391,10 +1415,19 @@ static inline float el_envlight__pdf_light(const el_envlight *l, const float dir
   return el_envlight__pdf_core(l, x, y, z, r2, len2);
 }
 
-static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+/* pdf_li for a world direction that needs el_envlight__to_light_rescaled. */
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_world_cold(const el_envlight *l, const float dir[3]) {
   float d[3];
+  if (!el_envlight__to_light_rescaled(l, dir, d)) return 0.0f;
+  return el_envlight__pdf_light(l, d);
+}
+
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+  float d[3], len2;
   if (!el_envlight__ensure(l)) return 0.0f;
   el_envlight__to_light(l, dir, d);
+  len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_world_cold(l, dir);
   return el_envlight__pdf_light(l, d);
 }
 
@@ -1409,7 +1442,7 @@ EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]) {
   el_envlight__to_light(l, dir, d);
   r2 = d[0] * d[0] + d[1] * d[1];
   len2 = r2 + d[2] * d[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_cold(l, d[0], d[1], d[2]);
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_world_cold(l, dir);
   return el_envlight__pdf_core(l, d[0], d[1], d[2], r2, len2);
 }
 

@@ -1361,6 +1361,49 @@ static void test_pdf_bin_edges(void) {
     }
 }
 
+/* Finite directions of any magnitude give the results of the same direction at unit scale, under every
+ * matrix (before, a general rotation summed products of huge components to +Inf: le 0 and pdf 0). The
+ * direction (1, -0.75, 0.5) (largest component 1, every component a normal float down to 2^-125) scaled
+ * by 2^k is rescaled exactly, so le and pdf_li must equal the unscaled ones bit for bit for k in
+ * [-125, 127]; FLT_MAX times it and the denormal (1e-45, 0, 0) agree to rounding. */
+static void test_direction_scale(const el_image *city) {
+  int mi, k, c, bad = 0, n = 0, far_bad = 0;
+  for (mi = 0; mi < 3; ++mi) {
+    el_envlight l;
+    float m[9], d0[3] = {1.0f, -0.75f, 0.5f}, L0[3], p0, x0[3] = {1.0f, 0.0f, 0.0f}, Lx[3], px0;
+    if (mi == 0) identity(m); else if (mi == 1) el_envlight_yup_matrix(m); else some_rotation(m);
+    make_light(&l, city->pixels, city->width, city->height, m, 0, 0);
+    el_envlight_le(&l, d0, L0);
+    p0 = el_envlight_pdf_li(&l, d0);
+    el_envlight_le(&l, x0, Lx);
+    px0 = el_envlight_pdf_li(&l, x0);
+    for (k = -125; k <= 127; ++k) {
+      float d[3], L[3], p;
+      for (c = 0; c < 3; ++c) d[c] = ldexpf(d0[c], k);
+      el_envlight_le(&l, d, L);
+      p = el_envlight_pdf_li(&l, d);
+      ++n;
+      if (L[0] != L0[0] || L[1] != L0[1] || L[2] != L0[2] || p != p0) ++bad;
+    }
+    {
+      float d[3], L[3], p, tiny[3] = {1e-45f, 0.0f, 0.0f};
+      for (c = 0; c < 3; ++c) d[c] = d0[c] * FLT_MAX;
+      el_envlight_le(&l, d, L);
+      p = el_envlight_pdf_li(&l, d);
+      for (c = 0; c < 3; ++c) if (!(fabsf(L[c] - L0[c]) <= 1e-3f * L0[c])) ++far_bad;
+      if (!(fabsf(p - p0) <= 1e-3f * p0)) ++far_bad;
+      el_envlight_le(&l, tiny, L);
+      p = el_envlight_pdf_li(&l, tiny);
+      if (L[0] != Lx[0] || L[1] != Lx[1] || p != px0) ++far_bad;
+      if (!(p0 > 0.0f && L0[1] > 0.0f)) ++far_bad;
+    }
+    el_envlight_free(&l);
+  }
+  check(bad == 0, "directions scaled by 2^-125 .. 2^127 give the unscaled le and pdf_li bit for bit (identity, y-up, "
+        "rotation): %d of %d differ", bad, n);
+  check(far_bad == 0, "FLT_MAX-scaled and denormal directions: le and pdf_li of the unit direction (%d wrong)", far_bad);
+}
+
 /* What envlight.h states about pdf_li(sample_li(u).dir), checked exactly: with a signed-permutation
  * matrix (identity, y-up, z-up) it is within 2^-20 relative of the sampled pdf (the same bin value over
  * sin(theta) rounded two ways), with a general rotation equal bit for bit; zero exactly when the sampled
@@ -1436,6 +1479,7 @@ int main(void) {
   test_table_directions(&city);
   test_pdf_bin_edges();
   test_pdf_round_trip(&city);
+  test_direction_scale(&city);
   test_le(&studio);
   test_chi2(&studio, &city);
   test_importance_map();
