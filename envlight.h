@@ -1,144 +1,39 @@
 /* envlight.h - pbrt's infinite area light (a latitude-longitude environment map): radiance, importance
- * sampling, pdfs and power, numerically hardened.
- * envlight, version 0.1
+ * sampling, pdfs and power, numerically hardened. envlight v0.1.0 - MIT or public domain
  *
- * DO THIS in exactly one C or C++ file before including this header:
- *     #define EL_ENVLIGHT_IMPLEMENTATION       (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "envlight.h"
- * envlight.h includes distribution2d.h for its declarations; its implementation must be compiled once
- * too (EL_IMPLEMENTATION does both, or define EL_DISTRIBUTION2D_IMPLEMENTATION as well). Honoured macros:
- * EL_STATIC, EL_ASSERT, EL_MALLOC/EL_REALLOC/EL_FREE (all or none), EL_ENVLIGHT_NO_ATOMICS.
+ * Every other file includes it without the macro. envlight.h includes distribution2d.h for its
+ * declarations. EL_ENVLIGHT_IMPLEMENTATION instead implements envlight.h alone, not distribution2d.h
+ * (which then needs EL_DISTRIBUTION2D_IMPLEMENTATION too, or the link fails): a module's own macro
+ * never implements another module's header.
  *
- * Usage (rgb: width*height*3 linear floats, row 0 = the top of the map = theta 0):
- *     el_envlight light;
- *     el_envlight_options opt = {0};                   // all zero: pbrt-v3's light (see below)
- *     el_envlight_yup_matrix(opt.light_to_world);      // y-up, right-handed world, as Mitsuba shows it
- *     if (el_envlight_init(&light, rgb, width, height, 3, &opt) != EL_SUCCESS) { light.bad_index says where }
- *     el_envlight_le(&light, dir, rgb_out);            // a ray escaping along dir (no sampling tables)
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: const float *rgb; int width, height; const float u[2], wi_bsdf[3]; float *pdf_mis, Le[3];
+ *     el_envlight light;                             // rgb: width * height * 3 floats, row 0 = theta 0
+ *     el_envlight_options opt = {0};                 // C++: = {}. All zero: pbrt-v3's light
+ *     el_envlight_yup_matrix(opt.light_to_world);    // y-up right-handed world, as Mitsuba 3 shows maps
+ *     if (el_envlight_init(&light, rgb, width, height, 3, &opt) != EL_SUCCESS) return 1;  // light.bad_index
  *     float wi[3], L[3], pdf;
- *     el_envlight_sample_li(&light, u, wi, L, &pdf);   // u[2] in [0,1)^2; builds the tables on first use
- *     if (pdf > 0) ... contribution L * f * cos / pdf; for MIS: el_envlight_pdf_li(&light, wi_bsdf) ...
- *     el_envlight_sample_li_n(&light, n, u2n, wi3n, L3n, pdfn);  // n samples at once: the same results,
- *                                                      // their cache misses overlapped (point 5)
+ *     el_envlight_sample_li(&light, u, wi, L, &pdf); // builds the sampling tables on first use
+ *     *pdf_mis = el_envlight_pdf_li(&light, wi_bsdf);  // the light's pdf of a BSDF sample, for MIS
+ *     el_envlight_le(&light, wi_bsdf, Le);           // radiance along a ray that escapes (no tables)
  *     el_envlight_free(&light);
+ * << usage
+ * A sample with pdf 0 is skipped, as in pbrt; el_envlight_sample_li_n draws n samples at once.
  *
- * WHAT IT PORTS: pbrt-v3 InfiniteAreaLight (src/lights/infinite.{h,cpp}): Le, Sample_Li, Pdf_Li,
- * Sample_Le, Pdf_Le, Power, Preprocess; and pbrt-v4 ImageInfiniteLight's MIS-compensated distribution.
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC, EL_DEF; EL_NO_SIMD (the scalar code instead of SSE2: the same results);
+ * EL_ENVLIGHT_NO_ATOMICS (no thread-safe lazy build: call el_envlight_prepare_sampling first).
  *
- * MAPPING AND ORIENTATION (pbrt-v3's, in light space): theta is the angle from +z, phi = atan2(y, x) in
- * [0, 2pi), and (u, v) = (phi / 2pi, theta / pi); u runs along a row (left to right), v down the
- * image (row 0 is theta = 0). world = light_to_world * light.
- *   Mirroring. This mapping shows the image unmirrored only in a LEFT-handed world (pbrt's): seen from
- *   inside, with +z up, "to the right" of direction phi is phi + d in a left-handed frame and phi - d in a
- *   right-handed one. So in a right-handed world (Blender, Mitsuba, OpenGL, Embree users) pbrt's
- *   "RotateX(-90)" (light +z -> world +y) shows the map MIRRORED left-right compared with those tools;
- *   no rotation can fix that, a reflection can. Therefore:
- *   - el_envlight_yup_matrix(): y up, right-handed, exactly Mitsuba 3's convention (u = 0.5 looks
- *     along +z, u = 0.25 along +x, u = 0 / 1 along -z). It is a reflection (determinant -1).
- *   - el_envlight_zup_matrix(): z up, right-handed, exactly Blender's (u = 0.5 looks along +x, u = 0.75
- *     along +y). Also a reflection.
- *   tests/test_envlight.c proves both with an asymmetric map against Mitsuba's and Blender's own
- *   formulas, and shows that a plain RotateX(-90) gives u' = 0.25 - u (a mirror image).
- *
- * OPERATIONS (directions are float[3] pointing away from the scene, in world space):
- *   le(dir)          bilinear at full resolution, Repeat in u, Clamp in v (pbrt-v3 used Repeat in v too,
- *                    so the north pole row bled into the south pole: pbrt-v3 issue #63).
- *   sample_li(u0,u1) a direction, its radiance and its solid-angle pdf. pdf_li(dir) the same pdf.
- *   sample_le / pdf_le  rays entering the scene's bounding sphere (bidirectional methods); they need
- *                    el_envlight_preprocess(center, radius), nothing else does.
- *   power()          pi r^2 * integral of L over the sphere (pbrt-v4's Phi; pbrt-v3's Power returned
- *                    pi r^2 * the unweighted mean texel, off by 4 pi and ignoring sin(theta)).
- *   bytes()          the memory in use (image copy + whatever sampling tables exist).
- *
- * WHERE IT DEPARTS FROM pbrt, AND WHY
- * 1. The sampling density (pbrt-v3 issue #62). le() is bilinear but the density is piecewise constant.
- *    pbrt-v3 builds its distribution at TWICE the image resolution from point lookups (4x the memory and
- *    time). Ours (EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE, the default) uses one bin per texel whose value is
- *    the EXACT average of the bilinear reconstruction over the bin (separable weights 1/8, 3/4, 1/8 when
- *    bins and texels coincide; exact tent integrals for any other resolution), times sin(theta) at the
- *    bin centre. Every direction where le() > 0 has pdf > 0 (so light sampling alone is unbiased), at a
- *    quarter of pbrt's bins. bench/bench_envlight.c measures the variance of the choices (CELL_AVERAGE,
- *    PBRT_V3 = 2x point lookups, TEXEL = raw texels, which misses the bilinear spill of a bright texel
- *    into its dark neighbours: a bias): at 2x, cell averages and point lookups are equally good, and 2x
- *    cuts the mismatch between density and le by 4x (the irradiance variance by 0-30%) for 4x the table
- *    memory; ask for it with importance_width/height when the memory is there.
- * 2. The distribution is distribution2d.h's integer-CDF one: every bin with f > 0 is reachable at any
- *    dynamic range (pbrt's float CDF loses bins next to a sun). Samplers: a guide table (the default:
- *    constant expected time, exactly CDF inversion's points, so it keeps stratification), CDF inversion
- *    itself (binary searches) or an alias table (constant time, does NOT keep the stratification of
- *    low-discrepancy input).
- * 3. Poles. sinf(pi) is -8.7e-8, so pbrt-v3's "if (sinTheta == 0) pdf = 0" never fires at the south pole
- *    and its pdf can be negative or huge. Here sample_li's sin(theta) is built from the bin edge nearer
- *    the pole (sin exactly 0 there) plus a positive term, never a difference (small maps: sinpi(min(v,
- *    1 - v)), an exact argument), sampled points stay at least 2^-21 (in u and v) inside their bin (so never on a pole or a
- *    bin edge), and pdf_li clamps sin(theta) below at 1.4e-6 (the value at v = 2^-21). Every pdf returned
- *    is finite and >= 0.
- * 4. pdf_li(sample_li(u).dir) against the sampled pdf: both are the same bin's value divided by
- *    sin(theta), which sample_li takes from the sampled angle and pdf_li from the direction. For
- *    signed-permutation matrices (identity, y-up, z-up) the 2^-21 margin exceeds every rounding error of
- *    the direction and of pdf_li's own bin search, so the bin is the same and the two pdfs differ only
- *    by the rounding of sin(theta): by at most 2^-20 relative (measured at most 3.7 * 2^-23 = 4.4e-7;
- *    about half agree bit for bit; tests/test_envlight.c checks the bound for every sampler, map size
- *    and matrix). sample_li could compute its pdf with pdf_li's arithmetic and match bit for bit, but
- *    that measured 126.6 instead of 93.5 instructions per sample. For a general rotation, rounding in
- *    the round trip world -> light can move a direction near a pole across a bin edge, so sample_li
- *    returns pdf_li(dir) itself: equal bit for bit (about 120 more instructions per sample: 218 instead
- *    of 93.5 with the guide sampler).
- * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
- *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
- *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
- *    angle addition, with x - x^3/6 and 1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least
- *    256x128 bins; smaller maps use sinpi/cospi polynomials, 1.9e-7 relative). With SSE2 (any x86-64;
- *    EL_NO_SIMD turns it off) the guide sampler's search runs inline in sample_li with vector ends (u
- *    clamped and scaled to units and guide cells at once, each bin's two CDF entries read as one 8-byte
- *    pair, the fractions computed in the lanes the direction wants), the two angles go through the
- *    polynomials together and the direction is formed as 4-vectors; the scalar code does the same
- *    operations in the same order. The pdf is the bin's, (wv wu) K from its integer widths, the pdf
- *    table's expression, / sin theta.
- *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
- *    a monotone "diamond angle" of (x, y) and one over t = 1 - z / (r + |z|) on both hemispheres (each
- *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
- *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
- *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
- *    2048x1024 map): sample_li 93.5 instructions with the guide sampler (95.6-97.6 on the five CC0
- *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
- *    alias table; with the radiance 257; pdf_li 76 (general rotation 95); le 250; construction 117 M
- *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
- *    313 ms). See tutorials/03-infinite-light.md, section 9.
- *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
- *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
- *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
- *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
- *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
- *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
- *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
- *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
- *    with it (the same image).
- *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
- *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
- *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
- *    default guide table (pbrt-v3: ~100 MB).
- * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
- *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
- *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a
- *    __atomic once-flag: one thread builds, the others spin until it is done); without those builtins
- *    (or with EL_ENVLIGHT_NO_ATOMICS) call el_envlight_prepare_sampling() before sharing the light.
- *    After that, every query is read-only and thread-safe. No MIP pyramid is built: le() is a level-0
- *    bilinear lookup; a renderer that wants filtered (ray-differential) lookups builds an el_mipmap
- *    from the same pixels (mipmap.h).
- * 7. Bad input is an error, not a NaN later: NaN / Inf / negative texels (light.bad_index names the
- *    first one; or EL_ENVLIGHT_BAD_TEXELS_ZERO turns them into 0), a non-orthonormal matrix, a bad
- *    scale, sizes that overflow.
- *
- * INPUT CONVENTIONS for the queries (which never fail): a direction need not be unit length: any finite,
- * nonzero one is normalised safely (scaled by its largest component first, so components near FLT_MAX
- * or denormal work under any matrix) and the result depends only on its direction; a zero, NaN or
- * infinite direction gives le = 0 and pdf = 0. u outside [0,1) is clamped (NaN -> 0, 1 -> 0x1.fffffep-1). A light with no
- * emission (all black) has pdf 0 everywhere and sample_li returns pdf 0, radiance 0.
- * A sample with pdf 0 must be skipped by the caller (as in pbrt).
- * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
- * light sampling alone NO LONGER covers the dim parts of the map: use it only with MIS against BSDF
- * sampling. A map where nothing exceeds the mean (a constant one) falls back to the plain density.
+ * PORTS pbrt-v3's InfiniteAreaLight (src/lights/infinite.h, infinite.cpp): the constructor's
+ * distribution (a Distribution2D over the map's luminance times sin theta), Le, Sample_Li, Pdf_Li,
+ * Sample_Le, Pdf_Le, Power and Preprocess, with pbrt-v3's mapping (u, v) = (phi / 2pi, theta / pi);
+ * and pbrt-v4 ImageInfiniteLight's MIS-compensated distribution. NOTES after the declarations: the
+ * mapping and its orientation, where and why it departs from pbrt (the density, the poles, the integer
+ * CDF), what it costs, memory, thread safety, input conventions.
  */
 #ifndef EL_ENVLIGHT_H
 #define EL_ENVLIGHT_H
@@ -239,7 +134,7 @@ typedef struct el_envlight_options {
   float scale[3];          /* RGB multiplier of the texels (pbrt's "L"); all zero means (1, 1, 1) */
   float light_to_world[9]; /* row-major 3x3, world = M * light; a rotation or a reflection (checked to
                               1e-4, then re-orthonormalised). All zero means the identity. */
-  int compensated;         /* 1: pbrt-v4's MIS-compensated density (see the top of the file) */
+  int compensated;         /* 1: pbrt-v4's MIS-compensated density (NOTES: MIS COMPENSATION) */
   int importance;          /* EL_ENVLIGHT_IMPORTANCE_* */
   int importance_width;    /* bins of the importance map; 0, 0: the image's resolution (PBRT_V3: twice */
   int importance_height;   /*  it), each capped at EL_ENVLIGHT_MAX_IMPORTANCE. TEXEL ignores these. */
@@ -319,7 +214,7 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
 EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], const el_envlight_options *opt);
 EL_DEF void el_envlight_free(el_envlight *l);
 /* Build the sampling tables now (they are otherwise built on first need). Returns their build result;
- * safe to call more than once and from several threads (see THREAD SAFETY above). */
+ * safe to call more than once and from several threads (NOTES below, point 6). */
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l);
 /* pbrt's Preprocess: the scene's bounding sphere, used by sample_le, pdf_le and power only. Accepts a
  * finite centre and a radius in [EL_ENVLIGHT_MIN_RADIUS, EL_ENVLIGHT_MAX_RADIUS] (2^-64 .. 2^62) that
@@ -356,7 +251,7 @@ EL_DEF size_t el_envlight_bytes(const el_envlight *l);
 /* Bytes of the sampling tables alone (0 until built). */
 EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l);
 
-/* The light_to_world matrices for the usual right-handed worlds (see MAPPING AND ORIENTATION). */
+/* The light_to_world matrices for the usual right-handed worlds (NOTES below: MAPPING AND ORIENTATION). */
 EL_DEF void el_envlight_yup_matrix(float m[9]);
 EL_DEF void el_envlight_zup_matrix(float m[9]);
 
@@ -371,6 +266,125 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 }
 #endif
 #endif /* EL_ENVLIGHT_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * MAPPING AND ORIENTATION (pbrt-v3's, in light space): theta is the angle from +z, phi = atan2(y, x) in
+ * [0, 2pi), and (u, v) = (phi / 2pi, theta / pi); u runs along a row (left to right), v down the
+ * image (row 0 is theta = 0). world = light_to_world * light.
+ *   Mirroring. This mapping shows the image unmirrored only in a LEFT-handed world (pbrt's): seen from
+ *   inside, with +z up, "to the right" of direction phi is phi + d in a left-handed frame and phi - d in a
+ *   right-handed one. So in a right-handed world (Blender, Mitsuba, OpenGL, Embree users) pbrt's
+ *   "RotateX(-90)" (light +z -> world +y) shows the map MIRRORED left-right compared with those tools;
+ *   no rotation can fix that, a reflection can. Therefore:
+ *   - el_envlight_yup_matrix(): y up, right-handed, exactly Mitsuba 3's convention (u = 0.5 looks
+ *     along +z, u = 0.25 along +x, u = 0 / 1 along -z). It is a reflection (determinant -1).
+ *   - el_envlight_zup_matrix(): z up, right-handed, exactly Blender's (u = 0.5 looks along +x, u = 0.75
+ *     along +y). Also a reflection.
+ *   tests/test_envlight.c proves both with an asymmetric map against Mitsuba's and Blender's own
+ *   formulas, and shows that a plain RotateX(-90) gives u' = 0.25 - u (a mirror image).
+ *
+ * OPERATIONS (directions are float[3] pointing away from the scene, in world space):
+ *   le(dir)          bilinear at full resolution, Repeat in u, Clamp in v (pbrt-v3 used Repeat in v too,
+ *                    so the north pole row bled into the south pole: pbrt-v3 issue #63).
+ *   sample_li(u0,u1) a direction, its radiance and its solid-angle pdf. pdf_li(dir) the same pdf.
+ *   sample_le / pdf_le  rays entering the scene's bounding sphere (bidirectional methods); they need
+ *                    el_envlight_preprocess(center, radius), nothing else does.
+ *   power()          pi r^2 * integral of L over the sphere (pbrt-v4's Phi; pbrt-v3's Power returned
+ *                    pi r^2 * the unweighted mean texel, off by 4 pi and ignoring sin(theta)).
+ *   bytes()          the memory in use (image copy + whatever sampling tables exist).
+ *
+ * WHERE IT DEPARTS FROM pbrt, AND WHY (pbrt-v3 InfiniteAreaLight, src/lights/infinite.{h,cpp})
+ * 1. The sampling density (pbrt-v3 issue #62). le() is bilinear but the density is piecewise constant.
+ *    pbrt-v3 builds its distribution at TWICE the image resolution from point lookups (4x the memory and
+ *    time). Ours (EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE, the default) uses one bin per texel whose value is
+ *    the EXACT average of the bilinear reconstruction over the bin (separable weights 1/8, 3/4, 1/8 when
+ *    bins and texels coincide; exact tent integrals for any other resolution), times sin(theta) at the
+ *    bin centre. Every direction where le() > 0 has pdf > 0 (so light sampling alone is unbiased), at a
+ *    quarter of pbrt's bins. bench/bench_envlight.c measures the variance of the choices (CELL_AVERAGE,
+ *    PBRT_V3 = 2x point lookups, TEXEL = raw texels, which misses the bilinear spill of a bright texel
+ *    into its dark neighbours: a bias): at 2x, cell averages and point lookups are equally good, and 2x
+ *    cuts the mismatch between density and le by 4x (the irradiance variance by 0-30%) for 4x the table
+ *    memory; ask for it with importance_width/height when the memory is there.
+ * 2. The distribution is distribution2d.h's integer-CDF one: every bin with f > 0 is reachable at any
+ *    dynamic range (pbrt's float CDF loses bins next to a sun). Samplers: a guide table (the default:
+ *    constant expected time, exactly CDF inversion's points, so it keeps stratification), CDF inversion
+ *    itself (binary searches) or an alias table (constant time, does NOT keep the stratification of
+ *    low-discrepancy input).
+ * 3. Poles. sinf(pi) is -8.7e-8, so pbrt-v3's "if (sinTheta == 0) pdf = 0" never fires at the south pole
+ *    and its pdf can be negative or huge. Here sample_li's sin(theta) is built from the bin edge nearer
+ *    the pole (sin exactly 0 there) plus a positive term, never a difference (small maps: sinpi(min(v,
+ *    1 - v)), an exact argument), sampled points stay at least 2^-21 (in u and v) inside their bin (so never on a pole or a
+ *    bin edge), and pdf_li clamps sin(theta) below at 1.4e-6 (the value at v = 2^-21). Every pdf returned
+ *    is finite and >= 0.
+ * 4. pdf_li(sample_li(u).dir) against the sampled pdf: both are the same bin's value divided by
+ *    sin(theta), which sample_li takes from the sampled angle and pdf_li from the direction. For
+ *    signed-permutation matrices (identity, y-up, z-up) the 2^-21 margin exceeds every rounding error of
+ *    the direction and of pdf_li's own bin search, so the bin is the same and the two pdfs differ only
+ *    by the rounding of sin(theta): by at most 2^-20 relative (measured at most 3.7 * 2^-23 = 4.4e-7;
+ *    about half agree bit for bit; tests/test_envlight.c checks the bound for every sampler, map size
+ *    and matrix). sample_li could compute its pdf with pdf_li's arithmetic and match bit for bit, but
+ *    that measured 126.6 instead of 93.5 instructions per sample. For a general rotation, rounding in
+ *    the round trip world -> light can move a direction near a pole across a bin edge, so sample_li
+ *    returns pdf_li(dir) itself: equal bit for bit (about 120 more instructions per sample: 218 instead
+ *    of 93.5 with the guide sampler).
+ * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
+ *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
+ *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
+ *    angle addition, with x - x^3/6 and 1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least
+ *    256x128 bins; smaller maps use sinpi/cospi polynomials, 1.9e-7 relative). With SSE2 (any x86-64;
+ *    EL_NO_SIMD turns it off) the guide sampler's search runs inline in sample_li with vector ends (u
+ *    clamped and scaled to units and guide cells at once, each bin's two CDF entries read as one 8-byte
+ *    pair, the fractions computed in the lanes the direction wants), the two angles go through the
+ *    polynomials together and the direction is formed as 4-vectors; the scalar code does the same
+ *    operations in the same order. The pdf is the bin's, (wv wu) K from its integer widths, the pdf
+ *    table's expression, / sin theta.
+ *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
+ *    a monotone "diamond angle" of (x, y) and one over t = 1 - z / (r + |z|) on both hemispheres (each
+ *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
+ *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
+ *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
+ *    2048x1024 map): sample_li 93.5 instructions with the guide sampler (95.6-97.6 on the five CC0
+ *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
+ *    alias table; with the radiance 257; pdf_li 76 (general rotation 95); le 250; construction 117 M
+ *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
+ *    313 ms). See tutorials/03-infinite-light.md, section 9.
+ *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
+ *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
+ *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
+ *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
+ *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
+ *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
+ *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
+ *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
+ *    with it (the same image).
+ *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
+ *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
+ *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
+ *    default guide table (pbrt-v3: ~100 MB).
+ * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
+ *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
+ *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a
+ *    __atomic once-flag: one thread builds, the others spin until it is done); without those builtins
+ *    (or with EL_ENVLIGHT_NO_ATOMICS) call el_envlight_prepare_sampling() before sharing the light.
+ *    After that, every query is read-only and thread-safe. No MIP pyramid is built: le() is a level-0
+ *    bilinear lookup; a renderer that wants filtered (ray-differential) lookups builds an el_mipmap
+ *    from the same pixels (mipmap.h).
+ * 7. Bad input is an error, not a NaN later: NaN / Inf / negative texels (light.bad_index names the
+ *    first one; or EL_ENVLIGHT_BAD_TEXELS_ZERO turns them into 0), a non-orthonormal matrix, a bad
+ *    scale, sizes that overflow.
+ *
+ * INPUT CONVENTIONS for the queries (which never fail): a direction need not be unit length: any finite,
+ * nonzero one is normalised safely (scaled by its largest component first, so components near FLT_MAX
+ * or denormal work under any matrix) and the result depends only on its direction; a zero, NaN or
+ * infinite direction gives le = 0 and pdf = 0. u outside [0,1) is clamped (NaN -> 0, 1 -> 0x1.fffffep-1). A light with no
+ * emission (all black) has pdf 0 everywhere and sample_li returns pdf 0, radiance 0.
+ * A sample with pdf 0 must be skipped by the caller (as in pbrt).
+ * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
+ * light sampling alone NO LONGER covers the dim parts of the map: use it only with MIS against BSDF
+ * sampling. A map where nothing exceeds the mean (a constant one) falls back to the plain density.
+ * ==================================================================================================== */
 
 /* ====================================================================================================
  * IMPLEMENTATION BELOW. Stop reading here if you only need the API.

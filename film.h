@@ -1,48 +1,35 @@
 /* film.h - envlight's film: pixel filters, weighted accumulation, splats, sRGB and tone mapping.
- * v0.1 - a single-header C99 library (also compiles as C++11); depends on the C standard library only.
+ * envlight v0.1.0 - MIT or public domain
  *
- * DO THIS in exactly one C or C++ file, before the #include:
- *     #define EL_FILM_IMPLEMENTATION      (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "film.h"
- * Other files include "film.h" without the macro.
+ * Every other file includes it without the macro. EL_FILM_IMPLEMENTATION instead implements film.h
+ * alone: a module's own macro never implements another module's header.
  *
- * Options honoured (define before the implementation): EL_MALLOC / EL_REALLOC / EL_FREE (all or none),
- * EL_ASSERT, EL_STATIC (private functions), EL_DEF.
- *
- * Usage (single thread):
- *     el_film_options fo; el_film film; float *rgb; unsigned char *srgb;
- *     memset(&fo, 0, sizeof fo); fo.width = 640; fo.height = 480;  (all-zero filter: pbrt's box)
- *     if (el_film_init(&film, &fo) != EL_SUCCESS) ...;
- *     for each sample: el_film_add_sample(&film, px, py, L_rgb, 1.0f);   (raster coordinates)
- *     el_film_get_rgb(&film, 1.0f, rgb);                          (film.width * film.height * 3)
- *     el_film_to_srgb8(rgb, film.width, film.height, NULL, srgb);  (clamp + exact sRGB, pbrt's TO_BYTE)
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: float px, py; const float L[3]; float *rgb; unsigned char *srgb8;  (640 * 480 * 3 each)
+ *     el_film film;
+ *     el_film_options fo = {0};                  // C++: = {}. All zero but the size: pbrt's box filter
+ *     fo.width = 640; fo.height = 480;
+ *     fo.filter.type = EL_FILM_FILTER_GAUSSIAN;  // pbrt's "gaussian": radius 2, alpha 2
+ *     if (el_film_init(&film, &fo) != EL_SUCCESS) return 1;
+ *     el_film_add_sample(&film, px, py, L, 1.0f);  // raster position, radiance, ray weight
+ *     el_film_get_rgb(&film, 1.0f, rgb);           // linear RGB, row 0 at the top
+ *     el_film_to_srgb8(rgb, film.width, film.height, NULL, srgb8);  // clamp, exact sRGB (pbrt's TO_BYTE)
  *     el_film_free(&film);
- * Threads: each thread owns an el_film_tile (el_film_tile_init / _reset for the region it samples),
- * adds samples to it without locks, and hands it to el_film_merge_tile under the caller's mutex.
+ * << usage
+ * Threads: each thread adds its samples to its own el_film_tile, then el_film_merge_tile under a lock.
  *
- * What it ports: pbrt-v3's Film / FilmTile (src/core/film.h, film.cpp) and its filters
- * (src/filters/box, triangle, gaussian, mitchell, sinc), the sRGB curve and TO_BYTE of imageio.cpp.
- * Where it departs from pbrt, and why:
- *  - Sums are kept in double (pbrt: float contribSum, float filterWeightSum). With a million samples per
- *    pixel a float sum drops every addend below sum * 2^-24; a double keeps them.
- *  - Pixels are accumulated in linear RGB. pbrt-v3 converts each tile's sums to XYZ on merge and back to
- *    RGB on output; with an RGBSpectrum build that is a linear map M^-1 M, the identity up to the 6-digit
- *    rounding of pbrt's matrices (|M^-1 M - I| is about 1e-6, measured in tests/test_film.c). Set
- *    el_film_options.xyz_round_trip to apply pbrt's two matrices anyway (values then match pbrt's).
- *    Only a spectral renderer (SampledSpectrum) needs XYZ for real; this film takes RGB.
- *  - A sample with a NaN or infinite position, or a NaN, infinite or negative component or weight, is
- *    rejected whole (it adds no filter weight either) and COUNTED by reason (el_film_stats,
- *    el_film_rejected_samples). pbrt-v3's integrators log such radiance and replace it by 0, which still
- *    adds the filter weight and so darkens the pixel; FilmTile::AddSample itself checks nothing, so a
- *    NaN that reaches it makes the pixel NaN.
- *  - The optional clamp is pbrt-v4's maxcomponentvalue (scale the sample so its largest component is at
- *    most the limit), not pbrt-v3's maxsampleluminance.
- *  - Splats land on floor(p), so p in (-1, 0) never doubles onto the edge pixel (pbrt-v3 once truncated
- *    with (Point2i)p; fixed in pbrt-v3 commit 9adaee8). The splat buffer exists only after a splat.
- *  - A pixel with a zero filter-weight sum outputs 0 (plus its splats); every output value is finite,
- *    and NaN never reaches the 8-bit conversion (in pbrt, (uint8_t) of NaN is undefined behaviour).
- *  - Tone mapping beyond pbrt's clamp: exposure in stops, the exponential 1 - exp(-k x) curve, Reinhard,
- *    Narkowicz's fitted ACES curve, and optional dithering of the 8-bit output.
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC (private functions in this translation unit), EL_DEF.
+ *
+ * PORTS pbrt-v3's Film and FilmTile (src/core/film.h, film.cpp: AddSample with its filterTable,
+ * AddSplat, GetSampleBounds, MergeFilmTile, WriteImage), its filters (src/filters/: box, triangle,
+ * gaussian, mitchell, sinc) and the sRGB curve GammaCorrect and TO_BYTE of src/core/imageio.cpp; tone
+ * mapping goes past pbrt (exposure, exponential, Reinhard, ACES, dithering). NOTES after the
+ * declarations: where and why it departs from pbrt.
  */
 #ifndef EL_FILM_H
 #define EL_FILM_H
@@ -337,6 +324,37 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
 }
 #endif
 #endif /* EL_FILM_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * Threads: each thread owns an el_film_tile (el_film_tile_init / _reset for the region it samples),
+ * adds samples to it without locks, and hands it to el_film_merge_tile under the caller's mutex.
+ *
+ * What it ports: pbrt-v3's Film / FilmTile (src/core/film.h, film.cpp) and its filters
+ * (src/filters/box, triangle, gaussian, mitchell, sinc), the sRGB curve and TO_BYTE of imageio.cpp.
+ * Where it departs from pbrt, and why:
+ *  - Sums are kept in double (pbrt: float contribSum, float filterWeightSum). With a million samples per
+ *    pixel a float sum drops every addend below sum * 2^-24; a double keeps them.
+ *  - Pixels are accumulated in linear RGB. pbrt-v3 converts each tile's sums to XYZ on merge and back to
+ *    RGB on output; with an RGBSpectrum build that is a linear map M^-1 M, the identity up to the 6-digit
+ *    rounding of pbrt's matrices (|M^-1 M - I| is about 1e-6, measured in tests/test_film.c). Set
+ *    el_film_options.xyz_round_trip to apply pbrt's two matrices anyway (values then match pbrt's).
+ *    Only a spectral renderer (SampledSpectrum) needs XYZ for real; this film takes RGB.
+ *  - A sample with a NaN or infinite position, or a NaN, infinite or negative component or weight, is
+ *    rejected whole (it adds no filter weight either) and COUNTED by reason (el_film_stats,
+ *    el_film_rejected_samples). pbrt-v3's integrators log such radiance and replace it by 0, which still
+ *    adds the filter weight and so darkens the pixel; FilmTile::AddSample itself checks nothing, so a
+ *    NaN that reaches it makes the pixel NaN.
+ *  - The optional clamp is pbrt-v4's maxcomponentvalue (scale the sample so its largest component is at
+ *    most the limit), not pbrt-v3's maxsampleluminance.
+ *  - Splats land on floor(p), so p in (-1, 0) never doubles onto the edge pixel (pbrt-v3 once truncated
+ *    with (Point2i)p; fixed in pbrt-v3 commit 9adaee8). The splat buffer exists only after a splat.
+ *  - A pixel with a zero filter-weight sum outputs 0 (plus its splats); every output value is finite,
+ *    and NaN never reaches the 8-bit conversion (in pbrt, (uint8_t) of NaN is undefined behaviour).
+ *  - Tone mapping beyond pbrt's clamp: exposure in stops, the exponential 1 - exp(-k x) curve, Reinhard,
+ *    Narkowicz's fitted ACES curve, and optional dithering of the 8-bit output.
+ * ==================================================================================================== */
 
 /* ============================================================================================
  * implementation below; stop reading here if you only need the API

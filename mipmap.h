@@ -1,80 +1,37 @@
-/* mipmap.h - image pyramid with pbrt-v3's MIPMap lookups (point, bilinear, trilinear, EWA)
- * v0.1.0 - MIT or public domain - part of envlight
+/* mipmap.h - an image pyramid with pbrt-v3's MIPMap lookups (point, bilinear, trilinear, EWA)
+ * envlight v0.1.0 - MIT or public domain
  *
- * Do this in exactly one C or C++ file before including it:
- *     #define EL_MIPMAP_IMPLEMENTATION   (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "mipmap.h"
- * mipmap.h includes blockedarray.h for its declarations only; EL_MIPMAP_IMPLEMENTATION does not
- * implement blockedarray.h (EL_IMPLEMENTATION implements both).
+ * Every other file includes it without the macro. mipmap.h includes blockedarray.h for its declarations;
+ * EL_MIPMAP_IMPLEMENTATION instead implements mipmap.h alone, not blockedarray.h: a module's own macro
+ * never implements another module's header.
  *
- * Options honoured (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none),
- * EL_ASSERT, EL_STATIC, EL_DEF; EL_MIPMAP_YIELD() (what a thread waiting for another thread's lazy
- * build of the upper levels does between polls; default: a CPU pause hint on x86, nothing elsewhere;
- * define it as sched_yield() on POSIX if you like); EL_MIPMAP_NO_ATOMICS (no lazy building: see
- * "Threads" below).
- *
- * Usage:
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: const float *rgb; float s, t, dsdx, dtdx, dsdy, dtdy;   (rgb: 400 * 235 * 3 floats)
  *     el_mipmap m;
- *     el_mipmap_options opt;                         // all-zero = pbrt-v3's defaults:
- *     memset(&opt, 0, sizeof opt);                   //   Repeat, EWA, max anisotropy 8, power of two
- *     opt.wrap_v = EL_MIPMAP_WRAP_CLAMP;                    // e.g. an environment map: Repeat u, Clamp v
- *     if (el_mipmap_init(&m, rgb, 400, 235, 3, &opt) != EL_SUCCESS) ...;
+ *     el_mipmap_options opt = {0};             // C++: = {}. All zero: pbrt-v3's Repeat, EWA, anisotropy 8
+ *     opt.wrap_v = EL_MIPMAP_WRAP_CLAMP;       // per axis: an environment map's v, say
+ *     if (el_mipmap_init(&m, rgb, 400, 235, 3, &opt) != EL_SUCCESS) return 1;  // m.bad_index: NaN texel
  *     float c[3];
- *     el_mipmap_lookup(&m, 0.3f, 0.7f, 0.15f, c);   // trilinear, filter width 0.15 (in [0,1] units)
+ *     el_mipmap_lookup(&m, s, t, 0.15f, c);    // trilinear, filter width 0.15 (1: the whole image)
  *     el_mipmap_lookup_differentials(&m, s, t, dsdx, dtdx, dsdy, dtdy, c);  // EWA
  *     el_mipmap_free(&m);
+ * << usage
+ * (s, t) = (0, 0) is the corner of the first texel of row 0; upper levels are built on first need.
  *
- * What it ports: pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): power-of-two
- * resampling with 4-tap Lanczos weights (resampleWeights, tau 2, negative ringing clamped to 0), box
- * filtered levels down to 1x1, Texel() with wrap modes, triangle() (bilinear), Lookup(st, width)
- * (trilinear, with the level convention of pbrt-v3 after its trilinear fix, PR #275:
- * level = nLevels - 1 + log2(max(width, 1e-8)), so width 1 means "the whole texture", the 1x1
- * level), and Lookup(st, dst0, dst1) (EWA with pbrt's 128-entry Gaussian table, alpha 2, anisotropy
- * clamp, default 8). From pbrt-v4 it takes per-axis wrap modes and point / bilinear filters.
- * For power-of-two images levels and lookups equal pbrt-v3's to float precision: the same float
- * operations in the same order, except the logarithm that picks the level (ours needs no libm call);
- * measured against a literal port of pbrt-v3 in bench/bench_mipmap.c: levels identical, lookups within
- * 3e-6 relative (tests/test_mipmap.c checks lookups against pbrt's algorithm written out in float).
- * Cost (gcc -O3, 2048x1024 RGB, random footprints, bench_mipmap --instructions): 225 instructions per
- * trilinear lookup and 1,462 per EWA lookup at anisotropy 8, against 913 and 3,981 for the literal
- * port: 3-channel fast paths for footprints inside a level, EWA rows trimmed to the ellipse's chord.
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC, EL_DEF; EL_MIPMAP_YIELD() (what a thread waiting for another thread's lazy build of the
+ * upper levels does between polls; default: a CPU pause hint on x86, nothing elsewhere);
+ * EL_MIPMAP_NO_ATOMICS (no lazy building: init builds every level).
  *
- * Where it departs from pbrt, and why:
- *  - Levels are built lazily: init builds level 0 only; levels 1.. are allocated and built on the
- *    first lookup that needs them (or by el_mipmap_build_levels). An environment light that only
- *    reads level 0 pays for nothing else.
- *  - Box filtering never reads outside the level: pbrt-v3 reads texel 2s+1 through the wrap mode, so
- *    with Black wrap a level whose width (or height) reached 1 loses half its energy per level. Here a
- *    1-wide axis reuses its texel (what Repeat and Clamp give in pbrt), so every level has the mean of
- *    level 0 under every wrap mode.
- *  - keep_resolution = 1 keeps a non-power-of-two image as level 0 texel for texel (no resampling;
- *    envlight uses this so that radiance lookups reproduce the map exactly). Its upper levels are
- *    exact area averages: level sizes go n -> max(1, floor(n/2)) and an odd n is reduced with 3-tap
- *    weights (1 - i/n', 1, (i+1)/n') / (2 + 1/n'), which preserves the mean exactly.
- *  - Every input gives a defined, finite result (for finite texels): NaN coordinates count as 0;
- *    infinite or huge coordinates are reduced (Repeat) or pinned outside the image (Clamp, Black)
- *    without integer overflow; NaN or negative widths count as 0 (bilinear at level 0), infinite ones
- *    give the 1x1 level; NaN differentials count as 0, huge ones are limited to 1e8; zero or parallel
- *    differentials are fine (pbrt's "+1" keeps the EWA ellipse at least one texel wide). The EWA
- *    ellipse's determinant uses pbrt's expression when it is accurate and the cancellation-free one,
- *    F = 1 + |dst0|^2 + |dst1|^2 + (dst0 x dst1)^2, when pbrt's loses more than 0.1% (very
- *    anisotropic footprints, where pbrt's can go negative and produce NaN).
- *  - Input texels must be finite (EL_ERROR_NAN / EL_ERROR_INFINITE otherwise); negative values are
- *    allowed and kept (pbrt only clamps after resampling, as here).
- *  - Sizes: each side at most 2^24 texels (EL_ERROR_SIZE_OVERFLOW beyond), max_anisotropy at most 1024.
- *
- * Threads: every lookup is safe to call concurrently with other lookups on the same map. The lazy
- * build is guarded by a once-flag (GCC/Clang __atomic builtins, MSVC Interlocked functions): the first
- * thread that needs an upper level builds all of them while the others wait (spinning with
- * EL_MIPMAP_YIELD()). el_mipmap_build_levels() builds them explicitly (also thread-safe). With
- * EL_MIPMAP_NO_ATOMICS, or a compiler with neither, el_mipmap_init builds every level eagerly instead
- * (so lookups stay thread-safe; only the laziness is lost). init and free are not thread-safe (as for
- * any object). If the lazy build runs out of memory, lookups fall back to level 0 (bilinear) and
- * el_mipmap_build_levels() reports EL_ERROR_OUT_OF_MEMORY.
- *
- * Coordinates: s (u) runs along a row, t (v) down the rows; (0,0) is the corner of texel (0,0) of
- * row 0 (the first row of the row-major input), texel (i, j) covers [i/w, (i+1)/w) x [j/h, (j+1)/h),
- * and its centre is at ((i + 0.5)/w, (j + 0.5)/h). `out` always receives `channels` floats.
+ * PORTS pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): resampleWeights and Lanczos for
+ * the power-of-two resampling, the box-filtered pyramid, Texel() with ImageWrap, triangle(), Lookup(st,
+ * width) (trilinear) and Lookup(st, dst0, dst1) (EWA with weightLut); from pbrt-v4, per-axis wrap modes
+ * and the point and bilinear filters. NOTES after the declarations: accuracy against pbrt, costs,
+ * where and why it departs from pbrt, threads, coordinates.
  */
 #ifndef EL_MIPMAP_H
 #define EL_MIPMAP_H
@@ -190,6 +147,63 @@ EL_DEF size_t el_mipmap_bytes(const el_mipmap *m);
 }
 #endif
 #endif /* EL_MIPMAP_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * What it ports, in detail: pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): power-of-two
+ * resampling with 4-tap Lanczos weights (resampleWeights, tau 2, negative ringing clamped to 0), box
+ * filtered levels down to 1x1, Texel() with wrap modes, triangle() (bilinear), Lookup(st, width)
+ * (trilinear, with the level convention of pbrt-v3 after its trilinear fix, PR #275:
+ * level = nLevels - 1 + log2(max(width, 1e-8)), so width 1 means "the whole texture", the 1x1
+ * level), and Lookup(st, dst0, dst1) (EWA with pbrt's 128-entry Gaussian table, alpha 2, anisotropy
+ * clamp, default 8; with doTrilinear, Lookup(st, max |d|) as pbrt-v3 since its commit aaa552a "Fix
+ * trilinear filtering"). From pbrt-v4 it takes per-axis wrap modes and point / bilinear filters.
+ * For power-of-two images levels and lookups equal pbrt-v3's to float precision: the same float
+ * operations in the same order, except the logarithm that picks the level (ours needs no libm call);
+ * measured against a literal port of pbrt-v3 in bench/bench_mipmap.c: levels identical, lookups within
+ * 3e-6 relative (tests/test_mipmap.c checks lookups against pbrt's algorithm written out in float).
+ * Cost (gcc -O3, 2048x1024 RGB, random footprints, bench_mipmap --instructions): 225 instructions per
+ * trilinear lookup and 1,462 per EWA lookup at anisotropy 8, against 913 and 3,981 for the literal
+ * port: 3-channel fast paths for footprints inside a level, EWA rows trimmed to the ellipse's chord.
+ *
+ * Where it departs from pbrt, and why:
+ *  - Levels are built lazily: init builds level 0 only; levels 1.. are allocated and built on the
+ *    first lookup that needs them (or by el_mipmap_build_levels). An environment light that only
+ *    reads level 0 pays for nothing else.
+ *  - Box filtering never reads outside the level: pbrt-v3 reads texel 2s+1 through the wrap mode, so
+ *    with Black wrap a level whose width (or height) reached 1 loses half its energy per level. Here a
+ *    1-wide axis reuses its texel (what Repeat and Clamp give in pbrt), so every level has the mean of
+ *    level 0 under every wrap mode.
+ *  - keep_resolution = 1 keeps a non-power-of-two image as level 0 texel for texel (no resampling;
+ *    envlight uses this so that radiance lookups reproduce the map exactly). Its upper levels are
+ *    exact area averages: level sizes go n -> max(1, floor(n/2)) and an odd n is reduced with 3-tap
+ *    weights (1 - i/n', 1, (i+1)/n') / (2 + 1/n'), which preserves the mean exactly.
+ *  - Every input gives a defined, finite result (for finite texels): NaN coordinates count as 0;
+ *    infinite or huge coordinates are reduced (Repeat) or pinned outside the image (Clamp, Black)
+ *    without integer overflow; NaN or negative widths count as 0 (bilinear at level 0), infinite ones
+ *    give the 1x1 level; NaN differentials count as 0, huge ones are limited to 1e8; zero or parallel
+ *    differentials are fine (pbrt's "+1" keeps the EWA ellipse at least one texel wide). The EWA
+ *    ellipse's determinant uses pbrt's expression when it is accurate and the cancellation-free one,
+ *    F = 1 + |dst0|^2 + |dst1|^2 + (dst0 x dst1)^2, when pbrt's loses more than 0.1% (very
+ *    anisotropic footprints, where pbrt's can go negative and produce NaN).
+ *  - Input texels must be finite (EL_ERROR_NAN / EL_ERROR_INFINITE otherwise); negative values are
+ *    allowed and kept (pbrt only clamps after resampling, as here).
+ *  - Sizes: each side at most 2^24 texels (EL_ERROR_SIZE_OVERFLOW beyond), max_anisotropy at most 1024.
+ *
+ * Threads: every lookup is safe to call concurrently with other lookups on the same map. The lazy
+ * build is guarded by a once-flag (GCC/Clang __atomic builtins, MSVC Interlocked functions): the first
+ * thread that needs an upper level builds all of them while the others wait (spinning with
+ * EL_MIPMAP_YIELD()). el_mipmap_build_levels() builds them explicitly (also thread-safe). With
+ * EL_MIPMAP_NO_ATOMICS, or a compiler with neither, el_mipmap_init builds every level eagerly instead
+ * (so lookups stay thread-safe; only the laziness is lost). init and free are not thread-safe (as for
+ * any object). If the lazy build runs out of memory, lookups fall back to level 0 (bilinear) and
+ * el_mipmap_build_levels() reports EL_ERROR_OUT_OF_MEMORY.
+ *
+ * Coordinates: s (u) runs along a row, t (v) down the rows; (0,0) is the corner of texel (0,0) of
+ * row 0 (the first row of the row-major input), texel (i, j) covers [i/w, (i+1)/w) x [j/h, (j+1)/h),
+ * and its centre is at ((i + 0.5)/w, (j + 0.5)/h). `out` always receives `channels` floats.
+ * ==================================================================================================== */
 
 /* ---------------------------------------------------------------------------------------------
  * Implementation below; stop reading here if you only need the API.
