@@ -910,7 +910,7 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
         unsigned h2 = el_film__hash(h1 ^ 0x85ebca6bu);
         e += (float)((double)(h1 >> 8) * (1.0 / 16777216.0) - (double)(h2 >> 8) * (1.0 / 16777216.0));
       }
-      out[i] = e <= 0.0f ? (unsigned char)0 : e >= 255.0f ? (unsigned char)255 : (unsigned char)e;
+      out[i] = (unsigned char)(e <= 0.0f ? 0 : e >= 255.0f ? 255 : (int)e);
     }
   }
   return EL_SUCCESS;
