@@ -347,7 +347,7 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
  *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
  *    2048x1024 map): sample_li 93.5 instructions with the guide sampler (95.6-97.6 on the five CC0
  *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
- *    alias table; with the radiance 257; pdf_li 76 (general rotation 95); le 250; construction 117 M
+ *    alias table; with the radiance 257; pdf_li 75 (general rotation 93); le 248; construction 117 M
  *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
  *    313 ms). See tutorials/03-infinite-light.md, section 9.
  *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
