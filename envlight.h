@@ -22,7 +22,7 @@
  *     el_envlight_le(&light, wi_bsdf, Le);           // radiance along a ray that escapes (no tables)
  *     el_envlight_free(&light);
  * << usage
- * A sample with pdf 0 is skipped, as in pbrt; el_envlight_sample_li_n draws n samples at once.
+ * The caller skips a sample whose pdf is 0, as pbrt does; el_envlight_sample_li_n draws n at once.
  *
  * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
  * EL_STATIC, EL_DEF; EL_NO_SIMD (the scalar code instead of SSE2: the same results);

@@ -12,7 +12,9 @@
  *   - unbiasedness: irradiance at several normals from sample_li vs a quadrature over the texels (our
  *     own bilinear reconstruction, written here), within 3 standard errors, including a generated
  *     8192x4096 map with a 1e12 dynamic range; compensated sampling with MIS;
- *   - power / integral vs quadrature; sample_le / pdf_le geometry;
+ *   - power / integral vs quadrature; sample_le / pdf_le geometry; the bounding spheres preprocess
+ *     accepts (radii 2^-80 .. 2^80) and finite outputs for every accepted one;
+ *   - directions scaled by 2^-125 .. 2^127, FLT_MAX and denormals under every matrix;
  *   - hard cases: all black, 1x1, 1xN, Nx1, NaN / Inf / negative texels, u at 0, 1 - ulp and 1, NaN,
  *     zero, huge, tiny and non-unit directions, both poles, bad matrices and scales, the lazy build
  *     (le alone builds nothing) and a concurrent first use from two threads.
