@@ -1070,8 +1070,8 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     float scale = (float)elr__pfloat(P, "scale", 1.0);
     float maxan = (float)elr__pfloat(P, "maxanisotropy", 8.0);
     el_mipmap_options mo;
-    el_mipmap_filter filter = EL_FILTER_EWA;
-    el_wrap wr;
+    el_mipmap_filter filter = EL_MIPMAP_FILTER_EWA;
+    el_mipmap_wrap wr;
     int gamma;
     size_t fl = strlen(fn);
     el_image img;
@@ -1079,16 +1079,16 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     char *path;
     if (elr__find(P, "filter")) {
       const char *f = elr__pstring(P, "filter", "bilinear");
-      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = EL_FILTER_EWA;
-      else if (!strcmp(f, "trilinear")) filter = EL_FILTER_TRILINEAR;
-      else if (!strcmp(f, "bilinear")) filter = EL_FILTER_BILINEAR;
+      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = EL_MIPMAP_FILTER_EWA;
+      else if (!strcmp(f, "trilinear")) filter = EL_MIPMAP_FILTER_TRILINEAR;
+      else if (!strcmp(f, "bilinear")) filter = EL_MIPMAP_FILTER_BILINEAR;
       else elr__failf(P, elr__find(P, "filter")->file, elr__find(P, "filter")->line, "Texture \"%s\": filter must be \"bilinear\", \"trilinear\" or \"ewa\"", name);
     } else if (elr__find(P, "trilinear")) { /* pbrt-v3's spelling */
-      filter = elr__pbool(P, "trilinear", 0) ? EL_FILTER_TRILINEAR : EL_FILTER_EWA;
+      filter = elr__pbool(P, "trilinear", 0) ? EL_MIPMAP_FILTER_TRILINEAR : EL_MIPMAP_FILTER_EWA;
     }
-    if (!strcmp(wrap, "repeat")) wr = EL_WRAP_REPEAT;
-    else if (!strcmp(wrap, "black")) wr = EL_WRAP_BLACK;
-    else if (!strcmp(wrap, "clamp")) wr = EL_WRAP_CLAMP;
+    if (!strcmp(wrap, "repeat")) wr = EL_MIPMAP_WRAP_REPEAT;
+    else if (!strcmp(wrap, "black")) wr = EL_MIPMAP_WRAP_BLACK;
+    else if (!strcmp(wrap, "clamp")) wr = EL_MIPMAP_WRAP_CLAMP;
     else elr__failf(P, elr__find(P, "wrap")->file, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
     elr__check_range(P, "maxanisotropy", maxan, 1.0, 1024.0); /* mipmap.h's limit */
     if (!fn[0]) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
