@@ -112,6 +112,12 @@ static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
  * parameter's: the lexer leaves an included file as soon as it peeks past its last token, so the
  * current file may already be the includer (errors in an included file's last directive named the
  * includer with the included file's line). */
+/* It never returns (it longjmps to elr_parse): saying so lets the compiler see that a value checked by a
+ * failing branch is set on every path that goes on (clang's -Wsometimes-uninitialized). */
+#if defined(__GNUC__) || defined(__clang__)
+static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) __attribute__((noreturn));
+static void elr__failf(elr__parser *P, const char *file, int line, const char *fmt, ...) __attribute__((noreturn));
+#endif
 static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) {
   char msg[400];
   vsnprintf(msg, sizeof msg, fmt, ap);
