@@ -1,42 +1,38 @@
-/* 00_path_tracer.cc: a complete path tracer on envlight's headers, without Embree (C++11).
+/* 00_path_tracer.cc: a complete path tracer on envlight's headers, without Embree.
  *
  * WHAT IT DEMONSTRATES
- *   Three diffuse spheres on a checkered ground, lit only by an environment map, with the intersection
- *   code written out here. At every bounce the light is sampled by multiple importance sampling (MIS):
- *   one direction from the map's importance sampling (envlight.h), one from the surface's cosine lobe,
- *   each weighted by the power heuristic. The cosine direction is also the path's next ray, so its MIS
- *   weight is applied where that ray escapes to the map (look for "escaped" in Li below). The ground's
- *   texture goes through mipmap.h with a footprint from ray differentials, and the film (film.h) filters
- *   the samples with pbrt's Gaussian and writes exact sRGB. C++ rather than C for Vec3's operators;
- *   the headers are C99 and compile as C++ just the same.
+ *   Three diffuse spheres on a checkered ground plane (intersection code written out here), lit only by
+ *   an environment map. At every bounce, multiple importance sampling (MIS) with the power heuristic
+ *   combines a direction from the map's importance sampling (envlight.h) with one from the cosine lobe;
+ *   the cosine direction is also the path's next ray, so its MIS weight is applied where that ray
+ *   escapes to the map ("escaped" in Li). The ground's texture is filtered by mipmap.h over a footprint
+ *   from ray differentials; film.h filters the samples with pbrt's Gaussian and writes exact sRGB.
+ *   It is C++11 for Vec3's operators; the headers are C99 and compile as C++ as they are.
  *
  * WHICH PARTS OF PBRT IT MIRRORS (pbrt-v3 book sections; fragment names in the code)
- *   PathIntegrator::Li (14.5), with pbrt-v4's form of it: the BSDF sample that continues the path is
- *   also EstimateDirect's BSDF sample (14.3.1), so the map's radiance is added once, with its MIS
- *   weight, where the path escapes. PowerHeuristic (13.10.1), CosineSampleHemisphere (13.6.3), Sphere
- *   intersection (3.2.2), ray differentials (10.1: GenerateRayDifferential, ComputeDifferentials),
- *   MIPMap (10.4), InfiniteAreaLight (12.6, 14.2.4), Film, FilmTile and GaussianFilter (7.8, 7.9).
- *   Unlike pbrt-v3 the world is y-up and right-handed (el_envlight_yup_matrix: maps look as in Mitsuba 3).
+ *   PathIntegrator::Li (14.5) in pbrt-v4's form: the BSDF sample that continues the path is also
+ *   EstimateDirect's BSDF sample (14.3.1). PowerHeuristic (13.10.1), CosineSampleHemisphere (13.6.3),
+ *   Sphere (3.2), ray differentials (10.1), MIPMap (10.4), InfiniteAreaLight (12.6, 14.2.4), Film and
+ *   GaussianFilter (7.8, 7.9). Unlike pbrt the world is y-up and right-handed, as in Mitsuba 3.
  *
  * HOW TO RUN IT
  *   build/bin/00_path_tracer [map.hdr|.exr|.pfm] [out.png|.pfm|.exr] [spp] [width] [height]
  *     defaults: EL_SOURCE_DIR "/data/envmaps/city.hdr", 00_path_tracer.png, 16, 480, 270.
- *   build/bin/00_path_tracer --furnace [out] [spp] [width] [height]: the furnace test instead. One
- *     white sphere (albedo 1) fills the frame under a sky of radiance 1 + 0.75 P3(cos theta) (P3 the
- *     Legendre polynomial). A cosine lobe cannot see P3 (it has no l = 3 part), so every pixel must be 1,
- *     as under a constant sky of 1; yet the map's importance sampling is far from uniform, so a wrong MIS
- *     weight or pdf shows as a wrong value. tests/test_path_tracer.c checks that.
- *   The picture depends only on these arguments, not on the number of threads.
+ *   build/bin/00_path_tracer --furnace [out] [spp] [width] [height]: a white sphere (albedo 1) fills the
+ *     frame under a sky of radiance 1 + 0.75 P3(cos theta), P3 the Legendre polynomial. A cosine lobe
+ *     has no l = 3 part, so every pixel must be 1, as under a constant sky of 1, while this sky's
+ *     importance sampling is far from uniform: a wrong MIS weight or pdf shows (tests/test_path_tracer.c).
+ *   The picture depends only on the arguments, not on the number of threads.
  *
  * WHAT IT WRITES
- *   The picture: a .png (exact sRGB, 8 bits) or linear floats (.pfm, .exr); on stdout its path and time.
+ *   The picture: .png (exact sRGB, 8 bits) or linear floats (.pfm, .exr); on stdout its path.
  *
  * TO COPY IT INTO YOUR PROJECT
- *   Copy the five headers: envlight.h includes distribution2d.h, mipmap.h includes blockedarray.h,
- *   film.h stands alone. One file (this one) defines EL_IMPLEMENTATION before including them. The
- *   headers need only the C standard library; image files are this project's examples/common/image_io.h
- *   (Debian's stb, libstb-dev). Without it, use stb directly (#include <stb/stb_image.h>, link -lstb):
- *   stbi_loadf(path, &w, &h, &n, 3) reads the map and stbi_write_png(path, w, h, 3, bytes, 3 * w) writes.
+ *   Copy all five headers: envlight.h includes distribution2d.h, mipmap.h includes blockedarray.h, film.h
+ *   stands alone; one file defines EL_IMPLEMENTATION before including them, as this one does. They need
+ *   only the C standard library. Image files go through examples/common/image_io.h (on Debian's stb);
+ *   in your project call stb itself (Debian: libstb-dev, link -lstb): stbi_loadf(path, &w, &h, &n, 3)
+ *   from <stb/stb_image.h>, stbi_write_png(path, w, h, 3, bytes, 3 * w) from <stb/stb_image_write.h>.
  */
 #define EL_IMPLEMENTATION  // implements every envlight header included after it, in this file only
 #include "envlight.h"      // includes distribution2d.h
@@ -46,7 +42,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -94,12 +89,8 @@ static Ray ray_from(Vec3 o, Vec3 d) { Ray r = {o, d, false, d, d}; return r; }
 struct Sphere { Vec3 center; float radius; Vec3 albedo; };
 struct Hit { float t; Vec3 p, n; int sphere; };  // sphere -1: the ground
 
-struct Scene {
-  std::vector<Sphere> spheres;
-  bool has_ground;
-  el_mipmap ground;    // the checker texture, repeated every GROUND_TILE units in x and z
-  el_envlight light;
-};
+// The ground's texture repeats every GROUND_TILE units in x and z.
+struct Scene { std::vector<Sphere> spheres; bool has_ground; el_mipmap ground; el_envlight light; };
 static const float GROUND_TILE = 2.0f;
 
 // pbrt's Sphere::Intersect (3.2.2) for a unit-length d: |o + t d - c|^2 = r^2, the nearest t > tmin.
@@ -113,9 +104,8 @@ static bool intersect_sphere(const Sphere &s, const Ray &r, float *t) {
 }
 
 static bool intersect(const Scene &sc, const Ray &r, Hit *h) {
-  h->t = INFINITY;
-  h->sphere = -1;
   float t;
+  h->t = INFINITY;
   for (size_t i = 0; i < sc.spheres.size(); ++i)
     if (intersect_sphere(sc.spheres[i], r, &t) && t < h->t) { h->t = t; h->sphere = int(i); }
   if (sc.has_ground && r.d.y < 0.0f && (t = -r.o.y / r.d.y) > 1e-4f && t < h->t) { h->t = t; h->sphere = -1; }
@@ -207,15 +197,15 @@ static Vec3 Li(const Scene &sc, Ray ray, Rng &rng) {
 
 // ---- the camera: pbrt's PerspectiveCamera with GenerateRayDifferential, y-up, right-handed -----
 struct Camera {
-  Vec3 eye, right, up, fwd;  // right and up are scaled to the image plane at distance 1
+  Vec3 eye, fwd, right, up;  // right and up span the image plane at distance 1: half its width, height
   float width, height;
   Camera(Vec3 from, Vec3 at, float vfov_deg, int w, int h) : eye(from), width(float(w)), height(float(h)) {
-    fwd = normalize(at - from);
     float tan_half = std::tan(0.5f * vfov_deg * PI / 180.0f);
+    fwd = normalize(at - from);
     right = normalize(cross(fwd, v3(0, 1, 0))) * (tan_half * width / height);
     up = cross(normalize(right), fwd) * tan_half;
   }
-  Vec3 dir(float px, float py) const {  // raster (0, 0) is the top left corner
+  Vec3 dir(float px, float py) const {  // raster (0, 0) is the top left corner, y grows downwards
     return normalize(fwd + right * (2.0f * px / width - 1.0f) + up * (1.0f - 2.0f * py / height));
   }
   // GenerateRayDifferential, then ScaleDifferentials(scale): pbrt shrinks the offsets to the spacing
@@ -244,26 +234,27 @@ int main(int argc, char **argv) {
   std::string out_path = argc > 2 ? argv[2] : "00_path_tracer.png";
   int spp = argc > 3 ? std::atoi(argv[3]) : 16, width = argc > 4 ? std::atoi(argv[4]) : 480;
   int height = argc > 5 ? std::atoi(argv[5]) : 270;
-  if (spp < 1 || width < 1 || height < 1 || spp > 65536 || width > 8192 || height > 8192) {
+  if (spp < 1 || spp > 65536 || width < 1 || width > 8192 || height < 1 || height > 8192) {
     std::fprintf(stderr, "00_path_tracer: spp must be in 1..65536, width and height in 1..8192\n");
     return 1;
   }
-  Scene sc = Scene();  // all zero: no spheres, no ground, zeroed envlight objects (safe to free)
-  char err[512] = "encoding the picture failed";
+  char err[512] = "";
 
-  // 1. The environment light (pbrt's InfiniteAreaLight): a map file, or the furnace's sky.
-  el_envlight_options lo = {};                // C: = {0}. All zero: pbrt-v3's light
-  el_envlight_yup_matrix(lo.light_to_world);  // y-up, right-handed: maps look as in Mitsuba 3
+  // 1. The light (pbrt's InfiniteAreaLight), from the map file or from the furnace's sky (128 x 64
+  //    texels of 1 + 0.75 P3(cos theta), theta at the row's centre; row 0 is the zenith).
+  Scene sc = Scene();  // value-initialised: no spheres, no ground, zeroed envlight and mipmap
   el_image map = el_image();
-  std::vector<float> sky(furnace ? 128 * 64 * 3 : 0);  // the furnace's sky: 1 + 0.75 P3(cos theta)
+  std::vector<float> sky(furnace ? 128 * 64 * 3 : 0);
   for (size_t i = 0; i < sky.size(); ++i) {
-    float c = std::cos(PI * (float(i / (128 * 3)) + 0.5f) / 64.0f);  // row i / (128 * 3) of 64
+    float c = std::cos(PI * (float(i / (128 * 3)) + 0.5f) / 64.0f);
     sky[i] = 1.0f + 0.75f * 0.5f * (5.0f * c * c * c - 3.0f * c);
   }
   if (!furnace && el_image_load(map_path.c_str(), &map, err, sizeof err) != 0) {
     std::fprintf(stderr, "00_path_tracer: %s\n", err);
     return 1;
   }
+  el_envlight_options lo = {};                // C: = {0}. All zero: pbrt-v3's light
+  el_envlight_yup_matrix(lo.light_to_world);  // y-up, right-handed: maps look as in Mitsuba 3
   el_result res = furnace ? el_envlight_init(&sc.light, sky.data(), 128, 64, 3, &lo)
                           : el_envlight_init(&sc.light, map.pixels, map.width, map.height, map.channels, &lo);
   el_image_free(&map);
@@ -272,10 +263,10 @@ int main(int argc, char **argv) {
     return 1;
   }
 
-  // 2. The objects, the ground's MIP map and the camera.
+  // 2. The objects and the ground's MIP map; the camera.
   Vec3 eye = v3(0.0f, 1.3f, 5.5f), at = v3(0.0f, 0.7f, 0.0f);
   if (furnace) {
-    Sphere white = {at, 4.5f, v3(1, 1, 1)};  // 0.3 in front of the eye, it fills the frame
+    Sphere white = {at, 4.5f, v3(1, 1, 1)};  // its surface is 0.3 in front of the eye: it fills the frame
     sc.spheres.push_back(white);
   } else {
     Sphere s[3] = {{v3(0.0f, 1.0f, 0.0f), 1.0f, v3(0.8f, 0.8f, 0.8f)},
@@ -283,21 +274,22 @@ int main(int argc, char **argv) {
                    {v3(1.9f, 0.5f, 0.9f), 0.5f, v3(0.2f, 0.35f, 0.8f)}};
     sc.spheres.assign(s, s + 3);
     sc.has_ground = true;
-    el_mipmap_options mo = {};  // C: = {0}. All zero: pbrt-v3's Repeat wrap, EWA filter
     std::vector<float> tex = checker_texture(256);
+    el_mipmap_options mo = {};  // C: = {0}. All zero: pbrt-v3's Repeat wrap and EWA filter
     res = el_mipmap_init(&sc.ground, tex.data(), 256, 256, 3, &mo);
   }
   Camera cam(eye, at, 40.0f, width, height);
   float diff_scale = std::max(0.125f, 1.0f / std::sqrt(float(spp)));
 
-  // 3. The film: pbrt's Gaussian filter (radius 2, alpha 2). pbrt's GetSampleBounds grows the
-  //    image by the radius, so that border pixels get their full filter support.
+  // 3. The film, with pbrt's Gaussian filter (radius 2, alpha 2). pbrt's GetSampleBounds grows the
+  //    image by the radius, so that border pixels get their full filter support too.
   el_film_options fo = {};  // C: = {0}. All zero but the size: pbrt's box filter
   fo.width = width;
   fo.height = height;
   fo.filter.type = EL_FILM_FILTER_GAUSSIAN;
-  el_film film;
-  if (res != EL_SUCCESS || (res = el_film_init(&film, &fo)) != EL_SUCCESS) {
+  el_film film = el_film();
+  if (res == EL_SUCCESS) res = el_film_init(&film, &fo);
+  if (res != EL_SUCCESS) {
     std::fprintf(stderr, "00_path_tracer: %s\n", el_result_string(res));
     return 1;
   }
@@ -325,24 +317,22 @@ int main(int argc, char **argv) {
         }
     }
   };
-  auto t0 = std::chrono::steady_clock::now();
   std::vector<std::thread> threads;
   for (unsigned i = 0; i < std::max(1u, std::thread::hardware_concurrency()); ++i) threads.push_back(std::thread(render));
   for (size_t i = 0; i < threads.size(); ++i) threads[i].join();
-  int lost = 0;  // tiles that could not be allocated (merging a zeroed tile is an error)
+  int lost = 0;  // tiles that could not be allocated: merging a zeroed tile is an error
   for (size_t i = 0; i < tiles.size(); ++i) {
     lost += el_film_merge_tile(&film, &tiles[i]) != EL_SUCCESS;
     el_film_tile_free(&tiles[i]);
   }
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  // 5. Output: linear RGB; for .png, one stop darker (the sunlit ground would clip), then pbrt's
-  //    clamp at 1 and the exact sRGB curve (TO_BYTE). The furnace keeps its exposure: 1 is white.
-  el_film_output_options oo = {};  // C: = {0}. All zero: pbrt's clamp, no exposure change
-  oo.exposure = furnace ? 0.0f : -1.0f;
+  // 5. Output: linear RGB; for .png one stop darker (the sunlit ground would clip; the furnace keeps
+  //    1 as white), then pbrt's clamp at 1, the exact sRGB curve and rounding (TO_BYTE).
   std::vector<float> linear(size_t(width) * size_t(height) * 3);
   std::vector<unsigned char> srgb(linear.size());
   el_film_get_rgb(&film, 1.0f, linear.data());
+  el_film_output_options oo = {};  // C: = {0}. All zero: pbrt's output curve
+  oo.exposure = furnace ? 0.0f : -1.0f;
   int failed = 1;
   if (lost > 0)
     std::snprintf(err, sizeof err, "out of memory for %d film tiles", lost);
@@ -350,10 +340,10 @@ int main(int argc, char **argv) {
     failed = el_image_write_float(out_path.c_str(), linear.data(), width, height, 3, err, sizeof err);
   else if (el_film_to_srgb8(linear.data(), width, height, &oo, srgb.data()) == EL_SUCCESS)
     failed = el_image_write_png(out_path.c_str(), srgb.data(), width, height, 3, err, sizeof err);
-  if (failed) std::fprintf(stderr, "00_path_tracer: %s\n", err);
-  else std::printf("wrote %s (%dx%d, %d spp) in %.2f s on %zu threads\n", out_path.c_str(), width, height, spp, seconds, threads.size());
+  if (failed) std::fprintf(stderr, "00_path_tracer: %s\n", err[0] ? err : "cannot encode the picture");
+  else std::printf("wrote %s (%dx%d, %d spp, %zu threads)\n", out_path.c_str(), width, height, spp, threads.size());
   el_film_free(&film);
   el_mipmap_free(&sc.ground);
   el_envlight_free(&sc.light);
-  return failed ? 1 : 0;
+  return failed;
 }
