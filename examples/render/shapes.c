@@ -105,6 +105,7 @@ void elr_sphere_hit(const elr_scene *s, int si, elr_v3 o, elr_v3 d, elr_hit *h) 
   h->ng = elr_norm(elr_xnormal(&sp->o2w, pob));
   h->ns = h->ng;
   h->material = sp->material;
+  h->flip = sp->flip;
 }
 
 /* >> triangle */
@@ -136,6 +137,7 @@ void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, floa
     h->ns = h->ng;
   }
   h->material = m->material;
+  h->flip = m->flip;
 }
 
 /* >> parameterisations */
