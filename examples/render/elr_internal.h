@@ -176,6 +176,10 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+/* loopsubdiv.c: pbrt-v3's LoopSubdivide of the control mesh (indices in [0, npoints), P: 3 npoints) into
+ * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
+int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
+                       char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 

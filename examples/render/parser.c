@@ -1022,6 +1022,30 @@ static void elr__shape(elr__parser *P, const char *type) {
     for (i = 0; pn && i < 3 * m.nvert; i++) m.n[i] = (float)pn->num[i];
     for (i = 0; puv && i < 2 * m.nvert; i++) m.uv[i] = (float)puv->num[i];
     elr__add_mesh(P, &m);
+  } else if (!strcmp(type, "loopsubdiv")) { /* pbrt-v3's CreateLoopSubdiv */
+    elr_mesh m;
+    char e[300];
+    elr__param *pi = elr__findt(P, "indices", "integer", -3), *pp = elr__findt(P, "P", "point3", -3);
+    int levels = elr__find(P, "levels") ? elr__pint(P, "levels", 3) : elr__pint(P, "nlevels", 3), *idx, i, dropped;
+    if (elr__find(P, "scheme")) elr__pstring(P, "scheme", "loop"); /* pbrt-v3: "don't actually use this for now" */
+    if (!pi) elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": \"integer indices\" is required");
+    if (!pp) elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": \"point3 P\" is required");
+    elr__check_range(P, elr__find(P, "levels") ? "levels" : "nlevels", levels, 0, 12);
+    if (pi->n == 0) elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": no triangles");
+    for (i = 0; i < pi->n; i++)
+      if (pi->num[i] < 0 || pi->num[i] >= pp->n / 3)
+        elr__failf(P, pi->file, pi->line, "Shape \"loopsubdiv\": index %g out of range [0, %d)", pi->num[i], pp->n / 3);
+    idx = (int *)elr__alloc(P, sizeof(int) * (size_t)pi->n);
+    for (i = 0; i < pi->n; i++) idx[i] = (int)pi->num[i];
+    {
+      double t0 = elr_now();
+      if (elr_loop_subdivide(levels, idx, pi->n, pp->num, pp->n / 3, &m, &dropped, e, sizeof e) != 0)
+        elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": %s", e);
+      P->s->t_images += elr_now() - t0; /* (the time of files and of built geometry, as PLY meshes) */
+    }
+    if (dropped) elr_warn(P->s, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": %d triangle%s with a repeated vertex left out", dropped,
+                          dropped == 1 ? "" : "s");
+    elr__add_mesh(P, &m);
   } else if (!strcmp(type, "plymesh")) {
     elr_mesh m;
     char e[600];
