@@ -63,6 +63,7 @@ elr_v3 elr_xpoint(const elr_xform *t, elr_v3 p);
 elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
+elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 
 /* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
@@ -114,6 +115,23 @@ typedef struct elr_sphere {
   int object;    /* -1, or the prototype it belongs to */
 } elr_sphere;
 
+/* ObjectBegin ... ObjectEnd: a prototype (pbrt-v3's renderOptions->instances[name]) whose shapes are the
+ * meshes and spheres with .object == its index, in its own space (the CTM at each Shape); ObjectInstance
+ * places it with the CTM of that line (pbrt-v3's TransformedPrimitive). scene.c makes each prototype that
+ * is instanced one Embree scene, and each instance an Embree instance of it: one copy of the geometry. */
+typedef struct elr_sphere_set { const struct elr_sphere *sph; const int *idx; } elr_sphere_set; /* user-geometry primID -> sphere */
+typedef struct elr_object {
+  int nmesh, nsph, ninstances;
+  double lo[3], hi[3];        /* the bounds of its shapes, in its space */
+  /* Embree (scene.c) */
+  void *rtscene;
+  int *geom_mesh;             /* per geometry id of its scene: the mesh, or -1 (the spheres) */
+  unsigned ngeom, sphere_geom;
+  int *sph_user;
+  elr_sphere_set spheres;
+} elr_object;
+typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ } elr_instance;
+
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2 };
 typedef struct elr_light {
   int kind;
@@ -153,6 +171,8 @@ struct elr_scene {
   elr_mesh *mesh; int nmesh, capmesh;
   elr_sphere *sph; int nsph, capsph;
   elr_light *light; int nlight, caplight;
+  elr_object *obj; int nobj, capobj;
+  elr_instance *inst; int ninst, capinst;
   int warnings;
   char last_warning[512];
   int quiet;
@@ -160,12 +180,13 @@ struct elr_scene {
   size_t bytes_textures, bytes_embree;
   /* Embree */
   void *device, *rtscene;
-  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres */
+  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres, 2 an instance (geom_index: which) */
   int *geom_index;
   unsigned ngeom;
   unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
   unsigned builtin_geom; /* geometry id of Embree's sphere primitives (similarity transforms), or ~0u */
   int *sph_builtin, *sph_user, nbuiltin, nuser; /* primID -> sphere index */
+  elr_sphere_set world_spheres; /* the user geometry's data: sph, sph_user */
   float world_radius;
   elr_v3 world_center;
   int *mat_textured; /* per material: 1 when a texture varies over the surface (needs uv) */
@@ -197,6 +218,8 @@ typedef struct elr_hit {
   int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
   int flip;               /* pbrt-v3 orients this shape's normal the other way (ReverseOrientation, a mirroring
                              transform): only materials that tell outside from inside (glass) look at it */
+  int inst;               /* -1, or the instance (elr_instance) whose prototype's shape was hit: the shape's
+                             data are in the prototype's space, the hit record in world space */
   unsigned prim;
   float b1, b2;
   elr_v3 pobj;

@@ -76,7 +76,8 @@ typedef struct elr__parser {
   elr_xform *cs_xf;
   elr__named *texnames; int ntexn, captexn;
   elr__named *matnames; int nmatn, capmatn;
-  elr__hmap hctx, htex, hmat;
+  elr__hmap hctx, htex, hmat, hobj;
+  elr__named *objnames; int nobjn, capobjn; /* ObjectBegin names -> elr_object */
   int in_world, world_ended, seen_camera;
   elr_xform camera_ctm;
   elr__param params[ELR_MAX_PARAMS]; int nparams;
@@ -924,6 +925,10 @@ static void elr__light(elr__parser *P, const char *type) {
   }
 }
 
+static void elr__object_grow(elr_object *o, double x, double y, double z) {
+  o->lo[0] = fmin(o->lo[0], x); o->lo[1] = fmin(o->lo[1], y); o->lo[2] = fmin(o->lo[2], z);
+  o->hi[0] = fmax(o->hi[0], x); o->hi[1] = fmax(o->hi[1], y); o->hi[2] = fmax(o->hi[2], z);
+}
 /* pbrt-v3's Transform::SwapsHandedness: the upper 3x3 has a negative determinant */
 static int elr__swaps_handedness(const elr_xform *t) {
   const double(*m)[4] = (const double(*)[4])t->m;
@@ -950,6 +955,11 @@ static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
     }
   }
   m->material = P->gs.material;
+  if (m->object >= 0) { /* a prototype's shape: its bounds grow (ObjectInstance checks them in world space) */
+    elr_object *o = &s->obj[m->object];
+    for (i = 0; i < m->nvert; i++) elr__object_grow(o, m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]);
+    o->nmesh++;
+  }
   ELR_PUSH(P, s->mesh, s->nmesh, s->capmesh, elr_mesh);
   s->mesh[s->nmesh - 1] = *m;
 }
@@ -983,6 +993,15 @@ static void elr__shape(elr__parser *P, const char *type) {
     sp->o2w = P->ctm; sp->radius = r; sp->material = P->gs.material;
     sp->flip = P->gs.reverse ^ elr__swaps_handedness(&P->ctm);
     sp->object = P->cur_object;
+    if (sp->object >= 0) {
+      elr_object *o = &s->obj[sp->object];
+      int i;
+      for (i = 0; i < 8; i++) {
+        elr_v3 c = elr_xpoint(&sp->o2w, elr_v(i & 1 ? r : -r, i & 2 ? r : -r, i & 4 ? r : -r));
+        elr__object_grow(o, c.x, c.y, c.z);
+      }
+      o->nsph++;
+    }
   } else if (!strcmp(type, "trianglemesh")) {
     elr_mesh m;
     elr__param *pi = elr__findt(P, "indices", "integer", -3);
@@ -1369,11 +1388,8 @@ static void elr__directive_block(elr__parser *P, int need_world, const char *wha
 }
 
 static void elr__run(elr__parser *P) {
-  static const char *unsupported[] = {"AreaLightSource", "ObjectBegin", "ObjectEnd", "ObjectInstance",
-                                      "MakeNamedMedium", "MediumInterface", "TransformTimes", "ActiveTransform",
-                                      "Accelerator", "ReverseOrientation", "ColorSpace", "Option", "Attribute",
-                                      "AttributeSet", "SurfaceIntegrator", "VolumeIntegrator", "Renderer",
-                                      "Volume", "MakeNamedMaterial"};
+  static const char *unsupported[] = {"AreaLightSource", "ColorSpace", "Option", "Attribute", "AttributeSet", "SurfaceIntegrator",
+                                      "VolumeIntegrator", "Renderer", "Volume"};
   for (;;) {
     elr__tok t = elr__next(P);
     char nm[64];
@@ -1489,7 +1505,8 @@ static void elr__run(elr__parser *P) {
       char want = nm[0] == 'A' ? 'a' : 't';
       if (P->depth == 0) { elr_warn(P->s, P->dir_file, t.line, "unmatched %s ignored", nm); continue; }
       if (P->stack_kind[P->depth - 1] != want)
-        elr_warn(P->s, P->dir_file, t.line, "%s closes a %s block", nm, want == 'a' ? "TransformBegin" : "AttributeBegin");
+        elr_warn(P->s, P->dir_file, t.line, "%s closes a%s block", nm,
+                 P->stack_kind[P->depth - 1] == 'o' ? "n ObjectBegin" : (want == 'a' ? " TransformBegin" : "n AttributeBegin"));
       P->depth--;
       P->ctm = P->xstack[P->depth];
       if (want == 'a') P->gs = P->gstack[P->depth];
@@ -1558,6 +1575,56 @@ static void elr__run(elr__parser *P) {
       elr__name_add(P, &P->hmat, P->matnames, P->nmatn - 1);
       P->matnames[P->nmatn - 1].index = idx;
       elr__report_unused(P);
+    } else if (!strcmp(nm, "ObjectBegin")) {
+      /* pbrt-v3's pbrtObjectBegin: an AttributeBegin, then the shapes that follow make the prototype */
+      const char *name = elr__str(P, nm);
+      elr_object *o;
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (P->cur_object >= 0) elr__failf(P, P->dir_file, t.line, "ObjectBegin \"%s\" inside the definition of another object", name);
+      if (P->depth >= ELR_MAX_STACK) elr__failf(P, P->dir_file, t.line, "%s nested more than %d deep", nm, ELR_MAX_STACK);
+      P->xstack[P->depth] = P->ctm; P->gstack[P->depth] = P->gs; P->stack_kind[P->depth] = 'o'; P->depth++;
+      ELR_PUSH(P, P->s->obj, P->s->nobj, P->s->capobj, elr_object);
+      o = &P->s->obj[P->s->nobj - 1];
+      o->lo[0] = o->lo[1] = o->lo[2] = INFINITY; o->hi[0] = o->hi[1] = o->hi[2] = -INFINITY;
+      P->cur_object = P->s->nobj - 1;
+      ELR_PUSH(P, P->objnames, P->nobjn, P->capobjn, elr__named); /* a later ObjectBegin of the name replaces it */
+      P->objnames[P->nobjn - 1].name = elr__strdup(P, name, strlen(name));
+      elr__name_add(P, &P->hobj, P->objnames, P->nobjn - 1);
+      P->objnames[P->nobjn - 1].index = P->cur_object;
+    } else if (!strcmp(nm, "ObjectEnd")) {
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (P->cur_object < 0) elr__failf(P, P->dir_file, t.line, "ObjectEnd without ObjectBegin");
+      P->cur_object = -1;
+      /* pbrt-v3's pbrtObjectEnd ends with an AttributeEnd */
+      if (P->depth == 0) { elr_warn(P->s, P->dir_file, t.line, "unmatched ObjectEnd ignored"); continue; }
+      if (P->stack_kind[P->depth - 1] != 'o') elr_warn(P->s, P->dir_file, t.line, "ObjectEnd closes a %s block",
+                                                       P->stack_kind[P->depth - 1] == 'a' ? "AttributeBegin" : "TransformBegin");
+      P->depth--;
+      P->ctm = P->xstack[P->depth];
+      P->gs = P->gstack[P->depth];
+    } else if (!strcmp(nm, "ObjectInstance")) {
+      /* pbrt-v3's pbrtObjectInstance: the prototype placed by the CTM (instance to world); its shapes'
+       * own transformations come first */
+      const char *name = elr__str(P, nm);
+      int k;
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (P->cur_object >= 0) elr__failf(P, P->dir_file, t.line, "ObjectInstance \"%s\" inside an object definition", name);
+      k = elr__name_find(&P->hobj, P->objnames, P->nobjn, name);
+      if (k < 0) { elr_warn(P->s, P->dir_file, t.line, "ObjectInstance: object \"%s\" is not defined; ignored", name); continue; }
+      k = P->objnames[k].index;
+      if (P->s->obj[k].nmesh + P->s->obj[k].nsph == 0) continue; /* pbrt-v3: an empty object adds nothing */
+      {
+        const elr_object *o = &P->s->obj[k];
+        int c;
+        for (c = 0; c < 8; c++) /* the instance's world bounds must be traceable */
+          elr__check_point(P, t.line, elr_xpoint(&P->ctm, elr_v((float)(c & 1 ? o->hi[0] : o->lo[0]), (float)(c & 2 ? o->hi[1] : o->lo[1]),
+                                                              (float)(c & 4 ? o->hi[2] : o->lo[2]))),
+                           "a corner of the instance's bounds");
+      }
+      ELR_PUSH(P, P->s->inst, P->s->ninst, P->s->capinst, elr_instance);
+      P->s->inst[P->s->ninst - 1].object = k;
+      P->s->inst[P->s->ninst - 1].xf = P->ctm;
+      P->s->obj[k].ninstances++;
     } else if (!strcmp(nm, "ReverseOrientation")) {
       /* pbrt-v3's graphicsState.reverseOrientation: it flips the normals of the shapes that follow (only
        * transmissive materials see the difference: every other material here is two-sided) */
@@ -1646,7 +1713,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   while (P->arena) { elr__block *b = P->arena; P->arena = b->next; free(b); }
   free(P->growing[0]); free(P->growing[1]); /* a parse stopped while a value list grew */
   free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames); free(P->warned);
-  free(P->hctx.s); free(P->htex.s); free(P->hmat.s);
+  free(P->hctx.s); free(P->htex.s); free(P->hmat.s); free(P->hobj.s); free(P->objnames);
   free(P);
   return rc;
 }
