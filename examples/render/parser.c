@@ -45,7 +45,7 @@ typedef struct elr__gstate {
   int material;
   int *ftex_names; /* unused: named textures are stored globally with their scope below */
   int ntex_scope;  /* number of named textures visible */
-  int nnamed_mat;
+  int nnamed_mat;  /* number of named materials visible */
   int reverse;     /* ReverseOrientation */
   int end_only;    /* ActiveTransform EndTime: transformations go to the end time, which is not rendered */
 } elr__gstate;
@@ -1556,7 +1556,7 @@ static void elr__run(elr__parser *P) {
       else if (nm[0] == 'S') elr__shape(P, type);
       else if (nm[0] == 'M') P->gs.material = elr__make_material(P, type);
       else {
-        int k = elr__name_find(&P->hmat, P->matnames, P->nmatn, type);
+        int k = elr__name_find(&P->hmat, P->matnames, P->gs.nnamed_mat, type);
         if (k < 0) elr_warn(P->s, P->dir_file, t.line, "NamedMaterial \"%s\" is not defined; ignored", type);
         else P->gs.material = P->matnames[k].index;
       }
@@ -1570,10 +1570,19 @@ static void elr__run(elr__parser *P) {
       type = elr__pstring(P, "type", "");
       if (!type[0]) elr__failf(P, P->dir_file, t.line, "MakeNamedMaterial \"%s\": \"string type\" is required", name);
       idx = elr__make_material(P, type);
+      /* pbrt-v3 keeps named materials in the graphics state: a name made inside AttributeBegin/End is
+       * forgotten at its AttributeEnd, as named textures are */
+      if (P->gs.nnamed_mat < P->nmatn) {
+        elr__name_drop(&P->hmat, P->matnames, P->nmatn, P->gs.nnamed_mat);
+        P->nmatn = P->gs.nnamed_mat;
+      }
+      if (elr__name_find(&P->hmat, P->matnames, P->nmatn, name) >= 0)
+        elr_warn(P->s, P->dir_file, t.line, "MakeNamedMaterial: named material \"%s\" redefined", name);
       ELR_PUSH(P, P->matnames, P->nmatn, P->capmatn, elr__named);
       P->matnames[P->nmatn - 1].name = elr__strdup(P, name, strlen(name));
       elr__name_add(P, &P->hmat, P->matnames, P->nmatn - 1);
       P->matnames[P->nmatn - 1].index = idx;
+      P->gs.nnamed_mat = P->nmatn;
       elr__report_unused(P);
     } else if (!strcmp(nm, "ObjectBegin")) {
       /* pbrt-v3's pbrtObjectBegin: an AttributeBegin, then the shapes that follow make the prototype */
