@@ -23,6 +23,12 @@
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
+/* rarely taken branches of hot functions stay out of line, so that the common case keeps its registers */
+#if defined(__GNUC__)
+#define ELR_NOINLINE __attribute__((noinline))
+#else
+#define ELR_NOINLINE
+#endif
 
 /* >> vectors */
 typedef struct elr_v3 { float x, y, z; } elr_v3;

@@ -28,7 +28,7 @@ static float elr__alpha(float r, int remap) {
 }
 
 /* glass, metal, uber, substrate: pbrt-v3's BxDF lists, in the frame pbrt-v3 orients */
-static void elr__bsdf_list(const elr_scene *s, const elr_material *m, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
+static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *m, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
   elr_v3 ns = h->flip ? elr_mul(h->ns, -1.f) : h->ns, ng = h->flip ? elr_mul(h->ng, -1.f) : h->ng;
   elr_bxdf *x;
   int multiple = s->d.integrator_path; /* pbrt-v3's allowMultipleLobes: the path tracer's */

@@ -100,8 +100,8 @@ static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   wh = elr_norm(elr_add(wo, wi));
   return elr__tr_pdf_wh(b->alpha, wo, wh) / (4.f * fabsf(elr_dot(wo, wh)));
 }
-static elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
-static float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
+static ELR_NOINLINE elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
+static ELR_NOINLINE float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi, f = elr_v(0, 0, 0);
   int reflect;
@@ -288,6 +288,10 @@ static elr_v3 elr__bxdf_f(const elr_bxdf *x, elr_v3 wo, elr_v3 wi) {
     wh = elr_norm(elr_add(wo, elr_mul(wi, eta)));
     if (wh.z < 0.f) wh = elr_mul(wh, -1.f);
     if (elr_dot(wo, wh) * elr_dot(wi, wh) > 0.f) return elr_v(0, 0, 0);
+    /* pbrt-v4's <<Discard backfacing microfacets>>: pbrt-v3 goes on with such a wh, and its Fresnel term
+     * is then total reflection for one of (wo, wi) and (wi, wo) but not the other (f not reciprocal);
+     * visible-normal sampling never makes these pairs */
+    if (elr_dot(wh, wo) * wo.z < 0.f || elr_dot(wh, wi) * wi.z < 0.f) return elr_v(0, 0, 0);
     F = elr_fr_dielectric(elr_dot(wo, wh), x->eta_a, x->eta_b);
     sq = elr_dot(wo, wh) + eta * elr_dot(wi, wh);
     factor = 1.f / eta;
@@ -325,6 +329,8 @@ static float elr__bxdf_pdf(const elr_bxdf *x, elr_v3 wo, elr_v3 wi) {
     eta = wo.z > 0.f ? x->eta_b / x->eta_a : x->eta_a / x->eta_b;
     wh = elr_norm(elr_add(wo, elr_mul(wi, eta)));
     if (elr_dot(wo, wh) * elr_dot(wi, wh) > 0.f) return 0.f;
+    if (wh.z < 0.f) wh = elr_mul(wh, -1.f);
+    if (elr_dot(wh, wo) * wo.z < 0.f || elr_dot(wh, wi) * wi.z < 0.f) return 0.f; /* (as in f) */
     /* <<Compute change of variables dwh_dwi for microfacet transmission>> */
     sq = elr_dot(wo, wh) + eta * elr_dot(wi, wh);
     return elr__tr2_pdf(x->ax, x->ay, wo, wh) * fabsf(eta * eta * elr_dot(wi, wh) / (sq * sq));
@@ -464,7 +470,7 @@ elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type) {
 
 /* pbrt-v3's BSDF::f, Pdf and Sample_f over the lobes whose flags lie in type */
 static int elr__matches(const elr_bxdf *x, int type) { return (x->flags & type) == x->flags; }
-static elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type) {
+static ELR_NOINLINE elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type) {
   elr_v3 wo = elr__to_local(b, woW), wi = elr__to_local(b, wiW), f = elr_v(0, 0, 0);
   int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f, i;
   if (wo.z == 0.f) return f;
@@ -475,7 +481,7 @@ static elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type) {
   }
   return f;
 }
-static float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type) {
+static ELR_NOINLINE float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type) {
   elr_v3 wo = elr__to_local(b, woW), wi = elr__to_local(b, wiW);
   float pdf = 0.f;
   int i, n = 0;

@@ -257,7 +257,7 @@ int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax) {
  * prototype's space (the ray taken there by the inverse transform; t is the same in both spaces), then
  * taken to world space (pbrt-v3's TransformedPrimitive::Intersect: the point, the normals by the inverse
  * transpose, the shading normal turned to the geometric normal's side) */
-static void elr__instance_hit(const elr_scene *s, int ii, unsigned geom, unsigned prim, float b1, float b2, elr_v3 o, elr_v3 d, elr_hit *h) {
+static ELR_NOINLINE void elr__instance_hit(const elr_scene *s, int ii, unsigned geom, unsigned prim, float b1, float b2, elr_v3 o, elr_v3 d, elr_hit *h) {
   const elr_instance *in = &s->inst[ii];
   const elr_object *ob = &s->obj[in->object];
   if (geom == ob->sphere_geom) {
