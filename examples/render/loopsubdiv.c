@@ -138,16 +138,21 @@ int elr_loop_subdivide(int levels, const int *indices, int nindices, const doubl
   if (!ring || !remap || !m.f || !m.v) goto oom;
   /* <<Allocate LoopSubdiv vertices and faces>>: triangles that repeat a vertex left out, unused vertices dropped */
   for (i = 0; i < npoints; i++) remap[i] = -1;
+  for (i = 0; i + 2 < nindices; i += 3) { /* the vertices used, kept in their order (pbrt-v3's when all are) */
+    const int *t = indices + i;
+    if (!(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])) remap[t[0]] = remap[t[1]] = remap[t[2]] = 0;
+  }
+  for (i = 0; i < npoints; i++)
+    if (remap[i] == 0) {
+      sd_vertex *v = &m.v[m.nv];
+      memcpy(v->p, P + 3 * (size_t)i, sizeof v->p);
+      v->start_face = -1; v->child = -1; v->regular = v->boundary = 0;
+      remap[i] = m.nv++;
+    }
   for (i = 0; i + 2 < nindices; i += 3) {
     const int *t = indices + i;
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) { (*dropped)++; continue; }
     for (k = 0; k < 3; k++) {
-      if (remap[t[k]] < 0) {
-        sd_vertex *v = &m.v[m.nv];
-        memcpy(v->p, P + 3 * (size_t)t[k], sizeof v->p);
-        v->start_face = -1; v->child = -1; v->regular = v->boundary = 0;
-        remap[t[k]] = m.nv++;
-      }
       /* <<Set face to vertex pointers>> */
       m.f[m.nf].v[k] = remap[t[k]];
       m.f[m.nf].f[k] = -1;
