@@ -3,7 +3,7 @@
  * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
  * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
  * them as float[3] (elr_to3, elr_from3).
- *   vectors, transforms (transform.c)      scene description (parser.c, scene.c)
+ *   vectors, transforms (transform.c)      scene description (parser.c, scene.c, ply.c, loopsubdiv.c)
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)

@@ -8,7 +8,8 @@
  * space when it creates them). After Embree's hit, the hit record (elr_sphere_hit, elr_triangle_hit)
  * and, only for textured materials and ray differentials, the parameterisation (elr_hit_uv). Sampling
  * a point on a shape (pbrt-v3's Shape::Sample and Pdf, for area lights) and Shape "disk" would join
- * here; Loop subdivision (shapes/loopsubdiv.cpp) makes triangle meshes and would have a file of its own. */
+ * here; Loop subdivision (loopsubdiv.c) makes triangle meshes. A prototype's shapes (ObjectBegin) are
+ * in its own space: their hit records are made there and taken to world space by scene.c. */
 #include "elr_internal.h"
 #include <embree3/rtcore.h>
 #include <float.h>
