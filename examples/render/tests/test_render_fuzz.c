@@ -492,9 +492,9 @@ static void fz_make_seeds(void) {
    * film shrunk to 8 x 8), small scenes */
   fz_set(&fz_scene_seed[fz_nscene_seeds++], fz_every_directive, strlen(fz_every_directive));
   {
-    static const char *files[2] = {"envlight_demo.pbrt", "bench_city.pbrt"};
+    static const char *files[4] = {"envlight_demo.pbrt", "bench_city.pbrt", "glass_metal.pbrt", "loopsubdiv.pbrt"};
     int k;
-    for (k = 0; k < 2; k++) {
+    for (k = 0; k < 4; k++) {
       char path[1024];
       fz_buf *b = &fz_scene_seed[fz_nscene_seeds];
       char *q;
@@ -505,6 +505,8 @@ static void fz_make_seeds(void) {
       while ((q = strstr((char *)b->p, "[ 400 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       while ((q = strstr((char *)b->p, "[ 320 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       while ((q = strstr((char *)b->p, "[ 240 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
+      while ((q = strstr((char *)b->p, "[ 192 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
+      while ((q = strstr((char *)b->p, "[ 180 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       fz_nscene_seeds++;
     }
   }
