@@ -463,6 +463,8 @@ static inline float elr_eta_scale(float eta_scale, const struct elr_bsdf *b, elr
   return eta_scale * (elr_dot(wo, b->ng) > 0.f ? b->eta * b->eta : 1.f / (b->eta * b->eta));
 }
 elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
+                              int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
 /* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
 void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);

@@ -17,12 +17,18 @@
  * rest of a path whose first vertex render_batched.c shaded. Its recursion (SpecularReflect, then
  * SpecularTransmit) runs as a loop carrying the throughput beta, with the transmitted branches of
  * glass waiting on a small stack: no stack growth whatever maxdepth says. */
-elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts) {
+elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts) { return elr_direct_li_branches(C, S, p, NULL, 0, 0, ts); }
+
+/* the same with branches already waiting (render_batched.c: those of a first vertex shaded ahead) and
+ * splits already made */
+elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
+                              int splits, elr_tstats *ts) {
   const elr_scene *s = C->s;
   elr_v3 L = p->L, beta = p->beta;
   elr_ray r = p->ray;
   elr_path_state pending[ELR_DIRECT_PENDING];
-  int depth = p->depth, npending = 0, splits = 0;
+  int depth = p->depth, npending = 0;
+  for (; npending < nwaiting && npending < ELR_DIRECT_PENDING; npending++) pending[npending] = waiting[npending];
   for (;;) {
     elr_hit h;
     elr_bsdf b;

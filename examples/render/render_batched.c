@@ -100,11 +100,9 @@ static elr_v3 elr__direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray 
     p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &f->b, wo, f, 1, 1, ts)));
   if (1 < C->maxdepth && (f->b.spec_r || f->b.spec_t)) {
     elr_path_state next[2];
-    int n = elr_direct_specular(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, p.beta, 0, 1, next, ts), k;
-    for (k = 0; k < n; k++) {
-      next[k].L = k == 0 ? p.L : elr_v(0, 0, 0);
-      p.L = k == 0 ? elr_direct_li(C, S, &next[k], ts) : elr_add(p.L, elr_direct_li(C, S, &next[k], ts));
-    }
+    int n = elr_direct_specular(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, p.beta, 0, 1, next, ts);
+    /* the reference's state after its first vertex: the first branch followed, the second waiting */
+    if (n >= 1) { next[0].L = p.L; return elr_direct_li_branches(C, S, &next[0], &next[1], n - 1, n - 1, ts); }
   }
   return p.L;
 }
