@@ -3,7 +3,7 @@
  * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
  * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
  * them as float[3] (elr_to3, elr_from3).
- *   vectors, transforms (transform.c)      scene description (parser.c, scene.c)
+ *   vectors, transforms (transform.c)      scene description (parser.c, scene.c, ply.c, loopsubdiv.c)
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
@@ -23,6 +23,12 @@
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
+/* rarely taken branches of hot functions stay out of line, so that the common case keeps its registers */
+#if defined(__GNUC__)
+#define ELR_NOINLINE __attribute__((noinline))
+#else
+#define ELR_NOINLINE
+#endif
 
 /* >> vectors */
 typedef struct elr_v3 { float x, y, z; } elr_v3;
@@ -63,29 +69,38 @@ elr_v3 elr_xpoint(const elr_xform *t, elr_v3 p);
 elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
+elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 
 /* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
 
-enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2 };
+enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2, ELR_TEX_SCALE = 3, ELR_TEX_MIX = 4 };
 typedef struct elr_texture {
   int kind;
   elr_v3 value;            /* constant */
-  int tex1, tex2;          /* checkerboard: sub-textures */
+  int tex1, tex2;          /* checkerboard, scale, mix: sub-textures */
+  int amount;              /* mix: the float texture that blends tex1 (0) to tex2 (1) */
   int aa_closedform;       /* checkerboard aamode */
   float su, sv, du, dv;    /* uv mapping */
   el_mipmap *mip;          /* imagemap (mipmap.h; upper levels built on the first lookup that needs them) */
   int is_float;
 } elr_texture;
 
-enum { ELR_MAT_MATTE = 0, ELR_MAT_MIRROR = 1, ELR_MAT_PLASTIC = 2 };
+enum { ELR_MAT_MATTE = 0, ELR_MAT_MIRROR = 1, ELR_MAT_PLASTIC = 2, ELR_MAT_GLASS = 3, ELR_MAT_METAL = 4, ELR_MAT_UBER = 5,
+       ELR_MAT_SUBSTRATE = 6 };
 typedef struct elr_material {
   int kind;
-  int kd, ks, kr, rough; /* texture indices */
+  int kd, ks, kr, rough; /* texture indices (-1: none) */
   int remap;
+  int kt, urough, vrough, index, eta, k, opacity; /* glass, metal, uber, substrate (-1: none) */
 } elr_material;
+#define ELR_MAT_NTEX 11 /* the texture indices of a material, as an array: elr_material_textures */
+static inline void elr_material_textures(const elr_material *m, int t[ELR_MAT_NTEX]) {
+  t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough; t[4] = m->kt; t[5] = m->urough; t[6] = m->vrough;
+  t[7] = m->index; t[8] = m->eta; t[9] = m->k; t[10] = m->opacity;
+}
 
 typedef struct elr_mesh {
   int ntri, nvert;
@@ -94,13 +109,34 @@ typedef struct elr_mesh {
   float *n;       /* 3*nvert or NULL, world space */
   float *uv;      /* 2*nvert or NULL */
   int material;
+  int flip;       /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness, for meshes without N */
+  int object;     /* -1: in the world; else the ObjectBegin prototype (elr_object) it belongs to */
 } elr_mesh;
 
 typedef struct elr_sphere {
-  elr_xform o2w; /* object to world */
+  elr_xform o2w; /* object to world (an instance's object space, for a prototype's sphere) */
   float radius;
   int material;
+  int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
+  int object;    /* -1, or the prototype it belongs to */
 } elr_sphere;
+
+/* ObjectBegin ... ObjectEnd: a prototype (pbrt-v3's renderOptions->instances[name]) whose shapes are the
+ * meshes and spheres with .object == its index, in its own space (the CTM at each Shape); ObjectInstance
+ * places it with the CTM of that line (pbrt-v3's TransformedPrimitive). scene.c makes each prototype that
+ * is instanced one Embree scene, and each instance an Embree instance of it: one copy of the geometry. */
+typedef struct elr_sphere_set { const struct elr_sphere *sph; const int *idx; } elr_sphere_set; /* user-geometry primID -> sphere */
+typedef struct elr_object {
+  int nmesh, nsph, ninstances;
+  double lo[3], hi[3];        /* the bounds of its shapes, in its space */
+  /* Embree (scene.c) */
+  void *rtscene;
+  int *geom_mesh;             /* per geometry id of its scene: the mesh, or -1 (the spheres) */
+  unsigned ngeom, sphere_geom;
+  int *sph_user;
+  elr_sphere_set spheres;
+} elr_object;
+typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ } elr_instance;
 
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2 };
 typedef struct elr_light {
@@ -141,6 +177,8 @@ struct elr_scene {
   elr_mesh *mesh; int nmesh, capmesh;
   elr_sphere *sph; int nsph, capsph;
   elr_light *light; int nlight, caplight;
+  elr_object *obj; int nobj, capobj;
+  elr_instance *inst; int ninst, capinst;
   int warnings;
   char last_warning[512];
   int quiet;
@@ -148,12 +186,13 @@ struct elr_scene {
   size_t bytes_textures, bytes_embree;
   /* Embree */
   void *device, *rtscene;
-  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres */
+  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres, 2 an instance (geom_index: which) */
   int *geom_index;
   unsigned ngeom;
   unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
   unsigned builtin_geom; /* geometry id of Embree's sphere primitives (similarity transforms), or ~0u */
   int *sph_builtin, *sph_user, nbuiltin, nuser; /* primID -> sphere index */
+  elr_sphere_set world_spheres; /* the user geometry's data: sph, sph_user */
   float world_radius;
   elr_v3 world_center;
   int *mat_textured; /* per material: 1 when a texture varies over the surface (needs uv) */
@@ -164,6 +203,10 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+/* loopsubdiv.c: pbrt-v3's LoopSubdivide of the control mesh (indices in [0, npoints), P: 3 npoints) into
+ * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
+int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
+                       char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
@@ -179,6 +222,10 @@ typedef struct elr_hit {
   float eps;           /* offset for spawned rays */
   /* for elr_hit_uv */
   int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
+  int flip;               /* pbrt-v3 orients this shape's normal the other way (ReverseOrientation, a mirroring
+                             transform): only materials that tell outside from inside (glass) look at it */
+  int inst;               /* -1, or the instance (elr_instance) whose prototype's shape was hit: the shape's
+                             data are in the prototype's space, the hit record in world space */
   unsigned prim;
   float b1, b2;
   elr_v3 pobj;
@@ -208,19 +255,52 @@ typedef struct elr_tex_ctx { /* where textures are evaluated: (u, v) and its scr
 } elr_tex_ctx;
 elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
 
-/* A BSDF in the shading frame: up to one diffuse, one glossy and one specular lobe. */
+/* pbrt-v3's BxDFType flags and the BxDFs of core/reflection.h that the materials use (reflection.c) */
+enum { ELR_BSDF_REFLECTION = 1, ELR_BSDF_TRANSMISSION = 2, ELR_BSDF_DIFFUSE = 4, ELR_BSDF_GLOSSY = 8, ELR_BSDF_SPECULAR = 16,
+       ELR_BSDF_ALL = 31 };
+enum { ELR_BXDF_LAMBERTIAN = 0, ELR_BXDF_SPECULAR_REFLECTION, ELR_BXDF_SPECULAR_TRANSMISSION, ELR_BXDF_FRESNEL_SPECULAR,
+       ELR_BXDF_MICROFACET_REFLECTION, ELR_BXDF_MICROFACET_TRANSMISSION, ELR_BXDF_FRESNEL_BLEND };
+enum { ELR_FRESNEL_NOOP = 0, ELR_FRESNEL_DIELECTRIC, ELR_FRESNEL_CONDUCTOR };
+typedef struct elr_bxdf {
+  int type, flags, fresnel; /* ELR_BXDF_*, ELR_BSDF_* flags, the Fresnel term of a reflection (ELR_FRESNEL_*) */
+  elr_v3 R, T;              /* the reflection and transmission scales; FresnelBlend: R = Rd, T = Rs */
+  float ax, ay;             /* Trowbridge-Reitz alphas (microfacet lobes, FresnelBlend) */
+  float eta_a, eta_b;       /* dielectric Fresnel: etaI, etaT; transmission: etaA outside, etaB inside */
+  elr_v3 eta, k;            /* conductor Fresnel: eta and k of the metal (etaI 1) */
+} elr_bxdf;
+#define ELR_MAX_BXDFS 6
+
+/* A BSDF in the shading frame. matte, mirror and plastic use the fixed lobes (up to one diffuse, one
+ * glossy and one specular reflection; nlobes = 0); glass, metal, uber and substrate a list of pbrt-v3's
+ * BxDFs (nlobes > 0), in a frame around the shading normal turned as pbrt-v3 orients it (the side a
+ * dielectric calls outside). spec_r, spec_t: a specular reflection, a specular transmission lobe exists
+ * (the direct-lighting integrator follows them); eta: pbrt-v3's BSDF::eta, the relative index of
+ * refraction of the inside (1 for materials that do not refract). */
 typedef struct elr_bsdf {
   elr_v3 ns, ss, ts, ng;
   elr_v3 kd, ks, kr;
   float alpha;
   int has_diffuse, has_glossy, has_specular, ncomp;
+  int spec_r, spec_t, nlobes;
+  float eta, nsign; /* nsign: -1 when the frame's normal is the hit's turned around (ray differentials) */
+  elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
-/* Returns f; *specular set when the sampled lobe was the specular one. */
+/* Returns f; *specular is 0 when the sampled lobe was not specular, 1 for a specular reflection, 2 for a
+ * specular transmission. */
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
+/* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
+ * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
+elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);
+/* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
+void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
+elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type);
 float elr_roughness_to_alpha(float r);
+/* pbrt-v3's FrDielectric (cos_i signed: below the surface, the indices swap) and FrConductor (etaI 1) */
+float elr_fr_dielectric(float cos_i, float eta_i, float eta_t);
+elr_v3 elr_fr_conductor(float cos_i, elr_v3 eta, elr_v3 k);
 
 /* >> ray differentials at a hit (interaction.c): the texture footprint */
 void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
@@ -360,10 +440,13 @@ typedef struct elr_path_state {
   elr_v3 L, beta;
   int specular;
   float prev_pdf;
+  float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
+  p->eta_scale = 1.f;
 }
+
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
                          const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld);
@@ -371,7 +454,17 @@ elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr
                                      int sample_bsdf, elr_tstats *ts);
 int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
+int elr_specular_transmit(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
+int elr_direct_specular(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                        elr_v3 dpdy, const elr_bsdf *b, elr_v3 beta, int depth, int allow_split, elr_path_state out[2], elr_tstats *ts);
+/* <<Update the term that tracks radiance scaling for refraction>> after a specular transmission from wo */
+static inline float elr_eta_scale(float eta_scale, const struct elr_bsdf *b, elr_v3 wo) {
+  return eta_scale * (elr_dot(wo, b->ng) > 0.f ? b->eta * b->eta : 1.f / (b->eta * b->eta));
+}
 elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
+                              int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
 /* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
 void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);

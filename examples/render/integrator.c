@@ -5,6 +5,8 @@
  *                                   combined with the power heuristic (MIS)
  *   elr_uniform_sample_all_lights   UniformSampleAllLights: every light, with its own sample count
  *   elr_specular_reflect            SpecularReflect: the mirror bounce and its ray differentials
+ *   elr_specular_transmit           SpecularTransmit: the refracted bounce and its ray differentials
+ *   elr_direct_specular             both, at a vertex of the direct-lighting integrator
  *   elr_infinite_le                 the radiance of the lights at infinity along a ray that leaves
  *
  * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
@@ -112,14 +114,19 @@ int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, con
   int spec;
   /* <<Compute specular reflection direction wi and BSDF value>> */
   elr_sampler_get2d(S, u);
-  f = elr_bsdf_sample(b, wo, u[0], u[1], &wi, &pdf, &spec);
+  if (b->nlobes) { /* pbrt-v3's Sample_f with type BSDF_REFLECTION | BSDF_SPECULAR */
+    f = elr_bsdf_sample_type(b, wo, u[0], u[1], ELR_BSDF_REFLECTION | ELR_BSDF_SPECULAR, &wi, &pdf, &spec);
+    spec &= ELR_BSDF_SPECULAR;
+  } else {
+    f = elr_bsdf_sample(b, wo, u[0], u[1], &wi, &pdf, &spec);
+  }
   if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b->ns) != 0.f)) return 0;
   out.o = elr_spawn_origin(h, wi); out.d = wi; out.has_diff = 0;
   if (r->has_diff && C->s->any_textured) {
     /* <<Compute ray differential rd for specular reflection>> */
     elr_v3 ns = b->ns;
-    elr_v3 dndx = elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx));
-    elr_v3 dndy = elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy));
+    elr_v3 dndx = elr_mul(elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx)), b->nsign);
+    elr_v3 dndy = elr_mul(elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy)), b->nsign);
     elr_v3 dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo), dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
     float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
     out.has_diff = 1;
@@ -131,4 +138,70 @@ int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, con
   *beta = elr_mul(elr_vmul(*beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
   *rd = out;
   return 1;
+}
+
+/* pbrt-v3's SpecularTransmit up to its recursion: the refracted direction at h as the next ray *rd
+ * (with pbrt-v3's ray differentials for refraction when r has them) and the throughput *beta times
+ * f |cos| / pdf (f carries the radiance scaling (etaI / etaT)^2). Returns 0 when nothing transmits. */
+int elr_specular_transmit(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts) {
+  elr_v3 wo = elr_mul(r->d, -1.f), wi, f, ns = b->ns;
+  elr_ray out;
+  float pdf, u[2];
+  int flags;
+  elr_sampler_get2d(S, u);
+  f = elr_bsdf_sample_type(b, wo, u[0], u[1], ELR_BSDF_TRANSMISSION | ELR_BSDF_SPECULAR, &wi, &pdf, &flags);
+  if (!(pdf > 0.f && !elr_isblack(f) && elr_dot(wi, ns) != 0.f)) return 0;
+  out.o = elr_spawn_origin(h, wi); out.d = wi; out.has_diff = 0;
+  if (r->has_diff && C->s->any_textured) {
+    /* <<Compute ray differential rd for specular transmission>> */
+    elr_v3 dndx = elr_mul(elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx)), b->nsign);
+    elr_v3 dndy = elr_mul(elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy)), b->nsign);
+    elr_v3 dwodx, dwody;
+    float eta = 1.f / b->eta, dDNdx, dDNdy, mu, cwi, dmudx, dmudy;
+    if (elr_dot(wo, ns) < 0.f) { /* leaving: the relative index inverted, the normal and its derivatives turned */
+      eta = 1.f / eta; ns = elr_mul(ns, -1.f); dndx = elr_mul(dndx, -1.f); dndy = elr_mul(dndy, -1.f);
+    }
+    dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo); dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
+    dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx); dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
+    cwi = fabsf(elr_dot(wi, ns));
+    mu = eta * elr_dot(wo, ns) - cwi;
+    dmudx = (eta - (eta * eta * elr_dot(wo, ns)) / cwi) * dDNdx;
+    dmudy = (eta - (eta * eta * elr_dot(wo, ns)) / cwi) * dDNdy;
+    out.has_diff = 1;
+    out.rxo = elr_add(out.o, dpdx); out.ryo = elr_add(out.o, dpdy);
+    out.rxd = elr_add(elr_sub(wi, elr_mul(dwodx, eta)), elr_add(elr_mul(dndx, mu), elr_mul(ns, dmudx)));
+    out.ryd = elr_add(elr_sub(wi, elr_mul(dwody, eta)), elr_add(elr_mul(dndy, mu), elr_mul(ns, dmudy)));
+  }
+  ts->bounce++;
+  *beta = elr_mul(elr_vmul(*beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
+  *rd = out;
+  return 1;
+}
+
+/* The direct-lighting integrator's specular continuations at h (pbrt-v3's DirectLightingIntegrator::Li:
+ * SpecularReflect, then SpecularTransmit): up to two next path states (ray, throughput, depth + 1) in
+ * out, their number returned. pbrt-v3 follows both, so glass doubles the rays at every vertex; where the
+ * caller has no room left for that (allow_split = 0), one of the two is followed, chosen with a sampler
+ * draw in proportion to its throughput's largest component and divided by that probability (the same
+ * expectation, a bounded cost). */
+int elr_direct_specular(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                        elr_v3 dpdy, const elr_bsdf *b, elr_v3 beta, int depth, int allow_split, elr_path_state out[2], elr_tstats *ts) {
+  int n = 0;
+  if (b->spec_r) {
+    out[n].beta = beta;
+    if (elr_specular_reflect(C, S, r, h, tc, dpdx, dpdy, b, &out[n].ray, &out[n].beta, ts)) out[n++].depth = depth + 1;
+  }
+  if (b->spec_t) {
+    out[n].beta = beta;
+    if (elr_specular_transmit(C, S, r, h, tc, dpdx, dpdy, b, &out[n].ray, &out[n].beta, ts)) out[n++].depth = depth + 1;
+  }
+  if (n == 2 && !allow_split) {
+    float m0 = elr_maxc(out[0].beta), m1 = elr_maxc(out[1].beta), p0 = m0 + m1 > 0.f ? m0 / (m0 + m1) : 0.5f;
+    if (elr_sampler_get1d(S) < p0) out[0].beta = elr_mul(out[0].beta, 1.f / p0);
+    else { out[0] = out[1]; out[0].beta = elr_mul(out[0].beta, 1.f / (1.f - p0)); }
+    ts->bounce--; /* one of the two rays is not traced */
+    n = 1;
+  }
+  return n;
 }

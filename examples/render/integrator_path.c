@@ -9,8 +9,10 @@
  * (pbrt-v4's arrangement: one fewer ray per vertex than pbrt-v3's EstimateDirect, the same
  * expectation). pbrt-v3's Russian roulette: after 3 bounces, when the throughput's largest component
  * is below rrthreshold. Later rays carry no differentials (pbrt-v3 spawns them without), so their
- * textures are point sampled. Area lights hit by the path would add their emission here, MIS-weighted
- * in the same way (the previous vertex's BSDF pdf against the light's Pdf_Li from it). */
+ * textures are point sampled. Refraction (glass, uber's Kt) scales the radiance by (etaI / etaT)^2 in
+ * the BSDF (pbrt-v3's radiance transport), and Russian roulette leaves that scaling out (etaScale).
+ * Area lights hit by the path would add their emission here, MIS-weighted in the same way (the previous
+ * vertex's BSDF pdf against the light's Pdf_Li from it). */
 #include "elr_internal.h"
 #include <string.h>
 
@@ -21,7 +23,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   elr_v3 L = p->L, beta = p->beta;
   elr_ray r = p->ray;
   int depth, specular = p->specular;
-  float prev_pdf = p->prev_pdf;
+  float prev_pdf = p->prev_pdf, eta_scale = p->eta_scale;
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;
@@ -64,12 +66,14 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
     if (elr_isblack(f) || pdf == 0.f) break;
     beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
     specular = spec; prev_pdf = pdf;
+    if (spec == 2) eta_scale = elr_eta_scale(eta_scale, &b, wo); /* a specular transmission */
     /* the last vertex's continuation only matters for the environment's BSDF-sampled part */
     if (depth + 1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;
     r.o = elr_spawn_origin(&h, wi); r.d = wi; r.has_diff = 0;
     ts->bounce++;
-    { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3) */
-      float mc = elr_maxc(beta);
+    { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3; rrBeta = beta etaScale:
+       * the radiance scaling of refraction left out, so that a ray about to leave glass is not ended) */
+      float mc = elr_maxc(beta) * eta_scale;
       if (depth > 3 && mc < C->rr) {
         float q = fmaxf(0.05f, 1.f - mc);
         if (elr_sampler_get1d(S) < q) break;

@@ -45,8 +45,9 @@ typedef struct elr__gstate {
   int material;
   int *ftex_names; /* unused: named textures are stored globally with their scope below */
   int ntex_scope;  /* number of named textures visible */
-  int nnamed_mat;
-  int reverse;
+  int nnamed_mat;  /* number of named materials visible */
+  int reverse;     /* ReverseOrientation */
+  int end_only;    /* ActiveTransform EndTime: transformations go to the end time, which is not rendered */
 } elr__gstate;
 
 typedef struct elr__named { char *name; int index; int is_float; int prev; /* the entry it shadows, or -1 */ } elr__named;
@@ -75,12 +76,17 @@ typedef struct elr__parser {
   elr_xform *cs_xf;
   elr__named *texnames; int ntexn, captexn;
   elr__named *matnames; int nmatn, capmatn;
-  elr__hmap hctx, htex, hmat;
+  elr__hmap hctx, htex, hmat, hobj;
+  elr__named *objnames; int nobjn, capobjn; /* ObjectBegin names -> elr_object */
   int in_world, world_ended, seen_camera;
   elr_xform camera_ctm;
   elr__param params[ELR_MAX_PARAMS]; int nparams;
   const char *dir_file; int dir_line; /* current directive, for messages */
   char dir_name[64];
+  /* what was said once already (elr__warn_once): unsupported directives, types and parameters are
+   * reported at their first occurrence only, so that a scene of 10^5 shapes gives one line, not 10^5 */
+  char **warned; int nwarned, capwarned;
+  int cur_object; /* the ObjectBegin block being read (its elr_object), or -1 */
 } elr__parser;
 
 static void *elr__alloc(elr__parser *P, size_t n) {
@@ -152,6 +158,35 @@ void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...) {
   snprintf(s->last_warning, sizeof s->last_warning, "%s:%d: warning: %s", file, line, msg);
   s->warnings++;
   if (!s->quiet) fprintf(stderr, "%s\n", s->last_warning);
+}
+
+/* A warning that is given once per key (the first occurrence's file:line); returns 1 when it was given.
+ * At most ELR_MAX_WARNED keys are remembered (keys come from the scene's own names); past that, one last
+ * line says that further unsupported features are not reported. */
+#define ELR_MAX_WARNED 512
+static void elr__warn_once(elr__parser *P, const char *file, int line, const char *key, const char *fmt, ...) {
+  char msg[400];
+  va_list ap;
+  int i;
+  for (i = 0; i < P->nwarned; i++) if (!strcmp(P->warned[i], key)) return;
+  if (P->nwarned >= ELR_MAX_WARNED) {
+    if (P->nwarned == ELR_MAX_WARNED) {
+      elr_warn(P->s, file, line, "more than %d different unsupported features: the rest are not reported", ELR_MAX_WARNED);
+      P->nwarned++;
+    }
+    return;
+  }
+  if (P->nwarned == P->capwarned) {
+    int nc = P->capwarned ? 2 * P->capwarned : 16;
+    char **nw = (char **)realloc(P->warned, sizeof(char *) * (size_t)nc);
+    if (!nw) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+    P->warned = nw; P->capwarned = nc;
+  }
+  P->warned[P->nwarned] = (char *)elr__alloc(P, strlen(key) + 1);
+  memcpy(P->warned[P->nwarned], key, strlen(key) + 1);
+  P->nwarned++;
+  va_start(ap, fmt); vsnprintf(msg, sizeof msg, fmt, ap); va_end(ap);
+  elr_warn(P->s, file, line, "%s (reported once)", msg);
 }
 
 /* >> tokenizer */
@@ -419,9 +454,12 @@ static elr_v3 elr__ppoint(elr__parser *P, const char *name, const char *type, el
 static void elr__report_unused(elr__parser *P) {
   int i;
   for (i = 0; i < P->nparams; i++)
-    if (!P->params[i].used)
-      elr_warn(P->s, P->params[i].file, P->params[i].line, "%s: parameter \"%s %s\" is not supported and is ignored",
-               P->dir_name, P->params[i].type, P->params[i].name);
+    if (!P->params[i].used) {
+      char key[300];
+      snprintf(key, sizeof key, "parameter %s %s %s", P->dir_name, P->params[i].type, P->params[i].name);
+      elr__warn_once(P, P->params[i].file, P->params[i].line, key, "%s: parameter \"%s %s\" is not supported and is ignored",
+                     P->dir_name, P->params[i].type, P->params[i].name);
+    }
 }
 static void elr__check_range(elr__parser *P, const char *name, double v, double lo, double hi) {
   elr__param *p = elr__find(P, name);
@@ -757,7 +795,22 @@ static void elr__integrator(elr__parser *P, const char *type) {
       if (strcmp(st, "all") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Integrator: strategy \"%s\" ignored (\"all\" is used)", st);
     }
   } else {
-    if (strcmp(type, "path") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Integrator \"%s\" is not supported; using \"path\"", type);
+    if (strcmp(type, "path") != 0) {
+      /* pbrt-v3's other integrators (whitted, volpath, bdpt, mlt, sppm, ambientocclusion) and anything
+       * else: the path tracer, with the scene's maxdepth; the other parameters belong to the integrator
+       * that is not there */
+      int i, keep = 0;
+      for (i = 0; i < P->nparams; i++)
+        if (strcmp(P->params[i].name, "maxdepth") != 0) P->params[i].used = 1;
+        else keep = 1;
+      elr_warn(P->s, P->dir_file, P->dir_line, "Integrator \"%s\" is not supported; using \"path\"%s, its other parameters ignored", type,
+               keep ? " with its maxdepth" : " (maxdepth 5)");
+      d->integrator_path = 1; d->rrthreshold = 1.f;
+      d->maxdepth = elr__pint(P, "maxdepth", 5);
+      elr__check_range(P, "maxdepth", d->maxdepth, 0, 100000);
+      d->light_sampling = ELR_LS_MIS;
+      return;
+    }
     d->integrator_path = 1;
     d->rrthreshold = (float)elr__pfloat(P, "rrthreshold", 1.0);
     if (elr__find(P, "lightsamplestrategy")) {
@@ -878,9 +931,22 @@ static void elr__light(elr__parser *P, const char *type) {
   }
 }
 
+static void elr__object_grow(elr_object *o, double x, double y, double z) {
+  o->lo[0] = fmin(o->lo[0], x); o->lo[1] = fmin(o->lo[1], y); o->lo[2] = fmin(o->lo[2], z);
+  o->hi[0] = fmax(o->hi[0], x); o->hi[1] = fmax(o->hi[1], y); o->hi[2] = fmax(o->hi[2], z);
+}
+/* pbrt-v3's Transform::SwapsHandedness: the upper 3x3 has a negative determinant */
+static int elr__swaps_handedness(const elr_xform *t) {
+  const double(*m)[4] = (const double(*)[4])t->m;
+  double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+               m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  return det < 0;
+}
 static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
   elr_scene *s = P->s;
   int i;
+  m->flip = m->n ? 0 : (P->gs.reverse ^ elr__swaps_handedness(&P->ctm));
+  m->object = P->cur_object;
   for (i = 0; i < m->nvert; i++) {
     elr_v3 p = elr_xpoint(&P->ctm, elr_v(m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]));
     m->p[3 * i] = p.x; m->p[3 * i + 1] = p.y; m->p[3 * i + 2] = p.z;
@@ -895,6 +961,11 @@ static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
     }
   }
   m->material = P->gs.material;
+  if (m->object >= 0) { /* a prototype's shape: its bounds grow (ObjectInstance checks them in world space) */
+    elr_object *o = &s->obj[m->object];
+    for (i = 0; i < m->nvert; i++) elr__object_grow(o, m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]);
+    o->nmesh++;
+  }
   ELR_PUSH(P, s->mesh, s->nmesh, s->capmesh, elr_mesh);
   s->mesh[s->nmesh - 1] = *m;
 }
@@ -926,6 +997,17 @@ static void elr__shape(elr__parser *P, const char *type) {
     ELR_PUSH(P, s->sph, s->nsph, s->capsph, elr_sphere);
     sp = &s->sph[s->nsph - 1];
     sp->o2w = P->ctm; sp->radius = r; sp->material = P->gs.material;
+    sp->flip = P->gs.reverse ^ elr__swaps_handedness(&P->ctm);
+    sp->object = P->cur_object;
+    if (sp->object >= 0) {
+      elr_object *o = &s->obj[sp->object];
+      int i;
+      for (i = 0; i < 8; i++) {
+        elr_v3 c = elr_xpoint(&sp->o2w, elr_v(i & 1 ? r : -r, i & 2 ? r : -r, i & 4 ? r : -r));
+        elr__object_grow(o, c.x, c.y, c.z);
+      }
+      o->nsph++;
+    }
   } else if (!strcmp(type, "trianglemesh")) {
     elr_mesh m;
     elr__param *pi = elr__findt(P, "indices", "integer", -3);
@@ -965,6 +1047,30 @@ static void elr__shape(elr__parser *P, const char *type) {
     for (i = 0; pn && i < 3 * m.nvert; i++) m.n[i] = (float)pn->num[i];
     for (i = 0; puv && i < 2 * m.nvert; i++) m.uv[i] = (float)puv->num[i];
     elr__add_mesh(P, &m);
+  } else if (!strcmp(type, "loopsubdiv")) { /* pbrt-v3's CreateLoopSubdiv */
+    elr_mesh m;
+    char e[300];
+    elr__param *pi = elr__findt(P, "indices", "integer", -3), *pp = elr__findt(P, "P", "point3", -3);
+    int levels = elr__find(P, "levels") ? elr__pint(P, "levels", 3) : elr__pint(P, "nlevels", 3), *idx, i, dropped;
+    if (elr__find(P, "scheme")) elr__pstring(P, "scheme", "loop"); /* pbrt-v3: "don't actually use this for now" */
+    if (!pi) elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": \"integer indices\" is required");
+    if (!pp) elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": \"point3 P\" is required");
+    elr__check_range(P, elr__find(P, "levels") ? "levels" : "nlevels", levels, 0, 12);
+    if (pi->n == 0) elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": no triangles");
+    for (i = 0; i < pi->n; i++)
+      if (pi->num[i] < 0 || pi->num[i] >= pp->n / 3)
+        elr__failf(P, pi->file, pi->line, "Shape \"loopsubdiv\": index %g out of range [0, %d)", pi->num[i], pp->n / 3);
+    idx = (int *)elr__alloc(P, sizeof(int) * (size_t)pi->n);
+    for (i = 0; i < pi->n; i++) idx[i] = (int)pi->num[i];
+    {
+      double t0 = elr_now();
+      if (elr_loop_subdivide(levels, idx, pi->n, pp->num, pp->n / 3, &m, &dropped, e, sizeof e) != 0)
+        elr__failf(P, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": %s", e);
+      P->s->t_images += elr_now() - t0; /* (the time of files and of built geometry, as PLY meshes) */
+    }
+    if (dropped) elr_warn(P->s, P->dir_file, P->dir_line, "Shape \"loopsubdiv\": %d triangle%s with a repeated vertex left out", dropped,
+                          dropped == 1 ? "" : "s");
+    elr__add_mesh(P, &m);
   } else if (!strcmp(type, "plymesh")) {
     elr_mesh m;
     char e[600];
@@ -978,12 +1084,22 @@ static void elr__shape(elr__parser *P, const char *type) {
     P->s->t_images += elr_now() - t0;
     elr__add_mesh(P, &m);
   } else {
-    elr_warn(P->s, P->dir_file, P->dir_line, "Shape \"%s\" is not supported and is ignored", type);
+    char key[200];
+    snprintf(key, sizeof key, "Shape %.180s", type);
+    elr__warn_once(P, P->dir_file, P->dir_line, key, "Shape \"%s\" is not supported and is ignored", type);
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
   }
   if (elr__find(P, "alpha")) { elr_warn(P->s, P->dir_file, P->dir_line, "Shape: \"alpha\" ignored"); elr__find(P, "alpha")->used = 1; }
 }
 
+/* glass's and uber's index of refraction: pbrt-v3's "eta", else "index" (1.5); a number must be one
+ * the Fresnel and refraction maths can use (textures are kept in [1e-3, 1e3] where evaluated) */
+static int elr__pindex(elr__parser *P) {
+  const char *nm = elr__find(P, "eta") ? "eta" : "index";
+  elr__param *p = elr__find(P, nm);
+  if (p && strcmp(p->type, "texture") != 0) elr__check_range(P, nm, elr__pfloat(P, nm, 1.5), 1e-3, 1e3);
+  return elr__ptex(P, nm, elr_v(1.5f, 1.5f, 1.5f), 1);
+}
 static int elr__make_material(elr__parser *P, const char *type) {
   elr_scene *s = P->s;
   elr_material *m;
@@ -991,11 +1107,17 @@ static int elr__make_material(elr__parser *P, const char *type) {
   if (!strcmp(type, "matte")) kind = ELR_MAT_MATTE;
   else if (!strcmp(type, "mirror")) kind = ELR_MAT_MIRROR;
   else if (!strcmp(type, "plastic")) kind = ELR_MAT_PLASTIC;
+  else if (!strcmp(type, "glass")) kind = ELR_MAT_GLASS;
+  else if (!strcmp(type, "metal")) kind = ELR_MAT_METAL;
+  else if (!strcmp(type, "uber")) kind = ELR_MAT_UBER;
+  else if (!strcmp(type, "substrate")) kind = ELR_MAT_SUBSTRATE;
   else {
-    if (!strcmp(type, "") || !strcmp(type, "none")) {
-      elr_warn(P->s, P->dir_file, P->dir_line, "Material \"%s\" (no surface) is not supported; using \"matte\"", type);
+    char key[200];
+    snprintf(key, sizeof key, "Material %.180s", type);
+    if (!strcmp(type, "") || !strcmp(type, "none") || !strcmp(type, "interface")) {
+      elr__warn_once(P, P->dir_file, P->dir_line, key, "Material \"%s\" (no surface) is not supported; using \"matte\"", type);
     } else {
-      elr_warn(P->s, P->dir_file, P->dir_line, "Material \"%s\" is not supported; using \"matte\" with its defaults", type);
+      elr__warn_once(P, P->dir_file, P->dir_line, key, "Material \"%s\" is not supported; using \"matte\" with its defaults", type);
     }
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
     kind = -1;
@@ -1004,6 +1126,7 @@ static int elr__make_material(elr__parser *P, const char *type) {
   m = &s->mat[s->nmat - 1];
   m->kind = kind < 0 ? ELR_MAT_MATTE : kind;
   m->kd = m->ks = m->kr = m->rough = -1;
+  m->kt = m->urough = m->vrough = m->index = m->eta = m->k = m->opacity = -1;
   if (kind < 0) { m->kd = elr__const_tex(P, elr_v(.5f, .5f, .5f)); return s->nmat - 1; }
   if (kind == ELR_MAT_MATTE) {
     m->kd = elr__ptex(P, "Kd", elr_v(.5f, .5f, .5f), 0);
@@ -1014,10 +1137,46 @@ static int elr__make_material(elr__parser *P, const char *type) {
     }
   } else if (kind == ELR_MAT_MIRROR) {
     m->kr = elr__ptex(P, "Kr", elr_v(.9f, .9f, .9f), 0);
-  } else {
+  } else if (kind == ELR_MAT_PLASTIC) {
     m->kd = elr__ptex(P, "Kd", elr_v(.25f, .25f, .25f), 0);
     m->ks = elr__ptex(P, "Ks", elr_v(.25f, .25f, .25f), 0);
     m->rough = elr__ptex(P, "roughness", elr_v(.1f, .1f, .1f), 1);
+    m->remap = elr__pbool(P, "remaproughness", 1);
+  } else if (kind == ELR_MAT_GLASS) { /* CreateGlassMaterial */
+    m->kr = elr__ptex(P, "Kr", elr_v(1, 1, 1), 0);
+    m->kt = elr__ptex(P, "Kt", elr_v(1, 1, 1), 0);
+    m->index = elr__pindex(P);
+    m->urough = elr__ptex(P, "uroughness", elr_v(0, 0, 0), 1);
+    m->vrough = elr__ptex(P, "vroughness", elr_v(0, 0, 0), 1);
+    m->remap = elr__pbool(P, "remaproughness", 1);
+  } else if (kind == ELR_MAT_METAL) { /* CreateMetalMaterial: copper by default */
+    /* pbrt-v3's CopperN and CopperK spectra (materials/metal.cpp, 56 samples from 298.8 to 885.6 nm)
+     * as RGBSpectrum::FromSampled makes them: the CIE 1931 matching functions of core/spectrum.cpp at
+     * 1 nm, normalised by CIE_Y_integral, then XYZToRGB; computed in float with pbrt-v3's own tables
+     * and order of operations (Mitsuba 3's Cu preset, from other measurements: 0.2004 0.9240 1.1022
+     * and 3.9129 2.4528 2.1422) */
+    m->eta = elr__ptex(P, "eta", elr_v(0.19999069f, 0.92208463f, 1.09987593f), 0);
+    m->k = elr__ptex(P, "k", elr_v(3.90463543f, 2.44763327f, 2.13765264f), 0);
+    m->rough = elr__ptex(P, "roughness", elr_v(.01f, .01f, .01f), 1);
+    if (elr__find(P, "uroughness")) m->urough = elr__ptex(P, "uroughness", elr_v(0, 0, 0), 1);
+    if (elr__find(P, "vroughness")) m->vrough = elr__ptex(P, "vroughness", elr_v(0, 0, 0), 1);
+    m->remap = elr__pbool(P, "remaproughness", 1);
+  } else if (kind == ELR_MAT_UBER) { /* CreateUberMaterial */
+    m->kd = elr__ptex(P, "Kd", elr_v(.25f, .25f, .25f), 0);
+    m->ks = elr__ptex(P, "Ks", elr_v(.25f, .25f, .25f), 0);
+    m->kr = elr__ptex(P, "Kr", elr_v(0, 0, 0), 0);
+    m->kt = elr__ptex(P, "Kt", elr_v(0, 0, 0), 0);
+    m->rough = elr__ptex(P, "roughness", elr_v(.1f, .1f, .1f), 1);
+    if (elr__find(P, "uroughness")) m->urough = elr__ptex(P, "uroughness", elr_v(0, 0, 0), 1);
+    if (elr__find(P, "vroughness")) m->vrough = elr__ptex(P, "vroughness", elr_v(0, 0, 0), 1);
+    m->index = elr__pindex(P);
+    m->opacity = elr__ptex(P, "opacity", elr_v(1, 1, 1), 0);
+    m->remap = elr__pbool(P, "remaproughness", 1);
+  } else { /* CreateSubstrateMaterial */
+    m->kd = elr__ptex(P, "Kd", elr_v(.5f, .5f, .5f), 0);
+    m->ks = elr__ptex(P, "Ks", elr_v(.5f, .5f, .5f), 0);
+    m->urough = elr__ptex(P, "uroughness", elr_v(.1f, .1f, .1f), 1);
+    m->vrough = elr__ptex(P, "vroughness", elr_v(.1f, .1f, .1f), 1);
     m->remap = elr__pbool(P, "remaproughness", 1);
   }
   if (elr__find(P, "bumpmap")) { elr_warn(P->s, P->dir_file, P->dir_line, "Material: \"bumpmap\" ignored"); elr__find(P, "bumpmap")->used = 1; }
@@ -1025,14 +1184,15 @@ static int elr__make_material(elr__parser *P, const char *type) {
 }
 
 /* How many textures one evaluation of texture ti may look up: a checkerboard evaluates both of its
- * sub-textures where its filter straddles an edge (textures.c recurses). Every texture already made has a
+ * sub-textures where its filter straddles an edge, a scale both, a mix all three (textures.c recurses). Every texture already made has a
  * cost of at most ELR_MAX_TEX_COST, so this recursion visits at most that many leaves. */
 #define ELR_MAX_TEX_COST 64
 static int elr__tex_cost(const elr_scene *s, int ti) {
   const elr_texture *t;
   if (ti < 0 || ti >= s->ntex) return 1;
   t = &s->tex[ti];
-  if (t->kind != ELR_TEX_CHECKER) return 1;
+  if (t->kind == ELR_TEX_MIX) return elr__tex_cost(s, t->tex1) + elr__tex_cost(s, t->tex2) + elr__tex_cost(s, t->amount);
+  if (t->kind != ELR_TEX_CHECKER && t->kind != ELR_TEX_SCALE) return 1;
   return elr__tex_cost(s, t->tex1) + elr__tex_cost(s, t->tex2);
 }
 
@@ -1070,6 +1230,30 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     if (!strcmp(aa, "closedform")) t.aa_closedform = 1;
     else if (!strcmp(aa, "none")) t.aa_closedform = 0;
     else elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": aamode must be \"closedform\" or \"none\"", name);
+  } else if (!strcmp(cls, "scale") || !strcmp(cls, "mix")) {
+    /* pbrt-v3's ScaleTexture (tex1 * tex2, both 1 by default) and MixTexture ((1 - amount) tex1 +
+     * amount tex2; tex1 0, tex2 1, amount 0.5) */
+    int mix = cls[0] == 'm';
+    float d1 = mix ? 0.f : 1.f;
+    const elr_texture *a, *b, *m = NULL;
+    t.kind = mix ? ELR_TEX_MIX : ELR_TEX_SCALE;
+    t.tex1 = elr__ptex(P, "tex1", elr_v(d1, d1, d1), is_float);
+    t.tex2 = elr__ptex(P, "tex2", elr_v(1, 1, 1), is_float);
+    t.amount = mix ? elr__ptex(P, "amount", elr_v(.5f, .5f, .5f), 1) : -1;
+    {
+      int cost = elr__tex_cost(s, t.tex1) + elr__tex_cost(s, t.tex2) + (mix ? elr__tex_cost(s, t.amount) : 0);
+      if (cost > ELR_MAX_TEX_COST)
+        elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": textures nested too deeply (%d texture lookups per evaluation, at most %d)",
+                  name, cost, ELR_MAX_TEX_COST);
+    }
+    /* of constants, a constant (the same sums textures.c would make at every shading point) */
+    a = &s->tex[t.tex1]; b = &s->tex[t.tex2];
+    if (mix) m = &s->tex[t.amount];
+    if (a->kind == ELR_TEX_CONST && b->kind == ELR_TEX_CONST && (!mix || m->kind == ELR_TEX_CONST)) {
+      if (mix) t.value = elr_add(elr_mul(a->value, 1.f - m->value.x), elr_mul(b->value, m->value.x));
+      else t.value = elr_vmul(a->value, b->value);
+      t.kind = ELR_TEX_CONST;
+    }
   } else if (!strcmp(cls, "imagemap")) {
     const char *fn = elr__pstring(P, "filename", "");
     const char *wrap = elr__pstring(P, "wrap", "repeat");
@@ -1138,8 +1322,10 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
       if (r != EL_SUCCESS) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": MIP map: %s", name, el_result_string(r));
     }
   } else {
-    elr_warn(P->s, P->dir_file, P->dir_line, "Texture class \"%s\" is not supported; \"%s\" is a constant %s", cls, name,
-             is_float ? "1" : "(1,1,1)");
+    char key[200];
+    snprintf(key, sizeof key, "Texture %.180s", cls);
+    elr__warn_once(P, P->dir_file, P->dir_line, key, "Texture class \"%s\" is not supported; \"%s\" is a constant %s", cls, name,
+                   is_float ? "1" : "(1,1,1)");
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
     t.kind = ELR_TEX_CONST; t.value = elr_v(1, 1, 1);
   }
@@ -1208,14 +1394,13 @@ static void elr__directive_block(elr__parser *P, int need_world, const char *wha
 }
 
 static void elr__run(elr__parser *P) {
-  static const char *unsupported[] = {"AreaLightSource", "ObjectBegin", "ObjectEnd", "ObjectInstance",
-                                      "MakeNamedMedium", "MediumInterface", "TransformTimes", "ActiveTransform",
-                                      "Accelerator", "ReverseOrientation", "ColorSpace", "Option", "Attribute",
-                                      "AttributeSet", "SurfaceIntegrator", "VolumeIntegrator", "Renderer",
-                                      "Volume", "MakeNamedMaterial"};
+  static const char *unsupported[] = {"AreaLightSource", "ColorSpace", "Option", "Attribute", "AttributeSet", "SurfaceIntegrator",
+                                      "VolumeIntegrator", "Renderer", "Volume"};
   for (;;) {
     elr__tok t = elr__next(P);
     char nm[64];
+    int is_xform;
+    elr_xform saved_ctm;
     if (t.kind == T_EOF) break;
     P->dir_line = t.line; P->dir_file = elr__curfile(P); /* the token was read from the current file */
     if (t.kind != T_WORD) {
@@ -1227,6 +1412,9 @@ static void elr__run(elr__parser *P) {
     snprintf(P->dir_name, sizeof P->dir_name, "%s", nm);
     P->dir_line = t.line; P->dir_file = elr__curfile(P);
     if (P->world_ended) elr__failf(P, P->dir_file, t.line, "directive \"%s\" after WorldEnd", nm);
+    is_xform = !strcmp(nm, "Translate") || !strcmp(nm, "Scale") || !strcmp(nm, "Rotate") || !strcmp(nm, "LookAt") ||
+               !strcmp(nm, "Transform") || !strcmp(nm, "ConcatTransform") || !strcmp(nm, "Identity") || !strcmp(nm, "CoordSysTransform");
+    saved_ctm = P->ctm;
 
     if (!strcmp(nm, "Translate")) {
       double x = elr__num(P, nm), y = elr__num(P, nm), z = elr__num(P, nm);
@@ -1323,10 +1511,12 @@ static void elr__run(elr__parser *P) {
       char want = nm[0] == 'A' ? 'a' : 't';
       if (P->depth == 0) { elr_warn(P->s, P->dir_file, t.line, "unmatched %s ignored", nm); continue; }
       if (P->stack_kind[P->depth - 1] != want)
-        elr_warn(P->s, P->dir_file, t.line, "%s closes a %s block", nm, want == 'a' ? "TransformBegin" : "AttributeBegin");
+        elr_warn(P->s, P->dir_file, t.line, "%s closes a%s block", nm,
+                 P->stack_kind[P->depth - 1] == 'o' ? "n ObjectBegin" : (want == 'a' ? " TransformBegin" : "n AttributeBegin"));
       P->depth--;
       P->ctm = P->xstack[P->depth];
       if (want == 'a') P->gs = P->gstack[P->depth];
+      else P->gs.end_only = P->gstack[P->depth].end_only; /* pbrt-v3 pushes the active transform bits with both */
     } else if (!strcmp(nm, "WorldBegin")) {
       if (P->in_world) elr__failf(P, P->dir_file, t.line, "WorldBegin inside the world block");
       P->in_world = 1;
@@ -1372,7 +1562,7 @@ static void elr__run(elr__parser *P) {
       else if (nm[0] == 'S') elr__shape(P, type);
       else if (nm[0] == 'M') P->gs.material = elr__make_material(P, type);
       else {
-        int k = elr__name_find(&P->hmat, P->matnames, P->nmatn, type);
+        int k = elr__name_find(&P->hmat, P->matnames, P->gs.nnamed_mat, type);
         if (k < 0) elr_warn(P->s, P->dir_file, t.line, "NamedMaterial \"%s\" is not defined; ignored", type);
         else P->gs.material = P->matnames[k].index;
       }
@@ -1386,11 +1576,97 @@ static void elr__run(elr__parser *P) {
       type = elr__pstring(P, "type", "");
       if (!type[0]) elr__failf(P, P->dir_file, t.line, "MakeNamedMaterial \"%s\": \"string type\" is required", name);
       idx = elr__make_material(P, type);
+      /* pbrt-v3 keeps named materials in the graphics state: a name made inside AttributeBegin/End is
+       * forgotten at its AttributeEnd, as named textures are */
+      if (P->gs.nnamed_mat < P->nmatn) {
+        elr__name_drop(&P->hmat, P->matnames, P->nmatn, P->gs.nnamed_mat);
+        P->nmatn = P->gs.nnamed_mat;
+      }
+      if (elr__name_find(&P->hmat, P->matnames, P->nmatn, name) >= 0)
+        elr_warn(P->s, P->dir_file, t.line, "MakeNamedMaterial: named material \"%s\" redefined", name);
       ELR_PUSH(P, P->matnames, P->nmatn, P->capmatn, elr__named);
       P->matnames[P->nmatn - 1].name = elr__strdup(P, name, strlen(name));
       elr__name_add(P, &P->hmat, P->matnames, P->nmatn - 1);
       P->matnames[P->nmatn - 1].index = idx;
+      P->gs.nnamed_mat = P->nmatn;
       elr__report_unused(P);
+    } else if (!strcmp(nm, "ObjectBegin")) {
+      /* pbrt-v3's pbrtObjectBegin: an AttributeBegin, then the shapes that follow make the prototype */
+      const char *name = elr__str(P, nm);
+      elr_object *o;
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (P->cur_object >= 0) elr__failf(P, P->dir_file, t.line, "ObjectBegin \"%s\" inside the definition of another object", name);
+      if (P->depth >= ELR_MAX_STACK) elr__failf(P, P->dir_file, t.line, "%s nested more than %d deep", nm, ELR_MAX_STACK);
+      P->xstack[P->depth] = P->ctm; P->gstack[P->depth] = P->gs; P->stack_kind[P->depth] = 'o'; P->depth++;
+      ELR_PUSH(P, P->s->obj, P->s->nobj, P->s->capobj, elr_object);
+      o = &P->s->obj[P->s->nobj - 1];
+      o->lo[0] = o->lo[1] = o->lo[2] = INFINITY; o->hi[0] = o->hi[1] = o->hi[2] = -INFINITY;
+      P->cur_object = P->s->nobj - 1;
+      ELR_PUSH(P, P->objnames, P->nobjn, P->capobjn, elr__named); /* a later ObjectBegin of the name replaces it */
+      P->objnames[P->nobjn - 1].name = elr__strdup(P, name, strlen(name));
+      elr__name_add(P, &P->hobj, P->objnames, P->nobjn - 1);
+      P->objnames[P->nobjn - 1].index = P->cur_object;
+    } else if (!strcmp(nm, "ObjectEnd")) {
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (P->cur_object < 0) elr__failf(P, P->dir_file, t.line, "ObjectEnd without ObjectBegin");
+      P->cur_object = -1;
+      /* pbrt-v3's pbrtObjectEnd ends with an AttributeEnd */
+      if (P->depth == 0) { elr_warn(P->s, P->dir_file, t.line, "unmatched ObjectEnd ignored"); continue; }
+      if (P->stack_kind[P->depth - 1] != 'o') elr_warn(P->s, P->dir_file, t.line, "ObjectEnd closes a %s block",
+                                                       P->stack_kind[P->depth - 1] == 'a' ? "AttributeBegin" : "TransformBegin");
+      P->depth--;
+      P->ctm = P->xstack[P->depth];
+      P->gs = P->gstack[P->depth];
+    } else if (!strcmp(nm, "ObjectInstance")) {
+      /* pbrt-v3's pbrtObjectInstance: the prototype placed by the CTM (instance to world); its shapes'
+       * own transformations come first */
+      const char *name = elr__str(P, nm);
+      int k;
+      if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
+      if (P->cur_object >= 0) elr__failf(P, P->dir_file, t.line, "ObjectInstance \"%s\" inside an object definition", name);
+      k = elr__name_find(&P->hobj, P->objnames, P->nobjn, name);
+      if (k < 0) { elr_warn(P->s, P->dir_file, t.line, "ObjectInstance: object \"%s\" is not defined; ignored", name); continue; }
+      k = P->objnames[k].index;
+      if (P->s->obj[k].nmesh + P->s->obj[k].nsph == 0) continue; /* pbrt-v3: an empty object adds nothing */
+      {
+        const elr_object *o = &P->s->obj[k];
+        int c;
+        for (c = 0; c < 8; c++) /* the instance's world bounds must be traceable */
+          elr__check_point(P, t.line, elr_xpoint(&P->ctm, elr_v((float)(c & 1 ? o->hi[0] : o->lo[0]), (float)(c & 2 ? o->hi[1] : o->lo[1]),
+                                                              (float)(c & 4 ? o->hi[2] : o->lo[2]))),
+                           "a corner of the instance's bounds");
+      }
+      ELR_PUSH(P, P->s->inst, P->s->ninst, P->s->capinst, elr_instance);
+      P->s->inst[P->s->ninst - 1].object = k;
+      P->s->inst[P->s->ninst - 1].xf = P->ctm;
+      P->s->obj[k].ninstances++;
+    } else if (!strcmp(nm, "ReverseOrientation")) {
+      /* pbrt-v3's graphicsState.reverseOrientation: it flips the normals of the shapes that follow (only
+       * transmissive materials see the difference: every other material here is two-sided) */
+      P->gs.reverse = !P->gs.reverse;
+    } else if (!strcmp(nm, "Accelerator")) {
+      elr__str(P, nm); /* pbrt-v3's bvh or kdtree: Embree builds ours, so the line is accepted and ignored */
+      elr__read_params(P);
+      if (P->in_world) elr__directive_block(P, 0, nm);
+    } else if (!strcmp(nm, "ActiveTransform")) {
+      /* pbrt-v3's animated transformations (motion blur): the render is of the start time, so
+       * transformations made while only EndTime is active are dropped */
+      elr__tok w = elr__next(P);
+      if (elr__wordis(&w, "StartTime") || elr__wordis(&w, "All")) P->gs.end_only = 0;
+      else if (elr__wordis(&w, "EndTime")) P->gs.end_only = 1;
+      else elr__failf(P, P->dir_file, t.line, "ActiveTransform: expected StartTime, EndTime or All");
+      elr__warn_once(P, P->dir_file, t.line, "animated transforms", "animated transformations (ActiveTransform, TransformTimes) are not supported: "
+                     "the scene is rendered at its start time");
+    } else if (!strcmp(nm, "TransformTimes")) {
+      elr__num(P, nm); elr__num(P, nm);
+      elr__warn_once(P, P->dir_file, t.line, "animated transforms", "animated transformations (ActiveTransform, TransformTimes) are not supported: "
+                     "the scene is rendered at its start time");
+    } else if (!strcmp(nm, "MakeNamedMedium") || !strcmp(nm, "MediumInterface")) {
+      /* participating media: not simulated; surfaces render as if every medium were vacuum */
+      elr__str(P, nm);
+      if (nm[0] == 'M' && nm[1] == 'a') elr__read_params(P);
+      else if (elr__peek(P).kind == T_STRING) elr__str(P, nm); /* MediumInterface "inside" "outside" (or one name) */
+      elr__warn_once(P, P->dir_file, t.line, "media", "participating media (%s) are not supported: surfaces render as in vacuum", nm);
     } else if (!strcmp(nm, "Texture")) {
       const char *name = elr__str(P, nm);
       const char *vtype = elr__str(P, nm);
@@ -1403,10 +1679,15 @@ static void elr__run(elr__parser *P) {
       int i, known = 0;
       for (i = 0; i < (int)(sizeof unsupported / sizeof unsupported[0]); i++) if (!strcmp(nm, unsupported[i])) known = 1;
       if (!known) elr__failf(P, P->dir_file, t.line, "unknown directive \"%s\"", nm);
-      if (!strcmp(nm, "ReverseOrientation")) continue; /* harmless: materials here are two-sided */
-      elr_warn(P->s, P->dir_file, t.line, "directive \"%s\" is not supported and is ignored", nm);
+      {
+        char key[80];
+        snprintf(key, sizeof key, "directive %s", nm);
+        elr__warn_once(P, P->dir_file, t.line, key, "directive \"%s\" is not supported and is ignored", nm);
+      }
       elr__skip_args(P);
     }
+    /* a transformation while ActiveTransform EndTime holds moves the end time only: the render is of the start time */
+    if (is_xform && P->gs.end_only) P->ctm = saved_ctm;
   }
   if (!P->in_world) elr__fail(P, P->lex[0].line, "the file ends before WorldBegin (truncated?)");
   if (!P->world_ended) elr__fail(P, P->lex[0].line, "the file ends before WorldEnd (truncated?)");
@@ -1420,6 +1701,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
   if (!err || errlen == 0) { err = dummy; errlen = sizeof dummy; }
   P->s = s; P->err = err; P->errlen = errlen; P->base_dir = base_dir;
+  P->cur_object = -1;
   elr_xform_identity(&P->ctm);
   /* pbrt-v3's defaults */
   elr_xform_identity(&s->d.cam2world);
@@ -1436,6 +1718,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
     s->mat[0].kind = ELR_MAT_MATTE;
     s->mat[0].kd = elr__const_tex(P, elr_v(.5f, .5f, .5f));
     s->mat[0].ks = s->mat[0].kr = s->mat[0].rough = -1;
+    s->mat[0].kt = s->mat[0].urough = s->mat[0].vrough = s->mat[0].index = s->mat[0].eta = s->mat[0].k = s->mat[0].opacity = -1;
     P->gs.material = 0;
     elr__parse_file(P, text, len, name);
     elr__run(P);
@@ -1444,8 +1727,8 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   }
   while (P->arena) { elr__block *b = P->arena; P->arena = b->next; free(b); }
   free(P->growing[0]); free(P->growing[1]); /* a parse stopped while a value list grew */
-  free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames);
-  free(P->hctx.s); free(P->htex.s); free(P->hmat.s);
+  free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames); free(P->warned);
+  free(P->hctx.s); free(P->htex.s); free(P->hmat.s); free(P->hobj.s); free(P->objnames);
   free(P);
   return rc;
 }

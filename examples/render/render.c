@@ -140,20 +140,29 @@ static int elr__find_textured(elr_scene *s) {
   s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
   if (!s->mat_textured) return -1;
   for (i = 0; i < s->nmat; i++) {
-    const elr_material *m = &s->mat[i];
-    int t[4], k;
-    t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
-    for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
+    int t[ELR_MAT_NTEX], k;
+    elr_material_textures(&s->mat[i], t);
+    for (k = 0; k < ELR_MAT_NTEX; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
     if (s->mat_textured[i]) s->any_textured = 1;
   }
   return 0;
 }
 
+/* whether material m may have a non-specular lobe somewhere: all but mirror and smooth glass (its
+ * roughness textures constant 0) */
+static int elr__may_be_nonspecular(const elr_scene *s, const elr_material *m) {
+  if (m->kind == ELR_MAT_MIRROR) return 0;
+  if (m->kind == ELR_MAT_GLASS) {
+    const elr_texture *u = &s->tex[m->urough], *v = &s->tex[m->vrough];
+    return !(u->kind == ELR_TEX_CONST && u->value.x == 0.f && v->kind == ELR_TEX_CONST && v->value.x == 0.f);
+  }
+  return 1;
+}
 static int elr__mat_nonspecular(const elr_scene *s) {
   int i;
   /* a material with a non-specular lobe, used by some shape */
-  for (i = 0; i < s->nmesh; i++) if (s->mat[s->mesh[i].material].kind != ELR_MAT_MIRROR) return 1;
-  for (i = 0; i < s->nsph; i++) if (s->mat[s->sph[i].material].kind != ELR_MAT_MIRROR) return 1;
+  for (i = 0; i < s->nmesh; i++) if (elr__may_be_nonspecular(s, &s->mat[s->mesh[i].material])) return 1;
+  for (i = 0; i < s->nsph; i++) if (elr__may_be_nonspecular(s, &s->mat[s->sph[i].material])) return 1;
   return 0;
 }
 

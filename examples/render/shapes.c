@@ -8,17 +8,19 @@
  * space when it creates them). After Embree's hit, the hit record (elr_sphere_hit, elr_triangle_hit)
  * and, only for textured materials and ray differentials, the parameterisation (elr_hit_uv). Sampling
  * a point on a shape (pbrt-v3's Shape::Sample and Pdf, for area lights) and Shape "disk" would join
- * here; Loop subdivision (shapes/loopsubdiv.cpp) makes triangle meshes and would have a file of its own. */
+ * here; Loop subdivision (loopsubdiv.c) makes triangle meshes. A prototype's shapes (ObjectBegin) are
+ * in its own space: their hit records are made there and taken to world space by scene.c. */
 #include "elr_internal.h"
 #include <embree3/rtcore.h>
 #include <float.h>
 
 /* >> sphere */
-/* Embree's user-geometry callbacks (scene.c attaches them, the scene as the user pointer; primID
- * indexes sph_user): the bounds of the transformed sphere, padded by a relative 1e-6 */
+/* Embree's user-geometry callbacks (scene.c attaches them with an elr_sphere_set as the user pointer:
+ * the world's spheres or a prototype's; primID indexes its idx): the bounds of the transformed sphere,
+ * padded by a relative 1e-6 */
 void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a) {
-  const elr_scene *s = (const elr_scene *)a->geometryUserPtr;
-  const elr_sphere *sp = &s->sph[s->sph_user[a->primID]];
+  const elr_sphere_set *set = (const elr_sphere_set *)a->geometryUserPtr;
+  const elr_sphere *sp = &set->sph[set->idx[a->primID]];
   float r = sp->radius;
   int i;
   struct RTCBounds *b = a->bounds_o;
@@ -61,9 +63,9 @@ static double elr__sph_hit(const elr_sphere *sp, float ox, float oy, float oz, f
 
 /* one ray at a time (the renderer calls rtcIntersect1 / rtcOccluded1) */
 void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a) {
-  const elr_scene *s = (const elr_scene *)a->geometryUserPtr;
+  const elr_sphere_set *set = (const elr_sphere_set *)a->geometryUserPtr;
   struct RTCRayHit *rh = (struct RTCRayHit *)a->rayhit;
-  const elr_sphere *sp = &s->sph[s->sph_user[a->primID]];
+  const elr_sphere *sp = &set->sph[set->idx[a->primID]];
   double t;
   if (!a->valid[0]) return;
   t = elr__sph_hit(sp, rh->ray.org_x, rh->ray.org_y, rh->ray.org_z, rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z,
@@ -74,12 +76,12 @@ void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a) {
   rh->hit.Ng_x = 0; rh->hit.Ng_y = 0; rh->hit.Ng_z = 1; /* computed in elr_sphere_hit */
   rh->hit.primID = a->primID;
   rh->hit.geomID = a->geomID;
-  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh->hit.instID[0] = a->context->instID[0]; /* the instance whose prototype holds the sphere, or none */
 }
 void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a) {
-  const elr_scene *s = (const elr_scene *)a->geometryUserPtr;
+  const elr_sphere_set *set = (const elr_sphere_set *)a->geometryUserPtr;
   struct RTCRay *ray = (struct RTCRay *)a->ray;
-  const elr_sphere *sp = &s->sph[s->sph_user[a->primID]];
+  const elr_sphere *sp = &set->sph[set->idx[a->primID]];
   if (!a->valid[0]) return;
   if (elr__sph_hit(sp, ray->org_x, ray->org_y, ray->org_z, ray->dir_x, ray->dir_y, ray->dir_z, ray->tnear, ray->tfar) >= 0)
     ray->tfar = -INFINITY;
@@ -105,6 +107,7 @@ void elr_sphere_hit(const elr_scene *s, int si, elr_v3 o, elr_v3 d, elr_hit *h) 
   h->ng = elr_norm(elr_xnormal(&sp->o2w, pob));
   h->ns = h->ng;
   h->material = sp->material;
+  h->flip = sp->flip;
 }
 
 /* >> triangle */
@@ -136,6 +139,7 @@ void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, floa
     h->ns = h->ng;
   }
   h->material = m->material;
+  h->flip = m->flip;
 }
 
 /* >> parameterisations */
@@ -185,8 +189,8 @@ void elr_hit_uv(const elr_scene *s, elr_hit *h) {
     dp02 = elr_sub(p0, p2); dp12 = elr_sub(p1, p2);
     du02 = uv0[0] - uv2[0]; dv02 = uv0[1] - uv2[1]; du12 = uv1[0] - uv2[0]; dv12 = uv1[1] - uv2[1];
     det = du02 * dv12 - dv02 * du12;
-    if (fabsf(det) < 1e-12f) {
-      elr_onb(h->ng, &h->dpdu, &h->dpdv);
+    if (fabsf(det) < 1e-12f) { /* (around the normal in the mesh's own space: an instance's is taken to world below) */
+      elr_onb(h->inst >= 0 ? elr_norm(elr_cross(dp02, dp12)) : h->ng, &h->dpdu, &h->dpdv);
     } else {
       float inv = 1.f / det;
       h->dpdu = elr_mul(elr_sub(elr_mul(dp02, dv12), elr_mul(dp12, dv02)), inv);
@@ -202,5 +206,10 @@ void elr_hit_uv(const elr_scene *s, elr_hit *h) {
       h->dndu = elr_mul(elr_sub(elr_mul(dn1, dv12), elr_mul(dn2, dv02)), inv);
       h->dndv = elr_mul(elr_sub(elr_mul(dn2, du02), elr_mul(dn1, du12)), inv);
     }
+  }
+  if (h->inst >= 0) { /* a prototype's shape: its derivatives to world space, as pbrt-v3's Transform of a SurfaceInteraction */
+    const elr_xform *xf = &s->inst[h->inst].xf;
+    h->dpdu = elr_xvector(xf, h->dpdu); h->dpdv = elr_xvector(xf, h->dpdv);
+    h->dndu = elr_xnormal(xf, h->dndu); h->dndv = elr_xnormal(xf, h->dndv);
   }
 }

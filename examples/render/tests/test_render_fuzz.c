@@ -109,7 +109,19 @@ static const char *fz_words[] = {
     "Sampler \"halton\" \"integer pixelsamples\" 16777216", "Sampler \"sobol\"",
     "Integrator \"path\" \"integer maxdepth\" 100000", "Integrator \"directlighting\" \"integer maxdepth\" 100000",
     "Integrator \"path\" \"float rrthreshold\" -1e38", "Integrator \"path\" \"float rrthreshold\" 1e38", "Integrator \"bdpt\"",
-    "ObjectBegin \"o\"", "ObjectEnd", "ObjectInstance \"o\"", "Option \"bool x\" \"true\"", "Attribute \"shape\" \"float radius\" 2",
+    "ObjectBegin \"o\"", "ObjectEnd", "ObjectInstance \"o\"", "ObjectInstance \"obj\"", "ObjectBegin \"obj\"",
+    "Option \"bool x\" \"true\"", "Attribute \"shape\" \"float radius\" 2",
+    "Shape \"loopsubdiv\" \"integer levels\" 2 \"integer indices\" [ 0 2 1 0 1 3 0 3 2 1 2 3 ] \"point P\" [ 1 1 1 -1 -1 1 -1 1 -1 1 -1 -1 ]",
+    "Shape \"loopsubdiv\" \"integer levels\" 12 \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ 0 0 0 1 0 0 1 1 0 0 1 0 ]",
+    "Shape \"loopsubdiv\" \"integer indices\" [ 0 1 2 0 1 2 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]",
+    "Shape \"loopsubdiv\" \"integer indices\" [ 0 1 2 1 0 3 0 1 3 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 0 0 1 ]",
+    "Material \"glass\" \"float index\" 1e-30", "Material \"glass\" \"float uroughness\" 0.3 \"float vroughness\" 0", "Material \"metal\" \"rgb eta\" [ 0 0 0 ] \"rgb k\" [ 0 0 0 ]",
+    "Material \"metal\" \"float roughness\" -1e38", "Material \"uber\" \"rgb opacity\" [ 0.5 -1 2 ]", "Material \"uber\" \"rgb Kt\" [ 1 1 1 ] \"float index\" 1",
+    "Material \"substrate\" \"float uroughness\" 0 \"bool remaproughness\" \"false\"", "MakeNamedMaterial \"g\" \"string type\" \"glass\"", "NamedMaterial \"g\"",
+    "Texture \"s\" \"spectrum\" \"scale\" \"texture tex1\" \"t\" \"texture tex2\" \"s\"", "Texture \"x\" \"float\" \"mix\" \"texture amount\" \"x\"",
+    "Texture \"t\" \"spectrum\" \"mix\" \"texture tex1\" \"t\" \"texture tex2\" \"t\" \"texture amount\" \"t\"",
+    "Accelerator \"bvh\"", "Integrator \"mlt\" \"integer maxdepth\" 3", "Integrator \"sppm\"", "ActiveTransform EndTime", "ActiveTransform Foo",
+    "MediumInterface \"a\" \"b\"", "Shape \"curve\"", "Shape \"cylinder\"",
     "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"", "MediumInterface \"\" \"m\"", "ActiveTransform All", "TransformTimes 0 1",
     "Foo", "[", "]", "\"", "#", "\"float", "1", "-", "\\",
     /* PLY header lines (the ASCII PLY seed goes through this mutator too) */
@@ -131,7 +143,10 @@ static const char *fz_strings[] = {"\"float radius\"", "\"integer indices\"", "\
                                    "\"a.ply\"", "\"b.ply\"", "\"inc.pbrt\"", "\"missing.hdr\"", "\"/\"", "\".\"", "\"true\"",
                                    "\"false\"", "\"perspective\"", "\"infinite\"", "\"imagemap\"", "\"checkerboard\"",
                                    "\"stratified\"", "\"halton\"", "\"texel\"", "\"cellaverage\"", "\"clamp\"", "\"ewa\"",
-                                   "\"t\"", "\"m\"", "\"c\"", "\"world\"", "\"camera\"", "\"a\\\"b\"", "\"\\\\\""};
+                                   "\"t\"", "\"m\"", "\"c\"", "\"world\"", "\"camera\"", "\"a\\\"b\"", "\"\\\\\"",
+                                   "\"integer levels\"", "\"float index\"", "\"float eta\"", "\"rgb eta\"", "\"rgb k\"", "\"float uroughness\"",
+                                   "\"float vroughness\"", "\"rgb Kt\"", "\"rgb opacity\"", "\"texture tex1\"", "\"texture amount\"", "\"float amount\"",
+                                   "\"glass\"", "\"metal\"", "\"uber\"", "\"substrate\"", "\"scale\"", "\"mix\"", "\"loopsubdiv\"", "\"obj\""};
 
 /* >> token positions of a scene text (whitespace-separated; a quoted string is one token) */
 typedef struct fz_tok { size_t at, len; } fz_tok;
@@ -418,6 +433,17 @@ static const char *fz_every_directive =
     "  \"normal N\" [ 0 1 0 0 1 0 0 1 0 0 1 0 ] \"float uv\" [ 0 0 1 0 1 1 0 1 ]\n"
     "Shape \"plymesh\" \"string filename\" \"b.ply\"\n"
     "Include \"inc.pbrt\"\n"
+    /* issue 16's format: instances, Loop subdivision, glass, metal, uber, substrate, scale and mix */
+    "Texture \"sc\" \"spectrum\" \"scale\" \"texture tex1\" \"c\" \"rgb tex2\" [ 0.5 0.5 0.5 ]\n"
+    "Texture \"mx\" \"float\" \"mix\" \"float tex1\" 0.1 \"texture tex2\" \"k\" \"float amount\" 0.3\n"
+    "MakeNamedMaterial \"rough\" \"string type\" \"glass\" \"float uroughness\" 0.2 \"texture vroughness\" \"mx\" \"float index\" 1.4\n"
+    "ObjectBegin \"obj\"\n  Material \"metal\" \"float roughness\" 0.1\n  Shape \"sphere\" \"float radius\" 0.2\n"
+    "  Material \"uber\" \"texture Kd\" \"sc\" \"rgb Kr\" [ 0.2 0.2 0.2 ] \"rgb opacity\" [ 0.7 0.7 0.7 ]\n"
+    "  Shape \"loopsubdiv\" \"integer levels\" 1 \"integer indices\" [ 0 2 1 0 1 3 0 3 2 1 2 3 ] \"point P\" [ 0.3 0.3 0.3 -0.3 -0.3 0.3 -0.3 0.3 -0.3 0.3 -0.3 -0.3 ]\n"
+    "ObjectEnd\n"
+    "AttributeBegin\n  Translate 0 1.5 0\n  ObjectInstance \"obj\"\n  Translate 0.6 0 0\n  Scale -1 1 1\n  ObjectInstance \"obj\"\nAttributeEnd\n"
+    "AttributeBegin\n  Material \"glass\" \"float index\" 1.5\n  Translate 0 0.4 -1.5\n  ReverseOrientation\n  Shape \"sphere\" \"float radius\" 0.2\nAttributeEnd\n"
+    "AttributeBegin\n  NamedMaterial \"rough\"\n  Material \"substrate\" \"float uroughness\" 0.05\n  Translate -1 0.2 -1.5\n  Shape \"sphere\" \"float radius\" 0.2\nAttributeEnd\n"
     "WorldEnd\n";
 
 static void fz_write_le32(FILE *f, uint32_t v) { unsigned char b[4]; b[0] = (unsigned char)v; b[1] = (unsigned char)(v >> 8); b[2] = (unsigned char)(v >> 16); b[3] = (unsigned char)(v >> 24); fwrite(b, 1, 4, f); }
@@ -466,9 +492,9 @@ static void fz_make_seeds(void) {
    * film shrunk to 8 x 8), small scenes */
   fz_set(&fz_scene_seed[fz_nscene_seeds++], fz_every_directive, strlen(fz_every_directive));
   {
-    static const char *files[2] = {"envlight_demo.pbrt", "bench_city.pbrt"};
+    static const char *files[4] = {"envlight_demo.pbrt", "bench_city.pbrt", "glass_metal.pbrt", "loopsubdiv.pbrt"};
     int k;
-    for (k = 0; k < 2; k++) {
+    for (k = 0; k < 4; k++) {
       char path[1024];
       fz_buf *b = &fz_scene_seed[fz_nscene_seeds];
       char *q;
@@ -479,6 +505,8 @@ static void fz_make_seeds(void) {
       while ((q = strstr((char *)b->p, "[ 400 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       while ((q = strstr((char *)b->p, "[ 320 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       while ((q = strstr((char *)b->p, "[ 240 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
+      while ((q = strstr((char *)b->p, "[ 192 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
+      while ((q = strstr((char *)b->p, "[ 180 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       fz_nscene_seeds++;
     }
   }

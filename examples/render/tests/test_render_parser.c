@@ -297,11 +297,11 @@ static void ply_headers(void) {
 static void warnings(void) {
   char err[512];
   elr_scene *s = rt_load("warn.pbrt", W("AreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" 1 \"float foo\" 3\n"
-                                        "Material \"glass\"\n"),
+                                        "Material \"hair\"\n"),
                          err, sizeof err);
   if (!s) { rt_check(0, "warnings scene: %s", err); return; }
   rt_check(elr_scene_warnings(s) == 3, "3 warnings: unsupported directive, unknown parameter, unsupported material (%d)", elr_scene_warnings(s));
-  rt_check(strstr(elr_scene_last_warning(s), "warn.pbrt:5:") && strstr(elr_scene_last_warning(s), "glass"),
+  rt_check(strstr(elr_scene_last_warning(s), "warn.pbrt:5:") && strstr(elr_scene_last_warning(s), "hair"),
            "warning names file:line and what is ignored: \"%s\"", elr_scene_last_warning(s));
   elr_scene_free(s);
 }
@@ -524,7 +524,7 @@ static void errors(void) {
   {
     char err[512];
     elr_scene *s;
-    rt_write("inc_last4.pbrt", "# included\n\nMaterial \"glass\"\n");
+    rt_write("inc_last4.pbrt", "# included\n\nMaterial \"hair\"\n");
     s = rt_load("incl4.pbrt", "WorldBegin\nInclude \"inc_last4.pbrt\"\nWorldEnd\n", err, sizeof err);
     rt_check(s && strstr(elr_scene_last_warning(s), "inc_last4.pbrt:3: warning") != NULL,
              "a warning in an included file's last directive names that file: \"%s\"", s ? elr_scene_last_warning(s) : err);
