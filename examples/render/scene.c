@@ -2,7 +2,7 @@
  * integrators trace rays in (pbrt-v3 core/scene.cpp and api.cpp's MakeScene; Embree replaces its
  * accelerators/). One Embree triangle geometry per mesh; the spheres as one user geometry of exact
  * object-space spheres (shapes.c), or Embree's own sphere primitive for similarity transforms with
- * ELR_EMBREE_SPHERES=1. elr_intersect makes the hit record through shapes.c, elr_occluded answers
+ * ELR_EMBREE_SPHERES=1; the disks as another user geometry. elr_intersect makes the hit record through shapes.c, elr_occluded answers
  * shadow rays. Instances (ObjectInstance as Embree instances) would be built here. */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
@@ -32,11 +32,12 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   sc = rtcNewScene(dev);
   s->rtscene = sc;
   rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
-  s->ngeom = (unsigned)s->nmesh + (s->nsph ? 2u : 0u);
+  s->ngeom = (unsigned)s->nmesh + (s->nsph ? 2u : 0u) + (s->ndisk ? 1u : 0u);
   s->geom_kind = (unsigned *)calloc(s->ngeom + 1, sizeof(unsigned));
   s->geom_index = (int *)calloc(s->ngeom + 1, sizeof(int));
   if (!s->geom_kind || !s->geom_index) { snprintf(err, errlen, "out of memory"); return -1; }
   s->sphere_geom = ~0u;
+  s->disk_geom = ~0u;
   for (i = 0; i < s->nmesh; i++) {
     elr_mesh *m = &s->mesh[i];
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -114,12 +115,26 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     s->geom_kind[id] = 1; s->geom_index[id] = 0;
     s->sphere_geom = id;
   }
+  if (s->ndisk) { /* pbrt-v3's disks, exact: shapes.c */
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+    unsigned id;
+    rtcSetGeometryUserPrimitiveCount(g, (unsigned)s->ndisk);
+    rtcSetGeometryUserData(g, s);
+    rtcSetGeometryBoundsFunction(g, elr_disk_bounds, NULL);
+    rtcSetGeometryIntersectFunction(g, elr_disk_intersect);
+    rtcSetGeometryOccludedFunction(g, elr_disk_occluded);
+    rtcCommitGeometry(g);
+    id = rtcAttachGeometry(sc, g);
+    rtcReleaseGeometry(g);
+    s->geom_kind[id] = 2; s->geom_index[id] = 0;
+    s->disk_geom = id;
+  }
   rtcCommitScene(sc);
   if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) { snprintf(err, errlen, "Embree: building the scene failed"); return -1; }
   {
     struct RTCBounds b;
     rtcGetSceneBounds(sc, &b);
-    if (s->nmesh + s->nsph > 0 && b.lower_x <= b.upper_x) {
+    if (s->nmesh + s->nsph + s->ndisk > 0 && b.lower_x <= b.upper_x) {
       s->world_center = elr_v(0.5f * (b.lower_x + b.upper_x), 0.5f * (b.lower_y + b.upper_y), 0.5f * (b.lower_z + b.upper_z));
       s->world_radius = 0.5f * elr_len(elr_v(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z));
     } else {
@@ -197,6 +212,8 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
   h->has_uv = 0;
   if (rh.hit.geomID == s->sphere_geom || rh.hit.geomID == s->builtin_geom)
     elr_sphere_hit(s, rh.hit.geomID == s->sphere_geom ? s->sph_user[rh.hit.primID] : s->sph_builtin[rh.hit.primID], o, d, h);
+  else if (rh.hit.geomID == s->disk_geom)
+    elr_disk_hit(s, (int)rh.hit.primID, o, d, h);
   else
     elr_triangle_hit(s, s->geom_index[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, h);
   pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
@@ -253,7 +270,7 @@ void elr_scene_free(elr_scene *s) {
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
-  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
+  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->disk); free(s->light); free(s->mat_textured);
   free(s);
 }
 int elr_scene_warnings(const elr_scene *s) { return s->warnings; }
