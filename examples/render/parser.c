@@ -82,6 +82,7 @@ typedef struct elr__parser {
   elr__hmap hctx, htex, hmat;
   int in_world, world_ended, seen_camera;
   elr__area *areas; int nareas, capareas;
+  int light_param; /* reading a light's L, I or scale: spectral values must not be negative (elr__pspectral) */
   const char *integ_file; int integ_line; /* the Integrator directive, for a warning at WorldEnd */
   elr_xform camera_ctm;
   elr__param params[ELR_MAX_PARAMS]; int nparams;
@@ -319,6 +320,8 @@ static void elr__read_params(elr__parser *P) {
           if (isstr == 0) elr__fail(P, v.line, "parameter \"%s\": strings mixed with numbers", t.s);
           isstr = 1; strs[nv++] = v.kind == T_STRING ? (char *)v.s : elr__strdup(P, v.s, v.len);
         } else {
+          if (v.kind == T_WORD && v.len <= 8 && (!strncmp(v.s, "inf", 3) || !strncmp(v.s, "nan", 3) || !strncmp(v.s, "Inf", 3) || !strncmp(v.s, "NaN", 3)))
+            elr__fail(P, v.line, "parameter \"%s\": \"%.*s\" is not a finite number", t.s, (int)v.len, v.s);
           elr__fail(P, v.line, "parameter \"%s\": unexpected token in value list (missing ']'?)", t.s);
         }
       }
@@ -403,14 +406,20 @@ static const char *elr__pstring(elr__parser *P, const char *name, const char *de
 }
 static char *elr__read_file(elr__parser *P, const char *path, size_t *len, int line);
 static char *elr__resolve(elr__parser *P, const char *name);
-/* A "spectrum", "blackbody" or "xyz" value as RGB, converted as pbrt-v3 does (spectrum.c). */
+/* A "spectrum", "blackbody" or "xyz" value as RGB, converted as pbrt-v3 does (spectrum.c). For a light
+ * (P->light_param) a negative value given (a spectrum sample, a blackbody scale, an X, Y or Z) is an
+ * error, and the negative RGB components that a spectrum outside the sRGB gamut converts to (a
+ * normalised 1500 K blackbody is R 0.0111, G 0.00148, B -0.00022) are clamped to 0: pbrt-v3 keeps them, and here the film would reject the
+ * negative radiance they make. */
 static elr_v3 elr__pspectral(elr__parser *P, elr__param *p) {
   double rgb[3];
+  int negative = 0, i;
   p->used = 1;
   if (!strcmp(p->type, "xyz")) { /* Spectrum::FromXYZ */
     double xyz[3];
     if (p->n != 3) elr__failf(P, p->file, p->line, "%s: parameter \"xyz %s\" takes 3 values (X Y Z), got %d", P->dir_name, p->name, p->n);
     xyz[0] = p->num[0]; xyz[1] = p->num[1]; xyz[2] = p->num[2];
+    negative = xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0;
     elr_xyz_to_rgb(xyz, rgb);
   } else if (!strcmp(p->type, "blackbody")) { /* ParamSet::AddBlackbodySpectrum: a (temperature, scale) pair */
     double T;
@@ -422,6 +431,7 @@ static elr_v3 elr__pspectral(elr__parser *P, elr__param *p) {
       elr__failf(P, p->file, p->line, "%s: parameter \"blackbody %s\": the temperature %g K must be positive", P->dir_name, p->name, T);
     elr_blackbody_rgb(T, rgb);
     rgb[0] *= p->num[1]; rgb[1] *= p->num[1]; rgb[2] *= p->num[1];
+    negative = p->num[1] < 0;
   } else { /* "spectrum": (wavelength, value) pairs, inline or in a .spd file (AddSampledSpectrum, ...Files) */
     const double *v = p->num;
     double *lam, *val, *file_vals = NULL;
@@ -450,11 +460,16 @@ static elr_v3 elr__pspectral(elr__parser *P, elr__param *p) {
     val = (double *)elr__alloc(P, sizeof(double) * (size_t)n);
     for (i = 0; i < n; i++) {
       lam[i] = v[2 * i]; val[i] = v[2 * i + 1];
+      if (val[i] < 0) negative = 1;
       if (i > 0 && !(lam[i] > lam[i - 1]))
         elr__failf(P, p->file, p->line, "%s: parameter \"spectrum %s\": the wavelengths of %s%s%s are not increasing (%g after %g)", P->dir_name,
                    p->name, what, path ? " " : "", path ? path : "", lam[i], lam[i - 1]);
     }
     elr_spectrum_from_sampled(lam, val, n, rgb);
+  }
+  if (P->light_param) {
+    if (negative) elr__failf(P, p->file, p->line, "%s: parameter \"%s %s\" must not be negative", P->dir_name, p->type, p->name);
+    for (i = 0; i < 3; i++) if (rgb[i] < 0) rgb[i] = 0;
   }
   if (!isfinite(rgb[0]) || !isfinite(rgb[1]) || !isfinite(rgb[2]) || fabs(rgb[0]) > FLT_MAX || fabs(rgb[1]) > FLT_MAX || fabs(rgb[2]) > FLT_MAX)
     elr__failf(P, p->file, p->line, "%s: parameter \"%s %s\": the colour overflows (%g %g %g)", P->dir_name, p->type, p->name, rgb[0], rgb[1], rgb[2]);
@@ -843,7 +858,9 @@ static void elr__integrator(elr__parser *P, const char *type) {
 static void elr__light(elr__parser *P, const char *type) {
   elr_scene *s = P->s;
   elr_light *l;
-  elr_v3 sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
+  elr_v3 sc;
+  P->light_param = 1;
+  sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
   ELR_PUSH(P, s->light, s->nlight, s->caplight, elr_light);
   l = &s->light[s->nlight - 1];
   if (!strcmp(type, "infinite")) {
@@ -939,6 +956,7 @@ static void elr__light(elr__parser *P, const char *type) {
     s->nlight--;
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
   }
+  P->light_param = 0;
 }
 
 /* AreaLightSource (pbrt-v3's pbrtAreaLightSource and CreateDiffuseAreaLight): "diffuse", or its alias
@@ -956,8 +974,10 @@ static void elr__area_light_source(elr__parser *P, const char *type) {
   }
   ELR_PUSH(P, P->areas, P->nareas, P->capareas, elr__area);
   a = &P->areas[P->nareas - 1];
+  P->light_param = 1;
   L = elr__prgb(P, "L", elr_v(1, 1, 1));
   sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
+  P->light_param = 0;
   a->L = elr_vmul(L, sc);
   if (!isfinite(a->L.x) || !isfinite(a->L.y) || !isfinite(a->L.z))
     elr__failf(P, P->dir_file, P->dir_line, "AreaLightSource \"%s\": L times scale overflows (%g %g %g)", type, a->L.x, a->L.y, a->L.z);
