@@ -273,7 +273,8 @@ elr_v3 elr_hit_le(const elr_scene *s, const elr_hit *h, elr_v3 w);
 /* >> lights (lights.c): pbrt-v3's Light interface for point, distant, infinite and area lights */
 /* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
  * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
- * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
+ * and where the shadow ray ends (at p_light when at_point: 1 a point light, 2 a point on an area light;
+ * else after dist: INFINITY for the environment) */
 typedef struct elr_light_sample {
   elr_v3 L, wi;
   float pdf;
