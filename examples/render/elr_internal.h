@@ -435,8 +435,16 @@ typedef struct elr_ctx {
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
-/* pbrt-v3's PowerHeuristic(1, f, 1, g) */
-static inline float elr_power_heuristic(float f, float g) { float f2 = f * f, g2 = g * g; return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f; }
+/* pbrt-v3's PowerHeuristic(1, f, 1, g); for densities whose squares would overflow (an area light seen
+ * at a grazing angle: 1e20 and more) the same weight from their ratio, instead of inf / inf */
+static inline float elr_power_heuristic(float f, float g) {
+  float f2 = f * f, g2 = g * g;
+  if (f > 1e18f || g > 1e18f) {
+    float r = f >= g ? g / f : f / g, w = 1.f / (1.f + r * r);
+    return f >= g ? w : 1.f - w;
+  }
+  return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f;
+}
 /* A path in flight (the locals of pbrt-v3's Li loops): the ray it continues along, the bounces so far,
  * the radiance gathered and the throughput; for the path tracer whether the last bounce was specular
  * and its BSDF pdf. */

@@ -365,6 +365,21 @@ static void pipeline(void) {
     } else rt_check(0, "dark: %s", err);
     elr_scene_free(s);
   }
+  /* two disk lights in one plane (each one's own material lit by the other edge-on): solid-angle
+   * densities of 1e20 and more, whose squares overflowed the power heuristic (NaN samples that the
+   * film rejected: 900 per million in scenes/blackbody_lights.pbrt) */
+  s = rt_load("edge.pbrt", "LookAt 0 3 -1  0 1.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
+                           "Film \"image\" \"integer xresolution\" 64 \"integer yresolution\" 64\nSampler \"random\" \"integer pixelsamples\" 64\n"
+                           "Integrator \"directlighting\"\nWorldBegin\n"
+                           "AttributeBegin\nTranslate -0.8 1.5 0\nRotate 90 1 0 0\nAreaLightSource \"diffuse\" \"rgb L\" [ 2 2 2 ]\nShape \"disk\" \"float radius\" 0.7\nAttributeEnd\n"
+                           "AttributeBegin\nTranslate 0.8 1.5 0\nRotate 90 1 0 0\nAreaLightSource \"diffuse\" \"rgb L\" [ 2 2 2 ]\nShape \"disk\" \"float radius\" 0.7\nAttributeEnd\n"
+                           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -6 0 -6  6 0 -6  6 0 6  -6 0 6 ]\nWorldEnd\n",
+              err, sizeof err);
+  if (s && rt_render(s, 64, ELR_LS_MIS, -1, 2, 1, &im, &st) == 0) {
+    rt_check(st.rejected_samples == 0, "two disk lights in one plane: %llu samples rejected (NaN MIS weights)", (unsigned long long)st.rejected_samples);
+    elr_image_free(&im);
+  } else rt_check(0, "edge: %s", err);
+  elr_scene_free(s);
   /* one mesh light: its area CDF, no light distribution; BSDF sampling only builds no CDF */
   s = rt_load("one.pbrt", scene("\"path\"", "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 2 2 2 ]\n"
                                             "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -1 3 -1  1 3 -1  1 3 1  -1 3 1 ]\nAttributeEnd\n"),
