@@ -102,24 +102,36 @@ static inline void elr_material_textures(const elr_material *m, int t[ELR_MAT_NT
   t[7] = m->index; t[8] = m->eta; t[9] = m->k; t[10] = m->opacity;
 }
 
+/* Every shape: its material, the area light it carries (an index in elr_scene.light, or -1) and its
+ * orientation: flip = 1 when pbrt-v3 turns its normals around (ReverseOrientation; for a triangle mesh
+ * without normals also a transformation that swaps handedness), which the hit records and the sampled
+ * points of shapes.c apply. The normals decide which side of a one-sided area light emits. */
 typedef struct elr_mesh {
   int ntri, nvert;
   unsigned *idx;  /* 3*ntri */
   float *p;       /* 3*nvert, world space */
   float *n;       /* 3*nvert or NULL, world space */
   float *uv;      /* 2*nvert or NULL */
-  int material;
-  int flip;       /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness, for meshes without N */
+  int material, light; /* light: the area light this shape carries (an index in elr_scene.light), or -1 */
+  int flip;       /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness (see shapes.c) */
   int object;     /* -1: in the world; else the ObjectBegin prototype (elr_object) it belongs to */
 } elr_mesh;
 
 typedef struct elr_sphere {
   elr_xform o2w; /* object to world (an instance's object space, for a prototype's sphere) */
   float radius;
-  int material;
+  int material, light;
   int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
   int object;    /* -1, or the prototype it belongs to */
 } elr_sphere;
+
+/* pbrt-v3's Disk (shapes/disk.cpp): the annulus innerradius <= r <= radius, 0 <= phi <= phimax, at
+ * z = height in object space (in the world only: not inside ObjectBegin) */
+typedef struct elr_disk {
+  elr_xform o2w;
+  float height, radius, inner, phimax; /* phimax in radians */
+  int material, light, flip;
+} elr_disk;
 
 /* ObjectBegin ... ObjectEnd: a prototype (pbrt-v3's renderOptions->instances[name]) whose shapes are the
  * meshes and spheres with .object == its index, in its own space (the CTM at each Shape); ObjectInstance
@@ -138,12 +150,27 @@ typedef struct elr_object {
 } elr_object;
 typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ } elr_instance;
 
-enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2 };
+enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
+enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
   int kind;
-  elr_v3 L;          /* L * scale (point: I * scale) */
+  elr_v3 L;          /* L * scale (point: I * scale; area: the emitted radiance Lemit) */
   elr_v3 pos, dir;   /* point: world position; distant: world direction towards the light */
   int nsamples;
+  /* area: pbrt-v3's DiffuseAreaLight on one shape (a whole triangle mesh is one light, sampled by area
+   * over its triangles); lights.c, and shapes.c for the shape's Sample and Pdf. Built before a render
+   * that samples the light (elr_area_light_prepare): the area and, for a mesh, its area CDF. */
+  int shape_kind, shape;   /* ELR_SHAPE_* and the index in s->mesh, s->sph or s->disk */
+  int twosided;
+  int prepared;
+  double area;             /* world-space area */
+  double *tri_cdf;         /* mesh: ntri + 1 cumulative triangle areas, tri_cdf[ntri] = area */
+  int cone;                /* sphere under a similarity transform: sampled in the cone it subtends */
+  elr_v3 center;           /* sphere: world centre; */
+  float wradius;           /* and world radius (cone) */
+  double det;              /* sphere (ellipsoid) and disk: |det| of the object-to-world 3x3 */
+  elr_v3 n_disk;           /* disk: the world normal, oriented */
+  double build_seconds;
   /* infinite: envlight.h's light (a constant L is a constant light); lights.c */
   el_envlight *env;        /* the radiance, as the scene gave it: le */
   el_envlight *env_sample; /* the density sample_li and pdf_li use: env, or env_alt */
@@ -168,6 +195,8 @@ typedef struct elr_scene_desc {
   /* integrator */
   int integrator_path, maxdepth, light_sampling;
   float rrthreshold;
+  int direct_one;     /* directlighting: pbrt-v3's "strategy" "one" (else "all") */
+  int light_strategy; /* path: pbrt-v3's "lightsamplestrategy" (ELR_LSTRAT_*) */
 } elr_scene_desc;
 
 struct elr_scene {
@@ -176,6 +205,7 @@ struct elr_scene {
   elr_material *mat; int nmat, capmat;
   elr_mesh *mesh; int nmesh, capmesh;
   elr_sphere *sph; int nsph, capsph;
+  elr_disk *disk; int ndisk, capdisk;
   elr_light *light; int nlight, caplight;
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
@@ -186,10 +216,11 @@ struct elr_scene {
   size_t bytes_textures, bytes_embree;
   /* Embree */
   void *device, *rtscene;
-  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres, 2 an instance (geom_index: which) */
+  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres, 2 an instance (geom_index: which), 3 the disks */
   int *geom_index;
   unsigned ngeom;
   unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
+  unsigned disk_geom;   /* geometry id of the disk user geometry (primID = disk index), or ~0u */
   unsigned builtin_geom; /* geometry id of Embree's sphere primitives (similarity transforms), or ~0u */
   int *sph_builtin, *sph_user, nbuiltin, nuser; /* primID -> sphere index */
   elr_sphere_set world_spheres; /* the user geometry's data: sph, sph_user */
@@ -220,10 +251,11 @@ typedef struct elr_hit {
   float u, v;          /* texture coordinates */
   int material;
   float eps;           /* offset for spawned rays */
+  int light;           /* the area light of the shape hit (an index in s->light), or -1 */
   /* for elr_hit_uv */
-  int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
-  int flip;               /* pbrt-v3 orients this shape's normal the other way (ReverseOrientation, a mirroring
-                             transform): only materials that tell outside from inside (glass) look at it */
+  int kind, mesh, has_uv; /* kind ELR_SHAPE_*: 0 triangle, 1 sphere, 2 disk */
+  int flip;               /* the shape's flip (ReverseOrientation xor a mirroring transform): ng, ns and, from
+                             elr_hit_uv, dndu and dndv above are already turned */
   int inst;               /* -1, or the instance (elr_instance) whose prototype's shape was hit: the shape's
                              data are in the prototype's space, the hit record in world space */
   unsigned prim;
@@ -240,6 +272,17 @@ struct RTCOccludedFunctionNArguments;
 void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
 void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
 void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
+void elr_disk_hit(const elr_scene *s, int di, elr_v3 o, elr_v3 d, elr_hit *h);
+void elr_disk_bounds(const struct RTCBoundsFunctionArguments *a);
+void elr_disk_intersect(const struct RTCIntersectFunctionNArguments *a);
+void elr_disk_occluded(const struct RTCOccludedFunctionNArguments *a);
+/* shapes.c: a point on an area light's shape (pbrt-v3's Shape::Sample(ref, u)) with its normal and its
+ * solid-angle density seen from ref (0 when it cannot be used), and that density for the point lh where
+ * a ray from ref reached the shape (Shape::Pdf(ref, wi), which intersects the ray itself; the
+ * integrators have the hit already). elr_shape_prepare computes the area and a mesh's area CDF. */
+void elr_shape_sample(const elr_scene *s, const elr_light *l, elr_v3 ref, const float u[2], elr_v3 *p, elr_v3 *n, float *pdf);
+float elr_shape_pdf(const elr_scene *s, const elr_light *l, elr_v3 ref, const elr_hit *lh);
+int elr_shape_prepare(const elr_scene *s, elr_light *l, int build_cdf);
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
@@ -282,7 +325,7 @@ typedef struct elr_bsdf {
   float alpha;
   int has_diffuse, has_glossy, has_specular, ncomp;
   int spec_r, spec_t, nlobes;
-  float eta, nsign; /* nsign: -1 when the frame's normal is the hit's turned around (ray differentials) */
+  float eta;
   elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
@@ -302,13 +345,16 @@ float elr_roughness_to_alpha(float r);
 float elr_fr_dielectric(float cos_i, float eta_i, float eta_t);
 elr_v3 elr_fr_conductor(float cos_i, elr_v3 eta, elr_v3 k);
 
-/* >> ray differentials at a hit (interaction.c): the texture footprint */
+/* >> ray differentials at a hit (interaction.c): the texture footprint; the radiance a hit emits */
 void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
+/* pbrt-v3's SurfaceInteraction::Le: the radiance the hit's area light (if any) emits towards w */
+elr_v3 elr_hit_le(const elr_scene *s, const elr_hit *h, elr_v3 w);
 
-/* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
+/* >> lights (lights.c): pbrt-v3's Light interface for point, distant, infinite and area lights */
 /* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
  * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
- * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
+ * and where the shadow ray ends (at p_light when at_point: 1 a point light, 2 a point on an area light;
+ * else after dist: INFINITY for the environment) */
 typedef struct elr_light_sample {
   elr_v3 L, wi;
   float pdf;
@@ -327,6 +373,42 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
 int elr_infinite_prepare(elr_light *l, int compensated, int importance);
 void elr_light_prefetch(const elr_light *l, elr_v3 wi);
 void elr_light_free(elr_light *l);
+/* area lights: pbrt-v3's DiffuseAreaLight::L (the radiance leaving a point of normal n towards w) */
+static inline elr_v3 elr_area_light_L(const elr_light *l, elr_v3 n, elr_v3 w) {
+  return l->twosided || elr_dot(n, w) > 0.f ? l->L : elr_v(0, 0, 0);
+}
+/* Pdf_Li of an area light for the ray from ref that reached it at lh (see elr_shape_pdf) */
+float elr_area_light_pdf(const elr_scene *s, const elr_light *l, elr_v3 ref, const elr_hit *lh);
+int elr_area_light_prepare(const elr_scene *s, elr_light *l, int build_cdf); /* -1: out of memory */
+/* pbrt-v3's Light::Power, its luminance (RGBSpectrum::y): the "power" light sample strategy's weight */
+double elr_light_power(const elr_scene *s, const elr_light *l);
+
+/* >> light selection (lightdistrib.c): pbrt-v3's LightDistribution (core/lightdistrib.cpp) */
+enum { ELR_LSTRAT_UNIFORM = 0, ELR_LSTRAT_POWER = 1, ELR_LSTRAT_SPATIAL = 2 };
+typedef struct elr_light_distrib {
+  int n;               /* the emitting lights it chooses among */
+  int *index;          /* their indices in s->light */
+  el_distribution1d d; /* pbrt-v3's Distribution1D over them, built only when n > 1 */
+  float *pick;         /* per light of the scene: the probability that it is chosen (0: never) */
+  int strategy;        /* ELR_LSTRAT_UNIFORM or ELR_LSTRAT_POWER */
+  size_t bytes;
+  double seconds;
+} elr_light_distrib;
+int elr_light_distrib_init(elr_light_distrib *D, const elr_scene *s, int strategy);
+void elr_light_distrib_free(elr_light_distrib *D);
+/* the light chosen by u (D->n > 1; with one light it is that light and no number is needed) */
+static inline const elr_light *elr_light_distrib_sample(const elr_light_distrib *D, const elr_scene *s, float u, float *pick) {
+  int k = D->n > 1 ? el_distribution1d_sample_discrete(&D->d, u, NULL, NULL) : 0;
+  *pick = D->pick[D->index[k]];
+  return &s->light[D->index[k]];
+}
+
+/* >> spectra (spectrum.c): pbrt-v3's spectral parameter values as RGB (its RGBSpectrum build) */
+void elr_xyz_to_rgb(const double xyz[3], double rgb[3]);                                    /* XYZToRGB */
+void elr_spectrum_from_sampled(const double *lambda, const double *v, int n, double rgb[3]); /* FromSampled */
+void elr_blackbody(const double *lambda, int n, double T, double *Le);                       /* Blackbody */
+void elr_blackbody_rgb(double T, double rgb[3]); /* FromSampled(BlackbodyNormalized(T)): a "blackbody" value of scale 1 */
+int elr_float_file_parse(const char *text, size_t len, double *vals, int cap, int *bad_line); /* ReadFloatFile */
 
 /* >> camera (camera.c): pbrt-v3's PerspectiveCamera */
 typedef struct elr_camera {
@@ -423,14 +505,26 @@ typedef struct elr_ctx {
   int ls;                 /* ELR_LS_*: the strategies that estimate direct light */
   int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
   int has_env;            /* an emitting infinite light exists */
+  int has_area;           /* an emitting area light exists */
+  int direct_one;         /* directlighting: strategy "one" (one light chosen per vertex) */
+  elr_light_distrib ld;   /* which light next-event estimation samples (built for the path tracer and
+                             strategy "one" when more than one light emits) */
   /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
-/* pbrt-v3's PowerHeuristic(1, f, 1, g) */
-static inline float elr_power_heuristic(float f, float g) { float f2 = f * f, g2 = g * g; return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f; }
+/* pbrt-v3's PowerHeuristic(1, f, 1, g); for densities whose squares would overflow (an area light seen
+ * at a grazing angle: 1e20 and more) the same weight from their ratio, instead of inf / inf */
+static inline float elr_power_heuristic(float f, float g) {
+  float f2 = f * f, g2 = g * g;
+  if (f > 1e18f || g > 1e18f) {
+    float r = f >= g ? g / f : f / g, w = 1.f / (1.f + r * r);
+    return f >= g ? w : 1.f - w;
+  }
+  return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f;
+}
 /* A path in flight (the locals of pbrt-v3's Li loops): the ray it continues along, the bounces so far,
  * the radiance gathered and the throughput; for the path tracer whether the last bounce was specular
  * and its BSDF pdf. */
@@ -449,9 +543,11 @@ static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) 
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
-                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld);
+                         const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld);
 elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
                                      int sample_bsdf, elr_tstats *ts);
+elr_v3 elr_uniform_sample_one_light(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int sample_bsdf,
+                                    elr_tstats *ts);
 int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
 int elr_specular_transmit(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,

@@ -4,6 +4,7 @@
  *   elr_estimate_direct             EstimateDirect: one light, one light sample and one BSDF sample,
  *                                   combined with the power heuristic (MIS)
  *   elr_uniform_sample_all_lights   UniformSampleAllLights: every light, with its own sample count
+ *   elr_uniform_sample_one_light    UniformSampleOneLight: one light chosen by the light distribution
  *   elr_specular_reflect            SpecularReflect: the mirror bounce and its ray differentials
  *   elr_specular_transmit           SpecularTransmit: the refracted bounce and its ray differentials
  *   elr_direct_specular             both, at a vertex of the direct-lighting integrator
@@ -12,8 +13,8 @@
  * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
  * loop (render.c) calls the integrators of integrator_direct.c and integrator_path.c per camera
  * sample; render_batched.c is the faster arrangement of the same computation for scenes lit by the
- * environment alone. The light interface (lights.c) hides which kind of light is sampled: area lights
- * join there, and EstimateDirect's BSDF-sampled term then needs the ray's hit (is it this light?)
+ * environment alone. The light interface (lights.c) hides which kind of light is sampled, except in
+ * EstimateDirect's BSDF-sampled term: for an area light it needs the ray's hit (is it this light?),
  * where the environment only needs to know that nothing is in the way. */
 #include "elr_internal.h"
 
@@ -31,9 +32,11 @@ elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d) {
  * ul (the light sample) and us (the BSDF sample). Adds the light-sampled term, then the BSDF-sampled
  * term to *Ld. C->ls chooses the strategies (MIS, light only, BSDF only); delta lights take light
  * sampling alone, and sample_bsdf = 0 leaves out the BSDF-sampled term (the path tracer, whose
- * continuation ray plays that part). */
+ * continuation ray plays that part: its MIS partner can reach any light, so the light sample's weight
+ * compares the BSDF's pdf with pick, the probability that l was chosen, times the light's; pbrt-v3's
+ * own pair of samples is drawn for l alone: pick 1). */
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
-                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
+                         const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld) {
   const elr_scene *s = C->s;
   int delta = elr_light_is_delta(l);
   /* <<Sample light source with multiple importance sampling>> */
@@ -48,7 +51,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
         if (elr_light_unoccluded(s, h, &ls)) {
           /* <<Add light's contribution to reflected radiance>> */
           float w = 1.f;
-          if (!delta && C->ls == ELR_LS_MIS) w = elr_power_heuristic(ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
+          if (!delta && C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
           *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls.L), w / ls.pdf));
         }
       }
@@ -62,10 +65,22 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
     f = elr_bsdf_sample(b, wo, us[0], us[1], &wi, &pdf, &spec);
     if (!spec && pdf > 0.f && !elr_isblack(f)) {
       f = elr_mul(f, fabsf(elr_dot(wi, b->ns)));
+      ts->bsdfl++;
+      if (l->kind == ELR_LIGHT_AREA) {
+        /* <<Find intersection and compute transmittance>>, <<Add light contribution from material
+         * sampling>>: the ray's first hit must be this light's shape (its Pdf_Li from that hit) */
+        elr_hit lh;
+        if (elr_intersect(s, elr_spawn_origin(h, wi), wi, INFINITY, &lh) && lh.light == (int)(l - s->light)) {
+          elr_v3 Li = elr_hit_le(s, &lh, elr_mul(wi, -1.f));
+          float w = 1.f;
+          if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_area_light_pdf(s, l, h->p, &lh));
+          *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, Li), w / pdf));
+        }
+        return;
+      }
       /* the light's pdf and radiance in direction wi are read after the shadow ray: their cache lines
        * (texels, pdf bin: misses in multi-megabyte tables) are asked for now and arrive meanwhile */
       elr_light_prefetch(l, wi);
-      ts->bsdfl++;
       /* <<Find intersection and compute transmittance>>: the environment is reached when nothing is in
        * the way (pbrt-v3 returns when Pdf_Li is 0; with envlight's compensated density that would drop
        * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
@@ -96,11 +111,28 @@ elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr
       float ul[2], us[2];
       elr_sampler_get2d(S, ul);
       elr_sampler_get2d(S, us);
-      elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, ts, &Ld);
+      elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
     }
     L = elr_add(L, elr_mul(Ld, 1.f / (float)n));
   }
   return L;
+}
+
+/* pbrt-v3's UniformSampleOneLight: one light chosen by C->ld (the path tracer's lightsamplestrategy;
+ * uniform for directlighting's strategy "one"), one EstimateDirect for it, divided by the probability
+ * of the choice. With a single emitting light no number is drawn for the choice. */
+elr_v3 elr_uniform_sample_one_light(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int sample_bsdf,
+                                    elr_tstats *ts) {
+  const elr_light *l;
+  elr_v3 Ld = elr_v(0, 0, 0);
+  float pick, ul[2], us[2];
+  if (C->ld.n == 0) return Ld;
+  /* <<Randomly choose a single light to sample, light>> */
+  l = elr_light_distrib_sample(&C->ld, C->s, C->ld.n > 1 ? elr_sampler_get1d(S) : 0.f, &pick);
+  elr_sampler_get2d(S, ul);
+  elr_sampler_get2d(S, us);
+  elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, sample_bsdf ? 1.f : pick, ts, &Ld);
+  return elr_mul(Ld, 1.f / pick);
 }
 
 /* pbrt-v3's SpecularReflect up to its recursion: the mirror direction at h (ray r arrived, BSDF b,
@@ -125,8 +157,8 @@ int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, con
   if (r->has_diff && C->s->any_textured) {
     /* <<Compute ray differential rd for specular reflection>> */
     elr_v3 ns = b->ns;
-    elr_v3 dndx = elr_mul(elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx)), b->nsign);
-    elr_v3 dndy = elr_mul(elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy)), b->nsign);
+    elr_v3 dndx = elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx));
+    elr_v3 dndy = elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy));
     elr_v3 dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo), dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
     float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
     out.has_diff = 1;
@@ -155,8 +187,8 @@ int elr_specular_transmit(const elr_ctx *C, elr_sampler *S, const elr_ray *r, co
   out.o = elr_spawn_origin(h, wi); out.d = wi; out.has_diff = 0;
   if (r->has_diff && C->s->any_textured) {
     /* <<Compute ray differential rd for specular transmission>> */
-    elr_v3 dndx = elr_mul(elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx)), b->nsign);
-    elr_v3 dndy = elr_mul(elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy)), b->nsign);
+    elr_v3 dndx = elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx));
+    elr_v3 dndy = elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy));
     elr_v3 dwodx, dwody;
     float eta = 1.f / b->eta, dDNdx, dDNdy, mu, cwi, dmudx, dmudy;
     if (elr_dot(wo, ns) < 0.f) { /* leaving: the relative index inverted, the normal and its derivatives turned */

@@ -1,11 +1,11 @@
 /* integrator_direct.c: pbrt-v3's DirectLightingIntegrator (integrators/directlighting.cpp; the book's
  * section 14.3).
  *
- * At each hit, the light from every light source by pbrt-v3's strategy "all" (UniformSampleAllLights:
- * each light's "samples" count, light and BSDF sampling combined with the power heuristic), then the
- * specular reflection and transmission followed up to maxdepth. The Integrator directive's "strategy" "one" is not
- * implemented (the parser warns, and "all" is used). Emission of hit surfaces (area lights, pbrt-v3's
- * isect.Le) would be added at each hit. */
+ * At each hit, the radiance the surface emits (an area light: pbrt-v3's isect.Le), then the light from
+ * the light sources by pbrt-v3's strategy "all" (UniformSampleAllLights: each light's "samples"
+ * count, light and BSDF sampling combined with the power heuristic) or "one" (UniformSampleOneLight:
+ * one light chosen uniformly, one sample of each), then the specular reflection and transmission
+ * followed up to maxdepth. */
 #include "elr_internal.h"
 
 /* The branches of the recursion that one call follows at most (each vertex of glass makes two), and
@@ -44,9 +44,12 @@ elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_s
       elr_compute_differentials(s, &r, &h, &tc, &dpdx, &dpdy);
       elr_bsdf_init(s, &h, &tc, &b);
       wo = elr_mul(r.d, -1.f);
+      /* <<Compute emitted light if ray hit an area light source>> */
+      if (h.light >= 0) L = elr_add(L, elr_vmul(beta, elr_hit_le(s, &h, wo)));
       /* <<Compute direct lighting for DirectLightingIntegrator integrator>> */
       if (C->light_sampling && (b.has_diffuse || b.has_glossy))
-        L = elr_add(L, elr_vmul(beta, elr_uniform_sample_all_lights(C, S, &h, &b, wo, 1, 1, ts)));
+        L = elr_add(L, elr_vmul(beta, C->direct_one ? elr_uniform_sample_one_light(C, S, &h, &b, wo, 1, ts)
+                                                    : elr_uniform_sample_all_lights(C, S, &h, &b, wo, 1, 1, ts)));
       /* <<Trace rays for specular reflection and refraction>> */
       if (depth + 1 < C->maxdepth && (b.spec_r || b.spec_t)) {
         n = elr_direct_specular(C, S, &r, &h, &tc, dpdx, dpdy, &b, beta, depth, splits < ELR_DIRECT_SPLITS && npending < ELR_DIRECT_PENDING,

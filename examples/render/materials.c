@@ -29,7 +29,7 @@ static float elr__alpha(float r, int remap) {
 
 /* glass, metal, uber, substrate: pbrt-v3's BxDF lists, in the frame pbrt-v3 orients */
 static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *m, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
-  elr_v3 ns = h->flip ? elr_mul(h->ns, -1.f) : h->ns, ng = h->flip ? elr_mul(h->ng, -1.f) : h->ng;
+  elr_v3 ns = h->ns, ng = h->ng; /* oriented as pbrt-v3 orients them (the shape's flip is in the hit record) */
   elr_bxdf *x;
   int multiple = s->d.integrator_path; /* pbrt-v3's allowMultipleLobes: the path tracer's */
   switch (m->kind) {
@@ -95,14 +95,13 @@ static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *
     break;
   }
   }
-  if (h->flip) b->nsign = -1.f;
 }
 
 /* The BSDF of the hit's material at the shading point c (its textures evaluated there). */
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
   const elr_material *m = &s->mat[h->material];
   if (m->kind > ELR_MAT_PLASTIC) { elr__bsdf_list(s, m, h, c, b); return; }
-  b->nlobes = 0; b->nsign = 1.f; b->eta = 1.f;
+  b->nlobes = 0; b->eta = 1.f;
   b->ns = h->ns; b->ng = h->ng;
   elr_onb(b->ns, &b->ss, &b->ts);
   b->has_diffuse = b->has_glossy = b->has_specular = 0;

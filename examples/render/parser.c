@@ -48,7 +48,11 @@ typedef struct elr__gstate {
   int nnamed_mat;  /* number of named materials visible */
   int reverse;     /* ReverseOrientation */
   int end_only;    /* ActiveTransform EndTime: transformations go to the end time, which is not rendered */
+  int area;        /* AreaLightSource: 1 + its index in elr__parser.areas, 0 for none */
 } elr__gstate;
+
+/* an AreaLightSource "diffuse" directive: what each shape after it in its attribute block emits */
+typedef struct elr__area { elr_v3 L; int twosided, nsamples; } elr__area;
 
 typedef struct elr__named { char *name; int index; int is_float; int prev; /* the entry it shadows, or -1 */ } elr__named;
 /* A hash index over a list of names (open addressing; a slot holds the latest entry of its name, -1
@@ -79,6 +83,9 @@ typedef struct elr__parser {
   elr__hmap hctx, htex, hmat, hobj;
   elr__named *objnames; int nobjn, capobjn; /* ObjectBegin names -> elr_object */
   int in_world, world_ended, seen_camera;
+  elr__area *areas; int nareas, capareas;
+  int light_param; /* reading a light's L, I or scale: spectral values must not be negative (elr__pspectral) */
+  const char *integ_file; int integ_line; /* the Integrator directive, for a warning at WorldEnd */
   elr_xform camera_ctm;
   elr__param params[ELR_MAX_PARAMS]; int nparams;
   const char *dir_file; int dir_line; /* current directive, for messages */
@@ -354,6 +361,8 @@ static void elr__read_params(elr__parser *P) {
           if (isstr == 0) elr__fail(P, v.line, "parameter \"%s\": strings mixed with numbers", t.s);
           isstr = 1; strs[nv++] = v.kind == T_STRING ? (char *)v.s : elr__strdup(P, v.s, v.len);
         } else {
+          if (v.kind == T_WORD && v.len <= 8 && (!strncmp(v.s, "inf", 3) || !strncmp(v.s, "nan", 3) || !strncmp(v.s, "Inf", 3) || !strncmp(v.s, "NaN", 3)))
+            elr__fail(P, v.line, "parameter \"%s\": \"%.*s\" is not a finite number", t.s, (int)v.len, v.s);
           elr__fail(P, v.line, "parameter \"%s\": unexpected token in value list (missing ']'?)", t.s);
         }
       }
@@ -436,13 +445,81 @@ static const char *elr__pstring(elr__parser *P, const char *name, const char *de
   elr__param *p = elr__findt(P, name, "string", 1);
   return p ? p->str[0] : def;
 }
+static char *elr__read_file(elr__parser *P, const char *path, size_t *len, int line);
+static char *elr__resolve(elr__parser *P, const char *name);
+/* A "spectrum", "blackbody" or "xyz" value as RGB, converted as pbrt-v3 does (spectrum.c). For a light
+ * (P->light_param) a negative value given (a spectrum sample, a blackbody scale, an X, Y or Z) is an
+ * error, and the negative RGB components that a spectrum outside the sRGB gamut converts to (a
+ * normalised 1500 K blackbody is R 0.0111, G 0.00148, B -0.00022) are clamped to 0: pbrt-v3 keeps them, and here the film would reject the
+ * negative radiance they make. */
+static elr_v3 elr__pspectral(elr__parser *P, elr__param *p) {
+  double rgb[3];
+  int negative = 0, i;
+  p->used = 1;
+  if (!strcmp(p->type, "xyz")) { /* Spectrum::FromXYZ */
+    double xyz[3];
+    if (p->n != 3) elr__failf(P, p->file, p->line, "%s: parameter \"xyz %s\" takes 3 values (X Y Z), got %d", P->dir_name, p->name, p->n);
+    xyz[0] = p->num[0]; xyz[1] = p->num[1]; xyz[2] = p->num[2];
+    negative = xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0;
+    elr_xyz_to_rgb(xyz, rgb);
+  } else if (!strcmp(p->type, "blackbody")) { /* ParamSet::AddBlackbodySpectrum: a (temperature, scale) pair */
+    double T;
+    if (p->n != 2)
+      elr__failf(P, p->file, p->line, "%s: parameter \"blackbody %s\" takes 2 values (temperature in kelvin, scale), pbrt-v3's format; got %d%s",
+                 P->dir_name, p->name, p->n, p->n == 1 ? " (pbrt-v4 scenes give the temperature alone)" : "");
+    T = p->num[0];
+    if (!(T > 0.0))
+      elr__failf(P, p->file, p->line, "%s: parameter \"blackbody %s\": the temperature %g K must be positive", P->dir_name, p->name, T);
+    elr_blackbody_rgb(T, rgb);
+    rgb[0] *= p->num[1]; rgb[1] *= p->num[1]; rgb[2] *= p->num[1];
+    negative = p->num[1] < 0;
+  } else { /* "spectrum": (wavelength, value) pairs, inline or in a .spd file (AddSampledSpectrum, ...Files) */
+    const double *v = p->num;
+    double *lam, *val, *file_vals = NULL;
+    int n = p->n, i, bad = 0;
+    const char *what = "the list";
+    char *path = NULL;
+    if (p->isstr) {
+      size_t len;
+      char *txt;
+      if (p->n != 1) elr__failf(P, p->file, p->line, "%s: parameter \"spectrum %s\" takes 1 file name, got %d", P->dir_name, p->name, p->n);
+      path = elr__resolve(P, p->str[0]);
+      txt = elr__read_file(P, path, &len, p->line);
+      n = elr_float_file_parse(txt, len, NULL, 0, &bad);
+      if (n < 0) elr__failf(P, p->file, p->line, "%s: spectrum file \"%s\": line %d is not a list of numbers", P->dir_name, path, bad);
+      file_vals = (double *)elr__alloc(P, sizeof(double) * ((size_t)n + 1));
+      elr_float_file_parse(txt, len, file_vals, n, &bad);
+      v = file_vals;
+      what = "the file";
+    }
+    if (n < 2 || n % 2 != 0) {
+      if (path) elr__failf(P, p->file, p->line, "%s: spectrum file \"%s\" holds %d numbers: (wavelength, value) pairs expected", P->dir_name, path, n);
+      elr__failf(P, p->file, p->line, "%s: parameter \"spectrum %s\" takes (wavelength, value) pairs: got %d numbers", P->dir_name, p->name, n);
+    }
+    n /= 2;
+    lam = (double *)elr__alloc(P, sizeof(double) * (size_t)n);
+    val = (double *)elr__alloc(P, sizeof(double) * (size_t)n);
+    for (i = 0; i < n; i++) {
+      lam[i] = v[2 * i]; val[i] = v[2 * i + 1];
+      if (val[i] < 0) negative = 1;
+      if (i > 0 && !(lam[i] > lam[i - 1]))
+        elr__failf(P, p->file, p->line, "%s: parameter \"spectrum %s\": the wavelengths of %s%s%s are not increasing (%g after %g)", P->dir_name,
+                   p->name, what, path ? " " : "", path ? path : "", lam[i], lam[i - 1]);
+    }
+    elr_spectrum_from_sampled(lam, val, n, rgb);
+  }
+  if (P->light_param) {
+    if (negative) elr__failf(P, p->file, p->line, "%s: parameter \"%s %s\" must not be negative", P->dir_name, p->type, p->name);
+    for (i = 0; i < 3; i++) if (rgb[i] < 0) rgb[i] = 0;
+  }
+  if (!isfinite(rgb[0]) || !isfinite(rgb[1]) || !isfinite(rgb[2]) || fabs(rgb[0]) > FLT_MAX || fabs(rgb[1]) > FLT_MAX || fabs(rgb[2]) > FLT_MAX)
+    elr__failf(P, p->file, p->line, "%s: parameter \"%s %s\": the colour overflows (%g %g %g)", P->dir_name, p->type, p->name, rgb[0], rgb[1], rgb[2]);
+  return elr_v((float)rgb[0], (float)rgb[1], (float)rgb[2]);
+}
+
 static elr_v3 elr__prgb(elr__parser *P, const char *name, elr_v3 def) {
   elr__param *p = elr__find(P, name);
-  if (p && (!strcmp(p->type, "spectrum") || !strcmp(p->type, "blackbody") || !strcmp(p->type, "xyz"))) {
-    elr_warn(P->s, p->file, p->line, "%s: parameter \"%s %s\": only rgb colours are supported; using the default", P->dir_name,
-             p->type, name);
-    p->used = 1; return def;
-  }
+  if (p && (!strcmp(p->type, "spectrum") || !strcmp(p->type, "blackbody") || !strcmp(p->type, "xyz"))) return elr__pspectral(P, p);
   if (p && !strcmp(p->type, "float") && p->n == 1) { p->used = 1; return elr_v((float)p->num[0], (float)p->num[0], (float)p->num[0]); }
   p = elr__findt(P, name, "rgb", 3);
   return p ? elr_v((float)p->num[0], (float)p->num[1], (float)p->num[2]) : def;
@@ -788,13 +865,17 @@ static void elr__sampler(elr__parser *P, const char *type) {
 static void elr__integrator(elr__parser *P, const char *type) {
   elr_scene_desc *d = &P->s->d;
   const char *ls;
+  P->integ_file = P->dir_file; P->integ_line = P->dir_line;
   if (!strcmp(type, "directlighting")) {
+    /* pbrt-v3's strategy: "all" (UniformSampleAllLights, each light's samples) or "one" (UniformSampleOneLight,
+     * one light chosen uniformly) */
+    const char *st = elr__pstring(P, "strategy", "all");
     d->integrator_path = 0;
-    {
-      const char *st = elr__pstring(P, "strategy", "all");
-      if (strcmp(st, "all") != 0) elr_warn(P->s, P->dir_file, P->dir_line, "Integrator: strategy \"%s\" ignored (\"all\" is used)", st);
-    }
+    if (!strcmp(st, "all")) d->direct_one = 0;
+    else if (!strcmp(st, "one")) d->direct_one = 1;
+    else elr__failf(P, elr__find(P, "strategy")->file, elr__find(P, "strategy")->line, "Integrator \"directlighting\": strategy must be \"all\" or \"one\"");
   } else {
+    const char *st;
     if (strcmp(type, "path") != 0) {
       /* pbrt-v3's other integrators (whitted, volpath, bdpt, mlt, sppm, ambientocclusion) and anything
        * else: the path tracer, with the scene's maxdepth; the other parameters belong to the integrator
@@ -806,6 +887,7 @@ static void elr__integrator(elr__parser *P, const char *type) {
       elr_warn(P->s, P->dir_file, P->dir_line, "Integrator \"%s\" is not supported; using \"path\"%s, its other parameters ignored", type,
                keep ? " with its maxdepth" : " (maxdepth 5)");
       d->integrator_path = 1; d->rrthreshold = 1.f;
+      d->light_strategy = ELR_LSTRAT_SPATIAL;
       d->maxdepth = elr__pint(P, "maxdepth", 5);
       elr__check_range(P, "maxdepth", d->maxdepth, 0, 100000);
       d->light_sampling = ELR_LS_MIS;
@@ -813,10 +895,13 @@ static void elr__integrator(elr__parser *P, const char *type) {
     }
     d->integrator_path = 1;
     d->rrthreshold = (float)elr__pfloat(P, "rrthreshold", 1.0);
-    if (elr__find(P, "lightsamplestrategy")) {
-      const char *st = elr__pstring(P, "lightsamplestrategy", "spatial");
-      elr_warn(P->s, P->dir_file, P->dir_line, "Integrator: lightsamplestrategy \"%s\" ignored (every light is sampled at every vertex)", st);
-    }
+    /* pbrt-v3's lightsamplestrategy (default "spatial", which is "power" here: lightdistrib.c) */
+    st = elr__pstring(P, "lightsamplestrategy", "spatial");
+    if (!strcmp(st, "uniform")) d->light_strategy = ELR_LSTRAT_UNIFORM;
+    else if (!strcmp(st, "power")) d->light_strategy = ELR_LSTRAT_POWER;
+    else if (!strcmp(st, "spatial")) d->light_strategy = ELR_LSTRAT_SPATIAL;
+    else elr__failf(P, elr__find(P, "lightsamplestrategy")->file, elr__find(P, "lightsamplestrategy")->line,
+                    "Integrator \"path\": lightsamplestrategy must be \"uniform\", \"power\" or \"spatial\"");
   }
   d->maxdepth = elr__pint(P, "maxdepth", 5);
   elr__check_range(P, "maxdepth", d->maxdepth, 0, 100000);
@@ -833,7 +918,9 @@ static void elr__integrator(elr__parser *P, const char *type) {
 static void elr__light(elr__parser *P, const char *type) {
   elr_scene *s = P->s;
   elr_light *l;
-  elr_v3 sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
+  elr_v3 sc;
+  P->light_param = 1;
+  sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
   ELR_PUSH(P, s->light, s->nlight, s->caplight, elr_light);
   l = &s->light[s->nlight - 1];
   if (!strcmp(type, "infinite")) {
@@ -929,6 +1016,60 @@ static void elr__light(elr__parser *P, const char *type) {
     s->nlight--;
     { int i; for (i = 0; i < P->nparams; i++) P->params[i].used = 1; }
   }
+  P->light_param = 0;
+}
+
+/* AreaLightSource (pbrt-v3's pbrtAreaLightSource and CreateDiffuseAreaLight): "diffuse", or its alias
+ * "area", with L (default 1), scale, twosided (default false) and nsamples ("samples" first, as pbrt-v3
+ * reads it; default 1). Every shape after it in the attribute block emits that (elr__attach_area). */
+static void elr__area_light_source(elr__parser *P, const char *type) {
+  elr__area *a;
+  elr_v3 L, sc;
+  if (strcmp(type, "diffuse") != 0 && strcmp(type, "area") != 0) {
+    int i;
+    elr_warn(P->s, P->dir_file, P->dir_line, "AreaLightSource \"%s\" is not supported; the shapes after it do not emit", type);
+    for (i = 0; i < P->nparams; i++) P->params[i].used = 1;
+    P->gs.area = 0;
+    return;
+  }
+  ELR_PUSH(P, P->areas, P->nareas, P->capareas, elr__area);
+  a = &P->areas[P->nareas - 1];
+  P->light_param = 1;
+  L = elr__prgb(P, "L", elr_v(1, 1, 1));
+  sc = elr__prgb(P, "scale", elr_v(1, 1, 1));
+  P->light_param = 0;
+  a->L = elr_vmul(L, sc);
+  if (!isfinite(a->L.x) || !isfinite(a->L.y) || !isfinite(a->L.z))
+    elr__failf(P, P->dir_file, P->dir_line, "AreaLightSource \"%s\": L times scale overflows (%g %g %g)", type, a->L.x, a->L.y, a->L.z);
+  if (a->L.x < 0.f || a->L.y < 0.f || a->L.z < 0.f)
+    elr__failf(P, P->dir_file, P->dir_line, "AreaLightSource \"%s\": L times scale (%g %g %g) must not be negative", type, a->L.x, a->L.y, a->L.z);
+  a->twosided = elr__pbool(P, "twosided", 0);
+  a->nsamples = elr__pint(P, "nsamples", 1);
+  a->nsamples = elr__pint(P, "samples", a->nsamples);
+  elr__check_range(P, elr__find(P, "samples") ? "samples" : "nsamples", a->nsamples, 1, 1 << 16);
+  P->gs.area = P->nareas;
+}
+/* The area light of the graphics state on the shape just made (pbrt-v3's pbrtShape: MakeAreaLight for
+ * each shape; one light per triangle mesh here, see lights.c). A black L makes no light. */
+static void elr__attach_area(elr__parser *P, int kind, int index) {
+  elr_scene *s = P->s;
+  const elr__area *a;
+  elr_light *l;
+  if (!P->gs.area) return;
+  if (P->cur_object >= 0) { /* pbrt-v3: "Area lights not supported with object instancing" */
+    elr__warn_once(P, P->dir_file, P->dir_line, "area in object", "AreaLightSource: the shapes of an ObjectBegin block do not emit (area lights are not supported with object instancing, as in pbrt-v3)");
+    return;
+  }
+  a = &P->areas[P->gs.area - 1];
+  if (!(elr_maxc(a->L) > 0.f)) return;
+  ELR_PUSH(P, s->light, s->nlight, s->caplight, elr_light);
+  l = &s->light[s->nlight - 1];
+  l->kind = ELR_LIGHT_AREA;
+  l->L = a->L; l->twosided = a->twosided; l->nsamples = a->nsamples;
+  l->shape_kind = kind; l->shape = index;
+  if (kind == ELR_SHAPE_MESH) s->mesh[index].light = s->nlight - 1;
+  else if (kind == ELR_SHAPE_SPHERE) s->sph[index].light = s->nlight - 1;
+  else s->disk[index].light = s->nlight - 1;
 }
 
 static void elr__object_grow(elr_object *o, double x, double y, double z) {
@@ -945,7 +1086,6 @@ static int elr__swaps_handedness(const elr_xform *t) {
 static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
   elr_scene *s = P->s;
   int i;
-  m->flip = m->n ? 0 : (P->gs.reverse ^ elr__swaps_handedness(&P->ctm));
   m->object = P->cur_object;
   for (i = 0; i < m->nvert; i++) {
     elr_v3 p = elr_xpoint(&P->ctm, elr_v(m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]));
@@ -961,6 +1101,10 @@ static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
     }
   }
   m->material = P->gs.material;
+  m->light = -1;
+  /* pbrt-v3's triangle orientation (Triangle::Intersect and SetShadingGeometry): ReverseOrientation xor a
+   * mirroring CTM turns the normals, with or without the mesh's own normals */
+  m->flip = P->gs.reverse ^ elr__swaps_handedness(&P->ctm);
   if (m->object >= 0) { /* a prototype's shape: its bounds grow (ObjectInstance checks them in world space) */
     elr_object *o = &s->obj[m->object];
     for (i = 0; i < m->nvert; i++) elr__object_grow(o, m->p[3 * i], m->p[3 * i + 1], m->p[3 * i + 2]);
@@ -968,6 +1112,7 @@ static void elr__add_mesh(elr__parser *P, elr_mesh *m) {
   }
   ELR_PUSH(P, s->mesh, s->nmesh, s->capmesh, elr_mesh);
   s->mesh[s->nmesh - 1] = *m;
+  elr__attach_area(P, ELR_SHAPE_MESH, s->nmesh - 1);
 }
 
 static void elr__shape(elr__parser *P, const char *type) {
@@ -997,6 +1142,7 @@ static void elr__shape(elr__parser *P, const char *type) {
     ELR_PUSH(P, s->sph, s->nsph, s->capsph, elr_sphere);
     sp = &s->sph[s->nsph - 1];
     sp->o2w = P->ctm; sp->radius = r; sp->material = P->gs.material;
+    sp->light = -1;
     sp->flip = P->gs.reverse ^ elr__swaps_handedness(&P->ctm);
     sp->object = P->cur_object;
     if (sp->object >= 0) {
@@ -1008,6 +1154,36 @@ static void elr__shape(elr__parser *P, const char *type) {
       }
       o->nsph++;
     }
+    elr__attach_area(P, ELR_SHAPE_SPHERE, s->nsph - 1);
+  } else if (!strcmp(type, "disk")) { /* pbrt-v3's CreateDiskShape: height 0, radius 1, innerradius 0, phimax 360 */
+    elr_disk *dk;
+    double h = elr__pfloat(P, "height", 0.0), r = elr__pfloat(P, "radius", 1.0), ri = elr__pfloat(P, "innerradius", 0.0);
+    double pm = elr__pfloat(P, "phimax", 360.0), sc = 0;
+    int i, j;
+    elr__check_range(P, "radius", r, 1e-20, 1e20);
+    elr__check_range(P, "innerradius", ri, 0.0, r);
+    if (!(ri < r)) elr__failf(P, P->dir_file, P->dir_line, "Shape \"disk\": innerradius %g must be smaller than radius %g", ri, r);
+    if (!(pm > 0.0)) elr__failf(P, P->dir_file, P->dir_line, "Shape \"disk\": phimax %g must be positive", pm);
+    if (pm > 360.0) pm = 360.0; /* pbrt-v3 clamps it to [0, 360] */
+    elr__check_range(P, "height", h, -ELR_MAX_COORD, ELR_MAX_COORD);
+    if (P->cur_object >= 0) {
+      elr__warn_once(P, P->dir_file, P->dir_line, "disk in object", "Shape \"disk\" inside ObjectBegin is not supported and is left out");
+      return;
+    }
+    for (j = 0; j < 3; j++) { /* the disk's world-space bounds must be traceable */
+      double col = 0;
+      for (i = 0; i < 3; i++) col += P->ctm.m[i][j] * P->ctm.m[i][j];
+      if (sqrt(col) > sc) sc = sqrt(col);
+    }
+    elr__check_point(P, P->dir_line, elr_xpoint(&P->ctm, elr_v(0, 0, (float)h)), "the disk's centre");
+    if (!(r * sc <= ELR_MAX_COORD))
+      elr__failf(P, P->dir_file, P->dir_line, "Shape \"disk\": the radius in world space (%g) is outside |x| <= %g", r * sc, ELR_MAX_COORD);
+    ELR_PUSH(P, s->disk, s->ndisk, s->capdisk, elr_disk);
+    dk = &s->disk[s->ndisk - 1];
+    dk->o2w = P->ctm; dk->height = (float)h; dk->radius = (float)r; dk->inner = (float)ri;
+    dk->phimax = (float)(pm * 3.14159265358979323846 / 180.0);
+    dk->material = P->gs.material; dk->light = -1; dk->flip = P->gs.reverse ^ elr__swaps_handedness(&P->ctm);
+    elr__attach_area(P, ELR_SHAPE_DISK, s->ndisk - 1);
   } else if (!strcmp(type, "trianglemesh")) {
     elr_mesh m;
     elr__param *pi = elr__findt(P, "indices", "integer", -3);
@@ -1394,7 +1570,7 @@ static void elr__directive_block(elr__parser *P, int need_world, const char *wha
 }
 
 static void elr__run(elr__parser *P) {
-  static const char *unsupported[] = {"AreaLightSource", "ColorSpace", "Option", "Attribute", "AttributeSet", "SurfaceIntegrator",
+  static const char *unsupported[] = {"ColorSpace", "Option", "Attribute", "AttributeSet", "SurfaceIntegrator",
                                       "VolumeIntegrator", "Renderer", "Volume"};
   for (;;) {
     elr__tok t = elr__next(P);
@@ -1484,6 +1660,8 @@ static void elr__run(elr__parser *P) {
       elr__check_ctm(P, t.line);
     } else if (!strcmp(nm, "Identity")) {
       elr_xform_identity(&P->ctm);
+    } else if (!strcmp(nm, "ReverseOrientation")) { /* graphics state: the normals of the shapes after it */
+      P->gs.reverse = !P->gs.reverse;
     } else if (!strcmp(nm, "CoordinateSystem")) {
       const char *n = elr__str(P, nm);
       int k = elr__name_find(&P->hctx, P->ctx, P->nctx, n);
@@ -1536,6 +1714,16 @@ static void elr__run(elr__parser *P) {
       if (!P->in_world) elr__failf(P, P->dir_file, t.line, "WorldEnd without WorldBegin");
       if (P->depth != 0) elr_warn(P->s, P->dir_file, t.line, "%d unclosed AttributeBegin/TransformBegin at WorldEnd", P->depth);
       P->world_ended = 1;
+      {
+        int i, nemit = 0;
+        for (i = 0; i < P->s->nlight; i++) nemit += elr_light_emits(&P->s->light[i]);
+        if (nemit == 0) /* elr_render then traces nothing */
+          elr_warn(P->s, P->dir_file, t.line, "nothing in the scene emits light (no light source or area light with L > 0): the image is black");
+        if (nemit > 1 && P->s->d.integrator_path && P->s->d.light_strategy == ELR_LSTRAT_SPATIAL)
+          elr_warn(P->s, P->integ_file ? P->integ_file : P->dir_file, P->integ_file ? P->integ_line : t.line,
+                   "Integrator \"path\": lightsamplestrategy \"spatial\" (pbrt-v3's default) is not implemented; the %d lights are chosen by "
+                   "\"power\"", nemit);
+      }
     } else if (!strcmp(nm, "Include") || !strcmp(nm, "Import")) {
       const char *fn = elr__str(P, nm);
       char *path = elr__resolve(P, fn);
@@ -1554,11 +1742,12 @@ static void elr__run(elr__parser *P) {
       else elr__integrator(P, type);
       elr__report_unused(P);
     } else if (!strcmp(nm, "LightSource") || !strcmp(nm, "Shape") || !strcmp(nm, "Material") ||
-               !strcmp(nm, "NamedMaterial")) {
+               !strcmp(nm, "NamedMaterial") || !strcmp(nm, "AreaLightSource")) {
       const char *type = elr__str(P, nm);
       elr__read_params(P);
       if (!P->in_world) { elr__directive_block(P, 1, nm); continue; }
-      if (nm[0] == 'L') elr__light(P, type);
+      if (nm[0] == 'A') elr__area_light_source(P, type);
+      else if (nm[0] == 'L') elr__light(P, type);
       else if (nm[0] == 'S') elr__shape(P, type);
       else if (nm[0] == 'M') P->gs.material = elr__make_material(P, type);
       else {
@@ -1712,6 +1901,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   s->d.sampler = ELR_SAMPLER_HALTON; s->d.spp = 16;
   s->d.integrator_path = 1; s->d.maxdepth = 5; s->d.rrthreshold = 1.f;
   s->d.light_sampling = ELR_LS_MIS;
+  s->d.light_strategy = ELR_LSTRAT_SPATIAL; /* pbrt-v3's default lightsamplestrategy */
   if (setjmp(P->jb) == 0) {
     /* the default material: matte, Kd 0.5 */
     ELR_PUSH(P, s->mat, s->nmat, s->capmat, elr_material);
@@ -1727,7 +1917,7 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   }
   while (P->arena) { elr__block *b = P->arena; P->arena = b->next; free(b); }
   free(P->growing[0]); free(P->growing[1]); /* a parse stopped while a value list grew */
-  free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames); free(P->warned);
+  free(P->ctx); free(P->cs_xf); free(P->texnames); free(P->matnames); free(P->warned); free(P->areas);
   free(P->hctx.s); free(P->htex.s); free(P->hmat.s); free(P->hobj.s); free(P->objnames);
   free(P);
   return rc;

@@ -444,7 +444,7 @@ void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta) {
   b->spec_r = b->spec_t = b->nlobes = 0;
   b->kd = b->ks = b->kr = elr_v(0, 0, 0);
   b->alpha = 1.f;
-  b->eta = eta; b->nsign = 1.f;
+  b->eta = eta;
 }
 elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type) {
   elr_bxdf *x;

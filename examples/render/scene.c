@@ -2,10 +2,10 @@
  * integrators trace rays in (pbrt-v3 core/scene.cpp and api.cpp's MakeScene; Embree replaces its
  * accelerators/). One Embree triangle geometry per mesh; the spheres as one user geometry of exact
  * object-space spheres (shapes.c), or Embree's own sphere primitive for similarity transforms with
- * ELR_EMBREE_SPHERES=1. ObjectInstance: each instanced prototype is an Embree scene of its own,
- * built once, and each instance an RTC_GEOMETRY_TYPE_INSTANCE of it with the instance's transform.
- * elr_intersect makes the hit record through shapes.c (in world space, also for instances),
- * elr_occluded answers shadow rays. */
+ * ELR_EMBREE_SPHERES=1; the disks as another user geometry. ObjectInstance: each instanced prototype is
+ * an Embree scene of its own, built once, and each instance an RTC_GEOMETRY_TYPE_INSTANCE of it with the
+ * instance's transform. elr_intersect makes the hit record through shapes.c (in world space, also for
+ * instances), elr_occluded answers shadow rays. */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include "image_io.h"
@@ -92,11 +92,12 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   sc = rtcNewScene(dev);
   s->rtscene = sc;
   rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
-  s->ngeom = (unsigned)s->nmesh + 2u + (unsigned)s->ninst;
+  s->ngeom = (unsigned)s->nmesh + 3u + (unsigned)s->ninst;
   s->geom_kind = (unsigned *)calloc(s->ngeom + 1, sizeof(unsigned));
   s->geom_index = (int *)calloc(s->ngeom + 1, sizeof(int));
   if (!s->geom_kind || !s->geom_index) { snprintf(err, errlen, "out of memory"); return -1; }
   s->sphere_geom = ~0u;
+  s->disk_geom = ~0u;
   /* the world's meshes, one geometry each (a prototype's belong to its own scene, below) */
   for (i = 0; i < s->nmesh; i++) {
     unsigned id;
@@ -182,12 +183,26 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     rtcReleaseGeometry(g);
     s->geom_kind[id] = 2; s->geom_index[id] = i;
   }
+  if (s->ndisk) { /* pbrt-v3's disks, exact: shapes.c */
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+    unsigned id;
+    rtcSetGeometryUserPrimitiveCount(g, (unsigned)s->ndisk);
+    rtcSetGeometryUserData(g, s);
+    rtcSetGeometryBoundsFunction(g, elr_disk_bounds, NULL);
+    rtcSetGeometryIntersectFunction(g, elr_disk_intersect);
+    rtcSetGeometryOccludedFunction(g, elr_disk_occluded);
+    rtcCommitGeometry(g);
+    id = rtcAttachGeometry(sc, g);
+    rtcReleaseGeometry(g);
+    s->geom_kind[id] = 3; s->geom_index[id] = 0;
+    s->disk_geom = id;
+  }
   rtcCommitScene(sc);
   if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) { snprintf(err, errlen, "Embree: building the scene failed"); return -1; }
   {
     struct RTCBounds b;
     rtcGetSceneBounds(sc, &b);
-    if (s->nmesh + s->nsph > 0 && b.lower_x <= b.upper_x) {
+    if (s->nmesh + s->nsph + s->ndisk > 0 && b.lower_x <= b.upper_x) {
       s->world_center = elr_v(0.5f * (b.lower_x + b.upper_x), 0.5f * (b.lower_y + b.upper_y), 0.5f * (b.lower_z + b.upper_z));
       s->world_radius = 0.5f * elr_len(elr_v(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z));
     } else {
@@ -294,6 +309,8 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
     elr__instance_hit(s, s->geom_index[rh.hit.instID[0]], rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, o, d, h);
   else if (rh.hit.geomID == s->sphere_geom || rh.hit.geomID == s->builtin_geom)
     elr_sphere_hit(s, rh.hit.geomID == s->sphere_geom ? s->sph_user[rh.hit.primID] : s->sph_builtin[rh.hit.primID], o, d, h);
+  else if (rh.hit.geomID == s->disk_geom)
+    elr_disk_hit(s, (int)rh.hit.primID, o, d, h);
   else
     elr_triangle_hit(s, s->geom_index[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, h);
   pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
@@ -350,7 +367,7 @@ void elr_scene_free(elr_scene *s) {
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
-  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured); free(s->obj); free(s->inst);
+  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->disk); free(s->light); free(s->mat_textured); free(s->obj); free(s->inst);
   free(s);
 }
 int elr_scene_warnings(const elr_scene *s) { return s->warnings; }

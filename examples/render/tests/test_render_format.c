@@ -12,13 +12,15 @@
  *   - MakeNamedMaterial / NamedMaterial with the new materials, and pbrt-v3's scoping of named
  *     materials by AttributeBegin / AttributeEnd;
  *   - ReverseOrientation and mirroring transforms turn the side glass calls outside (pbrt-v3:
- *     reverseOrientation xor transformSwapsHandedness; meshes with normals keep their normals);
+ *     reverseOrientation xor transformSwapsHandedness, also for meshes with normals, as pbrt-v3's
+ *     SetShadingGeometry; the hit record's normals and glass's frame follow);
  *   - a glass index outside (0, 1000] is an error naming file:line. */
 #include "render_test_util.h"
 
 static elr_scene *world(const char *name, const char *body, char *err, size_t errlen) {
   char buf[8192];
-  snprintf(buf, sizeof buf, "WorldBegin\n%s\nWorldEnd\n", body);
+  /* a point light first (the line numbers below count it), so that no "nothing emits" warning is added */
+  snprintf(buf, sizeof buf, "WorldBegin\n%s\n%s\nWorldEnd\n", strstr(body, "LightSource") ? "" : "LightSource \"point\"", body);
   return rt_load(name, buf, err, errlen);
 }
 
@@ -81,7 +83,7 @@ static void integrators(void) {
   for (i = 0; i < 6; i++) {
     char buf[512], err[512];
     elr_scene *s;
-    snprintf(buf, sizeof buf, "Integrator \"%s\" %s \"integer maxdepth\" %d\nWorldBegin\nWorldEnd\n", names[i], i == 0 ? "\"string lightsamplestrategy\" \"power\"" : "",
+    snprintf(buf, sizeof buf, "Integrator \"%s\" %s \"integer maxdepth\" %d\nWorldBegin\nLightSource \"point\"\nWorldEnd\n", names[i], i == 0 ? "\"string lightsamplestrategy\" \"power\"" : "",
              3 + i);
     s = rt_load("integ.pbrt", buf, err, sizeof err);
     rt_check(s && s->d.integrator_path && s->d.maxdepth == 3 + i && elr_scene_warnings(s) == 1 && strstr(elr_scene_last_warning(s), names[i]),
@@ -91,10 +93,10 @@ static void integrators(void) {
   }
   {
     char err[512];
-    elr_scene *s = rt_load("integ2.pbrt", "Integrator \"sppm\" \"float radius\" 0.1\nWorldBegin\nWorldEnd\n", err, sizeof err);
+    elr_scene *s = rt_load("integ2.pbrt", "Integrator \"sppm\" \"float radius\" 0.1\nWorldBegin\nLightSource \"point\"\nWorldEnd\n", err, sizeof err);
     rt_check(s && s->d.maxdepth == 5 && elr_scene_warnings(s) == 1, "without maxdepth: pbrt-v3's 5, one warning (its own parameters not reported)");
     elr_scene_free(s);
-    s = rt_load("accel.pbrt", "Accelerator \"kdtree\" \"integer maxprims\" 2\nAccelerator \"bvh\" \"string splitmethod\" \"sah\"\nWorldBegin\nWorldEnd\n", err,
+    s = rt_load("accel.pbrt", "Accelerator \"kdtree\" \"integer maxprims\" 2\nAccelerator \"bvh\" \"string splitmethod\" \"sah\"\nWorldBegin\nLightSource \"point\"\nWorldEnd\n", err,
                 sizeof err);
     rt_check(s && elr_scene_warnings(s) == 0, "Accelerator lines accepted silently (%d warnings)", s ? elr_scene_warnings(s) : -1);
     elr_scene_free(s);
@@ -121,7 +123,7 @@ static void unsupported_once(void) {
     char buf[8192];
     FILE *f;
     snprintf(buf, sizeof buf, "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8 \"string filename\" \"%s\"\n"
-             "ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\nTransformTimes 0 1\nWorldBegin\n%sWorldEnd\n", rt_path("once.pfm"), body);
+             "ActiveTransform EndTime\nTranslate 1 0 0\nActiveTransform All\nTransformTimes 0 1\nWorldBegin\nLightSource \"point\"\n%sWorldEnd\n", rt_path("once.pfm"), body);
     rt_write("once2.pbrt", buf);
     snprintf(cmd, sizeof cmd, "'%s' '%s' --quiet --spp 1 2> '%s'", EL_RENDER_BIN, rt_path("once2.pbrt"), rt_path("once.log"));
     k = system(cmd);
@@ -171,24 +173,31 @@ static void orientation(void) {
                        err, sizeof err);
   if (!s) { rt_check(0, "orientation: %s", err); return; }
   rt_check(s->sph[0].flip == 0 && s->sph[1].flip == 1 && s->sph[2].flip == 1 && s->sph[3].flip == 0 && s->mesh[0].flip == 0 && s->mesh[1].flip == 1 &&
-           s->mesh[2].flip == 0,
-           "normals turned by ReverseOrientation xor a mirroring transform (spheres %d %d %d %d, meshes %d %d), not for meshes with normals (%d)",
+           s->mesh[2].flip == 1,
+           "normals turned by ReverseOrientation xor a mirroring transform (spheres %d %d %d %d, meshes %d %d), also for meshes with normals "
+           "(pbrt-v3's SetShadingGeometry: %d)",
            s->sph[0].flip, s->sph[1].flip, s->sph[2].flip, s->sph[3].flip, s->mesh[0].flip, s->mesh[1].flip, s->mesh[2].flip);
-  { /* what glass makes of it: a ray from outside a turned sphere is "leaving" (the BSDF's eta side swaps) */
-    elr_hit h;
-    elr_bsdf b;
-    elr_tex_ctx tc;
-    memset(&tc, 0, sizeof tc);
-    if (elr_intersect(s, elr_v(0, 0, -5), elr_v(0, 0, 1), INFINITY, &h)) {
-      h.flip = 0; elr_bsdf_init(s, &h, &tc, &b);
-      rt_check(elr_dot(b.ns, elr_v(0, 0, -1)) > 0.99f, "glass frame: the normal points to the outside (towards the camera)");
-      h.flip = 1; elr_bsdf_init(s, &h, &tc, &b);
-      rt_check(elr_dot(b.ns, elr_v(0, 0, -1)) < -0.99f && b.nsign == -1.f, "with the normal turned: to the inside");
+  elr_scene_free(s);
+  { /* what glass makes of it: seen from outside, a turned sphere's frame points inside (the BSDF's eta side swaps) */
+    int turned;
+    for (turned = 0; turned < 2; turned++) {
+      elr_hit h;
+      elr_bsdf b;
+      elr_tex_ctx tc;
+      memset(&tc, 0, sizeof tc);
+      s = world("orient_glass.pbrt", turned ? "Material \"glass\"\nReverseOrientation\nShape \"sphere\"\n" : "Material \"glass\"\nShape \"sphere\"\n", err,
+                sizeof err);
+      if (!s) { rt_check(0, "orientation (glass): %s", err); return; }
+      rt_check(elr_intersect(s, elr_v(0, 0, -5), elr_v(0, 0, 1), INFINITY, &h), "the glass sphere is hit");
+      elr_bsdf_init(s, &h, &tc, &b);
+      rt_check(turned ? elr_dot(b.ns, elr_v(0, 0, -1)) < -0.99f && elr_dot(h.ng, elr_v(0, 0, -1)) < -0.99f
+                      : elr_dot(b.ns, elr_v(0, 0, -1)) > 0.99f && elr_dot(h.ng, elr_v(0, 0, -1)) > 0.99f,
+               "glass frame and hit normal point %s", turned ? "inside (ReverseOrientation)" : "outside (towards the camera)");
+      elr_scene_free(s);
     }
   }
-  elr_scene_free(s);
   s = world("badidx.pbrt", "\nMaterial \"glass\" \"float index\" 0\n", err, sizeof err);
-  rt_check(!s && strstr(err, "badidx.pbrt:3:") && strstr(err, "out of range"), "glass of index 0: \"%s\"", s ? "(loaded)" : err);
+  rt_check(!s && strstr(err, "badidx.pbrt:4:") && strstr(err, "out of range"), "glass of index 0: \"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
 }
 

@@ -156,23 +156,23 @@ static void one_copy(void) {
 static void errors(void) {
   char err[512];
   elr_scene *s;
-  s = rt_load("e1.pbrt", "WorldBegin\nObjectInstance \"nothing\"\nWorldEnd\n", err, sizeof err);
-  rt_check(s && strstr(elr_scene_last_warning(s), "e1.pbrt:2:") && strstr(elr_scene_last_warning(s), "\"nothing\" is not defined"),
+  s = rt_load("e1.pbrt", "WorldBegin\nLightSource \"point\"\nObjectInstance \"nothing\"\nWorldEnd\n", err, sizeof err);
+  rt_check(s && strstr(elr_scene_last_warning(s), "e1.pbrt:3:") && strstr(elr_scene_last_warning(s), "\"nothing\" is not defined"),
            "ObjectInstance of an unknown object warns: \"%s\"", s ? elr_scene_last_warning(s) : err);
   elr_scene_free(s);
-  s = rt_load("e2.pbrt", "WorldBegin\nObjectEnd\nWorldEnd\n", err, sizeof err);
-  rt_check(!s && strstr(err, "e2.pbrt:2:") && strstr(err, "ObjectEnd without ObjectBegin"), "\"%s\"", s ? "(loaded)" : err);
+  s = rt_load("e2.pbrt", "WorldBegin\nLightSource \"point\"\nObjectEnd\nWorldEnd\n", err, sizeof err);
+  rt_check(!s && strstr(err, "e2.pbrt:3:") && strstr(err, "ObjectEnd without ObjectBegin"), "\"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
-  s = rt_load("e3.pbrt", "WorldBegin\nObjectBegin \"a\"\nObjectBegin \"b\"\nObjectEnd\nObjectEnd\nWorldEnd\n", err, sizeof err);
-  rt_check(!s && strstr(err, "e3.pbrt:3:") && strstr(err, "inside the definition"), "\"%s\"", s ? "(loaded)" : err);
+  s = rt_load("e3.pbrt", "WorldBegin\nLightSource \"point\"\nObjectBegin \"a\"\nObjectBegin \"b\"\nObjectEnd\nObjectEnd\nWorldEnd\n", err, sizeof err);
+  rt_check(!s && strstr(err, "e3.pbrt:4:") && strstr(err, "inside the definition"), "\"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
-  s = rt_load("e4.pbrt", "WorldBegin\nObjectBegin \"a\"\nShape \"sphere\"\nObjectInstance \"a\"\nObjectEnd\nWorldEnd\n", err, sizeof err);
-  rt_check(!s && strstr(err, "e4.pbrt:4:") && strstr(err, "inside an object definition"), "\"%s\"", s ? "(loaded)" : err);
+  s = rt_load("e4.pbrt", "WorldBegin\nLightSource \"point\"\nObjectBegin \"a\"\nShape \"sphere\"\nObjectInstance \"a\"\nObjectEnd\nWorldEnd\n", err, sizeof err);
+  rt_check(!s && strstr(err, "e4.pbrt:5:") && strstr(err, "inside an object definition"), "\"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
-  s = rt_load("e5.pbrt", "WorldBegin\nObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\nTranslate 2e15 0 0\nObjectInstance \"a\"\nWorldEnd\n", err, sizeof err);
-  rt_check(!s && strstr(err, "e5.pbrt:6:") && strstr(err, "outside |x| <="), "an instance placed beyond the traceable range: \"%s\"", s ? "(loaded)" : err);
+  s = rt_load("e5.pbrt", "WorldBegin\nLightSource \"point\"\nObjectBegin \"a\"\nShape \"sphere\"\nObjectEnd\nTranslate 2e15 0 0\nObjectInstance \"a\"\nWorldEnd\n", err, sizeof err);
+  rt_check(!s && strstr(err, "e5.pbrt:7:") && strstr(err, "outside |x| <="), "an instance placed beyond the traceable range: \"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
-  s = rt_load("e6.pbrt", "WorldBegin\nObjectBegin \"a\"\nObjectEnd\nObjectInstance \"a\"\nWorldEnd\n", err, sizeof err);
+  s = rt_load("e6.pbrt", "WorldBegin\nLightSource \"point\"\nObjectBegin \"a\"\nObjectEnd\nObjectInstance \"a\"\nWorldEnd\n", err, sizeof err);
   rt_check(s && s->ninst == 0 && elr_scene_warnings(s) == 0, "an empty object adds nothing, silently (pbrt-v3)");
   elr_scene_free(s);
 }

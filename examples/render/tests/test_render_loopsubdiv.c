@@ -23,7 +23,7 @@ static const char *tet_p = "1 1 1  -1 -1 1  -1 1 -1  1 -1 -1";
 
 static elr_scene *load_shape(const char *shape, char *err, size_t errlen) {
   char buf[8192];
-  snprintf(buf, sizeof buf, "WorldBegin\n%s\nWorldEnd\n", shape);
+  snprintf(buf, sizeof buf, "WorldBegin\nLightSource \"point\"\n%s\nWorldEnd\n", shape);
   return rt_load("ls.pbrt", buf, err, errlen);
 }
 
@@ -176,13 +176,13 @@ static void bad_meshes(void) {
   char err[512];
   elr_scene *s;
   s = load_shape("Shape \"loopsubdiv\" \"integer indices\" [ 0 1 2  1 0 3  0 1 4 ] \"point P\" [ 0 0 0  1 0 0  0 1 0  0 -1 0  0 0 1 ]", err, sizeof err);
-  rt_check(!s && strstr(err, "ls.pbrt:2:") && strstr(err, "more than two triangles"), "an edge of three triangles: \"%s\"", s ? "(loaded)" : err);
+  rt_check(!s && strstr(err, "ls.pbrt:3:") && strstr(err, "more than two triangles"), "an edge of three triangles: \"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
   s = load_shape("Shape \"loopsubdiv\" \"integer indices\" [ 0 1 2  0 1 3 ] \"point P\" [ 0 0 0  1 0 0  0 1 0  0 -1 0 ]", err, sizeof err);
-  rt_check(!s && strstr(err, "ls.pbrt:2:") && strstr(err, "same direction"), "inconsistently oriented triangles: \"%s\"", s ? "(loaded)" : err);
+  rt_check(!s && strstr(err, "ls.pbrt:3:") && strstr(err, "same direction"), "inconsistently oriented triangles: \"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
   s = load_shape("Shape \"loopsubdiv\" \"integer levels\" 12 \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ 0 0 0  1 0 0  1 1 0  0 1 0 ]", err, sizeof err);
-  rt_check(!s && strstr(err, "ls.pbrt:2:") && strstr(err, "at most 16777216"), "12 levels of 2 triangles (33554432): \"%s\"", s ? "(loaded)" : err);
+  rt_check(!s && strstr(err, "ls.pbrt:3:") && strstr(err, "at most 16777216"), "12 levels of 2 triangles (33554432): \"%s\"", s ? "(loaded)" : err);
   elr_scene_free(s);
   s = load_shape("Shape \"loopsubdiv\" \"integer levels\" -1 \"integer indices\" [ 0 1 2 ] \"point P\" [ 0 0 0  1 0 0  1 1 0 ]", err, sizeof err);
   rt_check(!s && strstr(err, "out of range"), "levels -1: \"%s\"", s ? "(loaded)" : err);
