@@ -149,6 +149,23 @@ static double run_le(el_envlight *l, long n) {
   for (k = 0; k < n; ++k) { el_envlight_le(l, g_dir + 3 * (k & (NP - 1)), L); acc += L[1]; }
   return acc;
 }
+/* product sampling: each call with its own normal (the random directions), as a renderer's shading points */
+static double run_sample_cos(el_envlight *l, long n, int rgb) {
+  double acc = 0;
+  long k;
+  float wi[3], L[3], p;
+  for (k = 0; k < n; ++k) {
+    el_envlight_sample_li_cos(l, g_dir + 3 * ((k * 7) & (NP - 1)), g_u + 2 * (k & (NP - 1)), wi, rgb ? L : NULL, &p);
+    acc += p + wi[0];
+  }
+  return acc;
+}
+static double run_pdf_cos(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  for (k = 0; k < n; ++k) acc += el_envlight_pdf_li_cos(l, g_dir + 3 * ((k * 7) & (NP - 1)), g_dir + 3 * (k & (NP - 1)));
+  return acc;
+}
 static double run_loop(long n) { /* the loop alone: read the inputs, sum */
   double acc = 0;
   long k;
@@ -210,7 +227,7 @@ static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n
 /* ---- --callgrind OP N ---- */
 static int callgrind_mode(const char *op, long n, const char *map) {
   static el_envlight l;
-  int w = 2048, h = 1024, sampler = 0, rot = 0;
+  int w = 2048, h = 1024, sampler = 0, rot = 0, imp = 0;
   float *px;
   volatile double sink = 0;
   el_image img;
@@ -229,9 +246,13 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   if (!strcmp(op, "sample_cdf")) sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
-  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot(); }
-  if (make_light(&l, px, w, h, 0, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
-  el_envlight_prepare_sampling(&l);
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated")) {
+    sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot();
+  }
+  if (!strcmp(op, "sample_bilinear") || !strcmp(op, "sample_bilinear_rgb") || !strcmp(op, "pdf_bilinear")) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (make_light(&l, px, w, h, imp, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
+  if (strstr(op, "_cos") || !strcmp(op, "build_product")) el_envlight_prepare_product(&l, NULL);
+  else el_envlight_prepare_sampling(&l);
   if (!strcmp(op, "build")) { /* n constructions (init + sampling tables) of the same light */
     long k;
     for (k = 0; k < n; ++k) {
@@ -240,8 +261,27 @@ static int callgrind_mode(const char *op, long n, const char *map) {
       el_envlight_prepare_sampling(&b);
       el_envlight_free(&b);
     }
-  } else if (!strcmp(op, "loop")) sink = run_loop(n);
-  else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb"));
+  } else if (!strcmp(op, "build_product")) { /* n builds of the product tables (warp + normal tables) */
+    long k;
+    for (k = 0; k < n; ++k) {
+      el_envlight b;
+      make_light(&b, px, w, h, 0, EL_ENVLIGHT_SAMPLER_GUIDE, 0, NULL);
+      el_envlight_prepare_product(&b, NULL);
+      el_envlight_free(&b);
+    }
+  } else if (!strcmp(op, "build_bilinear")) { /* n builds of importance BILINEAR's tables (the warp) */
+    long k;
+    for (k = 0; k < n; ++k) {
+      el_envlight b;
+      make_light(&b, px, w, h, EL_ENVLIGHT_IMPORTANCE_BILINEAR, EL_ENVLIGHT_SAMPLER_GUIDE, 0, NULL);
+      el_envlight_prepare_sampling(&b);
+      el_envlight_free(&b);
+    }
+  } else if (!strcmp(op, "sample_cos") || !strcmp(op, "sample_cos_rgb") || !strcmp(op, "sample_cos_rotated")) sink = run_sample_cos(&l, n, !strcmp(op, "sample_cos_rgb"));
+  else if (!strcmp(op, "pdf_cos") || !strcmp(op, "pdf_cos_rotated")) sink = run_pdf_cos(&l, n);
+  else if (!strcmp(op, "pdf_bilinear")) sink = run_pdf(&l, n);
+  else if (!strcmp(op, "loop")) sink = run_loop(n);
+  else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "le")) sink = run_le(&l, n);
   else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
