@@ -1905,15 +1905,21 @@ struct el_envlight__warp {
   float offset;          /* compensation: the mean luminance subtracted from every vertex (0: plain) */
   int fell_back;         /* compensated, but no vertex exceeds the mean: the plain density */
   float *sin_row;        /* h: sin(pi v_k) of texel row k - 1 */
-  float *V;              /* h x w: the vertex values of texel rows 0..h-1 (vertex rows 1..h) */
+  float *V;              /* (h + 2) x w: the vertex values; rows 0 and h + 1 (the poles) are 0 */
   double *S;             /* (h + 2) x ku: vertex row k's integral over cell column a, in u */
-  uint32_t *cond;        /* h x (w + ku): texel row j's CDF over the patches of each cell column */
+  float *cond;           /* (h + 2) x (w + ku): vertex row k's integer CDF over the patches of each cell
+                            column, as floats (integers <= 2^24: exact); all 0 in the pole rows */
+  size_t cond_stride;    /* w + ku */
+  int *coff;             /* ku: the first CDF entry of cell column a in a row of cond (a0[a] + a) */
+  int row_len, marg_len; /* a cell table's CDF lengths: ku + 1 and kv + 1 */
+  float inv_w, inv_h, half_inv_h; /* 1 / w, 1 / h, 0.5 / h */
   uint32_t *marg;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
   int *a0, *b0;          /* ku + 1 patch-column, kv + 1 patch-row bounds of the cells */
   int *cu_of, *cv_of;    /* w, h + 1: the cell column / row of a patch column / row */
   double *mass;          /* kv x ku: each cell's integral over (u, v) */
   uint16_t *plain;       /* the cell table of the mass alone (importance BILINEAR, invalid normals) */
-  size_t table_len;      /* entries of a cell table: kv + 1, then kv rows of ku + 1 */
+  size_t table_len;      /* entries of a cell table: the cell rows' CDF (kv + 1 entries), then kv rows'
+                            CDFs over their cells (ku + 1 entries each) */
   size_t warp_bytes;
   /* the normal tables (cos_state) */
   int m;                 /* octahedral bins per axis */
@@ -1942,10 +1948,10 @@ static int el_envlight__int_cdf(const double *f, int n, uint32_t units, uint32_t
   return 1;
 }
 
-/* A cell table from kv x ku weights: the cell rows' CDF (kv + 1 entries), then each row's CDF over its
- * cells (ku + 1 entries), in EL_ENVLIGHT__CELL_UNITS. tmp: ku + kv + 2 uint32 and kv doubles. */
-static void el_envlight__cell_table(const double *wgt, int ku, int kv, uint16_t *tab, uint32_t *tmp, double *rows) {
-  int a, b;
+/* A cell table from kv x ku weights: the cell rows' CDF, then each row's CDF over its cells, in
+ * EL_ENVLIGHT__CELL_UNITS. tmp: ku + kv + 2 uint32 and kv doubles. */
+static void el_envlight__cell_table(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
+  int a, b, ku = W->ku, kv = W->kv;
   for (b = 0; b < kv; ++b) {
     double s = 0.0;
     for (a = 0; a < ku; ++a) s += wgt[(size_t)b * (size_t)ku + (size_t)a];
@@ -1954,19 +1960,19 @@ static void el_envlight__cell_table(const double *wgt, int ku, int kv, uint16_t 
   el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
   for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
   for (b = 0; b < kv; ++b) {
-    uint16_t *row = tab + (size_t)(kv + 1) + (size_t)b * (size_t)(ku + 1);
+    uint16_t *row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
     el_envlight__int_cdf(wgt + (size_t)b * (size_t)ku, ku, EL_ENVLIGHT__CELL_UNITS, tmp);
     for (a = 0; a <= ku; ++a) row[a] = (uint16_t)tmp[a];
   }
 }
 
-/* Last i in [0, len - 1] with c[i] <= k (c[0] <= k), uint16 entries. */
-static inline int el_envlight__search16(const uint16_t *c, int len, uint32_t k) {
+/* Last i in [0, n - 1] with c[i] <= k (c[0] = 0 <= k), uint16 entries: a branch-free binary search. */
+static inline int el_envlight__search16(const uint16_t *c, int n, uint32_t k) {
   int lo = 0;
-  while (len > 1) {
-    int half = len >> 1;
+  while (n > 1) {
+    int half = n >> 1;
     lo = ((uint32_t)c[lo + half] <= k) ? lo + half : lo;
-    len -= half;
+    n -= half;
   }
   return lo;
 }
@@ -1979,14 +1985,11 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
   y = y > W->offset ? y - W->offset : 0.0f;
   return y * W->sin_row[j];
 }
-static inline float el_envlight__vertex(const el_envlight *l, const struct el_envlight__warp *W, int i, int j) {
-  (void)l;
-  return W->V[(size_t)j * (size_t)W->w + (size_t)i];
-}
+
 
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
-  EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
+  EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
   EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab);
   EL_FREE(W);
 }
@@ -2007,14 +2010,19 @@ static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, s
   /* a cell column's patches and a cell's patch rows each fit the integer CDFs (at most 2^22 entries) */
   if ((w + ku - 1) / ku > 4194304 || (h + kv) / kv > 4194304) { EL_FREE(W); return EL_ERROR_SIZE_OVERFLOW; }
   W->w = w; W->h = h; W->ku = ku; W->kv = kv;
-  W->table_len = (size_t)(kv + 1) + (size_t)kv * (size_t)(ku + 1);
-  nc = (size_t)h * ((size_t)w + (size_t)ku);
+  W->marg_len = kv + 1;
+  W->row_len = ku + 1;
+  W->table_len = (size_t)W->marg_len + (size_t)kv * (size_t)W->row_len;
+  W->cond_stride = (size_t)w + (size_t)ku;
+  W->inv_w = 1.0f / (float)w; W->inv_h = 1.0f / (float)h; W->half_inv_h = 0.5f / (float)h;
+  nc = ((size_t)h + 2) * W->cond_stride;
   nm = (size_t)ku * ((size_t)h + 1 + (size_t)kv);
   if (nc > ((size_t)-1) / sizeof(uint32_t) / 2) { EL_FREE(W); return EL_ERROR_SIZE_OVERFLOW; }
   W->sin_row = (float *)EL_MALLOC((size_t)h * sizeof(float));
-  W->V = (float *)EL_MALLOC((size_t)h * (size_t)w * sizeof(float));
+  W->V = (float *)EL_MALLOC(((size_t)h + 2) * (size_t)w * sizeof(float));
+  W->coff = (int *)EL_MALLOC((size_t)ku * sizeof(int));
   W->S = (double *)EL_MALLOC(((size_t)h + 2) * (size_t)ku * sizeof(double));
-  W->cond = (uint32_t *)EL_MALLOC(nc * sizeof(uint32_t));
+  W->cond = (float *)EL_MALLOC(nc * sizeof(float));
   W->marg = (uint32_t *)EL_MALLOC(nm * sizeof(uint32_t));
   W->a0 = (int *)EL_MALLOC(((size_t)ku + 1) * sizeof(int));
   W->b0 = (int *)EL_MALLOC(((size_t)kv + 1) * sizeof(int));
@@ -2025,7 +2033,7 @@ static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, s
   vrow = (double *)EL_MALLOC(((size_t)w + 1) * sizeof(double));
   wgt = (double *)EL_MALLOC(((size_t)(w > h + 1 ? w : h + 1) + (size_t)ku * (size_t)kv) * sizeof(double));
   tmp = (uint32_t *)EL_MALLOC(((size_t)(w > h + 1 ? w : h + 1) + (size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
-  if (!W->sin_row || !W->V || !W->S || !W->cond || !W->marg || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
+  if (!W->sin_row || !W->V || !W->coff || !W->S || !W->cond || !W->marg || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
       !W->plain || !vrow || !wgt || !tmp) {
     EL_FREE(vrow); EL_FREE(wgt); EL_FREE(tmp);
     el_envlight__warp_free(W);
@@ -2034,6 +2042,7 @@ static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, s
   for (a = 0; a <= ku; ++a) W->a0[a] = (int)((int64_t)a * w / ku);
   for (b = 0; b <= kv; ++b) W->b0[b] = (int)((int64_t)b * (h + 1) / kv);
   for (a = 0; a < ku; ++a) for (i = W->a0[a]; i < W->a0[a + 1]; ++i) W->cu_of[i] = a;
+  for (a = 0; a < ku; ++a) W->coff[a] = W->a0[a] + a;
   for (b = 0; b < kv; ++b) for (r = W->b0[b]; r < W->b0[b + 1]; ++r) W->cv_of[r] = b;
   for (j = 0; j < h; ++j) W->sin_row[j] = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / h);
   /* <<Initialize compensated PDF>> (pbrt-v4): subtract the mean luminance over the sphere (the exact
@@ -2047,17 +2056,21 @@ static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, s
       for (i = 0; i < w; ++i) if (el_envlight__vertex_of(l, W, i, j) > 0.0f) { any = 1; break; }
     if (!any) { W->offset = 0.0f; W->fell_back = 1; }
   }
-  /* vertex rows: the pole rows are 0; texel row j is vertex row j + 1 */
+  /* vertex rows: the pole rows are 0 (their V, S and CDFs); texel row j is vertex row j + 1 */
   for (a = 0; a < ku; ++a) { W->S[a] = 0.0; W->S[((size_t)h + 1) * (size_t)ku + (size_t)a] = 0.0; }
+  for (i = 0; i < w; ++i) W->V[i] = W->V[((size_t)h + 1) * (size_t)w + (size_t)i] = 0.0f;
+  for (k = 0; k < (int)W->cond_stride; ++k) W->cond[k] = W->cond[((size_t)h + 1) * W->cond_stride + (size_t)k] = 0.0f;
   for (j = 0; j < h; ++j) {
-    for (i = 0; i < w; ++i) vrow[i] = (double)(W->V[(size_t)j * (size_t)w + (size_t)i] = el_envlight__vertex_of(l, W, i, j));
+    for (i = 0; i < w; ++i) vrow[i] = (double)(W->V[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__vertex_of(l, W, i, j));
     vrow[w] = vrow[0];
     for (a = 0; a < ku; ++a) {
       int n = W->a0[a + 1] - W->a0[a];
       double s = 0.0;
       for (i = 0; i < n; ++i) { wgt[i] = 0.5 * (vrow[W->a0[a] + i] + vrow[W->a0[a] + i + 1]); s += wgt[i]; }
       W->S[((size_t)j + 1) * (size_t)ku + (size_t)a] = s / w;
-      el_envlight__int_cdf(wgt, n, 16777216u, W->cond + (size_t)j * ((size_t)w + (size_t)ku) + (size_t)W->a0[a] + (size_t)a);
+      float *c = W->cond + ((size_t)j + 1) * W->cond_stride + (size_t)W->coff[a];
+      el_envlight__int_cdf(wgt, n, 16777216u, tmp);
+      for (i = 0; i <= n; ++i) c[i] = (float)tmp[i];
     }
   }
   /* each cell's patch rows: mass (A + B) / 2 dv, dv = 1 / h (0.5 / h at the poles) */
@@ -2076,9 +2089,9 @@ static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, s
       total += s;
     }
   W->all_zero = !(total > 0.0);
-  el_envlight__cell_table(W->mass, ku, kv, W->plain, tmp, wgt);
-  W->warp_bytes = sizeof *W + (size_t)h * ((size_t)w + 1) * sizeof(float) + ((size_t)h + 2) * (size_t)ku * sizeof(double) +
-                  (nc + nm) * sizeof(uint32_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)w + (size_t)h + 1) * sizeof(int) +
+  el_envlight__cell_table(W, W->mass, W->plain, tmp, wgt);
+  W->warp_bytes = sizeof *W + (size_t)h * sizeof(float) + ((size_t)h + 2) * (size_t)w * sizeof(float) + (size_t)ku * sizeof(int) + ((size_t)h + 2) * (size_t)ku * sizeof(double) +
+                  nc * sizeof(float) + nm * sizeof(uint32_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)w + (size_t)h + 1) * sizeof(int) +
                   (size_t)ku * (size_t)kv * sizeof(double) + W->table_len * sizeof(uint16_t);
   EL_FREE(vrow); EL_FREE(wgt); EL_FREE(tmp);
   *out = W;
@@ -2107,37 +2120,30 @@ static inline double el_envlight__alpha(double A, double B, double t) {
 }
 
 /* The blended conditional CDF of cell column a at patch j (0..n) of its n patches: alpha * row r's CDF +
- * (1 - alpha) * row r + 1's (rows without mass are not read: their weight is exactly 0) */
-static inline double el_envlight__blend(const uint32_t *c0, const uint32_t *c1, double al, int j) {
-  double x = 0.0;
-  if (al > 0.0) x += al * (double)c0[j];
-  if (al < 1.0) x += (1.0 - al) * (double)c1[j];
-  return x;
+ * (1 - alpha) * row r + 1's (a row without mass has weight exactly 0: al is 0 or 1 then) */
+static inline double el_envlight__blend(const float *c0, const float *c1, double al, double bl, int j) {
+  return al * (double)c0[j] + bl * (double)c1[j];
 }
 
-/* The two vertex rows' CDF rows for patch row r in cell column a (NULL for a pole row). */
-static inline void el_envlight__cond_rows(const struct el_envlight__warp *W, int r, int a, const uint32_t **c0, const uint32_t **c1) {
-  size_t stride = (size_t)W->w + (size_t)W->ku, off = (size_t)W->a0[a] + (size_t)a;
-  *c0 = r >= 1 ? W->cond + ((size_t)r - 1) * stride + off : NULL;
-  *c1 = r + 1 <= W->h ? W->cond + (size_t)r * stride + off : NULL;
+/* The two vertex rows' CDF rows for patch row r in cell column a. */
+static inline void el_envlight__cond_rows(const struct el_envlight__warp *W, int r, int a, const float **c0, const float **c1) {
+  *c0 = W->cond + (size_t)r * W->cond_stride + (size_t)W->coff[a];
+  *c1 = *c0 + W->cond_stride;
 }
 
 /* The linear density in s over patch i (absolute patch column) at the blend al: its values e0, e1 at the
  * patch's two ends, as probabilities per unit s (e0 + e1 = 2 x the patch's probability). */
-static inline void el_envlight__patch_ends(const el_envlight *l, const struct el_envlight__warp *W, int r, int i, int j,
-                                           const uint32_t *c0, const uint32_t *c1, double al, double *e0, double *e1) {
+static inline void el_envlight__patch_ends(const struct el_envlight__warp *W, int r, int i, int j,
+                                           const float *c0, const float *c1, double al, double bl, double *e0, double *e1) {
   int i1 = i + 1 < W->w ? i + 1 : 0;
-  double x0 = 0.0, x1 = 0.0;
-  if (al > 0.0) { /* vertex row r = texel row r - 1 */
-    double v0 = (double)el_envlight__vertex(l, W, i, r - 1), v1 = (double)el_envlight__vertex(l, W, i1, r - 1), k;
-    if (v0 + v1 > 0.0) { k = 2.0 * al * (double)(c0[j + 1] - c0[j]) / (v0 + v1); x0 += k * v0; x1 += k * v1; }
-  }
-  if (al < 1.0) { /* vertex row r + 1 = texel row r */
-    double v0 = (double)el_envlight__vertex(l, W, i, r), v1 = (double)el_envlight__vertex(l, W, i1, r), k;
-    if (v0 + v1 > 0.0) { k = 2.0 * (1.0 - al) * (double)(c1[j + 1] - c1[j]) / (v0 + v1); x0 += k * v0; x1 += k * v1; }
-  }
-  *e0 = x0 * (1.0 / 16777216.0);
-  *e1 = x1 * (1.0 / 16777216.0);
+  const float *v = W->V + (size_t)r * (size_t)W->w;
+  /* each row's share of the patch (its units x its weight), spread linearly between its two vertices */
+  double a0 = (double)v[i], a1 = (double)v[i1], b0 = (double)v[(size_t)W->w + (size_t)i], b1 = (double)v[(size_t)W->w + (size_t)i1];
+  double sa = a0 + a1, sb = b0 + b1, ka, kb;
+  ka = 2.0 * al * (double)(c0[j + 1] - c0[j]) / (sa > 0.0 ? sa : 1.0); /* no units where the sum is 0 */
+  kb = 2.0 * bl * (double)(c1[j + 1] - c1[j]) / (sb > 0.0 ? sb : 1.0);
+  *e0 = (ka * a0 + kb * b0) * (1.0 / 16777216.0);
+  *e1 = (ka * a1 + kb * b1) * (1.0 / 16777216.0);
 }
 
 /* u in [0,1) as the fast samplers clamp it: NaN and <= 0 -> 0, >= 1 -> 0x1.fffffep-1 */
@@ -2154,16 +2160,17 @@ static inline void el_envlight__cell_pick(const struct el_envlight__warp *W, con
   const uint16_t *row;
   *b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
   *f1 = (x1 - (float)tab[*b]) / (float)(tab[*b + 1] - tab[*b]);
-  row = tab + (size_t)(W->kv + 1) + (size_t)*b * (size_t)(W->ku + 1);
+  row = tab + (size_t)W->marg_len + (size_t)*b * (size_t)W->row_len;
   *a = el_envlight__search16(row, W->ku, (uint32_t)x0);
   *f0 = (x0 - (float)row[*a]) / (float)(row[*a + 1] - row[*a]);
 }
 
 /* <<Warp inside cell (a, b)>>: (f0, f1) in [0,1]^2 -> a light-space unit direction. */
-static void el_envlight__warp_sample_cell(const el_envlight *l, const struct el_envlight__warp *W, int a, int b, float f0, float f1, float d[3]) {
+static void el_envlight__warp_sample_cell(const struct el_envlight__warp *W, int a, int b, float f0, float f1, float d[3]) {
   int h = W->h, ku = W->ku, n, r, lo, len, i;
-  const uint32_t *mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b, *c0, *c1;
-  double x, q, A, B, t, al, lo_v, hi_v, e0, e1, s;
+  const uint32_t *mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
+  const float *c0, *c1;
+  double x, q, A, B, t, al, bl, lo_v, hi_v, e0, e1, s;
   float u, v, vp;
   /* the patch row: integer CDF inversion, then t in it (a linear density) */
   x = (double)el_envlight__clamp01(f1) * 16777216.0;
@@ -2176,28 +2183,29 @@ static void el_envlight__warp_sample_cell(const el_envlight *l, const struct el_
   t = el_envlight__lin_inv(A, B, q);
   /* the patch at t: inversion of the blended conditional CDF, then s in the patch */
   al = el_envlight__alpha(A, B, t);
+  bl = 1.0 - al;
   el_envlight__cond_rows(W, r, a, &c0, &c1);
   x = (double)el_envlight__clamp01(f0) * 16777216.0;
   lo = 0; len = W->a0[a + 1] - W->a0[a];
   while (len > 1) {
     int half = len >> 1;
-    lo = el_envlight__blend(c0, c1, al, lo + half) <= x ? lo + half : lo;
+    lo = el_envlight__blend(c0, c1, al, bl, lo + half) <= x ? lo + half : lo;
     len -= half;
   }
-  lo_v = el_envlight__blend(c0, c1, al, lo);
-  hi_v = el_envlight__blend(c0, c1, al, lo + 1);
+  lo_v = el_envlight__blend(c0, c1, al, bl, lo);
+  hi_v = el_envlight__blend(c0, c1, al, bl, lo + 1);
   q = hi_v > lo_v ? (x - lo_v) / (hi_v - lo_v) : 0.5;
   q = q < 1.0 ? (q > 0.0 ? q : 0.0) : 1.0;
   i = W->a0[a] + lo;
-  el_envlight__patch_ends(l, W, r, i, lo, c0, c1, al, &e0, &e1);
+  el_envlight__patch_ends(W, r, i, lo, c0, c1, al, bl, &e0, &e1);
   s = e0 + e1 > 0.0 ? el_envlight__lin_inv(e0, e1, q) : q;
   /* <<Compute direction>>: u from the patch's left texel centre, v and its distance to the nearer pole */
-  u = ((float)i + 0.5f + (float)s) / (float)W->w;
+  u = ((float)i + 0.5f + (float)s) * W->inv_w;
   if (u >= 1.0f) u -= 1.0f;
   u = u < 0.99999994f ? u : 0.99999994f;
-  if (r == 0) { vp = (float)t * (0.5f / (float)h); v = vp; }
-  else if (r == h) { vp = (float)(1.0 - t) * (0.5f / (float)h); v = 1.0f - vp; }
-  else { v = ((float)r - 0.5f + (float)t) / (float)h; vp = v < 0.5f ? v : 1.0f - v; }
+  if (r == 0) { vp = (float)t * W->half_inv_h; v = vp; }
+  else if (r == h) { vp = (float)(1.0 - t) * W->half_inv_h; v = 1.0f - vp; }
+  else { v = ((float)r - 0.5f + (float)t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
   el_envlight__uvp_to_dir(u, v, vp, d);
 }
 
@@ -2215,12 +2223,13 @@ static inline void el_envlight__theta_vp(float r, float z, float *v, float *vp) 
 /* <<Compute PDF>> of the warp times the cell table tab at a light-space direction d (any length):
  * P(cell) x the warp's density in (u, v) inside the cell / (2 pi^2 sin theta). uv (may be NULL) gets the
  * (u, v) at which le() looks d up. */
-static float el_envlight__warp_pdf_light(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
+static float el_envlight__warp_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
   float dd[3], r2, len2, rr, u, v, vp, X, Y;
   int w = W->w, h = W->h, ku = W->ku, kv = W->kv, i, r, a, b, j;
   const uint16_t *row;
-  const uint32_t *mg, *c0, *c1;
-  double pc, prow, A, B, t, s, lin, fv, al, e0, e1, fu, p;
+  const uint32_t *mg;
+  const float *c0, *c1;
+  double pc, prow, A, B, t, s, lin, fv, al, e0, e1, fu, p, len;
   if (uv) uv[0] = uv[1] = 0.0f;
   dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
   r2 = dd[0] * dd[0] + dd[1] * dd[1];
@@ -2250,7 +2259,7 @@ static float el_envlight__warp_pdf_light(const el_envlight *l, const struct el_e
   t = t < 1.0 ? (t > 0.0 ? t : 0.0) : 1.0;
   a = W->cu_of[i]; b = W->cv_of[r];
   /* P(cell): the table's two integer widths */
-  row = tab + (size_t)(kv + 1) + (size_t)b * (size_t)(ku + 1);
+  row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
   pc = (double)(tab[b + 1] - tab[b]) * (double)(row[a + 1] - row[a]) * (1.0 / 1073741824.0); /* 2^-30 */
   if (!(pc > 0.0)) return 0.0f;
   /* the marginal in v inside the cell: the patch row's probability times the linear shape in t */
@@ -2264,16 +2273,17 @@ static float el_envlight__warp_pdf_light(const el_envlight *l, const struct el_e
   /* the conditional in u at t: the blend's linear density over patch i */
   al = el_envlight__alpha(A, B, t);
   el_envlight__cond_rows(W, r, a, &c0, &c1);
-  el_envlight__patch_ends(l, W, r, i, i - W->a0[a], c0, c1, al, &e0, &e1);
+  el_envlight__patch_ends(W, r, i, i - W->a0[a], c0, c1, al, 1.0 - al, &e0, &e1);
   fu = ((1.0 - s) * e0 + s * e1) * (double)w;
+  len = (double)el_envlight__sqrt(len2);
   /* density over (u, v) / sin(theta): f_v = prow (lin / mean) / dv. In the pole rows lin / mean = 2 t
    * (2 (1 - t)) and t = 2 h vp, so f_v / sin(theta) = 8 h^2 prow vp / sin(theta), with vp / sin(theta) ->
    * 1 / pi at the pole itself (vp and sin theta = r / len both computed without cancellation). */
   if (r == 0 || r == h) {
-    double ratio = rr > 0.0f ? (double)vp * (double)el_envlight__sqrt(len2) / (double)rr : 0.318309886183790672;
+    double ratio = rr > 0.0f ? (double)vp * len / (double)rr : 0.318309886183790672;
     fv = 8.0 * (double)h * (double)h * prow * ratio;
   } else {
-    fv = prow * (lin / (0.5 * (A + B))) * (double)h * (double)el_envlight__sqrt(len2) / (double)rr;
+    fv = prow * (lin / (0.5 * (A + B))) * (double)h * len / (double)rr;
   }
   p = pc * fv * fu * (1.0 / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI));
   return p < (double)FLT_MAX ? (float)p : FLT_MAX;
@@ -2420,7 +2430,7 @@ static el_result el_envlight__cos_build(struct el_envlight__warp *W, int m) {
       }
       wgt[k] = W->mass[k] * bound;
     }
-    el_envlight__cell_table(wgt, ku, kv, W->cos_tab + (size_t)bin * W->table_len, tmp, wgt + K);
+    el_envlight__cell_table(W, wgt, W->cos_tab + (size_t)bin * W->table_len, tmp, wgt + K);
   }
   W->cos_bytes = (size_t)m * (size_t)m * W->table_len * sizeof(uint16_t);
   EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp);
@@ -2507,12 +2517,12 @@ static void el_envlight__warp_sample(const el_envlight *l, const struct el_envli
     return;
   }
   el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
-  el_envlight__warp_sample_cell(l, W, a, b, f0, f1, d);
+  el_envlight__warp_sample_cell(W, a, b, f0, f1, d);
   el_envlight__to_world(l, d, wi);
   /* the pdf is the pdf function's at wi (so pdf_li_cos(wi) equals it bit for bit): from d itself for a
    * signed permutation (the round trip is exact), else from wi brought back as pdf_li_cos does */
   if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d);
-  p = el_envlight__warp_pdf_light(l, W, tab, d, uv);
+  p = el_envlight__warp_pdf_light(W, tab, d, uv);
   *pdf = p;
   if (rgb) {
     if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb); /* le(wi): the same (u, v) */
@@ -2564,7 +2574,7 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   W = el_envlight__cos_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
   if (!W || W->all_zero) return 0.0f;
   el_envlight__to_light(l, wi, d);
-  return el_envlight__warp_pdf_light(l, W, el_envlight__cos_table(l, W, n), d, NULL);
+  return el_envlight__warp_pdf_light(W, el_envlight__cos_table(l, W, n), d, NULL);
 }
 
 EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
@@ -2588,7 +2598,7 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
   float d[3];
   if (!l->warp || l->warp->all_zero) return 0.0f;
   el_envlight__to_light(l, dir, d);
-  return el_envlight__warp_pdf_light(l, l->warp, l->warp->plain, d, NULL);
+  return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
 }
 
 #ifdef __cplusplus
