@@ -1931,19 +1931,22 @@ struct el_envlight__warp {
  * goes in proportion through exact 64-bit fixed-point prefix sums (no rounding error accumulates along
  * the row). All zero: cdf all 0, returns 0. */
 static int el_envlight__int_cdf(const double *f, int n, uint32_t units, uint32_t *cdf) {
-  double total = 0.0;
+  double total = 0.0, k, rest;
   uint64_t p = 0, ptot = 0;
   uint32_t m = 0, c = 0;
   int i;
   for (i = 0; i < n; ++i) { total += f[i]; m += f[i] > 0.0; }
   cdf[0] = 0;
   if (m == 0 || !(total > 0.0)) { for (i = 0; i < n; ++i) cdf[i + 1] = 0; return 0; }
-  for (i = 0; i < n; ++i) ptot += (uint64_t)(f[i] / total * 1099511627776.0); /* 2^40 */
+  k = 1099511627776.0 / total; /* 2^40 fixed point of each weight's share */
+  for (i = 0; i < n; ++i) ptot += (uint64_t)(int64_t)(f[i] * k); /* < 2^41: int64 is exact and one instruction */
+  rest = (double)(units - m);
   for (i = 0; i < n; ++i) {
-    p += (uint64_t)(f[i] / total * 1099511627776.0);
+    p += (uint64_t)(int64_t)(f[i] * k);
     c += f[i] > 0.0;
-    /* p / ptot is monotone in i and exactly 1 at the end, so cdf[n] = units */
-    cdf[i + 1] = c + (uint32_t)((double)(units - m) * ((double)p / (double)ptot)); /* ptot >= 2^40 / n > 0 */
+    /* p / ptot is monotone in i and exactly 1 from the last positive weight on (ptot >= 2^40 / n - n > 0),
+     * so zero weights after it get no unit and cdf[n] = units */
+    cdf[i + 1] = c + (uint32_t)(rest * ((double)p / (double)ptot));
   }
   return 1;
 }

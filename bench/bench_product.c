@@ -2,6 +2,11 @@
  * L(w) max(0, n.w) can be sampled at a constant cost per sample, and what each candidate buys.
  *
  *   bench_product [MAP ...]   the table below for each MAP (default: the five CC0 maps in ../shared/envmaps)
+ *   bench_product --picture [OUT.png] [MAP]   where the samples of one shading point land: 2000 of
+ *                             el_envlight_sample_li over the lat-long map (default city.hdr from data/envmaps),
+ *                             then 2000 of el_envlight_sample_li_cos for a tilted normal, the normal's
+ *                             horizon drawn; samples above it yellow, below it red. Written to OUT.png
+ *                             (default out/product_samples.png, the folder created) for the tutorial
  *   environment: NSAMP=n (samples per cell, 200000), ONLY=text (only strategies whose name holds it),
  *                MS=a,b,c (the three normal-table sizes, 8,16,32), BUILD=digits (build only tables
  *                3 * cells index + size index), DENSE=1 (an optimistic, NOT conservative bound: the
@@ -44,6 +49,7 @@
 #define EL_IMPLEMENTATION
 #include "envlight.h"
 #include "image_io.h"
+#include "picture.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -641,10 +647,100 @@ static void do_map(const char *path, int nsamp, const char *only) {
   el_image_free(&img);
 }
 
+/* ---- the picture: where 2000 samples of one shading point land, plain versus product ---- */
+#include <sys/stat.h>
+static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
+  double t = x / (1 + x);
+  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
+  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
+}
+static void dot(unsigned char *img, int W, int H, int x, int y, unsigned char r, unsigned char g, unsigned char b) {
+  int dx, dy;
+  for (dy = -1; dy <= 1; ++dy)
+    for (dx = -1; dx <= 1; ++dx) {
+      int xx = ((x + dx) % W + W) % W, yy = y + dy;
+      unsigned char *p;
+      if (yy < 0 || yy >= H) continue;
+      p = img + 3 * ((size_t)yy * W + xx);
+      p[0] = r; p[1] = g; p[2] = b;
+    }
+}
+static int picture(const char *out, const char *path) {
+  el_image img;
+  char err[512], label[128];
+  el_envlight l;
+  int W, H, panel, x, y, i, ns = 2000, below;
+  unsigned char *pix;
+  double nl[3], u0 = 0.45, v0 = 0.30; /* the normal: light-space direction at (u, v) = (0.45, 0.30) */
+  float n[3];
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) { fprintf(stderr, "%s: init failed\n", path); return 1; }
+  W = img.width; H = img.height;
+  nl[0] = sin(PI * v0) * cos(2 * PI * u0); nl[1] = sin(PI * v0) * sin(2 * PI * u0); nl[2] = cos(PI * v0);
+  n[0] = (float)nl[0]; n[1] = (float)nl[1]; n[2] = (float)nl[2];
+  pix = (unsigned char *)calloc((size_t)W * 2 * H * 3, 1);
+  for (panel = 0; panel < 2; ++panel) {
+    unsigned char *im = pix + (size_t)panel * W * H * 3;
+    rng r;
+    r.s = 2024;
+    for (y = 0; y < H; ++y) /* the map, one stop darker */
+      for (x = 0; x < W; ++x) {
+        const float *t = img.pixels + 3 * ((size_t)y * W + x);
+        unsigned char *p = im + 3 * ((size_t)y * W + x);
+        p[0] = to8(0.5 * t[0]); p[1] = to8(0.5 * t[1]); p[2] = to8(0.5 * t[2]);
+      }
+    for (x = 0; x < W; ++x) /* the normal's horizon: n.w = 0 along each column, found by bisection on theta */
+      for (i = 0; i < 2; ++i) {
+        double ph = 2 * PI * (x + 0.5) / W, a = nl[0] * cos(ph) + nl[1] * sin(ph), b = nl[2];
+        double th = atan2(-b, a); /* a sin(th) + b cos(th) = 0 */
+        if (i) th += PI;
+        th -= 2 * PI * floor(th / (2 * PI));
+        if (th <= PI) dot(im, W, H, x, (int)(th / PI * H), 80, 220, 255);
+      }
+    for (i = -6; i <= 6; ++i) { /* the normal: a white cross */
+      dot(im, W, H, (int)(u0 * W) + i, (int)(v0 * H), 255, 255, 255);
+      dot(im, W, H, (int)(u0 * W), (int)(v0 * H) + i, 255, 255, 255);
+    }
+    below = 0;
+    for (i = 0; i < ns; ++i) {
+      float u[2], wi[3], L[3], p;
+      double uu, vv, c;
+      u[0] = rng_f(&r); u[1] = rng_f(&r);
+      if (panel == 0) el_envlight_sample_li(&l, u, wi, L, &p);
+      else el_envlight_sample_li_cos(&l, n, u, wi, L, &p);
+      if (!(p > 0)) continue;
+      uu = atan2(wi[1], wi[0]) / (2 * PI); if (uu < 0) uu += 1;
+      vv = acos(fmax(-1.0, fmin(1.0, wi[2]))) / PI;
+      c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+      if (c <= 0) ++below;
+      if (c > 0) dot(im, W, H, (int)(uu * W), (int)(vv * H), 255, 230, 40);
+      else dot(im, W, H, (int)(uu * W), (int)(vv * H), 255, 40, 40);
+    }
+    snprintf(label, sizeof label, "%s: %d SAMPLES, %d BELOW THE HORIZON (RED)",
+             panel == 0 ? "PLAIN (SAMPLE LI)" : "PRODUCT (SAMPLE LI COS)", ns, below);
+    el_draw_label(im, W, H, 8, 8, label);
+    el_draw_label(im, W, H, 8, 34, "THE NORMAL: WHITE CROSS. ITS HORIZON: BLUE");
+    printf("%s: %d of %d samples below the horizon\n", panel == 0 ? "sample_li" : "sample_li_cos", below, ns);
+  }
+  {
+    char dir[512];
+    const char *slash = strrchr(out, '/');
+    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
+  }
+  if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  printf("wrote %s\n", out);
+  free(pix);
+  el_envlight_free(&l);
+  el_image_free(&img);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   const char *maps[5] = {"city", "sunset", "night", "forest", "studio"};
   const char *only = getenv("ONLY");
   int i, nsamp = getenv("NSAMP") ? atoi(getenv("NSAMP")) : 200000;
+  if (argc > 1 && !strcmp(argv[1], "--picture"))
+    return picture(argc > 2 ? argv[2] : "out/product_samples.png", argc > 3 ? argv[3] : EL_SOURCE_DIR "/data/envmaps/city.hdr");
   printf("Relative variance per sample of the irradiance estimate (Var / E^2, luminance) by normal (light space)\n"
          "'light': the strategy alone; '+MIS': one sample of it + one cosine sample, balance heuristic.\n"
          "'below': light samples below the horizon (wasted). MB, build: the strategy's tables.\n");
