@@ -1322,7 +1322,7 @@ static float ps_pdf_tested(const psrc *s, const float wi[3]) {
  * Also: every sample's pdf is finite and > 0 and equals the pdf function at its direction bit for bit,
  * and its radiance equals le(wi) bit for bit. Returns the p-value (1 when the test could not run). */
 static int g_prod_tests = 0;
-#define PROD_TESTS_PLANNED 23
+#define PROD_TESTS_PLANNED 26
 static double chi2_patches(const char *name, const psrc *s, const float m[9], int w, int h, int gu, int gv, int n,
                            uint64_t seed, int expect_pass) {
   int cells = gu * gv, i, r, pooled = 0, dof, impossible = 0, mismatch = 0, nonfinite = 0, rgb_mismatch = 0, zero = 0;
@@ -1390,6 +1390,68 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
   free(expect);
   free(obs);
   return pval;
+}
+
+/* Inside the patches: a chi-square over the 4 x 4 sub-squares of every patch (the expectation from the pdf
+ * at each sub-square's midpoint, exact for a bilinear density; cells expecting fewer than 5 samples
+ * pooled). The patch-aligned test above cannot see how samples spread inside a patch; this one does
+ * (small maps only: 16 pdf evaluations per patch). */
+static void chi2_fractions(const char *name, const psrc *s, const float m[9], int w, int h, int n, uint64_t seed) {
+  size_t cells = (size_t)(h + 1) * w * 16, k;
+  double *expect = (double *)calloc(cells, sizeof(double)), *obs = (double *)calloc(cells, sizeof(double));
+  double chi2 = 0, total = 0, pval, pool_e = 0, pool_o = 0;
+  int i, r, a, b, dof, used = 0;
+  rng g = rng_make(seed);
+  for (r = 0; r <= h; ++r) {
+    double v0 = r == 0 ? 0.0 : (r - 0.5) / h, v1 = r == h ? 1.0 : (r + 0.5) / h;
+    for (i = 0; i < w; ++i)
+      for (b = 0; b < 4; ++b)
+        for (a = 0; a < 4; ++a) {
+          double u = (i + 0.5 + (a + 0.5) / 4) / w, v = v0 + (b + 0.5) / 4 * (v1 - v0), dl[3], dw[3];
+          float fd[3];
+          if (u >= 1) u -= 1;
+          ref_uv_to_dir(u, v, dl);
+          mat_mul(m, dl, dw);
+          fd[0] = (float)dw[0]; fd[1] = (float)dw[1]; fd[2] = (float)dw[2];
+          expect[(((size_t)r * w + i) * 4 + b) * 4 + a] = ps_pdf_tested(s, fd) * 2 * PI * PI * sin(PI * v) * (v1 - v0) / w / 16;
+        }
+  }
+  for (k = 0; k < cells; ++k) total += expect[k];
+  for (i = 0; i < n; ++i) {
+    float uu[2], wi[3], rgb[3], p;
+    double dw[3], dl[3], u, v, x, y, fs, ft;
+    int pr, pi;
+    uu[0] = rng_f(&g); uu[1] = rng_f(&g);
+    ps_sample(s, uu, wi, rgb, &p);
+    if (!(p > 0)) continue;
+    dw[0] = wi[0]; dw[1] = wi[1]; dw[2] = wi[2];
+    mat_mul_t(m, dw, dl);
+    ref_dir_to_uv(dl, &u, &v);
+    x = u * w - 0.5;
+    if (x < 0) x += w;
+    pi = (int)x; if (pi > w - 1) pi = w - 1;
+    fs = x - pi;
+    y = v * h + 0.5;
+    pr = (int)y; if (pr > h) pr = h;
+    ft = pr == 0 ? 2 * v * h : pr == h ? 1 - 2 * (1 - v) * h : y - pr;
+    a = (int)(fs * 4); b = (int)(ft * 4);
+    a = a < 0 ? 0 : a > 3 ? 3 : a; b = b < 0 ? 0 : b > 3 ? 3 : b;
+    obs[(((size_t)pr * w + pi) * 4 + b) * 4 + a] += 1;
+  }
+  for (k = 0; k < cells; ++k) {
+    double e = expect[k] / total * n;
+    if (e < 5) { pool_e += e; pool_o += obs[k]; continue; }
+    chi2 += (obs[k] - e) * (obs[k] - e) / e;
+    ++used;
+  }
+  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++used; }
+  dof = used - 1;
+  pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
+  ++g_prod_tests;
+  check(pval > 0.01 / PROD_TESTS_PLANNED && dof > 10, "chi2 inside patches %-30s: 4x4 sub-squares of every patch: chi2 = %.1f, "
+        "%d dof, p = %.3g", name, chi2, dof, pval);
+  free(expect);
+  free(obs);
 }
 
 static el_result make_light_imp(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int imp) {
@@ -1570,6 +1632,32 @@ static void test_product_chi2(const el_image *studio, const el_image *city) {
     chi2_patches("(BILINEAR samples vs CELL_AVERAGE pdf)", &s, m, city->width, city->height, 64, 32, n, 120, 0);
     el_envlight_free(&lb);
     el_envlight_free(&lc);
+  }
+  { /* inside the patches: the sun map facing the sun (the sun's four patches hold nearly all the mass,
+       each steeply linear), pole rows (the linear ramp of the pole patches), city 128x64 (BILINEAR) */
+    el_envlight l;
+    psrc s;
+    float m[9], *c8 = shrink(city, 8);
+    identity(m);
+    make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
+    memset(&s, 0, sizeof s);
+    s.l = s.pdf_light = &l;
+    world_normal(m, sun, s.n);
+    memcpy(s.pdf_n, s.n, sizeof s.n);
+    chi2_fractions("cos sun 1e12, facing the sun", &s, m, PW, PH, n, 131);
+    el_envlight_free(&l);
+    make_light_imp(&l, poles, PW, PH, m, 0, 0);
+    s.l = s.pdf_light = &l;
+    s.n[0] = s.n[1] = 0; s.n[2] = 1;
+    memcpy(s.pdf_n, s.n, sizeof s.n);
+    chi2_fractions("cos pole rows, normal up", &s, m, PW, PH, n, 132);
+    el_envlight_free(&l);
+    make_light_imp(&l, c8, 128, 64, m, 0, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+    s.l = s.pdf_light = &l;
+    s.kind = s.pdf_kind = 1;
+    chi2_fractions("BILINEAR city 128x64", &s, m, 128, 64, n, 133);
+    el_envlight_free(&l);
+    free(c8);
   }
   check(g_prod_tests == PROD_TESTS_PLANNED, "chi2 product and warp: %d goodness-of-fit tests, Bonferroni over %d", g_prod_tests, PROD_TESTS_PLANNED);
   free(st); free(ct); free(sunmap); free(half); free(poles);
