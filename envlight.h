@@ -355,8 +355,9 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 
 /* >> declarations: product sampling and the bilinear warp (issue 13; NOTES ON PRODUCT SAMPLING below) */
 
-/* importance mode 3: the density follows the luminance of le()'s own bilinear reconstruction times
- * sin(theta), sampled by a continuous warp of its bilinear patches (Mitsuba 3's density). */
+/* Importance mode 3: the density follows the luminance of le()'s own bilinear reconstruction times
+ * sin(theta), sampled by a continuous warp of its bilinear patches (Mitsuba 3's density). sample_li,
+ * pdf_li, sample_le and pdf_le use it; about 1100 / 400 instructions instead of 95 / 75 (NOTES 1). */
 #define EL_ENVLIGHT_IMPORTANCE_BILINEAR 3
 
 /* Table sizes of product sampling (all zero: the defaults, 64 x 32 cells and 32 x 32 normal bins). */
@@ -365,25 +366,122 @@ typedef struct el_envlight_product_options {
   int normal_bins;      /* octahedral normal bins per axis, 1..256 (normal_bins^2 cell tables) */
 } el_envlight_product_options;
 
-/* Sample a direction wi (world, unit) with a density close to L(wi) max(0, n.wi) for a surface of
- * (world) normal n: *pdf is its solid-angle density, rgb (may be NULL) gets le(wi), bit for bit. n need
- * not be unit length; a zero, NaN or infinite n gives the normal-free warp density. Some directions
- * fall below the surface (in cells that straddle its horizon): their n.wi <= 0, and the caller drops
- * them as any sample of zero contribution. pdf 0: no sample (a black map; skip it). Builds the product
- * tables on first use (thread-safe, as sample_li's). */
+/* Sample a direction wi (world, unit) for a surface of world normal n, with a density close to
+ * L(wi) max(0, n.wi): *pdf is its solid-angle density, rgb (may be NULL) gets le(wi), bit for bit.
+ * n need not be unit length; a zero, NaN or infinite n gives the warp's density without the cosine.
+ * Directions fall below the surface only in cells that straddle its horizon (1.3-7.4% of the samples
+ * on the CC0 maps, sample_li: 46-58%): n.wi <= 0 there, the sample contributes nothing. pdf 0: no sample
+ * (a black map, or nothing emits above this surface); skip it. Cost: about 1200 instructions (1300
+ * with rgb), the pdf included. Builds the warp and the normal tables on first use (21 MB for a
+ * 2048x1024 map, 70 ms); thread-safe like sample_li's lazy build; the light's own sampling tables
+ * (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
-/* The density with which sample_li_cos(l, n, .) picks wi: pdf_li_cos(n, sample_li_cos(n, u).wi) is the
- * returned pdf, bit for bit (for MIS against BSDF sampling at the same point). > 0 wherever le(wi) > 0
- * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. */
+/* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
+ * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
+ * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi gives 0.
+ * About 420 instructions. Builds the tables on first use, as sample_li_cos. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
-/* Build the product tables now, with sizes (opt may be NULL: the defaults). Returns the build's result;
- * EL_ERROR_INVALID_ARGUMENT for sizes out of range or different from those of tables already built. */
+/* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
+ * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
+ * EL_ERROR_INVALID_ARGUMENT for sizes out of range or different from those of tables already built
+ * (options apply to the first build only: call it before the first query). The constant light needs
+ * no tables (EL_SUCCESS). */
 EL_DEF el_result el_envlight_prepare_product(const el_envlight *l, const el_envlight_product_options *opt);
-/* Bytes of the warp's and the normal tables (0 until built; included in el_envlight_bytes). */
+/* Bytes of the warp and the normal tables once built (0 before; el_envlight_bytes includes them; in mode
+ * BILINEAR the warp is counted by el_envlight_sampling_bytes instead). */
 EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
 
 /* << declarations: product sampling */
+
+/* ----------------------------------------------------------------------------------------------------
+ * NOTES ON PRODUCT SAMPLING AND THE BILINEAR WARP (issue 13; the numbers: bench/bench_envlight.c tables
+ * 1, 2, 4, 5 and bench/bench_product.c, gcc 12 -O3, no -march, this project's shared 2-core machine)
+ *
+ * 1. THE BILINEAR WARP (importance mode BILINEAR, and inside product sampling's cells). The density is
+ *    the bilinear interpolant of le()'s luminance x sin(theta) at the texel centres (the vertices of
+ *    le()'s bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density.
+ *    Where the cell-average density (the default) is constant over a texel while le() is bilinear,
+ *    this one follows le() inside the texel: lum(le) / pdf has a relative variance of 1.5e-5 on city
+ *    instead of 0.10 (table 3), so a sun stops adding variance of its own. It is sampled by CDF
+ *    inversion of the patches, marginal then conditional, both linear inside a patch (two square
+ *    roots, no libm), so every step is monotone in its u: 16x16 jittered u give 114x less variance
+ *    than independent u for an up-facing point on city (the cell-average sampler: 3.4x; table 5).
+ *    Robust where a float CDF is not: each vertex row has its own integer CDF over its patches
+ *    (distribution2d.h's idea: every patch with a positive vertex gets a unit), the conditional at t
+ *    is the blend of the two rows' CDFs with weight alpha = (1-t) A / ((1-t) A + t B) kept within
+ *    [2^-20, 1 - 2^-20] while both rows have mass (the density is defined with that alpha), so no
+ *    patch next to a sun becomes unreachable. At the poles the density and sin(theta) both vanish;
+ *    their ratio is computed without 0/0 (its limit at the pole itself).
+ *    COST: sample_li 1078-1105 instructions (+radiance 1209-1236), pdf_li 403 (table 2; CELL_AVERAGE:
+ *    93.5-97.4, 257-261, 75); 2-3x the time of CELL_AVERAGE per estimate in table 4. MEMORY: 8 bytes per
+ *    texel (a float vertex value and a float CDF entry) plus 16 bytes per vertex row and cell column:
+ *    4.6 MB at 1024x512 (CELL_AVERAGE: 4.7). BUILD: 45 M instructions, 8-12 ms at 1024x512; 168 M, 34 ms
+ *    at 2048x1024 (with init). It wins on variance only where a sun dominates the estimate (1.6x on
+ *    city, <= 1.2x on the other CC0 maps), not on variance x time (0.4-0.6 of CELL_AVERAGE's efficiency
+ *    for light sampling alone): CELL_AVERAGE stays the default. Its place is inside product sampling.
+ *
+ * 2. PRODUCT SAMPLING (sample_li_cos, pdf_li_cos): a density close to L(w) max(0, n.w). The map's
+ *    patches are grouped into 64 x 32 cells; a cell is picked with probability proportional to its
+ *    mass under the warp times B(cell, n), an upper bound of max(0, n.w) over the cell, then the warp
+ *    runs inside the cell. B comes from a table per octahedral bin of the (light-space) normal, 32 x 32
+ *    bins: for the bin's centre normal c the exact maximum of c.w over the cell (a spherical rectangle:
+ *    the best phi, then the peak of a sin(theta) + b cos(theta) on the cell's theta range), widened by
+ *    the bin's angular radius r (the farthest point of its boundary, sampled, plus the sampling gap and
+ *    1e-4): B = cos(max(0, angle(c, cell) - r)). So B > 0 for every cell holding a direction above the
+ *    surface of any normal of the bin: pdf_li_cos > 0 wherever le > 0 and n.w > 0 (compensation aside),
+ *    and light sampling alone is unbiased (tested: a grid of directions x 12 normals, the poles and the
+ *    seam among them, on hard maps; and against quadratures of the irradiance). A sample costs a table
+ *    lookup, two searches over the cells and the warp; the pdf the same lookups.
+ *    WHERE IT CANNOT STAY ABOVE THE SURFACE: in cells that straddle the horizon of the bin's normals
+ *    (the cells' size plus the bins' radius): 1.3-7.4% of the samples on the CC0 maps (sample_li:
+ *    46-58%); they come back with n.wi <= 0 and contribute nothing.
+ *    VARIANCE (table 4, diffuse surface, 6 orientations: up, down, two sideways, facing the brightest
+ *    texel and away; geometric mean of the relative variance per sample): light sampling alone 0.034
+ *    (city) - 0.062 (night) against 2.0-2.6 for sample_li: 33-70x less, 19-37x the efficiency
+ *    (variance x time) with the cost below. With one cosine sample besides (MIS, balance heuristic) the
+ *    pair's variance is 0.07-0.12 against 0.36-1.27: 3-7.5x the efficiency. At equal sample count, two
+ *    product samples beat a product and a cosine sample under the balance heuristic by 5-6x (city,
+ *    studio): for a diffuse lobe the BSDF sample is better spent on a second light sample.
+ *    CANDIDATES TRIED (bench/bench_product.c, same quantity, city / studio): per shading point exact
+ *    bounds over 16x8 / 32x16 / 64x32 cells (O(cells) work per point, Conty and Lecocq 2018's scheme),
+ *    0.062 / 0.022 / 0.0074 and 0.070 / 0.026 / 0.0093 with the warp inside cells, 0.117 / 0.059 / 0.032
+ *    and 0.127 / 0.078 / 0.052 with cell averages; tables over 8^2, 16^2, 32^2, 64^2 normal bins,
+ *    e.g. 32^2 x 64x32 (the default) 0.033 / 0.036, 16^2 x 32x16 0.10 / 0.11, 64^2 x 64x32 0.018 / 0.022
+ *    (17 MB of tables); a tighter per-bin bound (the maximum over 81 normals of the bin, not
+ *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
+ *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
+ *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
+ *    COST: sample_li_cos 1169-1195 instructions (+radiance 1300-1326; a general rotation +53), with a
+ *    new random normal on every call; pdf_li_cos 419 (+30). 0.5-1.1 us per estimate with the radiance
+ *    in table 4 (sample_li: 0.23-0.59). The sample includes its own pdf: it runs pdf_li_cos's
+ *    code on the sampled direction (about 355 instructions) so that the two agree bit for bit.
+ *    MEMORY: the warp (above) + the normal tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB:
+ *    8.7 MB at 1024x512, 21 MB at 2048x1024. BUILD: the warp + 257 M instructions for the tables
+ *    (fixed: 2.1 M bin-cell pairs), 45-65 ms at 1024x512, 70 ms at 2048x1024. el_envlight_product_options
+ *    trade them: 32x16 cells and 16^2 bins need 0.3 MB of tables and a sixteenth of their build, for
+ *    3x the variance.
+ *
+ * 3. EXACTNESS. pdf_li_cos(n, wi) of a sampled wi equals the returned pdf bit for bit, and rgb equals
+ *    le(wi) bit for bit (signed-permutation matrices and general rotations alike: the sampler brings
+ *    wi back to light space as pdf_li_cos does). For continuous u the warp is exact CDF inversion. For
+ *    u on a 2^-24 lattice (24-bit samplers) the cell is picked with exactly its tabulated probability,
+ *    but inside the cell the warp sees the lattice of the remaining fraction: each patch row's and
+ *    patch's probability can differ from the stated one by one lattice point, 2^-24 of the total (the
+ *    chi-square tests at 150,000 samples see nothing).
+ *
+ * 4. INPUTS. n need not be unit length; a zero, NaN or infinite n gives the warp's density without
+ *    the cosine (its plain table). The constant light: cosine-weighted hemisphere sampling, exactly the
+ *    product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an unusable n. A black map, or a
+ *    normal whose hemisphere holds no mass: pdf 0 (skip the sample). Compensation (options.compensated):
+ *    the warp's vertices become max(lum - mean, 0) x sin (the mean from the exact integral); use it
+ *    with MIS only, as sample_li's. 1xN and Nx1 maps work (one patch column; two pole patch rows).
+ *
+ * 5. THREADS. The warp and the normal tables are built on first use by their own once-flags (the same
+ *    scheme as the sampling tables: atomics with GCC/Clang, else call el_envlight_prepare_product before
+ *    sharing the light); the build writes through the const pointer, so never define an el_envlight
+ *    object itself const. After that every query is read-only. The light's own sampling tables
+ *    (sample_li's) are not built by product sampling, nor the normal tables by importance BILINEAR. */
 
 #ifdef __cplusplus
 }

@@ -6,7 +6,12 @@
  *   bench_envlight --callgrind OP N [MAP] only N calls of OP after the setup (a generated 2048x1024 map,
  *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
  *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
- *                                        sample_rotated pdf_rotated build
+ *                                        sample_rotated pdf_rotated build; importance BILINEAR:
+ *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear;
+ *                                        product sampling (a new normal per call): sample_cos
+ *                                        sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated
+ *                                        build_product
+ *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
  * build/bin/bench_envlight --callgrind pdf N for N = 0 and N = 200000; (Ir(N) - Ir(0)) / N from the
@@ -36,6 +41,13 @@
  *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
  *     to light sampling with CELL_AVERAGE and the default (guide) sampler; and, for light sampling, the
  *     relative variance of lum(le) / pdf (how well the density matches the map, whatever the cosine).
+ *     BILINEAR (the continuous warp) is among the rows.
+ *  4. Product sampling: for each CC0 map and six normals (up, down, two sideways, facing the brightest
+ *     texel and away from it) the relative variance per sample of the irradiance estimate with
+ *     sample_li, sample_li in importance BILINEAR and sample_li_cos, each alone and with one cosine
+ *     sample (balance and power heuristics), the samples below the horizon, ns per estimate and the
+ *     efficiency; the tables' build time and memory.
+ *  5. Stratification: Var(256 independent samples) / Var(16x16 jittered) for each sampler.
  */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #define EL_IMPLEMENTATION
