@@ -51,11 +51,14 @@
  *     but its relative MSE per sample is 11-33% higher (16/64 spp, quick table): pbrt-v3's map stays
  *     the default (lower relMSE at equal time).
  * Measured 2026-12-01 (quiet machine, interleaved runs of this binary and of the previous release's):
- *   a pixel's light samples drawn together (elr__pixel_batched, el_envlight_sample_li_n): loop
+ *   a pixel's light samples drawn together (render_batched.c, el_envlight_sample_li_n): loop
  *     0.366-0.384 s, efficiency 27-28%; the same binary with no_batch 0.432-0.446 s (23-24%), the same
  *     image; the previous release 0.448-0.457 s (23%). callgrind: 4518 instructions per camera sample
  *     batched, 4347 one at a time (samples / samples1). Raw rates 25.4 M intersect, 26.7 M occluded
- *     rays/s: Embree alone takes 0.104 s, 85 ns per camera sample. */
+ *     rays/s: Embree alone takes 0.104 s, 85 ns per camera sample.
+ * Measured 2026-12-01, the renderer laid out by pbrt-v3's concepts (no wrappers around the library's
+ * calls; render_batched.c apart from the reference path), N = 102400: 4485 -> 4319 instructions per
+ * camera sample batched, 4351 -> 4379 one at a time; the same images (examples/render/README.md). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
@@ -77,7 +80,7 @@ static double relmse(const float *a, const float *ref, size_t n) {
 
 typedef struct { elr_v3 o, d; } bray;
 
-/* camera rays through pixel centres, pbrt-v3's pinhole (the same maths as integrator.c) */
+/* camera rays through pixel centres, pbrt-v3's pinhole (the same maths as examples/render/camera.c) */
 static void camera_rays(const elr_scene *s, bray *r) {
   int w = s->d.xres, h = s->d.yres, x, y;
   double frame = (double)w / h, th = tan(s->d.fov * 3.14159265358979 / 360.0);
@@ -162,29 +165,30 @@ static void packet_rates(const elr_scene *s) {
   free(cam); free(blk); free(arr);
 }
 
-static elr_envmap *scene_env(elr_scene *s) {
+static elr_light *scene_env(elr_scene *s) {
   int i;
-  for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE) return s->light[i].env;
+  for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE) return &s->light[i];
   return NULL;
 }
 
 /* shadow rays: from the camera rays' hit points towards environment samples (only those above the
  * surface, as the loop traces them) */
 static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max) {
-  elr_envmap *env = scene_env(s);
+  elr_light *env = scene_env(s);
   int i, k = 0;
   uint32_t st = 12345;
-  elr_env_prepare(env, -1, -1);
+  elr_infinite_prepare(env, -1, -1);
   for (i = 0; i < n && k < max; i++) {
     elr_hit h;
     int tries;
     if (!elr_intersect(s, cam[i].o, cam[i].d, INFINITY, &h)) continue;
     for (tries = 0; tries < 8 && k < max; tries++) {
-      float u0, u1, pdf;
+      float u[2], w3[3], L3[3], pdf;
       elr_v3 wi;
-      st = st * 1664525u + 1013904223u; u0 = (st >> 8) * 0x1p-24f;
-      st = st * 1664525u + 1013904223u; u1 = (st >> 8) * 0x1p-24f;
-      elr_env_sample(env, u0, u1, &wi, &pdf);
+      st = st * 1664525u + 1013904223u; u[0] = (st >> 8) * 0x1p-24f;
+      st = st * 1664525u + 1013904223u; u[1] = (st >> 8) * 0x1p-24f;
+      el_envlight_sample_li(env->env_sample, u, w3, L3, &pdf);
+      wi = elr_from3(w3);
       if (pdf > 0 && elr_dot(wi, h.ng) * elr_dot(cam[i].d, h.ng) < 0) {
         out[k].o = elr_add(h.p, elr_mul(h.ng, elr_dot(wi, h.ng) > 0 ? h.eps : -h.eps));
         out[k].d = wi;
@@ -311,7 +315,7 @@ int main(int argc, char **argv) {
         elr_image_free(&img);
       }
       /* the same loop sampling envlight's cell-average map (1x resolution: a quarter of the tables) */
-      if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, ELR_IMPORTANCE_CELL_AVERAGE, 1, 1, &img, &st) == 0) {
+      if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE, 1, 1, &img, &st) == 0) {
         ni_c = (double)st.camera_rays + st.bounce_rays; no_c = (double)st.shadow_rays + st.bsdf_light_rays;
         if (st.t_render < t_cell) t_cell = st.t_render;
         elr_image_free(&img);

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Installs what envlight's build needs on Debian, only what is missing: apt-get as root, sudo otherwise.
 set -eu
-PKGS="cmake make gcc g++ pkg-config libembree-dev libstb-dev libtinyexr-dev zlib1g-dev"
+PKGS="cmake make gcc g++ clang pkg-config libembree-dev libstb-dev libopenexr-dev zlib1g-dev"
 missing=""
 for p in $PKGS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -1,7 +1,8 @@
-/* image_io.c: see image_io.h. stb and tinyexr come compiled from Debian (libstb.so, libtinyexr.so);
- * this file includes only their declarations. */
+/* image_io.c: see image_io.h. stb and OpenEXR come compiled from Debian (libstb.so; libOpenEXRCore and
+ * libOpenEXR, the reference OpenEXR library): this file includes only their declarations. */
 #define _POSIX_C_SOURCE 200809L /* stat */
 #include "image_io.h"
+#include "exr_codec.h"
 
 #include <sys/stat.h>
 
@@ -15,7 +16,7 @@
 
 #include <stb_image.h>
 #include <stb_image_write.h>
-#include <tinyexr.h>
+#include <openexr.h>
 #include <zlib.h>
 
 /* The most pixels a file may decode to (16384 x 16384): run-length encoded HDR and deflated PNG data
@@ -35,7 +36,7 @@ static int el_io__fail(char *err, size_t errlen, const char *path, const char *f
       va_end(ap);
       /* the message may quote bytes of a corrupt file (a PFM header token): keep it printable ASCII */
       for (c = err + n; *c; c++)
-        if (*c == '\n' || *c == '\t') *c = ' '; /* tinyexr ends its messages with a newline */
+        if (*c == '\n' || *c == '\t') *c = ' '; /* library messages may span lines */
         else if ((unsigned char)*c < 32 || (unsigned char)*c >= 127) *c = '?';
     }
   }
@@ -306,163 +307,173 @@ static int el_io__check_png(const char *path, FILE *f, long size, char *err, siz
   return 0;
 }
 
-/* ---- OpenEXR: tinyexr reports a truncated file as "Invalid data found when decoding pixels". When it
- * fails on a single-part scanline file, walk the chunk offset table ourselves to say what is missing. */
-static int el_io__diagnose_exr(const char *path, char *err, size_t errlen) {
-  EXRVersion ver;
-  EXRHeader hdr;
-  const char *msg = NULL;
-  FILE *f;
-  long size, k, n, lines, table;
-  int found = 0;
-  if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS)
-    return el_io__fail(err, errlen, path, "corrupt EXR (bad version field)") , 1;
-  InitEXRHeader(&hdr);
-  if (ParseEXRHeaderFromFile(&hdr, &ver, path, &msg) != TINYEXR_SUCCESS) {
-    el_io__fail(err, errlen, path, "corrupt or truncated EXR header (%s)", msg ? msg : "unknown tinyexr error");
-    if (msg) FreeEXRErrorMessage(msg);
-    FreeEXRHeader(&hdr);
-    return 1;
-  }
-  if (ver.tiled || ver.multipart || ver.non_image) { FreeEXRHeader(&hdr); return 0; }
-  switch (hdr.compression_type) {
-  case TINYEXR_COMPRESSIONTYPE_ZIP: lines = 16; break;
-  case TINYEXR_COMPRESSIONTYPE_PIZ: lines = 32; break;
-  case TINYEXR_COMPRESSIONTYPE_NONE: case TINYEXR_COMPRESSIONTYPE_RLE: case TINYEXR_COMPRESSIONTYPE_ZIPS: lines = 1; break;
-  default: FreeEXRHeader(&hdr); return 0;
-  }
-  n = ((long)hdr.data_window.max_y - hdr.data_window.min_y + 1 + lines - 1) / lines;
-  table = 8 + (long)hdr.header_len;
-  FreeEXRHeader(&hdr);
-  f = fopen(path, "rb");
-  if (!f || n <= 0) { if (f) fclose(f); return 0; }
-  size = el_io__file_size(f);
-  if (size < table + 8 * n) {
-    fclose(f);
-    return el_io__fail(err, errlen, path, "file is truncated (the chunk offset table needs %ld bytes, the file has %ld)", table + 8 * n, size), 1;
-  }
-  fseek(f, table, SEEK_SET);
-  for (k = 0; k < n && !found; ++k) {
-    unsigned char o[8], c[8];
-    unsigned long long off = 0;
-    long here;
-    int i;
-    if (fread(o, 1, 8, f) != 8) break;
-    for (i = 7; i >= 0; --i) off = (off << 8) | o[i];
-    if (off + 8 > (unsigned long long)size) {
-      el_io__fail(err, errlen, path, "file is truncated (pixel chunk %ld of %ld starts at byte %llu, the file has %ld bytes)", k + 1, n, off, size);
-      found = 1;
-      break;
-    }
-    here = ftell(f);
-    if (fseek(f, (long)off + 4, SEEK_SET) == 0 && fread(c, 1, 4, f) == 4) {
-      unsigned long long len = (unsigned long long)c[0] | (unsigned long long)c[1] << 8 | (unsigned long long)c[2] << 16 | (unsigned long long)c[3] << 24;
-      if (off + 8 + len > (unsigned long long)size) {
-        el_io__fail(err, errlen, path, "file is truncated (pixel chunk %ld of %ld ends at byte %llu, the file has %ld bytes)", k + 1, n, off + 8 + len, size);
-        found = 1;
-      }
-    }
-    fseek(f, here, SEEK_SET);
-  }
-  fclose(f);
-  return found;
+/* ---- OpenEXR, through the reference library (Debian's libopenexr-dev, OpenEXR 3.1). Its C core
+ * (OpenEXRCore, openexr.h) reads the header and the chunk offset table here, so that everything below
+ * is checked before anything of the image's size is allocated: the data window (at most
+ * EL_IO__MAX_PIXELS), the bytes one chunk unpacks to (EL_IO__EXR_MAX_CHUNK_BYTES: a header may
+ * announce thousands of channels), and that every chunk of the image lies inside the file. The pixels
+ * are then decoded by its C++ library (exr_codec.cc), which has every compression: OpenEXRCore 3.1 has
+ * no DWAA/DWAB decoder.
+ *
+ * What is read: part 0 (of a multi-part file too), level 0 (of a tiled MIP/RIP map too). Channels R, G
+ * and B of the default layer, else of the first layer (in the file's alphabetical order) that has all
+ * three ("diffuse.R", "diffuse.G", "diffuse.B"), else Y the same way (grey); other channels (A, Z, ...)
+ * are skipped, any pixel type (half, float, uint) becomes float. Deep images, luminance/chroma images
+ * (Y with RY, BY) and subsampled channels are refused as unsupported. */
+#define EL_IO__EXR_MAX_CHUNK_BYTES ((double)(1 << 28))
+
+/* OpenEXRCore reports each problem to a callback (its default prints to stderr): keep the first one. */
+typedef struct el_io__exr_log { char msg[200]; } el_io__exr_log;
+static void el_io__exr_log_error(exr_const_context_t f, exr_result_t code, const char *msg) {
+  void *u = NULL;
+  el_io__exr_log *log;
+  if (exr_get_user_data(f, &u) != EXR_ERR_SUCCESS || !u) return;
+  log = (el_io__exr_log *)u;
+  if (!log->msg[0]) snprintf(log->msg, sizeof log->msg, "%s", msg ? msg : exr_get_default_error_message(code));
+}
+/* OpenEXRCore's message for result r (the first one it reported, else the code's generic text) */
+static const char *el_io__exr_why(const el_io__exr_log *log, exr_result_t r) {
+  return log->msg[0] ? log->msg : exr_get_default_error_message(r);
 }
 
-/* ---- OpenEXR, single-part files (scanline or tiled: level 0): tinyexr 1.0.1's LoadEXR leaks every
- * channel buffer when decoding fails (FreeEXRImage frees images[c] -- or each tile's -- for c <
- * num_channels, and num_channels is set only after a successful decode), so a corrupt chunk leaked
- * (LeakSanitizer). Here the image's num_channels is set before decoding, so that tinyexr's own clean-up
- * frees them; the RGB conversion is LoadEXR's (R, G, B by name, layer prefixes ignored; a single
- * channel is grey; tiles placed by their offsets). Returns 0 or -1. */
-static int el_io__load_exr(const char *path, el_image *img, char *err, size_t errlen) {
-  EXRVersion ver;
-  EXRHeader hdr;
-  EXRImage im;
-  const char *msg = NULL;
-  int c, idx[3] = {-1, -1, -1}, r;
-  size_t i, n;
-  if (ParseEXRVersionFromFile(&ver, path) != TINYEXR_SUCCESS) return el_io__fail(err, errlen, path, "corrupt EXR (bad version field)");
-  if (ver.multipart || ver.non_image)
-    return el_io__fail(err, errlen, path, "multi-part and deep EXR files are not supported");
-  InitEXRHeader(&hdr);
-  if (ParseEXRHeaderFromFile(&hdr, &ver, path, &msg) != TINYEXR_SUCCESS) {
-    el_io__fail(err, errlen, path, "corrupt or truncated EXR header (%s)", msg ? msg : "unknown tinyexr error");
-    if (msg) FreeEXRErrorMessage(msg);
-    FreeEXRHeader(&hdr);
-    return -1;
+/* The channel of `layer` (a prefix such as "" or "diffuse.") called `base`, or -1. */
+static int el_io__exr_find(const exr_attr_chlist_t *cl, const char *layer, size_t layer_len, const char *base) {
+  int i;
+  for (i = 0; i < cl->num_channels; i++) {
+    const char *n = cl->entries[i].name.str;
+    if (n && strlen(n) == layer_len + strlen(base) && !strncmp(n, layer, layer_len) && !strcmp(n + layer_len, base)) return i;
   }
-  if (hdr.num_channels < 1) { FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "EXR has no channels"); }
-  { /* tinyexr allocates every channel of the data window before it decodes a chunk */
-    double w = (double)hdr.data_window.max_x - hdr.data_window.min_x + 1, h = (double)hdr.data_window.max_y - hdr.data_window.min_y + 1;
-    if (w < 1 || h < 1 || w * h > EL_IO__MAX_PIXELS) {
-      FreeEXRHeader(&hdr);
-      return el_io__fail(err, errlen, path, "EXR data window of %.0f x %.0f pixels is empty or too large (at most %.0f pixels)", w, h,
-                         EL_IO__MAX_PIXELS);
+  return -1;
+}
+/* The channels to read (see above) into idx[0..2]; returns 3 (RGB), 1 (grey: idx[0] only) or 0. */
+static int el_io__exr_pick(const exr_attr_chlist_t *cl, int idx[3]) {
+  static const char *const rgb[3] = {"R", "G", "B"};
+  int want, i, c;
+  for (want = 3; want >= 1; want -= 2) {
+    const char *const *bases = want == 3 ? rgb : NULL;
+    /* the default layer first (layer_len 0), then each layer in the channel list's order */
+    for (i = -1; i < cl->num_channels; i++) {
+      const char *n = i < 0 ? "" : cl->entries[i].name.str, *dot = i < 0 ? NULL : strrchr(n, '.');
+      size_t layer_len = dot ? (size_t)(dot - n) + 1 : 0;
+      if (i >= 0 && (!dot || strcmp(dot + 1, want == 3 ? "R" : "Y"))) continue; /* not a layered R (or Y) */
+      for (c = 0; c < want; c++)
+        if ((idx[c] = el_io__exr_find(cl, n, layer_len, bases ? bases[c] : "Y")) < 0) break;
+      if (c == want) return want;
     }
   }
-  for (c = 0; c < hdr.num_channels; c++) {
-    const char *nm = hdr.channels[c].name, *dot = strrchr(nm, '.');
-    if (dot && dot != nm && dot[1]) nm = dot + 1;
-    if (!strcmp(nm, "R") && idx[0] < 0) idx[0] = c;
-    else if (!strcmp(nm, "G") && idx[1] < 0) idx[1] = c;
-    else if (!strcmp(nm, "B") && idx[2] < 0) idx[2] = c;
-    if (hdr.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) hdr.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  return 0;
+}
+
+static int el_io__load_exr(const char *path, long size, el_image *img, char *err, size_t errlen) {
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  exr_context_t f = NULL;
+  el_io__exr_log log;
+  exr_result_t r;
+  exr_storage_t storage;
+  exr_attr_box2i_t dw;
+  const exr_attr_chlist_t *cl;
+  int parts, idx[3] = {-1, -1, -1}, n, c, k, tiled;
+  int32_t lines = 1, nx = 1, ny = 1;
+  uint32_t tile_w = 0, tile_h = 0;
+  double w, h, bytes_per_pixel = 0;
+  char layout[160], msg[300], note[200];
+  const char *names[3] = {NULL, NULL, NULL};
+  size_t i, npix;
+  log.msg[0] = 0;
+  init.error_handler_fn = el_io__exr_log_error;
+  init.user_data = &log;
+  init.max_image_width = init.max_image_height = 1 << 28; /* no side can be longer under EL_IO__MAX_PIXELS */
+  init.max_tile_width = init.max_tile_height = 1 << 16;
+  init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION; /* a bad chunk table is an error, not a search */
+#define EL_IO__EXR_FAIL(...) do { el_io__fail(err, errlen, path, __VA_ARGS__); exr_finish(&f); return -1; } while (0)
+  r = exr_start_read(&f, path, &init);
+  if (r == EXR_ERR_FEATURE_NOT_IMPLEMENTED) EL_IO__EXR_FAIL("unsupported EXR (%s)", el_io__exr_why(&log, r));
+  if (r != EXR_ERR_SUCCESS) EL_IO__EXR_FAIL("corrupt or truncated EXR header (%s)", el_io__exr_why(&log, r));
+  /* OpenEXRCore reads on past some bad values (a compression code it does not know becomes ZIP): its
+   * message explains a failure of the decoder better than the decoder's own */
+  snprintf(note, sizeof note, "%s", log.msg);
+  if (exr_get_count(f, &parts) != EXR_ERR_SUCCESS || parts < 1 || exr_get_storage(f, 0, &storage) != EXR_ERR_SUCCESS ||
+      exr_get_data_window(f, 0, &dw) != EXR_ERR_SUCCESS || exr_get_channels(f, 0, &cl) != EXR_ERR_SUCCESS || !cl)
+    EL_IO__EXR_FAIL("corrupt EXR header (%s)", el_io__exr_why(&log, EXR_ERR_FILE_BAD_HEADER));
+  if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
+    EL_IO__EXR_FAIL("unsupported EXR: part 0 of %d is a deep image (several samples per pixel)", parts);
+  tiled = storage == EXR_STORAGE_TILED;
+  w = (double)dw.max.x - dw.min.x + 1;
+  h = (double)dw.max.y - dw.min.y + 1;
+  if (w < 1 || h < 1 || w * h > EL_IO__MAX_PIXELS)
+    EL_IO__EXR_FAIL("EXR data window of %.0f x %.0f pixels is empty or too large (at most %.0f pixels)", w, h, EL_IO__MAX_PIXELS);
+  /* the channels */
+  layout[0] = 0;
+  for (c = 0; c < cl->num_channels; c++) {
+    size_t len = strlen(layout);
+    if (len + 40 < sizeof layout) snprintf(layout + len, sizeof layout - len, "%s%.32s", c ? ", " : "", cl->entries[c].name.str);
+    else if (len + 5 < sizeof layout && !strstr(layout, "...")) snprintf(layout + len, sizeof layout - len, ", ...");
+    bytes_per_pixel += cl->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
   }
-  if (hdr.num_channels == 1) idx[0] = idx[1] = idx[2] = 0;
-  else if (idx[0] < 0 || idx[1] < 0 || idx[2] < 0) {
-    FreeEXRHeader(&hdr);
-    return el_io__fail(err, errlen, path, "EXR has %d channels but no R, G and B", hdr.num_channels);
+  n = el_io__exr_pick(cl, idx);
+  if (n == 0) EL_IO__EXR_FAIL("unsupported EXR channel layout (channels: %s): need R, G and B, or Y", cl->num_channels ? layout : "none");
+  if (n == 1) {
+    const char *y = cl->entries[idx[0]].name.str;
+    size_t layer_len = strlen(y) - 1;
+    if (el_io__exr_find(cl, y, layer_len, "RY") >= 0 || el_io__exr_find(cl, y, layer_len, "BY") >= 0)
+      EL_IO__EXR_FAIL("unsupported EXR: luminance/chroma channels (%s); save it as RGB", layout);
   }
-  InitEXRImage(&im);
-  im.num_channels = hdr.num_channels; /* see above: tinyexr frees this many channel buffers on failure */
-  r = LoadEXRImageFromFile(&im, &hdr, path, &msg);
-  if (r != TINYEXR_SUCCESS) {
-    char *nl;
-    el_io__fail(err, errlen, path, "cannot read EXR (%s)", msg ? msg : "unknown tinyexr error");
-    while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
-    if (msg) FreeEXRErrorMessage(msg);
-    FreeEXRHeader(&hdr); /* the image's buffers were freed by tinyexr */
-    return -1;
+  for (c = 0; c < n; c++) {
+    const exr_attr_chlist_entry_t *e = &cl->entries[idx[c]];
+    if (e->x_sampling != 1 || e->y_sampling != 1)
+      EL_IO__EXR_FAIL("unsupported EXR: channel %s is subsampled (%d x %d)", e->name.str, e->x_sampling, e->y_sampling);
+    names[c] = e->name.str;
   }
-  if (im.width <= 0 || im.height <= 0 || (hdr.tiled ? !im.tiles || hdr.tile_size_x <= 0 || hdr.tile_size_y <= 0 : !im.images)) {
-    FreeEXRImage(&im); FreeEXRHeader(&hdr);
-    return el_io__fail(err, errlen, path, "EXR has no pixels");
+  /* the chunks: how much one unpacks to, and that each lies inside the file (OpenEXRCore reads the
+   * offset table on the first request, after checking that the file can hold it) */
+  if (tiled) {
+    exr_tile_level_mode_t levels;
+    exr_tile_round_mode_t round;
+    int32_t lw, lh;
+    if (exr_get_tile_descriptor(f, 0, &tile_w, &tile_h, &levels, &round) != EXR_ERR_SUCCESS ||
+        exr_get_level_sizes(f, 0, 0, 0, &lw, &lh) != EXR_ERR_SUCCESS || tile_w < 1 || tile_h < 1)
+      EL_IO__EXR_FAIL("corrupt EXR tile description (%s)", el_io__exr_why(&log, EXR_ERR_INVALID_ATTR));
+    nx = (int32_t)(((int64_t)lw + tile_w - 1) / tile_w);
+    ny = (int32_t)(((int64_t)lh + tile_h - 1) / tile_h);
+    if (bytes_per_pixel * tile_w * tile_h > EL_IO__EXR_MAX_CHUNK_BYTES)
+      EL_IO__EXR_FAIL("EXR tiles of %u x %u pixels and %d channels are too large (more than %.0f bytes each)", tile_w, tile_h,
+                      cl->num_channels, EL_IO__EXR_MAX_CHUNK_BYTES);
+  } else {
+    if (exr_get_scanlines_per_chunk(f, 0, &lines) != EXR_ERR_SUCCESS || lines < 1)
+      EL_IO__EXR_FAIL("corrupt EXR header (%s)", el_io__exr_why(&log, EXR_ERR_INVALID_ATTR));
+    ny = (int32_t)((h + lines - 1) / lines);
+    if (bytes_per_pixel * w * lines > EL_IO__EXR_MAX_CHUNK_BYTES)
+      EL_IO__EXR_FAIL("EXR chunks of %.0f x %d pixels and %d channels are too large (more than %.0f bytes each)", w, (int)lines,
+                      cl->num_channels, EL_IO__EXR_MAX_CHUNK_BYTES);
   }
-  n = (size_t)im.width * (size_t)im.height;
-  img->pixels = (float *)malloc(n * 3 * sizeof(float));
-  if (!img->pixels) { FreeEXRImage(&im); FreeEXRHeader(&hdr); return el_io__fail(err, errlen, path, "out of memory"); }
-  if (hdr.tiled) memset(img->pixels, 0, n * 3 * sizeof(float)); /* texels no tile covers are black */
-  for (c = 0; c < 3; c++) {
-    int uint = hdr.requested_pixel_types[idx[c]] == TINYEXR_PIXELTYPE_UINT;
-    if (!hdr.tiled) {
-      const unsigned char *src = im.images[idx[c]];
-      for (i = 0; i < n; i++) {
-        float v;
-        if (uint) { unsigned u; memcpy(&u, src + 4 * i, 4); v = (float)u; }
-        else memcpy(&v, src + 4 * i, 4);
-        img->pixels[3 * i + (size_t)c] = v;
-      }
-    } else {
-      int t, x, y, tw = hdr.tile_size_x, th = hdr.tile_size_y;
-      for (t = 0; t < im.num_tiles; t++) {
-        const EXRTile *tile = &im.tiles[t];
-        const unsigned char *src = tile->images ? tile->images[idx[c]] : NULL;
-        if (!src) continue;
-        for (y = 0; y < th && y < tile->height; y++)
-          for (x = 0; x < tw && x < tile->width; x++) {
-            long ii = (long)tile->offset_x * tw + x, jj = (long)tile->offset_y * th + y;
-            float v;
-            if (ii < 0 || jj < 0 || ii >= im.width || jj >= im.height) continue;
-            if (uint) { unsigned u; memcpy(&u, src + 4 * ((size_t)y * (size_t)tw + (size_t)x), 4); v = (float)u; }
-            else memcpy(&v, src + 4 * ((size_t)y * (size_t)tw + (size_t)x), 4);
-            img->pixels[3 * ((size_t)jj * (size_t)im.width + (size_t)ii) + (size_t)c] = v;
-          }
-      }
-    }
+  for (k = 0; k < nx * ny; k++) {
+    exr_chunk_info_t ci;
+    memset(&ci, 0, sizeof ci);
+    log.msg[0] = 0;
+    r = tiled ? exr_read_tile_chunk_info(f, 0, k % nx, k / nx, 0, 0, &ci)
+              : exr_read_scanline_chunk_info(f, 0, dw.min.y + k * lines, &ci);
+    if (r != EXR_ERR_SUCCESS)
+      EL_IO__EXR_FAIL("file is truncated or corrupt (pixel chunk %d of %d: %s)", k + 1, nx * ny, el_io__exr_why(&log, r));
+    if ((double)ci.data_offset + (double)ci.packed_size > (double)size)
+      EL_IO__EXR_FAIL("file is truncated (pixel chunk %d of %d ends at byte %.0f, the file has %ld bytes)", k + 1, nx * ny,
+                      (double)ci.data_offset + (double)ci.packed_size, size);
   }
-  img->width = im.width; img->height = im.height; img->channels = 3; img->is_8bit = 0;
-  FreeEXRImage(&im);
-  FreeEXRHeader(&hdr);
+#undef EL_IO__EXR_FAIL
+  /* decode: the channel names belong to f, which the decoder does not use (it opens the file again) */
+  npix = (size_t)w * (size_t)h;
+  img->pixels = (float *)malloc(npix * 3 * sizeof(float));
+  if (!img->pixels) { exr_finish(&f); return el_io__fail(err, errlen, path, "out of memory"); }
+  msg[0] = 0;
+  if (el_exr_decode(path, names, dw.min.x, dw.min.y, (int)w, (int)h, img->pixels, msg, sizeof msg) != 0) {
+    exr_finish(&f);
+    el_image_free(img);
+    if (note[0]) return el_io__fail(err, errlen, path, "corrupt or unsupported EXR header (%s)", note);
+    return el_io__fail(err, errlen, path, "cannot decode EXR pixels (OpenEXR: %s)", msg);
+  }
+  exr_finish(&f);
+  if (n == 1)
+    for (i = 0; i < npix; i++) img->pixels[3 * i + 1] = img->pixels[3 * i + 2] = img->pixels[3 * i];
+  img->width = (int)w; img->height = (int)h; img->channels = 3; img->is_8bit = 0;
   return 0;
 }
 
@@ -519,17 +530,12 @@ int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
     fclose(f);
     return r;
   }
-  fclose(f);
   if (!strcmp(ext, "exr")) {
-    /* Check the chunk table first: it names what a truncated file lacks (tinyexr's message would be
-     * 'Invalid data found when decoding pixels'). */
-    if (el_io__diagnose_exr(path, err, errlen)) {
-      char *nl;
-      while (err && errlen && (nl = strchr(err, '\n')) != NULL) *nl = ' '; /* tinyexr ends messages with \n */
-      return -1;
-    }
-    return el_io__load_exr(path, img, err, errlen);
+    long size = el_io__file_size(f);
+    fclose(f);
+    return el_io__load_exr(path, size, img, err, errlen);
   }
+  fclose(f);
   if (!strcmp(ext, "hdr")) {
     int w, h, n;
     float *p = stbi_loadf(path, &w, &h, &n, 3);
@@ -590,19 +596,12 @@ int el_image_write_hdr(const char *path, const float *pixels, int width, int hei
 
 int el_image_write_exr(const char *path, const float *pixels, int width, int height, int channels,
                        char *err, size_t errlen) {
-  const char *msg = NULL;
+  char msg[300];
   if (el_io__check_args(path, pixels, width, height, channels, err, errlen)) return -1;
   if (channels == 2) return el_io__fail(err, errlen, path, "EXR writer takes 1, 3 or 4 channels, not 2");
-  { /* open the file first: tinyexr's SaveEXR leaks its header arrays when it cannot create the file */
-    FILE *probe = fopen(path, "wb");
-    if (!probe) return el_io__fail(err, errlen, path, "cannot write EXR (cannot open for writing: %s)", strerror(errno));
-    fclose(probe);
-  }
-  if (SaveEXR(pixels, width, height, channels, 0 /* float32 */, path, &msg) != TINYEXR_SUCCESS) {
-    el_io__fail(err, errlen, path, "cannot write EXR (%s)", msg ? msg : strerror(errno));
-    if (msg) FreeEXRErrorMessage(msg);
-    return -1;
-  }
+  msg[0] = 0;
+  if (el_exr_encode(path, pixels, width, height, channels, msg, sizeof msg) != 0)
+    return el_io__fail(err, errlen, path, "cannot write EXR (OpenEXR: %s)", msg);
   return 0;
 }
 

@@ -1,7 +1,8 @@
 /* image_io.h: reading and writing image files for envlight's examples, tests and benchmarks.
  *
  * Not part of the library (envlight's headers never touch files). Built on Debian's stb
- * (stb_image / stb_image_write, linked as libstb.so) and tinyexr (libtinyexr.so); PFM is ours.
+ * (stb_image / stb_image_write, linked as libstb.so) and the reference OpenEXR library (libopenexr-dev:
+ * OpenEXRCore checks the header, the C++ library codes the pixels); PFM is ours.
  *
  *   el_image img;
  *   char err[256];
@@ -26,14 +27,18 @@ typedef struct el_image {
                                   code values / 255, not linearised; HDR formats give 0 (linear) */
 } el_image;
 
-/* .hdr (Radiance RGBE), .exr (tinyexr), .pfm, and 8-bit formats stb_image reads (.png .jpg .tga .bmp).
- * HDR formats give 3 channels (EXR gives RGB when the file has RGB; alpha is dropped), 8-bit formats
- * give their own channel count. */
+/* .hdr (Radiance RGBE), .exr (OpenEXR), .pfm, and 8-bit formats stb_image reads (.png .jpg .tga .bmp).
+ * HDR formats give 3 channels, 8-bit formats their own channel count. EXR: every compression, scanline
+ * or tiled (level 0), half/float/uint; part 0 of a multi-part file; R, G, B of the default layer, else
+ * of the first layer with all three ("diffuse.R"...), else Y as grey; alpha and other channels are
+ * dropped. Deep, luminance/chroma and subsampled EXR files fail as "unsupported". */
 int el_image_load(const char *path, el_image *img, char *err, size_t errlen);
 void el_image_free(el_image *img);
 
 /* Writers. The format follows the extension: .png takes 8-bit data (el_image_write_png), the others
- * take linear floats with 1, 3 or 4 channels. el_image_write_float dispatches on .exr .hdr .pfm. */
+ * take linear floats with 1, 3 or 4 channels. el_image_write_float dispatches on .exr .hdr .pfm.
+ * EXR is written as float32 scanlines with ZIP compression (lossless): 1 channel as Y, 3 as R, G, B,
+ * 4 as R, G, B, A. */
 int el_image_write_png(const char *path, const unsigned char *rgb8, int width, int height, int channels,
                        char *err, size_t errlen);
 int el_image_write_float(const char *path, const float *pixels, int width, int height, int channels,

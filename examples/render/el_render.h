@@ -1,11 +1,12 @@
 /* el_render.h: the pieces of `render`, a pbrt-v3-format scene renderer on Embree (examples/render).
  *
  * Not part of the envlight library: an application of it. The renderer reads a pbrt-v3 scene file
- * (parser.c), builds an Embree scene of exact spheres and triangle meshes (scene.c), shades with
- * pbrt-v3's matte / mirror / plastic materials and its textures (shading.c), lights with the infinite
- * area light of envlight.h plus point and distant lights, and integrates with pbrt-v3's
- * DirectLightingIntegrator or a path tracer with next-event estimation and MIS (integrator.c),
- * accumulating through film.h over tiles on all cores.
+ * (parser.c), builds an Embree scene of exact spheres and triangle meshes (scene.c, shapes.c), shades
+ * with pbrt-v3's matte / mirror / plastic materials and its textures (materials.c, textures.c,
+ * reflection.c), lights with the infinite area light of envlight.h plus point and distant lights
+ * (lights.c), and integrates with pbrt-v3's DirectLightingIntegrator or a path tracer with next-event
+ * estimation and MIS (integrator*.c), accumulating through film.h over tiles on all cores (render.c).
+ * README.md's file table lists every file with the part of pbrt-v3 it mirrors.
  *
  *   elr_scene *s = NULL; char err[512];
  *   if (elr_scene_load("scene.pbrt", &s, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); exit(1); }

@@ -1,8 +1,19 @@
-/* elr_internal.h: the renderer's private declarations (scene description, small vector maths and the
- * glue to envlight's headers). Only examples/render includes it. */
+/* elr_internal.h: the renderer's private declarations, one section per concept; each section names
+ * the file that implements it (README.md's file table says which part of pbrt-v3 each file mirrors).
+ * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
+ * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
+ * them as float[3] (elr_to3, elr_from3).
+ *   vectors, transforms (transform.c)      scene description (parser.c, scene.c)
+ *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
+ *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
+ *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
+ *   integrators (integrator*.c, render_batched.c) */
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
+#include "envlight.h"
+#include "film.h"
+#include "mipmap.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -31,6 +42,9 @@ static inline elr_v3 elr_norm(elr_v3 a) {
 }
 static inline float elr_maxc(elr_v3 a) { float m = a.x > a.y ? a.x : a.y; return m > a.z ? m : a.z; }
 static inline int elr_isblack(elr_v3 a) { return a.x == 0.f && a.y == 0.f && a.z == 0.f; }
+/* the library's float[3] (envlight.h, film.h, mipmap.h take and return colours and directions so) */
+static inline void elr_to3(elr_v3 a, float f[3]) { f[0] = a.x; f[1] = a.y; f[2] = a.z; }
+static inline elr_v3 elr_from3(const float f[3]) { return elr_v(f[0], f[1], f[2]); }
 /* Orthonormal basis around unit n (Duff et al. 2017). */
 static inline void elr_onb(elr_v3 n, elr_v3 *s, elr_v3 *t) {
   float sign = n.z >= 0.f ? 1.f : -1.f;
@@ -39,7 +53,7 @@ static inline void elr_onb(elr_v3 n, elr_v3 *s, elr_v3 *t) {
   *t = elr_v(b, sign + n.y * n.y * a, -n.y);
 }
 
-/* >> transforms (pbrt-v3's Transform: a matrix and its inverse, row-major, column vectors) */
+/* >> transforms (transform.c): pbrt-v3's Transform, a matrix and its inverse, row-major, column vectors */
 typedef struct elr_xform { double m[4][4], inv[4][4]; } elr_xform;
 void elr_xform_identity(elr_xform *t);
 int elr_xform_from_matrix(elr_xform *t, double m[4][4]); /* -1 when singular */
@@ -50,57 +64,11 @@ elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 
-/* >> glue to the library headers (glue.c is the only file that includes them) */
-typedef struct elr_envmap elr_envmap;
-/* rgb: w*h*3 linear floats (NULL: a constant light of radiance `scale`), top row first (theta = 0 at the top row, pbrt's lat-long mapping);
- * scale: pbrt's "scale" times "L"; l2w: the light-to-world rotation (3x3, row-major). */
-enum { ELR_IMPORTANCE_CELL_AVERAGE = 0, ELR_IMPORTANCE_PBRT_V3 = 1, ELR_IMPORTANCE_TEXEL = 2 };
-int elr_env_create(const float *rgb, int w, int h, const float scale[3], const float l2w[9],
-                   int compensated, int importance, elr_envmap **out, char *err, size_t errlen);
-void elr_env_free(elr_envmap *e);
-elr_v3 elr_env_le(const elr_envmap *e, elr_v3 dir_world);
-/* build the sampling distribution now (before threads start); -1: as the scene said */
-int elr_env_prepare(elr_envmap *e, int compensated, int importance);
-/* Sample a direction towards the environment: radiance, world direction, solid-angle pdf. */
-elr_v3 elr_env_sample(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf);
-void elr_env_sample_dir(const elr_envmap *e, float u0, float u1, elr_v3 *wi, float *pdf); /* no radiance */
-/* n samples at once (envlight's sample_li_n: the same results as n elr_env_sample calls, with their
- * table and texel reads overlapped); u: 2n floats, wi and L: 3n floats (L may be NULL), pdf: n */
-void elr_env_sample_n(const elr_envmap *e, int n, const float *u, float *wi, float *L, float *pdf);
-float elr_env_pdf(const elr_envmap *e, elr_v3 wi);
-void elr_env_prefetch(const elr_envmap *e, elr_v3 wi); /* the cache lines elr_env_pdf and elr_env_le will read */
-size_t elr_env_distribution_bytes(const elr_envmap *e);
-size_t elr_env_image_bytes(const elr_envmap *e);
-
-typedef struct elr_mip elr_mip;
-enum { ELR_WRAP_REPEAT = 0, ELR_WRAP_BLACK = 1, ELR_WRAP_CLAMP = 2 };
-enum { ELR_FILTER_BILINEAR = 0, ELR_FILTER_TRILINEAR = 1, ELR_FILTER_EWA = 2 };
-int elr_mip_create(const float *rgb, int w, int h, int wrap, int filter, float maxaniso, elr_mip **out,
-                   char *err, size_t errlen);
-void elr_mip_free(elr_mip *m);
-elr_v3 elr_mip_lookup(elr_mip *m, float s, float t, float dsdx, float dtdx, float dsdy, float dtdy);
-void elr_mip_stats(const elr_mip *m, int *levels_built, size_t *bytes);
-
-typedef struct elr_film elr_film;
-typedef struct elr_tile elr_tile;
+/* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
+/* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
-/* full resolution xres x yres; pixel bounds [x0,x1) x [y0,y1) after the crop window */
-int elr_film_create(int xres, int yres, int x0, int y0, int x1, int y1, const elr_filter_desc *f,
-                    elr_film **out, char *err, size_t errlen);
-void elr_film_free(elr_film *f);
-/* the sample bounds of the pixels [x0,x1) x [y0,y1): a tile adds samples for those pixels */
-elr_tile *elr_film_tile(elr_film *f, int x0, int y0, int x1, int y1);
-void elr_tile_add(elr_tile *t, float fx, float fy, elr_v3 L); /* continuous raster position */
-void elr_film_merge(elr_film *f, elr_tile *t);                 /* frees the tile */
-void elr_film_rgb(elr_film *f, float *rgb);                     /* cropped image, top row first */
-void elr_film_sample_bounds(const elr_film *f, int *x0, int *y0, int *x1, int *y1);
-size_t elr_film_bytes(const elr_film *f);
-size_t elr_film_splat_bytes(const elr_film *f);
-uint64_t elr_film_rejected(const elr_film *f);
-int elr_srgb8(const float *rgb, int n, unsigned char *out);
 
-/* >> scene description */
 enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2 };
 typedef struct elr_texture {
   int kind;
@@ -108,7 +76,7 @@ typedef struct elr_texture {
   int tex1, tex2;          /* checkerboard: sub-textures */
   int aa_closedform;       /* checkerboard aamode */
   float su, sv, du, dv;    /* uv mapping */
-  elr_mip *mip;            /* imagemap */
+  el_mipmap *mip;          /* imagemap (mipmap.h; upper levels built on the first lookup that needs them) */
   int is_float;
 } elr_texture;
 
@@ -140,8 +108,12 @@ typedef struct elr_light {
   elr_v3 L;          /* L * scale (point: I * scale) */
   elr_v3 pos, dir;   /* point: world position; distant: world direction towards the light */
   int nsamples;
-  elr_envmap *env;   /* infinite light (a constant L is a 1x1 map) */
-  int compensated, importance;
+  /* infinite: envlight.h's light (a constant L is a constant light); lights.c */
+  el_envlight *env;        /* the radiance, as the scene gave it: le */
+  el_envlight *env_sample; /* the density sample_li and pdf_li use: env, or env_alt */
+  el_envlight *env_alt;    /* another density the render options asked for, or NULL */
+  int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
+  int alt_compensated, alt_importance;
   int has_map;
 } elr_light;
 
@@ -191,11 +163,13 @@ struct elr_scene {
 int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, const char *base_dir,
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
-int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen);
-int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree */
+int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
-/* >> intersection */
+/* >> intersection (scene.c: Embree; shapes.c: each shape's hit record and parameterisation) */
+/* a ray with pbrt-v3's RayDifferential (has_diff: rx and ry, the rays through the next pixels) */
+typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
 typedef struct elr_hit {
   float t;
   elr_v3 p, ng, ns;    /* ng, ns unit; ns on the side of ng */
@@ -210,12 +184,26 @@ typedef struct elr_hit {
   elr_v3 pobj;
 } elr_hit;
 void elr_hit_uv(const elr_scene *s, elr_hit *h); /* u, v, dpdu, dpdv, dndu, dndv (textures, differentials) */
+/* shapes.c: the hit records, and the sphere as Embree's user geometry */
+void elr_sphere_hit(const elr_scene *s, int si, elr_v3 o, elr_v3 d, elr_hit *h);
+void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, float b2, elr_hit *h);
+struct RTCBoundsFunctionArguments;
+struct RTCIntersectFunctionNArguments;
+struct RTCOccludedFunctionNArguments;
+void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
+void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
+void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
+/* the origin of a ray leaving h in direction d: offset along the geometric normal to the side d goes
+ * (pbrt-v3's OffsetRayOrigin, with a fixed relative epsilon instead of its error bounds) */
+static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
+  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
+}
 
-/* >> textures and materials */
-typedef struct elr_tex_ctx {
+/* >> textures (textures.c), materials (materials.c) and BSDFs (reflection.c) */
+typedef struct elr_tex_ctx { /* where textures are evaluated: (u, v) and its screen-space derivatives */
   float u, v, dudx, dudy, dvdx, dvdy;
 } elr_tex_ctx;
 elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
@@ -233,5 +221,159 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 /* Returns f; *specular set when the sampled lobe was the specular one. */
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
 float elr_roughness_to_alpha(float r);
+
+/* >> ray differentials at a hit (interaction.c): the texture footprint */
+void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
+
+/* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
+/* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
+ * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
+ * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
+typedef struct elr_light_sample {
+  elr_v3 L, wi;
+  float pdf;
+  elr_v3 p_light;
+  float dist;
+  int at_point;
+} elr_light_sample;
+static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
+static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
+float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
+elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
+int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
+                      size_t errlen);
+int elr_infinite_prepare(elr_light *l, int compensated, int importance);
+void elr_light_prefetch(const elr_light *l, elr_v3 wi);
+void elr_light_free(elr_light *l);
+
+/* >> camera (camera.c): pbrt-v3's PerspectiveCamera */
+typedef struct elr_camera {
+  elr_v3 o, x, y, z;               /* origin and the images of the camera's axes, world space */
+  float sx0, sx1, sy0, sy1;        /* the screen window */
+  float tanhalf;                   /* tan(fov / 2) */
+  int xres, yres;
+  float diff_scale;                /* 1 / sqrt(spp) */
+  int differentials;               /* rays carry differentials (some texture filters over them) */
+} elr_camera;
+void elr_camera_init(elr_camera *C, const elr_scene_desc *d, int spp, int differentials);
+void elr_camera_ray(const elr_camera *C, float fx, float fy, elr_ray *r);
+
+/* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_halton.c) */
+/* PCG32, pbrt-v3's RNG (core/rng.h) */
+typedef struct elr_rng { uint64_t state, inc; } elr_rng;
+static inline uint32_t elr_rng_u32(elr_rng *r) {
+  uint64_t old = r->state;
+  uint32_t xs, rot;
+  r->state = old * 0x5851f42d4c957f2dULL + r->inc;
+  xs = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+  rot = (uint32_t)(old >> 59u);
+  return (xs >> rot) | (xs << ((~rot + 1u) & 31));
+}
+static inline void elr_rng_seed(elr_rng *r, uint64_t seq, uint64_t seed) { /* pbrt's SetSequence */
+  r->state = 0u; r->inc = (seq << 1u) | 1u;
+  elr_rng_u32(r); r->state += seed; elr_rng_u32(r);
+}
+static inline float elr_rng_float(elr_rng *r) { return (float)(elr_rng_u32(r) >> 8) * 0x1p-24f; } /* [0, 1) */
+/* a 64-bit mixer (splitmix64's finaliser, Stafford's variant 13): seeds from (seed, pixel, dimension) */
+static inline uint64_t elr_mix64(uint64_t x) {
+  x ^= x >> 31; x *= 0x7fb5d329728ea185ULL; x ^= x >> 27; x *= 0x81dadef4bc2dd44dULL; x ^= x >> 33;
+  return x;
+}
+
+/* the halton sampler's tables (sampler_halton.c), one per render, shared by its threads */
+#define ELR_HALTON_DIMS 256
+typedef struct elr_halton {
+  int base_scales[2], base_exps[2], mult_inv[2];
+  int64_t stride;
+  int ndims;
+  int primes[ELR_HALTON_DIMS];
+  uint16_t *perm; int perm_off[ELR_HALTON_DIMS];
+} elr_halton;
+int elr_halton_init(elr_halton *H, int w, int h, uint64_t seed);
+void elr_halton_free(elr_halton *H);
+int64_t elr_halton_pixel_offset(const elr_halton *H, int px, int py);
+float elr_halton_sample(const elr_halton *H, int64_t index, int dim, elr_rng *rng);
+
+/* which sampler a render's threads make, with pbrt's parameters (elr_sampler_choose) */
+typedef struct elr_sampler_desc { int kind, spp, xs, ys, jitter, dims; } elr_sampler_desc;
+
+/* one thread's sampler: its parameters and where it is (pixel, sample, dimension) */
+typedef struct elr_sampler {
+  int kind, spp, xs, ys, jitter, dims;
+  uint64_t seed;
+  const elr_halton *H;
+  /* per pixel */
+  int px, py, sample;
+  elr_rng rng;
+  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
+  int d1, d2, dim, made1, made2;
+  int64_t hindex, hoffset;
+} elr_sampler;
+int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
+int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_halton *H);
+void elr_sampler_free(elr_sampler *S);
+void elr_sampler_start_pixel(elr_sampler *S, int px, int py);
+void elr_sampler_start_sample(elr_sampler *S, int sample);
+float elr_sampler_get1d(elr_sampler *S);
+void elr_sampler_get2d(elr_sampler *S, float u[2]);
+void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy);
+void elr_stratified_make(elr_sampler *S, int two, int d);
+/* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
+typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
+void elr_sampler_skip2d(elr_sampler *S);
+void elr_sampler_save(const elr_sampler *S, elr_sampler_pos *p);
+void elr_sampler_restore(elr_sampler *S, const elr_sampler_pos *p);
+
+/* >> film (film.c): the scene's Film and PixelFilter as film.h's el_film */
+/* pbrt-v3's croppedPixelBounds: [b[0], b[2]) x [b[1], b[3]) of the full resolution */
+void elr_film_bounds(const elr_scene_desc *d, int b[4]);
+int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
+
+/* >> a render (render.c): what it decided, read by every thread */
+typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats; /* one thread's counts */
+typedef struct elr_ctx {
+  elr_scene *s;
+  elr_camera cam;
+  elr_sampler_desc sampler;
+  int spp;                /* sampler.spp */
+  int path, maxdepth;     /* the integrator: path (1) or directlighting (0), and pbrt's maxdepth */
+  float rr;               /* the path tracer's rrthreshold */
+  int ls;                 /* ELR_LS_*: the strategies that estimate direct light */
+  int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
+  int has_env;            /* an emitting infinite light exists */
+  /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
+   * together; NULL: one sample at a time */
+  const elr_light *batch_light;
+} elr_ctx;
+
+/* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
+/* pbrt-v3's PowerHeuristic(1, f, 1, g) */
+static inline float elr_power_heuristic(float f, float g) { float f2 = f * f, g2 = g * g; return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f; }
+/* A path in flight (the locals of pbrt-v3's Li loops): the ray it continues along, the bounces so far,
+ * the radiance gathered and the throughput; for the path tracer whether the last bounce was specular
+ * and its BSDF pdf. */
+typedef struct elr_path_state {
+  elr_ray ray;
+  int depth;
+  elr_v3 L, beta;
+  int specular;
+  float prev_pdf;
+} elr_path_state;
+static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
+  p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
+}
+elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
+void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
+                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld);
+elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
+                                     int sample_bsdf, elr_tstats *ts);
+int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                         elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
+elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+/* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
+void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
 
 #endif

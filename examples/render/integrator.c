@@ -1,1030 +1,134 @@
-/* integrator.c: camera, samplers, the two integrators, tiles on threads, stats, scene load/free and
- * image output.
+/* integrator.c: what both integrators share (pbrt-v3 core/integrator.cpp; the book's section 14.3,
+ * Direct Lighting).
  *
- * Camera: pbrt-v3's PerspectiveCamera (pinhole): the screen window spans [-frame, frame] x [-1, 1] (or
- * [-1, 1] x [-1/frame, 1/frame]) so fov applies to the shorter image axis; raster y grows downwards;
- * rays carry differentials scaled by 1/sqrt(spp) (pbrt's ScaleDifferentials).
+ *   elr_estimate_direct             EstimateDirect: one light, one light sample and one BSDF sample,
+ *                                   combined with the power heuristic (MIS)
+ *   elr_uniform_sample_all_lights   UniformSampleAllLights: every light, with its own sample count
+ *   elr_specular_reflect            SpecularReflect: the mirror bounce and its ray differentials
+ *   elr_infinite_le                 the radiance of the lights at infinity along a ray that leaves
  *
- * Samplers: "random"; "stratified" (pbrt-v3's StratifiedSampler: jittered strata for the first
- * `dimensions` 1D and 2D dimensions, shuffled across the pixel's samples, uniform random after); "halton"
- * (pbrt-v3's HaltonSampler: one global Halton sequence whose first two dimensions land in the pixel,
- * random digit permutations for the others). Every pixel's random numbers depend only on --seed and
- * the pixel, so the image is the same for every thread count.
- *
- * Integrators: "directlighting" is pbrt-v3's DirectLightingIntegrator (strategy "all": every light,
- * its `samples` count, light and BSDF sampling combined with the power heuristic; specular reflection
- * recursed to maxdepth). "path" is a unidirectional path tracer with next-event estimation from every
- * light at every vertex, the continuation ray's BSDF sample reused as the MIS partner (pbrt-v4's
- * arrangement: one fewer ray per vertex than pbrt-v3, the same expectation), and pbrt-v3's Russian
- * roulette (after 3 bounces, when the throughput's largest component is below rrthreshold). */
-#define _POSIX_C_SOURCE 200809L
+ * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
+ * loop (render.c) calls the integrators of integrator_direct.c and integrator_path.c per camera
+ * sample; render_batched.c is the faster arrangement of the same computation for scenes lit by the
+ * environment alone. The light interface (lights.c) hides which kind of light is sampled: area lights
+ * join there, and EstimateDirect's BSDF-sampled term then needs the ray's hit (is it this light?)
+ * where the environment only needs to know that nothing is in the way. */
 #include "elr_internal.h"
-#include "image_io.h"
-#include <pthread.h>
-#include <stdlib.h>
-#include <string.h>
-#include <unistd.h>
 
-/* >> random numbers: PCG32 (pbrt's RNG) */
-typedef struct elr_rng { uint64_t state, inc; } elr_rng;
-static uint32_t elr__rng_u32(elr_rng *r) {
-  uint64_t old = r->state;
-  uint32_t xs, rot;
-  r->state = old * 0x5851f42d4c957f2dULL + r->inc;
-  xs = (uint32_t)(((old >> 18u) ^ old) >> 27u);
-  rot = (uint32_t)(old >> 59u);
-  return (xs >> rot) | (xs << ((~rot + 1u) & 31));
-}
-static void elr__rng_seed(elr_rng *r, uint64_t seq, uint64_t seed) {
-  r->state = 0u; r->inc = (seq << 1u) | 1u;
-  elr__rng_u32(r); r->state += seed; elr__rng_u32(r);
-}
-static float elr__rng_f(elr_rng *r) {
-  float f = (float)(elr__rng_u32(r) >> 8) * 0x1p-24f;
-  return f;
-}
-static uint64_t elr__mix(uint64_t x) {
-  x ^= x >> 31; x *= 0x7fb5d329728ea185ULL; x ^= x >> 27; x *= 0x81dadef4bc2dd44dULL; x ^= x >> 33;
-  return x;
-}
-
-/* >> samplers */
-#define ELR_HALTON_DIMS 256
-typedef struct elr_halton {
-  int base_scales[2], base_exps[2], mult_inv[2];
-  int64_t stride;
-  int ndims;
-  int primes[ELR_HALTON_DIMS];
-  uint16_t *perm; int perm_off[ELR_HALTON_DIMS];
-} elr_halton;
-
-typedef struct elr_sampler {
-  int kind, spp, xs, ys, jitter, dims;
-  uint64_t seed;
-  const elr_halton *H;
-  /* per pixel */
-  int px, py, sample;
-  elr_rng rng;
-  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
-  int d1, d2, dim, made1, made2;
-  int64_t hindex, hoffset;
-} elr_sampler;
-
-static int64_t elr__mod(int64_t a, int64_t b) { int64_t r = a % b; return r < 0 ? r + b : r; }
-static void elr__egcd(int64_t a, int64_t b, int64_t *x, int64_t *y) {
-  int64_t d, xp, yp;
-  if (b == 0) { *x = 1; *y = 0; return; }
-  d = a / b;
-  elr__egcd(b, a % b, &xp, &yp);
-  *x = yp; *y = xp - d * yp;
-}
-static int64_t elr__mulinv(int64_t a, int64_t n) { int64_t x, y; elr__egcd(a, n, &x, &y); return elr__mod(x, n); }
-
-static int elr__halton_init(elr_halton *H, int w, int h, uint64_t seed) {
-  int i, n = 0, total = 0;
-  elr_rng r;
-  memset(H, 0, sizeof *H);
-  for (i = 2; n < ELR_HALTON_DIMS; i++) {
-    int k, p = 1;
-    for (k = 2; k * k <= i; k++) if (i % k == 0) { p = 0; break; }
-    if (p) { H->perm_off[n] = total; total += i; H->primes[n++] = i; }
-  }
-  H->ndims = n;
-  H->perm = (uint16_t *)malloc(sizeof(uint16_t) * (size_t)total);
-  if (!H->perm) return -1;
-  elr__rng_seed(&r, 0x853c49e6748fea9bULL, seed);
-  for (i = 0; i < n; i++) {
-    int b = H->primes[i], k;
-    uint16_t *pp = H->perm + H->perm_off[i];
-    for (k = 0; k < b; k++) pp[k] = (uint16_t)k;
-    for (k = b - 1; k > 0; k--) { int j = (int)(elr__rng_u32(&r) % (uint32_t)(k + 1)); uint16_t t = pp[k]; pp[k] = pp[j]; pp[j] = t; }
-  }
-  /* <<Find radical inverse base scales and exponents that cover sampling area>> */
-  for (i = 0; i < 2; i++) {
-    int base = i == 0 ? 2 : 3, scale = 1, e = 0, res = i == 0 ? w : h;
-    if (res > 128) res = 128;
-    while (scale < res) { scale *= base; ++e; }
-    H->base_scales[i] = scale; H->base_exps[i] = e;
-  }
-  H->stride = (int64_t)H->base_scales[0] * H->base_scales[1];
-  H->mult_inv[0] = (int)elr__mulinv(H->base_scales[1], H->base_scales[0]);
-  H->mult_inv[1] = (int)elr__mulinv(H->base_scales[0], H->base_scales[1]);
-  return 0;
-}
-static double elr__radical_inverse(int base, uint64_t a) {
-  double inv = 1.0 / base, invn = 1.0;
-  uint64_t rev = 0;
-  while (a) { uint64_t next = a / (uint64_t)base, digit = a - next * (uint64_t)base; rev = rev * (uint64_t)base + digit; invn *= inv; a = next; }
-  return (double)rev * invn;
-}
-static float elr__scrambled_ri(int base, uint64_t a, const uint16_t *perm) {
-  double inv = 1.0 / base, invn = 1.0, r;
-  uint64_t rev = 0;
-  while (a) { uint64_t next = a / (uint64_t)base, digit = a - next * (uint64_t)base; rev = rev * (uint64_t)base + perm[digit]; invn *= inv; a = next; }
-  r = invn * ((double)rev + inv * perm[0] / (1.0 - inv));
-  return r < ELR_ONE_MINUS_EPS ? (float)r : ELR_ONE_MINUS_EPS;
-}
-static uint64_t elr__inv_ri(int base, uint64_t inverse, int ndigits) {
-  uint64_t index = 0;
-  int i;
-  for (i = 0; i < ndigits; i++) { uint64_t digit = inverse % (uint64_t)base; inverse /= (uint64_t)base; index = index * (uint64_t)base + digit; }
-  return index;
-}
-
-static void elr__sampler_pixel(elr_sampler *S, int px, int py) {
-  S->px = px; S->py = py;
-  elr__rng_seed(&S->rng, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr__mix(elr__mix(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py) ^ S->seed));
-  if (S->kind == ELR_SAMPLER_STRATIFIED) {
-    /* strata are made on the first request of each dimension in this pixel (every request of a
-     * dimension comes with sample 0 first), so dimensions a render never asks for cost nothing */
-    S->made1 = S->made2 = 0;
-  } else if (S->kind == ELR_SAMPLER_HALTON) {
-    const elr_halton *H = S->H;
-    int64_t off = 0;
-    if (H->stride > 1) {
-      int64_t pm[2];
-      int i;
-      pm[0] = elr__mod(px, 128); pm[1] = elr__mod(py, 128);
-      for (i = 0; i < 2; i++) {
-        uint64_t dimoff = elr__inv_ri(i == 0 ? 2 : 3, (uint64_t)pm[i], H->base_exps[i]);
-        off += (int64_t)dimoff * (H->stride / H->base_scales[i]) * H->mult_inv[i];
-      }
-      off %= H->stride;
-    }
-    S->hoffset = off;
-  }
-}
-#define ELR_MINF(a, b) ((a) < (b) ? (a) : (b))
-/* <<StratifiedSample1D>>, <<StratifiedSample2D>> and <<Shuffle>> for one dimension of this pixel; the
- * stream depends on the pixel, the seed and the dimension only */
-static void elr__strat_make(elr_sampler *S, int two, int d) {
-  int i, n = S->spp;
-  elr_rng r;
-  elr__rng_seed(&r, elr__mix(S->seed * 0x9e3779b97f4a7c15ULL + 3 + (uint64_t)(2 * d + two)),
-                elr__mix(((uint64_t)(uint32_t)S->px << 32) ^ (uint64_t)(uint32_t)S->py));
-  if (!two) {
-    float *a = S->s1d + (size_t)d * (size_t)n;
-    for (i = 0; i < n; i++) a[i] = ELR_MINF(((float)i + (S->jitter ? elr__rng_f(&r) : 0.5f)) / (float)n, ELR_ONE_MINUS_EPS);
-    for (i = n - 1; i > 0; i--) { int j = (int)(elr__rng_u32(&r) % (uint32_t)(i + 1)); float t = a[i]; a[i] = a[j]; a[j] = t; }
-  } else {
-    float *b = S->s2d + (size_t)d * (size_t)n * 2;
-    int x, y;
-    float ix = 1.f / (float)S->xs, iy = 1.f / (float)S->ys;
-    for (y = 0; y < S->ys; y++)
-      for (x = 0; x < S->xs; x++) {
-        float jx = S->jitter ? elr__rng_f(&r) : 0.5f, jy = S->jitter ? elr__rng_f(&r) : 0.5f;
-        b[2 * (y * S->xs + x)] = ELR_MINF(((float)x + jx) * ix, ELR_ONE_MINUS_EPS);
-        b[2 * (y * S->xs + x) + 1] = ELR_MINF(((float)y + jy) * iy, ELR_ONE_MINUS_EPS);
-      }
-    for (i = n - 1; i > 0; i--) {
-      int j = (int)(elr__rng_u32(&r) % (uint32_t)(i + 1));
-      float t0 = b[2 * i], t1 = b[2 * i + 1];
-      b[2 * i] = b[2 * j]; b[2 * i + 1] = b[2 * j + 1]; b[2 * j] = t0; b[2 * j + 1] = t1;
-    }
-  }
-}
-static void elr__sampler_start(elr_sampler *S, int sample) {
-  S->sample = sample; S->d1 = S->d2 = 0; S->dim = 0;
-  if (S->kind == ELR_SAMPLER_HALTON) S->hindex = S->hoffset + (int64_t)sample * S->H->stride;
-  if (S->kind == ELR_SAMPLER_RANDOM) {
-    /* every pixel sample its own stream: the same numbers whatever the tile order */
-    uint64_t k = elr__mix(elr__mix(elr__mix(S->seed ^ 0x632be59bd9b4e019ULL) ^ (uint64_t)(uint32_t)S->px) ^ (uint64_t)(uint32_t)S->py);
-    elr__rng_seed(&S->rng, elr__mix(S->seed + 0x2545f4914f6cdd1dULL), elr__mix(k ^ (uint64_t)(uint32_t)sample));
-  }
-}
-static float elr__halton_dim(elr_sampler *S, int dim) {
-  const elr_halton *H = S->H;
-  if (dim == 0) return (float)fmin(elr__radical_inverse(2, (uint64_t)S->hindex >> H->base_exps[0]), ELR_ONE_MINUS_EPS);
-  if (dim == 1) return (float)fmin(elr__radical_inverse(3, (uint64_t)S->hindex / (uint64_t)H->base_scales[1]), ELR_ONE_MINUS_EPS);
-  if (dim < H->ndims) return elr__scrambled_ri(H->primes[dim], (uint64_t)S->hindex, H->perm + H->perm_off[dim]);
-  return elr__rng_f(&S->rng);
-}
-static float elr__get1d(elr_sampler *S) {
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d1 < S->dims) {
-    if (S->d1 >= S->made1) { elr__strat_make(S, 0, S->d1); S->made1 = S->d1 + 1; }
-    return S->s1d[(size_t)(S->d1++) * (size_t)S->spp + (size_t)S->sample];
-  }
-  if (S->kind == ELR_SAMPLER_HALTON) return elr__halton_dim(S, S->dim++);
-  return elr__rng_f(&S->rng);
-}
-static void elr__get2d(elr_sampler *S, float *u0, float *u1) {
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims) {
-    const float *b;
-    if (S->d2 >= S->made2) { elr__strat_make(S, 1, S->d2); S->made2 = S->d2 + 1; }
-    b = S->s2d + ((size_t)S->d2 * (size_t)S->spp + (size_t)S->sample) * 2;
-    S->d2++; *u0 = b[0]; *u1 = b[1]; return;
-  }
-  if (S->kind == ELR_SAMPLER_HALTON) { *u0 = elr__halton_dim(S, S->dim); *u1 = elr__halton_dim(S, S->dim + 1); S->dim += 2; return; }
-  *u0 = elr__rng_f(&S->rng); *u1 = elr__rng_f(&S->rng);
-}
-
-/* the sampler's state after a 2D draw without the draw's work (for draws made ahead) */
-static void elr__skip2d(elr_sampler *S) {
-  float a, b;
-  if (S->kind == ELR_SAMPLER_STRATIFIED && S->d2 < S->dims && S->d2 < S->made2) { S->d2++; return; }
-  if (S->kind == ELR_SAMPLER_HALTON && S->dim + 1 < S->H->ndims) { S->dim += 2; return; }
-  elr__get2d(S, &a, &b);
-}
-/* where a camera sample's draws have got to (elr__pixel_batched comes back to it). The random sampler's
- * stream is the sample's own and part of it; the other samplers' stream (for draws past their strata or
- * prime bases) is the pixel's, shared by its samples in order, and is left alone. */
-typedef struct elr_spos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_spos;
-static void elr__spos_save(const elr_sampler *S, elr_spos *p) {
-  p->sample = S->sample; p->d1 = S->d1; p->d2 = S->d2; p->dim = S->dim; p->hindex = S->hindex; p->rng = S->rng;
-}
-static void elr__spos_load(elr_sampler *S, const elr_spos *p) {
-  S->sample = p->sample; S->d1 = p->d1; S->d2 = p->d2; S->dim = p->dim; S->hindex = p->hindex;
-  if (S->kind == ELR_SAMPLER_RANDOM) S->rng = p->rng;
-}
-
-/* >> render context */
-typedef struct elr_ray { elr_v3 o, d; int has_diff; elr_v3 rxo, rxd, ryo, ryd; } elr_ray;
-
-typedef struct elr_ctx {
-  elr_scene *s;
-  int ls;                 /* ELR_LS_* */
-  int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
-  int has_env;            /* an emitting infinite light exists */
-  int maxdepth, path;
-  float rr;
-  /* camera */
-  float sx0, sx1, sy0, sy1, tanhalf;
-  int xres, yres;
-  float diff_scale;
-  elr_xform c2w;
-  elr_v3 cam_o, cam_x, cam_y, cam_z; /* camera origin and the images of its axes, world space */
-  int spp, sampler, xs, ys, jitter, dims;
-  /* batched light samples (elr__pixel_batched): the one emitting light, an environment, whose first
-   * light sample is each camera sample's second 2D draw; NULL: one sample at a time */
-  const elr_envmap *batch_env;
-} elr_ctx;
-
-/* A camera sample's first vertex and light sample, computed ahead by elr__pixel_batched: the camera
- * ray's hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first draw of
- * light sampling there. */
-typedef struct elr_first {
-  int hit;
-  const elr_hit *h;
-  elr_v3 wi, L;
-  float pdf;
-  /* the direct-lighting integrator's, at a hit: the texture footprint and BSDF, and (bs = 1) the BSDF
-   * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
-   * environment's pdf and radiance in its direction */
-  int bs, bray;
-  elr_tex_ctx tc;
-  elr_v3 dpdx, dpdy;
-  elr_bsdf b;
-  elr_v3 fb, wb, Lb;
-  float bpdf, bpdf_env;
-} elr_first;
-
-typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats;
-
-static float elr__power(float a, float b) { float a2 = a * a, b2 = b * b; return a2 + b2 > 0.f ? a2 / (a2 + b2) : 0.f; }
-static int elr__light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
-
-static elr_v3 elr__offset(const elr_hit *h, elr_v3 d) {
-  return elr_add(h->p, elr_mul(h->ng, elr_dot(d, h->ng) >= 0.f ? h->eps : -h->eps));
-}
-static elr_v3 elr__env_le(const elr_scene *s, elr_v3 d) {
+/* The environment along a ray that leaves the scene in direction d: every emitting infinite light's Le
+ * (pbrt-v3's loop over scene.infiniteLights). */
+elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d) {
   int i;
   elr_v3 L = elr_v(0, 0, 0);
   for (i = 0; i < s->nlight; i++)
-    if (s->light[i].kind == ELR_LIGHT_INFINITE && elr__light_emits(&s->light[i])) L = elr_add(L, elr_env_le(s->light[i].env, d));
+    if (s->light[i].kind == ELR_LIGHT_INFINITE && elr_light_emits(&s->light[i])) L = elr_add(L, elr_light_le(&s->light[i], d));
   return L;
 }
 
-/* <<Compute ray differentials for SurfaceInteraction>> (pbrt-v3 ComputeDifferentials) */
-static void elr__differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy) {
-  c->u = c->v = 0.f;
-  c->dudx = c->dudy = c->dvdx = c->dvdy = 0.f;
-  *dpdx = *dpdy = elr_v(0, 0, 0);
-  if (!s->any_textured) return; /* nothing reads uv or footprints: skip the parameterisation */
-  elr_hit_uv(s, h);
-  c->u = h->u; c->v = h->v;
-  if (r->has_diff) {
-    elr_v3 n = h->ng, px, py;
-    float d = elr_dot(n, h->p), tx, ty, dnx = elr_dot(n, r->rxd), dny = elr_dot(n, r->ryd);
-    float A[2][2], Bx[2], By[2], det;
-    float pa[3], pxa[3], pya[3], dpu[3], dpv[3];
-    int dim0, dim1;
-    if (dnx == 0.f || dny == 0.f) return;
-    tx = -(elr_dot(n, r->rxo) - d) / dnx; ty = -(elr_dot(n, r->ryo) - d) / dny;
-    if (!isfinite(tx) || !isfinite(ty)) return;
-    px = elr_add(r->rxo, elr_mul(r->rxd, tx)); py = elr_add(r->ryo, elr_mul(r->ryd, ty));
-    *dpdx = elr_sub(px, h->p); *dpdy = elr_sub(py, h->p);
-    if (fabsf(n.x) > fabsf(n.y) && fabsf(n.x) > fabsf(n.z)) { dim0 = 1; dim1 = 2; }
-    else if (fabsf(n.y) > fabsf(n.z)) { dim0 = 0; dim1 = 2; }
-    else { dim0 = 0; dim1 = 1; }
-    pa[0] = h->p.x; pa[1] = h->p.y; pa[2] = h->p.z;
-    pxa[0] = px.x; pxa[1] = px.y; pxa[2] = px.z; pya[0] = py.x; pya[1] = py.y; pya[2] = py.z;
-    dpu[0] = h->dpdu.x; dpu[1] = h->dpdu.y; dpu[2] = h->dpdu.z; dpv[0] = h->dpdv.x; dpv[1] = h->dpdv.y; dpv[2] = h->dpdv.z;
-    A[0][0] = dpu[dim0]; A[0][1] = dpv[dim0]; A[1][0] = dpu[dim1]; A[1][1] = dpv[dim1];
-    Bx[0] = pxa[dim0] - pa[dim0]; Bx[1] = pxa[dim1] - pa[dim1];
-    By[0] = pya[dim0] - pa[dim0]; By[1] = pya[dim1] - pa[dim1];
-    det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-    if (fabsf(det) < 1e-10f) return;
-    c->dudx = (A[1][1] * Bx[0] - A[0][1] * Bx[1]) / det; c->dvdx = (A[0][0] * Bx[1] - A[1][0] * Bx[0]) / det;
-    c->dudy = (A[1][1] * By[0] - A[0][1] * By[1]) / det; c->dvdy = (A[0][0] * By[1] - A[1][0] * By[0]) / det;
-    if (!isfinite(c->dudx) || !isfinite(c->dvdx)) c->dudx = c->dvdx = 0.f;
-    if (!isfinite(c->dudy) || !isfinite(c->dvdy)) c->dudy = c->dvdy = 0.f;
+/* pbrt-v3's EstimateDirect at hit h (BSDF b, outgoing direction wo) for light l, with the 2D numbers
+ * ul (the light sample) and us (the BSDF sample). Adds the light-sampled term, then the BSDF-sampled
+ * term to *Ld. C->ls chooses the strategies (MIS, light only, BSDF only); delta lights take light
+ * sampling alone, and sample_bsdf = 0 leaves out the BSDF-sampled term (the path tracer, whose
+ * continuation ray plays that part). */
+void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
+                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
+  const elr_scene *s = C->s;
+  int delta = elr_light_is_delta(l);
+  /* <<Sample light source with multiple importance sampling>> */
+  if (delta || C->ls != ELR_LS_BSDF) {
+    elr_light_sample ls;
+    elr_light_sample_li(l, s, h->p, ul, &ls);
+    if (ls.pdf > 0.f) {
+      /* <<Compute BSDF value for light sample>> */
+      elr_v3 f = elr_mul(elr_bsdf_f(b, wo, ls.wi), fabsf(elr_dot(ls.wi, b->ns)));
+      if (!elr_isblack(f)) {
+        ts->shadow++;
+        if (elr_light_unoccluded(s, h, &ls)) {
+          /* <<Add light's contribution to reflected radiance>> */
+          float w = 1.f;
+          if (!delta && C->ls == ELR_LS_MIS) w = elr_power_heuristic(ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
+          *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls.L), w / ls.pdf));
+        }
+      }
+    }
+  }
+  /* <<Sample BSDF with multiple importance sampling>> */
+  if (!delta && sample_bsdf && C->ls != ELR_LS_LIGHT) {
+    elr_v3 wi, f;
+    float pdf;
+    int spec;
+    f = elr_bsdf_sample(b, wo, us[0], us[1], &wi, &pdf, &spec);
+    if (!spec && pdf > 0.f && !elr_isblack(f)) {
+      f = elr_mul(f, fabsf(elr_dot(wi, b->ns)));
+      /* the light's pdf and radiance in direction wi are read after the shadow ray: their cache lines
+       * (texels, pdf bin: misses in multi-megabyte tables) are asked for now and arrive meanwhile */
+      elr_light_prefetch(l, wi);
+      ts->bsdfl++;
+      /* <<Find intersection and compute transmittance>>: the environment is reached when nothing is in
+       * the way (pbrt-v3 returns when Pdf_Li is 0; with envlight's compensated density that would drop
+       * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
+      if (!elr_occluded(s, elr_spawn_origin(h, wi), wi, INFINITY)) {
+        float w = 1.f;
+        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li(l, h, wi));
+        /* <<Add light contribution from material sampling>> */
+        *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, elr_light_le(l, wi)), w / pdf));
+      }
+    }
   }
 }
 
-/* Direct light at a surface point from every light: pbrt-v3's EstimateDirect for each light, with
- * the strategies ctx->ls selects. `nsamples_all`: use each light's sample count (directlighting). */
-static elr_v3 elr__direct(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
-                          elr_tstats *ts, const elr_first *first) {
+/* pbrt-v3's UniformSampleAllLights: the direct light at h from every light that emits, each light's
+ * estimate the average of its own number of samples (use_counts: its "samples" parameter, as the
+ * directlighting integrator; else one). */
+elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
+                                     int sample_bsdf, elr_tstats *ts) {
   const elr_scene *s = C->s;
-  elr_v3 Ld = elr_v(0, 0, 0);
+  elr_v3 L = elr_v(0, 0, 0);
   int li;
   for (li = 0; li < s->nlight; li++) {
     const elr_light *l = &s->light[li];
     int n = use_counts ? l->nsamples : 1, k;
-    elr_v3 sum = elr_v(0, 0, 0);
-    if (!elr__light_emits(l)) continue;
+    elr_v3 Ld = elr_v(0, 0, 0);
+    if (!elr_light_emits(l)) continue;
     for (k = 0; k < n; k++) {
-      float ul0 = 0.f, ul1 = 0.f, us0 = 0.f, us1 = 0.f;
-      const elr_first *pre = first && k == 0 && l->env == C->batch_env ? first : NULL; /* drawn ahead */
-      if (pre) elr__skip2d(S); else elr__get2d(S, &ul0, &ul1);
-      if (pre && pre->bs) elr__skip2d(S); else elr__get2d(S, &us0, &us1);
-      if (l->kind != ELR_LIGHT_INFINITE) {
-        /* delta lights: light sampling only */
-        elr_v3 wi, Li, f;
-        float dist;
-        if (l->kind == ELR_LIGHT_POINT) {
-          elr_v3 dp = elr_sub(l->pos, h->p);
-          float d2 = elr_dot(dp, dp);
-          if (d2 <= 0.f) continue;
-          dist = sqrtf(d2); wi = elr_mul(dp, 1.f / dist);
-          Li = elr_mul(l->L, 1.f / d2);
-        } else {
-          wi = l->dir; Li = l->L; dist = 2.f * s->world_radius + elr_len(elr_sub(h->p, s->world_center)) + 1.f;
-        }
-        f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
-        if (elr_isblack(f)) continue;
-        {
-          elr_v3 o = elr__offset(h, wi);
-          float tmax = l->kind == ELR_LIGHT_POINT ? elr_len(elr_sub(l->pos, o)) * (1.f - 1e-4f) : dist;
-          ts->shadow++;
-          if (elr_occluded(s, o, wi, tmax)) continue;
-        }
-        sum = elr_add(sum, elr_vmul(f, Li));
-        continue;
-      }
-      /* the environment. The BSDF sample is drawn first: when it will need the map's pdf and radiance
-       * (after its shadow ray), their cache lines are prefetched now and arrive while the light sample
-       * and both shadow rays run (a random direction's texels and pdf bin are cache misses in the
-       * multi-megabyte tables). The contributions are added in pbrt-v3's order: light, then BSDF. */
-      {
-        elr_v3 wb = elr_v(0, 0, 0), fb = elr_v(0, 0, 0);
-        float bpdf = 0.f;
-        int bsdf_ray = 0;
-        if (C->ls != ELR_LS_LIGHT && !C->path) { /* in the path integrator the continuation ray plays this part */
-          if (pre && pre->bs) { fb = pre->fb; wb = pre->wb; bpdf = pre->bpdf; bsdf_ray = pre->bray; }
-          else {
-            int spec;
-            fb = elr_bsdf_sample(b, wo, us0, us1, &wb, &bpdf, &spec);
-            bsdf_ray = !spec && bpdf > 0.f && !elr_isblack(fb);
-            if (bsdf_ray) elr_env_prefetch(l->env, wb);
-          }
-        }
-        /* light sampling */
-        if (C->ls != ELR_LS_BSDF) {
-          elr_v3 wi, Li, f;
-          float lpdf, spdf;
-          /* the radiance comes with the sample (pbrt-v3's Sample_Li: the map looked up at the sampled
-           * (u, v), no second direction-to-(u, v) mapping) */
-          if (pre) { Li = pre->L; wi = pre->wi; lpdf = pre->pdf; }
-          else Li = elr_env_sample(l->env, ul0, ul1, &wi, &lpdf);
-          if (lpdf > 0.f) {
-            f = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
-            if (!elr_isblack(f)) {
-              ts->shadow++;
-              if (!elr_occluded(s, elr__offset(h, wi), wi, INFINITY)) {
-                float w = 1.f;
-                if (C->ls == ELR_LS_MIS) { spdf = elr_bsdf_pdf(b, wo, wi); w = elr__power(lpdf, spdf); }
-                sum = elr_add(sum, elr_mul(elr_vmul(f, Li), w / lpdf));
-              }
-            }
-          }
-        }
-        /* BSDF sampling */
-        if (bsdf_ray) {
-          fb = elr_mul(fb, fabsf(elr_dot(wb, b->ns)));
-          ts->bsdfl++;
-          if (!elr_occluded(s, elr__offset(h, wb), wb, INFINITY)) {
-            /* pbrt-v3 returns when Pdf_Li is 0; with a compensated density that would drop the dim parts
-             * of the map, which only BSDF sampling covers: the power heuristic then gives weight 1 */
-            float w;
-            elr_v3 Lb;
-            if (pre && pre->bs) { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, pre->bpdf_env) : 1.f; Lb = pre->Lb; }
-            else { w = C->ls == ELR_LS_MIS ? elr__power(bpdf, elr_env_pdf(l->env, wb)) : 1.f; Lb = elr_env_le(l->env, wb); }
-            sum = elr_add(sum, elr_mul(elr_vmul(fb, Lb), w / bpdf));
-          }
-        }
-      }
+      float ul[2], us[2];
+      elr_sampler_get2d(S, ul);
+      elr_sampler_get2d(S, us);
+      elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, ts, &Ld);
     }
-    Ld = elr_add(Ld, elr_mul(sum, 1.f / (float)n));
-  }
-  return Ld;
-}
-
-/* pbrt-v3's DirectLightingIntegrator::Li. Its SpecularReflect recursion has one branch (reflection
- * only: no material here transmits), so it runs as a loop carrying the throughput: no stack growth
- * whatever maxdepth says. */
-static elr_v3 elr__li_direct(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts, const elr_first *first) {
-  const elr_scene *s = C->s;
-  elr_v3 L = elr_v(0, 0, 0), beta = elr_v(1, 1, 1);
-  elr_ray r = *r0;
-  int depth;
-  for (depth = 0;; depth++) {
-    elr_hit h;
-    elr_bsdf b;
-    elr_tex_ctx tc;
-    elr_v3 wo, dpdx, dpdy, wi, f;
-    float pdf, u0, u1;
-    int spec;
-    elr_ray rd;
-    const elr_first *f0 = depth == 0 ? first : NULL;
-    if (f0 ? !f0->hit : !elr_intersect(s, r.o, r.d, INFINITY, &h)) return elr_add(L, elr_vmul(beta, elr__env_le(s, r.d)));
-    if (f0) h = *f0->h;
-    if (f0) { tc = f0->tc; dpdx = f0->dpdx; dpdy = f0->dpdy; b = f0->b; } /* a hit's, made ahead */
-    else {
-      elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
-      elr_bsdf_init(s, &h, &tc, &b);
-    }
-    wo = elr_mul(r.d, -1.f);
-    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 1, ts, f0)));
-    if (!(depth + 1 < C->maxdepth && b.has_specular)) break;
-    /* <<SpecularReflect>> */
-    elr__get2d(S, &u0, &u1);
-    f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
-    if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b.ns) != 0.f)) break;
-    rd.o = elr__offset(&h, wi); rd.d = wi; rd.has_diff = 0;
-    if (r.has_diff && s->any_textured) {
-      /* <<Compute ray differential rd for specular reflection>> */
-      elr_v3 ns = b.ns;
-      elr_v3 dndx = elr_add(elr_mul(h.dndu, tc.dudx), elr_mul(h.dndv, tc.dvdx));
-      elr_v3 dndy = elr_add(elr_mul(h.dndu, tc.dudy), elr_mul(h.dndv, tc.dvdy));
-      elr_v3 dwodx = elr_sub(elr_mul(r.rxd, -1.f), wo), dwody = elr_sub(elr_mul(r.ryd, -1.f), wo);
-      float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
-      rd.has_diff = 1;
-      rd.rxo = elr_add(rd.o, dpdx); rd.ryo = elr_add(rd.o, dpdy);
-      rd.rxd = elr_add(elr_sub(wi, dwodx), elr_mul(elr_add(elr_mul(dndx, elr_dot(wo, ns)), elr_mul(ns, dDNdx)), 2.f));
-      rd.ryd = elr_add(elr_sub(wi, dwody), elr_mul(elr_add(elr_mul(dndy, elr_dot(wo, ns)), elr_mul(ns, dDNdy)), 2.f));
-    }
-    ts->bounce++;
-    beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
-    r = rd;
+    L = elr_add(L, elr_mul(Ld, 1.f / (float)n));
   }
   return L;
 }
 
-static elr_v3 elr__li_path(const elr_ctx *C, elr_sampler *S, const elr_ray *r0, elr_tstats *ts, const elr_first *first) {
-  const elr_scene *s = C->s;
-  elr_v3 L = elr_v(0, 0, 0), beta = elr_v(1, 1, 1), o = r0->o, d = r0->d;
-  int depth, specular = 0;
-  float prev_pdf = 0.f;
-  elr_ray r = *r0;
-  for (depth = 0;; depth++) {
-    elr_hit h;
-    elr_bsdf b;
-    elr_tex_ctx tc;
-    elr_v3 wo, wi, f, dpdx, dpdy;
-    float pdf, u0, u1;
-    int spec;
-    const elr_first *f0 = depth == 0 ? first : NULL;
-    if (f0 ? !f0->hit : !elr_intersect(s, o, d, INFINITY, &h)) {
-      /* escaped: the environment, MIS-weighted against light sampling after a non-specular bounce */
-      int li;
-      for (li = 0; li < s->nlight; li++) {
-        const elr_light *l = &s->light[li];
-        float w = 1.f;
-        if (l->kind != ELR_LIGHT_INFINITE || !elr__light_emits(l)) continue;
-        if (depth > 0 && !specular && C->light_sampling) {
-          if (C->ls == ELR_LS_LIGHT) continue;
-          if (C->ls == ELR_LS_MIS) w = elr__power(prev_pdf, elr_env_pdf(l->env, d));
-        }
-        L = elr_add(L, elr_mul(elr_vmul(beta, elr_env_le(l->env, d)), w));
-      }
-      break;
-    }
-    if (f0) h = *f0->h;
-    if (depth >= C->maxdepth) break;
-    if (depth == 0) elr__differentials(s, &r, &h, &tc, &dpdx, &dpdy);
-    else {
-      /* pbrt-v3's path tracer spawns later rays without differentials: point-sampled textures */
-      memset(&tc, 0, sizeof tc);
-      if (s->mat_textured[h.material]) { elr_hit_uv(s, &h); tc.u = h.u; tc.v = h.v; }
-    }
-    elr_bsdf_init(s, &h, &tc, &b);
-    wo = elr_mul(d, -1.f);
-    if (C->light_sampling && (b.has_diffuse || b.has_glossy)) L = elr_add(L, elr_vmul(beta, elr__direct(C, S, &h, &b, wo, 0, ts, f0)));
-    elr__get2d(S, &u0, &u1);
-    f = elr_bsdf_sample(&b, wo, u0, u1, &wi, &pdf, &spec);
-    if (elr_isblack(f) || pdf == 0.f) break;
-    beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
-    specular = spec; prev_pdf = pdf;
-    /* the last vertex's continuation only matters for the environment's BSDF-sampled part */
-    if (depth + 1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;
-    o = elr__offset(&h, wi); d = wi;
-    ts->bounce++;
-    { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3) */
-      float mc = elr_maxc(beta);
-      if (depth > 3 && mc < C->rr) {
-        float q = fmaxf(0.05f, 1.f - mc);
-        if (elr__get1d(S) < q) break;
-        beta = elr_mul(beta, 1.f / (1.f - q));
-      }
-    }
+/* pbrt-v3's SpecularReflect up to its recursion: the mirror direction at h (ray r arrived, BSDF b,
+ * texture footprint tc with dp/dx, dp/dy) as the next ray *rd, with ray differentials when r has
+ * them, and the throughput *beta times f |cos| / pdf. Returns 0 when there is nothing to follow. */
+int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                         elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts) {
+  elr_v3 wo = elr_mul(r->d, -1.f), wi, f;
+  elr_ray out;
+  float pdf, u[2];
+  int spec;
+  /* <<Compute specular reflection direction wi and BSDF value>> */
+  elr_sampler_get2d(S, u);
+  f = elr_bsdf_sample(b, wo, u[0], u[1], &wi, &pdf, &spec);
+  if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b->ns) != 0.f)) return 0;
+  out.o = elr_spawn_origin(h, wi); out.d = wi; out.has_diff = 0;
+  if (r->has_diff && C->s->any_textured) {
+    /* <<Compute ray differential rd for specular reflection>> */
+    elr_v3 ns = b->ns;
+    elr_v3 dndx = elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx));
+    elr_v3 dndy = elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy));
+    elr_v3 dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo), dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
+    float dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx), dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
+    out.has_diff = 1;
+    out.rxo = elr_add(out.o, dpdx); out.ryo = elr_add(out.o, dpdy);
+    out.rxd = elr_add(elr_sub(wi, dwodx), elr_mul(elr_add(elr_mul(dndx, elr_dot(wo, ns)), elr_mul(ns, dDNdx)), 2.f));
+    out.ryd = elr_add(elr_sub(wi, dwody), elr_mul(elr_add(elr_mul(dndy, elr_dot(wo, ns)), elr_mul(ns, dDNdy)), 2.f));
   }
-  return L;
-}
-
-/* The sampler at camera sample k of pixel (x, y), its film position drawn (continuous raster
- * coordinates). Drawing it again gives the same position and leaves the sampler in the same state. */
-static void elr__camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
-  elr__sampler_start(S, k);
-  elr__get2d(S, fx, fy);
-  if (S->kind == ELR_SAMPLER_HALTON) S->dim = 5; /* pbrt-v3: time and lens take dimensions 2..4 */
-  *fx += (float)x; *fy += (float)y;
-}
-
-/* pbrt-v3's PerspectiveCamera::GenerateRayDifferential (pinhole) at raster position (fx, fy) */
-static void elr__camera_ray(const elr_ctx *C, float fx, float fy, elr_ray *r) {
-  float sx, sy;
-  elr_v3 dc;
-  /* <<Compute raster and camera sample positions>> */
-  sx = C->sx0 + fx / (float)C->xres * (C->sx1 - C->sx0);
-  sy = C->sy1 - fy / (float)C->yres * (C->sy1 - C->sy0);
-  dc = elr_v(sx * C->tanhalf, sy * C->tanhalf, 1.f);
-  r->o = C->cam_o;
-  r->d = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dc.x), elr_mul(C->cam_y, dc.y)), elr_mul(C->cam_z, dc.z)));
-  r->has_diff = 0;
-  if (C->s->any_textured) {
-    float dxs = (C->sx1 - C->sx0) / (float)C->xres * C->tanhalf, dys = -(C->sy1 - C->sy0) / (float)C->yres * C->tanhalf;
-    elr_v3 dx = elr_norm(elr_add(dc, elr_v(dxs, 0, 0))), dy = elr_norm(elr_add(dc, elr_v(0, dys, 0)));
-    elr_v3 dcn = elr_norm(dc);
-    /* ScaleDifferentials(1 / sqrt(spp)) */
-    dx = elr_add(dcn, elr_mul(elr_sub(dx, dcn), C->diff_scale));
-    dy = elr_add(dcn, elr_mul(elr_sub(dy, dcn), C->diff_scale));
-    r->has_diff = 1;
-    r->rxo = r->ryo = r->o;
-    r->rxd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dx.x), elr_mul(C->cam_y, dx.y)), elr_mul(C->cam_z, dx.z)));
-    r->ryd = elr_norm(elr_add(elr_add(elr_mul(C->cam_x, dy.x), elr_mul(C->cam_y, dy.y)), elr_mul(C->cam_z, dy.z)));
-  }
-}
-
-/* One pixel's camera samples with their environment light samples drawn together: for up to 32
- * samples at a time, (1) the camera rays and their hits, each hit's light-sample numbers (the
- * sampler's draws in the order the shading makes them) and, for the direct-lighting integrator, its
- * BSDF and BSDF sample, whose environment texels and pdf bin are prefetched; (2) the light samples in
- * one elr_env_sample_n call, which overlaps their table and texel cache misses (one at a time, each
- * is a chain of dependent misses that the shading between them cannot hide); (3) the shading, which
- * takes all of these instead of computing them, with the sampler put back where sample k's film draw
- * left it. The sampler gives every (sample, dimension) the same number whichever order they are asked
- * in, so the image is bit for bit the one-at-a-time image (test_render_pipeline checks it). */
-#define ELR_BATCH 32
-static void elr__pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, elr_tile *tile, elr_tstats *ts) {
-  elr_ray r[ELR_BATCH];
-  elr_hit h[ELR_BATCH];
-  elr_first f[ELR_BATCH];
-  float fx[ELR_BATCH], fy[ELR_BATCH], u[2 * ELR_BATCH], wi[3 * ELR_BATCH], Le[3 * ELR_BATCH], pdf[ELR_BATCH];
-  elr_spos pos[ELR_BATCH];
-  int idx[ELR_BATCH], k0, k, m, n;
-  for (k0 = 0; k0 < C->spp; k0 += ELR_BATCH) {
-    m = C->spp - k0 < ELR_BATCH ? C->spp - k0 : ELR_BATCH;
-    n = 0;
-    for (k = 0; k < m; k++) {
-      elr__camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
-      elr__spos_save(S, &pos[k]);
-      elr__camera_ray(C, fx[k], fy[k], &r[k]);
-      ts->camera++;
-      f[k].h = &h[k];
-      f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
-      f[k].bs = f[k].bray = 0;
-      idx[k] = -1;
-      if (!f[k].hit) continue;
-      elr__get2d(S, &u[2 * n], &u[2 * n + 1]); /* the first light draw at the hit */
-      idx[k] = n++;
-      if (!C->path) {
-        /* the direct-lighting integrator's shading up to the BSDF sample (its environment lookups come
-         * in the pass below) */
-        elr_first *q = &f[k];
-        float us0, us1;
-        elr__differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
-        elr_bsdf_init(C->s, &h[k], &q->tc, &q->b);
-        elr__get2d(S, &us0, &us1); /* the BSDF draw that follows the light draw */
-        if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
-          int spec;
-          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us0, us1, &q->wb, &q->bpdf, &spec);
-          q->bs = 1;
-          q->bray = !spec && q->bpdf > 0.f && !elr_isblack(q->fb); /* elr__direct's bsdf_ray */
-        }
-      }
-    }
-    /* the environment's pdf and radiance in the BSDF samples' directions, for all of them in one pass
-     * (pdf_li has no branch, so their cache misses overlap): used when the BSDF ray is not occluded */
-    if (!C->path)
-      for (k = 0; k < m; k++) {
-        elr_first *q = &f[k];
-        if (!q->bray) continue;
-        q->bpdf_env = elr_env_pdf(C->batch_env, q->wb);
-        q->Lb = elr_env_le(C->batch_env, q->wb);
-      }
-    elr_env_sample_n(C->batch_env, n, u, wi, Le, pdf);
-    for (k = 0; k < m; k++) {
-      elr_v3 L;
-      if (idx[k] >= 0) {
-        int j = idx[k];
-        f[k].wi = elr_v(wi[3 * j], wi[3 * j + 1], wi[3 * j + 2]);
-        f[k].L = elr_v(Le[3 * j], Le[3 * j + 1], Le[3 * j + 2]);
-        f[k].pdf = pdf[j];
-      }
-      elr__spos_load(S, &pos[k]); /* the sampler back at sample k, after its film draw */
-      L = C->path ? elr__li_path(C, S, &r[k], ts, &f[k]) : elr__li_direct(C, S, &r[k], ts, &f[k]);
-      elr_tile_add(tile, fx[k], fy[k], L);
-      ts->samples++;
-    }
-  }
-}
-
-/* >> tiles and threads */
-typedef struct elr_job {
-  elr_ctx *C;
-  elr_film *film;
-  const elr_render_options *o;
-  int bx0, by0, bx1, by1, tile, ntx, nty, ntiles;
-  pthread_mutex_t mu;
-  int next_tile, next_merge, done;
-  elr_tile **ready;
-  elr_tstats total;
-  double t0, last_print;
-  int failed;
-  const elr_halton *H;
-} elr_job;
-
-static void elr__progress(elr_job *J, int final) {
-  double now = elr_now(), el = now - J->t0, frac = (double)J->done / (double)J->ntiles, rem;
-  int i, w = 40, fill = (int)(frac * w);
-  char bar[64];
-  if (J->o->quiet) return;
-  if (!final && now - J->last_print < 0.1) return;
-  J->last_print = now;
-  for (i = 0; i < w; i++) bar[i] = i < fill ? '=' : (i == fill ? '>' : ' ');
-  bar[w] = 0;
-  rem = frac > 0 ? el / frac - el : 0.0;
-  fprintf(stderr, "\r[%s] %3d%%  %.1fs elapsed, %.1fs remaining   ", bar, (int)(frac * 100.0 + 0.5), el, final ? 0.0 : rem);
-  if (final) fprintf(stderr, "\n");
-  fflush(stderr);
-}
-
-static void *elr__worker(void *arg) {
-  elr_job *J = (elr_job *)arg;
-  elr_ctx *C = J->C;
-  elr_sampler S;
-  elr_tstats ts;
-  memset(&S, 0, sizeof S);
-  memset(&ts, 0, sizeof ts);
-  S.kind = C->sampler; S.spp = C->spp; S.xs = C->xs; S.ys = C->ys; S.jitter = C->jitter;
-  S.dims = C->dims; S.seed = J->o->seed; S.H = J->H;
-  if (S.kind == ELR_SAMPLER_STRATIFIED) {
-    S.s1d = (float *)malloc(sizeof(float) * (size_t)S.spp * (size_t)(S.dims + 1));
-    S.s2d = (float *)malloc(sizeof(float) * 2 * (size_t)S.spp * (size_t)(S.dims + 1));
-    if (!S.s1d || !S.s2d) { pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu); free(S.s1d); free(S.s2d); return NULL; }
-  }
-  for (;;) {
-    int t, tx, ty, x0, y0, x1, y1, x, y, k;
-    elr_tile *tile;
-    pthread_mutex_lock(&J->mu);
-    t = J->failed ? J->ntiles : J->next_tile++;
-    pthread_mutex_unlock(&J->mu);
-    if (t >= J->ntiles) break;
-    tx = t % J->ntx; ty = t / J->ntx;
-    x0 = J->bx0 + tx * J->tile; y0 = J->by0 + ty * J->tile;
-    x1 = x0 + J->tile < J->bx1 ? x0 + J->tile : J->bx1;
-    y1 = y0 + J->tile < J->by1 ? y0 + J->tile : J->by1;
-    tile = elr_film_tile(J->film, x0, y0, x1, y1);
-    if (!tile) { pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu); break; }
-    for (y = y0; y < y1; y++)
-      for (x = x0; x < x1; x++) {
-        elr__sampler_pixel(&S, x, y);
-        if (C->batch_env) elr__pixel_batched(C, &S, x, y, tile, &ts);
-        else
-          for (k = 0; k < C->spp; k++) {
-            float fx, fy;
-            elr_ray r;
-            elr_v3 L;
-            elr__camera_sample(&S, k, x, y, &fx, &fy);
-            elr__camera_ray(C, fx, fy, &r);
-            ts.camera++;
-            L = C->path ? elr__li_path(C, &S, &r, &ts, NULL) : elr__li_direct(C, &S, &r, &ts, NULL);
-            elr_tile_add(tile, fx, fy, L);
-            ts.samples++;
-          }
-      }
-    pthread_mutex_lock(&J->mu);
-    /* merge tiles in tile order, whatever order threads finish them: the same sums for any thread count */
-    J->ready[t] = tile;
-    while (J->next_merge < J->ntiles && J->ready[J->next_merge]) {
-      elr_film_merge(J->film, J->ready[J->next_merge]);
-      J->ready[J->next_merge] = NULL;
-      J->next_merge++;
-    }
-    J->done++;
-    elr__progress(J, 0);
-    pthread_mutex_unlock(&J->mu);
-  }
-  pthread_mutex_lock(&J->mu);
-  J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
-  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
-  pthread_mutex_unlock(&J->mu);
-  free(S.s1d); free(S.s2d);
-  return NULL;
-}
-
-void elr_render_options_default(elr_render_options *o) {
-  memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1;
-}
-
-static int elr__mat_nonspecular(const elr_scene *s) {
-  int i;
-  /* a material with a non-specular lobe, used by some shape */
-  for (i = 0; i < s->nmesh; i++) if (s->mat[s->mesh[i].material].kind != ELR_MAT_MIRROR) return 1;
-  for (i = 0; i < s->nsph; i++) if (s->mat[s->sph[i].material].kind != ELR_MAT_MIRROR) return 1;
-  return 0;
-}
-
-int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
-  elr_ctx C;
-  elr_job J;
-  elr_halton H;
-  elr_film *film = NULL;
-  pthread_t *th = NULL;
-  int i, nthreads, xres = s->d.xres, yres = s->d.yres, x0, y0, x1, y1, rc = -1, nonspec, env_sampled = 0;
-  double t_start = elr_now(), frame;
-  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H);
-  memset(out, 0, sizeof *out);
-  if (st) memset(st, 0, sizeof *st);
-  C.s = s;
-  /* the sampler: the scene's, or the options' (the scene description itself is never changed) */
-  C.spp = o->spp > 0 ? o->spp : s->d.spp;
-  C.sampler = o->sampler != ELR_SAMPLER_DEFAULT ? o->sampler : s->d.sampler;
-  C.xs = s->d.xs; C.ys = s->d.ys; C.jitter = s->d.jitter; C.dims = s->d.dims;
-  if (C.sampler == ELR_SAMPLER_STRATIFIED) {
-    if (s->d.sampler != ELR_SAMPLER_STRATIFIED) { C.jitter = 1; C.dims = 4; C.xs = C.ys = 0; } /* pbrt-v3's defaults */
-    if (o->spp > 0 || C.xs < 1 || C.ys < 1) { /* the nearest grid to the requested count */
-      int q = (int)floor(sqrt((double)C.spp));
-      if (q < 1) q = 1;
-      C.xs = q; C.ys = (C.spp + q - 1) / q;
-    }
-    C.spp = C.xs * C.ys;
-  }
-  if (C.spp <= 0 || C.spp > (1 << 24)) { snprintf(err, errlen, "samples per pixel %d out of range [1, 16777216]", C.spp); return -1; }
-  /* the parser's limit, again for a sample count given here: every render thread of the stratified
-   * sampler holds spp * (dimensions + 1) 1D and 2D samples (12 bytes) */
-  if (C.sampler == ELR_SAMPLER_STRATIFIED && (double)C.spp * (double)(C.dims + 1) > (double)(1 << 24)) {
-    snprintf(err, errlen, "stratified sampler: %d samples per pixel in %d dimensions need %.0f MiB per thread (at most 16777216 "
-             "samples times dimensions + 1)", C.spp, C.dims, (double)C.spp * (C.dims + 1) * 12.0 / 1048576.0);
-    return -1;
-  }
-  C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
-  C.maxdepth = s->d.maxdepth; C.path = s->d.integrator_path; C.rr = s->d.rrthreshold;
-  C.diff_scale = 1.f / sqrtf((float)C.spp);
-  C.xres = xres; C.yres = yres;
-  C.c2w = s->d.cam2world;
-  C.cam_o = elr_xpoint(&C.c2w, elr_v(0, 0, 0));
-  C.cam_x = elr_xvector(&C.c2w, elr_v(1, 0, 0));
-  C.cam_y = elr_xvector(&C.c2w, elr_v(0, 1, 0));
-  C.cam_z = elr_xvector(&C.c2w, elr_v(0, 0, 1));
-  /* <<Compute screen window>> */
-  frame = s->d.has_frameaspect ? s->d.frameaspect : (double)xres / (double)yres;
-  if (s->d.has_screen) { C.sx0 = s->d.screen[0]; C.sx1 = s->d.screen[1]; C.sy0 = s->d.screen[2]; C.sy1 = s->d.screen[3]; }
-  else if (frame > 1.0) { C.sx0 = (float)-frame; C.sx1 = (float)frame; C.sy0 = -1.f; C.sy1 = 1.f; }
-  else { C.sx0 = -1.f; C.sx1 = 1.f; C.sy0 = (float)(-1.0 / frame); C.sy1 = (float)(1.0 / frame); }
-  C.tanhalf = tanf(s->d.fov * ELR_PI / 360.f);
-  /* <<Compute film image bounds>> (pbrt-v3: ceil of the crop window times the resolution) */
-  x0 = (int)ceil(xres * (double)s->d.crop[0]); x1 = (int)ceil(xres * (double)s->d.crop[1]);
-  y0 = (int)ceil(yres * (double)s->d.crop[2]); y1 = (int)ceil(yres * (double)s->d.crop[3]);
-  if (x1 <= x0 || y1 <= y0) { snprintf(err, errlen, "the crop window covers no pixel"); return -1; }
-  if ((double)(x1 - x0) * (double)(y1 - y0) * (double)C.spp > 1e12) {
-    snprintf(err, errlen, "%d x %d pixels at %d samples is more than 1e12 samples", x1 - x0, y1 - y0, C.spp);
-    return -1;
-  }
-  if (elr_film_create(xres, yres, x0, y0, x1, y1, &s->d.filter, &film, err, errlen) != 0) return -1;
-  /* <<Decide what the scene calls for>> */
-  if (!s->mat_textured) {
-    s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
-    if (!s->mat_textured) { snprintf(err, errlen, "out of memory"); goto done; }
-    for (i = 0; i < s->nmat; i++) {
-      const elr_material *m = &s->mat[i];
-      int t[4], k;
-      t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
-      for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
-      if (s->mat_textured[i]) s->any_textured = 1;
-    }
-  }
-  nonspec = elr__mat_nonspecular(s);
-  {
-    int emits = 0;
-    for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) emits = 1;
-    for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C.has_env = 1;
-    C.light_sampling = emits && nonspec;
-    for (i = 0; i < s->nlight; i++) {
-      elr_light *l = &s->light[i];
-      if (l->kind == ELR_LIGHT_INFINITE && elr__light_emits(l) && C.light_sampling && C.ls != ELR_LS_BSDF) {
-        double t0 = elr_now();
-        if (elr_env_prepare(l->env, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); goto done; }
-        if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += elr_env_distribution_bytes(l->env); }
-        env_sampled = 1;
-      }
-    }
-    /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
-    /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
-     * past them come from the pixel's one random stream, whose order batching would change) */
-    if (env_sampled && !o->no_batch && (C.sampler != ELR_SAMPLER_STRATIFIED || C.dims >= 3)) {
-      int nemit = 0;
-      for (i = 0; i < s->nlight; i++) if (elr__light_emits(&s->light[i])) { nemit++; C.batch_env = s->light[i].env; }
-      if (nemit != 1) C.batch_env = NULL;
-    }
-  }
-  if (C.sampler == ELR_SAMPLER_HALTON) {
-    int b[4];
-    elr_film_sample_bounds(film, &b[0], &b[1], &b[2], &b[3]);
-    if (elr__halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
-  }
-  nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
-  if (nthreads < 1) nthreads = 1;
-  if (nthreads > 1024) nthreads = 1024;
-  J.C = &C; J.film = film; J.o = o; J.H = &H;
-  elr_film_sample_bounds(film, &J.bx0, &J.by0, &J.bx1, &J.by1);
-  J.tile = o->tile_size > 0 ? o->tile_size : 16;
-  J.ntx = (J.bx1 - J.bx0 + J.tile - 1) / J.tile; J.nty = (J.by1 - J.by0 + J.tile - 1) / J.tile;
-  J.ntiles = J.ntx * J.nty;
-  J.ready = (elr_tile **)calloc((size_t)J.ntiles, sizeof(elr_tile *));
-  th = (pthread_t *)calloc((size_t)nthreads, sizeof(pthread_t));
-  if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
-  pthread_mutex_init(&J.mu, NULL);
-  J.t0 = elr_now(); J.last_print = 0;
-  {
-    int started = 0;
-    for (i = 0; i < nthreads; i++) {
-      if (pthread_create(&th[i], NULL, elr__worker, &J) != 0) break;
-      started++;
-    }
-    if (started == 0) elr__worker(&J);
-    for (i = 0; i < started; i++) pthread_join(th[i], NULL);
-  }
-  pthread_mutex_destroy(&J.mu);
-  if (J.failed || J.next_merge != J.ntiles) {
-    for (i = 0; i < J.ntiles; i++) if (J.ready[i]) elr_film_merge(film, J.ready[i]);
-    snprintf(err, errlen, "rendering failed (out of memory for a film tile or sampler)");
-    goto done;
-  }
-  elr__progress(&J, 1);
-  out->width = x1 - x0; out->height = y1 - y0;
-  out->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)out->width * (size_t)out->height);
-  if (!out->rgb) { snprintf(err, errlen, "out of memory"); goto done; }
-  elr_film_rgb(film, out->rgb);
-  if (st) {
-    st->t_parse = s->t_parse; st->t_images = s->t_images; st->t_embree = s->t_embree;
-    st->t_render = elr_now() - J.t0;
-    st->bytes_embree = s->bytes_embree; st->bytes_film = elr_film_bytes(film);
-    st->bytes_splats = elr_film_splat_bytes(film); st->splats_allocated = st->bytes_splats > 0;
-    st->camera_rays = J.total.camera; st->bounce_rays = J.total.bounce; st->shadow_rays = J.total.shadow;
-    st->bsdf_light_rays = J.total.bsdfl; st->samples = J.total.samples;
-    st->distribution_built = env_sampled; st->light_sampling_used = C.light_sampling;
-    st->light_samples_batched = C.batch_env != NULL;
-    st->nthreads = nthreads; st->spp = C.spp; st->width = out->width; st->height = out->height;
-    st->maxdepth = C.maxdepth; st->integrator_path = C.path; st->sampler = C.sampler;
-    st->rejected_samples = elr_film_rejected(film);
-    for (i = 0; i < s->ntex; i++) {
-      if (s->tex[i].kind == ELR_TEX_IMAGE) {
-        int lv; size_t by;
-        elr_mip_stats(s->tex[i].mip, &lv, &by);
-        st->mip_textures++; st->mip_levels_built += lv; st->bytes_mip += by;
-      }
-    }
-    st->bytes_textures = s->bytes_textures;
-    for (i = 0; i < s->nlight; i++)
-      if (s->light[i].kind == ELR_LIGHT_INFINITE) {
-        st->bytes_textures += elr_env_image_bytes(s->light[i].env);
-        if (env_sampled) st->bytes_distribution = elr_env_distribution_bytes(s->light[i].env);
-      }
-  }
-  rc = 0;
-done:
-  if (st) st->t_total = elr_now() - t_start + s->t_parse;
-  free(J.ready); free(th); free(H.perm);
-  elr_film_free(film);
-  if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }
-  return rc;
-}
-
-void elr_stats_print(const elr_stats *st, void *fp) {
-  FILE *f = (FILE *)fp;
-  uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
-  fprintf(f, "render statistics\n");
-  fprintf(f, "  image              %d x %d, %d spp (%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
-          st->sampler == ELR_SAMPLER_RANDOM ? "random" : (st->sampler == ELR_SAMPLER_STRATIFIED ? "stratified" : "halton"),
-          st->nthreads, st->nthreads == 1 ? "" : "s", st->integrator_path ? "path" : "directlighting", st->maxdepth);
-  fprintf(f, "  parse              %8.3f s (images and meshes read: %.3f s)\n", st->t_parse, st->t_images);
-  fprintf(f, "  embree build       %8.3f s  %10.1f KiB\n", st->t_embree, (double)st->bytes_embree / 1024.0);
-  fprintf(f, "  textures (level 0) %10.1f KiB  (environment map image included)\n", (double)st->bytes_textures / 1024.0);
-  fprintf(f, "  MIP maps           %d image texture%s, %d level%s built, %.1f KiB\n", st->mip_textures,
-          st->mip_textures == 1 ? "" : "s", st->mip_levels_built, st->mip_levels_built == 1 ? "" : "s", (double)st->bytes_mip / 1024.0);
-  fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (nothing emits, or no surface has a non-specular lobe)",
-          st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
-  fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
-          (double)st->bytes_distribution / 1024.0);
-  fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
-          st->splats_allocated ? "allocated" : "not allocated (nothing splats)");
-  fprintf(f, "  render             %8.3f s\n", st->t_render);
-  fprintf(f, "  rays               %llu camera, %llu bounce, %llu shadow (light samples), %llu BSDF-sampled light; %llu total\n",
-          (unsigned long long)st->camera_rays, (unsigned long long)st->bounce_rays, (unsigned long long)st->shadow_rays,
-          (unsigned long long)st->bsdf_light_rays, (unsigned long long)rays);
-  fprintf(f, "  rejected samples   %llu (NaN, infinite or negative radiance)\n", (unsigned long long)st->rejected_samples);
-}
-
-/* >> scene load / free / output */
-static void elr__dirname(const char *path, char *dir, size_t n) {
-  const char *sl = strrchr(path, '/');
-  if (!sl) snprintf(dir, n, ".");
-  else if (sl == path) snprintf(dir, n, "/");
-  else snprintf(dir, n, "%.*s", (int)(sl - path), path);
-}
-int elr_scene_load_string(const char *text, const char *name, const char *base_dir, elr_scene **out, int quiet, char *err,
-                          size_t errlen) {
-  elr_scene *s = (elr_scene *)calloc(1, sizeof *s);
-  double t0 = elr_now();
-  *out = NULL;
-  if (!s) { snprintf(err, errlen, "out of memory"); return -1; }
-  s->quiet = quiet;
-  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0) { elr_scene_free(s); return -1; }
-  s->t_parse = elr_now() - t0;
-  if (elr_scene_build(s, err, errlen) != 0) { elr_scene_free(s); return -1; }
-  *out = s;
-  return 0;
-}
-int elr_scene_load(const char *path, elr_scene **out, int quiet, char *err, size_t errlen) {
-  FILE *f;
-  long n;
-  char *buf, dir[4096], why[128];
-  int r;
-  *out = NULL;
-  if (el_file_is_regular(path, why, sizeof why) != 0) { snprintf(err, errlen, "%s: cannot read the scene file: %s", path, why); return -1; }
-  f = fopen(path, "rb");
-  if (!f) { snprintf(err, errlen, "%s: cannot open the scene file", path); return -1; }
-  if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0 || n > (1L << 30)) {
-    fclose(f); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1;
-  }
-  buf = (char *)malloc((size_t)n + 1);
-  if (!buf || (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n)) { fclose(f); free(buf); snprintf(err, errlen, "%s: cannot read the scene file", path); return -1; }
-  fclose(f);
-  buf[n] = 0;
-  if (strlen(buf) != (size_t)n) { free(buf); snprintf(err, errlen, "%s:1: error: the file contains a NUL byte (not a pbrt-v3 text file)", path); return -1; }
-  elr__dirname(path, dir, sizeof dir);
-  r = elr_scene_load_string(buf, path, dir, out, quiet, err, errlen);
-  free(buf);
-  return r;
-}
-void elr_scene_free(elr_scene *s) {
-  int i;
-  if (!s) return;
-  elr_scene_release(s);
-  for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) elr_mip_free(s->tex[i].mip);
-  for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
-  for (i = 0; i < s->nlight; i++) if (s->light[i].env) elr_env_free(s->light[i].env);
-  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
-  free(s);
-}
-int elr_scene_warnings(const elr_scene *s) { return s->warnings; }
-const char *elr_scene_last_warning(const elr_scene *s) { return s->last_warning; }
-const char *elr_scene_film_filename(const elr_scene *s) { return s->d.filename; }
-void elr_scene_resolution(const elr_scene *s, int *w, int *h) {
-  int x0 = (int)ceil(s->d.xres * (double)s->d.crop[0]), x1 = (int)ceil(s->d.xres * (double)s->d.crop[1]);
-  int y0 = (int)ceil(s->d.yres * (double)s->d.crop[2]), y1 = (int)ceil(s->d.yres * (double)s->d.crop[3]);
-  *w = x1 - x0; *h = y1 - y0;
-}
-int elr_scene_spp(const elr_scene *s) { return s->d.spp; }
-
-void elr_image_free(elr_image *img) { if (img) { free(img->rgb); img->rgb = NULL; } }
-int elr_image_write(const elr_image *img, const char *path, char *err, size_t errlen) {
-  const char *ext = el_image_extension(path);
-  if (!strcmp(ext, "png")) {
-    size_t n = (size_t)img->width * (size_t)img->height;
-    unsigned char *b = (unsigned char *)malloc(n * 3);
-    int r;
-    if (!b) { snprintf(err, errlen, "out of memory"); return -1; }
-    elr_srgb8(img->rgb, (int)n, b);
-    r = el_image_write_png(path, b, img->width, img->height, 3, err, errlen);
-    free(b);
-    return r;
-  }
-  if (!strcmp(ext, "exr") || !strcmp(ext, "pfm") || !strcmp(ext, "hdr"))
-    return el_image_write_float(path, img->rgb, img->width, img->height, 3, err, errlen);
-  snprintf(err, errlen, "%s: unknown output format \".%s\" (use .png, .exr, .pfm or .hdr)", path, ext);
-  return -1;
+  ts->bounce++;
+  *beta = elr_mul(elr_vmul(*beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
+  *rd = out;
+  return 1;
 }

@@ -797,9 +797,9 @@ static void elr__light(elr__parser *P, const char *type) {
        * of lum(le) / pdf per light sample is 0.024 for pbrt-v3's map and 0.098 for cell averages: the
        * piecewise-constant density cannot follow the bilinear ramp around the sun at image resolution. */
       const char *im = elr__pstring(P, "importance", "pbrt-v3");
-      if (!strcmp(im, "cellaverage")) l->importance = ELR_IMPORTANCE_CELL_AVERAGE;
-      else if (!strcmp(im, "pbrt-v3")) l->importance = ELR_IMPORTANCE_PBRT_V3;
-      else if (!strcmp(im, "texel")) l->importance = ELR_IMPORTANCE_TEXEL;
+      if (!strcmp(im, "cellaverage")) l->importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
+      else if (!strcmp(im, "pbrt-v3")) l->importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
+      else if (!strcmp(im, "texel")) l->importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
       else elr__failf(P, elr__find(P, "importance")->file, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\" or \"texel\"");
     }
     l->L = elr_vmul(L, sc);
@@ -836,7 +836,7 @@ static void elr__light(elr__parser *P, const char *type) {
     }
     {
       double t0 = elr_now();
-      int r = elr_env_create(rgb, w, h, scale3, m3, l->compensated, l->importance, &l->env, e, sizeof e);
+      int r = elr_infinite_init(l, rgb, w, h, scale3, m3, e, sizeof e);
       free(rgb);
       if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
       s->t_images += elr_now() - t0;
@@ -1019,7 +1019,7 @@ static int elr__make_material(elr__parser *P, const char *type) {
 }
 
 /* How many textures one evaluation of texture ti may look up: a checkerboard evaluates both of its
- * sub-textures where its filter straddles an edge (shading.c recurses). Every texture already made has a
+ * sub-textures where its filter straddles an edge (textures.c recurses). Every texture already made has a
  * cost of at most ELR_MAX_TEX_COST, so this recursion visits at most that many leaves. */
 #define ELR_MAX_TEX_COST 64
 static int elr__tex_cost(const elr_scene *s, int ti) {
@@ -1069,24 +1069,26 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     const char *wrap = elr__pstring(P, "wrap", "repeat");
     float scale = (float)elr__pfloat(P, "scale", 1.0);
     float maxan = (float)elr__pfloat(P, "maxanisotropy", 8.0);
-    int filter = ELR_FILTER_EWA, wr, gamma;
+    el_mipmap_options mo;
+    el_mipmap_filter filter = EL_FILTER_EWA;
+    el_wrap wr;
+    int gamma;
     size_t fl = strlen(fn);
-    char e[512];
     el_image img;
     float *rgb;
     char *path;
     if (elr__find(P, "filter")) {
       const char *f = elr__pstring(P, "filter", "bilinear");
-      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = ELR_FILTER_EWA;
-      else if (!strcmp(f, "trilinear")) filter = ELR_FILTER_TRILINEAR;
-      else if (!strcmp(f, "bilinear")) filter = ELR_FILTER_BILINEAR;
+      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = EL_FILTER_EWA;
+      else if (!strcmp(f, "trilinear")) filter = EL_FILTER_TRILINEAR;
+      else if (!strcmp(f, "bilinear")) filter = EL_FILTER_BILINEAR;
       else elr__failf(P, elr__find(P, "filter")->file, elr__find(P, "filter")->line, "Texture \"%s\": filter must be \"bilinear\", \"trilinear\" or \"ewa\"", name);
     } else if (elr__find(P, "trilinear")) { /* pbrt-v3's spelling */
-      filter = elr__pbool(P, "trilinear", 0) ? ELR_FILTER_TRILINEAR : ELR_FILTER_EWA;
+      filter = elr__pbool(P, "trilinear", 0) ? EL_FILTER_TRILINEAR : EL_FILTER_EWA;
     }
-    if (!strcmp(wrap, "repeat")) wr = ELR_WRAP_REPEAT;
-    else if (!strcmp(wrap, "black")) wr = ELR_WRAP_BLACK;
-    else if (!strcmp(wrap, "clamp")) wr = ELR_WRAP_CLAMP;
+    if (!strcmp(wrap, "repeat")) wr = EL_WRAP_REPEAT;
+    else if (!strcmp(wrap, "black")) wr = EL_WRAP_BLACK;
+    else if (!strcmp(wrap, "clamp")) wr = EL_WRAP_CLAMP;
     else elr__failf(P, elr__find(P, "wrap")->file, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
     elr__check_range(P, "maxanisotropy", maxan, 1.0, 1024.0); /* mipmap.h's limit */
     if (!fn[0]) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
@@ -1114,12 +1116,20 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     t.kind = ELR_TEX_IMAGE;
     {
       double t0 = elr_now();
-      int r = elr_mip_create(rgb, img.width, img.height, wr, filter, maxan, &t.mip, e, sizeof e);
+      el_result r = EL_ERROR_OUT_OF_MEMORY;
+      /* pbrt-v3's ImageTexture: a MIPMap of the image (mipmap.h; the texture owns it) */
+      memset(&mo, 0, sizeof mo);
+      mo.wrap_u = mo.wrap_v = wr;
+      mo.filter = filter;
+      mo.max_anisotropy = maxan;
+      t.mip = (el_mipmap *)calloc(1, sizeof *t.mip);
+      if (t.mip) r = el_mipmap_init(t.mip, rgb, img.width, img.height, 3, &mo);
+      if (r != EL_SUCCESS) { free(t.mip); t.mip = NULL; }
       free(rgb);
       s->t_images += elr_now() - t0;
       s->bytes_textures += (size_t)img.width * (size_t)img.height * 3 * sizeof(float);
       el_image_free(&img);
-      if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": %s", name, e);
+      if (r != EL_SUCCESS) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": MIP map: %s", name, el_result_string(r));
     }
   } else {
     elr_warn(P->s, P->dir_file, P->dir_line, "Texture class \"%s\" is not supported; \"%s\" is a constant %s", cls, name,

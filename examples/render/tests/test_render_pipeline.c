@@ -150,19 +150,22 @@ int main(void) {
   /* 8. A pixel's environment light samples drawn together (the default) give the image of drawing
    * each inside its own sample's shading (no_batch), bit for bit: every sampler, both integrators,
    * light-only sampling, textures (ray differentials), a mirror (its bounce must not take the first
-   * vertex's light sample), sample counts that are not a multiple of the batch of 32, and the cases
-   * that turn batching off (a second emitting light; stratified strata that cover fewer draws). */
+   * vertex's light sample), sample counts that are not a multiple of the batch of 32, an environment
+   * with several samples per vertex (the batched first sample, then the others one at a time), and the
+   * cases that turn batching off (a second emitting light; stratified strata that cover fewer draws). */
   {
-    static const char *cases[][2] = {
-      {"Sampler \"stratified\" \"integer xsamples\" 6 \"integer ysamples\" 7\nIntegrator \"directlighting\"\n", "1"},
-      {"Sampler \"halton\" \"integer pixelsamples\" 37\nIntegrator \"directlighting\"\n", "1"},
-      {"Sampler \"random\" \"integer pixelsamples\" 33\nIntegrator \"directlighting\"\n", "1"},
-      {"Sampler \"halton\" \"integer pixelsamples\" 16\nIntegrator \"path\" \"integer maxdepth\" 4\n", "1"},
-      {"Sampler \"stratified\" \"integer xsamples\" 4 \"integer ysamples\" 4\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1"},
-      {"Sampler \"random\" \"integer pixelsamples\" 12\nIntegrator \"path\" \"integer maxdepth\" 6\n", "1"},
-      {"Sampler \"random\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\" \"string strategy\" \"one\"\n", "1"},
-      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3 \"integer dimensions\" 2\nIntegrator \"directlighting\"\n", "0"},
-      {"Sampler \"halton\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\"\n", "0"},
+    static const char *cases[][3] = { /* sampler and integrator, batched?, the environment's parameters */
+      {"Sampler \"stratified\" \"integer xsamples\" 6 \"integer ysamples\" 7\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"halton\" \"integer pixelsamples\" 37\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"random\" \"integer pixelsamples\" 33\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"halton\" \"integer pixelsamples\" 16\nIntegrator \"path\" \"integer maxdepth\" 4\n", "1", ""},
+      {"Sampler \"stratified\" \"integer xsamples\" 4 \"integer ysamples\" 4\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1", ""},
+      {"Sampler \"random\" \"integer pixelsamples\" 12\nIntegrator \"path\" \"integer maxdepth\" 6\n", "1", ""},
+      {"Sampler \"random\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\" \"string strategy\" \"one\"\n", "1", ""},
+      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3 \"integer dimensions\" 2\nIntegrator \"directlighting\"\n", "0", ""},
+      {"Sampler \"halton\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\"\n", "0", ""},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5\nIntegrator \"directlighting\"\n", "1", " \"integer samples\" 3"},
+      {"Sampler \"random\" \"integer pixelsamples\" 4\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1", " \"integer samples\" 3"},
     };
     int c;
     for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
@@ -174,14 +177,14 @@ int main(void) {
       snprintf(buf, sizeof buf,
                "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
                "Film \"image\" \"integer xresolution\" 20 \"integer yresolution\" 16\n%s"
-               "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"env.pfm\" \"float scale\" 2\n%s"
+               "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"env.pfm\" \"float scale\" 2%s\n%s"
                "Texture \"chk\" \"spectrum\" \"checkerboard\" \"float uscale\" 8 \"float vscale\" 8\n"
                "AttributeBegin\nMaterial \"plastic\" \"texture Kd\" \"chk\" \"float roughness\" 0.05\n"
                "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\n"
                "  \"float uv\" [ 0 0 1 0 1 1 0 1 ]\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0.3 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"mirror\"\nTranslate 0.7 0.5 0.3\nShape \"sphere\" \"float radius\" 0.4\nAttributeEnd\nWorldEnd\n",
-               cases[c][0], c == 8 ? "LightSource \"point\" \"point from\" [ 0 3 0 ] \"rgb I\" [ 2 2 2 ]\n" : "");
+               cases[c][0], cases[c][2], c == 8 ? "LightSource \"point\" \"point from\" [ 0 3 0 ] \"rgb I\" [ 2 2 2 ]\n" : "");
       s = rt_load("batch.pbrt", buf, err, sizeof err);
       if (!s) { rt_check(0, "batch scene %d: %s", c, err); continue; }
       for (lsmode = 0; lsmode < (c == 0 ? 2 : 1); lsmode++) {

@@ -1,49 +1,13 @@
-/* shading.c: pbrt-v3's textures (constant, checkerboard, imagemap through mipmap.h) and materials
- * (matte: LambertianReflection; mirror: SpecularReflection with FresnelNoOp; plastic: Lambertian plus
- * a Torrance-Sparrow MicrofacetReflection with the Trowbridge-Reitz distribution, visible-normal
- * sampling, and pbrt-v3's FresnelDielectric(1.5, 1)).
+/* reflection.c: the BSDF and its lobes (pbrt-v3 core/reflection.cpp), the Trowbridge-Reitz microfacet
+ * distribution (core/microfacet.cpp) and the dielectric Fresnel term.
  *
- * BSDF evaluation follows pbrt-v3's BSDF class: the shading frame around the shading normal, a lobe
- * reflects only when wi and wo lie on the same side of the geometric normal; Sample_f chooses one of
- * the matching components uniformly and returns the average pdf and the sum of the non-specular f. */
+ * Lobes: LambertianReflection; MicrofacetReflection (Torrance-Sparrow with Trowbridge-Reitz, sampled by
+ * its visible normals); SpecularReflection with FresnelNoOp. materials.c chooses them per material.
+ * Evaluation follows pbrt-v3's BSDF class: the shading frame around the shading normal, a lobe reflects
+ * only when wi and wo lie on the same side of the geometric normal; Sample_f chooses one of the matching
+ * components uniformly and returns the average pdf and the sum of the non-specular f. Transmission
+ * (glass), conductors (metal) and FresnelBlend (substrate) would be further lobes here. */
 #include "elr_internal.h"
-
-/* >> textures */
-elr_v3 elr_tex_eval(const elr_scene *s, int ti, const elr_tex_ctx *c) {
-  const elr_texture *t;
-  float st0, st1, ds0x, ds1x, ds0y, ds1y;
-  if (ti < 0 || ti >= s->ntex) return elr_v(0, 0, 0);
-  t = &s->tex[ti];
-  if (t->kind == ELR_TEX_CONST) return t->value;
-  /* <<UVMapping2D::Map>> */
-  st0 = t->su * c->u + t->du; st1 = t->sv * c->v + t->dv;
-  ds0x = t->su * c->dudx; ds1x = t->sv * c->dvdx;
-  ds0y = t->su * c->dudy; ds1y = t->sv * c->dvdy;
-  if (t->kind == ELR_TEX_CHECKER) {
-    float ds = fmaxf(fabsf(ds0x), fabsf(ds0y)), dt = fmaxf(fabsf(ds1x), fabsf(ds1y));
-    float s0 = st0 - ds, s1 = st0 + ds, t0 = st1 - dt, t1 = st1 + dt;
-    if (!isfinite(st0) || !isfinite(st1) || fabsf(st0) > 1e9f || fabsf(st1) > 1e9f) return elr_tex_eval(s, t->tex2, c);
-    if (!t->aa_closedform || !(ds > 0.f || dt > 0.f) || (floorf(s0) == floorf(s1) && floorf(t0) == floorf(t1))) {
-      /* <<Point sample Checkerboard2DTexture>> */
-      if (((int)floorf(st0) + (int)floorf(st1)) % 2 == 0) return elr_tex_eval(s, t->tex1, c);
-      return elr_tex_eval(s, t->tex2, c);
-    } else {
-      /* <<Apply box filter to checkerboard region>> */
-#define ELR_BUMPINT(x) ((float)(int)floorf((x) / 2) + 2 * fmaxf((x) / 2 - (float)(int)floorf((x) / 2) - 0.5f, 0.f))
-      /* a filter 1 check or wider averages to 0.5: decided first, so that a huge differential (grazing
-       * angles, a large uscale) never reaches the int conversions below (undefined beyond INT_MAX) */
-      float area2 = 0.5f;
-      if (ds < 1.f && dt < 1.f) {
-        float sint = ds > 0.f ? (ELR_BUMPINT(s1) - ELR_BUMPINT(s0)) / (2 * ds) : 0.5f;
-        float tint = dt > 0.f ? (ELR_BUMPINT(t1) - ELR_BUMPINT(t0)) / (2 * dt) : 0.5f;
-        area2 = sint + tint - 2 * sint * tint;
-      }
-#undef ELR_BUMPINT
-      return elr_add(elr_mul(elr_tex_eval(s, t->tex1, c), 1.f - area2), elr_mul(elr_tex_eval(s, t->tex2, c), area2));
-    }
-  }
-  return elr_mip_lookup(t->mip, st0, st1, ds0x, ds1x, ds0y, ds1y);
-}
 
 /* >> microfacets (pbrt-v3 src/core/microfacet.cpp, TrowbridgeReitzDistribution) */
 float elr_roughness_to_alpha(float r) {
@@ -107,32 +71,7 @@ static float elr__fr_dielectric(float cosi, float etai, float etat) {
   return (rpar * rpar + rperp * rperp) * 0.5f;
 }
 
-/* >> BSDF */
-void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
-  const elr_material *m = &s->mat[h->material];
-  b->ns = h->ns; b->ng = h->ng;
-  elr_onb(b->ns, &b->ss, &b->ts);
-  b->has_diffuse = b->has_glossy = b->has_specular = 0;
-  b->kd = b->ks = b->kr = elr_v(0, 0, 0);
-  b->alpha = 1.f;
-  if (m->kind == ELR_MAT_MATTE) {
-    b->kd = elr_tex_eval(s, m->kd, c);
-    b->has_diffuse = !elr_isblack(b->kd);
-  } else if (m->kind == ELR_MAT_MIRROR) {
-    b->kr = elr_tex_eval(s, m->kr, c);
-    b->has_specular = !elr_isblack(b->kr);
-  } else {
-    float r;
-    b->kd = elr_tex_eval(s, m->kd, c);
-    b->ks = elr_tex_eval(s, m->ks, c);
-    r = elr_tex_eval(s, m->rough, c).x;
-    b->alpha = m->remap ? elr_roughness_to_alpha(r) : r;
-    if (!(b->alpha > 1e-4f)) b->alpha = 1e-4f;
-    b->has_diffuse = !elr_isblack(b->kd);
-    b->has_glossy = !elr_isblack(b->ks);
-  }
-  b->ncomp = b->has_diffuse + b->has_glossy + b->has_specular;
-}
+/* >> BSDF (core/reflection.cpp) */
 static elr_v3 elr__to_local(const elr_bsdf *b, elr_v3 v) { return elr_v(elr_dot(v, b->ss), elr_dot(v, b->ts), elr_dot(v, b->ns)); }
 static elr_v3 elr__to_world(const elr_bsdf *b, elr_v3 v) {
   return elr_add(elr_add(elr_mul(b->ss, v.x), elr_mul(b->ts, v.y)), elr_mul(b->ns, v.z));

@@ -1,0 +1,221 @@
+/* lights.c: the lights and the one interface the integrators see them through (the book's chapter 12,
+ * Light Sources, and section 14.2, Sampling Light Sources).
+ *
+ * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample) and
+ * lights/point.cpp (PointLight), lights/distant.cpp (DistantLight), lights/infinite.cpp
+ * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li,
+ * el_envlight_pdf_li, el_envlight_le). Point and distant lights are delta lights: light sampling
+ * only, pdf 1, never hit by a ray. The environment is the one non-delta light: sampled, and seen
+ * by rays that leave the scene.
+ *
+ * Area lights (pbrt-v3 lights/diffuse.cpp, DiffuseAreaLight: Sample_Li through its shape's
+ * Shape::Sample, Pdf_Li through Shape::Pdf, L on the emitting surface) join as another ELR_LIGHT_
+ * kind in each switch below; what the integrators do with a light goes through these functions. */
+#include "elr_internal.h"
+#include <stdlib.h>
+#include <string.h>
+
+/* pbrt-v3's Sample_Li: a point on the light seen from the shading point p, drawn with u. */
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls) {
+  ls->at_point = 0;
+  ls->dist = INFINITY;
+  switch (l->kind) {
+  case ELR_LIGHT_POINT: { /* PointLight::Sample_Li: I / r^2 from the light's position */
+    elr_v3 dp = elr_sub(l->pos, p);
+    float d2 = elr_dot(dp, dp), dist;
+    if (d2 <= 0.f) { ls->pdf = 0.f; ls->L = ls->wi = elr_v(0, 0, 0); return; }
+    dist = sqrtf(d2);
+    ls->wi = elr_mul(dp, 1.f / dist);
+    ls->L = elr_mul(l->L, 1.f / d2);
+    ls->pdf = 1.f;
+    ls->p_light = l->pos; ls->at_point = 1;
+    return;
+  }
+  case ELR_LIGHT_DISTANT: /* DistantLight::Sample_Li: the shadow ray ends outside the scene's bounding sphere */
+    ls->wi = l->dir; ls->L = l->L; ls->pdf = 1.f;
+    ls->dist = 2.f * s->world_radius + elr_len(elr_sub(p, s->world_center)) + 1.f;
+    return;
+  default: { /* InfiniteAreaLight::Sample_Li: the radiance comes with the sample (the map at the sampled
+              * (u, v), no second direction-to-(u, v) mapping) */
+    float wi[3], L[3];
+    el_envlight_sample_li(l->env_sample, u, wi, L, &ls->pdf);
+    ls->wi = elr_from3(wi); ls->L = elr_from3(L);
+    return;
+  }
+  }
+}
+
+/* pbrt-v3's Pdf_Li: the solid-angle density with which elr_light_sample_li from ref would choose wi
+ * (0 for delta lights, which no direction can hit). */
+float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi) {
+  float d[3];
+  (void)ref; /* an area light will need it: its density in solid angle depends on the distance */
+  if (l->kind != ELR_LIGHT_INFINITE) return 0.f;
+  elr_to3(wi, d);
+  return el_envlight_pdf_li(l->env_sample, d);
+}
+
+/* pbrt-v3's Light::Le: the radiance a ray that leaves the scene in direction d receives from the light
+ * (the environment; 0 for the other lights). */
+elr_v3 elr_light_le(const elr_light *l, elr_v3 d) {
+  float dir[3], L[3];
+  if (l->kind != ELR_LIGHT_INFINITE) return elr_v(0, 0, 0);
+  elr_to3(d, dir);
+  el_envlight_le(l->env, dir, L);
+  return elr_from3(L);
+}
+
+/* pbrt-v3's VisibilityTester::Unoccluded for a light sample taken at h: the shadow ray from h's
+ * offset origin towards the light, ending just before a point light and past the scene for the others. */
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls) {
+  elr_v3 o = elr_spawn_origin(h, ls->wi);
+  float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
+  return !elr_occluded(s, o, ls->wi, tmax);
+}
+
+/* >> infinite light (pbrt-v3 lights/infinite.cpp: envlight.h's el_envlight) */
+static int elr__importance(int importance) { /* envlight's map names; anything else: its default */
+  return importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 || importance == EL_ENVLIGHT_IMPORTANCE_TEXEL ? importance
+                                                                                                     : EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
+}
+
+/* The environment of LightSource "infinite": rgb (w x h linear floats, top row first: theta = 0; NULL
+ * for a constant light of radiance `scale`), scaled by pbrt's L times scale, turned by the light-to-world
+ * rotation l2w (3x3 row-major), sampling l->compensated and l->importance's density. */
+int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
+                      size_t errlen) {
+  el_envlight_options o;
+  el_result r;
+  l->env = (el_envlight *)calloc(1, sizeof *l->env);
+  if (!l->env) { snprintf(err, errlen, "out of memory"); return -1; }
+  memset(&o, 0, sizeof o);
+  memcpy(o.light_to_world, l2w, sizeof o.light_to_world);
+  o.compensated = l->compensated;
+  o.importance = elr__importance(l->importance);
+  o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
+  o.bad_texel = -1;
+  if (rgb) {
+    o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
+    if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
+      /* all zero means (1,1,1) to envlight: a black light instead */
+      float z[3] = {0.f, 0.f, 0.f};
+      r = el_envlight_init_constant(l->env, z, &o);
+    } else {
+      r = el_envlight_init(l->env, rgb, w, h, 3, &o);
+    }
+  } else {
+    r = el_envlight_init_constant(l->env, scale, &o);
+  }
+  if (r != EL_SUCCESS) {
+    if (o.bad_texel >= 0)
+      snprintf(err, errlen, "environment map texel (%d, %d) is NaN, infinite or negative", o.bad_texel % (w > 0 ? w : 1), o.bad_texel / (w > 0 ? w : 1));
+    else if (r == EL_ERROR_NOT_ORTHONORMAL)
+      snprintf(err, errlen, "the light's transformation must be a rotation (pbrt-v3 maps the environment with the CTM's rotation)");
+    else
+      snprintf(err, errlen, "environment: %s", el_result_string(r));
+    free(l->env);
+    l->env = NULL;
+    return -1;
+  }
+  l->env_sample = l->env;
+  return 0;
+}
+
+/* Builds the sampling distribution now (before the render threads start). compensated and importance:
+ * -1 for the scene's, else a density the render asks for instead (elr_render_options), made on the
+ * first request as a second el_envlight of the same image (env_alt), which sample_li and pdf_li then
+ * use (le always reads env). Returns -1 when the distribution cannot be built. */
+int elr_infinite_prepare(elr_light *l, int compensated, int importance) {
+  if (compensated < 0) compensated = l->compensated;
+  if (importance < 0) importance = l->importance;
+  l->env_sample = l->env;
+  if (compensated != l->compensated || importance != l->importance) {
+    if (l->env_alt && (l->alt_compensated != compensated || l->alt_importance != importance)) {
+      el_envlight_free(l->env_alt);
+      free(l->env_alt);
+      l->env_alt = NULL;
+    }
+    if (!l->env_alt) {
+      el_envlight_options o;
+      el_result r;
+      el_envlight *a = (el_envlight *)calloc(1, sizeof *a);
+      if (!a) return -1;
+      memset(&o, 0, sizeof o);
+      memcpy(o.light_to_world, l->env->to_world, sizeof o.light_to_world);
+      o.compensated = compensated;
+      o.importance = elr__importance(importance);
+      o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
+      if (l->env->width > 0) r = el_envlight_init(a, l->env->texels, l->env->width, l->env->height, 3, &o);
+      else r = el_envlight_init_constant(a, l->env->constant, &o);
+      if (r != EL_SUCCESS) { el_envlight_free(a); free(a); return -1; }
+      l->env_alt = a; l->alt_compensated = compensated; l->alt_importance = importance;
+    }
+    l->env_sample = l->env_alt;
+  }
+  return el_envlight_prepare_sampling(l->env_sample) == EL_SUCCESS ? 0 : -1;
+}
+
+/* atan2(y, x) to about 1e-5 rad (a minimax polynomial on [0, 1] and the octant symmetries): enough to
+ * find a cache line, and a fraction of the exact mapping's cost */
+static float elr__atan2_approx(float y, float x) {
+  float ax = fabsf(x), ay = fabsf(y), mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax, a, a2, r;
+  if (!(mx > 0.f)) return 0.f;
+  a = mn / mx; a2 = a * a;
+  r = a * (0.99997726f + a2 * (-0.33262347f + a2 * (0.19354346f + a2 * (-0.11643287f + a2 * (0.05265332f - 0.01172120f * a2)))));
+  if (ay > ax) r = 1.57079637f - r;
+  if (x < 0.f) r = 3.14159274f - r;
+  return y < 0.f ? -r : r;
+}
+
+/* A hint, no effect on any result: starts loading the cache lines that elr_light_pdf_li and
+ * elr_light_le will read for world direction wi. For the environment: the texels of el_envlight_le's
+ * bilinear lookup and el_envlight_pdf_li's pdf bin (approximately: the bin of (u, v), where a
+ * neighbouring bin shares the line or costs one more miss later). A random direction's texels and pdf
+ * bin are cache misses in the multi-megabyte tables; issued before a shadow ray, they arrive while the
+ * ray is traced. Nothing for the other lights. */
+void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
+#if defined(__GNUC__) || defined(__clang__)
+  const el_envlight *e, *p;
+  const float *m;
+  float d[3], u, v, s, t;
+  int x, y, y1, w, h;
+  if (l->kind != ELR_LIGHT_INFINITE) return;
+  e = l->env_sample; p = l->env; m = p->to_world; w = p->width; h = p->height;
+  if (w <= 0 || !p->texels) return;
+  d[0] = m[0] * wi.x + m[3] * wi.y + m[6] * wi.z; /* light space: the transpose of the rotation */
+  d[1] = m[1] * wi.x + m[4] * wi.y + m[7] * wi.z;
+  d[2] = m[2] * wi.x + m[5] * wi.y + m[8] * wi.z;
+  /* pbrt's mapping (phi / 2 pi, theta / pi), approximately */
+  u = elr__atan2_approx(d[1], d[0]) * 0.159154943f;
+  if (u < 0.f) u += 1.f;
+  v = elr__atan2_approx(sqrtf(d[0] * d[0] + d[1] * d[1]), d[2]) * 0.318309886f;
+  if (!(u >= 0.f && u <= 1.f && v >= 0.f && v <= 1.f)) return;
+  s = u * (float)w - 0.5f; t = v * (float)h - 0.5f;
+  x = (int)(s + 1.f) - 1; y = (int)(t + 1.f) - 1;
+  if (x < 0) x = 0;
+  if (x > w - 1) x = w - 1;
+  y1 = y + 1 > h - 1 ? h - 1 : y + 1;
+  if (y < 0) y = 0;
+  if (y > h - 1) y = h - 1;
+  /* both texels of each row: x and x + 1 (the line of the pair's last float: a 12-byte texel pair
+   * crosses a 64-byte line for 5 columns of 16; for the others it is the same line and costs little) */
+  __builtin_prefetch(p->texels + ((size_t)y * (size_t)w + (size_t)x) * 3);
+  __builtin_prefetch(p->texels + ((size_t)y * (size_t)w + (size_t)x) * 3 + 5);
+  __builtin_prefetch(p->texels + ((size_t)y1 * (size_t)w + (size_t)x) * 3);
+  __builtin_prefetch(p->texels + ((size_t)y1 * (size_t)w + (size_t)x) * 3 + 5);
+  if (e->pdf_table && e->dist.nu > 0 && e->dist.nv > 0) {
+    int iu = (int)(u * (float)e->dist.nu), iv = (int)(v * (float)e->dist.nv);
+    if (iu > e->dist.nu - 1) iu = e->dist.nu - 1;
+    if (iv > e->dist.nv - 1) iv = e->dist.nv - 1;
+    __builtin_prefetch(e->pdf_table + (size_t)iv * (size_t)e->dist.nu + (size_t)iu);
+  }
+#else
+  (void)l; (void)wi;
+#endif
+}
+
+void elr_light_free(elr_light *l) {
+  if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }
+  if (l->env) { el_envlight_free(l->env); free(l->env); }
+  l->env = l->env_alt = l->env_sample = NULL;
+}

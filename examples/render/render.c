@@ -1,0 +1,302 @@
+/* render.c: a render (pbrt-v3's SamplerIntegrator::Render, core/integrator.cpp, with the choices of
+ * core/api.cpp's RenderOptions): what the scene calls for, then tiles of 16 x 16 pixels on threads.
+ *
+ * elr_render decides once per render what to build and simulate: the sampler (sampler.c), the camera
+ * (camera.c), the film (film.c); whether any light is sampled (not when nothing emits or no surface
+ * has a non-specular lobe); the environment's sampling distribution only when some surface samples
+ * it; whether a pixel's environment samples are drawn together (render_batched.c) or each in its own
+ * sample's shading (the reference: integrator_direct.c, integrator_path.c). Threads take tiles in
+ * turn; each tile has its own film tile and the tiles are merged in tile order, whatever order they
+ * finish in, so the image is the same for any thread count. A wave loop (packets of camera, shadow and
+ * bounce rays) would be another per-tile loop here, chosen the way batching is. */
+#define _POSIX_C_SOURCE 200809L
+#include "elr_internal.h"
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* >> tiles and threads */
+typedef struct elr_job {
+  elr_ctx *C;
+  el_film *film;
+  const elr_render_options *o;
+  int bx0, by0, bx1, by1, tile, ntx, nty, ntiles;
+  pthread_mutex_t mu;
+  int next_tile, next_merge, done;
+  el_film_tile **ready; /* finished tiles waiting for their turn to merge */
+  elr_tstats total;
+  double t0, last_print;
+  int failed;
+  const elr_halton *H;
+} elr_job;
+
+static void elr__progress(elr_job *J, int final) {
+  double now = elr_now(), el = now - J->t0, frac = (double)J->done / (double)J->ntiles, rem;
+  int i, w = 40, fill = (int)(frac * w);
+  char bar[64];
+  if (J->o->quiet) return;
+  if (!final && now - J->last_print < 0.1) return;
+  J->last_print = now;
+  for (i = 0; i < w; i++) bar[i] = i < fill ? '=' : (i == fill ? '>' : ' ');
+  bar[w] = 0;
+  rem = frac > 0 ? el / frac - el : 0.0;
+  fprintf(stderr, "\r[%s] %3d%%  %.1fs elapsed, %.1fs remaining   ", bar, (int)(frac * 100.0 + 0.5), el, final ? 0.0 : rem);
+  if (final) fprintf(stderr, "\n");
+  fflush(stderr);
+}
+
+/* adds a finished tile to the film and frees it */
+static void elr__merge(el_film *film, el_film_tile *t) {
+  el_film_merge_tile(film, t); /* fails only for a splat buffer, and nothing splats */
+  el_film_tile_free(t);
+  free(t);
+}
+
+static void *elr__worker(void *arg) {
+  elr_job *J = (elr_job *)arg;
+  elr_ctx *C = J->C;
+  elr_sampler S;
+  elr_tstats ts;
+  memset(&ts, 0, sizeof ts);
+  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->H) != 0) {
+    pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
+    return NULL;
+  }
+  for (;;) {
+    int t, tx, ty, x0, y0, x1, y1, x, y, k;
+    el_film_tile *tile;
+    pthread_mutex_lock(&J->mu);
+    t = J->failed ? J->ntiles : J->next_tile++;
+    pthread_mutex_unlock(&J->mu);
+    if (t >= J->ntiles) break;
+    tx = t % J->ntx; ty = t / J->ntx;
+    x0 = J->bx0 + tx * J->tile; y0 = J->by0 + ty * J->tile;
+    x1 = x0 + J->tile < J->bx1 ? x0 + J->tile : J->bx1;
+    y1 = y0 + J->tile < J->by1 ? y0 + J->tile : J->by1;
+    /* <<Compute sample bounds for tile>>, <<Get FilmTile for tile>> */
+    tile = (el_film_tile *)calloc(1, sizeof *tile);
+    if (!tile || el_film_tile_init(J->film, tile, x0, y0, x1, y1) != EL_SUCCESS) {
+      free(tile);
+      pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
+      break;
+    }
+    /* <<Loop over pixels in tile to render them>> */
+    for (y = y0; y < y1; y++)
+      for (x = x0; x < x1; x++) {
+        elr_sampler_start_pixel(&S, x, y);
+        if (C->batch_light) { elr_pixel_batched(C, &S, x, y, tile, &ts); continue; } /* render_batched.c */
+        /* <<Loop over pixel samples>> */
+        for (k = 0; k < C->spp; k++) {
+          float fx, fy, rgb[3];
+          elr_ray r;
+          elr_path_state p;
+          elr_v3 L;
+          /* <<Initialize CameraSample for current sample>>, <<Generate camera ray for current sample>> */
+          elr_sampler_camera_sample(&S, k, x, y, &fx, &fy);
+          elr_camera_ray(&C->cam, fx, fy, &r);
+          ts.camera++;
+          /* <<Evaluate radiance along camera ray>> */
+          elr_path_begin(&p, &r);
+          L = C->path ? elr_path_li(C, &S, &p, &ts) : elr_direct_li(C, &S, &p, &ts);
+          /* <<Add camera ray's contribution to image>> */
+          elr_to3(L, rgb);
+          el_film_tile_add_sample(tile, fx, fy, rgb, 1.f);
+          ts.samples++;
+        }
+      }
+    pthread_mutex_lock(&J->mu);
+    /* <<Merge image tile into Film>>, in tile order whatever order threads finish them: the same sums
+     * for any thread count */
+    J->ready[t] = tile;
+    while (J->next_merge < J->ntiles && J->ready[J->next_merge]) {
+      elr__merge(J->film, J->ready[J->next_merge]);
+      J->ready[J->next_merge] = NULL;
+      J->next_merge++;
+    }
+    J->done++;
+    elr__progress(J, 0);
+    pthread_mutex_unlock(&J->mu);
+  }
+  pthread_mutex_lock(&J->mu);
+  J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
+  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
+  pthread_mutex_unlock(&J->mu);
+  elr_sampler_free(&S);
+  return NULL;
+}
+
+void elr_render_options_default(elr_render_options *o) {
+  memset(o, 0, sizeof *o);
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1;
+}
+
+/* >> what the scene calls for */
+/* per material, whether a texture varies over its surface (then hits need (u, v), camera rays carry
+ * differentials); made once per scene */
+static int elr__find_textured(elr_scene *s) {
+  int i;
+  if (s->mat_textured) return 0;
+  s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
+  if (!s->mat_textured) return -1;
+  for (i = 0; i < s->nmat; i++) {
+    const elr_material *m = &s->mat[i];
+    int t[4], k;
+    t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
+    for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
+    if (s->mat_textured[i]) s->any_textured = 1;
+  }
+  return 0;
+}
+
+static int elr__mat_nonspecular(const elr_scene *s) {
+  int i;
+  /* a material with a non-specular lobe, used by some shape */
+  for (i = 0; i < s->nmesh; i++) if (s->mat[s->mesh[i].material].kind != ELR_MAT_MIRROR) return 1;
+  for (i = 0; i < s->nsph; i++) if (s->mat[s->sph[i].material].kind != ELR_MAT_MIRROR) return 1;
+  return 0;
+}
+
+/* Whether any light is sampled (some light emits and some surface has a non-specular lobe); the
+ * sampling distributions of the environments that will be sampled, built now (*env_sampled); whether
+ * a pixel's light samples are drawn together (render_batched.c). */
+static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats *st, int *env_sampled, char *err, size_t errlen) {
+  elr_scene *s = C->s;
+  int i, emits = 0;
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) emits = 1;
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C->has_env = 1;
+  C->light_sampling = emits && elr__mat_nonspecular(s);
+  for (i = 0; i < s->nlight; i++) {
+    elr_light *l = &s->light[i];
+    if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->light_sampling && C->ls != ELR_LS_BSDF) {
+      double t0 = elr_now();
+      if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); return -1; }
+      if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
+      *env_sampled = 1;
+    }
+  }
+  /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
+  /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
+   * past them come from the pixel's one random stream, whose order batching would change) */
+  if (*env_sampled && !o->no_batch && (C->sampler.kind != ELR_SAMPLER_STRATIFIED || C->sampler.dims >= 3)) {
+    int nemit = 0;
+    for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
+    if (nemit != 1) C->batch_light = NULL;
+  }
+  return 0;
+}
+
+/* >> statistics: what the render built and what it cost (elr_stats; stats.c prints them) */
+static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C, const elr_tstats *T, const el_film *film, int nthreads,
+                            int env_sampled, const elr_image *out) {
+  int i;
+  st->t_parse = s->t_parse; st->t_images = s->t_images; st->t_embree = s->t_embree;
+  st->bytes_embree = s->bytes_embree; st->bytes_film = el_film_bytes(film);
+  st->bytes_splats = film->splats ? (size_t)film->width * (size_t)film->height * 3 * sizeof(double) : 0; st->splats_allocated = st->bytes_splats > 0;
+  st->camera_rays = T->camera; st->bounce_rays = T->bounce; st->shadow_rays = T->shadow;
+  st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
+  st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
+  st->light_samples_batched = C->batch_light != NULL;
+  st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
+  st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
+  st->rejected_samples = el_film_rejected_samples(film);
+  for (i = 0; i < s->ntex; i++) {
+    if (s->tex[i].kind == ELR_TEX_IMAGE) {
+      const el_mipmap *m = s->tex[i].mip;
+      st->mip_textures++;
+      st->mip_levels_built += el_mipmap_levels_built(m) ? el_mipmap_levels(m) : 1; /* level 0 always exists */
+      st->bytes_mip += el_mipmap_bytes(m);
+    }
+  }
+  st->bytes_textures = s->bytes_textures;
+  for (i = 0; i < s->nlight; i++)
+    if (s->light[i].kind == ELR_LIGHT_INFINITE) {
+      const el_envlight *e = s->light[i].env;
+      st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
+      if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
+    }
+}
+
+int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
+  elr_ctx C;
+  elr_job J;
+  elr_halton H;
+  el_film film;
+  pthread_t *th = NULL;
+  int i, nthreads, x0, y0, x1, y1, rc = -1, env_sampled = 0, fb[4];
+  double t_start = elr_now();
+  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H); memset(&film, 0, sizeof film);
+  memset(out, 0, sizeof *out);
+  if (st) memset(st, 0, sizeof *st);
+  C.s = s;
+  if (elr_sampler_choose(&C.sampler, s, o, err, errlen) != 0) return -1;
+  C.spp = C.sampler.spp;
+  C.ls = o->light_sampling >= 0 ? o->light_sampling : s->d.light_sampling;
+  C.maxdepth = s->d.maxdepth; C.path = s->d.integrator_path; C.rr = s->d.rrthreshold;
+  elr_film_bounds(&s->d, fb);
+  x0 = fb[0]; y0 = fb[1]; x1 = fb[2]; y1 = fb[3];
+  if (x1 <= x0 || y1 <= y0) { snprintf(err, errlen, "the crop window covers no pixel"); return -1; }
+  if ((double)(x1 - x0) * (double)(y1 - y0) * (double)C.spp > 1e12) {
+    snprintf(err, errlen, "%d x %d pixels at %d samples is more than 1e12 samples", x1 - x0, y1 - y0, C.spp);
+    return -1;
+  }
+  if (elr_film_init(&film, &s->d, fb, err, errlen) != 0) return -1;
+  /* <<Decide what the scene calls for>> */
+  if (elr__find_textured(s) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
+  elr_camera_init(&C.cam, &s->d, C.spp, s->any_textured);
+  if (elr__decide_lights(&C, o, st, &env_sampled, err, errlen) != 0) goto done;
+  if (C.sampler.kind == ELR_SAMPLER_HALTON) {
+    int b[4];
+    el_film_sample_bounds(&film, b);
+    if (elr_halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
+  }
+  nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+  if (nthreads < 1) nthreads = 1;
+  if (nthreads > 1024) nthreads = 1024;
+  J.C = &C; J.film = &film; J.o = o; J.H = &H;
+  {
+    int b[4];
+    el_film_sample_bounds(&film, b);
+    J.bx0 = b[0]; J.by0 = b[1]; J.bx1 = b[2]; J.by1 = b[3];
+  }
+  /* <<Compute number of tiles, nTiles, to use for parallel rendering>> */
+  J.tile = o->tile_size > 0 ? o->tile_size : 16;
+  J.ntx = (J.bx1 - J.bx0 + J.tile - 1) / J.tile; J.nty = (J.by1 - J.by0 + J.tile - 1) / J.tile;
+  J.ntiles = J.ntx * J.nty;
+  J.ready = (el_film_tile **)calloc((size_t)J.ntiles, sizeof(el_film_tile *));
+  th = (pthread_t *)calloc((size_t)nthreads, sizeof(pthread_t));
+  if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
+  pthread_mutex_init(&J.mu, NULL);
+  J.t0 = elr_now(); J.last_print = 0;
+  { /* <<Render image tiles in parallel>> */
+    int started = 0;
+    for (i = 0; i < nthreads; i++) {
+      if (pthread_create(&th[i], NULL, elr__worker, &J) != 0) break;
+      started++;
+    }
+    if (started == 0) elr__worker(&J);
+    for (i = 0; i < started; i++) pthread_join(th[i], NULL);
+  }
+  pthread_mutex_destroy(&J.mu);
+  if (J.failed || J.next_merge != J.ntiles) {
+    for (i = 0; i < J.ntiles; i++) if (J.ready[i]) elr__merge(&film, J.ready[i]);
+    snprintf(err, errlen, "rendering failed (out of memory for a film tile or sampler)");
+    goto done;
+  }
+  elr__progress(&J, 1);
+  out->width = x1 - x0; out->height = y1 - y0;
+  out->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)out->width * (size_t)out->height);
+  if (!out->rgb) { snprintf(err, errlen, "out of memory"); goto done; }
+  el_film_get_rgb(&film, 1.f, out->rgb);
+  if (st) {
+    st->t_render = elr_now() - J.t0;
+    elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
+  }
+  rc = 0;
+done:
+  if (st) st->t_total = elr_now() - t_start + s->t_parse;
+  free(J.ready); free(th); elr_halton_free(&H);
+  el_film_free(&film);
+  if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }
+  return rc;
+}

@@ -1,0 +1,210 @@
+/* render_batched.c: a pixel's environment light samples drawn together (el_envlight_sample_li_n).
+ *
+ * The same computation as the one-sample-at-a-time loop of render.c with integrator_direct.c and
+ * integrator_path.c, in another order, for the scenes where the environment is the only light that
+ * emits and is sampled (elr_render decides: elr_ctx.batch_light). One environment light sample on its
+ * own is a chain of dependent cache misses (guide entry, CDF row, texels) that the shading between
+ * two samples cannot hide; el_envlight_sample_li_n overlaps the misses of many. So for up to 32 camera
+ * samples of a pixel at a time:
+ *   1. the camera rays and their hits, each hit's first light-sample numbers (the sampler's draws in
+ *      the order the shading will make them) and, for the direct-lighting integrator, the hit's BSDF
+ *      and BSDF sample;
+ *   2. the environment's pdf and radiance in those BSDF directions, in one pass (pdf_li has no branch,
+ *      so their misses overlap too), and the light samples in one el_envlight_sample_li_n call;
+ *   3. the shading of each camera sample's first vertex with all of these instead of computing them,
+ *      the sampler put back where the sample's film draw left it; the rest of the path is the
+ *      reference integrator's (elr_direct_li, elr_path_li from the second vertex on).
+ * The sampler gives every (sample, dimension) the same number whichever order they are asked in, and
+ * the first-vertex shading below is the reference's with its sums in the same order, so the image is
+ * bit for bit the one-at-a-time image (test_render_pipeline compares them for every sampler and both
+ * integrators). A change to EstimateDirect or to either integrator's first vertex must be made here
+ * too; the wave loop (issue 14: packets of camera, shadow and bounce rays) replaces this file. */
+#include "elr_internal.h"
+
+#define ELR_BATCH 32
+
+/* A camera sample's first vertex, computed ahead: the camera ray's hit (hit = 0: it left the scene)
+ * and, at a hit, the environment sample for the first light-sampling draw there. */
+typedef struct elr_first {
+  int hit;
+  elr_hit *h;
+  elr_v3 wi, L;
+  float pdf;
+  /* the direct-lighting integrator's, at a hit: the texture footprint and BSDF, and (bs = 1) the BSDF
+   * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
+   * environment's pdf and radiance in its direction */
+  int bs, bray;
+  elr_tex_ctx tc;
+  elr_v3 dpdx, dpdy;
+  elr_bsdf b;
+  elr_v3 fb, wb, Lb;
+  float bpdf, bpdf_env;
+} elr_first;
+
+/* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
+ * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
+ * ahead in f */
+static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_first *f,
+                                       int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
+  const elr_scene *s = C->s;
+  /* <<Sample light source with multiple importance sampling>> */
+  if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
+    elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
+    if (!elr_isblack(fl)) {
+      ts->shadow++;
+      if (!elr_occluded(s, elr_spawn_origin(h, f->wi), f->wi, INFINITY)) {
+        float w = 1.f;
+        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(f->pdf, elr_bsdf_pdf(b, wo, f->wi));
+        *Ld = elr_add(*Ld, elr_mul(elr_vmul(fl, f->L), w / f->pdf));
+      }
+    }
+  }
+  /* <<Sample BSDF with multiple importance sampling>> (f->bray: the conditions of elr_estimate_direct) */
+  if (sample_bsdf && f->bray) {
+    elr_v3 fb = elr_mul(f->fb, fabsf(elr_dot(f->wb, b->ns)));
+    ts->bsdfl++;
+    if (!elr_occluded(s, elr_spawn_origin(h, f->wb), f->wb, INFINITY)) {
+      float w = C->ls == ELR_LS_MIS ? elr_power_heuristic(f->bpdf, f->bpdf_env) : 1.f;
+      *Ld = elr_add(*Ld, elr_mul(elr_vmul(fb, f->Lb), w / f->bpdf));
+    }
+  }
+}
+
+/* elr_uniform_sample_all_lights at a first vertex: the environment is the only light that emits (the
+ * others contribute nothing), and its first sample was drawn ahead. */
+static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo,
+                                       const elr_first *f, int use_counts, int sample_bsdf, elr_tstats *ts) {
+  const elr_light *l = C->batch_light;
+  int n = use_counts ? l->nsamples : 1, k;
+  elr_v3 L = elr_v(0, 0, 0), Ld = elr_v(0, 0, 0);
+  float ul[2], us[2];
+  elr_sampler_skip2d(S);                                  /* the light draw, made ahead */
+  if (f->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us); /* the BSDF draw (made ahead with its sample) */
+  elr__estimate_direct_ahead(C, h, b, wo, f, sample_bsdf, ts, &Ld);
+  for (k = 1; k < n; k++) { /* the light's further samples, as the reference draws them */
+    elr_sampler_get2d(S, ul);
+    elr_sampler_get2d(S, us);
+    elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, ts, &Ld);
+  }
+  return elr_add(L, elr_mul(Ld, 1.f / (float)n));
+}
+
+/* elr_direct_li's first iteration with the vertex computed ahead, then the reference from the second */
+static elr_v3 elr__direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts) {
+  elr_path_state p;
+  elr_v3 wo;
+  elr_path_begin(&p, r);
+  if (!f->hit) return elr_add(p.L, elr_vmul(p.beta, elr_infinite_le(C->s, r->d)));
+  wo = elr_mul(r->d, -1.f);
+  if (C->light_sampling && (f->b.has_diffuse || f->b.has_glossy))
+    p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &f->b, wo, f, 1, 1, ts)));
+  if (!(1 < C->maxdepth && f->b.has_specular)) return p.L;
+  if (!elr_specular_reflect(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, &p.ray, &p.beta, ts)) return p.L;
+  p.depth = 1;
+  return elr_direct_li(C, S, &p, ts);
+}
+
+/* elr_path_li's first iteration with the hit and its light sample computed ahead, then the reference
+ * from the second vertex */
+static elr_v3 elr__path_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts) {
+  const elr_scene *s = C->s;
+  elr_path_state p;
+  elr_bsdf b;
+  elr_tex_ctx tc;
+  elr_v3 wo, wi, fs, dpdx, dpdy;
+  float pdf, u[2];
+  int spec;
+  elr_path_begin(&p, r);
+  /* escaped at the camera: the environment, unweighted (the only infinite light that emits) */
+  if (!f->hit) return elr_add(p.L, elr_vmul(p.beta, elr_light_le(C->batch_light, r->d)));
+  if (C->maxdepth <= 0) return p.L;
+  elr_compute_differentials(s, r, f->h, &tc, &dpdx, &dpdy);
+  elr_bsdf_init(s, f->h, &tc, &b);
+  wo = elr_mul(r->d, -1.f);
+  if (C->light_sampling && (b.has_diffuse || b.has_glossy))
+    p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &b, wo, f, 0, 0, ts)));
+  elr_sampler_get2d(S, u);
+  fs = elr_bsdf_sample(&b, wo, u[0], u[1], &wi, &pdf, &spec);
+  if (elr_isblack(fs) || pdf == 0.f) return p.L;
+  p.beta = elr_mul(elr_vmul(p.beta, fs), fabsf(elr_dot(wi, b.ns)) / pdf);
+  p.specular = spec; p.prev_pdf = pdf;
+  if (1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) return p.L;
+  p.ray.o = elr_spawn_origin(f->h, wi); p.ray.d = wi; p.ray.has_diff = 0;
+  ts->bounce++; /* (Russian roulette starts after bounce 3) */
+  p.depth = 1;
+  return elr_path_li(C, S, &p, ts);
+}
+
+/* Pixel (x, y)'s C->spp camera samples into tile (the sampler started at the pixel). */
+void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts) {
+  const el_envlight *env = C->batch_light->env;
+  el_envlight *env_sample = C->batch_light->env_sample; /* (its queries take a non-const light: lazy tables) */
+  elr_ray r[ELR_BATCH];
+  elr_hit h[ELR_BATCH];
+  elr_first f[ELR_BATCH];
+  float fx[ELR_BATCH], fy[ELR_BATCH], u[2 * ELR_BATCH], wi[3 * ELR_BATCH], Le[3 * ELR_BATCH], pdf[ELR_BATCH];
+  elr_sampler_pos pos[ELR_BATCH];
+  float rgb[3];
+  int idx[ELR_BATCH], k0, k, m, n;
+  for (k0 = 0; k0 < C->spp; k0 += ELR_BATCH) {
+    m = C->spp - k0 < ELR_BATCH ? C->spp - k0 : ELR_BATCH;
+    n = 0;
+    /* 1. camera rays, hits, the draws at the hits */
+    for (k = 0; k < m; k++) {
+      elr_sampler_camera_sample(S, k0 + k, x, y, &fx[k], &fy[k]);
+      elr_sampler_save(S, &pos[k]);
+      elr_camera_ray(&C->cam, fx[k], fy[k], &r[k]);
+      ts->camera++;
+      f[k].h = &h[k];
+      f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
+      f[k].bs = f[k].bray = 0;
+      idx[k] = -1;
+      if (!f[k].hit) continue;
+      elr_sampler_get2d(S, &u[2 * n]); /* the first light draw at the hit */
+      idx[k] = n++;
+      if (!C->path) {
+        /* the direct-lighting integrator's shading up to the BSDF sample (its environment lookups come
+         * in the pass below) */
+        elr_first *q = &f[k];
+        float us[2];
+        elr_compute_differentials(C->s, &r[k], &h[k], &q->tc, &q->dpdx, &q->dpdy);
+        elr_bsdf_init(C->s, &h[k], &q->tc, &q->b);
+        elr_sampler_get2d(S, us); /* the BSDF draw that follows the light draw */
+        if (C->ls != ELR_LS_LIGHT && (q->b.has_diffuse || q->b.has_glossy)) {
+          int spec;
+          q->fb = elr_bsdf_sample(&q->b, elr_mul(r[k].d, -1.f), us[0], us[1], &q->wb, &q->bpdf, &spec);
+          q->bs = 1;
+          q->bray = !spec && q->bpdf > 0.f && !elr_isblack(q->fb); /* elr_estimate_direct's BSDF ray */
+        }
+      }
+    }
+    /* 2. the environment's pdf and radiance in the BSDF samples' directions (used when the BSDF ray
+     * is not occluded), then the light samples */
+    if (!C->path)
+      for (k = 0; k < m; k++) {
+        elr_first *q = &f[k];
+        float d[3], L3[3];
+        if (!q->bray) continue;
+        elr_to3(q->wb, d);
+        q->bpdf_env = el_envlight_pdf_li(env_sample, d);
+        el_envlight_le(env, d, L3);
+        q->Lb = elr_from3(L3);
+      }
+    el_envlight_sample_li_n(env_sample, n, u, wi, Le, pdf);
+    /* 3. the shading */
+    for (k = 0; k < m; k++) {
+      elr_v3 L;
+      if (idx[k] >= 0) {
+        int j = idx[k];
+        f[k].wi = elr_from3(&wi[3 * j]);
+        f[k].L = elr_from3(&Le[3 * j]);
+        f[k].pdf = pdf[j];
+      }
+      elr_sampler_restore(S, &pos[k]); /* the sampler back at sample k, after its film draw */
+      L = C->path ? elr__path_first(C, S, &r[k], &f[k], ts) : elr__direct_first(C, S, &r[k], &f[k], ts);
+      elr_to3(L, rgb);
+      el_film_tile_add_sample(tile, fx[k], fy[k], rgb, 1.f);
+      ts->samples++;
+    }
+  }
+}

@@ -1,0 +1,37 @@
+/* stats.c: what a render built and what each part cost, as `render --stats` prints it (pbrt-v3's
+ * core/stats.cpp keeps counters and timers and prints them at the end of a render; here elr_render
+ * fills an elr_stats: render.c), and the clock the timings use. */
+#define _POSIX_C_SOURCE 200809L
+#include "elr_internal.h"
+#include <time.h>
+
+double elr_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void elr_stats_print(const elr_stats *st, void *fp) {
+  FILE *f = (FILE *)fp;
+  uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
+  fprintf(f, "render statistics\n");
+  fprintf(f, "  image              %d x %d, %d spp (%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
+          st->sampler == ELR_SAMPLER_RANDOM ? "random" : (st->sampler == ELR_SAMPLER_STRATIFIED ? "stratified" : "halton"),
+          st->nthreads, st->nthreads == 1 ? "" : "s", st->integrator_path ? "path" : "directlighting", st->maxdepth);
+  fprintf(f, "  parse              %8.3f s (images and meshes read: %.3f s)\n", st->t_parse, st->t_images);
+  fprintf(f, "  embree build       %8.3f s  %10.1f KiB\n", st->t_embree, (double)st->bytes_embree / 1024.0);
+  fprintf(f, "  textures (level 0) %10.1f KiB  (environment map image included)\n", (double)st->bytes_textures / 1024.0);
+  fprintf(f, "  MIP maps           %d image texture%s, %d level%s built, %.1f KiB\n", st->mip_textures,
+          st->mip_textures == 1 ? "" : "s", st->mip_levels_built, st->mip_levels_built == 1 ? "" : "s", (double)st->bytes_mip / 1024.0);
+  fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (nothing emits, or no surface has a non-specular lobe)",
+          st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+  fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
+          (double)st->bytes_distribution / 1024.0);
+  fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
+          st->splats_allocated ? "allocated" : "not allocated (nothing splats)");
+  fprintf(f, "  render             %8.3f s\n", st->t_render);
+  fprintf(f, "  rays               %llu camera, %llu bounce, %llu shadow (light samples), %llu BSDF-sampled light; %llu total\n",
+          (unsigned long long)st->camera_rays, (unsigned long long)st->bounce_rays, (unsigned long long)st->shadow_rays,
+          (unsigned long long)st->bsdf_light_rays, (unsigned long long)rays);
+  fprintf(f, "  rejected samples   %llu (NaN, infinite or negative radiance)\n", (unsigned long long)st->rejected_samples);
+}
