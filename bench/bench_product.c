@@ -130,7 +130,7 @@ static int oct_bin(const double n[3], int m) {
  * point of the bin's boundary, sampled densely, plus the largest spacing of the samples) */
 static void oct_cone(int b, int m, double c[3], double *radius) {
   int i = b % m, j = b / m, e, k, S = 64;
-  double worst = 0, gap = 0, prev[3], first[3];
+  double worst = 0, gap = 0, prev[3] = {0, 0, 1}, first[3] = {0, 0, 1};
   oct_decode((i + 0.5) / m, (j + 0.5) / m, c);
   for (e = 0; e < 4; ++e)
     for (k = 0; k < S; ++k) {
@@ -326,7 +326,7 @@ static double warp_bilin(const warp *W, int i, int r, double s, double t) {
  * (bilin / mass_cell) and the light-space direction */
 static double warp_sample_cell(const warp *W, int a, int b, double x0, double x1, double d[3], double *st) {
   int ku = W->ku, r, i, w = W->w;
-  double m = W->mass[b * ku + a], acc = 0, q = x1 * m, t, tot, s, g0, g1, u, v, mr = 0;
+  double m = W->mass[b * ku + a], acc = 0, q = x1 * m, t, tot, s, g0 = 0, g1 = 0, u, v, mr = 0;
   for (r = W->b0[b]; r < W->b0[b + 1]; ++r) {
     mr = 0.5 * (W->S[r * ku + a] + W->S[(r + 1) * ku + a]) * (W->vk[r + 1] - W->vk[r]);
     if (acc + mr > q || r == W->b0[b + 1] - 1) break;
@@ -468,7 +468,7 @@ static double strat_pdf(strategy *s, el_envlight *l, const double n[3], const do
 }
 
 /* ---- quadrature of E(n) over the bilinear reconstruction (2x2 midpoints per texel) ---- */
-static void quadrature(const el_image *im, const double n[][3], int nn, double *E) {
+static void quadrature(const el_image *im, double n[][3], int nn, double *E) {
   int x, y, a, b, k, s = 2, W = im->width, H = im->height;
   for (k = 0; k < nn; ++k) E[k] = 0;
 #define LUM(xx, yy) lum3(im->pixels + 3 * ((size_t)((yy) < 0 ? 0 : (yy) > H - 1 ? H - 1 : (yy)) * W + (size_t)((((xx) % W) + W) % W)))
