@@ -3,6 +3,7 @@
  *   bench_envlight                       every table below (runs itself under callgrind if valgrind exists)
  *   bench_envlight --no-callgrind        without the instruction counts
  *   bench_envlight --quick               1024x512 and 2048x1024 only, no callgrind, fewer samples
+ *   bench_envlight --product             tables 4 and 5 only (product sampling)
  *   bench_envlight --callgrind OP N [MAP] only N calls of OP after the setup (a generated 2048x1024 map,
  *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
  *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
@@ -676,9 +677,33 @@ int main(int argc, char **argv) {
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
   if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]), argc >= 5 ? argv[4] : NULL);
+  if (argc == 2 && !strcmp(argv[1], "--product")) { /* tables 4 and 5 only */
+    make_random();
+    for (i = 0; i < 5; ++i) {
+      char path[512 + 64];
+      FILE *f;
+      snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
+      f = fopen(path, "rb");
+      if (!f) {
+        if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
+        snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+      } else fclose(f);
+      product_table(path, nsamp);
+    }
+    for (i = 0; i < 5; i += 3) {
+      char path[512 + 64];
+      FILE *f;
+      snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
+      f = fopen(path, "rb");
+      if (!f) snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+      else fclose(f);
+      strat_table(path);
+    }
+    return 0;
+  }
   if (argc == 2 && !strcmp(argv[1], "--no-callgrind")) use_cg = 0;
   else if (argc == 2 && !strcmp(argv[1], "--quick")) { use_cg = 0; nsizes = 2; nsamp = 50000; }
-  else if (argc != 1) { fprintf(stderr, "usage: %s [--no-callgrind | --quick | --callgrind OP N]\n", argv[0]); return 2; }
+  else if (argc != 1) { fprintf(stderr, "usage: %s [--no-callgrind | --quick | --product | --callgrind OP N [MAP]]\n", argv[0]); return 2; }
   if (use_cg && system("valgrind --version >/dev/null 2>&1") != 0) { printf("(valgrind not found: no instruction counts)\n"); use_cg = 0; }
   make_random();
 
