@@ -437,12 +437,13 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    (the cells' size plus the bins' radius): 1.3-7.4% of the samples on the CC0 maps (sample_li:
  *    46-58%); they come back with n.wi <= 0 and contribute nothing.
  *    VARIANCE (table 4, diffuse surface, 6 orientations: up, down, two sideways, facing the brightest
- *    texel and away; geometric mean of the relative variance per sample): light sampling alone 0.034
- *    (city) - 0.062 (night) against 2.0-2.6 for sample_li: 33-70x less, 19-37x the efficiency
- *    (variance x time) with the cost below. With one cosine sample besides (MIS, balance heuristic) the
- *    pair's variance is 0.07-0.12 against 0.36-1.27: 3-7.5x the efficiency. At equal sample count, two
- *    product samples beat a product and a cosine sample under the balance heuristic by 5-6x (city,
- *    studio): for a diffuse lobe the BSDF sample is better spent on a second light sample.
+ *    texel and away; geometric mean of the relative variance per sample, 200,000 samples): light
+ *    sampling alone 0.034 (city) - 0.062 (night) against 2.0-2.7 for sample_li: 42-77x less, 22-36x the
+ *    efficiency (1 / variance x time) with the cost below. With one cosine sample besides (MIS, balance
+ *    heuristic) the pair's variance is 0.07-0.12 against 0.36-1.27 (5-11x less; 3.4-6.2x the
+ *    efficiency; the power heuristic: 4-10x, 3.3-6.3x). At equal sample count, two product samples beat
+ *    a product and a cosine sample under the balance heuristic by 3.4-6x: for a diffuse lobe the BSDF
+ *    sample is better spent on a second light sample.
  *    CANDIDATES TRIED (bench/bench_product.c, same quantity, city / studio): per shading point exact
  *    bounds over 16x8 / 32x16 / 64x32 cells (O(cells) work per point, Conty and Lecocq 2018's scheme),
  *    0.062 / 0.022 / 0.0074 and 0.070 / 0.026 / 0.0093 with the warp inside cells, 0.117 / 0.059 / 0.032
