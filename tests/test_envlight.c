@@ -1322,7 +1322,7 @@ static float ps_pdf_tested(const psrc *s, const float wi[3]) {
  * Also: every sample's pdf is finite and > 0 and equals the pdf function at its direction bit for bit,
  * and its radiance equals le(wi) bit for bit. Returns the p-value (1 when the test could not run). */
 static int g_prod_tests = 0;
-#define PROD_TESTS_PLANNED 26
+#define PROD_TESTS_PLANNED 28
 static double chi2_patches(const char *name, const psrc *s, const float m[9], int w, int h, int gu, int gv, int n,
                            uint64_t seed, int expect_pass) {
   int cells = gu * gv, i, r, pooled = 0, dof, impossible = 0, mismatch = 0, nonfinite = 0, rgb_mismatch = 0, zero = 0;
@@ -1572,6 +1572,14 @@ static void test_product_chi2(const el_image *studio, const el_image *city) {
   chi2_product_case("pole rows 64x32", poles, PW, PH, 2, 1, NEAR_POLE, 32, 16, n, 112);
   chi2_product_case("1x48", col, 1, 48, 0, 0, TILT, 1, 24, n, 113);
   chi2_product_case("64x1", row, 64, 1, 1, 0, SIDE, 32, 2, n, 114);
+  { /* sizes the cells do not divide: 300x100 (64 cells over 300 patch columns), 60x21 (fewer patches than cells) */
+    float *odd = (float *)malloc(300 * 100 * 3 * sizeof(float));
+    rng g = rng_make(7);
+    for (k = 0; k < 300 * 100 * 3; ++k) odd[k] = rng_f(&g) * (k % 97 == 0 ? 50.0f : 1.0f);
+    chi2_product_case("random 300x100", odd, 300, 100, 1, 0, TILT, 60, 20, n, 140);
+    chi2_product_case("random 60x21", odd, 60, 21, 0, 1, SEAM, 30, 11, n, 141);
+    free(odd);
+  }
   /* the bilinear warp alone (importance BILINEAR) */
   chi2_bilinear_case("studio 256x128", st, 256, 128, 0, 0, 64, 32, n, 121);
   chi2_bilinear_case("city 256x128", ct, 256, 128, 1, 0, 64, 32, n, 122);
