@@ -2203,10 +2203,11 @@ static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, s
 /* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2: the inverse CDF of a linear density
  * (a, b >= 0, not both 0), in the form without cancellation. */
 static inline double el_envlight__lin_inv(double a, double b, double q) {
-  double m = a > b ? a : b, d, t;
+  double m = a > b ? a : b, d, den, t;
   a /= m; b /= m;
   d = a * a + q * (b * b - a * a);
-  t = q * (a + b) / (a + sqrt(d > 0.0 ? d : 0.0));
+  den = a + sqrt(d > 0.0 ? d : 0.0);
+  t = den > 0.0 ? q * (a + b) / den : 0.0; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
   return t < 1.0 ? (t > 0.0 ? t : 0.0) : 1.0;
 }
 

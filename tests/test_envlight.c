@@ -1859,6 +1859,33 @@ static void test_product_hard(const el_image *city) {
           "pdf_li_cos: zero and NaN directions give 0, a huge one the unit direction's pdf");
     el_envlight_free(&l);
   }
+  { /* the warp is monotone: for a fixed u0, theta never decreases as u1 grows from 0 (tiny steps near 0
+     * and 1, where the pole rows' linear ramps start from 0), for the warp alone and with a normal */
+    int mode, bad = 0, tried = 0;
+    float *poles = map_pole_rows();
+    for (mode = 0; mode < 2; ++mode) {
+      el_envlight lm;
+      float u0s[3] = {0.0f, 0.37f, 0.99999994f};
+      int a;
+      make_light_imp(&lm, poles, PW, PH, NULL, 0, mode ? 0 : EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+      for (a = 0; a < 3; ++a) {
+        double prev = -1;
+        for (k = 0; k <= 2000; ++k) {
+          float u1 = k == 0 ? 0.0f : k < 100 ? (float)k * 1e-7f : k > 1900 ? 1.0f - (float)(2000 - k) * 6e-8f : (float)k / 2000.0f, th;
+          uu[0] = u0s[a]; uu[1] = u1 < 0.99999994f ? u1 : 0.99999994f;
+          if (mode) el_envlight_sample_li_cos(&lm, n, uu, wi, rgb, &p);
+          else el_envlight_sample_li(&lm, uu, wi, rgb, &p);
+          th = (float)atan2(sqrt((double)wi[0] * wi[0] + (double)wi[1] * wi[1]), (double)wi[2]); /* accurate at the poles */
+          ++tried;
+          if ((double)th < prev - 1e-6) ++bad;
+          prev = th;
+        }
+      }
+      el_envlight_free(&lm);
+    }
+    check(bad == 0, "the warp is monotone in u1 (theta never decreases), BILINEAR and sample_li_cos, from u1 = 0: %d of %d steps back", bad, tried);
+    free(poles);
+  }
   { /* black maps: pdf 0 everywhere, samples with pdf 0; a map black where the normal looks */
     static float black[16 * 8 * 3];
     float *half = map_black_half(), up[3] = {0, 0, 1};
