@@ -413,7 +413,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    [2^-20, 1 - 2^-20] while both rows have mass (the density is defined with that alpha), so no
  *    patch next to a sun becomes unreachable. At the poles the density and sin(theta) both vanish;
  *    their ratio is computed without 0/0 (its limit at the pole itself).
- *    COST: sample_li 1078-1105 instructions (+radiance 1209-1236), pdf_li 403 (table 2; CELL_AVERAGE:
+ *    COST: sample_li 1086-1113 instructions (+radiance 1217-1244), pdf_li 403 (table 2; CELL_AVERAGE:
  *    93.5-97.4, 257-261, 75); 2-3x the time of CELL_AVERAGE per estimate in table 4. MEMORY: 8 bytes per
  *    texel (a float vertex value and a float CDF entry) plus 16 bytes per vertex row and cell column:
  *    4.6 MB at 1024x512 (CELL_AVERAGE: 4.7). BUILD: 45 M instructions, 8-12 ms at 1024x512; 168 M, 34 ms
@@ -453,7 +453,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
- *    COST: sample_li_cos 1169-1195 instructions (+radiance 1300-1326; a general rotation +53), with a
+ *    COST: sample_li_cos 1179-1205 instructions (+radiance 1310-1336; a general rotation +53), with a
  *    new random normal on every call; pdf_li_cos 419 (+30). 0.5-1.1 us per estimate with the radiance
  *    in table 4 (sample_li: 0.23-0.59). The sample includes its own pdf: it runs pdf_li_cos's
  *    code on the sampled direction (about 355 instructions) so that the two agree bit for bit.
