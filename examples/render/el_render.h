@@ -49,7 +49,17 @@ int elr_scene_spp(const elr_scene *s);
 
 /* Light sampling strategies (the integrator's "string lightsampling" parameter, a test/bench hook). */
 enum { ELR_LS_MIS = 0, ELR_LS_LIGHT = 1, ELR_LS_BSDF = 2 };
-enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3 };
+/* Samplers: pbrt-v3's random, stratified, halton, sobol, 02sequence (also "lowdiscrepancy"); pbrt-v4's
+ * zsobol and paddedsobol. */
+enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3, ELR_SAMPLER_SOBOL = 4,
+       ELR_SAMPLER_ZEROTWO = 5, ELR_SAMPLER_ZSOBOL = 6, ELR_SAMPLER_PADDEDSOBOL = 7, ELR_SAMPLER_COUNT = 8 };
+/* the scene-file name of a sampler kind ("02sequence" for ELR_SAMPLER_ZEROTWO), or "default"; and back
+ * (-1 for an unknown name) */
+const char *elr_sampler_kind_name(int kind);
+int elr_sampler_kind_from_name(const char *name);
+/* the sampler of a scene without a Sampler directive (a scene's named sampler is always used) */
+#define ELR_DEFAULT_SAMPLER ELR_SAMPLER_HALTON
+#define ELR_DEFAULT_SPP 16
 
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
