@@ -285,8 +285,10 @@ static inline uint64_t elr_mix64(uint64_t x) {
   return x;
 }
 
-/* a 32-bit binary fraction as a float in [0, 1) (pbrt's v * 0x1p-32f, clamped below 1) */
-static inline float elr_bits_to_float(uint32_t v) { float f = (float)v * 0x1p-32f; return f < ELR_ONE_MINUS_EPS ? f : ELR_ONE_MINUS_EPS; }
+/* a 32-bit binary fraction as a float in [0, 1): its first 24 digits, exactly. pbrt's min(v * 0x1p-32f,
+ * OneMinusEpsilon) rounds to nearest instead, which can carry a point across the boundary of its
+ * elementary interval (0x3fffffff becomes 0.25) or to 1 */
+static inline float elr_bits_to_float(uint32_t v) { return (float)(v >> 8) * 0x1p-24f; }
 static inline uint32_t elr_reverse_bits32(uint32_t n) {
   n = (n << 16) | (n >> 16);
   n = ((n & 0x00ff00ffu) << 8) | ((n & 0xff00ff00u) >> 8);

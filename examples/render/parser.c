@@ -777,6 +777,8 @@ static void elr__sampler(elr__parser *P, const char *type) {
   if (kind == ELR_SAMPLER_SOBOL || kind == ELR_SAMPLER_ZEROTWO || kind == ELR_SAMPLER_ZSOBOL) {
     int p2 = 1;
     while (p2 < d->spp) p2 <<= 1;
+    if (p2 > (1 << 24))
+      elr__failf(P, P->dir_file, P->dir_line, "Sampler \"%s\": %d pixel samples, rounded up to a power of two, exceed 16777216", type, d->spp);
     if (p2 != d->spp) {
       elr_warn(P->s, P->dir_file, P->dir_line, "Sampler \"%s\": %d pixel samples rounded up to %d (a power of two)", type, d->spp, p2);
       d->spp = p2;
