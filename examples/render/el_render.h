@@ -70,6 +70,8 @@ typedef struct elr_render_options {
   int compensated;    /* -1: the scene's, else 0/1 (envlight's compensated distribution) */
   int importance;     /* -1: the scene's, else 0 cell average (envlight's default), 1 pbrt-v3 (2x res), 2 texel */
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
+  int randomization;  /* -1: the sampler's (the scene's "randomization", or pbrt's default); else sobol, zsobol and
+                         paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */
@@ -83,6 +85,7 @@ typedef struct elr_stats {
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
+  int sampler_randomization; /* sobol, zsobol, paddedsobol: 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   uint64_t rejected_samples;
 } elr_stats;
 

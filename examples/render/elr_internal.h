@@ -324,6 +324,8 @@ typedef struct elr_sobol {
   uint32_t *C;                        /* ndims x ELR_SOBOL_COLUMNS */
   int log2res;                        /* SobolIntervalToIndex's image: 2^log2res pixels square */
   uint64_t inv[64], delta[64];        /* its tables (lowdiscrepancy.c) */
+  uint32_t lut[2][7][256];            /* dimensions 0 and 1 a byte of the index at a time: the XOR of the
+                                         columns of each byte value (the zsobol, paddedsobol and 02sequence loops) */
 } elr_sobol;
 int elr_sobol_init(elr_sobol *T, int ndims, int log2res);
 void elr_sobol_free(elr_sobol *T);
@@ -333,6 +335,11 @@ uint64_t elr_sobol_interval_to_index(const elr_sobol *T, uint64_t frame, int x, 
 static inline uint32_t elr_sobol_bits(const elr_sobol *T, uint64_t index, int d) {
   const uint32_t *c = T->C + (size_t)d * ELR_SOBOL_COLUMNS, *end = c + ELR_SOBOL_COLUMNS;
   uint32_t v = 0;
+  if (d < 2) { /* the same sum, a byte at a time (the plain loop below is the definition) */
+    const uint32_t (*l)[256] = T->lut[d];
+    return l[0][index & 255u] ^ l[1][(index >> 8) & 255u] ^ l[2][(index >> 16) & 255u] ^ l[3][(index >> 24) & 255u] ^
+           l[4][(index >> 32) & 255u] ^ l[5][(index >> 40) & 255u] ^ l[6][(index >> 48) & 15u];
+  }
   for (; index && c < end; index >>= 1, c++) if (index & 1u) v ^= *c;
   return v;
 }
@@ -378,6 +385,8 @@ typedef struct elr_sampler {
   int d1, d2, dim, made1, made2;
   int64_t hindex, hoffset; /* halton: the sample's index and the pixel's first; sobol: the sample's index;
                               zsobol: the Morton index of pixel and sample */
+  uint64_t zvalid, zpixel[64]; /* zsobol: the pixel's permuted digits for dimensions 0..63 (bit d of zvalid: known) */
+  uint64_t dhash[72];          /* elr_dim_hash(d, sseed) of the first dimensions: the scrambles' seeds */
 } elr_sampler;
 int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
 int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_sampler_tables *T);
@@ -390,14 +399,16 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
 void elr_stratified_make(elr_sampler *S, int two, int d);
 void elr_zerotwo_make(elr_sampler *S, int two, int d);
 float elr_sobol_sampler_1d(const elr_sampler *S, int dim);
-float elr_zsobol_1d(const elr_sampler *S, int dim);
-void elr_zsobol_2d(const elr_sampler *S, int dim, float u[2]);
+float elr_zsobol_1d(elr_sampler *S, int dim);
+void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]);
 float elr_paddedsobol_1d(const elr_sampler *S, int dim);
 void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);
 /* a 64-bit hash of a dimension and a seed (pbrt-v4's Hash(dimension, seed)): a scramble's seed */
 static inline uint64_t elr_dim_hash(int dim, uint32_t seed) {
   return elr_mix64((((uint64_t)(uint32_t)dim << 32) | seed) ^ 0x9e3779b97f4a7c15ULL);
 }
+/* the scramble seed of dimension d (elr_dim_hash(d, S->sseed), kept for the first 72) */
+static inline uint64_t elr_sampler_dim_hash(const elr_sampler *S, int d) { return d >= 0 && d < 72 ? S->dhash[d] : elr_dim_hash(d, S->sseed); }
 /* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension */
 float elr_sampler_hash_float(const elr_sampler *S, int dim);
 /* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */

@@ -99,6 +99,16 @@ int elr_sobol_init(elr_sobol *T, int ndims, int log2res) {
   if (!T->C) return -1;
   T->ndims = ndims; T->log2res = log2res;
   for (d = 0; d < ndims; d++) elr__sobol_matrix(d, T->C + (size_t)d * ELR_SOBOL_COLUMNS);
+  for (d = 0; d < 2; d++) { /* byte tables of dimensions 0 and 1 (the last byte holds columns 48..51) */
+    const uint32_t *c = T->C + (size_t)d * ELR_SOBOL_COLUMNS;
+    int byte, v, j;
+    for (byte = 0; byte < 7; byte++)
+      for (v = 0; v < 256; v++) {
+        uint32_t x = 0;
+        for (j = 0; j < 8; j++) if (((v >> j) & 1) && byte * 8 + j < ELR_SOBOL_COLUMNS) x ^= c[byte * 8 + j];
+        T->lut[d][byte][v] = x;
+      }
+  }
   if (elr__interval_tables(T) != 0) { elr_sobol_free(T); return -1; }
   return 0;
 }

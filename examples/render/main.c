@@ -25,6 +25,7 @@ static void usage(void) {
                   "  --seed S      the random streams and scrambles (the same seed gives the same image on any thread count)\n"
                   "  --stats       what was built and what each part cost, with the sampler that ran\n"
                   "  --sampler S   instead of the scene's Sampler: " SAMPLERS "\n"
+                  "  --randomization none|permutedigits|fastowen|owen   the scramble of sobol, zsobol, paddedsobol\n"
                   "A scene without a Sampler directive is rendered with %s, %d spp (pbrt-v3's default is halton, 16 spp).\n",
           elr_sampler_kind_name(ELR_DEFAULT_SAMPLER), ELR_DEFAULT_SPP);
 }
@@ -82,6 +83,11 @@ int main(int argc, char **argv) {
       int k = elr_sampler_kind_from_name(argv[++i]);
       if (k <= 0) { fprintf(stderr, "render: --sampler %s\n", SAMPLERS); return 1; }
       o.sampler = k;
+    } else if (!strcmp(a, "--randomization") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
+      else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
+      else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
     } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(); return 0; }
     else if (a[0] == '-' && a[1] == '-') { fprintf(stderr, "render: unknown or incomplete option \"%s\"\n", a); usage(); return 1; }
     else if (!scene) scene = a;

@@ -128,7 +128,7 @@ static void *elr__worker(void *arg) {
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1;
 }
 
 /* >> what the scene calls for */
@@ -199,6 +199,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->light_samples_batched = C->batch_light != NULL;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
+  st->sampler_randomization = C->sampler.randomize;
   st->rejected_samples = el_film_rejected_samples(film);
   for (i = 0; i < s->ntex; i++) {
     if (s->tex[i].kind == ELR_TEX_IMAGE) {

@@ -43,6 +43,7 @@ int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render
     d->jitter = 1; d->dims = 4; d->xs = d->ys = 0; d->has_seed = 0; d->seed = 0;
     d->randomize = d->kind == ELR_SAMPLER_ZSOBOL || d->kind == ELR_SAMPLER_PADDEDSOBOL ? ELR_RANDOMIZE_FAST_OWEN : ELR_RANDOMIZE_NONE;
   }
+  if (o->randomization >= ELR_RANDOMIZE_NONE && o->randomization <= ELR_RANDOMIZE_OWEN) d->randomize = o->randomization;
   /* sobol, 02sequence and zsobol need a power of two (pbrt-v3 rounds up; the parser warned for the
    * scene's count; pbrt-v4's zsobol would round a count down) */
   if (d->kind == ELR_SAMPLER_SOBOL || d->kind == ELR_SAMPLER_ZEROTWO || d->kind == ELR_SAMPLER_ZSOBOL) {
@@ -97,6 +98,7 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
   S->seed = seed; S->T = T;
   S->sseed = d->has_seed ? (uint32_t)d->seed : (uint32_t)(seed ^ (seed >> 32));
   S->log2spp = elr__log2(d->spp);
+  { int k; for (k = 0; k < 72; k++) S->dhash[k] = elr_dim_hash(k, S->sseed); }
   if (S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) {
     S->s1d = (float *)malloc(sizeof(float) * (size_t)S->spp * (size_t)(S->dims + 1));
     S->s2d = (float *)malloc(sizeof(float) * 2 * (size_t)S->spp * (size_t)(S->dims + 1));
@@ -138,6 +140,7 @@ void elr_sampler_start_pixel(elr_sampler *S, int px, int py) {
   } else if (S->kind == ELR_SAMPLER_HALTON) {
     S->hoffset = elr_halton_pixel_offset(&S->T->halton, px, py);
   }
+  S->zvalid = 0; /* zsobol's permuted pixel digits belong to the last pixel */
 }
 
 /* pbrt-v3's SetSampleNumber: sample `sample` of the pixel, from its first dimension */

@@ -25,6 +25,6 @@ float elr_sobol_sampler_1d(const elr_sampler *S, int dim) {
     float s = elr_bits_to_float(v) * (float)T->res + (float)(dim == 0 ? T->bx0 - S->px : T->by0 - S->py);
     return s > 0.f ? (s < ELR_ONE_MINUS_EPS ? s : ELR_ONE_MINUS_EPS) : 0.f;
   }
-  if (S->randomize != ELR_RANDOMIZE_NONE) v = elr_randomize(v, S->randomize, (uint32_t)elr_dim_hash(dim, S->sseed));
+  if (S->randomize != ELR_RANDOMIZE_NONE) v = elr_randomize(v, S->randomize, (uint32_t)elr_sampler_dim_hash(S, dim));
   return elr_bits_to_float(v);
 }
