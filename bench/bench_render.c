@@ -20,6 +20,16 @@
  * image's resolution from point lookups: the renderer's default); --full adds MIS with envlight's
  * default map of cell averages. relMSE x time is the efficiency (lower is better).
  *
+ * Part 3, --samplers (alone): every sampler (random, stratified, halton, sobol, 02sequence, zsobol,
+ * paddedsobol, and sobol with pbrt-v4's fastowen randomization) at 16, 64 and 256 spp with MIS, on
+ * the sun map (bench_city) and the smooth studio map (scenes/bench_studio.pbrt), for the
+ * directlighting and the path integrator (maxdepth 5): relMSE against a stratified reference of
+ * --ref-spp samples rendered as two halves with other seeds, the same minus the reference's own noise
+ * (relMSE of the halves / 4), that against the random sampler's, and ns per sample (wall time x
+ * threads / samples). --scene and --integrator pick one of the four tables. The cost per sample is
+ * better read from instruction counts (--callgrind samples N --sampler S, below): wall times move with
+ * the machine's load. examples/render/README.md has the measured tables.
+ *
  * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--packets] [--ref-spp N] [--threads N]
  *       --rays-only: part 1 alone (a few seconds). --packets: what Embree's packet and stream calls
  *       would gain on the camera rays (see packet_rates), alone. The default run renders about 390 M camera samples:
@@ -30,7 +40,7 @@
  * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
  * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
  * rounded up to whole rows of 320) or samples1 (the same with light samples drawn one at a time:
- * render_options.no_batch).
+ * render_options.no_batch); --sampler S renders those samples with sampler S (default stratified).
  *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 102400
  *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 0
  * instructions per sample = (Ir(102400) - Ir(0)) / 102400 (the run prints the samples it rendered).
@@ -220,7 +230,7 @@ static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int
  * The reference is two stratified renders of ref_spp / 2 samples with other seeds, averaged; its own
  * noise, relMSE(half 1, half 2) / 4 for independent halves, is subtracted ("corrected"), so that
  * errors below the reference's noise are not hidden by it. */
-static void sampler_table(int ref_spp, int threads, int quick) {
+static void sampler_table(int ref_spp, int threads, int quick, const char *only_scene, int only_integrator) {
   static const char *scenes[2] = {"bench_city", "bench_studio"};
   const int nspp = quick ? 2 : 3, spps[3] = {16, 64, 256};
   int sc, ig, k, c;
@@ -230,6 +240,7 @@ static void sampler_table(int ref_spp, int threads, int quick) {
   for (sc = 0; sc < 2; sc++) {
     char path[1024], err[1024];
     elr_scene *s = NULL;
+    if (only_scene && strcmp(only_scene, scenes[sc]) != 0) continue;
     snprintf(path, sizeof path, "%s/scenes/%s.pbrt", EL_SOURCE_DIR, scenes[sc]);
     if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return; }
     for (ig = 0; ig < 2; ig++) {
@@ -237,6 +248,7 @@ static void sampler_table(int ref_spp, int threads, int quick) {
       elr_stats st;
       size_t n;
       double noise, t0 = elr_now(), base_ns = 0;
+      if (only_integrator >= 0 && ig != only_integrator) continue;
       s->d.integrator_path = ig; /* the scene's maxdepth (5) for both */
       if (render_once(s, ref_spp / 2, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, threads, 1001, &r1, &st) != 0) break;
       if (render_once(s, ref_spp / 2, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, threads, 1002, &r2, &st) != 0) break;
@@ -278,6 +290,8 @@ int main(int argc, char **argv) {
   elr_scene *s = NULL;
   int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0;
   int cg_sampler = ELR_SAMPLER_STRATIFIED; /* --sampler: the callgrind loop's */
+  const char *only_scene = NULL;           /* --samplers --scene bench_city|bench_studio */
+  int only_integrator = -1;                /* --samplers --integrator directlighting|path */
   const char *cg_op = NULL;
   for (i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--quick")) { quick = 1; ref_spp = 256; }
@@ -285,6 +299,8 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--full")) full = 1;
     else if (!strcmp(argv[i], "--packets")) packets = 1;
     else if (!strcmp(argv[i], "--samplers")) samplers = 1;
+    else if (!strcmp(argv[i], "--scene") && i + 1 < argc) only_scene = argv[++i];
+    else if (!strcmp(argv[i], "--integrator") && i + 1 < argc) { i++; only_integrator = !strcmp(argv[i], "path") ? 1 : 0; }
     else if (!strcmp(argv[i], "--sampler") && i + 1 < argc) {
       cg_sampler = elr_sampler_kind_from_name(argv[++i]);
       if (cg_sampler <= 0) { fprintf(stderr, "bench_render: unknown sampler \"%s\"\n", argv[i]); return 1; }
@@ -292,11 +308,11 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples|samples1 N [--sampler S]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples|samples1 N [--sampler S]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
-  if (samplers) { sampler_table(ref_spp, threads, quick); return 0; }
+  if (samplers) { sampler_table(ref_spp, threads, quick, only_scene, only_integrator); return 0; }
   snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
   if (packets) setenv("ELR_EMBREE_SPHERES", "1", 1);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }

@@ -62,6 +62,13 @@ Setup (this script installs nothing):
 Run (from the repository root, after `cmake --build build` for our side):
     python3 bench/mitsuba_compare.py [--spp 4,16,64,256] [--ref-spp 8192] [--render build/bin/render]
                                      [--scene scenes/bench_city.pbrt] [--threads 2] [--outdir out/mitsuba]
+Samplers (--samplers S1,S2,... [--mitsuba-samplers stratified,multijitter,ldsampler]): each of our
+samplers (render --sampler S) and each Mitsuba sampler at every --spp, the runs of both sides
+interleaved; both references (each side's own, at --ref-spp, in two halves whose relMSE / 4 estimates
+the reference's own noise, subtracted as "corrected") and then a table of the equal-spp relMSE ratio
+ours / Mitsuba per sampler pair: error per sample, independent of the two renderers' speeds.
+    python3 bench/mitsuba_compare.py --samplers stratified,halton,sobol,02sequence,zsobol,paddedsobol \
+        --mitsuba-samplers stratified,multijitter,ldsampler --spp 16,64,256 --ref-spp 4096
 References are cached in --outdir (keyed by scene text and reference spp); delete them to recompute.
 Running everything from scratch takes about 15 CPU minutes (the two 8192-spp references).
 
@@ -489,7 +496,7 @@ def run_render(args, scene_file, spp, out, seed=0, sampler=None):
             (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime))
 
 
-def sampler_mode(args, mr, mref, scene_path, tag, spps, workdir):
+def sampler_mode(args, mr, scene_path, tag, spps, workdir):
     """--samplers: relMSE per sample of each of our samplers against each Mitsuba sampler.
 
     For each spp and run (seeds 1..runs), interleaved: every Mitsuba sampler, then every one of ours.
@@ -623,6 +630,11 @@ def main():
         mi.Bitmap(bg.astype(np.float32)).write(os.path.join(args.outdir, "mitsuba_background.exr"))
         mi.Bitmap(ref_bg.astype(np.float32)).write(os.path.join(args.outdir, "pbrt_model_background.exr"))
 
+    if args.samplers:  # its own references, in halves
+        sampler_mode(args, mr, scene_path, tag, spps, workdir)
+        shutil.rmtree(workdir, ignore_errors=True)
+        return
+
     # ---- Mitsuba reference (cached) ----
     ref_path = os.path.join(args.outdir, "mitsuba_ref_%s.npy" % tag)
     if os.path.exists(ref_path):
@@ -640,11 +652,6 @@ def main():
         print("Mitsuba reference: %d spp in %.1f s" % (n * chunk, time.perf_counter() - t0))
     import mitsuba as mi
     mi.Bitmap(mref.astype(np.float32)).write(os.path.join(args.outdir, "mitsuba_ref.exr"))
-
-    if args.samplers:
-        sampler_mode(args, mr, mref, scene_path, tag, spps, workdir)
-        shutil.rmtree(workdir, ignore_errors=True)
-        return
 
     # ---- Mitsuba at each spp ----
     rows, mit = [], {}
