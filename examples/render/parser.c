@@ -713,12 +713,11 @@ static void elr__filter(elr__parser *P, const char *type) {
 
 /* pbrt-v4's "string randomization" (sobol, zsobol, paddedsobol) */
 static int elr__randomization(elr__parser *P, const char *type, const char *def) {
+  static const char *const names[4] = {"none", "permutedigits", "fastowen", "owen"}; /* ELR_RANDOMIZE_* */
   const char *r = elr__pstring(P, "randomization", def);
   elr__param *p = elr__find(P, "randomization");
-  if (!strcmp(r, "none")) return ELR_RANDOMIZE_NONE;
-  if (!strcmp(r, "permutedigits")) return ELR_RANDOMIZE_PERMUTE_DIGITS;
-  if (!strcmp(r, "fastowen")) return ELR_RANDOMIZE_FAST_OWEN;
-  if (!strcmp(r, "owen")) return ELR_RANDOMIZE_OWEN;
+  int k;
+  for (k = 0; k < 4; k++) if (!strcmp(r, names[k])) return k;
   elr__failf(P, p ? p->file : P->dir_file, p ? p->line : P->dir_line,
              "Sampler \"%s\": unknown randomization \"%s\" (none, permutedigits, fastowen, owen)", type, r);
   return ELR_RANDOMIZE_NONE;
