@@ -1,27 +1,29 @@
-/* blockedarray.h - tiled 2D float storage (pbrt's BlockedArray) - v0.1.0 - MIT or public domain
+/* blockedarray.h - tiled 2D float storage (pbrt's BlockedArray) - envlight v0.1.0 - MIT or public domain
  *
- * Do this in exactly one C or C++ file before including it:
- *     #define EL_BLOCKEDARRAY_IMPLEMENTATION   (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "blockedarray.h"
- * Every other file includes it without the macro.
+ * Every other file includes it without the macro. EL_BLOCKEDARRAY_IMPLEMENTATION instead implements
+ * blockedarray.h alone: a module's own macro never implements another module's header.
  *
- * Options honoured (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none),
- * EL_ASSERT, EL_STATIC (private functions in this translation unit), EL_DEF.
- *
- * Usage:
+ * USAGE (valid C and C++; tests/test_snippets.c compiles it)
+ * >> usage
+ *     // given: const float *rgb; float *out;    (400 * 235 * 3 floats each, row 0 first)
  *     el_blockedarray a;
- *     if (el_blockedarray_init(&a, 400, 235, 3, 0, rgb_rowmajor) != EL_SUCCESS) ...;  // 4x4 blocks
- *     float *p = el_blockedarray_at(&a, u, v);   // 3 floats of texel (u, v), u in [0,400), v in [0,235)
+ *     if (el_blockedarray_init(&a, 400, 235, 3, 0, rgb) != EL_SUCCESS) return 1;  // 0: 4x4 blocks
+ *     float *p = el_blockedarray_at(&a, 17, 42);  // the 3 floats of texel (17, 42): u along a row
  *     p[0] = 1.0f;
- *     el_blockedarray_get_rowmajor(&a, out);     // 400*235*3 floats, row 0 first
+ *     el_blockedarray_get_rowmajor(&a, out);      // back to row-major order
  *     el_blockedarray_free(&a);
+ * << usage
  *
- * Ports pbrt-v3's BlockedArray<T, logBlockSize> (src/core/memory.h): the 2D array is stored as square
- * blocks of 2^log_block x 2^log_block texels so that texels close in 2D are close in memory. Departures:
- * elements are 1..4 interleaved floats (not a template T); the allocation is rounded up to whole
- * blocks and aligned to 64 bytes with EL_MALLOC (pbrt: AllocAligned); sizes whose byte count would
- * overflow size_t, or whose rounded-up texel count would overflow int indexing, are rejected with
- * EL_ERROR_SIZE_OVERFLOW instead of wrapping around; free on a zeroed struct is harmless.
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC (private functions in this translation unit), EL_DEF.
+ *
+ * PORTS pbrt-v3's BlockedArray<T, logBlockSize> (src/core/memory.h): the 2D array is stored as square
+ * blocks of 2^log_block x 2^log_block texels so that texels close in 2D are close in memory; pbrt's
+ * operator()(u, v) is el_blockedarray_at, GetLinearArray el_blockedarray_get_rowmajor. NOTES after
+ * the declarations: where it departs from pbrt.
  */
 #ifndef EL_BLOCKEDARRAY_H
 #define EL_BLOCKEDARRAY_H
@@ -140,6 +142,16 @@ static inline float *el_blockedarray_at(const el_blockedarray *a, int u, int v) 
 }
 #endif
 #endif /* EL_BLOCKEDARRAY_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * Where it departs from pbrt-v3's BlockedArray: elements are 1..4 interleaved floats (not a template
+ * T); the allocation is rounded up to whole blocks and aligned to 64 bytes with EL_MALLOC (pbrt:
+ * AllocAligned); sizes whose byte count would overflow size_t, or whose rounded-up texel count would
+ * overflow int indexing, are rejected with EL_ERROR_SIZE_OVERFLOW instead of wrapping around; free on a
+ * zeroed struct is harmless.
+ * ==================================================================================================== */
 
 /* ---------------------------------------------------------------------------------------------
  * Implementation below; stop reading here if you only need the API.

@@ -1,96 +1,37 @@
 /* distribution2d.h - 1D and 2D piecewise-constant distributions that sample every bin they claim to.
- * envlight, version 0.1
+ * envlight v0.1.0 - MIT or public domain
  *
- * DO THIS in exactly one C or C++ file before including this header:
- *     #define EL_DISTRIBUTION2D_IMPLEMENTATION   (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "distribution2d.h"
- * Other files include it without the macro. Honoured macros: EL_STATIC, EL_ASSERT, EL_MALLOC/EL_REALLOC/
- * EL_FREE (all or none), see the shared block below.
+ * Every other file includes it without the macro. EL_DISTRIBUTION2D_IMPLEMENTATION instead implements
+ * distribution2d.h alone: a module's own macro never implements another module's header.
  *
- * Usage (a 2D distribution over [0,1]^2 from a 4x2 image, f[v*nu + u], v = row):
- *     float f[8] = {1, 2, 0, 1,  4, 0, 0, 1};
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: float u0, u1;                      (uniform in [0,1): u1 picks the row, u0 the column)
+ *     float f[8] = {1, 2, 0, 1, 4, 0, 0, 1};     // 4 columns, 2 rows: f[v * 4 + u] >= 0
  *     el_distribution2d d;
- *     el_distribution_options opt = {0};              // all-zero: [0,1]^2, bad values are errors
- *     if (el_distribution2d_init(&d, f, 4, 2, &opt) != EL_SUCCESS) { opt.bad_index says where }
+ *     el_distribution_options opt = {0};          // C++: = {}. All zero: [0,1]^2, bad values are errors
+ *     if (el_distribution2d_init(&d, f, 4, 2, &opt) != EL_SUCCESS) return 1;  // d.bad_index
  *     float u, v, pdf;
- *     el_distribution2d_sample(&d, u0, u1, &u, &v, &pdf);   // u1 picks the row, u0 the column (pbrt)
- *     // el_distribution2d_pdf(&d, u, v) == pdf, bit for bit
- *     el_distribution2d_fast f2;                     // the same distribution in O(1) expected time
- *     el_distribution2d_fast_init(&f2, &d);
- *     el_distribution2d_fast_sample(&f2, u0, u1, &u, &v, &pdf);
- *     el_distribution2d_fast_free(&f2); el_distribution2d_free(&d);
+ *     el_distribution2d_sample(&d, u0, u1, &u, &v, &pdf);  // pdf == el_distribution2d_pdf(&d, u, v)
+ *     el_distribution2d_fast fast;                // the same distribution in O(1) expected time:
+ *     if (el_distribution2d_fast_init(&fast, &d) == EL_SUCCESS)  // the same points and pdfs
+ *       el_distribution2d_fast_sample(&fast, u0, u1, &u, &v, &pdf);
+ *     el_distribution2d_fast_free(&fast);         // before d, whose tables it shares
+ *     el_distribution2d_free(&d);
+ * << usage
  *
- * WHAT IT PORTS: pbrt-v3 Distribution1D / Distribution2D (src/core/sampling.h) and pbrt-v4
- * PiecewiseConstant1D / PiecewiseConstant2D (src/util/sampling.h): continuous and discrete sampling,
- * pdf, integral, domain rectangle, and pbrt-v4's Invert (point -> u).
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC, EL_DEF; EL_NO_SIMD (the scalar construction loops instead of SSE2: the same results).
  *
- * WHERE IT DEPARTS FROM pbrt, AND WHY
- * 1. The CDF is integer. pbrt stores a float CDF built by cdf[i] = cdf[i-1] + func[i]/n. Once the sum
- *    passes a large value, small increments round away: on a 4096-bin row holding one 1e6 texel among
- *    1e-2 values, 3995 bins have a positive pdf and a CDF step of zero, so they are never sampled (a
- *    bias: their radiance never enters an estimate). Here the CDF of every row is a list of integers
- *    c[0] = 0 <= c[1] <= ... <= c[n] = 2^24 ("units" of 2^-24). A uniform u in [0,1) is turned into
- *    k = floor(u * 2^24) - exact, since u * 2^24 is a float times a power of two - and bin i is the one
- *    with c[i] <= k < c[i+1]. So bin i is chosen with probability EXACTLY (c[i+1] - c[i]) * 2^-24, for
- *    continuous uniform u and equally for u drawn as j * 2^-24 (the usual 24-bit float generator), and
- *    that exact probability is the pmf we state: the pdf is a function of the integer widths, not of f.
- *    Every bin with f > 0 gets at least one unit, so every such bin is reachable (f = 0 bins get none);
- *    the remaining 2^24 - m units (m = number of positive bins) are shared in proportion to f.
- *    Consequence: each pmf is within (2 + m f/sum) * 2^-24 of f/sum (rounding, plus a uniform floor of
- *    m * 2^-24 of the mass, <= 0.05% for 8192 bins) - a tiny change in variance, no bias, at any
- *    dynamic range (tested to 1e12). The CDF is built from 64-bit fixed-point prefix sums: no rounding
- *    error accumulates along a row (pbrt's float running sum is what loses the small bins).
- * 2. pdf(sample(u)) == the pdf returned by sample(u), bit for bit: the sampled point is placed strictly
- *    inside its bin (it is nudged by an ulp when rounding would carry it to a neighbour), never equals
- *    the domain's upper end, and pdf() recomputes the same bin with the same expression.
- * 3. All-zero input is valid: pdf 0 everywhere, integral 0, and sample() returns the uniform point
- *    (CDF inversion of a constant function) with pdf 0 - never 0/0 (pbrt-v3 and v4 return NaN).
- * 4. Bad input is an error naming the first bad index (options.bad_index): n == 0 -> EL_ERROR_EMPTY,
- *    n < 0 or f == NULL -> EL_ERROR_INVALID_ARGUMENT, NaN -> EL_ERROR_NAN, +-Inf -> EL_ERROR_INFINITE, negative -> EL_ERROR_NEGATIVE (checked in that
- *    order for each value). With options.clamp_bad_values = 1: NaN and negative (including -Inf) count as
- *    0 and +Inf as FLT_MAX.
- * 5. Memory: 4 bytes per bin (pbrt: 8, func and cdf). The values f are not kept.
- * 6. A constant-expected-time sampler of the SAME distribution (el_distribution2d_fast): the pdf is a
- *    function of the bin, and the fast samplers choose each bin with exactly the same integer number of
- *    units, so their pdfs are identical to the CDF sampler's (not just close).
- *
- * STRATIFICATION. CDF inversion is monotone in u: stratified or low-discrepancy u (Sobol', Halton,
- * jittered) stay stratified in the output. el_distribution2d_sample and the GUIDE-table fast sampler
- * (EL_DISTRIBUTION_FAST_GUIDE, the default) are CDF inversion and return exactly the same points for
- * the same u. The ALIAS-table sampler (EL_DISTRIBUTION_FAST_ALIAS) is not monotone: it destroys the
- * stratification of its input (fine for independent random numbers). bench/bench_distribution2d.c
- * measures both; the guide table is the default because it is as fast and keeps stratification.
- *
- * u AND POINT CONVENTIONS. u outside [0,1) is clamped: NaN and u <= 0 act as 0, u >= 1 acts as
- * 0x1.fffffep-1 (so u = 1 is in range). pdf() and invert() clamp a point outside the domain to it
- * (pbrt's convention) and treat NaN as the domain's lower end. Sample positions within a bin come from
- * the same u: a bin of w units has at least w distinct positions (more when u < 0.5).
- *
- * COST (bench/bench_distribution2d.c, 4096x2048, gcc -O3, callgrind): a 2D sample with its pdf takes
- * about 106 instructions with the guide table, 125 with the alias table and about 300 with the binary
- * searches (pbrt-v3: about 350); pdf() about 32 (pbrt-v3: 13, from its second array). A guide cell in
- * which more than 64 bins start is flagged in the table (bit 31) and searched by bisection (a linear scan
- * of up to 64 steps costs about what the bisection does; fewer flags keep more samples on the inline
- * path: on real maps 8 sent about 10% of samples to bisection); the marginal's
- * guide has 4 cells per row (a sun crowds it), the rows' one a quarter cell per bin. Callers that need
- * the bin rather than a point (envlight.h) use el_distribution2d_fast_sample_bins: bin, fractions and
- * pdf, no point placement, inline (envlight.h's SSE2 sample_li does the same search with vector ends,
- * in about 55 of its 95 instructions). Memory: CDF 4
- * bytes per bin, guide table +1 byte per bin (default), alias table +8 bytes per bin. Building runs
- * two passes over each row's values, in SSE2 on x86 (EL_NO_SIMD: scalar code giving the same integers):
- * the check and sum, about 4.5 instructions per bin, and the integer CDF, about 14 (scalar: 11 and 17);
- * the guide table adds about 10 per bin (callgrind, 2048x1024 map of envlight's bench, gcc 12 -O3, no
- * -march). The fast paths take u in [0,1); an "exact"
- * axis (domain starting at 0, power-of-two bin width: any power-of-two size on [0,1]) needs no check
- * of the placed point, other axes one (a few instructions more); anything else, and the rare point
- * that rounding carries out of its bin, takes a general path with the same results.
- *
- * THREADS. Everything after init is read-only: any number of threads may sample and query at once.
- * Queries need a successful init (a struct zeroed by a failed init may only be freed).
- *
- * LIMITS. At most 2^22 bins per dimension (EL_ERROR_SIZE_OVERFLOW beyond); nu * nv bins must fit in
- * memory (sizes are overflow-checked). A domain must be finite, non-empty, and resolve its bins: each
- * bin at least 4 float ulps wide and the largest pdf finite (EL_ERROR_INVALID_ARGUMENT otherwise).
+ * PORTS pbrt-v3's Distribution1D / Distribution2D (src/core/sampling.h: SampleContinuous,
+ * SampleDiscrete, Pdf, funcInt, the marginal and conditional distributions) and pbrt-v4's
+ * PiecewiseConstant1D / PiecewiseConstant2D (src/pbrt/util/sampling.h: a domain rectangle and Invert),
+ * with an integer CDF instead of pbrt's float one, and guide-table and alias-table samplers of the same
+ * distribution. NOTES after the declarations: where and why it departs from pbrt, stratification,
+ * conventions, costs, threads, limits.
  */
 #ifndef EL_DISTRIBUTION2D_H
 #define EL_DISTRIBUTION2D_H
@@ -171,12 +112,10 @@ extern "C" {
 /* Options for both constructors. All zero = pbrt's behaviour where it is sound: domain [0,1] (1D) or
  * [0,1]^2 (2D), and bad values (NaN, Inf, negative) are errors. */
 typedef struct el_distribution_options {
-  int clamp_bad_values; /* 0: NaN/Inf/negative -> error (see bad_index); 1: NaN and negative (also -Inf)
+  int clamp_bad_values; /* 0: NaN/Inf/negative -> error (d.bad_index); 1: NaN and negative (also -Inf)
                            count as 0, +Inf counts as FLT_MAX */
   float domain[4];      /* u0, v0, u1, v1 (2D: [u0,u1] x [v0,v1]; 1D: [domain[0], domain[2]]).
                            All four zero = the unit square / unit interval. */
-  int bad_index;        /* OUT: when init fails on a value, the index of the first bad value (2D: v*nu+u);
-                           -1 otherwise (also on success). */
 } el_distribution_options;
 
 /* A 1D piecewise-constant distribution over n bins of the domain [x0, x1]. */
@@ -191,10 +130,13 @@ typedef struct el_distribution1d {
   float integral;     /* sum f_i * (x1 - x0) / n (clamped to FLT_MAX) */
   float last;         /* (float)(n - 1) */
   int exact;          /* 1 when x0 = 0 and the bin width is a power of two: placing a point needs no check */
+  int bad_index;      /* after init: the index of the first bad value when init failed on one (EL_ERROR_NAN,
+                         _INFINITE, _NEGATIVE), else -1. A failed init zeroes every other field. */
 } el_distribution1d;
 
-/* f has n values >= 0. opt may be NULL (all-zero options). On failure *d is zeroed (freeing it is safe). */
-EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, el_distribution_options *opt);
+/* f has n values >= 0. opt may be NULL (all-zero options). On failure *d is zeroed but for d->bad_index
+ * (freeing it is safe). */
+EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, const el_distribution_options *opt);
 EL_DEF void el_distribution1d_free(el_distribution1d *d);
 /* A point in [x0, x1) with density *pdf (w.r.t. length; 0 for all-zero input); *offset = its bin.
  * pdf and offset may be NULL. */
@@ -223,10 +165,13 @@ typedef struct el_distribution2d {
   float integral;     /* sum f * area / (nu*nv) (clamped to FLT_MAX) */
   float u_last, v_last; /* (float)(nu - 1), (float)(nv - 1) */
   int u_exact, v_exact; /* as el_distribution1d.exact, per axis */
+  int bad_index;      /* after init: the index v*nu+u of the first bad value when init failed on one, else -1
+                         (capped at INT_MAX). A failed init zeroes every other field. */
 } el_distribution2d;
 
-/* f[v*nu + u], nu columns, nv rows, all >= 0. opt may be NULL. On failure *d is zeroed. */
-EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, el_distribution_options *opt);
+/* f[v*nu + u], nu columns, nv rows, all >= 0. opt may be NULL. On failure *d is zeroed but for
+ * d->bad_index. */
+EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, const el_distribution_options *opt);
 EL_DEF void el_distribution2d_free(el_distribution2d *d);
 /* CDF inversion (stratification-preserving): u1 picks the row (v), u0 the column (u), as in pbrt.
  * (*out_u, *out_v) lies in [u0,u1) x [v0,v1); *pdf is w.r.t. area of the domain and equals
@@ -388,6 +333,86 @@ static inline int el_distribution2d__bin(float x, float x0, float scale, int n) 
 }
 #endif
 #endif /* EL_DISTRIBUTION2D_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * WHAT IT PORTS: pbrt-v3 Distribution1D / Distribution2D (src/core/sampling.h) and pbrt-v4
+ * PiecewiseConstant1D / PiecewiseConstant2D (src/pbrt/util/sampling.h): continuous and discrete sampling,
+ * pdf, integral, domain rectangle, and pbrt-v4's Invert (point -> u).
+ *
+ * WHERE IT DEPARTS FROM pbrt, AND WHY
+ * 1. The CDF is integer. pbrt stores a float CDF built by cdf[i] = cdf[i-1] + func[i]/n. Once the sum
+ *    passes a large value, small increments round away: on a 4096-bin row holding one 1e6 texel among
+ *    1e-2 values, 3995 bins have a positive pdf and a CDF step of zero, so they are never sampled (a
+ *    bias: their radiance never enters an estimate). Here the CDF of every row is a list of integers
+ *    c[0] = 0 <= c[1] <= ... <= c[n] = 2^24 ("units" of 2^-24). A uniform u in [0,1) is turned into
+ *    k = floor(u * 2^24) - exact, since u * 2^24 is a float times a power of two - and bin i is the one
+ *    with c[i] <= k < c[i+1]. So bin i is chosen with probability EXACTLY (c[i+1] - c[i]) * 2^-24, for
+ *    continuous uniform u and equally for u drawn as j * 2^-24 (the usual 24-bit float generator), and
+ *    that exact probability is the pmf we state: the pdf is a function of the integer widths, not of f.
+ *    Every bin with f > 0 gets at least one unit, so every such bin is reachable (f = 0 bins get none);
+ *    the remaining 2^24 - m units (m = number of positive bins) are shared in proportion to f.
+ *    Consequence: each pmf is within (2 + m f/sum) * 2^-24 of f/sum (rounding, plus a uniform floor of
+ *    m * 2^-24 of the mass, <= 0.05% for 8192 bins) - a tiny change in variance, no bias, at any
+ *    dynamic range (tested to 1e12). The CDF is built from 64-bit fixed-point prefix sums: no rounding
+ *    error accumulates along a row (pbrt's float running sum is what loses the small bins).
+ * 2. pdf(sample(u)) == the pdf returned by sample(u), bit for bit: the sampled point is placed strictly
+ *    inside its bin (it is nudged by an ulp when rounding would carry it to a neighbour), never equals
+ *    the domain's upper end, and pdf() recomputes the same bin with the same expression.
+ * 3. All-zero input is valid: pdf 0 everywhere, integral 0, and sample() returns the uniform point
+ *    (CDF inversion of a constant function) with pdf 0 - never 0/0 (pbrt-v3 and v4 return NaN).
+ * 4. Bad input is an error naming the first bad index (d.bad_index): n == 0 -> EL_ERROR_EMPTY,
+ *    n < 0 or f == NULL -> EL_ERROR_INVALID_ARGUMENT, NaN -> EL_ERROR_NAN, +-Inf -> EL_ERROR_INFINITE, negative -> EL_ERROR_NEGATIVE (checked in that
+ *    order for each value). With options.clamp_bad_values = 1: NaN and negative (including -Inf) count as
+ *    0 and +Inf as FLT_MAX.
+ * 5. Memory: 4 bytes per bin (pbrt: 8, func and cdf). The values f are not kept.
+ * 6. A constant-expected-time sampler of the SAME distribution (el_distribution2d_fast): the pdf is a
+ *    function of the bin, and the fast samplers choose each bin with exactly the same integer number of
+ *    units, so their pdfs are identical to the CDF sampler's (not just close).
+ *
+ * STRATIFICATION. CDF inversion is monotone in u: stratified or low-discrepancy u (Sobol', Halton,
+ * jittered) stay stratified in the output. el_distribution2d_sample and the GUIDE-table fast sampler
+ * (EL_DISTRIBUTION_FAST_GUIDE, the default) are CDF inversion and return exactly the same points for
+ * the same u. The ALIAS-table sampler (EL_DISTRIBUTION_FAST_ALIAS) is not monotone: it destroys the
+ * stratification of its input (fine for independent random numbers). bench/bench_distribution2d.c
+ * measures both; the guide table is the default because it is as fast and keeps stratification.
+ *
+ * u AND POINT CONVENTIONS. u outside [0,1) is clamped: NaN and u <= 0 act as 0, u >= 1 acts as
+ * 0x1.fffffep-1 (so u = 1 is in range). pdf() and invert() clamp a point outside the domain to it
+ * (pbrt's convention) and treat NaN as the domain's lower end. Sample positions within a bin come from
+ * the same u through the float t = i + fraction (i the bin), so bin i >= 1 has at most 2^(23 -
+ * floor(log2 i)) distinct positions however many units w it has (4096 in bin 4000); a bin with w units
+ * at most half that many, and bin 0, has w.
+ *
+ * COST (bench/bench_distribution2d.c, 4096x2048, gcc -O3, callgrind): a 2D sample with its pdf takes
+ * about 106 instructions with the guide table, 125 with the alias table and about 300 with the binary
+ * searches (pbrt-v3: about 350); pdf() about 32 (pbrt-v3: 13, from its second array). A guide cell in
+ * which more than 64 bins start is flagged in the table (bit 31) and searched by bisection (a linear scan
+ * of up to 64 steps costs about what the bisection does; fewer flags keep more samples on the inline
+ * path: on real maps 8 sent about 10% of samples to bisection); the marginal's
+ * guide has 4 cells per row (a sun crowds it), the rows' one a quarter cell per bin. Callers that need
+ * the bin rather than a point (envlight.h) use el_distribution2d_fast_sample_bins: bin, fractions and
+ * pdf, no point placement, inline (envlight.h's SSE2 sample_li does the same search with vector ends,
+ * in about 55 of its 95 instructions). Memory: CDF 4
+ * bytes per bin, guide table +1 byte per bin (default), alias table +8 bytes per bin. Building runs
+ * two passes over each row's values, in SSE2 on x86 (EL_NO_SIMD: scalar code giving the same integers):
+ * the check and sum, about 4.5 instructions per bin, and the integer CDF, about 14 (scalar: 11 and 17);
+ * the guide table adds about 10 per bin (callgrind, 2048x1024 map of envlight's bench, gcc 12 -O3, no
+ * -march). The fast paths take u in [0,1); an "exact"
+ * axis (domain starting at 0, power-of-two bin width: any power-of-two size on [0,1]) needs no check
+ * of the placed point, other axes one (a few instructions more); anything else, and the rare point
+ * that rounding carries out of its bin, takes a general path with the same results.
+ *
+ * THREADS. Everything after init is read-only: any number of threads may sample and query at once.
+ * Queries need a successful init (a struct zeroed by a failed init may only be freed).
+ *
+ * LIMITS. At most 2^22 = EL_DISTRIBUTION_MAX_BINS bins per dimension (EL_ERROR_SIZE_OVERFLOW beyond);
+ * nu * nv bins must fit in memory (sizes are overflow-checked). A domain must be finite, non-empty, and
+ * resolve its bins: each bin at least 4 times as wide as the float step just inside the domain's end of
+ * larger magnitude, and the largest pdf finite (EL_ERROR_INVALID_ARGUMENT otherwise). The unit interval
+ * (2^-24 below 1) takes the full 2^22 bins.
+ * ==================================================================================================== */
 
 /* ====================================================================================================
  * IMPLEMENTATION BELOW. Stop reading here if you only need the API.
@@ -660,7 +685,9 @@ static el_result el_distribution2d__domain(float a, float b, int n, float *scale
   w = b - a;
   if (!(w <= FLT_MAX)) return EL_ERROR_INVALID_ARGUMENT;
   m = (a < 0 ? -a : a) > (b < 0 ? -b : b) ? (a < 0 ? -a : a) : (b < 0 ? -b : b);
-  ulp = el_distribution2d__next_up(m) - m;
+  /* the float step just inside the domain's end of larger magnitude (below 1 it is 2^-24, not the
+   * 2^-23 above 1): every bin must hold at least 4 floats, so [0,1] resolves 2^22 bins */
+  ulp = m - el_distribution2d__next_down(m);
   if (!(w / (float)n >= 4.0f * ulp)) return EL_ERROR_INVALID_ARGUMENT;
   *scale = (float)n / w;
   *width = w / (float)n;
@@ -684,16 +711,23 @@ static float el_distribution2d__clamp_float(double x) { return x <= (double)FLT_
 
 /* >> 1D */
 
-EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, el_distribution_options *opt) {
+/* A failed init: *d zeroed but for bad_index. */
+static el_result el_distribution2d__fail1(el_distribution1d *d, el_result r, int bad_index) {
+  el_distribution1d_free(d);
+  d->bad_index = bad_index;
+  return r;
+}
+
+EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, int n, const el_distribution_options *opt) {
   el_distribution_options zero;
   el_result r;
   double sum;
   size_t m, bad = 0;
   float a = 0.0f, b = 1.0f;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_index = -1;
   if (!d) return EL_ERROR_INVALID_ARGUMENT;
   memset(d, 0, sizeof *d);
+  d->bad_index = -1;
   if (n <= 0) return n == 0 ? EL_ERROR_EMPTY : EL_ERROR_INVALID_ARGUMENT;
   if (!f) return EL_ERROR_INVALID_ARGUMENT;
   if (n > EL_DISTRIBUTION_MAX_BINS) return EL_ERROR_SIZE_OVERFLOW;
@@ -705,13 +739,13 @@ EL_DEF el_result el_distribution1d_init(el_distribution1d *d, const float *f, in
   d->x0 = a;
   d->x1 = b;
   r = el_distribution2d__domain(a, b, n, &d->bin_scale, &d->bin_width, &d->pdf_scale);
-  if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); return r; }
+  if (r != EL_SUCCESS) return el_distribution2d__fail1(d, r, -1);
   d->last = (float)(n - 1);
   d->exact = el_distribution2d__exact(a, b, d->bin_width, d->bin_scale, n);
   r = el_distribution2d__scan(f, (size_t)n, opt->clamp_bad_values, &sum, &m, &bad);
-  if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); opt->bad_index = (int)bad; return r; }
+  if (r != EL_SUCCESS) return el_distribution2d__fail1(d, r, (int)bad);
   d->cdf = (uint32_t *)EL_MALLOC(((size_t)n + 1) * sizeof(uint32_t));
-  if (!d->cdf) { memset(d, 0, sizeof *d); return EL_ERROR_OUT_OF_MEMORY; }
+  if (!d->cdf) return el_distribution2d__fail1(d, EL_ERROR_OUT_OF_MEMORY, -1);
   el_distribution2d__cdf_float(d->cdf, f, n, sum, (uint32_t)m, opt->clamp_bad_values);
   d->all_zero = !(sum > 0.0);
   if (d->all_zero) d->pdf_scale = 0.0f;
@@ -772,7 +806,14 @@ EL_DEF size_t el_distribution1d_bytes(const el_distribution1d *d) {
 
 /* >> 2D */
 
-EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, el_distribution_options *opt) {
+/* A failed init: *d zeroed but for bad_index. */
+static el_result el_distribution2d__fail2(el_distribution2d *d, el_result r, int bad_index) {
+  el_distribution2d_free(d);
+  d->bad_index = bad_index;
+  return r;
+}
+
+EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, int nu, int nv, const el_distribution_options *opt) {
   el_distribution_options zero;
   el_result r;
   double total = 0.0, *rowsum = NULL;
@@ -780,9 +821,9 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   float u0 = 0.0f, v0 = 0.0f, u1 = 1.0f, v1 = 1.0f;
   int v;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_index = -1;
   if (!d) return EL_ERROR_INVALID_ARGUMENT;
   memset(d, 0, sizeof *d);
+  d->bad_index = -1;
   if (nu < 0 || nv < 0) return EL_ERROR_INVALID_ARGUMENT;
   if (nu == 0 || nv == 0) return EL_ERROR_EMPTY;
   if (!f) return EL_ERROR_INVALID_ARGUMENT;
@@ -802,7 +843,7 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   r = el_distribution2d__domain(u0, u1, nu, &d->u_scale, &d->u_width, &d->u_pdf_scale);
   if (r == EL_SUCCESS) r = el_distribution2d__domain(v0, v1, nv, &d->v_scale, &d->v_width, &d->v_pdf_scale);
   if (r == EL_SUCCESS && !((double)d->u_pdf_scale * (double)d->v_pdf_scale * 281474976710656.0 <= FLT_MAX)) r = EL_ERROR_INVALID_ARGUMENT;
-  if (r != EL_SUCCESS) { memset(d, 0, sizeof *d); return r; }
+  if (r != EL_SUCCESS) return el_distribution2d__fail2(d, r, -1);
   d->u_last = (float)(nu - 1);
   d->v_last = (float)(nv - 1);
   d->u_exact = el_distribution2d__exact(u0, u1, d->u_width, d->u_scale, nu);
@@ -812,8 +853,7 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
   rowsum = (double *)EL_MALLOC((size_t)nv * sizeof(double));
   if (!d->cdf || !d->marginal || !rowsum) {
     EL_FREE(rowsum);
-    el_distribution2d_free(d);
-    return EL_ERROR_OUT_OF_MEMORY;
+    return el_distribution2d__fail2(d, EL_ERROR_OUT_OF_MEMORY, -1);
   }
   /* <<Compute conditional sampling distribution for each row>>, validating as we go */
   for (v = 0; v < nv; ++v) {
@@ -822,10 +862,8 @@ EL_DEF el_result el_distribution2d_init(el_distribution2d *d, const float *f, in
     r = el_distribution2d__scan(row, (size_t)nu, opt->clamp_bad_values, &rowsum[v], &m, &bad);
     if (r != EL_SUCCESS) {
       size_t flat = (size_t)v * (size_t)nu + bad;
-      opt->bad_index = flat <= 2147483647u ? (int)flat : 2147483647;
       EL_FREE(rowsum);
-      el_distribution2d_free(d);
-      return r;
+      return el_distribution2d__fail2(d, r, flat <= 2147483647u ? (int)flat : 2147483647);
     }
     el_distribution2d__cdf_float(d->cdf + (size_t)v * row_entries, row, nu, rowsum[v], (uint32_t)m, opt->clamp_bad_values);
     total += rowsum[v];

@@ -1,137 +1,39 @@
 /* envlight.h - pbrt's infinite area light (a latitude-longitude environment map): radiance, importance
- * sampling, pdfs and power, numerically hardened.
- * envlight, version 0.1
+ * sampling, pdfs and power, numerically hardened. envlight v0.1.0 - MIT or public domain
  *
- * DO THIS in exactly one C or C++ file before including this header:
- *     #define EL_ENVLIGHT_IMPLEMENTATION       (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "envlight.h"
- * envlight.h includes distribution2d.h for its declarations; its implementation must be compiled once
- * too (EL_IMPLEMENTATION does both, or define EL_DISTRIBUTION2D_IMPLEMENTATION as well). Honoured macros:
- * EL_STATIC, EL_ASSERT, EL_MALLOC/EL_REALLOC/EL_FREE (all or none), EL_ENVLIGHT_NO_ATOMICS.
+ * Every other file includes it without the macro. envlight.h includes distribution2d.h for its
+ * declarations. EL_ENVLIGHT_IMPLEMENTATION instead implements envlight.h alone, not distribution2d.h
+ * (which then needs EL_DISTRIBUTION2D_IMPLEMENTATION too, or the link fails): a module's own macro
+ * never implements another module's header.
  *
- * Usage (rgb: width*height*3 linear floats, row 0 = the top of the map = theta 0):
- *     el_envlight light;
- *     el_envlight_options opt = {0};                   // all zero: pbrt-v3's light (see below)
- *     el_envlight_yup_matrix(opt.light_to_world);      // y-up, right-handed world, as Mitsuba shows it
- *     if (el_envlight_init(&light, rgb, width, height, 3, &opt) != EL_SUCCESS) { opt.bad_texel says where }
- *     el_envlight_le(&light, dir, rgb_out);            // a ray escaping along dir (no sampling tables)
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: const float *rgb; int width, height; const float u[2], wi_bsdf[3]; float *pdf_mis, Le[3];
+ *     el_envlight light;                             // rgb: width * height * 3 floats, row 0 = theta 0
+ *     el_envlight_options opt = {0};                 // C++: = {}. All zero: pbrt-v3's light
+ *     el_envlight_yup_matrix(opt.light_to_world);    // y-up right-handed world, as Mitsuba 3 shows maps
+ *     if (el_envlight_init(&light, rgb, width, height, 3, &opt) != EL_SUCCESS) return 1;  // light.bad_index
  *     float wi[3], L[3], pdf;
- *     el_envlight_sample_li(&light, u, wi, L, &pdf);   // u[2] in [0,1)^2; builds the tables on first use
- *     if (pdf > 0) ... contribution L * f * cos / pdf; for MIS: el_envlight_pdf_li(&light, wi_bsdf) ...
- *     el_envlight_sample_li_n(&light, n, u2n, wi3n, L3n, pdfn);  // n samples at once: the same results,
- *                                                      // their cache misses overlapped (point 5)
+ *     el_envlight_sample_li(&light, u, wi, L, &pdf); // builds the sampling tables on first use
+ *     *pdf_mis = el_envlight_pdf_li(&light, wi_bsdf);  // the light's pdf of a BSDF sample, for MIS
+ *     el_envlight_le(&light, wi_bsdf, Le);           // radiance along a ray that escapes (no tables)
  *     el_envlight_free(&light);
+ * << usage
+ * The caller skips a sample whose pdf is 0, as pbrt does; el_envlight_sample_li_n draws n at once.
  *
- * WHAT IT PORTS: pbrt-v3 InfiniteAreaLight (src/lights/infinite.{h,cpp}): Le, Sample_Li, Pdf_Li,
- * Sample_Le, Pdf_Le, Power, Preprocess; and pbrt-v4 ImageInfiniteLight's MIS-compensated distribution.
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC, EL_DEF; EL_NO_SIMD (the scalar code instead of SSE2: the same results);
+ * EL_ENVLIGHT_NO_ATOMICS (no thread-safe lazy build: call el_envlight_prepare_sampling first).
  *
- * MAPPING AND ORIENTATION (pbrt-v3's, in light space): theta is the angle from +z, phi = atan2(y, x) in
- * [0, 2pi), and (u, v) = (phi / 2pi, theta / pi); u runs along a row (left to right), v down the
- * image (row 0 is theta = 0). world = light_to_world * light.
- *   Mirroring. This mapping shows the image unmirrored only in a LEFT-handed world (pbrt's): seen from
- *   inside, with +z up, "to the right" of direction phi is phi + d in a left-handed frame and phi - d in a
- *   right-handed one. So in a right-handed world (Blender, Mitsuba, OpenGL, Embree users) pbrt's
- *   "RotateX(-90)" (light +z -> world +y) shows the map MIRRORED left-right compared with those tools;
- *   no rotation can fix that, a reflection can. Therefore:
- *   - el_envlight_yup_matrix(): y up, right-handed, exactly Mitsuba 3's convention (u = 0.5 looks
- *     along +z, u = 0.25 along +x, u = 0 / 1 along -z). It is a reflection (determinant -1).
- *   - el_envlight_zup_matrix(): z up, right-handed, exactly Blender's (u = 0.5 looks along +x, u = 0.75
- *     along +y). Also a reflection.
- *   tests/test_envlight.c proves both with an asymmetric map against Mitsuba's and Blender's own
- *   formulas, and shows that a plain RotateX(-90) gives u' = 0.25 - u (a mirror image).
- *
- * OPERATIONS (directions are float[3] pointing away from the scene, in world space):
- *   le(dir)          bilinear at full resolution, Repeat in u, Clamp in v (pbrt-v3 used Repeat in v too,
- *                    so the north pole row bled into the south pole: pbrt-v3 issue #63).
- *   sample_li(u0,u1) a direction, its radiance and its solid-angle pdf. pdf_li(dir) the same pdf.
- *   sample_le / pdf_le  rays entering the scene's bounding sphere (bidirectional methods); they need
- *                    el_envlight_preprocess(center, radius), nothing else does.
- *   power()          pi r^2 * integral of L over the sphere (pbrt-v4's Phi; pbrt-v3's Power returned
- *                    pi r^2 * the unweighted mean texel, off by 4 pi and ignoring sin(theta)).
- *   bytes()          the memory in use (image copy + whatever sampling tables exist).
- *
- * WHERE IT DEPARTS FROM pbrt, AND WHY
- * 1. The sampling density (pbrt-v3 issue #62). le() is bilinear but the density is piecewise constant.
- *    pbrt-v3 builds its distribution at TWICE the image resolution from point lookups (4x the memory and
- *    time). Ours (EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE, the default) uses one bin per texel whose value is
- *    the EXACT average of the bilinear reconstruction over the bin (separable weights 1/8, 3/4, 1/8 when
- *    bins and texels coincide; exact tent integrals for any other resolution), times sin(theta) at the
- *    bin centre. Every direction where le() > 0 has pdf > 0 (so light sampling alone is unbiased), at a
- *    quarter of pbrt's bins. bench/bench_envlight.c measures the variance of the choices (CELL_AVERAGE,
- *    PBRT_V3 = 2x point lookups, TEXEL = raw texels, which misses the bilinear spill of a bright texel
- *    into its dark neighbours: a bias): at 2x, cell averages and point lookups are equally good, and 2x
- *    cuts the mismatch between density and le by 4x (the irradiance variance by 0-30%) for 4x the table
- *    memory; ask for it with importance_width/height when the memory is there.
- * 2. The distribution is distribution2d.h's integer-CDF one: every bin with f > 0 is reachable at any
- *    dynamic range (pbrt's float CDF loses bins next to a sun). Samplers: a guide table (the default:
- *    constant expected time, exactly CDF inversion's points, so it keeps stratification), CDF inversion
- *    itself (binary searches) or an alias table (constant time, does NOT keep the stratification of
- *    low-discrepancy input).
- * 3. Poles. sinf(pi) is -8.7e-8, so pbrt-v3's "if (sinTheta == 0) pdf = 0" never fires at the south pole
- *    and its pdf can be negative or huge. Here sample_li's sin(theta) is built from the bin edge nearer
- *    the pole (sin exactly 0 there) plus a positive term, never a difference (small maps: sinpi(min(v,
- *    1 - v)), an exact argument), sampled points stay at least 2^-21 (in u and v) inside their bin (so never on a pole or a
- *    bin edge), and pdf_li clamps sin(theta) below at 1.4e-6 (the value at v = 2^-21). Every pdf returned
- *    is finite and >= 0.
- * 4. pdf_li(sample_li(u).dir) == the sampled pdf. For signed-permutation matrices (identity, y-up, z-up)
- *    the 2^-21 margin exceeds every rounding error of the direction and of pdf_li's own bin search, so
- *    the bin and the pdf agree; for a general rotation, rounding in the round trip world -> light can move a
- *    direction near a pole across a bin edge, so sample_li then returns pdf_li(dir) itself (about 120
- *    more instructions per sample: 218 instead of 93.5 with the guide sampler).
- * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
- *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
- *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
- *    angle addition, with x - x^3/6 and 1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least
- *    256x128 bins; smaller maps use sinpi/cospi polynomials, 1.9e-7 relative). With SSE2 (any x86-64;
- *    EL_NO_SIMD turns it off) the guide sampler's search runs inline in sample_li with vector ends (u
- *    clamped and scaled to units and guide cells at once, each bin's two CDF entries read as one 8-byte
- *    pair, the fractions computed in the lanes the direction wants), the two angles go through the
- *    polynomials together and the direction is formed as 4-vectors; the scalar code does the same
- *    operations in the same order. The pdf is the bin's, (wv wu) K from its integer widths, the pdf
- *    table's expression, / sin theta.
- *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
- *    a monotone "diamond angle" of (x, y) and one over t = 1 - z / (r + |z|) on both hemispheres (each
- *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
- *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
- *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
- *    2048x1024 map): sample_li 93.5 instructions with the guide sampler (95.6-97.6 on the five CC0
- *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
- *    alias table; with the radiance 257; pdf_li 76 (general rotation 95); le 250; construction 117 M
- *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
- *    313 ms). See tutorials/03-infinite-light.md, section 9.
- *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
- *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
- *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
- *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
- *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
- *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
- *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
- *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
- *    with it (the same image).
- *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
- *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
- *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
- *    default guide table (pbrt-v3: ~100 MB).
- * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
- *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
- *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a
- *    __atomic once-flag: one thread builds, the others spin until it is done); without those builtins
- *    (or with EL_ENVLIGHT_NO_ATOMICS) call el_envlight_prepare_sampling() before sharing the light.
- *    After that, every query is read-only and thread-safe. No MIP pyramid is built: le() is a level-0
- *    bilinear lookup; a renderer that wants filtered (ray-differential) lookups builds an el_mipmap
- *    from the same pixels (mipmap.h).
- * 7. Bad input is an error, not a NaN later: NaN / Inf / negative texels (options.bad_texel names the
- *    first one; or EL_ENVLIGHT_BAD_TEXELS_ZERO turns them into 0), a non-orthonormal matrix, a bad
- *    scale, sizes that overflow.
- *
- * INPUT CONVENTIONS for the queries (which never fail): a direction need not be unit length (it is
- * normalised: the result depends only on its direction); a zero, NaN or infinite direction gives
- * le = 0 and pdf = 0. u outside [0,1) is clamped (NaN -> 0, 1 -> 0x1.fffffep-1). A light with no
- * emission (all black) has pdf 0 everywhere and sample_li returns pdf 0, radiance 0.
- * A sample with pdf 0 must be skipped by the caller (as in pbrt).
- * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
- * light sampling alone NO LONGER covers the dim parts of the map: use it only with MIS against BSDF
- * sampling. A map where nothing exceeds the mean (a constant one) falls back to the plain density.
+ * PORTS pbrt-v3's InfiniteAreaLight (src/lights/infinite.h, infinite.cpp): the constructor's
+ * distribution (a Distribution2D over the map's luminance times sin theta), Le, Sample_Li, Pdf_Li,
+ * Sample_Le, Pdf_Le, Power and Preprocess, with pbrt-v3's mapping (u, v) = (phi / 2pi, theta / pi);
+ * and pbrt-v4 ImageInfiniteLight's MIS-compensated distribution. NOTES after the declarations: the
+ * mapping and its orientation, where and why it departs from pbrt (the density, the poles, the integer
+ * CDF), what it costs, memory, thread safety, input conventions.
  */
 #ifndef EL_ENVLIGHT_H
 #define EL_ENVLIGHT_H
@@ -217,24 +119,27 @@ extern "C" {
 #define EL_ENVLIGHT_SAMPLER_CDF 1   /* two binary searches (pbrt's method); the same points */
 #define EL_ENVLIGHT_SAMPLER_ALIAS 2 /* alias table: O(1); does not keep stratification */
 /* What init does with NaN, infinite or negative texels. */
-#define EL_ENVLIGHT_BAD_TEXELS_ERROR 0 /* default: an error naming the texel (options.bad_texel) */
+#define EL_ENVLIGHT_BAD_TEXELS_ERROR 0 /* default: an error naming the texel (el_envlight.bad_index) */
 #define EL_ENVLIGHT_BAD_TEXELS_ZERO 1  /* they become 0 */
 
 /* The largest importance-map resolution per axis (the 2^-21 in-bin margin must stay far below a bin). */
 #define EL_ENVLIGHT_MAX_IMPORTANCE 65536
+/* The radii el_envlight_preprocess accepts: 2^-64 and 2^62, where sample_le's pdf_pos = 1 / (pi r^2)
+ * is still a finite, normal float. */
+#define EL_ENVLIGHT_MIN_RADIUS 5.42101086e-20f
+#define EL_ENVLIGHT_MAX_RADIUS 4.61168602e18f
 
 /* All zero = pbrt-v3's InfiniteAreaLight with the image's own resolution for the importance map. */
 typedef struct el_envlight_options {
   float scale[3];          /* RGB multiplier of the texels (pbrt's "L"); all zero means (1, 1, 1) */
   float light_to_world[9]; /* row-major 3x3, world = M * light; a rotation or a reflection (checked to
                               1e-4, then re-orthonormalised). All zero means the identity. */
-  int compensated;         /* 1: pbrt-v4's MIS-compensated density (see the top of the file) */
+  int compensated;         /* 1: pbrt-v4's MIS-compensated density (NOTES: MIS COMPENSATION) */
   int importance;          /* EL_ENVLIGHT_IMPORTANCE_* */
   int importance_width;    /* bins of the importance map; 0, 0: the image's resolution (PBRT_V3: twice */
   int importance_height;   /*  it), each capped at EL_ENVLIGHT_MAX_IMPORTANCE. TEXEL ignores these. */
   int sampler;             /* EL_ENVLIGHT_SAMPLER_* */
   int bad_texels;          /* EL_ENVLIGHT_BAD_TEXELS_* */
-  int bad_texel;           /* OUT: index y*width+x of the first bad texel when init fails on one, else -1 */
 } el_envlight_options;
 
 typedef struct el_envlight {
@@ -293,41 +198,50 @@ typedef struct el_envlight {
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
+  int bad_index;           /* after init: the index y*width+x of the first bad texel when init failed on one
+                              (EL_ERROR_NAN, _INFINITE, _NEGATIVE), else -1. A failed init zeroes every
+                              other field. */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
  * 2 (grey, alpha) give (g, g, g); 3 and 4 give RGB (alpha ignored, not checked). opt may be NULL (all-zero
- * options); it is written only for bad_texel. On failure *l is zeroed (freeing it is safe). */
+ * options). On failure *l is zeroed but for l->bad_index, which names the first bad texel (or is -1);
+ * freeing it is safe. */
 EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width, int height, int channels,
-                                  el_envlight_options *opt);
+                                  const el_envlight_options *opt);
 /* A constant-radiance light (pbrt-v3's InfiniteAreaLight without a map): uniform sphere sampling, pdf
  * 1 / 4 pi (0 when rgb is black); options.compensated has no effect (the map would fall back anyway). */
-EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], el_envlight_options *opt);
+EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], const el_envlight_options *opt);
 EL_DEF void el_envlight_free(el_envlight *l);
 /* Build the sampling tables now (they are otherwise built on first need). Returns their build result;
- * safe to call more than once and from several threads (see THREAD SAFETY above). */
+ * safe to call more than once and from several threads (NOTES below, point 6). */
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l);
-/* pbrt's Preprocess: the scene's bounding sphere, used by sample_le, pdf_le and power only. */
-EL_DEF void el_envlight_preprocess(el_envlight *l, const float center[3], float radius);
+/* pbrt's Preprocess: the scene's bounding sphere, used by sample_le, pdf_le and power only. Accepts a
+ * finite centre and a radius in [EL_ENVLIGHT_MIN_RADIUS, EL_ENVLIGHT_MAX_RADIUS] (2^-64 .. 2^62) that
+ * is at least 2^-20 max|centre[k]| (so that sample_le's disk spans at least 8 float steps around the
+ * centre); then every output of sample_le, pdf_le and power is finite. Otherwise EL_ERROR_NAN,
+ * EL_ERROR_INFINITE (a centre or radius component that is NaN / infinite) or EL_ERROR_INVALID_ARGUMENT
+ * (NULL, a radius <= 0 or outside those bounds), and the light keeps its previous sphere. */
+EL_DEF el_result el_envlight_preprocess(el_envlight *l, const float center[3], float radius);
 
 /* Radiance arriving along -dir (a ray leaving the scene along dir). Reads only: never builds tables. */
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]);
 /* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets le(wi). */
-EL_DEF void el_envlight_sample_li(el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
+EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
  * (a pixel's samples, a wavefront): the table and texel reads of up to 16 samples are started together
  * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
-EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
+EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
-EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]);
+EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
  * sphere facing it. ray_dir points INTO the scene; normal = ray_dir (pbrt's nLight). pdf_pos is w.r.t.
  * area of the disk (1 / (pi r^2)), pdf_dir w.r.t. solid angle. Before preprocess (radius 0): all zero. */
-EL_DEF void el_envlight_sample_le(el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
+EL_DEF void el_envlight_sample_le(const el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
                                   float normal[3], float rgb[3], float *pdf_pos, float *pdf_dir);
 /* pbrt-v3 Pdf_Le for a ray entering the scene along ray_dir. */
-EL_DEF void el_envlight_pdf_le(el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir);
+EL_DEF void el_envlight_pdf_le(const el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir);
 /* pi r^2 * integral(le) d omega (pbrt-v4's Phi); 0 before preprocess. */
 EL_DEF void el_envlight_power(const el_envlight *l, float rgb[3]);
 /* integral(le) d omega over the sphere, per channel (exact for the bilinear reconstruction). */
@@ -337,7 +251,7 @@ EL_DEF size_t el_envlight_bytes(const el_envlight *l);
 /* Bytes of the sampling tables alone (0 until built). */
 EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l);
 
-/* The light_to_world matrices for the usual right-handed worlds (see MAPPING AND ORIENTATION). */
+/* The light_to_world matrices for the usual right-handed worlds (NOTES below: MAPPING AND ORIENTATION). */
 EL_DEF void el_envlight_yup_matrix(float m[9]);
 EL_DEF void el_envlight_zup_matrix(float m[9]);
 
@@ -352,6 +266,125 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
 }
 #endif
 #endif /* EL_ENVLIGHT_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * MAPPING AND ORIENTATION (pbrt-v3's, in light space): theta is the angle from +z, phi = atan2(y, x) in
+ * [0, 2pi), and (u, v) = (phi / 2pi, theta / pi); u runs along a row (left to right), v down the
+ * image (row 0 is theta = 0). world = light_to_world * light.
+ *   Mirroring. This mapping shows the image unmirrored only in a LEFT-handed world (pbrt's): seen from
+ *   inside, with +z up, "to the right" of direction phi is phi + d in a left-handed frame and phi - d in a
+ *   right-handed one. So in a right-handed world (Blender, Mitsuba, OpenGL, Embree users) pbrt's
+ *   "RotateX(-90)" (light +z -> world +y) shows the map MIRRORED left-right compared with those tools;
+ *   no rotation can fix that, a reflection can. Therefore:
+ *   - el_envlight_yup_matrix(): y up, right-handed, exactly Mitsuba 3's convention (u = 0.5 looks
+ *     along +z, u = 0.25 along +x, u = 0 / 1 along -z). It is a reflection (determinant -1).
+ *   - el_envlight_zup_matrix(): z up, right-handed, exactly Blender's (u = 0.5 looks along +x, u = 0.75
+ *     along +y). Also a reflection.
+ *   tests/test_envlight.c proves both with an asymmetric map against Mitsuba's and Blender's own
+ *   formulas, and shows that a plain RotateX(-90) gives u' = 0.25 - u (a mirror image).
+ *
+ * OPERATIONS (directions are float[3] pointing away from the scene, in world space):
+ *   le(dir)          bilinear at full resolution, Repeat in u, Clamp in v (pbrt-v3 used Repeat in v too,
+ *                    so the north pole row bled into the south pole: pbrt-v3 issue #63).
+ *   sample_li(u0,u1) a direction, its radiance and its solid-angle pdf. pdf_li(dir) the same pdf.
+ *   sample_le / pdf_le  rays entering the scene's bounding sphere (bidirectional methods); they need
+ *                    el_envlight_preprocess(center, radius), nothing else does.
+ *   power()          pi r^2 * integral of L over the sphere (pbrt-v4's Phi; pbrt-v3's Power returned
+ *                    pi r^2 * the unweighted mean texel, off by 4 pi and ignoring sin(theta)).
+ *   bytes()          the memory in use (image copy + whatever sampling tables exist).
+ *
+ * WHERE IT DEPARTS FROM pbrt, AND WHY (pbrt-v3 InfiniteAreaLight, src/lights/infinite.{h,cpp})
+ * 1. The sampling density (pbrt-v3 issue #62). le() is bilinear but the density is piecewise constant.
+ *    pbrt-v3 builds its distribution at TWICE the image resolution from point lookups (4x the memory and
+ *    time). Ours (EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE, the default) uses one bin per texel whose value is
+ *    the EXACT average of the bilinear reconstruction over the bin (separable weights 1/8, 3/4, 1/8 when
+ *    bins and texels coincide; exact tent integrals for any other resolution), times sin(theta) at the
+ *    bin centre. Every direction where le() > 0 has pdf > 0 (so light sampling alone is unbiased), at a
+ *    quarter of pbrt's bins. bench/bench_envlight.c measures the variance of the choices (CELL_AVERAGE,
+ *    PBRT_V3 = 2x point lookups, TEXEL = raw texels, which misses the bilinear spill of a bright texel
+ *    into its dark neighbours: a bias): at 2x, cell averages and point lookups are equally good, and 2x
+ *    cuts the mismatch between density and le by 4x (the irradiance variance by 0-30%) for 4x the table
+ *    memory; ask for it with importance_width/height when the memory is there.
+ * 2. The distribution is distribution2d.h's integer-CDF one: every bin with f > 0 is reachable at any
+ *    dynamic range (pbrt's float CDF loses bins next to a sun). Samplers: a guide table (the default:
+ *    constant expected time, exactly CDF inversion's points, so it keeps stratification), CDF inversion
+ *    itself (binary searches) or an alias table (constant time, does NOT keep the stratification of
+ *    low-discrepancy input).
+ * 3. Poles. sinf(pi) is -8.7e-8, so pbrt-v3's "if (sinTheta == 0) pdf = 0" never fires at the south pole
+ *    and its pdf can be negative or huge. Here sample_li's sin(theta) is built from the bin edge nearer
+ *    the pole (sin exactly 0 there) plus a positive term, never a difference (small maps: sinpi(min(v,
+ *    1 - v)), an exact argument), sampled points stay at least 2^-21 (in u and v) inside their bin (so never on a pole or a
+ *    bin edge), and pdf_li clamps sin(theta) below at 1.4e-6 (the value at v = 2^-21). Every pdf returned
+ *    is finite and >= 0.
+ * 4. pdf_li(sample_li(u).dir) against the sampled pdf: both are the same bin's value divided by
+ *    sin(theta), which sample_li takes from the sampled angle and pdf_li from the direction. For
+ *    signed-permutation matrices (identity, y-up, z-up) the 2^-21 margin exceeds every rounding error of
+ *    the direction and of pdf_li's own bin search, so the bin is the same and the two pdfs differ only
+ *    by the rounding of sin(theta): by at most 2^-20 relative (measured at most 3.7 * 2^-23 = 4.4e-7;
+ *    about half agree bit for bit; tests/test_envlight.c checks the bound for every sampler, map size
+ *    and matrix). sample_li could compute its pdf with pdf_li's arithmetic and match bit for bit, but
+ *    that measured 126.6 instead of 93.5 instructions per sample. For a general rotation, rounding in
+ *    the round trip world -> light can move a direction near a pole across a bin edge, so sample_li
+ *    returns pdf_li(dir) itself: equal bit for bit (about 120 more instructions per sample: 218 instead
+ *    of 93.5 with the guide sampler).
+ * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
+ *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
+ *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
+ *    angle addition, with x - x^3/6 and 1 - x^2/2 for the in-bin angle (<= pi/128: maps of at least
+ *    256x128 bins; smaller maps use sinpi/cospi polynomials, 1.9e-7 relative). With SSE2 (any x86-64;
+ *    EL_NO_SIMD turns it off) the guide sampler's search runs inline in sample_li with vector ends (u
+ *    clamped and scaled to units and guide cells at once, each bin's two CDF entries read as one 8-byte
+ *    pair, the fractions computed in the lanes the direction wants), the two angles go through the
+ *    polynomials together and the direction is formed as 4-vectors; the scalar code does the same
+ *    operations in the same order. The pdf is the bin's, (wv wu) K from its integer widths, the pdf
+ *    table's expression, / sin theta.
+ *    le: an atan polynomial (2.5e-7 rad) for (u, v). pdf_li needs only the bin, not (u, v): a table over
+ *    a monotone "diamond angle" of (x, y) and one over t = 1 - z / (r + |z|) on both hemispheres (each
+ *    cell holds at most one bin edge, compared exactly), then a per-bin pdf table: three divisions, two
+ *    square roots (the hardware instruction, without libm's errno branch), no atan, no branch.
+ *    Costs, measured by bench/bench_envlight.c (callgrind, gcc 12 -O3, no -march; the generated
+ *    2048x1024 map): sample_li 93.5 instructions with the guide sampler (95.6-97.6 on the five CC0
+ *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
+ *    alias table; with the radiance 257; pdf_li 75 (general rotation 93); le 248; construction 117 M
+ *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
+ *    313 ms). See tutorials/03-infinite-light.md, section 9.
+ *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
+ *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
+ *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
+ *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
+ *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
+ *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
+ *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
+ *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
+ *    with it (the same image).
+ *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
+ *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
+ *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
+ *    default guide table (pbrt-v3: ~100 MB).
+ * 6. Only what is used is built. init copies (and scales) the texels and integrates them; nothing else.
+ *    The sampling distribution is built on the first sample_li / pdf_li / sample_le / pdf_le, or by
+ *    el_envlight_prepare_sampling(). THREAD SAFETY: the lazy build is thread-safe with GCC/Clang (a
+ *    __atomic once-flag: one thread builds, the others spin until it is done); without those builtins
+ *    (or with EL_ENVLIGHT_NO_ATOMICS) call el_envlight_prepare_sampling() before sharing the light.
+ *    After that, every query is read-only and thread-safe. No MIP pyramid is built: le() is a level-0
+ *    bilinear lookup; a renderer that wants filtered (ray-differential) lookups builds an el_mipmap
+ *    from the same pixels (mipmap.h).
+ * 7. Bad input is an error, not a NaN later: NaN / Inf / negative texels (light.bad_index names the
+ *    first one; or EL_ENVLIGHT_BAD_TEXELS_ZERO turns them into 0), a non-orthonormal matrix, a bad
+ *    scale, sizes that overflow.
+ *
+ * INPUT CONVENTIONS for the queries (which never fail): a direction need not be unit length: any finite,
+ * nonzero one is normalised safely (scaled by its largest component first, so components near FLT_MAX
+ * or denormal work under any matrix) and the result depends only on its direction; a zero, NaN or
+ * infinite direction gives le = 0 and pdf = 0. u outside [0,1) is clamped (NaN -> 0, 1 -> 0x1.fffffep-1). A light with no
+ * emission (all black) has pdf 0 everywhere and sample_li returns pdf 0, radiance 0.
+ * A sample with pdf 0 must be skipped by the caller (as in pbrt).
+ * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
+ * light sampling alone NO LONGER covers the dim parts of the map: use it only with MIS against BSDF
+ * sampling. A map where nothing exceeds the mean (a constant one) falls back to the plain density.
+ * ==================================================================================================== */
 
 /* ====================================================================================================
  * IMPLEMENTATION BELOW. Stop reading here if you only need the API.
@@ -512,6 +545,19 @@ static int el_envlight__rescale(float d[3]) {
   return 1;
 }
 
+/* Cold path for a WORLD direction whose light-space squared length is not a normal float: a zero, NaN or
+ * infinite direction (returns 0), or finite components so large or so small that their squares, or the
+ * sums of a general rotation, leave the float range. The world direction is scaled by its largest
+ * component first (the results depend only on the direction), then taken to light space, where its
+ * squared length lies in [1, 3]. */
+static EL_ENVLIGHT__NOINLINE int el_envlight__to_light_rescaled(const el_envlight *l, const float w[3], float d[3]) {
+  float s[3];
+  s[0] = w[0]; s[1] = w[1]; s[2] = w[2];
+  if (!el_envlight__rescale(s)) return 0;
+  el_envlight__to_light(l, s, d);
+  return 1;
+}
+
 /* The four texels of the bilinear lookup at (u, v) in [0,1]^2, Repeat in u, Clamp in v (pbrt's s*w - 0.5
  * convention), and the weights of the second column and row. */
 static inline void el_envlight__bilerp_texels(const el_envlight *l, float u, float v, const float *p[4], float *fx, float *fy) {
@@ -624,7 +670,7 @@ static el_result el_envlight__set_matrix(el_envlight *l, const float *m) {
   return EL_SUCCESS;
 }
 
-static el_result el_envlight__common(el_envlight *l, el_envlight_options *opt, float scale[3]) {
+static el_result el_envlight__common(el_envlight *l, const el_envlight_options *opt, float scale[3]) {
   int c;
   el_result r;
   if (opt->importance < 0 || opt->importance > 2 || opt->sampler < 0 || opt->sampler > 2 ||
@@ -791,8 +837,15 @@ static int el_envlight__row3(const float *src, float *dst, int w, const float *k
 
 /* >> construction */
 
+/* A failed init: *l zeroed but for bad_index. */
+static el_result el_envlight__fail(el_envlight *l, el_result r, int bad_index) {
+  el_envlight_free(l);
+  l->bad_index = bad_index;
+  return r;
+}
+
 EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width, int height, int channels,
-                                  el_envlight_options *opt) {
+                                  const el_envlight_options *opt) {
   el_envlight_options zero;
   float scale[3], k12[12];
   size_t n, i;
@@ -800,18 +853,18 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   int y, x, c;
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   memset(l, 0, sizeof *l);
+  l->bad_index = -1;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_texel = -1;
   if (!pixels || channels < 1 || channels > 4) return EL_ERROR_INVALID_ARGUMENT;
   if (width <= 0 || height <= 0) return width == 0 || height == 0 ? EL_ERROR_EMPTY : EL_ERROR_INVALID_ARGUMENT;
   if ((size_t)width > (size_t)2147483647 / (size_t)height) return EL_ERROR_SIZE_OVERFLOW;
   n = (size_t)width * (size_t)height;
   if (n > ((size_t)-1) / (3 * sizeof(float))) return EL_ERROR_SIZE_OVERFLOW;
   r = el_envlight__common(l, opt, scale);
-  if (r != EL_SUCCESS) { memset(l, 0, sizeof *l); return r; }
+  if (r != EL_SUCCESS) return el_envlight__fail(l, r, -1);
   if (opt->importance == EL_ENVLIGHT_IMPORTANCE_TEXEL) {
     l->imp_w = width; l->imp_h = height;
-    if (l->imp_w > EL_ENVLIGHT_MAX_IMPORTANCE || l->imp_h > EL_ENVLIGHT_MAX_IMPORTANCE) { memset(l, 0, sizeof *l); return EL_ERROR_SIZE_OVERFLOW; }
+    if (l->imp_w > EL_ENVLIGHT_MAX_IMPORTANCE || l->imp_h > EL_ENVLIGHT_MAX_IMPORTANCE) return el_envlight__fail(l, EL_ERROR_SIZE_OVERFLOW, -1);
   } else if (opt->importance_width > 0) {
     l->imp_w = opt->importance_width; l->imp_h = opt->importance_height;
   } else {
@@ -820,7 +873,7 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
     l->imp_h = height <= EL_ENVLIGHT_MAX_IMPORTANCE / k ? k * height : EL_ENVLIGHT_MAX_IMPORTANCE;
   }
   l->texels = (float *)EL_MALLOC(n * 3 * sizeof(float));
-  if (!l->texels) { memset(l, 0, sizeof *l); return EL_ERROR_OUT_OF_MEMORY; }
+  if (!l->texels) return el_envlight__fail(l, EL_ERROR_OUT_OF_MEMORY, -1);
   l->width = width; l->height = height;
   /* <<Copy, validate and scale the texels>> and integrate them over the sphere (power): RGB rows in one
    * vectorised pass each (el_envlight__row3); other channel counts, and a row holding a bad texel, texel
@@ -860,14 +913,14 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
         r = el_envlight__check_value(v);
         if (r != EL_SUCCESS) {
           if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
-          else { opt->bad_texel = (int)i; el_envlight_free(l); return r; }
+          else return el_envlight__fail(l, r, (int)i);
         }
         v *= scale[c];
         if (v > FLT_MAX) { /* scale * texel overflowed */
           if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
-          else { opt->bad_texel = (int)i; el_envlight_free(l); return EL_ERROR_INFINITE; }
+          else return el_envlight__fail(l, EL_ERROR_INFINITE, (int)i);
         }
-        l->texels[3 * i + c] = v;
+        l->texels[3 * i + (size_t)c] = v;
         row[c] += v;
       }
     }
@@ -876,27 +929,27 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   return EL_SUCCESS;
 }
 
-EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], el_envlight_options *opt) {
+EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], const el_envlight_options *opt) {
   el_envlight_options zero;
   float scale[3];
   el_result r;
   int c;
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   memset(l, 0, sizeof *l);
+  l->bad_index = -1;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
-  opt->bad_texel = -1;
   if (!rgb) return EL_ERROR_INVALID_ARGUMENT;
   r = el_envlight__common(l, opt, scale);
-  if (r != EL_SUCCESS) { memset(l, 0, sizeof *l); return r; }
+  if (r != EL_SUCCESS) return el_envlight__fail(l, r, -1);
   for (c = 0; c < 3; ++c) {
     float v;
     r = el_envlight__check_value(rgb[c]);
     if (r != EL_SUCCESS) {
-      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) { opt->bad_texel = 0; memset(l, 0, sizeof *l); return r; }
+      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, r, 0);
       v = 0.0f;
     } else v = rgb[c] * scale[c];
     if (v > FLT_MAX) {
-      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) { opt->bad_texel = 0; memset(l, 0, sizeof *l); return EL_ERROR_INFINITE; }
+      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, EL_ERROR_INFINITE, 0);
       v = 0.0f;
     }
     l->constant[c] = v;
@@ -912,10 +965,27 @@ EL_DEF void el_envlight_free(el_envlight *l) {
   memset(l, 0, sizeof *l);
 }
 
-EL_DEF void el_envlight_preprocess(el_envlight *l, const float center[3], float radius) {
-  if (!l || !center) return;
+EL_DEF el_result el_envlight_preprocess(el_envlight *l, const float center[3], float radius) {
+  float m = 0.0f;
+  int k;
+  el_result r;
+  if (!l || !center) return EL_ERROR_INVALID_ARGUMENT;
+  for (k = 0; k < 3; ++k) {
+    if (center[k] != center[k]) return EL_ERROR_NAN;
+    if (!(fabsf(center[k]) <= FLT_MAX)) return EL_ERROR_INFINITE;
+    if (fabsf(center[k]) > m) m = fabsf(center[k]);
+  }
+  r = el_envlight__check_value(radius); /* NaN, infinite, negative */
+  if (r == EL_ERROR_NEGATIVE) r = EL_ERROR_INVALID_ARGUMENT;
+  if (r != EL_SUCCESS) return r;
+  /* <<Compute scene bounding sphere>> is the caller's; here: pdf_pos = 1 / (pi r^2) must be a finite
+   * normal float, and the origins centre + r (disk point + direction) must resolve the disk. With
+   * r <= 2^62 they cannot overflow: |centre| + 2r rounds to at most FLT_MAX. */
+  if (!(radius >= EL_ENVLIGHT_MIN_RADIUS && radius <= EL_ENVLIGHT_MAX_RADIUS) || radius < m * 9.5367431640625e-7f)
+    return EL_ERROR_INVALID_ARGUMENT;
   l->center[0] = center[0]; l->center[1] = center[1]; l->center[2] = center[2];
-  l->radius = (radius > 0.0f && radius <= FLT_MAX) ? radius : 0.0f;
+  l->radius = radius;
+  return EL_SUCCESS;
 }
 
 /* >> the importance map */
@@ -1074,8 +1144,8 @@ static el_result el_envlight__build(el_envlight *l) {
     for (j = 0; j < nv; ++j)
       for (i = 0; i < nu; ++i) {
         float rgb[3];
-        el_envlight__bilerp(l, (i + 0.5f) / (float)nu, (j + 0.5f) / (float)nv, rgb);
-        f[(size_t)j * nu + i] = el_envlight__luminance(rgb);
+        el_envlight__bilerp(l, ((float)i + 0.5f) / (float)nu, ((float)j + 0.5f) / (float)nv, rgb);
+        f[(size_t)j * (size_t)nu + (size_t)i] = el_envlight__luminance(rgb);
       }
   } else {
     for (q = 0; q < nb; ++q) f[q] = el_envlight__luminance(l->texels + 3 * q);
@@ -1088,7 +1158,7 @@ static el_result el_envlight__build(el_envlight *l) {
     double sum = 0.0, area = 0.0, mean;
     for (j = 0; j < nv; ++j) {
       double da = cos(EL_ENVLIGHT__PI * j / nv) - cos(EL_ENVLIGHT__PI * (j + 1) / nv), rs = 0.0;
-      for (i = 0; i < nu; ++i) rs += f[(size_t)j * nu + i];
+      for (i = 0; i < nu; ++i) rs += f[(size_t)j * (size_t)nu + (size_t)i];
       sum += rs * da; area += da * nu;
     }
     mean = sum / area;
@@ -1098,7 +1168,7 @@ static el_result el_envlight__build(el_envlight *l) {
     } else l->fell_back = 1;
   }
   for (j = 0; j < nv && !sin_done; ++j) { /* <<times sin(theta)>> at the bin centre (> 0 for every bin) */
-    float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv), *row = f + (size_t)j * nu;
+    float s = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / nv), *row = f + (size_t)j * (size_t)nu;
     for (i = 0; i < nu; ++i) {
       float v = row[i] * s;
       row[i] = v < FLT_MAX ? v : FLT_MAX;
@@ -1174,7 +1244,7 @@ static el_result el_envlight__build(el_envlight *l) {
   for (j = 0; j < nv; ++j) {
     const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
     float wv = (float)(int32_t)(l->dist.marginal[j + 1] - l->dist.marginal[j]), k = pdf_k;
-    float *dst = l->pdf_table + (size_t)j * nu;
+    float *dst = l->pdf_table + (size_t)j * (size_t)nu;
     /* a bin's width is at most 2^24 units: as int32_t it converts to the same float, and the loop vectorises */
     for (i = 0; i < nu; ++i) dst[i] = (wv * (float)(int32_t)(row[i + 1] - row[i])) * k;
   }
@@ -1241,13 +1311,16 @@ static int el_envlight__ensure_slow(el_envlight *l) {
   return l->state == 2;
 #endif
 }
-static inline int el_envlight__ensure(el_envlight *l) {
+/* Queries take a const light and build its tables on first need: the lazy tables are the light's one
+ * mutable part, guarded by the once-flag above (as el_mipmap's upper levels are). The light itself is
+ * never a const object (el_envlight_init wrote it), so writing through the cast is defined. */
+static inline int el_envlight__ensure(const el_envlight *l) {
 #if EL_ENVLIGHT__ATOMICS
   if (__atomic_load_n(&l->state, __ATOMIC_ACQUIRE) == 2) return 1;
 #else
   if (l->state == 2) return 1;
 #endif
-  return el_envlight__ensure_slow(l);
+  return el_envlight__ensure_slow((el_envlight *)l);
 }
 
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l) {
@@ -1278,19 +1351,29 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float d[3]) {
   el_envlight__uv_to_dir(u, v, d);
 }
 
-EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]) {
-  float d[3], r2, len2, u, v;
-  el_envlight__to_light(l, dir, d);
-  r2 = d[0] * d[0] + d[1] * d[1];
-  len2 = r2 + d[2] * d[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(d)) { rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
-    r2 = d[0] * d[0] + d[1] * d[1];
-  }
+/* le for the light-space direction d, whose r2 = x^2 + y^2 is given. */
+static inline void el_envlight__le_light(const el_envlight *l, const float d[3], float r2, float rgb[3]) {
+  float u, v;
   if (l->width == 0) { rgb[0] = l->constant[0]; rgb[1] = l->constant[1]; rgb[2] = l->constant[2]; return; }
   u = el_envlight__phi_turns(d[1], d[0]);
   v = el_envlight__theta_halfturns(sqrtf(r2), d[2]);
   el_envlight__bilerp(l, u, v, rgb);
+}
+
+/* le's rare case: a direction that needs el_envlight__to_light_rescaled (zero, NaN, infinite: 0). */
+static EL_ENVLIGHT__NOINLINE void el_envlight__le_cold(const el_envlight *l, const float dir[3], float rgb[3]) {
+  float d[3];
+  if (!el_envlight__to_light_rescaled(l, dir, d)) { rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
+  el_envlight__le_light(l, d, d[0] * d[0] + d[1] * d[1], rgb);
+}
+
+EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]) {
+  float d[3], r2, len2;
+  el_envlight__to_light(l, dir, d);
+  r2 = d[0] * d[0] + d[1] * d[1];
+  len2 = r2 + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) { el_envlight__le_cold(l, dir, rgb); return; }
+  el_envlight__le_light(l, d, r2, rgb);
 }
 
 
@@ -1346,14 +1429,23 @@ static inline float el_envlight__pdf_light(const el_envlight *l, const float dir
   return el_envlight__pdf_core(l, x, y, z, r2, len2);
 }
 
-static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(el_envlight *l, const float dir[3]) {
+/* pdf_li for a world direction that needs el_envlight__to_light_rescaled. */
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_world_cold(const el_envlight *l, const float dir[3]) {
   float d[3];
-  if (!el_envlight__ensure(l)) return 0.0f;
-  el_envlight__to_light(l, dir, d);
+  if (!el_envlight__to_light_rescaled(l, dir, d)) return 0.0f;
   return el_envlight__pdf_light(l, d);
 }
 
-EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+  float d[3], len2;
+  if (!el_envlight__ensure(l)) return 0.0f;
+  el_envlight__to_light(l, dir, d);
+  len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_world_cold(l, dir);
+  return el_envlight__pdf_light(l, d);
+}
+
+EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3], r2, len2;
   /* the hot bit EL_ENVLIGHT__HOT_PDF: tables built, and a map (not the constant light) */
 #if EL_ENVLIGHT__ATOMICS
@@ -1364,7 +1456,7 @@ EL_DEF float el_envlight_pdf_li(el_envlight *l, const float dir[3]) {
   el_envlight__to_light(l, dir, d);
   r2 = d[0] * d[0] + d[1] * d[1];
   len2 = r2 + d[2] * d[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_cold(l, d[0], d[1], d[2]);
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_world_cold(l, dir);
   return el_envlight__pdf_core(l, d[0], d[1], d[2], r2, len2);
 }
 
@@ -1505,7 +1597,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
 }
 
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float d[3], u, v, p;
   if (!el_envlight__ensure(l)) {
     wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
@@ -1623,10 +1715,10 @@ static EL_ENVLIGHT__ALWAYS_INLINE int el_envlight__sample_guide_sse(const el_env
   return 0;
 }
 
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
 /* The inline path with the pdf recomputed (a general rotation, a black map): out of line, so that the
  * common case's function stays small. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   if (!el_envlight__sample_guide_sse(l, uu, wi, rgb, pdf, 0, NULL)) el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
 #endif
@@ -1634,7 +1726,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finishing(el_envlight *
 /* The hot path has no calls but tail calls; anything it does not take (tables not built yet, the CDF
  * or alias sampler, a crowded guide cell, the constant light, small maps) goes to
  * el_envlight__sample_li_slow. */
-EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
 #if EL_ENVLIGHT__ATOMICS
   int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE); /* built, direction tables, guide sampler */
 #else
@@ -1665,7 +1757,7 @@ EL_DEF void el_envlight_sample_li(el_envlight *l, const float uu[2], float wi[3]
 #define EL_ENVLIGHT__BATCH 16
 #endif
 
-EL_DEF void el_envlight_sample_li_n(el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
+EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
   int i;
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
   int hot;
@@ -1738,7 +1830,7 @@ static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {
   b2[0] = b; b2[1] = sign + n[1] * n[1] * a; b2[2] = -n[1];
 }
 
-EL_DEF void el_envlight_sample_le(el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
+EL_DEF void el_envlight_sample_le(const el_envlight *l, const float u[4], float ray_org[3], float ray_dir[3],
                                   float normal[3], float rgb[3], float *pdf_pos, float *pdf_dir) {
   float wi[3], L[3], p, b1[3], b2[3], dx, dy, R = l->radius;
   int k;
@@ -1766,7 +1858,7 @@ EL_DEF void el_envlight_sample_le(el_envlight *l, const float u[4], float ray_or
   *pdf_pos = 1.0f / (float)(EL_ENVLIGHT__PI * (double)R * (double)R);
 }
 
-EL_DEF void el_envlight_pdf_le(el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir) {
+EL_DEF void el_envlight_pdf_le(const el_envlight *l, const float ray_dir[3], float *pdf_pos, float *pdf_dir) {
   float w[3];
   w[0] = -ray_dir[0]; w[1] = -ray_dir[1]; w[2] = -ray_dir[2];
   if (!(l->radius > 0.0f)) { *pdf_pos = 0.0f; *pdf_dir = 0.0f; return; }

@@ -1,48 +1,35 @@
 /* film.h - envlight's film: pixel filters, weighted accumulation, splats, sRGB and tone mapping.
- * v0.1 - a single-header C99 library (also compiles as C++11); depends on the C standard library only.
+ * envlight v0.1.0 - MIT or public domain
  *
- * DO THIS in exactly one C or C++ file, before the #include:
- *     #define EL_FILM_IMPLEMENTATION      (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "film.h"
- * Other files include "film.h" without the macro.
+ * Every other file includes it without the macro. EL_FILM_IMPLEMENTATION instead implements film.h
+ * alone: a module's own macro never implements another module's header.
  *
- * Options honoured (define before the implementation): EL_MALLOC / EL_REALLOC / EL_FREE (all or none),
- * EL_ASSERT, EL_STATIC (private functions), EL_DEF.
- *
- * Usage (single thread):
- *     el_film_options fo; el_film film; float *rgb; unsigned char *srgb;
- *     memset(&fo, 0, sizeof fo); fo.width = 640; fo.height = 480;  (all-zero filter: pbrt's box)
- *     if (el_film_init(&film, &fo) != EL_SUCCESS) ...;
- *     for each sample: el_film_add_sample(&film, px, py, L_rgb, 1.0f);   (raster coordinates)
- *     el_film_get_rgb(&film, 1.0f, rgb);                          (film.width * film.height * 3)
- *     el_film_to_srgb8(rgb, film.width, film.height, NULL, srgb);  (clamp + exact sRGB, pbrt's TO_BYTE)
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: float px, py; const float L[3]; float *rgb; unsigned char *srgb8;  (640 * 480 * 3 each)
+ *     el_film film;
+ *     el_film_options fo = {0};                  // C++: = {}. All zero but the size: pbrt's box filter
+ *     fo.width = 640; fo.height = 480;
+ *     fo.filter.type = EL_FILM_FILTER_GAUSSIAN;  // pbrt's "gaussian": radius 2, alpha 2
+ *     if (el_film_init(&film, &fo) != EL_SUCCESS) return 1;
+ *     el_film_add_sample(&film, px, py, L, 1.0f);  // raster position, radiance, ray weight
+ *     el_film_get_rgb(&film, 1.0f, rgb);           // linear RGB, row 0 at the top
+ *     el_film_to_srgb8(rgb, film.width, film.height, NULL, srgb8);  // clamp, exact sRGB (pbrt's TO_BYTE)
  *     el_film_free(&film);
- * Threads: each thread owns an el_film_tile (el_film_tile_init / _reset for the region it samples),
- * adds samples to it without locks, and hands it to el_film_merge_tile under the caller's mutex.
+ * << usage
+ * Threads: each thread adds its samples to its own el_film_tile, then el_film_merge_tile under a lock.
  *
- * What it ports: pbrt-v3's Film / FilmTile (src/core/film.h, film.cpp) and its filters
- * (src/filters/box, triangle, gaussian, mitchell, sinc), the sRGB curve and TO_BYTE of imageio.cpp.
- * Where it departs from pbrt, and why:
- *  - Sums are kept in double (pbrt: float contribSum, float filterWeightSum). With a million samples per
- *    pixel a float sum drops every addend below sum * 2^-24; a double keeps them.
- *  - Pixels are accumulated in linear RGB. pbrt-v3 converts each tile's sums to XYZ on merge and back to
- *    RGB on output; with an RGBSpectrum build that is a linear map M^-1 M, the identity up to the 6-digit
- *    rounding of pbrt's matrices (|M^-1 M - I| is about 1e-6, measured in tests/test_film.c). Set
- *    el_film_options.xyz_round_trip to apply pbrt's two matrices anyway (values then match pbrt's).
- *    Only a spectral renderer (SampledSpectrum) needs XYZ for real; this film takes RGB.
- *  - A sample with a NaN or infinite position, or a NaN, infinite or negative component or weight, is
- *    rejected whole (it adds no filter weight either) and COUNTED by reason (el_film_stats,
- *    el_film_rejected_samples). pbrt-v3's integrators log such radiance and replace it by 0, which still
- *    adds the filter weight and so darkens the pixel; FilmTile::AddSample itself checks nothing, so a
- *    NaN that reaches it makes the pixel NaN.
- *  - The optional clamp is pbrt-v4's maxcomponentvalue (scale the sample so its largest component is at
- *    most the limit), not pbrt-v3's maxsampleluminance.
- *  - Splats land on floor(p), so p in (-1, 0) never doubles onto the edge pixel (pbrt-v3 once truncated
- *    with (Point2i)p; fixed in pbrt-v3 commit 9adaee8). The splat buffer exists only after a splat.
- *  - A pixel with a zero filter-weight sum outputs 0 (plus its splats); every output value is finite,
- *    and NaN never reaches the 8-bit conversion (in pbrt, (uint8_t) of NaN is undefined behaviour).
- *  - Tone mapping beyond pbrt's clamp: exposure in stops, the exponential 1 - exp(-k x) curve, Reinhard,
- *    Narkowicz's fitted ACES curve, and optional dithering of the 8-bit output.
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC (private functions in this translation unit), EL_DEF.
+ *
+ * PORTS pbrt-v3's Film and FilmTile (src/core/film.h, film.cpp: AddSample with its filterTable,
+ * AddSplat, GetSampleBounds, MergeFilmTile, WriteImage), its filters (src/filters/: box, triangle,
+ * gaussian, mitchell, sinc) and the sRGB curve GammaCorrect and TO_BYTE of src/core/imageio.cpp; tone
+ * mapping goes past pbrt (exposure, exponential, Reinhard, ACES, dithering). NOTES after the
+ * declarations: where and why it departs from pbrt.
  */
 #ifndef EL_FILM_H
 #define EL_FILM_H
@@ -115,19 +102,19 @@ extern "C" {
 #endif
 
 /* >> filters (pbrt-v3 src/filters/) */
-typedef enum el_filter_type {
-  EL_FILTER_BOX = 0,  /* pbrt "box":      radius 0.5 */
-  EL_FILTER_TRIANGLE, /* pbrt "triangle": radius 2 */
-  EL_FILTER_GAUSSIAN, /* pbrt "gaussian": radius 2, alpha 2 */
-  EL_FILTER_MITCHELL, /* pbrt "mitchell": radius 2, B = C = 1/3 */
-  EL_FILTER_LANCZOS   /* pbrt "sinc":     radius 4, tau 3 */
-} el_filter_type;
+typedef enum el_film_filter_type {
+  EL_FILM_FILTER_BOX = 0,  /* pbrt "box":      radius 0.5 */
+  EL_FILM_FILTER_TRIANGLE, /* pbrt "triangle": radius 2 */
+  EL_FILM_FILTER_GAUSSIAN, /* pbrt "gaussian": radius 2, alpha 2 */
+  EL_FILM_FILTER_MITCHELL, /* pbrt "mitchell": radius 2, B = C = 1/3 */
+  EL_FILM_FILTER_LANCZOS   /* pbrt "sinc":     radius 4, tau 3 */
+} el_film_filter_type;
 
 /* A pixel filter. Zero fields take pbrt-v3's defaults for the type (see above): a radius of 0 (either
  * axis) means the default radius on that axis, alpha/tau 0 mean the default, and mitchell_b ==
  * mitchell_c == 0 means B = C = 1/3 (for B = C = 0 pass a tiny value such as 1e-30f). */
 typedef struct el_film_filter {
-  el_filter_type type;
+  el_film_filter_type type;
   float radius[2];      /* x and y half-widths in pixels (pbrt "xwidth", "ywidth") */
   float gaussian_alpha; /* pbrt "alpha" */
   float mitchell_b, mitchell_c;
@@ -245,12 +232,12 @@ EL_DEF unsigned long long el_film_rejected_samples(const el_film *f); /* nan + i
 EL_DEF size_t el_film_bytes(const el_film *f);                         /* heap bytes held */
 
 /* >> colour: pbrt-v3's RGB <-> XYZ matrices (src/core/spectrum.h) */
-static inline void el_rgb_to_xyz(const float rgb[3], float xyz[3]) {
+static inline void el_film_rgb_to_xyz(const float rgb[3], float xyz[3]) {
   xyz[0] = 0.412453f * rgb[0] + 0.357580f * rgb[1] + 0.180423f * rgb[2];
   xyz[1] = 0.212671f * rgb[0] + 0.715160f * rgb[1] + 0.072169f * rgb[2];
   xyz[2] = 0.019334f * rgb[0] + 0.119193f * rgb[1] + 0.950227f * rgb[2];
 }
-static inline void el_xyz_to_rgb(const float xyz[3], float rgb[3]) {
+static inline void el_film_xyz_to_rgb(const float xyz[3], float rgb[3]) {
   rgb[0] = 3.240479f * xyz[0] - 1.537150f * xyz[1] - 0.498535f * xyz[2];
   rgb[1] = -0.969256f * xyz[0] + 1.875991f * xyz[1] + 0.041556f * xyz[2];
   rgb[2] = 0.055648f * xyz[0] - 0.204043f * xyz[1] + 1.057311f * xyz[2];
@@ -259,61 +246,61 @@ static inline void el_xyz_to_rgb(const float xyz[3], float rgb[3]) {
 /* >> sRGB encoding (pbrt-v3 GammaCorrect and TO_BYTE, src/core/imageio.cpp) */
 /* The exact sRGB curve: 12.92 x for x <= 0.0031308, 1.055 x^(1/2.4) - 0.055 above. Not clamped above
  * (2.0 encodes to about 1.353); returns 0 for NaN and for x <= 0 (the linear segment ends at 0). */
-static inline float el_srgb_encode(float linear) {
+static inline float el_film_srgb_encode(float linear) {
   if (!(linear > 0.0f)) return 0.0f; /* NaN and negatives */
   if (linear <= 0.0031308f) return 12.92f * linear;
   return 1.055f * (float)pow((double)linear, 1.0 / 2.4) - 0.055f;
 }
 /* The inverse curve: x / 12.92 for x <= 0.04045, ((x + 0.055) / 1.055)^2.4 above; 0 for NaN and x <= 0. */
-static inline float el_srgb_decode(float encoded) {
+static inline float el_film_srgb_decode(float encoded) {
   if (!(encoded > 0.0f)) return 0.0f;
   if (encoded <= 0.04045f) return encoded * (1.0f / 12.92f);
   return (float)pow(((double)encoded + 0.055) / 1.055, 2.4);
 }
 /* pbrt's TO_BYTE: (uint8_t)clamp(255 * encode(v) + 0.5, 0, 255), i.e. round to nearest; NaN gives 0,
  * +Inf gives 255. */
-static inline unsigned char el_srgb_to_byte(float linear) {
-  float v = 255.0f * el_srgb_encode(linear) + 0.5f;
+static inline unsigned char el_film_srgb_to_byte(float linear) {
+  float v = 255.0f * el_film_srgb_encode(linear) + 0.5f;
   if (!(v > 0.0f)) return 0;
   if (v >= 255.0f) return 255;
   return (unsigned char)v;
 }
 
 /* >> tone mapping */
-typedef enum el_tonemap {
-  EL_TONEMAP_CLAMP = 0,    /* pbrt: values above 1 clip (per channel) */
-  EL_TONEMAP_EXPONENTIAL,  /* the tutorial's HDRtoLDR: 1 - exp(-k x) per channel */
-  EL_TONEMAP_REINHARD,     /* x / (1 + x) per channel (Reinhard et al. 2002, simple form) */
-  EL_TONEMAP_ACES          /* Narkowicz's fit of the ACES RRT+ODT: x(2.51x+0.03) / (x(2.43x+0.59)+0.14) */
-} el_tonemap;
+typedef enum el_film_tonemap {
+  EL_FILM_TONEMAP_CLAMP = 0,    /* pbrt: values above 1 clip (per channel) */
+  EL_FILM_TONEMAP_EXPONENTIAL,  /* the tutorial's HDRtoLDR: 1 - exp(-k x) per channel */
+  EL_FILM_TONEMAP_REINHARD,     /* x / (1 + x) per channel (Reinhard et al. 2002, simple form) */
+  EL_FILM_TONEMAP_ACES          /* Narkowicz's fit of the ACES RRT+ODT: x(2.51x+0.03) / (x(2.43x+0.59)+0.14) */
+} el_film_tonemap;
 
 /* All zero = pbrt's output: no exposure change, clamp, no dithering. */
-typedef struct el_output_options {
+typedef struct el_film_output_options {
   float exposure;     /* in stops: linear values are multiplied by 2^exposure before the curve */
-  el_tonemap tonemap;
+  el_film_tonemap tonemap;
   float exp_k;        /* k of the exponential curve; 0 means 1 */
   int dither;         /* 1: add triangular (TPDF) noise of +-1 code value before rounding; codes 0 and
                          255 stay exact so black and clipped white are not speckled */
   unsigned seed;      /* dither pattern seed (deterministic per pixel, channel and seed) */
-} el_output_options;
+} el_film_output_options;
 
 /* The curve alone: maps a linear value x >= 0 to [0, 1] (clamp: to [0, x] clipped at 1). NaN and
  * negative x give 0, +Inf gives 1. `k` is used by the exponential curve only (<= 0 or NaN: 1). */
-static inline float el_tonemap_eval(el_tonemap t, float x, float k) {
+static inline float el_film_tonemap_eval(el_film_tonemap t, float x, float k) {
   float y;
   if (!(x > 0.0f)) return 0.0f;
   switch (t) {
-  case EL_TONEMAP_EXPONENTIAL:
+  case EL_FILM_TONEMAP_EXPONENTIAL:
     if (!(k > 0.0f)) k = 1.0f;
     y = 1.0f - (float)exp(-(double)k * (double)x);
     break;
-  case EL_TONEMAP_REINHARD:
+  case EL_FILM_TONEMAP_REINHARD:
     y = x > 1e30f ? 1.0f : x / (1.0f + x);
     break;
-  case EL_TONEMAP_ACES:
+  case EL_FILM_TONEMAP_ACES:
     y = x > 1e15f ? 2.51f / 2.43f : (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
     break;
-  case EL_TONEMAP_CLAMP:
+  case EL_FILM_TONEMAP_CLAMP:
   default:
     y = x;
     break;
@@ -324,17 +311,50 @@ static inline float el_tonemap_eval(el_tonemap t, float x, float k) {
 /* Linear RGB (width*height*3 floats) to 8-bit sRGB (width*height*3 bytes): exposure, the curve, the
  * exact sRGB encoding, round to nearest (optionally dithered). Without dithering the code is found by
  * comparing the curve's output with the 255 linear thresholds between codes (computed in double per
- * call): the correctly rounded code, with no pow per value; el_srgb_to_byte (pbrt's float formula)
- * agrees except for values within float rounding of a threshold (tests/test_film.c counts them). `o` NULL = all-zero options. NaN, Inf
- * and negative inputs are handled (NaN and negatives give 0). EL_ERROR_INVALID_ARGUMENT for NULL buffers,
- * a size <= 0 or an unknown tone mapper; EL_ERROR_SIZE_OVERFLOW for absurd sizes. */
-EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_output_options *o,
+ * call): the correctly rounded code, with no pow per value; el_film_srgb_to_byte (pbrt's float formula)
+ * agrees except for values within float rounding of a threshold (tests/test_film.c counts them). `o`
+ * NULL = all-zero options. NaN and negative inputs give 0 and +Inf gives 255, at every exposure (2^exposure
+ * may round to 0 or overflow; it scales finite values only). EL_ERROR_INVALID_ARGUMENT for NULL buffers,
+ * a size <= 0, an unknown tone mapper or an exposure that is NaN or infinite; EL_ERROR_SIZE_OVERFLOW for
+ * absurd sizes. */
+EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_film_output_options *o,
                                   unsigned char *out);
 
 #ifdef __cplusplus
 }
 #endif
 #endif /* EL_FILM_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * Threads: each thread owns an el_film_tile (el_film_tile_init / _reset for the region it samples),
+ * adds samples to it without locks, and hands it to el_film_merge_tile under the caller's mutex.
+ *
+ * What it ports: pbrt-v3's Film / FilmTile (src/core/film.h, film.cpp) and its filters
+ * (src/filters/box, triangle, gaussian, mitchell, sinc), the sRGB curve and TO_BYTE of imageio.cpp.
+ * Where it departs from pbrt, and why:
+ *  - Sums are kept in double (pbrt: float contribSum, float filterWeightSum). With a million samples per
+ *    pixel a float sum drops every addend below sum * 2^-24; a double keeps them.
+ *  - Pixels are accumulated in linear RGB. pbrt-v3 converts each tile's sums to XYZ on merge and back to
+ *    RGB on output; with an RGBSpectrum build that is a linear map M^-1 M, the identity up to the 6-digit
+ *    rounding of pbrt's matrices (|M^-1 M - I| is about 1e-6, measured in tests/test_film.c). Set
+ *    el_film_options.xyz_round_trip to apply pbrt's two matrices anyway (values then match pbrt's).
+ *    Only a spectral renderer (SampledSpectrum) needs XYZ for real; this film takes RGB.
+ *  - A sample with a NaN or infinite position, or a NaN, infinite or negative component or weight, is
+ *    rejected whole (it adds no filter weight either) and COUNTED by reason (el_film_stats,
+ *    el_film_rejected_samples). pbrt-v3's integrators log such radiance and replace it by 0, which still
+ *    adds the filter weight and so darkens the pixel; FilmTile::AddSample itself checks nothing, so a
+ *    NaN that reaches it makes the pixel NaN.
+ *  - The optional clamp is pbrt-v4's maxcomponentvalue (scale the sample so its largest component is at
+ *    most the limit), not pbrt-v3's maxsampleluminance.
+ *  - Splats land on floor(p), so p in (-1, 0) never doubles onto the edge pixel (pbrt-v3 once truncated
+ *    with (Point2i)p; fixed in pbrt-v3 commit 9adaee8). The splat buffer exists only after a splat.
+ *  - A pixel with a zero filter-weight sum outputs 0 (plus its splats); every output value is finite,
+ *    and NaN never reaches the 8-bit conversion (in pbrt, (uint8_t) of NaN is undefined behaviour).
+ *  - Tone mapping beyond pbrt's clamp: exposure in stops, the exponential 1 - exp(-k x) curve, Reinhard,
+ *    Narkowicz's fitted ACES curve, and optional dithering of the 8-bit output.
+ * ==================================================================================================== */
 
 /* ============================================================================================
  * implementation below; stop reading here if you only need the API
@@ -366,14 +386,14 @@ static float el_film__eval1(const el_film_filter *f, float x, int a) {
   x = (float)fabs((double)x);
   if (!(x <= r)) return 0.0f; /* NaN and outside */
   switch (f->type) {
-  case EL_FILTER_BOX: return 1.0f;
-  case EL_FILTER_TRIANGLE: return r - x > 0.0f ? r - x : 0.0f;
-  case EL_FILTER_GAUSSIAN: {
+  case EL_FILM_FILTER_BOX: return 1.0f;
+  case EL_FILM_FILTER_TRIANGLE: return r - x > 0.0f ? r - x : 0.0f;
+  case EL_FILM_FILTER_GAUSSIAN: {
     float v = (float)exp(-(double)f->gaussian_alpha * (double)x * (double)x) -
               (float)exp(-(double)f->gaussian_alpha * (double)r * (double)r);
     return v > 0.0f ? v : 0.0f;
   }
-  case EL_FILTER_MITCHELL: {
+  case EL_FILM_FILTER_MITCHELL: {
     float B = f->mitchell_b, C = f->mitchell_c;
     float t = (float)fabs(2.0 * (double)x / (double)r); /* <<Mitchell1D>>: x = |2 x / radius| in [0,2] */
     if (t > 1.0f)
@@ -381,7 +401,7 @@ static float el_film__eval1(const el_film_filter *f, float x, int a) {
              (1.0f / 6.0f);
     return ((12 - 9 * B - 6 * C) * t * t * t + (-18 + 12 * B + 6 * C) * t * t + (6 - 2 * B)) * (1.0f / 6.0f);
   }
-  case EL_FILTER_LANCZOS: /* <<WindowedSinc>> */
+  case EL_FILM_FILTER_LANCZOS: /* <<WindowedSinc>> */
     return el_film__sinc(x) * el_film__sinc(x / f->lanczos_tau);
   }
   return 0.0f;
@@ -401,9 +421,9 @@ EL_DEF el_result el_film_filter_resolve(const el_film_filter *in, el_film_filter
   if (!in || !out) return EL_ERROR_INVALID_ARGUMENT;
   f = *in;
   switch (f.type) {
-  case EL_FILTER_BOX: defr = 0.5f; break;
-  case EL_FILTER_TRIANGLE: case EL_FILTER_GAUSSIAN: case EL_FILTER_MITCHELL: defr = 2.0f; break;
-  case EL_FILTER_LANCZOS: defr = 4.0f; break;
+  case EL_FILM_FILTER_BOX: defr = 0.5f; break;
+  case EL_FILM_FILTER_TRIANGLE: case EL_FILM_FILTER_GAUSSIAN: case EL_FILM_FILTER_MITCHELL: defr = 2.0f; break;
+  case EL_FILM_FILTER_LANCZOS: defr = 4.0f; break;
   default: return EL_ERROR_INVALID_ARGUMENT;
   }
   for (a = 0; a < 2; a++) {
@@ -463,8 +483,8 @@ EL_DEF el_result el_film_init(el_film *f, const el_film_options *opt) {
   for (y = 0; y < EL_FILM_TABLE_SIZE; y++)
     for (x = 0; x < EL_FILM_TABLE_SIZE; x++)
       f->table[y * EL_FILM_TABLE_SIZE + x] =
-          el_film_filter_eval(&f->filter, (x + 0.5f) * f->filter.radius[0] / EL_FILM_TABLE_SIZE,
-                              (y + 0.5f) * f->filter.radius[1] / EL_FILM_TABLE_SIZE);
+          el_film_filter_eval(&f->filter, ((float)x + 0.5f) * f->filter.radius[0] / EL_FILM_TABLE_SIZE,
+                              ((float)y + 0.5f) * f->filter.radius[1] / EL_FILM_TABLE_SIZE);
   n = (size_t)f->width * (size_t)f->height * 4;
   f->pixels = (double *)EL_MALLOC(n * sizeof(double));
   if (!f->pixels) { memset(f, 0, sizeof *f); return EL_ERROR_OUT_OF_MEMORY; }
@@ -571,10 +591,15 @@ static unsigned el_film__bits(float v) { /* the IEEE-754 pattern (memcpy: no ali
 static int el_film__accept(el_film_stats *s, float px, float py, const float *rgb, float w) {
   /* as unsigned patterns, finite non-negative floats are exactly those below 0x7f800000 (+Inf); a
      finite position of either sign has its magnitude bits below it. -0.0 takes the slow path. */
-  if (rgb && ((el_film__bits(px) & 0x7fffffffu) < 0x7f800000u) & ((el_film__bits(py) & 0x7fffffffu) < 0x7f800000u) &
-                 (el_film__bits(rgb[0]) < 0x7f800000u) & (el_film__bits(rgb[1]) < 0x7f800000u) &
-                 (el_film__bits(rgb[2]) < 0x7f800000u) & (el_film__bits(w) < 0x7f800000u))
-    return 1;
+  if (rgb) {
+    /* all six tests, combined with & rather than && (one branch, not six); the patterns are read first,
+       so that no operand of & has a call in it (clang's -Wbitwise-instead-of-logical) */
+    unsigned bx = el_film__bits(px) & 0x7fffffffu, by = el_film__bits(py) & 0x7fffffffu;
+    unsigned b0 = el_film__bits(rgb[0]), b1 = el_film__bits(rgb[1]), b2 = el_film__bits(rgb[2]), bw = el_film__bits(w);
+    if ((bx < 0x7f800000u) & (by < 0x7f800000u) & (b0 < 0x7f800000u) & (b1 < 0x7f800000u) & (b2 < 0x7f800000u) &
+        (bw < 0x7f800000u))
+      return 1;
+  }
   return el_film__classify(s, px, py, rgb, w);
 }
 
@@ -607,7 +632,7 @@ static void el_film__add(const el_film *f, el_film_stats *s, double *buf, int bx
   /* Box filter of radius 0.5 (pbrt's default film filter): the support [ceil(px - 1), floor(px)] is the
    * single pixel floor(px), weight 1, unless px or py is an integer (then the general path below adds
    * to both neighbours, as pbrt does). The same sums as the general path, bit for bit (w = 1 times L). */
-  if (f->filter.type == EL_FILTER_BOX && rx == 0.5 && ry == 0.5 && px >= (float)bx0 && px < (float)bx1 &&
+  if (f->filter.type == EL_FILM_FILTER_BOX && rx == 0.5 && ry == 0.5 && px >= (float)bx0 && px < (float)bx1 &&
       py >= (float)by0 && py < (float)by1) {
     int ixp = (int)px, iyp = (int)py; /* px, py >= bx0, by0 >= 0 here: truncation is floor */
     if ((float)ixp != px && (float)iyp != py && bx0 >= 0 && by0 >= 0) {
@@ -803,16 +828,16 @@ EL_DEF void el_film_get_rgb(const el_film *f, float splat_scale, float *out) {
     }
     /* <<Add splat value at pixel>> */
     if (f->splats)
-      for (k = 0; k < 3; k++) c[k] += ss * f->splats[i * 3 + k];
+      for (k = 0; k < 3; k++) c[k] += ss * f->splats[i * 3 + (size_t)k];
     if (f->xyz_round_trip) { /* pbrt-v3: ToXYZ on merge, XYZToRGB on output */
       float rgb[3], xyz[3];
       rgb[0] = el_film__finite_clamp(c[0]); rgb[1] = el_film__finite_clamp(c[1]); rgb[2] = el_film__finite_clamp(c[2]);
-      el_rgb_to_xyz(rgb, xyz);
-      el_xyz_to_rgb(xyz, rgb);
+      el_film_rgb_to_xyz(rgb, xyz);
+      el_film_xyz_to_rgb(xyz, rgb);
       c[0] = rgb[0]; c[1] = rgb[1]; c[2] = rgb[2];
     }
     /* <<Scale pixel value by scale>> */
-    for (k = 0; k < 3; k++) out[i * 3 + k] = el_film__finite_clamp(c[k] * f->scale);
+    for (k = 0; k < 3; k++) out[i * 3 + (size_t)k] = el_film__finite_clamp(c[k] * f->scale);
   }
 }
 
@@ -857,15 +882,15 @@ static unsigned char el_film__code(const float th[256], float y) {
   return (unsigned char)c;
 }
 
-EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_output_options *o,
+EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const el_film_output_options *o,
                                   unsigned char *out) {
-  el_output_options d;
+  el_film_output_options d;
   float gain, th[256];
   size_t i, n;
   if (!rgb || !out || width <= 0 || height <= 0) return EL_ERROR_INVALID_ARGUMENT;
   if ((size_t)width > ((size_t)-1) / 3 / sizeof(float) / (size_t)height) return EL_ERROR_SIZE_OVERFLOW;
   if (o) d = *o; else memset(&d, 0, sizeof d);
-  if ((int)d.tonemap < (int)EL_TONEMAP_CLAMP || (int)d.tonemap > (int)EL_TONEMAP_ACES) return EL_ERROR_INVALID_ARGUMENT;
+  if ((int)d.tonemap < (int)EL_FILM_TONEMAP_CLAMP || (int)d.tonemap > (int)EL_FILM_TONEMAP_ACES) return EL_ERROR_INVALID_ARGUMENT;
   if (!el_film__finite(d.exposure)) return EL_ERROR_INVALID_ARGUMENT;
   gain = (float)pow(2.0, (double)d.exposure);
   n = (size_t)width * (size_t)height * 3;
@@ -873,19 +898,19 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
   for (i = 0; i < n; i++) {
     float x = rgb[i];
     float y;
-    if (gain != 1.0f) x *= gain;
-    y = el_tonemap_eval(d.tonemap, x, d.exp_k);
+    if (gain != 1.0f && x <= FLT_MAX) x *= gain; /* +Inf stays +Inf (Inf * 0 would be NaN), NaN stays NaN */
+    y = el_film_tonemap_eval(d.tonemap, x, d.exp_k);
     if (!d.dither) {
       out[i] = el_film__code(th, y); /* = round(255 encode(y)) in exact arithmetic, without a pow */
     } else {
       /* encode, then add TPDF noise in code units: (u1 - u2) with u uniform in [0,1) */
-      float e = 255.0f * el_srgb_encode(y) + 0.5f;
+      float e = 255.0f * el_film_srgb_encode(y) + 0.5f;
       if (e > 0.5f && e < 254.5f) {
         unsigned h1 = el_film__hash((unsigned)i * 2u + 0x9e3779b9u * (d.seed + 1u));
         unsigned h2 = el_film__hash(h1 ^ 0x85ebca6bu);
         e += (float)((double)(h1 >> 8) * (1.0 / 16777216.0) - (double)(h2 >> 8) * (1.0 / 16777216.0));
       }
-      out[i] = e <= 0.0f ? (unsigned char)0 : e >= 255.0f ? (unsigned char)255 : (unsigned char)e;
+      out[i] = (unsigned char)(e <= 0.0f ? 0 : e >= 255.0f ? 255 : (int)e);
     }
   }
   return EL_SUCCESS;

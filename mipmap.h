@@ -1,36 +1,164 @@
-/* mipmap.h - image pyramid with pbrt-v3's MIPMap lookups (point, bilinear, trilinear, EWA)
- * v0.1.0 - MIT or public domain - part of envlight
+/* mipmap.h - an image pyramid with pbrt-v3's MIPMap lookups (point, bilinear, trilinear, EWA)
+ * envlight v0.1.0 - MIT or public domain
  *
- * Do this in exactly one C or C++ file before including it:
- *     #define EL_MIPMAP_IMPLEMENTATION   (or EL_IMPLEMENTATION for every envlight header)
+ * DO THIS in exactly one C or C++ file (the first line alone is enough):
+ *     #define EL_IMPLEMENTATION   // implements every envlight header included after it
  *     #include "mipmap.h"
- * mipmap.h includes blockedarray.h for its declarations only; EL_MIPMAP_IMPLEMENTATION does not
- * implement blockedarray.h (EL_IMPLEMENTATION implements both).
+ * Every other file includes it without the macro. mipmap.h includes blockedarray.h for its declarations;
+ * EL_MIPMAP_IMPLEMENTATION instead implements mipmap.h alone, not blockedarray.h: a module's own macro
+ * never implements another module's header.
  *
- * Options honoured (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none),
- * EL_ASSERT, EL_STATIC, EL_DEF; EL_MIPMAP_YIELD() (what a thread waiting for another thread's lazy
- * build of the upper levels does between polls; default: a CPU pause hint on x86, nothing elsewhere;
- * define it as sched_yield() on POSIX if you like); EL_MIPMAP_NO_ATOMICS (no lazy building: see
- * "Threads" below).
- *
- * Usage:
+ * USAGE (C; where C writes `= {0}`, C++ writes `= {}`; tests/test_snippets.c compiles both)
+ * >> usage
+ *     // given: const float *rgb; float s, t, dsdx, dtdx, dsdy, dtdy;   (rgb: 400 * 235 * 3 floats)
  *     el_mipmap m;
- *     el_mipmap_options opt;                         // all-zero = pbrt-v3's defaults:
- *     memset(&opt, 0, sizeof opt);                   //   Repeat, EWA, max anisotropy 8, power of two
- *     opt.wrap_v = EL_WRAP_CLAMP;                    // e.g. an environment map: Repeat u, Clamp v
- *     if (el_mipmap_init(&m, rgb, 400, 235, 3, &opt) != EL_SUCCESS) ...;
+ *     el_mipmap_options opt = {0};             // C++: = {}. All zero: pbrt-v3's Repeat, EWA, anisotropy 8
+ *     opt.wrap_v = EL_MIPMAP_WRAP_CLAMP;       // per axis: an environment map's v, say
+ *     if (el_mipmap_init(&m, rgb, 400, 235, 3, &opt) != EL_SUCCESS) return 1;  // m.bad_index: NaN texel
  *     float c[3];
- *     el_mipmap_lookup(&m, 0.3f, 0.7f, 0.15f, c);   // trilinear, filter width 0.15 (in [0,1] units)
+ *     el_mipmap_lookup(&m, s, t, 0.15f, c);    // trilinear, filter width 0.15 (1: the whole image)
  *     el_mipmap_lookup_differentials(&m, s, t, dsdx, dtdx, dsdy, dtdy, c);  // EWA
  *     el_mipmap_free(&m);
+ * << usage
+ * (s, t) = (0, 0) is the corner of the first texel of row 0; upper levels are built on first need.
  *
- * What it ports: pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): power-of-two
+ * OPTIONS (define before including): EL_MALLOC / EL_REALLOC / EL_FREE (all or none), EL_ASSERT,
+ * EL_STATIC, EL_DEF; EL_MIPMAP_YIELD() (what a thread waiting for another thread's lazy build of the
+ * upper levels does between polls; default: a CPU pause hint on x86, nothing elsewhere);
+ * EL_MIPMAP_NO_ATOMICS (no lazy building: init builds every level).
+ *
+ * PORTS pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): resampleWeights and Lanczos for
+ * the power-of-two resampling, the box-filtered pyramid, Texel() with ImageWrap, triangle(), Lookup(st,
+ * width) (trilinear) and Lookup(st, dst0, dst1) (EWA with weightLut); from pbrt-v4, per-axis wrap modes
+ * and the point and bilinear filters. NOTES after the declarations: accuracy against pbrt, costs,
+ * where and why it departs from pbrt, threads, coordinates.
+ */
+#ifndef EL_MIPMAP_H
+#define EL_MIPMAP_H
+
+#include "blockedarray.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* >> mipmap declarations */
+
+/* pbrt's ImageWrap, chosen per axis. */
+typedef enum el_mipmap_wrap {
+  EL_MIPMAP_WRAP_REPEAT = 0, /* the texture tiles the plane (pbrt's default) */
+  EL_MIPMAP_WRAP_BLACK = 1,  /* outside the texture everything is 0 */
+  EL_MIPMAP_WRAP_CLAMP = 2   /* outside, the nearest border texel */
+} el_mipmap_wrap;
+
+/* The filter of el_mipmap_lookup_differentials (pbrt-v3: doTrilinear false = EWA, the default) and of
+ * el_mipmap_lookup_filtered. Zero is pbrt's default, EWA. */
+typedef enum el_mipmap_filter {
+  EL_MIPMAP_FILTER_EWA = 0,       /* elliptically weighted average over the footprint of two differentials */
+  EL_MIPMAP_FILTER_TRILINEAR = 1, /* bilinear on two levels, blended (pbrt-v3 doTrilinear = true) */
+  EL_MIPMAP_FILTER_BILINEAR = 2,  /* bilinear on the level a trilinear lookup would use first (pbrt-v4) */
+  EL_MIPMAP_FILTER_POINT = 3      /* the texel containing (s, t) on that level (pbrt-v4) */
+} el_mipmap_filter;
+
+/* All-zero means pbrt-v3's defaults: Repeat in both axes, EWA, max anisotropy 8, non-power-of-two
+ * images resampled up to a power of two. */
+typedef struct el_mipmap_options {
+  el_mipmap_wrap wrap_u, wrap_v;  /* per axis; u = s along rows, v = t down the rows */
+  el_mipmap_filter filter; /* for el_mipmap_lookup_differentials */
+  float max_anisotropy;    /* EWA eccentricity clamp; 0 -> 8 (pbrt's default); else in [1, 1024] */
+  int keep_resolution;     /* 1: level 0 is the input as is, for any size (no power-of-two
+                              resampling); upper levels are exact area averages. 0: pbrt's resampling. */
+} el_mipmap_options;
+
+#define EL_MIPMAP_MAX_LEVELS 26 /* 1 + log2(2^24) = 25 levels at most, one spare */
+
+/* A MIP map. Fields are readable; change them only through the functions. */
+typedef struct el_mipmap {
+  int width, height;          /* level-0 resolution (the resampled one when resampling happened) */
+  int input_width, input_height; /* what el_mipmap_init was given */
+  int channels;               /* floats per texel, 1..4 */
+  int levels;                 /* levels of the full pyramid: 1 + floor(log2(max(width, height))) */
+  el_mipmap_wrap wrap_u, wrap_v;
+  el_mipmap_filter filter;
+  float max_anisotropy;       /* after defaulting */
+  int resampled;              /* 1 when level 0 was resampled to a power of two */
+  int level_width[EL_MIPMAP_MAX_LEVELS], level_height[EL_MIPMAP_MAX_LEVELS];
+  float level_size[EL_MIPMAP_MAX_LEVELS][2]; /* (float)level_width, (float)level_height */
+  float *level_data[EL_MIPMAP_MAX_LEVELS]; /* row-major, channels interleaved, row 0 first; [0] always,
+                                              the others once built (read them via el_mipmap_level_data) */
+  size_t level0_bytes;        /* bytes of level_data[0] */
+  size_t upper_bytes;         /* bytes of the one allocation holding levels 1.. (0 until built) */
+  long build_state;           /* 0 upper levels not built, 1 building, 2 built, 3 out of memory */
+  int bad_index;              /* after init: the index y*width+x of the first NaN or infinite input texel when
+                                 init failed on one (EL_ERROR_NAN, EL_ERROR_INFINITE), else -1 (capped at
+                                 INT_MAX). A failed init zeroes every other field. */
+} el_mipmap;
+
+/* Builds level 0 from `pixels` (width*height*channels floats, row-major, row 0 first, channels 1..4),
+ * resampling it to a power of two unless it is one or opt->keep_resolution is set. opt may be NULL
+ * (pbrt's defaults). Levels 1.. are built on first need. Errors: EL_ERROR_INVALID_ARGUMENT (NULL,
+ * size < 1, channels outside 1..4, an unknown enum, max_anisotropy negative or outside [1,1024]),
+ * EL_ERROR_NAN / EL_ERROR_INFINITE (a texel or max_anisotropy), EL_ERROR_SIZE_OVERFLOW (a side
+ * above 2^24, or bytes overflow), EL_ERROR_OUT_OF_MEMORY. On failure *m is zeroed but for m->bad_index,
+ * which names the first NaN or infinite texel (or is -1). */
+EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, int height, int channels,
+                                const el_mipmap_options *opt);
+/* Releases everything and zeroes *m. Safe on a zeroed struct and on NULL. */
+EL_DEF void el_mipmap_free(el_mipmap *m);
+/* Builds levels 1.. now, if not built yet. Thread-safe. EL_SUCCESS or EL_ERROR_OUT_OF_MEMORY. */
+EL_DEF el_result el_mipmap_build_levels(el_mipmap *m);
+/* 1 when levels 1.. exist (built lazily or explicitly, or the map has one level), else 0. */
+EL_DEF int el_mipmap_levels_built(const el_mipmap *m);
+
+EL_DEF int el_mipmap_levels(const el_mipmap *m);                  /* total level count */
+EL_DEF int el_mipmap_level_width(const el_mipmap *m, int level);  /* 0 for a level out of range */
+EL_DEF int el_mipmap_level_height(const el_mipmap *m, int level);
+/* Row-major texels of a level (building levels 1.. if needed); NULL for a level out of range or when
+ * the build ran out of memory. */
+EL_DEF const float *el_mipmap_level_data(const el_mipmap *m, int level);
+
+/* pbrt's Texel(level, s, t): integer texel coordinates, any int, through the wrap modes. A level
+ * outside [0, levels) is clamped into it. */
+EL_DEF void el_mipmap_texel(const el_mipmap *m, int level, int s, int t, float *out);
+/* The texel containing (s, t) (coordinates in [0,1] units) on a level, through the wrap modes. */
+EL_DEF void el_mipmap_point(const el_mipmap *m, int level, float s, float t, float *out);
+/* pbrt's Bilerp / triangle(level, st): bilinear between the four texels around (s*w - 0.5, t*h - 0.5). */
+EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, float *out);
+/* pbrt-v3's Lookup(st, width): trilinear. level = levels - 1 + log2(max(width, 1e-8)); level < 0:
+ * bilinear on level 0; level >= levels - 1: the 1x1 level; else the blend of the bilinear lookups on
+ * floor(level) and floor(level) + 1. width is in [0,1] texture units (1 = the whole texture). */
+EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out);
+/* pbrt-v4's Lookup(st, width) with an explicit filter: POINT and BILINEAR on level
+ * max(0, floor(level)), TRILINEAR as el_mipmap_lookup; EWA (which needs differentials) acts as
+ * TRILINEAR here. */
+EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
+                                      float width, float *out);
+/* pbrt-v3's Lookup(st, dst0, dst1) with dst0 = (dsdx, dtdx), dst1 = (dsdy, dtdy), by the map's filter:
+ * EWA; TRILINEAR: el_mipmap_lookup(st, max |component|), as pbrt-v3 since its commit aaa552a "Fix
+ * trilinear filtering" (the bilinear taps already filter, so 2 max |d| would blur twice); POINT and
+ * BILINEAR, pbrt-v4's filters: lookup_filtered with pbrt-v4's width 2 * max |component|. */
+EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
+                                           float dsdy, float dtdy, float *out);
+/* Heap bytes in use: level 0, plus levels 1.. once built. */
+EL_DEF size_t el_mipmap_bytes(const el_mipmap *m);
+/* << mipmap declarations */
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* EL_MIPMAP_H */
+
+/* ====================================================================================================
+ * NOTES (the reasons behind the API; a user of the functions above needs none of this)
+ *
+ * What it ports, in detail: pbrt-v3's MIPMap<T> (src/core/mipmap.h, book section 10.4): power-of-two
  * resampling with 4-tap Lanczos weights (resampleWeights, tau 2, negative ringing clamped to 0), box
  * filtered levels down to 1x1, Texel() with wrap modes, triangle() (bilinear), Lookup(st, width)
  * (trilinear, with the level convention of pbrt-v3 after its trilinear fix, PR #275:
  * level = nLevels - 1 + log2(max(width, 1e-8)), so width 1 means "the whole texture", the 1x1
  * level), and Lookup(st, dst0, dst1) (EWA with pbrt's 128-entry Gaussian table, alpha 2, anisotropy
- * clamp, default 8). From pbrt-v4 it takes per-axis wrap modes and point / bilinear filters.
+ * clamp, default 8; with doTrilinear, Lookup(st, max |d|) as pbrt-v3 since its commit aaa552a "Fix
+ * trilinear filtering"). From pbrt-v4 it takes per-axis wrap modes and point / bilinear filters.
  * For power-of-two images levels and lookups equal pbrt-v3's to float precision: the same float
  * operations in the same order, except the logarithm that picks the level (ours needs no libm call);
  * measured against a literal port of pbrt-v3 in bench/bench_mipmap.c: levels identical, lookups within
@@ -75,115 +203,7 @@
  * Coordinates: s (u) runs along a row, t (v) down the rows; (0,0) is the corner of texel (0,0) of
  * row 0 (the first row of the row-major input), texel (i, j) covers [i/w, (i+1)/w) x [j/h, (j+1)/h),
  * and its centre is at ((i + 0.5)/w, (j + 0.5)/h). `out` always receives `channels` floats.
- */
-#ifndef EL_MIPMAP_H
-#define EL_MIPMAP_H
-
-#include "blockedarray.h"
-
-#ifdef __cplusplus
-extern "C" {
-#endif
-
-/* >> mipmap declarations */
-
-/* pbrt's ImageWrap, chosen per axis. */
-typedef enum el_wrap {
-  EL_WRAP_REPEAT = 0, /* the texture tiles the plane (pbrt's default) */
-  EL_WRAP_BLACK = 1,  /* outside the texture everything is 0 */
-  EL_WRAP_CLAMP = 2   /* outside, the nearest border texel */
-} el_wrap;
-
-/* The filter of el_mipmap_lookup_differentials (pbrt-v3: doTrilinear false = EWA, the default) and of
- * el_mipmap_lookup_filtered. Zero is pbrt's default, EWA. */
-typedef enum el_mipmap_filter {
-  EL_FILTER_EWA = 0,       /* elliptically weighted average over the footprint of two differentials */
-  EL_FILTER_TRILINEAR = 1, /* bilinear on two levels, blended (pbrt-v3 doTrilinear = true) */
-  EL_FILTER_BILINEAR = 2,  /* bilinear on the level a trilinear lookup would use first (pbrt-v4) */
-  EL_FILTER_POINT = 3      /* the texel containing (s, t) on that level (pbrt-v4) */
-} el_mipmap_filter;
-
-/* All-zero means pbrt-v3's defaults: Repeat in both axes, EWA, max anisotropy 8, non-power-of-two
- * images resampled up to a power of two. */
-typedef struct el_mipmap_options {
-  el_wrap wrap_u, wrap_v;  /* per axis; u = s along rows, v = t down the rows */
-  el_mipmap_filter filter; /* for el_mipmap_lookup_differentials */
-  float max_anisotropy;    /* EWA eccentricity clamp; 0 -> 8 (pbrt's default); else in [1, 1024] */
-  int keep_resolution;     /* 1: level 0 is the input as is, for any size (no power-of-two
-                              resampling); upper levels are exact area averages. 0: pbrt's resampling. */
-} el_mipmap_options;
-
-#define EL_MIPMAP_MAX_LEVELS 26 /* 1 + log2(2^24) = 25 levels at most, one spare */
-
-/* A MIP map. Fields are readable; change them only through the functions. */
-typedef struct el_mipmap {
-  int width, height;          /* level-0 resolution (the resampled one when resampling happened) */
-  int input_width, input_height; /* what el_mipmap_init was given */
-  int channels;               /* floats per texel, 1..4 */
-  int levels;                 /* levels of the full pyramid: 1 + floor(log2(max(width, height))) */
-  el_wrap wrap_u, wrap_v;
-  el_mipmap_filter filter;
-  float max_anisotropy;       /* after defaulting */
-  int resampled;              /* 1 when level 0 was resampled to a power of two */
-  int level_width[EL_MIPMAP_MAX_LEVELS], level_height[EL_MIPMAP_MAX_LEVELS];
-  float level_size[EL_MIPMAP_MAX_LEVELS][2]; /* (float)level_width, (float)level_height */
-  float *level_data[EL_MIPMAP_MAX_LEVELS]; /* row-major, channels interleaved, row 0 first; [0] always,
-                                              the others once built (read them via el_mipmap_level_data) */
-  size_t level0_bytes;        /* bytes of level_data[0] */
-  size_t upper_bytes;         /* bytes of the one allocation holding levels 1.. (0 until built) */
-  long build_state;           /* 0 upper levels not built, 1 building, 2 built, 3 out of memory */
-} el_mipmap;
-
-/* Builds level 0 from `pixels` (width*height*channels floats, row-major, row 0 first, channels 1..4),
- * resampling it to a power of two unless it is one or opt->keep_resolution is set. opt may be NULL
- * (pbrt's defaults). Levels 1.. are built on first need. Errors: EL_ERROR_INVALID_ARGUMENT (NULL,
- * size < 1, channels outside 1..4, an unknown enum, max_anisotropy negative or outside [1,1024]),
- * EL_ERROR_NAN / EL_ERROR_INFINITE (a texel or max_anisotropy), EL_ERROR_SIZE_OVERFLOW (a side
- * above 2^24, or bytes overflow), EL_ERROR_OUT_OF_MEMORY. On failure *m is zeroed. */
-EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, int height, int channels,
-                                const el_mipmap_options *opt);
-/* Releases everything and zeroes *m. Safe on a zeroed struct and on NULL. */
-EL_DEF void el_mipmap_free(el_mipmap *m);
-/* Builds levels 1.. now, if not built yet. Thread-safe. EL_SUCCESS or EL_ERROR_OUT_OF_MEMORY. */
-EL_DEF el_result el_mipmap_build_levels(el_mipmap *m);
-/* 1 when levels 1.. exist (built lazily or explicitly, or the map has one level), else 0. */
-EL_DEF int el_mipmap_levels_built(const el_mipmap *m);
-
-EL_DEF int el_mipmap_levels(const el_mipmap *m);                  /* total level count */
-EL_DEF int el_mipmap_level_width(const el_mipmap *m, int level);  /* 0 for a level out of range */
-EL_DEF int el_mipmap_level_height(const el_mipmap *m, int level);
-/* Row-major texels of a level (building levels 1.. if needed); NULL for a level out of range or when
- * the build ran out of memory. */
-EL_DEF const float *el_mipmap_level_data(const el_mipmap *m, int level);
-
-/* pbrt's Texel(level, s, t): integer texel coordinates, any int, through the wrap modes. A level
- * outside [0, levels) is clamped into it. */
-EL_DEF void el_mipmap_texel(const el_mipmap *m, int level, int s, int t, float *out);
-/* The texel containing (s, t) (coordinates in [0,1] units) on a level, through the wrap modes. */
-EL_DEF void el_mipmap_point(const el_mipmap *m, int level, float s, float t, float *out);
-/* pbrt's Bilerp / triangle(level, st): bilinear between the four texels around (s*w - 0.5, t*h - 0.5). */
-EL_DEF void el_mipmap_bilerp(const el_mipmap *m, int level, float s, float t, float *out);
-/* pbrt-v3's Lookup(st, width): trilinear. level = levels - 1 + log2(max(width, 1e-8)); level < 0:
- * bilinear on level 0; level >= levels - 1: the 1x1 level; else the blend of the bilinear lookups on
- * floor(level) and floor(level) + 1. width is in [0,1] texture units (1 = the whole texture). */
-EL_DEF void el_mipmap_lookup(const el_mipmap *m, float s, float t, float width, float *out);
-/* pbrt-v4's Lookup(st, width) with an explicit filter: POINT and BILINEAR on level
- * max(0, floor(level)), TRILINEAR as el_mipmap_lookup; EWA (which needs differentials) acts as
- * TRILINEAR here. */
-EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filter, float s, float t,
-                                      float width, float *out);
-/* pbrt-v3's Lookup(st, dst0, dst1) with dst0 = (dsdx, dtdx), dst1 = (dsdy, dtdy): EWA when the map's
- * filter is EL_FILTER_EWA, otherwise lookup_filtered with width 2 * max |component|. */
-EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t, float dsdx, float dtdx,
-                                           float dsdy, float dtdy, float *out);
-/* Heap bytes in use: level 0, plus levels 1.. once built. */
-EL_DEF size_t el_mipmap_bytes(const el_mipmap *m);
-/* << mipmap declarations */
-
-#ifdef __cplusplus
-}
-#endif
-#endif /* EL_MIPMAP_H */
+ * ==================================================================================================== */
 
 /* ---------------------------------------------------------------------------------------------
  * Implementation below; stop reading here if you only need the API.
@@ -319,24 +339,24 @@ static int el_mipmap__round_up_pow2(int v) {
   return p;
 }
 /* pbrt's Texel() index remapping for one axis; -1 means "Black: outside, value 0". */
-static int el_mipmap__wrap(int i, int n, el_wrap w) {
+static int el_mipmap__wrap(int i, int n, el_mipmap_wrap w) {
   int r;
   if ((unsigned)i < (unsigned)n) return i;
-  if (w == EL_WRAP_REPEAT) {
+  if (w == EL_MIPMAP_WRAP_REPEAT) {
     r = i % n;
     return r < 0 ? r + n : r;
   }
-  if (w == EL_WRAP_CLAMP) return i < 0 ? 0 : n - 1;
+  if (w == EL_MIPMAP_WRAP_CLAMP) return i < 0 ? 0 : n - 1;
   return -1;
 }
 /* A coordinate (in [0,1] units) made safe for point/bilinear/trilinear lookups: [-1, 2] is used as
  * given (pbrt's arithmetic); beyond it, Repeat keeps the fractional part (exact) and Clamp/Black pin
  * to -1 or 2, which gives the same texels; NaN counts as 0. */
-static float el_mipmap__sane(float s, el_wrap w) {
+static float el_mipmap__sane(float s, el_mipmap_wrap w) {
   float f;
   if (s >= -1.0f && s <= 2.0f) return s;
   if (s != s) return 0.0f;
-  if (w == EL_WRAP_REPEAT) {
+  if (w == EL_MIPMAP_WRAP_REPEAT) {
     if (s > 1e30f || s < -1e30f) return 0.0f; /* also +-infinity */
     f = s - floorf(s);
     return f;
@@ -344,8 +364,8 @@ static float el_mipmap__sane(float s, el_wrap w) {
   return s < 0.0f ? -1.0f : 2.0f;
 }
 /* The same for EWA: Clamp/Black keep far coordinates (the footprint can be wide), only finite. */
-static float el_mipmap__sane_ewa(float s, el_wrap w) {
-  if (w == EL_WRAP_REPEAT) return el_mipmap__sane(s, w);
+static float el_mipmap__sane_ewa(float s, el_mipmap_wrap w) {
+  if (w == EL_MIPMAP_WRAP_REPEAT) return el_mipmap__sane(s, w);
   if (s != s) return 0.0f;
   if (s > 1e20f) return 1e20f;
   if (s < -1e20f) return -1e20f;
@@ -362,7 +382,7 @@ static float el_mipmap__sane_d(float d) {
 
 /* Two bilinear taps along one axis of size n: indices (wrapped) and weights (0 for Black outside).
  * s has been through el_mipmap__sane. */
-EL_MIPMAP__INLINE void el_mipmap__axis(float s, int n, float fn, el_wrap w, int *i0, int *i1, float *w0,
+EL_MIPMAP__INLINE void el_mipmap__axis(float s, int n, float fn, el_mipmap_wrap w, int *i0, int *i1, float *w0,
                                        float *w1) {
   float x = s * fn - 0.5f;
   int i = el_mipmap__ifloor(x);
@@ -557,12 +577,12 @@ static float el_mipmap__lanczos(float x, float tau) {
   l = sinf(x) / x;
   return s * l;
 }
-static void el_mipmap__resample_weights(int oldres, int newres, el_wrap wrap, int *idx, float *wt) {
+static void el_mipmap__resample_weights(int oldres, int newres, el_mipmap_wrap wrap, int *idx, float *wt) {
   int i, j;
   float filterwidth = 2.f;
   for (i = 0; i < newres; ++i) {
     /* <<Compute image resampling weights for ith texel>> */
-    float center = (i + .5f) * (float)oldres / (float)newres;
+    float center = ((float)i + .5f) * (float)oldres / (float)newres;
     int first = (int)floorf((center - filterwidth) + 0.5f);
     float inv;
     for (j = 0; j < 4; ++j) {
@@ -644,17 +664,20 @@ static el_result el_mipmap__resample(el_mipmap *m, const float *img, int w, int 
   return EL_SUCCESS;
 }
 
-/* EL_SUCCESS when all n floats are finite, else EL_ERROR_NAN / EL_ERROR_INFINITE (the first bad one). */
-static el_result el_mipmap__check_finite(const float *p, size_t n) {
+/* EL_SUCCESS when all n floats are finite, else EL_ERROR_NAN / EL_ERROR_INFINITE for the first bad one,
+ * whose index goes to *bad. */
+static el_result el_mipmap__check_finite(const float *p, size_t n, size_t *bad) {
   float acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   size_t i = 0, j;
   for (; i + 8 <= n; i += 8)
     for (j = 0; j < 8; ++j) acc[j] += p[i + j] - p[i + j]; /* 0 for finite, NaN otherwise */
   for (; i < n; ++i) acc[0] += p[i] - p[i];
   if (acc[0] + acc[1] + acc[2] + acc[3] + acc[4] + acc[5] + acc[6] + acc[7] == 0.0f) return EL_SUCCESS;
-  for (i = 0; i < n; ++i)
+  for (i = 0; i < n; ++i) {
+    *bad = i;
     if (p[i] != p[i]) return EL_ERROR_NAN;
-    else if (p[i] - p[i] != 0.0f) return EL_ERROR_INFINITE;
+    if (p[i] - p[i] != 0.0f) return EL_ERROR_INFINITE;
+  }
   return EL_SUCCESS;
 }
 
@@ -663,10 +686,11 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
                                 const el_mipmap_options *opt) {
   el_mipmap_options o;
   int w, h, i, keep;
-  size_t nfl;
+  size_t nfl, bad = 0;
   el_result r;
   if (!m) return EL_ERROR_INVALID_ARGUMENT;
   memset(m, 0, sizeof *m);
+  m->bad_index = -1;
   if (!pixels || width < 1 || height < 1 || channels < 1 || channels > 4) return EL_ERROR_INVALID_ARGUMENT;
   if (opt) o = *opt;
   else memset(&o, 0, sizeof o);
@@ -685,8 +709,12 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
     return EL_ERROR_SIZE_OVERFLOW; /* level 0 and the resampling buffer must fit */
   if ((size_t)width > ((size_t)-1) / sizeof(float) / (size_t)channels / (size_t)height)
     return EL_ERROR_SIZE_OVERFLOW;
-  r = el_mipmap__check_finite(pixels, (size_t)width * (size_t)height * (size_t)channels);
-  if (r != EL_SUCCESS) return r;
+  r = el_mipmap__check_finite(pixels, (size_t)width * (size_t)height * (size_t)channels, &bad);
+  if (r != EL_SUCCESS) {
+    bad /= (size_t)channels; /* the texel */
+    m->bad_index = bad <= 2147483647u ? (int)bad : 2147483647;
+    return r;
+  }
   m->input_width = width;
   m->input_height = height;
   m->width = w;
@@ -711,6 +739,7 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
   m->level_data[0] = (float *)EL_MALLOC(nfl * sizeof(float));
   if (!m->level_data[0]) {
     memset(m, 0, sizeof *m);
+    m->bad_index = -1;
     return EL_ERROR_OUT_OF_MEMORY;
   }
   m->level0_bytes = nfl * sizeof(float);
@@ -722,6 +751,7 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
     if (r != EL_SUCCESS) {
       EL_FREE(m->level_data[0]);
       memset(m, 0, sizeof *m);
+      m->bad_index = -1;
       return r;
     }
   }
@@ -734,6 +764,7 @@ EL_DEF el_result el_mipmap_init(el_mipmap *m, const float *pixels, int width, in
 #if !EL_MIPMAP__LAZY
   if (el_mipmap_build_levels(m) != EL_SUCCESS) {
     el_mipmap_free(m);
+    m->bad_index = -1;
     return EL_ERROR_OUT_OF_MEMORY;
   }
 #endif
@@ -826,7 +857,10 @@ EL_MIPMAP__INLINE void el_mipmap__bilerp_c(const el_mipmap *m, int level, float 
   r1 = d + (size_t)v1 * stride;
   c0 = (size_t)u0 * (size_t)C;
   c1 = (size_t)u1 * (size_t)C;
-  for (c = 0; c < C; ++c) out[c] = k00 * r0[c0 + c] + k01 * r1[c0 + c] + k10 * r0[c1 + c] + k11 * r1[c1 + c];
+  for (c = 0; c < C; ++c) {
+    size_t k = (size_t)c;
+    out[c] = k00 * r0[c0 + k] + k01 * r1[c0 + k] + k10 * r0[c1 + k] + k11 * r1[c1 + k];
+  }
 }
 static void el_mipmap__bilerp(const el_mipmap *m, int level, float s, float t, float *out) {
   switch (m->channels) {
@@ -859,7 +893,7 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
                                       float width, float *out) {
   float frac;
   int il;
-  if (filter != EL_FILTER_POINT && filter != EL_FILTER_BILINEAR) {
+  if (filter != EL_MIPMAP_FILTER_POINT && filter != EL_MIPMAP_FILTER_BILINEAR) {
     el_mipmap_lookup(m, s, t, width, out);
     return;
   }
@@ -871,7 +905,7 @@ EL_DEF void el_mipmap_lookup_filtered(const el_mipmap *m, el_mipmap_filter filte
     return;
   }
   if (il < 0) il = 0;
-  if (filter == EL_FILTER_POINT) {
+  if (filter == EL_MIPMAP_FILTER_POINT) {
     el_mipmap_point(m, il, s, t, out);
     return;
   }
@@ -1045,7 +1079,7 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   int nu, nv, c, t0, t1, it;
   float fit, x, y, A, B, Cc, ru, rv, inv2A, fourA, mg, acc[4], sumw = 0.0f;
   const float *data;
-  el_wrap wu = m->wrap_u;
+  el_mipmap_wrap wu = m->wrap_u;
   size_t rowstride;
   el_mipmap__ellipse e;
   if (level >= m->levels) {
@@ -1064,15 +1098,15 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
   Cc = e.C;
   ru = e.ru;
   rv = e.rv;
-  if (wu != EL_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
-    if (wu == EL_WRAP_BLACK) {
+  if (wu != EL_MIPMAP_WRAP_REPEAT && (x + ru < -1.0f || x - ru > (float)nu)) {
+    if (wu == EL_MIPMAP_WRAP_BLACK) {
       for (c = 0; c < C; ++c) out[c] = 0.0f;
       return;
     }
     x = el_mipmap__pin(x, ru, nu);
   }
-  if (m->wrap_v != EL_WRAP_REPEAT && (y + rv < -1.0f || y - rv > (float)nv)) {
-    if (m->wrap_v == EL_WRAP_BLACK) {
+  if (m->wrap_v != EL_MIPMAP_WRAP_REPEAT && (y + rv < -1.0f || y - rv > (float)nv)) {
+    if (m->wrap_v == EL_MIPMAP_WRAP_BLACK) {
       for (c = 0; c < C; ++c) out[c] = 0.0f;
       return;
     }
@@ -1126,7 +1160,7 @@ EL_MIPMAP__INLINE void el_mipmap__ewa_c(const el_mipmap *m, int level, float s, 
     if ((unsigned)lo < (unsigned)nu && (unsigned)hi < (unsigned)nu) { /* inside: no wrapping */
       el_mipmap__ewa_span(rp + (size_t)lo * (size_t)C, rp + (size_t)hi * (size_t)C, fis, x, A, B, tt, ctt, acc, &sumw,
                           C);
-    } else if (wu == EL_WRAP_REPEAT) { /* the column index walks and wraps */
+    } else if (wu == EL_MIPMAP_WRAP_REPEAT) { /* the column index walks and wraps */
       for (is = lo, col = el_mipmap__wrap(lo, nu, wu); is <= hi; ++is, fis += 1.0f) {
         float ss = fis - x;
         float r2 = A * ss * ss + B * ss * tt + ctt;
@@ -1271,12 +1305,13 @@ EL_DEF void el_mipmap_lookup_differentials(const el_mipmap *m, float s, float t,
   float d1s = el_mipmap__sane_d(dsdy), d1t = el_mipmap__sane_d(dtdy);
   float l0, l1, major, minor, f, a[4], b[4];
   int ilod, c, C = m->channels;
-  if (m->filter != EL_FILTER_EWA) {
+  if (m->filter != EL_MIPMAP_FILTER_EWA) {
     float w = fabsf(d0s);
     if (fabsf(d0t) > w) w = fabsf(d0t);
     if (fabsf(d1s) > w) w = fabsf(d1s);
     if (fabsf(d1t) > w) w = fabsf(d1t);
-    el_mipmap_lookup_filtered(m, m->filter, s, t, 2 * w, out);
+    if (m->filter == EL_MIPMAP_FILTER_TRILINEAR) el_mipmap_lookup(m, s, t, w, out); /* pbrt-v3 (aaa552a) */
+    else el_mipmap_lookup_filtered(m, m->filter, s, t, 2 * w, out);               /* pbrt-v4 */
     return;
   }
   /* <<Compute ellipse minor and major axes>> */

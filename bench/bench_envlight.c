@@ -23,9 +23,10 @@
  *     sample_li guide 93.5 (95.6-97.6 on the five CC0 1024x512 maps, with MAP), alias 240, CDF 394, guide
  *     + radiance 257, general rotation 218 (2026-12-01, after sample_li_n's helpers were shared: 95,
  *     96.6-98.6, 261, 214 before); at the start of the SSE work: 176, 274, 428, 335, 302; before
- *     the bin + direction-table rewrite: 303, 305, 467, 437, 420. pdf_li 76 (rotation 95; before the
- *     branch-free bin finders: 114, 131), le 250, construction 117 M (before the SSE2 construction loops:
- *     185 M). Targets sample_li <= 100 and pdf_li <= 80 met; throughput (>= 26 M/s): see README.md.
+ *     the bin + direction-table rewrite: 303, 305, 467, 437, 420. pdf_li 75 (rotation 93; 76 and 95
+ *     before the rescaling of huge directions moved out of line; before the branch-free bin finders:
+ *     114, 131), le 248 (250 before that move), construction 117 M (before the SSE2 construction
+ *     loops: 185 M). Targets sample_li <= 100 and pdf_li <= 80 met; throughput (>= 26 M/s): see README.md.
  *  3. Variance of a direct-lighting estimate: the irradiance (luminance) of a diffuse point at three
  *     normals, for the maps in ../shared/envmaps (data/envmaps if missing), per strategy: uniform sphere,
  *     cosine, light sampling with each importance map (CELL_AVERAGE = ours, PBRT_V3 = 2x-resolution point

@@ -49,7 +49,7 @@ static el_film make_film(int w, int h, int type, int exact) {
   memset(&o, 0, sizeof o);
   o.width = w;
   o.height = h;
-  o.filter.type = (el_filter_type)type;
+  o.filter.type = (el_film_filter_type)type;
   o.exact_filter = exact;
   if (el_film_init(&f, &o) != EL_SUCCESS) { fprintf(stderr, "bench_film: el_film_init failed\n"); exit(1); }
   return f;
@@ -140,11 +140,11 @@ static int callgrind_mode(const char *op, long n) {
   } else { /* n calls of el_film_to_srgb8 on a 64x64 block (NS pixels): divide by NS for one pixel */
     float *rgb = (float *)malloc(sizeof(float) * 3 * NS);
     unsigned char *out = (unsigned char *)malloc(3 * NS);
-    el_output_options o;
+    el_film_output_options o;
     long k;
     int i;
     memset(&o, 0, sizeof o);
-    o.tonemap = (el_tonemap)type;
+    o.tonemap = (el_film_tonemap)type;
     for (i = 0; i < 3 * NS; i++) rgb[i] = 4.0f * frand() * frand();
     for (k = 0; k < n; k++) el_film_to_srgb8(rgb, 64, NS / 64, &o, out);
     free(rgb);
@@ -253,14 +253,14 @@ int main(int argc, char **argv) {
     enum { PW = 512 };
     float *rgb = (float *)malloc(sizeof(float) * 3 * PW * PW);
     unsigned char *out = (unsigned char *)malloc(3 * PW * PW);
-    el_output_options o;
+    el_film_output_options o;
     for (i = 0; i < 3 * PW * PW; i++) rgb[i] = 4.0f * frand() * frand();
     for (t = 0; t < 4; t++) {
       double t0, t1, ir = -1;
       long reps = 0;
       char op[64];
       memset(&o, 0, sizeof o);
-      o.tonemap = (el_tonemap)t;
+      o.tonemap = (el_film_tonemap)t;
       t0 = now();
       do { el_film_to_srgb8(rgb, PW, PW, &o, out); reps++; t1 = now(); } while (t1 - t0 < 0.2);
       snprintf(op, sizeof op, "srgb8_%s", tonemap_name[t]);

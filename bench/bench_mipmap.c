@@ -302,7 +302,7 @@ static pbrt_rgb pbrt_Lookup_d(const pbrt_mipmap *m, float s, float t, float d00,
     if (fabsf(d01) > width) width = fabsf(d01);
     if (fabsf(d10) > width) width = fabsf(d10);
     if (fabsf(d11) > width) width = fabsf(d11);
-    return pbrt_Lookup_width(m, s, t, 2 * width);
+    return pbrt_Lookup_width(m, s, t, width); /* pbrt-v3 since aaa552a "Fix trilinear filtering" (2 * width before) */
   }
   if (d00 * d00 + d01 * d01 < d10 * d10 + d11 * d11) {
     float x = d00, y = d01;
@@ -405,8 +405,8 @@ static float run_op(int op, const el_mipmap *m, const pbrt_mipmap *pm, const que
   for (i = 0; i < n; ++i) {
     const query *k = q + i;
     switch (op) {
-    case OP_POINT: el_mipmap_lookup_filtered(m, EL_FILTER_POINT, k->s, k->t, k->width, o); break;
-    case OP_BILINEAR: el_mipmap_lookup_filtered(m, EL_FILTER_BILINEAR, k->s, k->t, k->width, o); break;
+    case OP_POINT: el_mipmap_lookup_filtered(m, EL_MIPMAP_FILTER_POINT, k->s, k->t, k->width, o); break;
+    case OP_BILINEAR: el_mipmap_lookup_filtered(m, EL_MIPMAP_FILTER_BILINEAR, k->s, k->t, k->width, o); break;
     case OP_TRILINEAR: el_mipmap_lookup(m, k->s, k->t, k->width, o); break;
     case OP_EWA: el_mipmap_lookup_differentials(m, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o); break;
     case OP_PBRT_TRILINEAR: {
@@ -636,8 +636,8 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
       const query *k = qe + i;
       float e = 0;
       int c;
-      if (f == 0) el_mipmap_lookup_filtered(&m, EL_FILTER_POINT, k->s, k->t, k->width, o);
-      else if (f == 1) el_mipmap_lookup_filtered(&m, EL_FILTER_BILINEAR, k->s, k->t, k->width, o);
+      if (f == 0) el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_POINT, k->s, k->t, k->width, o);
+      else if (f == 1) el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_BILINEAR, k->s, k->t, k->width, o);
       else if (f == 2) el_mipmap_lookup(&m, k->s, k->t, k->width, o);
       else if (f == 3) el_mipmap_lookup_differentials(&m, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o);
       else el_mipmap_lookup_differentials(&m64, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o);

@@ -30,7 +30,7 @@
 #define _POSIX_C_SOURCE 200809L /* mkdir */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
-#include "film.h"     /* el_srgb_to_byte: the exact sRGB curve (declarations only) */
+#include "film.h"     /* el_film_srgb_to_byte: the exact sRGB curve (declarations only) */
 #include "image_io.h" /* examples/common: PNG writing */
 #include "picture.h"  /* examples/common: the test image and labels */
 
@@ -50,7 +50,7 @@ static int write_rgb(const char *path, const float *rgb, int w, int h) {
   unsigned char *b = (unsigned char *)malloc((size_t)w * h * 3);
   char err[256];
   int i, r;
-  for (i = 0; i < w * h * 3; ++i) b[i] = el_srgb_to_byte(rgb[i]);
+  for (i = 0; i < w * h * 3; ++i) b[i] = el_film_srgb_to_byte(rgb[i]);
   r = el_image_write_png(path, b, w, h, 3, err, sizeof err);
   if (r != 0) fprintf(stderr, "01_mipmap_pyramid: %s\n", err);
   else printf("wrote %s\n", path);

@@ -38,7 +38,7 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, mkdir */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
-#include "film.h"     /* el_srgb_to_byte: the exact sRGB curve (declarations only) */
+#include "film.h"     /* el_film_srgb_to_byte: the exact sRGB curve (declarations only) */
 #include "image_io.h" /* examples/common: PNG writing */
 #include "picture.h"  /* examples/common: the test image and labels */
 
@@ -124,7 +124,7 @@ static void blit(unsigned char *canvas, const float *panel, int pw, int ph, int 
   int x, y, c;
   for (y = 0; y < ph; ++y)
     for (x = 0; x < pw; ++x)
-      for (c = 0; c < 3; ++c) canvas[3 * ((size_t)(oy + y) * CW + ox + x) + c] = el_srgb_to_byte(panel[3 * (y * pw + x) + c]);
+      for (c = 0; c < 3; ++c) canvas[3 * ((size_t)(oy + y) * CW + ox + x) + c] = el_film_srgb_to_byte(panel[3 * (y * pw + x) + c]);
 }
 
 int main(int argc, char **argv) {
@@ -146,7 +146,7 @@ int main(int argc, char **argv) {
   /* pbrt's defaults: Repeat, EWA, max anisotropy 8; a second map uses pbrt's trilinear option */
   r = el_mipmap_init(&m, img, TW, TH, 3, NULL);
   memset(&o, 0, sizeof o);
-  o.filter = EL_FILTER_TRILINEAR;
+  o.filter = EL_MIPMAP_FILTER_TRILINEAR;
   if (r == EL_SUCCESS) r = el_mipmap_init(&mtri, img, TW, TH, 3, &o);
   if (r != EL_SUCCESS) {
     fprintf(stderr, "02_mipmap_lookup: el_mipmap_init: %s\n", el_result_string(r));

@@ -596,7 +596,7 @@ int main(int argc, char **argv) {
   if (!strcmp(el_image_extension(out_path), "png")) {
     /* pbrt's output curve (clamp at 1, exact sRGB, round to nearest) after one stop less exposure:
      * the sunlit ground is about 1.1 in linear RGB and would clip to white. */
-    el_output_options oo;
+    el_film_output_options oo;
     memset(&oo, 0, sizeof oo);
     oo.exposure = -1.0f;
     if (el_film_to_srgb8(rgb, WIDTH, HEIGHT, &oo, srgb) != EL_SUCCESS ||

@@ -84,7 +84,7 @@ static float frand(void) {
 
 /* renders the zone plate with `spp` random samples per pixel through film.h; returns the seconds spent
  * in el_film_add_sample alone (the samples are drawn and the plate evaluated beforehand) */
-static double render_zone_plate(el_filter_type type, int spp, unsigned char *out8) {
+static double render_zone_plate(el_film_filter_type type, int spp, unsigned char *out8) {
   el_film film;
   el_film_options fo;
   int b[4], x, y, s;
@@ -133,7 +133,7 @@ int main(int argc, char **argv) {
   unsigned char *page = NULL, *p8 = NULL;
   double logsum = 0, exposure, tbox, tmit;
   int x, y, c, i, spp = 16;
-  static const el_tonemap maps[4] = {EL_TONEMAP_EXPONENTIAL, EL_TONEMAP_CLAMP, EL_TONEMAP_REINHARD, EL_TONEMAP_ACES};
+  static const el_film_tonemap maps[4] = {EL_FILM_TONEMAP_EXPONENTIAL, EL_FILM_TONEMAP_CLAMP, EL_FILM_TONEMAP_REINHARD, EL_FILM_TONEMAP_ACES};
   static const char *names[4] = {"EXPONENTIAL 1-EXP(-X)", "CLAMP (PBRT SRGB)", "REINHARD X/(1+X)", "ACES (NARKOWICZ FIT)"};
 
   if (el_image_load(in, &env, err, sizeof err) != 0) {
@@ -162,7 +162,7 @@ int main(int argc, char **argv) {
         for (sx = sx0; sx < sx1; sx++, n++)
           for (c = 0; c < 3; c++) {
             float v = env.pixels[((size_t)sy * env.width + sx) * env.channels + c];
-            if (env.is_8bit) v = el_srgb_decode(v); /* a PNG/JPEG holds sRGB codes: back to linear */
+            if (env.is_8bit) v = el_film_srgb_decode(v); /* a PNG/JPEG holds sRGB codes: back to linear */
             s[c] += v == v && v > 0 ? v : 0; /* NaN and negative texels count as 0 */
           }
       for (c = 0; c < 3; c++) panel[3 * (y * PW + x) + c] = (float)(s[c] / n);
@@ -178,7 +178,7 @@ int main(int argc, char **argv) {
 
   /* 1. the four tone mappers, same exposure */
   for (i = 0; i < 4; i++) {
-    el_output_options o;
+    el_film_output_options o;
     memset(&o, 0, sizeof o);
     o.exposure = (float)exposure;
     o.tonemap = maps[i];
@@ -195,9 +195,9 @@ int main(int argc, char **argv) {
     unsigned char *z8 = (unsigned char *)malloc((size_t)3 * ZP * ZP);
     int y0 = 2 * PH + 32;
     if (!z8) return 1;
-    tbox = render_zone_plate(EL_FILTER_BOX, spp, z8);
+    tbox = render_zone_plate(EL_FILM_FILTER_BOX, spp, z8);
     blit(page, W, z8, ZP, ZP, 0, y0, 2);
-    tmit = render_zone_plate(EL_FILTER_MITCHELL, spp, z8);
+    tmit = render_zone_plate(EL_FILM_FILTER_MITCHELL, spp, z8);
     blit(page, W, z8, ZP, ZP, 2 * ZP, y0, 2);
     free(z8);
     snprintf(text, sizeof text, "ZONE PLATE, %d RANDOM SAMPLES PER PIXEL, SHOWN 2X", spp);

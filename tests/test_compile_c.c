@@ -1,5 +1,6 @@
 /* test_compile_c.c: every envlight header, with every implementation, in one C99 translation unit
- * compiled with -std=c99 -Wall -Wextra -pedantic -Werror (see tests/CMakeLists.txt). Including each
+ * compiled with -std=c99 -Wall -Wextra -Wconversion -Wsign-conversion -Wshadow -pedantic -Werror (see
+ * tests/CMakeLists.txt). Including each
  * header twice proves the include guards and the implementation once-guards; the calls below prove
  * the declarations link. test_compile_cc.cc does the same as C++. */
 #define EL_IMPLEMENTATION

@@ -142,7 +142,7 @@ static void test_hand_1d(void) {
   double tol = 2.0 * 4.0 / UNITS; /* pdf = units * n * 2^-24: 2 units of slack per bin, times n */
   double expect[4] = {0.5, 1.5, 0.0, 2.0}; /* f / integral, integral = 8/4 */
   memset(&opt, 0, sizeof opt);
-  check(el_distribution1d_init(&d, f, 4, &opt) == EL_SUCCESS && opt.bad_index == -1, "1D {1,3,0,4}: init, bad_index -1");
+  check(el_distribution1d_init(&d, f, 4, &opt) == EL_SUCCESS && d.bad_index == -1, "1D {1,3,0,4}: init, bad_index -1");
   for (i = 0; i < 4; ++i) {
     float p = el_distribution1d_pdf(&d, (i + 0.5f) / 4);
     checkf(fabs(p - expect[i]) <= tol, "1D {1,3,0,4}: pdf %.9g vs f/integral %.9g", p, expect[i]);
@@ -276,16 +276,16 @@ static void test_bad_input(void) {
   check(el_distribution2d_init(&d2, f, EL_DISTRIBUTION_MAX_BINS + 1, 1, &opt) == EL_ERROR_SIZE_OVERFLOW, "2D nu > 2^22 -> EL_ERROR_SIZE_OVERFLOW");
   f[4] = (float)NAN; f[2] = -1.0f; /* the NaN is later, so the first bad index is 2 (negative) */
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_NEGATIVE && opt.bad_index == 2, "1D {1,2,-1,4,NaN,6}: EL_ERROR_NEGATIVE at index 2");
+  check(r == EL_ERROR_NEGATIVE && d.bad_index == 2, "1D {1,2,-1,4,NaN,6}: EL_ERROR_NEGATIVE at index 2");
   f[2] = 3.0f;
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_NAN && opt.bad_index == 4, "1D NaN at 4: EL_ERROR_NAN, bad_index 4");
+  check(r == EL_ERROR_NAN && d.bad_index == 4, "1D NaN at 4: EL_ERROR_NAN, bad_index 4");
   f[4] = 5.0f; f[5] = (float)INFINITY;
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_INFINITE && opt.bad_index == 5, "1D +Inf at 5: EL_ERROR_INFINITE, bad_index 5");
+  check(r == EL_ERROR_INFINITE && d.bad_index == 5, "1D +Inf at 5: EL_ERROR_INFINITE, bad_index 5");
   f[5] = -(float)INFINITY;
   r = el_distribution1d_init(&d, f, 6, &opt);
-  check(r == EL_ERROR_INFINITE && opt.bad_index == 5, "1D -Inf at 5: EL_ERROR_INFINITE, bad_index 5");
+  check(r == EL_ERROR_INFINITE && d.bad_index == 5, "1D -Inf at 5: EL_ERROR_INFINITE, bad_index 5");
   el_distribution1d_free(&d); /* zeroed on failure: safe */
   {
     /* every position of the 4-wide validity pass and the tail; -0.0 is a zero, not a negative */
@@ -299,7 +299,7 @@ static void test_bad_input(void) {
         int j;
         for (j = 0; j < 11; ++j) g[j] = 1.0f + j;
         g[pos] = bads[k];
-        if (el_distribution1d_init(&d, g, 11, &opt) != want[k] || opt.bad_index != pos) ok = 0;
+        if (el_distribution1d_init(&d, g, 11, &opt) != want[k] || d.bad_index != pos) ok = 0;
       }
     check(ok, "NaN, +Inf, -denormal, -FLT_MAX at each of 11 positions: the right error and index");
     for (k = 0; k < 11; ++k) g[k] = 1.0f;
@@ -312,13 +312,13 @@ static void test_bad_input(void) {
   /* 2D: f[v*nu+u] with nu = 3, nv = 2: (u=2, v=1) is index 5 */
   f[5] = (float)NAN;
   r = el_distribution2d_init(&d2, f, 3, 2, &opt);
-  check(r == EL_ERROR_NAN && opt.bad_index == 5 && d2.cdf == NULL, "2D NaN at (u=2,v=1): EL_ERROR_NAN, bad_index 5 = v*nu+u, struct zeroed");
+  check(r == EL_ERROR_NAN && d2.bad_index == 5 && d2.cdf == NULL, "2D NaN at (u=2,v=1): EL_ERROR_NAN, bad_index 5 = v*nu+u, struct zeroed");
   el_distribution2d_free(&d2);
   /* clamp: NaN -> 0, negative -> 0, +Inf -> FLT_MAX */
   opt.clamp_bad_values = 1;
   f[0] = 1; f[1] = (float)NAN; f[2] = -3; f[3] = 1;
   r = el_distribution1d_init(&d, f, 4, &opt);
-  check(r == EL_SUCCESS && opt.bad_index == -1 && el_distribution1d_pdf(&d, 0.3f) == 0.0f && el_distribution1d_pdf(&d, 0.6f) == 0.0f &&
+  check(r == EL_SUCCESS && d.bad_index == -1 && el_distribution1d_pdf(&d, 0.3f) == 0.0f && el_distribution1d_pdf(&d, 0.6f) == 0.0f &&
         el_distribution1d_pdf(&d, 0.1f) == 2.0f && el_distribution1d_pdf(&d, 0.9f) == 2.0f,
         "clamp: {1,NaN,-3,1} acts as {1,0,0,1} (pdf 2, 0, 0, 2 exactly)");
   el_distribution1d_free(&d);
@@ -848,6 +848,119 @@ static void test_sample_bins(void) {
   free(f);
 }
 
+/* The documented maximum, 2^22 bins per dimension, works on the unit domain, and one more bin is refused
+ * (before, 2^22 bins were refused: the resolution check used the float step above 1, 2^-23, though every
+ * point lies below 1, where the step is 2^-24). At the limit each bin holds exactly 4 floats: samples
+ * must land in their own bin (counted here in double), strictly below 1, with pdf(x) == the sampled pdf;
+ * the last bin is reached. The resolution rule itself: [0, 0.5] takes 2^22 bins (4 steps of 2^-25 each),
+ * [0, 0.75] does not (3 steps of 2^-24). */
+static void test_max_bins(void) {
+  const int n = EL_DISTRIBUTION_MAX_BINS;
+  float *f = (float *)malloc((size_t)n * sizeof(float)), x, y, p, q;
+  el_distribution1d d;
+  el_distribution2d d2;
+  el_distribution2d_fast fast;
+  el_distribution_options opt;
+  int i, wrong = 0, last = 0, off;
+  char buf[256];
+  if (!f) { check(0, "2^22 bins: allocate"); return; }
+  for (i = 0; i < n; ++i) f[i] = (hash32((uint32_t)i) & 7u) == 0 ? 0.0f : (float)(hash32((uint32_t)i) >> 8) * 1e-6f;
+  f[n - 1] = 1e6f; /* the last bin gets many units */
+  memset(&opt, 0, sizeof opt);
+  check(n == 4194304, "EL_DISTRIBUTION_MAX_BINS is 2^22");
+  check(el_distribution1d_init(&d, f, n + 1, &opt) == EL_ERROR_SIZE_OVERFLOW, "1D, 2^22 + 1 bins: EL_ERROR_SIZE_OVERFLOW");
+  if (el_distribution1d_init(&d, f, n, &opt) != EL_SUCCESS) {
+    check(0, "1D, 2^22 bins on [0,1]: accepted");
+    free(f);
+    return;
+  }
+  for (i = 0; i < 200000; ++i) {
+    float u = i < 4 ? (i == 0 ? 0.0f : i == 1 ? ONE_MINUS : i == 2 ? 1.0f : 0.5f) : rndu();
+    int bin;
+    x = el_distribution1d_sample_continuous(&d, u, &p, &off);
+    bin = (int)floor((double)x * n);
+    q = el_distribution1d_pdf(&d, x);
+    if (!(x >= 0.0f && x < 1.0f) || bin != off || p != q || !(p > 0.0f)) ++wrong;
+    last += off == n - 1;
+  }
+  snprintf(buf, sizeof buf, "1D, 2^22 bins: 200000 samples in their own bin, below 1, pdf(x) == pdf (%d wrong; %d in the last bin)", wrong, last);
+  check(wrong == 0 && last > 0, buf);
+  el_distribution1d_free(&d);
+  opt.domain[2] = 0.5f;
+  check(el_distribution1d_init(&d, f, n, &opt) == EL_SUCCESS, "1D, 2^22 bins on [0, 0.5]: accepted (4 steps of 2^-25 per bin)");
+  el_distribution1d_free(&d);
+  opt.domain[2] = 0.75f;
+  check(el_distribution1d_init(&d, f, n, &opt) == EL_ERROR_INVALID_ARGUMENT, "1D, 2^22 bins on [0, 0.75]: refused (3 steps of 2^-24 per bin)");
+  memset(&opt, 0, sizeof opt);
+  /* 2D: a 2^22 x 1 and a 1 x 2^22 distribution, with the CDF and the guide-table samplers */
+  check(el_distribution2d_init(&d2, f, n + 1, 1, &opt) == EL_ERROR_SIZE_OVERFLOW && el_distribution2d_init(&d2, f, 1, n + 1, &opt) == EL_ERROR_SIZE_OVERFLOW,
+        "2D, 2^22 + 1 columns or rows: EL_ERROR_SIZE_OVERFLOW");
+  for (off = 0; off < 2; ++off) {
+    int nu = off ? 1 : n, nv = off ? n : 1;
+    wrong = 0;
+    if (el_distribution2d_init(&d2, f, nu, nv, &opt) != EL_SUCCESS || el_distribution2d_fast_init(&fast, &d2) != EL_SUCCESS) {
+      check(0, off ? "2D, 1 x 2^22: init" : "2D, 2^22 x 1: init");
+      continue;
+    }
+    for (i = 0; i < 100000; ++i) {
+      float u0 = rndu(), u1 = rndu(), fx, fy, fp;
+      int bu, bv;
+      el_distribution2d_sample(&d2, u0, u1, &x, &y, &p);
+      el_distribution2d_fast_sample(&fast, u0, u1, &fx, &fy, &fp);
+      bu = (int)floor((double)x * nu);
+      bv = (int)floor((double)y * nv);
+      q = el_distribution2d_pdf(&d2, x, y);
+      if (!(x >= 0.0f && x < 1.0f && y >= 0.0f && y < 1.0f) || p != q || !(p > 0.0f) || fx != x || fy != y || fp != p ||
+          (nu > 1 ? f[bu] : f[bv]) <= 0.0f)
+        ++wrong;
+    }
+    snprintf(buf, sizeof buf, "2D, %s: 100000 samples below 1, in a positive bin, pdf == pdf(point), guide sampler identical (%d wrong)",
+             off ? "1 x 2^22" : "2^22 x 1", wrong);
+    check(wrong == 0, buf);
+    el_distribution2d_fast_free(&fast);
+    el_distribution2d_free(&d2);
+  }
+  free(f);
+}
+
+/* How many distinct points a bin gives (the header: bin i >= 1 has at most 2^(23 - floor(log2 i)), the
+ * float step of t = i + fraction; a bin of w units at most half that wide has w; bin 0 has w): every
+ * u = k 2^-24 of a bin's units is sampled, the distinct results counted (the sampler is monotone in u,
+ * so a change between neighbours is a new point). */
+static void test_positions(void) {
+  static const int bins[5] = {0, 4000, 1, 700, 4000};
+  static const float weight[5] = {30.0f, 0.25f, 1e9f, 1e9f, 1e9f};
+  float f[4096];
+  int b, i;
+  char buf[256];
+  for (b = 0; b < 5; ++b) {
+    el_distribution1d d;
+    uint32_t k, w, distinct = 0;
+    float prev = -1.0f;
+    long cap;
+    int e = 0, ok;
+    for (i = 0; i < 4096; ++i) f[i] = 1.0f;
+    f[bins[b]] = weight[b];
+    el_distribution1d_init(&d, f, 4096, NULL);
+    w = d.cdf[bins[b] + 1] - d.cdf[bins[b]];
+    for (k = d.cdf[bins[b]]; k < d.cdf[bins[b] + 1]; ++k) {
+      int off;
+      float x = el_distribution1d_sample_continuous(&d, (float)k * (1.0f / 16777216.0f), NULL, &off);
+      if (off == bins[b] && x != prev) ++distinct;
+      prev = x;
+    }
+    if (bins[b] >= 1)
+      while ((2 << e) <= bins[b]) ++e; /* floor(log2 i) */
+    cap = 1L << (23 - e);
+    if (bins[b] == 0 || 2 * (long)w <= cap) ok = distinct == w;
+    else ok = (long)distinct <= cap && (long)distinct >= cap - cap / 1000;
+    snprintf(buf, sizeof buf, "bin %d of 4096 with %u units: %u distinct points (the header: %s, 2^(23 - floor(log2 i)) = %ld)",
+             bins[b], w, distinct, bins[b] == 0 || 2 * (long)w <= cap ? "w" : "at most the float step's", cap);
+    check(ok, buf);
+    el_distribution1d_free(&d);
+  }
+}
+
 int main(void) {
   double t = now();
   test_hand_1d();
@@ -862,6 +975,8 @@ int main(void) {
   test_fast_general();
   test_sample_bins();
   test_large();
+  test_max_bins();
+  test_positions();
   printf("test_distribution2d: %d passed, %d failed (%.1f s)\n", g_pass, g_fail, now() - t);
   return g_fail != 0;
 }

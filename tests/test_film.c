@@ -65,7 +65,7 @@ static el_film make_film(int w, int h, int type, int exact) {
   memset(&o, 0, sizeof o);
   o.width = w;
   o.height = h;
-  o.filter.type = (el_filter_type)type;
+  o.filter.type = (el_film_filter_type)type;
   o.exact_filter = exact;
   if (el_film_init(&f, &o) != EL_SUCCESS) {
     printf("FAIL: el_film_init %dx%d filter %d\n", w, h, type);
@@ -81,19 +81,19 @@ static void test_filters(void) {
   /* defaults */
   for (t = 0; t < 5; t++) {
     memset(&in, 0, sizeof in);
-    in.type = (el_filter_type)t;
+    in.type = (el_film_filter_type)t;
     check(el_film_filter_resolve(&in, &out) == EL_SUCCESS && out.radius[0] == (float)ref_radius[t] &&
               out.radius[1] == (float)ref_radius[t],
           t == 0 ? "default radius box 0.5" : t == 4 ? "default radius lanczos 4" : "default radius 2");
   }
   memset(&in, 0, sizeof in);
-  in.type = EL_FILTER_MITCHELL;
+  in.type = EL_FILM_FILTER_MITCHELL;
   el_film_filter_resolve(&in, &out);
   check(fabs(out.mitchell_b - 1.0 / 3.0) < 1e-7 && fabs(out.mitchell_c - 1.0 / 3.0) < 1e-7, "mitchell default B = C = 1/3");
-  in.type = EL_FILTER_GAUSSIAN;
+  in.type = EL_FILM_FILTER_GAUSSIAN;
   el_film_filter_resolve(&in, &out);
   check(out.gaussian_alpha == 2.0f, "gaussian default alpha 2");
-  in.type = EL_FILTER_LANCZOS;
+  in.type = EL_FILM_FILTER_LANCZOS;
   el_film_filter_resolve(&in, &out);
   check(out.lanczos_tau == 3.0f, "lanczos default tau 3");
   in.radius[0] = -1.0f;
@@ -101,12 +101,12 @@ static void test_filters(void) {
   in.radius[0] = NAN;
   check(el_film_filter_resolve(&in, &out) == EL_ERROR_INVALID_ARGUMENT, "NaN radius rejected");
   memset(&in, 0, sizeof in);
-  in.type = (el_filter_type)9;
+  in.type = (el_film_filter_type)9;
   check(el_film_filter_resolve(&in, &out) == EL_ERROR_INVALID_ARGUMENT, "unknown filter type rejected");
 
   /* hand values */
   memset(&in, 0, sizeof in);
-  in.type = EL_FILTER_MITCHELL;
+  in.type = EL_FILM_FILTER_MITCHELL;
   el_film_filter_resolve(&in, &out);
   /* Mitchell1D(0) = (6 - 2B)/6 = 8/9; at |2x/r| = 1: B/6 = 1/18; at |x| = r: 0 */
   checkf(fabs(el_film_filter_eval(&out, 0, 0) - 64.0 / 81.0) < 1e-6, "mitchell(0,0) = %.7f (64/81 = %.7f)",
@@ -115,15 +115,15 @@ static void test_filters(void) {
          el_film_filter_eval(&out, 1.0f, 0), 4.0 / 81.0);
   checkf(fabs(el_film_filter_eval(&out, 2.0f, 0.3f)) < 1e-6, "mitchell at the radius: %.2g (0, %.0g)",
          el_film_filter_eval(&out, 2.0f, 0.3f), 1e-6);
-  in.type = EL_FILTER_TRIANGLE;
+  in.type = EL_FILM_FILTER_TRIANGLE;
   el_film_filter_resolve(&in, &out);
   check(fabs(el_film_filter_eval(&out, 0.5f, 1.0f) - 1.5) < 1e-6, "triangle(0.5, 1) = 1.5 * 1");
-  in.type = EL_FILTER_LANCZOS;
+  in.type = EL_FILM_FILTER_LANCZOS;
   el_film_filter_resolve(&in, &out);
   check(fabs(el_film_filter_eval(&out, 1.0f, 0.0f)) < 1e-6 && fabs(el_film_filter_eval(&out, 0, 0) - 1) < 1e-6,
         "lanczos: 1 at 0, 0 at integer offsets");
   check(el_film_filter_eval(&out, NAN, 0.0f) == 0.0f, "filter at a NaN offset is 0");
-  in.type = EL_FILTER_GAUSSIAN;
+  in.type = EL_FILM_FILTER_GAUSSIAN;
   el_film_filter_resolve(&in, &out);
   check(fabs(el_film_filter_eval(&out, 0, 0) - (1 - exp(-8.0)) * (1 - exp(-8.0))) < 1e-6, "gaussian(0,0) = (1 - e^-8)^2");
 
@@ -205,7 +205,7 @@ static void test_constant(void) {
         memset(&o, 0, sizeof o);
         o.width = 11;
         o.height = 6;
-        o.filter.type = (el_filter_type)t;
+        o.filter.type = (el_film_filter_type)t;
         o.exact_filter = e;
         if (crop) { o.crop[0] = 0.2f; o.crop[1] = 0.8f; o.crop[2] = 0.4f; o.crop[3] = 1.0f; }
         el_film_init(&f, &o);
@@ -236,7 +236,7 @@ static void test_hand_average(void) {
   memset(&o, 0, sizeof o);
   o.width = 2;
   o.height = 1;
-  o.filter.type = EL_FILTER_TRIANGLE;
+  o.filter.type = EL_FILM_FILTER_TRIANGLE;
   o.filter.radius[0] = o.filter.radius[1] = 1.0f;
   o.exact_filter = 1;
   el_film_init(&f, &o);
@@ -288,25 +288,25 @@ static void test_srgb(void) {
   static const int code[] = {0, 2, 3, 10, 10, 25, 63, 89, 118, 127, 188, 243, 254, 255, 255, 255};
   int i, ok = 1;
   char buf[200];
-  check(el_srgb_encode(0.0f) == 0.0f, "encode(0) = 0");
-  checkf(fabs(el_srgb_encode(0.0031308f) - 12.92 * 0.0031308) < 1e-7, "encode(0.0031308) = %.8f (12.92 x = %.8f)",
-         el_srgb_encode(0.0031308f), 12.92 * 0.0031308);
-  checkf(fabs(el_srgb_encode(0.003130f) - 12.92 * (double)0.003130f) < 1e-7, "encode just below = %.8f (%.8f, linear segment)",
-         el_srgb_encode(0.003130f), 12.92 * (double)0.003130f);
-  checkf(fabs(el_srgb_encode(0.0031320f) - (1.055 * pow((double)0.0031320f, 1 / 2.4) - 0.055)) < 2e-7,
-         "encode just above = %.8f (%.8f, power segment)", el_srgb_encode(0.0031320f),
+  check(el_film_srgb_encode(0.0f) == 0.0f, "encode(0) = 0");
+  checkf(fabs(el_film_srgb_encode(0.0031308f) - 12.92 * 0.0031308) < 1e-7, "encode(0.0031308) = %.8f (12.92 x = %.8f)",
+         el_film_srgb_encode(0.0031308f), 12.92 * 0.0031308);
+  checkf(fabs(el_film_srgb_encode(0.003130f) - 12.92 * (double)0.003130f) < 1e-7, "encode just below = %.8f (%.8f, linear segment)",
+         el_film_srgb_encode(0.003130f), 12.92 * (double)0.003130f);
+  checkf(fabs(el_film_srgb_encode(0.0031320f) - (1.055 * pow((double)0.0031320f, 1 / 2.4) - 0.055)) < 2e-7,
+         "encode just above = %.8f (%.8f, power segment)", el_film_srgb_encode(0.0031320f),
          1.055 * pow((double)0.0031320f, 1 / 2.4) - 0.055);
-  check(fabs(el_srgb_encode(0.0031308f) - el_srgb_encode(0.00313081f)) < 1e-6, "curve continuous at 0.0031308");
-  check(fabs(el_srgb_encode(1.0f) - 1.0f) < 1e-6, "encode(1) = 1");
-  checkf(fabs(el_srgb_encode(2.0f) - (1.055 * pow(2.0, 1 / 2.4) - 0.055)) < 1e-6, "encode(2) = %.6f (%.6f, not clamped)",
-         el_srgb_encode(2.0f), 1.055 * pow(2.0, 1 / 2.4) - 0.055);
-  check(el_srgb_encode(-0.5f) == 0.0f, "encode(-0.5) = 0");
-  check(el_srgb_encode(NAN) == 0.0f, "encode(NaN) = 0");
-  check(el_srgb_to_byte(NAN) == 0 && el_srgb_to_byte(-1.0f) == 0 && el_srgb_to_byte(INFINITY) == 255 &&
-            el_srgb_to_byte(-INFINITY) == 0,
+  check(fabs(el_film_srgb_encode(0.0031308f) - el_film_srgb_encode(0.00313081f)) < 1e-6, "curve continuous at 0.0031308");
+  check(fabs(el_film_srgb_encode(1.0f) - 1.0f) < 1e-6, "encode(1) = 1");
+  checkf(fabs(el_film_srgb_encode(2.0f) - (1.055 * pow(2.0, 1 / 2.4) - 0.055)) < 1e-6, "encode(2) = %.6f (%.6f, not clamped)",
+         el_film_srgb_encode(2.0f), 1.055 * pow(2.0, 1 / 2.4) - 0.055);
+  check(el_film_srgb_encode(-0.5f) == 0.0f, "encode(-0.5) = 0");
+  check(el_film_srgb_encode(NAN) == 0.0f, "encode(NaN) = 0");
+  check(el_film_srgb_to_byte(NAN) == 0 && el_film_srgb_to_byte(-1.0f) == 0 && el_film_srgb_to_byte(INFINITY) == 255 &&
+            el_film_srgb_to_byte(-INFINITY) == 0,
         "to_byte: NaN -> 0, -1 -> 0, +Inf -> 255, -Inf -> 0");
   for (i = 0; i < (int)(sizeof lin / sizeof lin[0]); i++) {
-    int got = el_srgb_to_byte(lin[i]);
+    int got = el_film_srgb_to_byte(lin[i]);
     if (got != code[i]) { ok = 0; printf("  linear %g: got %d, expected %d\n", lin[i], got, code[i]); }
   }
   snprintf(buf, sizeof buf, "to_byte of %d known linear values (round to nearest)", (int)(sizeof lin / sizeof lin[0]));
@@ -315,14 +315,14 @@ static void test_srgb(void) {
   ok = 1;
   for (i = 0; i <= 255; i++) {
     float e = i / 255.0f;
-    if (el_srgb_to_byte(el_srgb_decode(e)) != i) ok = 0;
+    if (el_film_srgb_to_byte(el_film_srgb_decode(e)) != i) ok = 0;
   }
   check(ok, "to_byte(decode(i/255)) = i for all 256 codes");
 }
 
 static double enc_d(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055; }
 
-/* el_film_to_srgb8 (threshold search) against the sRGB formula in double, and against el_srgb_to_byte
+/* el_film_to_srgb8 (threshold search) against the sRGB formula in double, and against el_film_srgb_to_byte
  * (pbrt's float formula), over a dense sweep of [0, 1.1] */
 static void test_srgb8_sweep(void) {
   enum { N = 1 << 20 };
@@ -337,9 +337,9 @@ static void test_srgb8_sweep(void) {
     int exact = (int)floor(v);
     if (exact > 255) exact = 255;
     if (out[i] != exact && fabs(v - floor(v + 0.5)) > 1e-9) bad_exact++;
-    if (out[i] != el_srgb_to_byte(in[i])) {
+    if (out[i] != el_film_srgb_to_byte(in[i])) {
       diff_float++;
-      if (abs(out[i] - el_srgb_to_byte(in[i])) > 1 || fabs(v - floor(v + 0.5)) > 1e-4) far++;
+      if (abs(out[i] - el_film_srgb_to_byte(in[i])) > 1 || fabs(v - floor(v + 0.5)) > 1e-4) far++;
     }
   }
   snprintf(buf, sizeof buf, "to_srgb8 on %d values in [0,1.1]: %d differ from round(255 enc(x)) in double", 3 * N, bad_exact);
@@ -354,34 +354,75 @@ static void test_srgb8_sweep(void) {
 static void test_tonemap(void) {
   float in[3 * 6];
   unsigned char out[3 * 6];
-  el_output_options o;
+  el_film_output_options o;
   int i;
   memset(&o, 0, sizeof o);
   /* pixel values: 1, 0.25, NaN, -1, Inf, 3 */
   for (i = 0; i < 3; i++) {
     in[0 + i] = 1.0f; in[3 + i] = 0.25f; in[6 + i] = NAN; in[9 + i] = -1.0f; in[12 + i] = INFINITY; in[15 + i] = 3.0f;
   }
-  o.tonemap = EL_TONEMAP_CLAMP;
+  o.tonemap = EL_FILM_TONEMAP_CLAMP;
   o.exposure = 1.0f; /* 0.25 -> 0.5 -> code 188 */
   check(el_film_to_srgb8(in, 6, 1, &o, out) == EL_SUCCESS && out[0] == 255 && out[3] == 188 && out[6] == 0 &&
             out[9] == 0 && out[12] == 255 && out[15] == 255,
         "clamp, exposure +1 stop: 1->255, 0.25->188, NaN->0, -1->0, Inf->255");
   o.exposure = 0;
-  o.tonemap = EL_TONEMAP_EXPONENTIAL;
+  o.tonemap = EL_FILM_TONEMAP_EXPONENTIAL;
   el_film_to_srgb8(in, 6, 1, &o, out);
   check(out[0] == 208 && out[6] == 0 && out[12] == 255, "exponential k=1: 1 -> 1-1/e -> 208, NaN->0, Inf->255");
-  o.tonemap = EL_TONEMAP_REINHARD;
+  o.tonemap = EL_FILM_TONEMAP_REINHARD;
   el_film_to_srgb8(in, 6, 1, &o, out);
   check(out[0] == 188 && out[15] == 225, "reinhard: 1 -> 0.5 -> 188, 3 -> 0.75 -> 225");
-  o.tonemap = EL_TONEMAP_ACES;
+  o.tonemap = EL_FILM_TONEMAP_ACES;
   el_film_to_srgb8(in, 6, 1, &o, out);
   check(out[0] == 232 && out[6] == 0 && out[12] == 255, "aces: 1 -> 2.54/3.16 -> 232, NaN->0, Inf->255");
-  o.tonemap = (el_tonemap)7;
+  o.tonemap = (el_film_tonemap)7;
   check(el_film_to_srgb8(in, 6, 1, &o, out) == EL_ERROR_INVALID_ARGUMENT, "unknown tone mapper rejected");
   check(el_film_to_srgb8(NULL, 6, 1, NULL, out) == EL_ERROR_INVALID_ARGUMENT &&
             el_film_to_srgb8(in, 0, 1, NULL, out) == EL_ERROR_INVALID_ARGUMENT,
         "to_srgb8: NULL input and zero width rejected");
-  check(el_tonemap_eval(EL_TONEMAP_EXPONENTIAL, 2.0f, 0.5f) - (1 - exp(-1.0)) < 1e-6, "exponential k=0.5 at 2 = 1 - 1/e");
+  check(el_film_tonemap_eval(EL_FILM_TONEMAP_EXPONENTIAL, 2.0f, 0.5f) - (1 - exp(-1.0)) < 1e-6, "exponential k=0.5 at 2 = 1 - 1/e");
+  {
+    /* extreme exposures: 2^exposure rounds to 0 below -149 stops (and to +Inf from 128): +Inf must stay
+     * the brightest code (it was 0: +Inf * 0 = NaN), NaN, -Inf and 0 stay 0, finite values go to 0 (a
+     * gain of 0) or 255 (an infinite gain); with every curve, dithered or not. NaN and infinite exposures
+     * are errors (documented). */
+    static const float exps[8] = {-149.0f, -150.0f, -200.0f, -1e30f, 0.0f, 127.0f, 200.0f, 1e30f};
+    float v[3 * 7];
+    unsigned char c[3 * 7];
+    int e, t, dith, k, bad = 0, runs = 0;
+    char msg[256];
+    for (k = 0; k < 3; k++) {
+      v[0 + k] = INFINITY; v[3 + k] = NAN; v[6 + k] = -INFINITY; v[9 + k] = 0.0f;
+      v[12 + k] = 1.0f; v[15 + k] = FLT_MAX; v[18 + k] = 1e-45f;
+    }
+    for (e = 0; e < 8; ++e)
+      for (t = 0; t < 4; ++t)
+        for (dith = 0; dith < 2; ++dith) {
+          memset(&o, 0, sizeof o);
+          o.exposure = exps[e];
+          o.tonemap = (el_film_tonemap)t;
+          o.dither = dith;
+          ++runs;
+          if (el_film_to_srgb8(v, 7, 1, &o, c) != EL_SUCCESS) { ++bad; continue; }
+          for (k = 0; k < 3; k++) {
+            if (c[0 + k] != 255 || c[3 + k] != 0 || c[6 + k] != 0 || c[9 + k] != 0) ++bad;
+            if (exps[e] <= -150.0f && (c[12 + k] != 0 || c[15 + k] != 0 || c[18 + k] != 0)) ++bad;
+            if (exps[e] >= 200.0f && (c[12 + k] != 255 || c[15 + k] != 255 || c[18 + k] != 255)) ++bad;
+          }
+        }
+    snprintf(msg, sizeof msg, "exposures -149 .. -1e30 and 127 .. 1e30 stops, every curve, dithered or not: +Inf -> 255, "
+             "NaN / -Inf / 0 -> 0, finite -> 0 (gain 0) or 255 (gain Inf) (%d of %d conversions wrong)", bad, runs);
+    check(bad == 0, msg);
+    memset(&o, 0, sizeof o);
+    o.exposure = NAN;
+    bad = el_film_to_srgb8(v, 7, 1, &o, c) != EL_ERROR_INVALID_ARGUMENT;
+    o.exposure = INFINITY;
+    bad += el_film_to_srgb8(v, 7, 1, &o, c) != EL_ERROR_INVALID_ARGUMENT;
+    o.exposure = -INFINITY;
+    bad += el_film_to_srgb8(v, 7, 1, &o, c) != EL_ERROR_INVALID_ARGUMENT;
+    check(bad == 0, "NaN, +Inf and -Inf exposures: EL_ERROR_INVALID_ARGUMENT (as documented)");
+  }
 
   /* dithering: a flat field whose exact code is fractional averages to that code; 0 and 1 stay exact */
   {
@@ -507,14 +548,14 @@ static void test_xyz(void) {
   double maxdev = 0;
   int i, k;
   float white[3] = {1, 1, 1};
-  el_rgb_to_xyz(white, xyz);
+  el_film_rgb_to_xyz(white, xyz);
   check(fabs(xyz[0] - 0.950456) < 1e-6 && fabs(xyz[1] - 1.0) < 1e-6 && fabs(xyz[2] - 1.088754) < 1e-6,
         "RGB white -> XYZ of D65 (0.950456, 1, 1.088754)");
   for (i = 0; i < 3; i++) {
     e[0] = e[1] = e[2] = 0;
     e[i] = 1;
-    el_rgb_to_xyz(e, xyz);
-    el_xyz_to_rgb(xyz, rgb);
+    el_film_rgb_to_xyz(e, xyz);
+    el_film_xyz_to_rgb(xyz, rgb);
     for (k = 0; k < 3; k++) {
       double d = fabs(rgb[k] - e[k]);
       if (d > maxdev) maxdev = d;
@@ -565,7 +606,7 @@ static void test_init_errors(void) {
     memset(&t, 0, sizeof t);
     el_film_tile_free(&t);
     o.width = o.height = 8;
-    o.filter.type = EL_FILTER_TRIANGLE;
+    o.filter.type = EL_FILM_FILTER_TRIANGLE;
     el_film_init(&f, &o);
     el_film_tile_init(&f, &t, 0, 0, 4, 4);
     check(t.x0 == 0 && t.y0 == 0 && t.x1 == 6 && t.y1 == 6, "tile [0,4)^2, radius 2 -> pixels [0,6)^2 (pbrt's GetFilmTile)");

@@ -43,7 +43,7 @@ static float *random_image(int w, int h, int C) {
   for (i = 0; i < (size_t)w * (size_t)h * (size_t)C; ++i) p[i] = 0.1f + frand();
   return p;
 }
-static el_mipmap_options opts(el_wrap wu, el_wrap wv, int keep) {
+static el_mipmap_options opts(el_mipmap_wrap wu, el_mipmap_wrap wv, int keep) {
   el_mipmap_options o;
   memset(&o, 0, sizeof o);
   o.wrap_u = wu;
@@ -51,8 +51,8 @@ static el_mipmap_options opts(el_wrap wu, el_wrap wv, int keep) {
   o.keep_resolution = keep;
   return o;
 }
-static const char *wrap_name(el_wrap w) {
-  return w == EL_WRAP_REPEAT ? "repeat" : (w == EL_WRAP_BLACK ? "black" : "clamp");
+static const char *wrap_name(el_mipmap_wrap w) {
+  return w == EL_MIPMAP_WRAP_REPEAT ? "repeat" : (w == EL_MIPMAP_WRAP_BLACK ? "black" : "clamp");
 }
 static double rel(double a, double b) { return fabs(a - b) / (fabs(b) > 1e-6 ? fabs(b) : 1e-6); }
 
@@ -79,7 +79,7 @@ static void test_sizes(void) {
   for (k = 0; k < (int)(sizeof cases / sizeof cases[0]); ++k) {
     float *img = random_image(cases[k].w, cases[k].h, 3);
     el_mipmap m;
-    el_mipmap_options o = opts(EL_WRAP_REPEAT, EL_WRAP_REPEAT, cases[k].keep);
+    el_mipmap_options o = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_REPEAT, cases[k].keep);
     int ok;
     el_result r = el_mipmap_init(&m, img, cases[k].w, cases[k].h, 3, &o);
     ok = r == EL_SUCCESS && el_mipmap_levels(&m) == cases[k].levels;
@@ -151,7 +151,7 @@ static void test_box_levels(void) {
   /* keep_resolution, odd sizes: exact area averages. 5 -> 2: output 0 covers texels [0, 2.5),
    * (p0 + p1 + 0.5 p2) / 2.5; output 1 covers [2.5, 5), (0.5 p2 + p3 + p4) / 2.5. 3 -> 1: the mean. */
   {
-    el_mipmap_options o = opts(EL_WRAP_BLACK, EL_WRAP_BLACK, 1);
+    el_mipmap_options o = opts(EL_MIPMAP_WRAP_BLACK, EL_MIPMAP_WRAP_BLACK, 1);
     el_mipmap_init(&m, p5, 5, 1, 1, &o);
     l1 = el_mipmap_level_data(&m, 1);
     CHECKF(rel(l1[0], (1 + 2 + 0.5 * 4) / 2.5) < 1e-6 && rel(l1[1], (0.5 * 4 + 8 + 16) / 2.5) < 1e-6,
@@ -167,7 +167,7 @@ static void test_box_levels(void) {
 }
 
 /* ---- every level's mean equals the base mean ---------------------------------------------------- */
-static void level_means(int w, int h, int keep, el_wrap wu, el_wrap wv) {
+static void level_means(int w, int h, int keep, el_mipmap_wrap wu, el_mipmap_wrap wv) {
   float *img = random_image(w, h, 2);
   el_mipmap m;
   el_mipmap_options o = opts(wu, wv, keep);
@@ -200,7 +200,7 @@ static void level_means(int w, int h, int keep, el_wrap wu, el_wrap wv) {
 static void test_means(void) {
   static const int sizes[][3] = {{16, 4, 0}, {4, 16, 0}, {1, 8, 0}, {8, 1, 0}, {64, 2, 0}, {400, 235, 1},
                                  {7, 5, 1}, {37, 1, 1}, {1, 19, 1}, {100, 60, 0}};
-  static const el_wrap wraps[3] = {EL_WRAP_REPEAT, EL_WRAP_CLAMP, EL_WRAP_BLACK};
+  static const el_mipmap_wrap wraps[3] = {EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP, EL_MIPMAP_WRAP_BLACK};
   int s, a;
   for (s = 0; s < (int)(sizeof sizes / sizeof sizes[0]); ++s)
     for (a = 0; a < 3; ++a) level_means(sizes[s][0], sizes[s][1], sizes[s][2], wraps[a], wraps[(a + 1) % 3]);
@@ -209,7 +209,7 @@ static void test_means(void) {
 /* ---- constant images stay constant ----------------------------------------------------------- */
 static void test_constant(void) {
   static const float cval[3] = {0.25f, 0.5f, 2.0f};
-  static const el_wrap wraps[2] = {EL_WRAP_REPEAT, EL_WRAP_CLAMP};
+  static const el_mipmap_wrap wraps[2] = {EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP};
   int w = 37, h = 23, a, b, l, i, c, k;
   float *img = (float *)malloc(sizeof(float) * 3 * w * h);
   for (i = 0; i < w * h; ++i)
@@ -220,7 +220,7 @@ static void test_constant(void) {
         el_mipmap m;
         el_mipmap_options o = opts(wraps[a], wraps[b], 0);
         double worst_level = 0, worst_lookup = 0;
-        o.filter = k ? EL_FILTER_TRILINEAR : EL_FILTER_EWA;
+        o.filter = k ? EL_MIPMAP_FILTER_TRILINEAR : EL_MIPMAP_FILTER_EWA;
         el_mipmap_init(&m, img, w, h, 3, &o);
         for (l = 0; l < el_mipmap_levels(&m); ++l) {
           const float *d = el_mipmap_level_data(&m, l);
@@ -236,8 +236,8 @@ static void test_constant(void) {
           el_mipmap_point(&m, (int)(frand() * 12), s, t, o4[0]);
           el_mipmap_bilerp(&m, (int)(frand() * 12), s, t, o4[1]);
           el_mipmap_lookup(&m, s, t, len, o4[2]);
-          el_mipmap_lookup_filtered(&m, EL_FILTER_POINT, s, t, len, o4[3]);
-          el_mipmap_lookup_filtered(&m, EL_FILTER_BILINEAR, s, t, len, o4[4]);
+          el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_POINT, s, t, len, o4[3]);
+          el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_BILINEAR, s, t, len, o4[4]);
           el_mipmap_lookup_differentials(&m, s, t, len * cosf(ang), len * sinf(ang), -len / r * sinf(ang),
                                          len / r * cosf(ang), o4[5]);
           el_mipmap_lookup_differentials(&m, s, t, len, len, 2 * len, 2 * len, o4[6]); /* parallel */
@@ -262,7 +262,7 @@ static void test_centres(void) {
     int w = sizes[s][0], h = sizes[s][1], x, y, c, ok_b = 1, ok_p = 1, ok_l0 = 1;
     float *img = random_image(w, h, 3), o[3];
     el_mipmap m;
-    el_mipmap_options op = opts(EL_WRAP_CLAMP, EL_WRAP_REPEAT, sizes[s][2]);
+    el_mipmap_options op = opts(EL_MIPMAP_WRAP_CLAMP, EL_MIPMAP_WRAP_REPEAT, sizes[s][2]);
     el_mipmap_init(&m, img, w, h, 3, &op);
     for (y = 0; y < h; ++y)
       for (x = 0; x < w; ++x) {
@@ -333,7 +333,7 @@ static void test_wrap(void) {
   /* An asymmetric 4x3 image (an "F"): values 1..12 row by row, one channel. */
   float img[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}, o[1], e;
   el_mipmap m;
-  el_mipmap_options op = opts(EL_WRAP_REPEAT, EL_WRAP_CLAMP, 1);
+  el_mipmap_options op = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP, 1);
   el_mipmap_init(&m, img, 4, 3, 1, &op);
   el_mipmap_texel(&m, 0, -1, 0, o);
   check(o[0] == 4, "repeat u / clamp v: texel (-1, 0) = texel (3, 0)");
@@ -354,7 +354,7 @@ static void test_wrap(void) {
   el_mipmap_bilerp(&m, 0, 0.125f + 1000000.0f, 0.5f, o);
   CHECKF(o[0] == 5, "repeat u at s + 1e6: texel (0, 1) (got %g)", o[0]);
   el_mipmap_free(&m);
-  op = opts(EL_WRAP_BLACK, EL_WRAP_REPEAT, 1);
+  op = opts(EL_MIPMAP_WRAP_BLACK, EL_MIPMAP_WRAP_REPEAT, 1);
   el_mipmap_init(&m, img, 4, 3, 1, &op);
   el_mipmap_texel(&m, 0, -1, 0, o);
   check(o[0] == 0, "black u / repeat v: texel (-1, 0) = 0");
@@ -369,7 +369,7 @@ static void test_wrap(void) {
   el_mipmap_free(&m);
   /* Clamp u / Black v on the EWA path: a wide footprint far below the image is black, one far right
    * of it (Clamp) sees only the last column. */
-  op = opts(EL_WRAP_CLAMP, EL_WRAP_BLACK, 1);
+  op = opts(EL_MIPMAP_WRAP_CLAMP, EL_MIPMAP_WRAP_BLACK, 1);
   el_mipmap_init(&m, img, 4, 3, 1, &op);
   el_mipmap_lookup_differentials(&m, 0.5f, 5.0f, 0.1f, 0, 0, 0.1f, o);
   check(o[0] == 0, "black v: EWA footprint far below the image = 0");
@@ -416,8 +416,8 @@ static void test_ewa(void) {
   for (y = 0; y < n; ++y)
     for (x = 0; x < n; ++x) img[y * n + x] = checker(x, y);
   el_mipmap_init(&m, img, n, n, 1, NULL); /* EWA, anisotropy 8 */
-  o = opts(EL_WRAP_REPEAT, EL_WRAP_REPEAT, 0);
-  o.filter = EL_FILTER_TRILINEAR;
+  o = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_REPEAT, 0);
+  o.filter = EL_MIPMAP_FILTER_TRILINEAR;
   el_mipmap_init(&mt, img, n, n, 1, &o);
   /* Footprints elongated across the 2-texel columns (u), narrow along v where the 16-texel checks
    * are: the ideal filter averages the columns away and keeps the rows. Major 8..24 texels along u,
@@ -594,7 +594,7 @@ static void test_pbrt_algorithm(void) {
    * levels. */
   float *img = random_image(128, 64, 3), o[3], r[3], dtri = 0, dewa = 0, dbil = 0;
   el_mipmap m;
-  el_mipmap_options op = opts(EL_WRAP_REPEAT, EL_WRAP_CLAMP, 0);
+  el_mipmap_options op = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP, 0);
   int i;
   el_mipmap_init(&m, img, 128, 64, 3, &op);
   for (i = 0; i < 3000; ++i) {
@@ -606,7 +606,7 @@ static void test_pbrt_algorithm(void) {
     ref_trilinear(&m, s, t, 2 * len, r);
     e = max_rel3(o, r);
     if (e > dtri) dtri = e;
-    el_mipmap_lookup_filtered(&m, EL_FILTER_BILINEAR, s, t, 2 * len, o);
+    el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_BILINEAR, s, t, 2 * len, o);
     ref_bilinear(&m, s, t, 2 * len, r);
     e = max_rel3(o, r);
     if (e > dbil) dbil = e;
@@ -625,6 +625,47 @@ static void test_pbrt_algorithm(void) {
   free(img);
 }
 
+/* Differentials with the non-EWA filters, against the pbrt code they follow, written out again:
+ * pbrt-v3 (src/core/mipmap.h, since commit aaa552a "Fix trilinear filtering") computes
+ *     Float width = std::max(std::max(std::abs(dst0[0]), std::abs(dst0[1])),
+ *                            std::max(std::abs(dst1[0]), std::abs(dst1[1])));
+ *     return Lookup(st, width);
+ * for doTrilinear (before that commit it passed 2 * width); pbrt-v4's MIPMap::Filter passes 2 * width
+ * for its point and bilinear filters. */
+static void test_differentials_width(void) {
+  float *img = random_image(128, 64, 3), o[3], r[3], dtri = 0, dbil = 0, dold = 0;
+  el_mipmap mt, mb;
+  el_mipmap_options op = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP, 0);
+  int i;
+  op.filter = EL_MIPMAP_FILTER_TRILINEAR;
+  el_mipmap_init(&mt, img, 128, 64, 3, &op);
+  op.filter = EL_MIPMAP_FILTER_BILINEAR;
+  el_mipmap_init(&mb, img, 128, 64, 3, &op);
+  for (i = 0; i < 2000; ++i) {
+    float s = -0.15f + 1.3f * frand(), t = -0.15f + 1.3f * frand();
+    float len = powf(10.0f, -2.6f + 1.9f * frand()), ratio = 1 + 11 * frand(), ang = 6.2831853f * frand(), e;
+    float d0s = len * cosf(ang), d0t = len * sinf(ang), d1s = -len / ratio * sinf(ang), d1t = len / ratio * cosf(ang);
+    float width = fmaxf(fmaxf(fabsf(d0s), fabsf(d0t)), fmaxf(fabsf(d1s), fabsf(d1t)));
+    el_mipmap_lookup_differentials(&mt, s, t, d0s, d0t, d1s, d1t, o);
+    ref_trilinear(&mt, s, t, width, r); /* pbrt-v3: Lookup(st, width) */
+    e = max_rel3(o, r);
+    if (e > dtri) dtri = e;
+    ref_trilinear(&mt, s, t, 2 * width, r); /* the old formula, which must differ */
+    e = max_rel3(o, r);
+    if (e > dold) dold = e;
+    el_mipmap_lookup_differentials(&mb, s, t, d0s, d0t, d1s, d1t, o);
+    ref_bilinear(&mb, s, t, 2 * width, r); /* pbrt-v4: Lookup(st, 2 * width) */
+    e = max_rel3(o, r);
+    if (e > dbil) dbil = e;
+  }
+  CHECKF(dtri < 2e-5f, "trilinear differentials: pbrt-v3's Lookup(st, max |d|) (2000 lookups, max rel. diff %.2g)", dtri);
+  CHECKF(dold > 1e-2f, "... and not the old Lookup(st, 2 max |d|) (max rel. diff %.2g)", dold);
+  CHECKF(dbil < 2e-5f, "bilinear differentials: pbrt-v4's Lookup(st, 2 max |d|) (max rel. diff %.2g)", dbil);
+  el_mipmap_free(&mt);
+  el_mipmap_free(&mb);
+  free(img);
+}
+
 /* ---- resampling against the Lanczos weights written out again ---------------------------------- */
 static double lanczos_d(double x) { /* windowed sinc, tau = 2, on [-1, 1] as pbrt's Lanczos(x, 2) */
   const double pi = 3.14159265358979323846;
@@ -639,7 +680,7 @@ static void test_resample(void) {
    * negative results clamped to 0. */
   float img[3] = {1.0f, 5.0f, 2.0f};
   el_mipmap m;
-  el_mipmap_options o = opts(EL_WRAP_CLAMP, EL_WRAP_CLAMP, 0);
+  el_mipmap_options o = opts(EL_MIPMAP_WRAP_CLAMP, EL_MIPMAP_WRAP_CLAMP, 0);
   const float *d;
   int i, j, ok = 1;
   el_mipmap_init(&m, img, 3, 1, 1, &o);
@@ -671,7 +712,7 @@ static void test_hard_inputs(void) {
                             {inf, 0, 0, inf},   {1e30f, -1e30f, 1e30f, 1e30f}, {1e-40f, 0, 0, 1e-40f},
                             {0.1f, 0, 0, 0},    {1e-2f, 0, 0, 1e-9f},          {-inf, nan, inf, 1},
                             {0.3f, 0.2f, -0.2f, 0.3f}};
-  static const el_wrap wraps[3] = {EL_WRAP_REPEAT, EL_WRAP_CLAMP, EL_WRAP_BLACK};
+  static const el_mipmap_wrap wraps[3] = {EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_CLAMP, EL_MIPMAP_WRAP_BLACK};
   int a, b, i, j, k, c, bad = 0, count = 0;
   float hi = -1e30f;
   float *img = random_image(32, 16, 3); /* a power of two: no resampling, so every result is a
@@ -692,8 +733,8 @@ static void test_hard_inputs(void) {
             float out[6][3];
             for (k = 0; k < (int)(sizeof widths / sizeof widths[0]); ++k) {
               el_mipmap_lookup(&m[f], coords[i], coords[j], widths[k], out[0]);
-              el_mipmap_lookup_filtered(&m[f], EL_FILTER_POINT, coords[i], coords[j], widths[k], out[1]);
-              el_mipmap_lookup_filtered(&m[f], EL_FILTER_BILINEAR, coords[i], coords[j], widths[k], out[2]);
+              el_mipmap_lookup_filtered(&m[f], EL_MIPMAP_FILTER_POINT, coords[i], coords[j], widths[k], out[1]);
+              el_mipmap_lookup_filtered(&m[f], EL_MIPMAP_FILTER_BILINEAR, coords[i], coords[j], widths[k], out[2]);
               el_mipmap_point(&m[f], k - 2, coords[i], coords[j], out[3]);
               el_mipmap_bilerp(&m[f], k * 3 - 5, coords[i], coords[j], out[4]);
               el_mipmap_texel(&m[f], k, (int)(frand() * 4e9f - 2e9f), (int)(frand() * 4e9f - 2e9f), out[5]);
@@ -725,29 +766,38 @@ static void test_hard_inputs(void) {
 static void test_errors(void) {
   float img[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
   el_mipmap m;
-  el_mipmap_options o = opts(EL_WRAP_REPEAT, EL_WRAP_REPEAT, 0);
+  el_mipmap_options o = opts(EL_MIPMAP_WRAP_REPEAT, EL_MIPMAP_WRAP_REPEAT, 0);
   check(el_mipmap_init(NULL, img, 2, 2, 3, NULL) == EL_ERROR_INVALID_ARGUMENT, "NULL map rejected");
   check(el_mipmap_init(&m, NULL, 2, 2, 3, NULL) == EL_ERROR_INVALID_ARGUMENT, "NULL pixels rejected");
   check(el_mipmap_init(&m, img, 0, 2, 3, NULL) == EL_ERROR_INVALID_ARGUMENT, "width 0 rejected");
   check(el_mipmap_init(&m, img, 2, 2, 5, NULL) == EL_ERROR_INVALID_ARGUMENT, "5 channels rejected");
-  o.wrap_v = (el_wrap)7;
+  o.wrap_v = (el_mipmap_wrap)7;
   check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_INVALID_ARGUMENT, "unknown wrap mode rejected");
-  o.wrap_v = EL_WRAP_REPEAT;
+  o.wrap_v = EL_MIPMAP_WRAP_REPEAT;
   o.max_anisotropy = -1;
   check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_INVALID_ARGUMENT, "negative max_anisotropy rejected");
   o.max_anisotropy = (float)(HUGE_VAL - HUGE_VAL);
   check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_NAN, "NaN max_anisotropy: EL_ERROR_NAN");
   o.max_anisotropy = 0;
-  img[7] = (float)(HUGE_VAL - HUGE_VAL);
-  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_NAN, "a NaN texel: EL_ERROR_NAN");
+  img[7] = (float)(HUGE_VAL - HUGE_VAL); /* float 7 = texel 2 = (x 0, y 1) */
+  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_NAN && m.bad_index == 2 && m.level_data[0] == NULL,
+        "a NaN texel: EL_ERROR_NAN, m.bad_index names texel 2 (y*width+x), the rest zeroed");
   img[7] = (float)HUGE_VAL;
-  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_INFINITE, "an infinite texel: EL_ERROR_INFINITE");
+  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_ERROR_INFINITE && m.bad_index == 2,
+        "an infinite texel: EL_ERROR_INFINITE, m.bad_index 2");
+  img[11] = (float)-HUGE_VAL;
+  check(el_mipmap_init(&m, img, 4, 1, 3, &o) == EL_ERROR_INFINITE && m.bad_index == 2,
+        "the first of two bad texels is named");
   img[7] = 8;
-  check(el_mipmap_init(&m, img, (1 << 24) + 1, 1, 1, &o) == EL_ERROR_SIZE_OVERFLOW, "a side above 2^24: size overflow");
+  check(el_mipmap_init(&m, img, 4, 1, 3, &o) == EL_ERROR_INFINITE && m.bad_index == 3, "texel 3 of a 4x1 map");
+  img[11] = 12;
+  check(el_mipmap_init(&m, img, (1 << 24) + 1, 1, 1, &o) == EL_ERROR_SIZE_OVERFLOW && m.bad_index == -1,
+        "a side above 2^24: size overflow, bad_index -1 (no texel to blame)");
   check(m.level_data[0] == NULL && m.levels == 0, "failed init leaves a zeroed map");
   el_mipmap_free(&m);
-  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_SUCCESS && m.max_anisotropy == 8.0f && m.filter == EL_FILTER_EWA,
-        "all-zero options: EWA, max anisotropy 8 (pbrt's defaults)");
+  check(el_mipmap_init(&m, img, 2, 2, 3, &o) == EL_SUCCESS && m.max_anisotropy == 8.0f && m.filter == EL_MIPMAP_FILTER_EWA &&
+            m.bad_index == -1,
+        "all-zero options: EWA, max anisotropy 8 (pbrt's defaults); bad_index -1");
   el_mipmap_free(&m);
 }
 
@@ -794,6 +844,7 @@ int main(void) {
   test_wrap();
   test_ewa();
   test_pbrt_algorithm();
+  test_differentials_width();
   test_resample();
   test_hard_inputs();
   test_errors();

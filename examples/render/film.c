@@ -28,15 +28,15 @@ int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err
   if (x0 == 0 && y0 == 0 && x1 == xres && y1 == yres) memset(o.crop, 0, sizeof o.crop);
   /* pbrt-v3's filters (MakeFilter): box, triangle, gaussian, mitchell, sinc (windowed: film.h's Lanczos) */
   switch (fd->type) {
-  case ELR_PF_TRIANGLE: o.filter.type = EL_FILTER_TRIANGLE; break;
-  case ELR_PF_GAUSSIAN: o.filter.type = EL_FILTER_GAUSSIAN; o.filter.gaussian_alpha = fd->alpha; break;
+  case ELR_PF_TRIANGLE: o.filter.type = EL_FILM_FILTER_TRIANGLE; break;
+  case ELR_PF_GAUSSIAN: o.filter.type = EL_FILM_FILTER_GAUSSIAN; o.filter.gaussian_alpha = fd->alpha; break;
   case ELR_PF_MITCHELL:
-    o.filter.type = EL_FILTER_MITCHELL;
+    o.filter.type = EL_FILM_FILTER_MITCHELL;
     o.filter.mitchell_b = fd->b; o.filter.mitchell_c = fd->c;
     if (fd->b == 0.f && fd->c == 0.f) o.filter.mitchell_b = o.filter.mitchell_c = 1e-30f; /* all zero means 1/3, 1/3 to film.h */
     break;
-  case ELR_PF_SINC: o.filter.type = EL_FILTER_LANCZOS; o.filter.lanczos_tau = fd->tau; break;
-  default: o.filter.type = EL_FILTER_BOX; break;
+  case ELR_PF_SINC: o.filter.type = EL_FILM_FILTER_LANCZOS; o.filter.lanczos_tau = fd->tau; break;
+  default: o.filter.type = EL_FILM_FILTER_BOX; break;
   }
   o.filter.radius[0] = fd->xw; o.filter.radius[1] = fd->yw;
   r = el_film_init(f, &o);

@@ -93,7 +93,6 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
   o.compensated = l->compensated;
   o.importance = elr__importance(l->importance);
   o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
-  o.bad_texel = -1;
   if (rgb) {
     o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
     if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
@@ -107,8 +106,8 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
     r = el_envlight_init_constant(l->env, scale, &o);
   }
   if (r != EL_SUCCESS) {
-    if (o.bad_texel >= 0)
-      snprintf(err, errlen, "environment map texel (%d, %d) is NaN, infinite or negative", o.bad_texel % (w > 0 ? w : 1), o.bad_texel / (w > 0 ? w : 1));
+    if (l->env->bad_index >= 0)
+      snprintf(err, errlen, "environment map texel (%d, %d) is NaN, infinite or negative", l->env->bad_index % (w > 0 ? w : 1), l->env->bad_index / (w > 0 ? w : 1));
     else if (r == EL_ERROR_NOT_ORTHONORMAL)
       snprintf(err, errlen, "the light's transformation must be a rotation (pbrt-v3 maps the environment with the CTM's rotation)");
     else

@@ -112,6 +112,12 @@ static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
  * parameter's: the lexer leaves an included file as soon as it peeks past its last token, so the
  * current file may already be the includer (errors in an included file's last directive named the
  * includer with the included file's line). */
+/* It never returns (it longjmps to elr_parse): saying so lets the compiler see that a value checked by a
+ * failing branch is set on every path that goes on (clang's -Wsometimes-uninitialized). */
+#if defined(__GNUC__) || defined(__clang__)
+static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) __attribute__((noreturn));
+static void elr__failf(elr__parser *P, const char *file, int line, const char *fmt, ...) __attribute__((noreturn));
+#endif
 static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) {
   char msg[400];
   vsnprintf(msg, sizeof msg, fmt, ap);
@@ -1117,8 +1123,8 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     float scale = (float)elr__pfloat(P, "scale", 1.0);
     float maxan = (float)elr__pfloat(P, "maxanisotropy", 8.0);
     el_mipmap_options mo;
-    el_mipmap_filter filter = EL_FILTER_EWA;
-    el_wrap wr;
+    el_mipmap_filter filter = EL_MIPMAP_FILTER_EWA;
+    el_mipmap_wrap wr;
     int gamma;
     size_t fl = strlen(fn);
     el_image img;
@@ -1126,16 +1132,16 @@ static void elr__texture(elr__parser *P, const char *name, const char *vtype, co
     char *path;
     if (elr__find(P, "filter")) {
       const char *f = elr__pstring(P, "filter", "bilinear");
-      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = EL_FILTER_EWA;
-      else if (!strcmp(f, "trilinear")) filter = EL_FILTER_TRILINEAR;
-      else if (!strcmp(f, "bilinear")) filter = EL_FILTER_BILINEAR;
+      if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = EL_MIPMAP_FILTER_EWA;
+      else if (!strcmp(f, "trilinear")) filter = EL_MIPMAP_FILTER_TRILINEAR;
+      else if (!strcmp(f, "bilinear")) filter = EL_MIPMAP_FILTER_BILINEAR;
       else elr__failf(P, elr__find(P, "filter")->file, elr__find(P, "filter")->line, "Texture \"%s\": filter must be \"bilinear\", \"trilinear\" or \"ewa\"", name);
     } else if (elr__find(P, "trilinear")) { /* pbrt-v3's spelling */
-      filter = elr__pbool(P, "trilinear", 0) ? EL_FILTER_TRILINEAR : EL_FILTER_EWA;
+      filter = elr__pbool(P, "trilinear", 0) ? EL_MIPMAP_FILTER_TRILINEAR : EL_MIPMAP_FILTER_EWA;
     }
-    if (!strcmp(wrap, "repeat")) wr = EL_WRAP_REPEAT;
-    else if (!strcmp(wrap, "black")) wr = EL_WRAP_BLACK;
-    else if (!strcmp(wrap, "clamp")) wr = EL_WRAP_CLAMP;
+    if (!strcmp(wrap, "repeat")) wr = EL_MIPMAP_WRAP_REPEAT;
+    else if (!strcmp(wrap, "black")) wr = EL_MIPMAP_WRAP_BLACK;
+    else if (!strcmp(wrap, "clamp")) wr = EL_MIPMAP_WRAP_CLAMP;
     else elr__failf(P, elr__find(P, "wrap")->file, elr__find(P, "wrap")->line, "Texture \"%s\": wrap must be \"repeat\", \"black\" or \"clamp\"", name);
     elr__check_range(P, "maxanisotropy", maxan, 1.0, 1024.0); /* mipmap.h's limit */
     if (!fn[0]) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);

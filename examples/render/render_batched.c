@@ -138,7 +138,7 @@ static elr_v3 elr__path_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r
 /* Pixel (x, y)'s C->spp camera samples into tile (the sampler started at the pixel). */
 void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env;
-  el_envlight *env_sample = C->batch_light->env_sample; /* (its queries take a non-const light: lazy tables) */
+  const el_envlight *env_sample = C->batch_light->env_sample;
   elr_ray r[ELR_BATCH];
   elr_hit h[ELR_BATCH];
   elr_first f[ELR_BATCH];
