@@ -50,7 +50,17 @@ int elr_scene_spp(const elr_scene *s);
 
 /* Light sampling strategies (the integrator's "string lightsampling" parameter, a test/bench hook). */
 enum { ELR_LS_MIS = 0, ELR_LS_LIGHT = 1, ELR_LS_BSDF = 2 };
-enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3 };
+/* Samplers: pbrt-v3's random, stratified, halton, sobol, 02sequence (also "lowdiscrepancy"); pbrt-v4's
+ * zsobol and paddedsobol. */
+enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3, ELR_SAMPLER_SOBOL = 4,
+       ELR_SAMPLER_ZEROTWO = 5, ELR_SAMPLER_ZSOBOL = 6, ELR_SAMPLER_PADDEDSOBOL = 7, ELR_SAMPLER_COUNT = 8 };
+/* the scene-file name of a sampler kind ("02sequence" for ELR_SAMPLER_ZEROTWO), or "default"; and back
+ * (-1 for an unknown name) */
+const char *elr_sampler_kind_name(int kind);
+int elr_sampler_kind_from_name(const char *name);
+/* the sampler of a scene without a Sampler directive (a scene's named sampler is always used) */
+#define ELR_DEFAULT_SAMPLER ELR_SAMPLER_HALTON
+#define ELR_DEFAULT_SPP 16
 
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
@@ -61,6 +71,8 @@ typedef struct elr_render_options {
   int compensated;    /* -1: the scene's, else 0/1 (envlight's compensated distribution) */
   int importance;     /* -1: the scene's, else 0 cell average (envlight's default), 1 pbrt-v3 (2x res), 2 texel */
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
+  int randomization;  /* -1: the sampler's (the scene's "randomization", or pbrt's default); else sobol, zsobol and
+                         paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */
@@ -87,6 +99,7 @@ typedef struct elr_stats {
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
+  int sampler_randomization; /* sobol, zsobol, paddedsobol: 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   uint64_t rejected_samples;
   /* the lights: which emit, how next-event estimation chooses among them, what was built for each */
   int nothing_emits;            /* no light emits: nothing was traced, the image is black */

@@ -192,6 +192,8 @@ typedef struct elr_scene_desc {
   elr_filter_desc filter;
   /* sampler */
   int sampler, spp, xs, ys, jitter, dims;
+  int randomize, has_seed; /* sobol, zsobol, paddedsobol: "string randomization", "integer seed" */
+  int64_t sseed;
   /* integrator */
   int integrator_path, maxdepth, light_sampling;
   float rrthreshold;
@@ -422,7 +424,8 @@ typedef struct elr_camera {
 void elr_camera_init(elr_camera *C, const elr_scene_desc *d, int spp, int differentials);
 void elr_camera_ray(const elr_camera *C, float fx, float fy, elr_ray *r);
 
-/* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_halton.c) */
+/* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_zerotwo.c, sampler_halton.c,
+ *    sampler_sobol.c, sampler_zsobol.c, sampler_paddedsobol.c; lowdiscrepancy.c their shared helpers) */
 /* PCG32, pbrt-v3's RNG (core/rng.h) */
 typedef struct elr_rng { uint64_t state, inc; } elr_rng;
 static inline uint32_t elr_rng_u32(elr_rng *r) {
@@ -444,6 +447,23 @@ static inline uint64_t elr_mix64(uint64_t x) {
   return x;
 }
 
+/* a 32-bit binary fraction as a float in [0, 1): its first 24 digits, exactly. pbrt's min(v * 0x1p-32f,
+ * OneMinusEpsilon) rounds to nearest instead, which can carry a point across the boundary of its
+ * elementary interval (0x3fffffff becomes 0.25) or to 1 */
+static inline float elr_bits_to_float(uint32_t v) { return (float)(v >> 8) * 0x1p-24f; }
+static inline uint32_t elr_reverse_bits32(uint32_t n) {
+  n = (n << 16) | (n >> 16);
+  n = ((n & 0x00ff00ffu) << 8) | ((n & 0xff00ff00u) >> 8);
+  n = ((n & 0x0f0f0f0fu) << 4) | ((n & 0xf0f0f0f0u) >> 4);
+  n = ((n & 0x33333333u) << 2) | ((n & 0xccccccccu) >> 2);
+  return ((n & 0x55555555u) << 1) | ((n & 0xaaaaaaaau) >> 1);
+}
+/* a uniform integer in [0, b) without modulo bias (pbrt's RNG::UniformUInt32(b)) */
+static inline uint32_t elr_rng_bounded(elr_rng *r, uint32_t b) {
+  uint32_t threshold = (0u - b) % b;
+  for (;;) { uint32_t v = elr_rng_u32(r); if (v >= threshold) return v % b; }
+}
+
 /* the halton sampler's tables (sampler_halton.c), one per render, shared by its threads */
 #define ELR_HALTON_DIMS 256
 typedef struct elr_halton {
@@ -458,23 +478,80 @@ void elr_halton_free(elr_halton *H);
 int64_t elr_halton_pixel_offset(const elr_halton *H, int px, int py);
 float elr_halton_sample(const elr_halton *H, int64_t index, int dim, elr_rng *rng);
 
+/* the Sobol' generator matrices and index tables (lowdiscrepancy.c), one set per render */
+#define ELR_SOBOL_DIMS 1024   /* pbrt's NumSobolDimensions */
+#define ELR_SOBOL_COLUMNS 52  /* pbrt's SobolMatrixSize: index bits a matrix has columns for */
+typedef struct elr_sobol {
+  int ndims;                          /* matrices made (2 for the samplers that use dimensions 0 and 1 only) */
+  uint32_t *C;                        /* ndims x ELR_SOBOL_COLUMNS */
+  int log2res;                        /* SobolIntervalToIndex's image: 2^log2res pixels square */
+  uint64_t inv[64], delta[64];        /* its tables (lowdiscrepancy.c) */
+  uint32_t lut[2][7][256];            /* dimensions 0 and 1 a byte of the index at a time: the XOR of the
+                                         columns of each byte value (the zsobol, paddedsobol and 02sequence loops) */
+} elr_sobol;
+int elr_sobol_init(elr_sobol *T, int ndims, int log2res);
+void elr_sobol_free(elr_sobol *T);
+uint64_t elr_sobol_interval_to_index(const elr_sobol *T, uint64_t frame, int x, int y);
+/* dimension d (< T->ndims) of Sobol' point `index`, unrandomized, as a 32-bit fraction (pbrt's SobolSample
+ * before its randomizer); index bits past ELR_SOBOL_COLUMNS are ignored */
+static inline uint32_t elr_sobol_bits(const elr_sobol *T, uint64_t index, int d) {
+  const uint32_t *c = T->C + (size_t)d * ELR_SOBOL_COLUMNS, *end = c + ELR_SOBOL_COLUMNS;
+  uint32_t v = 0;
+  if (d < 2) { /* the same sum, a byte at a time (the plain loop below is the definition) */
+    const uint32_t (*l)[256] = T->lut[d];
+    return l[0][index & 255u] ^ l[1][(index >> 8) & 255u] ^ l[2][(index >> 16) & 255u] ^ l[3][(index >> 24) & 255u] ^
+           l[4][(index >> 32) & 255u] ^ l[5][(index >> 40) & 255u] ^ l[6][(index >> 48) & 15u];
+  }
+  for (; index && c < end; index >>= 1, c++) if (index & 1u) v ^= *c;
+  return v;
+}
+/* pbrt-v4's RandomizeStrategy ("string randomization": none, permutedigits, fastowen, owen) */
+enum { ELR_RANDOMIZE_NONE = 0, ELR_RANDOMIZE_PERMUTE_DIGITS = 1, ELR_RANDOMIZE_FAST_OWEN = 2, ELR_RANDOMIZE_OWEN = 3 };
+uint32_t elr_randomize(uint32_t v, int strategy, uint32_t seed);
+uint32_t elr_permutation_element(uint32_t i, uint32_t n, uint32_t p);
+void elr_gray_code_sample(const uint32_t *C, uint32_t n, uint32_t scramble, uint32_t *out);
+
+/* a render's sampler tables, made once and shared by its threads: Halton's permutations, Sobol's
+ * matrices, the sample bounds the global samplers index their sequence over */
+typedef struct elr_sampler_tables {
+  elr_halton halton;
+  elr_sobol sobol;
+  int bx0, by0, res, log2res; /* sample bounds' corner; the power-of-two square that covers them (sobol, zsobol) */
+} elr_sampler_tables;
+
 /* which sampler a render's threads make, with pbrt's parameters (elr_sampler_choose) */
-typedef struct elr_sampler_desc { int kind, spp, xs, ys, jitter, dims; } elr_sampler_desc;
+typedef struct elr_sampler_desc {
+  int kind, spp, xs, ys, jitter, dims;
+  int randomize;  /* ELR_RANDOMIZE_*: sobol, zsobol, paddedsobol */
+  int has_seed;   /* pbrt-v4's "integer seed" given: it replaces --seed for the scrambles */
+  int64_t seed;
+} elr_sampler_desc;
+int elr_sampler_tables_init(elr_sampler_tables *T, const elr_sampler_desc *d, const int sample_bounds[4], uint64_t seed);
+void elr_sampler_tables_free(elr_sampler_tables *T);
+/* whether every draw render_batched.c makes ahead gives the same number in any order (pixel samplers
+ * only within their `dimensions`) */
+int elr_sampler_order_free(const elr_sampler_desc *d);
 
 /* one thread's sampler: its parameters and where it is (pixel, sample, dimension) */
 typedef struct elr_sampler {
-  int kind, spp, xs, ys, jitter, dims;
-  uint64_t seed;
-  const elr_halton *H;
+  int kind, spp, xs, ys, jitter, dims, randomize;
+  uint64_t seed;   /* --seed: the random streams */
+  uint32_t sseed;  /* the scrambles' seed (zsobol, paddedsobol, sobol): the scene's "seed" or --seed */
+  int log2spp;
+  const elr_sampler_tables *T;
   /* per pixel */
   int px, py, sample;
   elr_rng rng;
-  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
+  float *s1d, *s2d; /* stratified, 02sequence: dims * spp, dims * spp * 2 */
+  uint32_t *bits;   /* 02sequence: spp * 2 scratch */
   int d1, d2, dim, made1, made2;
-  int64_t hindex, hoffset;
+  int64_t hindex, hoffset; /* halton: the sample's index and the pixel's first; sobol: the sample's index;
+                              zsobol: the Morton index of pixel and sample */
+  uint64_t zvalid, zpixel[64]; /* zsobol: the pixel's permuted digits for dimensions 0..63 (bit d of zvalid: known) */
+  uint64_t dhash[72];          /* elr_dim_hash(d, sseed) of the first dimensions: the scrambles' seeds */
 } elr_sampler;
 int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
-int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_halton *H);
+int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_sampler_tables *T);
 void elr_sampler_free(elr_sampler *S);
 void elr_sampler_start_pixel(elr_sampler *S, int px, int py);
 void elr_sampler_start_sample(elr_sampler *S, int sample);
@@ -482,6 +559,20 @@ float elr_sampler_get1d(elr_sampler *S);
 void elr_sampler_get2d(elr_sampler *S, float u[2]);
 void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy);
 void elr_stratified_make(elr_sampler *S, int two, int d);
+void elr_zerotwo_make(elr_sampler *S, int two, int d);
+float elr_sobol_sampler_1d(const elr_sampler *S, int dim);
+float elr_zsobol_1d(elr_sampler *S, int dim);
+void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]);
+float elr_paddedsobol_1d(const elr_sampler *S, int dim);
+void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);
+/* a 64-bit hash of a dimension and a seed (pbrt-v4's Hash(dimension, seed)): a scramble's seed */
+static inline uint64_t elr_dim_hash(int dim, uint32_t seed) {
+  return elr_mix64((((uint64_t)(uint32_t)dim << 32) | seed) ^ 0x9e3779b97f4a7c15ULL);
+}
+/* the scramble seed of dimension d (elr_dim_hash(d, S->sseed), kept for the first 72) */
+static inline uint64_t elr_sampler_dim_hash(const elr_sampler *S, int d) { return d >= 0 && d < 72 ? S->dhash[d] : elr_dim_hash(d, S->sseed); }
+/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension */
+float elr_sampler_hash_float(const elr_sampler *S, int dim);
 /* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
 typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
 void elr_sampler_skip2d(elr_sampler *S);

@@ -832,13 +832,37 @@ static void elr__filter(elr__parser *P, const char *type) {
   elr__check_range(P, "ywidth", f->yw, 1e-3, 16);
 }
 
+/* pbrt-v4's "string randomization" (sobol, zsobol, paddedsobol) */
+static int elr__randomization(elr__parser *P, const char *type, const char *def) {
+  static const char *const names[4] = {"none", "permutedigits", "fastowen", "owen"}; /* ELR_RANDOMIZE_* */
+  const char *r = elr__pstring(P, "randomization", def);
+  elr__param *p = elr__find(P, "randomization");
+  int k;
+  for (k = 0; k < 4; k++) if (!strcmp(r, names[k])) return k;
+  elr__failf(P, p ? p->file : P->dir_file, p ? p->line : P->dir_line,
+             "Sampler \"%s\": unknown randomization \"%s\" (none, permutedigits, fastowen, owen)", type, r);
+  return ELR_RANDOMIZE_NONE;
+}
+
+/* pbrt-v3's MakeSampler (api.cpp) and each sampler's Create: the parameters, with pbrt's defaults */
 static void elr__sampler(elr__parser *P, const char *type) {
   elr_scene_desc *d = &P->s->d;
-  if (!strcmp(type, "random")) {
-    d->sampler = ELR_SAMPLER_RANDOM;
+  int kind = elr_sampler_kind_from_name(type);
+  d->randomize = ELR_RANDOMIZE_NONE; d->has_seed = 0; d->sseed = 0; d->dims = 4; d->jitter = 1;
+  if (kind < 0) {
+    /* pbrt-v3's "maxmindist", pbrt-v4's "pmj02bn" and "independent" */
+    if (!strcmp(type, "independent")) kind = ELR_SAMPLER_RANDOM;
+    else if (!strcmp(type, "pmj02bn")) kind = ELR_SAMPLER_ZSOBOL;
+    else kind = ELR_SAMPLER_HALTON;
+    elr_warn(P->s, P->dir_file, P->dir_line, "Sampler \"%s\" is not supported; using \"%s\"", type, elr_sampler_kind_name(kind));
+    if (kind == ELR_SAMPLER_ZSOBOL) d->randomize = ELR_RANDOMIZE_FAST_OWEN;
+  }
+  d->sampler = kind;
+  switch (kind) {
+  case ELR_SAMPLER_RANDOM:
     d->spp = elr__pint(P, "pixelsamples", 4);
-  } else if (!strcmp(type, "stratified")) {
-    d->sampler = ELR_SAMPLER_STRATIFIED;
+    break;
+  case ELR_SAMPLER_STRATIFIED:
     d->jitter = elr__pbool(P, "jitter", 1);
     d->xs = elr__pint(P, "xsamples", 4);
     d->ys = elr__pint(P, "ysamples", 4);
@@ -851,15 +875,38 @@ static void elr__sampler(elr__parser *P, const char *type) {
     if ((double)d->spp * (double)(d->dims + 1) > (double)(1 << 24))
       elr__failf(P, P->dir_file, P->dir_line, "Sampler \"stratified\": %d x %d samples in %d dimensions need %.0f MiB per thread (at most 16777216 "
                 "samples times dimensions + 1)", d->xs, d->ys, d->dims, (double)d->spp * (d->dims + 1) * 12.0 / 1048576.0);
-  } else {
-    if (strcmp(type, "halton") != 0)
-      elr_warn(P->s, P->dir_file, P->dir_line, "Sampler \"%s\" is not supported; using \"halton\"", type);
-    d->sampler = ELR_SAMPLER_HALTON;
+    break;
+  case ELR_SAMPLER_ZEROTWO:
+    d->spp = elr__pint(P, "pixelsamples", 16);
+    d->dims = elr__pint(P, "dimensions", 4);
+    elr__check_range(P, "dimensions", d->dims, 0, 64);
+    break;
+  case ELR_SAMPLER_SOBOL: case ELR_SAMPLER_ZSOBOL: case ELR_SAMPLER_PADDEDSOBOL:
+    d->spp = elr__pint(P, "pixelsamples", 16);
+    /* pbrt-v4's parameters; pbrt-v3's sobol has none and is not randomized */
+    d->randomize = elr__randomization(P, type, kind == ELR_SAMPLER_SOBOL ? "none" : "fastowen");
+    if (elr__find(P, "seed")) { d->has_seed = 1; d->sseed = elr__pint(P, "seed", 0); }
+    break;
+  default: /* halton */
     d->spp = elr__pint(P, "pixelsamples", 16);
     if (elr__find(P, "samplepixelcenter") && elr__pbool(P, "samplepixelcenter", 0))
       elr_warn(P->s, P->dir_file, P->dir_line, "Sampler: \"samplepixelcenter\" ignored");
+    break;
   }
   elr__check_range(P, "pixelsamples", d->spp, 1, 1 << 24);
+  if (kind == ELR_SAMPLER_SOBOL || kind == ELR_SAMPLER_ZEROTWO || kind == ELR_SAMPLER_ZSOBOL) {
+    int p2 = 1;
+    while (p2 < d->spp) p2 <<= 1;
+    if (p2 > (1 << 24))
+      elr__failf(P, P->dir_file, P->dir_line, "Sampler \"%s\": %d pixel samples, rounded up to a power of two, exceed 16777216", type, d->spp);
+    if (p2 != d->spp) {
+      elr_warn(P->s, P->dir_file, P->dir_line, "Sampler \"%s\": %d pixel samples rounded up to %d (a power of two)", type, d->spp, p2);
+      d->spp = p2;
+    }
+  }
+  if (kind == ELR_SAMPLER_ZEROTWO && (double)d->spp * (double)(d->dims + 1) > (double)(1 << 24))
+    elr__failf(P, P->dir_file, P->dir_line, "Sampler \"%s\": %d samples in %d dimensions need %.0f MiB per thread (at most 16777216 "
+              "samples times dimensions + 1)", type, d->spp, d->dims, (double)d->spp * (d->dims + 1) * 12.0 / 1048576.0);
 }
 
 static void elr__integrator(elr__parser *P, const char *type) {
@@ -1898,7 +1945,9 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   s->d.crop[0] = 0; s->d.crop[1] = 1; s->d.crop[2] = 0; s->d.crop[3] = 1;
   snprintf(s->d.filename, sizeof s->d.filename, "pbrt.exr");
   s->d.filter.type = ELR_PF_BOX; s->d.filter.xw = s->d.filter.yw = 0.5f;
-  s->d.sampler = ELR_SAMPLER_HALTON; s->d.spp = 16;
+  /* the sampler of a scene without a Sampler directive (el_render.h; pbrt-v3's is halton, 16 spp) */
+  s->d.sampler = ELR_DEFAULT_SAMPLER; s->d.spp = ELR_DEFAULT_SPP; s->d.dims = 4; s->d.jitter = 1;
+  s->d.randomize = ELR_DEFAULT_SAMPLER == ELR_SAMPLER_ZSOBOL || ELR_DEFAULT_SAMPLER == ELR_SAMPLER_PADDEDSOBOL ? ELR_RANDOMIZE_FAST_OWEN : ELR_RANDOMIZE_NONE;
   s->d.integrator_path = 1; s->d.maxdepth = 5; s->d.rrthreshold = 1.f;
   s->d.light_sampling = ELR_LS_MIS;
   s->d.light_strategy = ELR_LSTRAT_SPATIAL; /* pbrt-v3's default lightsamplestrategy */

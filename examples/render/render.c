@@ -29,7 +29,7 @@ typedef struct elr_job {
   elr_tstats total;
   double t0, last_print;
   int failed;
-  const elr_halton *H;
+  const elr_sampler_tables *T; /* the sampler's tables, shared by the threads */
 } elr_job;
 
 static void elr__progress(elr_job *J, int final) {
@@ -60,7 +60,7 @@ static void *elr__worker(void *arg) {
   elr_sampler S;
   elr_tstats ts;
   memset(&ts, 0, sizeof ts);
-  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->H) != 0) {
+  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->T) != 0) {
     pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
     return NULL;
   }
@@ -129,7 +129,7 @@ static void *elr__worker(void *arg) {
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1;
 }
 
 /* >> what the scene calls for */
@@ -212,9 +212,9 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     }
   }
   /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
-  /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
-   * past them come from the pixel's one random stream, whose order batching would change) */
-  if (*env_sampled && !o->no_batch && (C->sampler.kind != ELR_SAMPLER_STRATIFIED || C->sampler.dims >= 3)) {
+  /* (with a pixel sampler, only when its dimensions cover the three 2D draws made ahead: draws past
+   * them come from the pixel's one random stream, whose order batching would change) */
+  if (*env_sampled && !o->no_batch && elr_sampler_order_free(&C->sampler)) {
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
@@ -235,6 +235,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->light_samples_batched = C->batch_light != NULL;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
+  st->sampler_randomization = C->sampler.randomize;
   st->rejected_samples = el_film_rejected_samples(film);
   for (i = 0; i < s->ntex; i++) {
     if (s->tex[i].kind == ELR_TEX_IMAGE) {
@@ -286,12 +287,12 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
   elr_ctx C;
   elr_job J;
-  elr_halton H;
+  elr_sampler_tables T;
   el_film film;
   pthread_t *th = NULL;
   int i, nthreads, x0, y0, x1, y1, rc = -1, env_sampled = 0, emits = 0, fb[4];
   double t_start = elr_now();
-  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H); memset(&film, 0, sizeof film);
+  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&T, 0, sizeof T); memset(&film, 0, sizeof film);
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
   C.s = s;
@@ -323,15 +324,15 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     rc = 0;
     goto done;
   }
-  if (C.sampler.kind == ELR_SAMPLER_HALTON) {
+  { /* the sampler's tables (Halton's permutations, Sobol's matrices), for the film's sample bounds */
     int b[4];
     el_film_sample_bounds(&film, b);
-    if (elr_halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (elr_sampler_tables_init(&T, &C.sampler, b, o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
   }
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 1024) nthreads = 1024;
-  J.C = &C; J.film = &film; J.o = o; J.H = &H;
+  J.C = &C; J.film = &film; J.o = o; J.T = &T;
   {
     int b[4];
     el_film_sample_bounds(&film, b);
@@ -373,7 +374,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   rc = 0;
 done:
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
-  free(J.ready); free(th); elr_halton_free(&H);
+  free(J.ready); free(th); elr_sampler_tables_free(&T);
   elr_light_distrib_free(&C.ld);
   el_film_free(&film);
   if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }

@@ -15,8 +15,11 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   FILE *f = (FILE *)fp;
   uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
   fprintf(f, "render statistics\n");
-  fprintf(f, "  image              %d x %d, %d spp (%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
-          st->sampler == ELR_SAMPLER_RANDOM ? "random" : (st->sampler == ELR_SAMPLER_STRATIFIED ? "stratified" : "halton"),
+  static const char *rz[4] = {", no randomization", ", random digit permutation", ", fast Owen scrambling", ", Owen scrambling"};
+  int scrambled = st->sampler == ELR_SAMPLER_SOBOL || st->sampler == ELR_SAMPLER_ZSOBOL || st->sampler == ELR_SAMPLER_PADDEDSOBOL;
+  const char *r = scrambled ? rz[st->sampler_randomization & 3] : "";
+  fprintf(f, "  image              %d x %d, %d spp (sampler %s%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
+          elr_sampler_kind_name(st->sampler), r,
           st->nthreads, st->nthreads == 1 ? "" : "s", st->integrator_path ? "path" : "directlighting", st->maxdepth);
   fprintf(f, "  parse              %8.3f s (images and meshes read: %.3f s)\n", st->t_parse, st->t_images);
   fprintf(f, "  embree build       %8.3f s  %10.1f KiB\n", st->t_embree, (double)st->bytes_embree / 1024.0);

@@ -118,6 +118,9 @@ static const char *fz_words[] = {
     "PixelFilter \"gaussian\" \"float alpha\" -1e38", "PixelFilter \"triangle\" \"float xwidth\" 1e-3",
     "Sampler \"stratified\" \"integer xsamples\" 4096 \"integer ysamples\" 4096", "Sampler \"random\" \"integer pixelsamples\" 1",
     "Sampler \"halton\" \"integer pixelsamples\" 16777216", "Sampler \"sobol\"",
+    "Sampler \"zsobol\" \"string randomization\" \"owen\"", "Sampler \"02sequence\" \"integer dimensions\" 0",
+    "Sampler \"paddedsobol\" \"integer pixelsamples\" 3 \"integer seed\" -7", "Sampler \"sobol\" \"string randomization\" \"x\"",
+    "Sampler \"lowdiscrepancy\" \"integer pixelsamples\" 16777215", "Sampler \"pmj02bn\"",
     "Integrator \"path\" \"integer maxdepth\" 100000", "Integrator \"directlighting\" \"integer maxdepth\" 100000",
     "Integrator \"path\" \"float rrthreshold\" -1e38", "Integrator \"path\" \"float rrthreshold\" 1e38", "Integrator \"bdpt\"",
     "ObjectBegin \"o\"", "ObjectEnd", "ObjectInstance \"o\"", "ObjectInstance \"obj\"", "ObjectBegin \"obj\"",
@@ -157,7 +160,8 @@ static const char *fz_strings[] = {"\"float radius\"", "\"integer indices\"", "\
                                    "\"integer indices indices\"", "\"tiny.hdr\"", "\"tiny.exr\"", "\"tiny.pfm\"", "\"tiny.png\"",
                                    "\"a.ply\"", "\"b.ply\"", "\"inc.pbrt\"", "\"missing.hdr\"", "\"/\"", "\".\"", "\"true\"",
                                    "\"false\"", "\"perspective\"", "\"infinite\"", "\"imagemap\"", "\"checkerboard\"",
-                                   "\"stratified\"", "\"halton\"", "\"texel\"", "\"cellaverage\"", "\"clamp\"", "\"ewa\"",
+                                   "\"stratified\"", "\"halton\"", "\"zsobol\"", "\"02sequence\"", "\"string randomization\"", "\"integer seed\"",
+                                   "\"texel\"", "\"cellaverage\"", "\"clamp\"", "\"ewa\"",
                                    "\"t\"", "\"m\"", "\"c\"", "\"world\"", "\"camera\"", "\"a\\\"b\"", "\"\\\\\"",
                                    "\"integer levels\"", "\"float index\"", "\"float eta\"", "\"rgb eta\"", "\"rgb k\"", "\"float uroughness\"",
                                    "\"float vroughness\"", "\"rgb Kt\"", "\"rgb opacity\"", "\"texture tex1\"", "\"texture amount\"", "\"float amount\"",
@@ -609,7 +613,7 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
   if (kase >= 0) { /* the render options' overrides too, varied by case (deterministically) */
     uint64_t h = (uint64_t)kase * 0x9e3779b97f4a7c15ULL;
     o.light_sampling = (int)((h >> 20) % 4) - 1;  /* -1 (the scene's), mis, light, bsdf */
-    o.sampler = (int)((h >> 24) % 4);             /* the scene's, random, stratified, halton */
+    o.sampler = (int)((h >> 24) % ELR_SAMPLER_COUNT); /* the scene's, or one of the 7 samplers */
     o.importance = (int)((h >> 28) % 4) - 1;
     o.compensated = (int)((h >> 32) % 3) - 1;
     if ((h >> 36) % 4 == 0) o.spp = 2 + (int)((h >> 40) % 3);
