@@ -20,7 +20,8 @@
  *     build2048 build2000 point bilinear trilinear ewa8 ewa64
  *     pbrt_build2048 pbrt_build2000 pbrt_trilinear pbrt_ewa8     (the literal pbrt-v3 port)
  * `bench_mipmap --instructions` runs those valgrind pairs itself (when valgrind is on the PATH) and
- * prints the table. Builds count init + el_mipmap_build_levels (every level), like pbrt's constructor.
+ * prints the table. `bench_mipmap --csv [--quick]` prints the CSV that bench/report.py plots (see
+ * csv_mode). Builds count init + el_mipmap_build_levels (every level), like pbrt's constructor.
  * Lookups use the same random inputs as the timing table. Last measured (gcc 12 -O3, x86-64): point 170,
  * bilinear 166, trilinear 225, ewa8 1,462, ewa64 1,632 instructions per lookup; the pbrt-v3 port 913
  * (trilinear) and 3,981 (ewa8); builds 26.7 M and 171.8 M against the port's 302.4 M and 785.1 M.
@@ -686,10 +687,163 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
   free(img);
 }
 
+/* ---------------------------------------------------------------------------------------------
+ * --csv: the numbers bench/report.py plots (docs/accuracy-vs-time.md), one CSV row per measurement.
+ *   lookup,<filter>,<footprint anisotropy>,<ns per lookup>,<rms rel. error>
+ *   build,<method>,<input width>,<ms>,<rms rel. error>
+ * Lookups: footprints of a fixed anisotropy ratio A (1, 8, 64), major axis log-uniform in [1e-3, 3e-2]
+ * of the texture (2 to 60 texels of 2048), random orientation; the error is against the supersampled
+ * footprint without any anisotropy clamp (the filter the lookup approximates). Times (the thread's CPU time): the median of
+ * `reps` runs, each run timing every filter once in turn (interleaved). Builds: a width x width/2 input
+ * (width not a power of two), init + every level, pbrt's Lanczos resampling or keep_resolution; the
+ * error is EWA lookups (anisotropy 1 footprints) against the supersampled footprint of the input itself.
+ * --------------------------------------------------------------------------------------------- */
+static query *make_queries_aniso(int n, float aniso) {
+  query *q = (query *)malloc(sizeof(query) * (size_t)n);
+  int i;
+  for (i = 0; i < n; ++i) {
+    float len = powf(10.0f, -3.0f + 1.5f * rnd()), ang = 6.2831853f * rnd();
+    q[i].s = rnd();
+    q[i].t = rnd();
+    q[i].d0s = len * cosf(ang);
+    q[i].d0t = len * sinf(ang);
+    q[i].d1s = -len / aniso * sinf(ang);
+    q[i].d1t = len / aniso * cosf(ang);
+    q[i].width = 2 * len;
+  }
+  return q;
+}
+/* The thread's CPU time: a core taken by another process's work does not count (the machine is shared). */
+static double cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+static double median(double *v, int n) {
+  qsort(v, (size_t)n, sizeof *v, cmp_double);
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+/* one lookup of filter f: 0 point, 1 bilinear, 2 trilinear, 3 EWA (m), 4 EWA (m64), 5/6 pbrt-v3 port */
+static void csv_lookup(int f, const el_mipmap *m, const el_mipmap *m64, const pbrt_mipmap *pm, const query *k,
+                       float *o) {
+  pbrt_rgb r;
+  switch (f) {
+  case 0: el_mipmap_lookup_filtered(m, EL_MIPMAP_FILTER_POINT, k->s, k->t, k->width, o); return;
+  case 1: el_mipmap_lookup_filtered(m, EL_MIPMAP_FILTER_BILINEAR, k->s, k->t, k->width, o); return;
+  case 2: el_mipmap_lookup(m, k->s, k->t, k->width, o); return;
+  case 3: el_mipmap_lookup_differentials(m, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o); return;
+  case 4: el_mipmap_lookup_differentials(m64, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o); return;
+  case 5: r = pbrt_Lookup_width(pm, k->s, k->t, k->width); break;
+  default: r = pbrt_Lookup_d(pm, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t);
+  }
+  o[0] = r.c[0]; o[1] = r.c[1]; o[2] = r.c[2];
+}
+static double rel_err2(const float *o, const float *ref) {
+  double e = 0;
+  int c;
+  for (c = 0; c < 3; ++c) e += (o[c] - ref[c]) * (o[c] - ref[c]) / (ref[c] * ref[c] + 1e-4f);
+  return e / 3;
+}
+static int csv_mode(int quick) {
+  static const char *fname[7] = {"point", "bilinear", "trilinear", "EWA (max aniso 8, default)", "EWA (max aniso 64)",
+                                 "pbrt-v3 port: trilinear", "pbrt-v3 port: EWA"};
+  static const float anisos[3] = {1, 8, 64};
+  int w = quick ? 512 : 2048, h = w / 2, nq = quick ? 4000 : 100000, ne = quick ? 100 : 1000, reps = quick ? 3 : 7;
+  float *img = make_image(w, h), o[4];
+  el_mipmap m, m64;
+  pbrt_mipmap pm;
+  int a, f, i, r;
+  double t[7][15];
+  printf("kind,option,x,value,error\n");
+  build_ours(&m, img, w, h, 8);
+  build_ours(&m64, img, w, h, 64);
+  pbrt_init(&pm, w, h, img, 0, 8, 0);
+  for (a = 0; a < 3; ++a) {
+    query *q = make_queries_aniso(nq, anisos[a]), *qe = make_queries_aniso(ne, anisos[a]);
+    double err[7] = {0, 0, 0, 0, 0, 0, 0};
+    for (i = 0; i < ne; ++i) {
+      float ref[3];
+      reference(&m, qe + i, 1e9f, ref);
+      for (f = 0; f < 7; ++f) {
+        csv_lookup(f, &m, &m64, &pm, qe + i, o);
+        err[f] += rel_err2(o, ref);
+      }
+    }
+    for (r = 0; r < reps; ++r)
+      for (f = 0; f < 7; ++f) {
+        volatile float sink = 0;
+        double t0 = cpu_now();
+        float acc = 0;
+        for (i = 0; i < nq; ++i) {
+          csv_lookup(f, &m, &m64, &pm, q + i, o);
+          acc += o[0];
+        }
+        sink = acc;
+        (void)sink;
+        t[f][r] = 1e9 * (cpu_now() - t0) / nq;
+      }
+    for (f = 0; f < 7; ++f)
+      printf("lookup,%s,%g,%.3f,%.5g\n", fname[f], anisos[a], median(t[f], reps), sqrt(err[f] / ne));
+    fflush(stdout);
+    free(q);
+    free(qe);
+  }
+  el_mipmap_free(&m);
+  el_mipmap_free(&m64);
+  pbrt_free(&pm);
+  free(img);
+  { /* builds */
+    static const int widths_full[4] = {500, 1000, 2000, 4000}, widths_quick[2] = {250, 500};
+    const int *widths = quick ? widths_quick : widths_full;
+    int nw = quick ? 2 : 4, k;
+    for (k = 0; k < nw; ++k) {
+      int bw = widths[k], bh = bw / 2;
+      float *in = make_image(bw, bh);
+      query *qe = make_queries_aniso(ne, 1);
+      el_mipmap ref;
+      double tb[2][15], err[2] = {0, 0};
+      el_mipmap_options ko;
+      memset(&ko, 0, sizeof ko);
+      ko.keep_resolution = 1;
+      el_mipmap_init(&ref, in, bw, bh, 3, &ko); /* level 0 = the input: the reference's point lookups */
+      for (r = 0; r < reps; ++r)
+        for (f = 0; f < 2; ++f) {
+          el_mipmap mm;
+          double t0 = cpu_now();
+          el_mipmap_init(&mm, in, bw, bh, 3, f ? &ko : NULL);
+          el_mipmap_build_levels(&mm);
+          tb[f][r] = 1e3 * (cpu_now() - t0);
+          if (r == 0) {
+            for (i = 0; i < ne; ++i) {
+              float rr[3];
+              reference(&ref, qe + i, 1e9f, rr);
+              el_mipmap_lookup_differentials(&mm, qe[i].s, qe[i].t, qe[i].d0s, qe[i].d0t, qe[i].d1s, qe[i].d1t, o);
+              err[f] += rel_err2(o, rr);
+            }
+          }
+          el_mipmap_free(&mm);
+        }
+      for (f = 0; f < 2; ++f)
+        printf("build,%s,%d,%.3f,%.5g\n", f ? "keep_resolution" : "Lanczos to a power of two (default)", bw,
+               median(tb[f], reps), sqrt(err[f] / ne));
+      fflush(stdout);
+      el_mipmap_free(&ref);
+      free(qe);
+      free(in);
+    }
+  }
+  return 0;
+}
+
 int main(int argc, char **argv) {
   query *q, *qe;
   int nq = 200000, nqe = 2000;
   if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atoi(argv[3]));
+  if (argc >= 2 && !strcmp(argv[1], "--csv")) return csv_mode(argc >= 3 && !strcmp(argv[2], "--quick"));
   if (argc >= 2 && !strcmp(argv[1], "--quick")) {
     nq = 20000;
     nqe = 200;
