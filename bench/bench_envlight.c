@@ -4,6 +4,7 @@
  *   bench_envlight --no-callgrind        without the instruction counts
  *   bench_envlight --quick               1024x512 and 2048x1024 only, no callgrind, fewer samples
  *   bench_envlight --product             tables 4 and 5 only (product sampling)
+ *   bench_envlight --csv [--quick]       the CSV that bench/report.py plots (see csv_mode)
  *   bench_envlight --callgrind OP N [MAP] only N calls of OP after the setup (a generated 2048x1024 map,
  *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
  *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
@@ -667,6 +668,146 @@ static void strat_table(const char *path) {
   el_image_free(&img);
 }
 
+/* ---- --csv: the numbers bench/report.py plots (docs/accuracy-vs-time.md) ----
+ *   envvar,MAP,STRATEGY,relvar,ns,relbias2   relative variance per estimate of E(n) (mean over the three
+ *       normals of table 3), CPU ns per estimate (median of interleaved runs), squared relative bias
+ *       (mean over the normals of ((mean - E) / E)^2, against the quadrature; noise included).
+ *   envbuild,IMPORTANCE,WIDTH,ms,bytes       init + the sampling tables for a generated WIDTH x WIDTH/2
+ *       city-like map (make_map), CPU ms (median of 3 interleaved runs; 1 above 2048), el_envlight_bytes. */
+enum { C_UNIFORM, C_COSINE, C_CELL, C_CELL2, C_PBRT, C_TEXEL, C_BILIN, C_PROD, C_MIS, C_MIS_COMP, C_N };
+static const char *C_NAME[C_N] = {"uniform sphere", "cosine (BSDF)", "CELL_AVERAGE (default)", "CELL_AVERAGE 2x",
+                                  "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
+                                  "product sample_li_cos", "MIS pair (light + cosine)", "MIS pair compensated"};
+static double cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+static double median(double *v, int n) {
+  qsort(v, (size_t)n, sizeof *v, cmp_double);
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+static double c_estimate(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u) {
+  static const int to_s[C_N] = {S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_BILIN, 0, S_COMP_MIS, S_COMP_MIS};
+  if (s == C_PROD) {
+    float nf[3];
+    int below = 0;
+    nf[0] = (float)n[0]; nf[1] = (float)n[1]; nf[2] = (float)n[2];
+    return p_estimate(P_COS, 0, l, n, nf, b1, b2, u, &below);
+  }
+  return estimate(to_s[s], l, n, b1, b2, u);
+}
+static void csv_variance(const char *path, const char *name, int nsamp, int reps) {
+  static const double N3[3][3] = {{0, 0, 1}, {1, 0, 0}, {0, 0.6, -0.8}};
+  el_image img;
+  char err[512];
+  image im;
+  double E[3], t[C_N][16];
+  el_envlight lights[C_N];
+  int s, k, r;
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "bench_envlight: %s\n", err); return; }
+  im.px = img.pixels; im.w = img.width; im.h = img.height;
+  quadrature(&im, N3, 3, E);
+  for (s = 0; s < C_N; ++s) {
+    el_envlight_options o;
+    memset(&o, 0, sizeof o);
+    o.importance = s == C_PBRT ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3 : s == C_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL :
+                   s == C_BILIN ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
+    o.compensated = s == C_MIS_COMP;
+    if (s == C_CELL2) { o.importance_width = 2 * img.width; o.importance_height = 2 * img.height; }
+    if (el_envlight_init(&lights[s], img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS) {
+      fprintf(stderr, "bench_envlight: %s: init failed for %s\n", path, C_NAME[s]);
+      exit(1);
+    }
+    if (s == C_PROD) el_envlight_prepare_product(&lights[s], NULL);
+    else el_envlight_prepare_sampling(&lights[s]);
+  }
+  for (r = 0; r < reps; ++r) /* timing: every strategy in turn, reps times */
+    for (s = 0; s < C_N; ++s) {
+      double b1[3], b2[3], acc = 0, t0;
+      volatile double sink;
+      long i, n = nsamp / 10 + 1;
+      rng g;
+      g.s = 0x9e3779b97f4a7c15ULL + (uint64_t)r;
+      frame(N3[0], b1, b2);
+      t0 = cpu_now();
+      for (i = 0; i < n; ++i) {
+        float u[4];
+        u[0] = rng_f(&g); u[1] = rng_f(&g); u[2] = rng_f(&g); u[3] = rng_f(&g);
+        acc += c_estimate(s, &lights[s], N3[0], b1, b2, u);
+      }
+      t[s][r] = (cpu_now() - t0) * 1e9 / (double)n;
+      sink = acc;
+      (void)sink;
+    }
+  for (s = 0; s < C_N; ++s) {
+    double rv = 0, rb2 = 0;
+    for (k = 0; k < 3; ++k) {
+      double b1[3], b2[3], sum = 0, sum2 = 0, mean;
+      long i;
+      rng g;
+      g.s = 0x853c49e6748fea9bULL + 7919u * (uint64_t)(s * 3 + k);
+      frame(N3[k], b1, b2);
+      for (i = 0; i < nsamp; ++i) {
+        float u[4];
+        double f;
+        u[0] = rng_f(&g); u[1] = rng_f(&g); u[2] = rng_f(&g); u[3] = rng_f(&g);
+        f = c_estimate(s, &lights[s], N3[k], b1, b2, u);
+        sum += f; sum2 += f * f;
+      }
+      mean = sum / nsamp;
+      rv += fmax(0.0, sum2 / nsamp - mean * mean) / (E[k] * E[k]) / 3;
+      rb2 += (mean - E[k]) * (mean - E[k]) / (E[k] * E[k]) / 3;
+    }
+    printf("envvar,%s,%s,%.6g,%.3f,%.6g\n", name, C_NAME[s], rv, median(t[s], reps), rb2);
+    fflush(stdout);
+  }
+  for (s = 0; s < C_N; ++s) el_envlight_free(&lights[s]);
+  el_image_free(&img);
+}
+static void csv_build(int quick) {
+  static const char *name[5] = {"CELL_AVERAGE (default)", "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
+                                "product sample_li_cos"};
+  int widths[5] = {512, 1024, 2048, 4096, 8192}, nw = quick ? 2 : 5, k, imp, r;
+  for (k = 0; k < nw; ++k) {
+    int w = widths[k], h = w / 2, reps = w > 2048 ? 1 : 3;
+    float *px = make_map(w, h);
+    double t[5][3];
+    size_t bytes[5] = {0, 0, 0, 0, 0};
+    for (r = 0; r < reps; ++r)
+      for (imp = 0; imp < 5; ++imp) {
+        el_envlight l;
+        double t0;
+        if (imp == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 && w > 4096) continue; /* 16384 x 8192 bins */
+        t0 = cpu_now();
+        if (make_light(&l, px, w, h, imp == 4 ? 0 : imp, 0, 0, NULL) != EL_SUCCESS) exit(1);
+        if (imp == 4) el_envlight_prepare_product(&l, NULL);
+        else el_envlight_prepare_sampling(&l);
+        t[imp][r] = (cpu_now() - t0) * 1e3;
+        bytes[imp] = el_envlight_bytes(&l);
+        el_envlight_free(&l);
+      }
+    for (imp = 0; imp < 5; ++imp)
+      if (bytes[imp]) printf("envbuild,%s,%d,%.3f,%zu\n", name[imp], w, median(t[imp], reps), bytes[imp]);
+    fflush(stdout);
+    free(px);
+  }
+}
+static int csv_mode(const char *src, int quick) {
+  char path[600];
+  printf("kind,a,b,c,d,e\n");
+  snprintf(path, sizeof path, "%s/data/envmaps/city.hdr", src);
+  csv_variance(path, "city (sun)", quick ? 20000 : 400000, quick ? 3 : 7);
+  snprintf(path, sizeof path, "%s/data/envmaps/studio.hdr", src);
+  csv_variance(path, "studio (smooth)", quick ? 20000 : 400000, quick ? 3 : 7);
+  csv_build(quick);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   int sizes[3][2] = {{1024, 512}, {2048, 1024}, {8192, 4096}}, nsizes = 3, use_cg = 1, nsamp = 200000, i;
   const char *maps[5] = {"city", "forest", "night", "studio", "sunset"};
@@ -678,6 +819,7 @@ int main(int argc, char **argv) {
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
   if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]), argc >= 5 ? argv[4] : NULL);
+  if (argc >= 2 && !strcmp(argv[1], "--csv")) { make_random(); return csv_mode(EL_SOURCE_DIR, argc >= 3 && !strcmp(argv[2], "--quick")); }
   if (argc == 2 && !strcmp(argv[1], "--product")) { /* tables 4 and 5 only */
     make_random();
     for (i = 0; i < 5; ++i) {
