@@ -3,6 +3,7 @@
  *
  *   bench_film                    the tables below (runs itself under callgrind if valgrind is found)
  *   bench_film --no-callgrind     timing and error columns only
+ *   bench_film --csv [--quick]    the CSV that bench/report.py plots (see csv_mode)
  *   bench_film --callgrind OP N   only N calls of operation OP after the setup (OP: add_<filter>_<table|exact>,
  *                                 filter one of box triangle gaussian mitchell lanczos; or srgb8_<tonemap>)
  *
@@ -177,10 +178,132 @@ static double instr_per_call(const char *self, const char *op, long n) {
   return (b - a) / n;
 }
 
+/* ---- --csv: the numbers bench/report.py plots (docs/accuracy-vs-time.md) --------------------------
+ *   filter,FILTER,WEIGHTS,SPP,ms,alias,detail   a ZW x ZW film of a zone plate 0.5 + 0.5 cos(k r^2) (r from
+ *       the centre; local frequency k r / pi cycles per pixel, 1 at the corners: twice the Nyquist
+ *       limit), SPP jittered samples per pixel (sqrt(SPP)^2 strata). "alias": RMS of (pixel - 0.5)
+ *       where the local frequency exceeds 0.6 cycles/pixel (above Nyquist; a perfect antialiasing filter
+ *       leaves flat grey there: what remains is aliasing plus noise). "detail": RMS of (pixel - chart at
+ *       the pixel centre) where it is below 0.2 (what the filter blurs away). ms: CPU time of the whole
+ *       image (sample positions, chart, el_film_add_sample), the median of 3 interleaved runs.
+ *   dither,MODE,ns_per_pixel,pixel_rmse,banding_rmse   el_film_to_srgb8 of a slow linear ramp (0.10 to
+ *       0.12 across 1024 pixels): the decoded 8-bit value against the true one, per pixel and after an
+ *       8x8 box average (banding: the error one sees from a distance). */
+enum { ZW = 96 };
+static double zone_k(void) { return 3.14159265358979323846 / (ZW / 2.0 * 1.41421356237309505); }
+static float zone(float x, float y) {
+  double dx = x - ZW / 2.0, dy = y - ZW / 2.0;
+  return (float)(0.5 + 0.5 * cos(zone_k() * (dx * dx + dy * dy)));
+}
+static double cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+static void zone_image(int type, int exact, int n, float *out) { /* n x n strata per pixel */
+  el_film f = make_film(ZW, ZW, type, exact);
+  int b[4], x, y, i, j;
+  el_film_sample_bounds(&f, b);
+  for (y = b[1]; y < b[3]; y++)
+    for (x = b[0]; x < b[2]; x++)
+      for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+          float px = x + (i + frand()) / n, py = y + (j + frand()) / n, c[3];
+          c[0] = c[1] = c[2] = zone(px, py);
+          el_film_add_sample(&f, px, py, c, 1.0f);
+        }
+  el_film_get_rgb(&f, 1.0f, out);
+  el_film_free(&f);
+}
+static double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4); }
+static int csv_mode(int quick) {
+  static const int strata_full[5] = {1, 2, 4, 8, 16}, strata_quick[3] = {1, 2, 4};
+  const int *strata = quick ? strata_quick : strata_full;
+  int ns = quick ? 3 : 5, t, e, k, r, i, reps = 3;
+  float *img = (float *)malloc(sizeof(float) * 3 * ZW * ZW);
+  printf("kind,a,b,c,d,e,f\n");
+  for (k = 0; k < ns; k++) {
+    double ms[5][2][3];
+    for (r = 0; r < reps; r++)
+      for (t = 0; t < 5; t++)
+        for (e = 0; e < 2; e++) {
+          double t0 = cpu_now();
+          zone_image(t, e, strata[k], img);
+          ms[t][e][r] = 1e3 * (cpu_now() - t0);
+        }
+    for (t = 0; t < 5; t++)
+      for (e = 0; e < 2; e++) {
+        double sa = 0, sd = 0;
+        int na = 0, nd = 0;
+        g_rng = 7u + (unsigned)k; /* the same samples for every filter */
+        zone_image(t, e, strata[k], img);
+        for (i = 0; i < ZW * ZW; i++) {
+          double x = i % ZW + 0.5, y = i / ZW + 0.5, dx = x - ZW / 2.0, dy = y - ZW / 2.0;
+          double fr = zone_k() * sqrt(dx * dx + dy * dy) / 3.14159265358979323846, v = img[3 * i + 1];
+          if (fr > 0.6) { sa += (v - 0.5) * (v - 0.5); na++; }
+          if (fr < 0.2) { double d = v - zone((float)x, (float)y); sd += d * d; nd++; }
+        }
+        qsort(ms[t][e], 3, sizeof(double), cmp_double);
+        printf("filter,%s,%s,%d,%.4f,%.5g,%.5g\n", filter_name[t], e ? "exact" : "table", strata[k] * strata[k],
+               ms[t][e][1], sqrt(sa / na), sqrt(sd / nd));
+      }
+    fflush(stdout);
+  }
+  free(img);
+  { /* dithering */
+    enum { RW = 1024, RH = 64 };
+    float *ramp = (float *)malloc(sizeof(float) * 3 * RW * RH);
+    unsigned char *o8 = (unsigned char *)malloc(3 * RW * RH);
+    int d, x, y;
+    for (y = 0; y < RH; y++)
+      for (x = 0; x < RW; x++) ramp[3 * (y * RW + x)] = ramp[3 * (y * RW + x) + 1] = ramp[3 * (y * RW + x) + 2] =
+          0.10f + 0.02f * (x + 0.5f) / RW;
+    for (d = 0; d < 2; d++) {
+      el_film_output_options o;
+      double tt[7], sp = 0, sb = 0;
+      int nb = 0;
+      memset(&o, 0, sizeof o);
+      o.dither = d;
+      for (r = 0; r < 7; r++) {
+        double t0 = cpu_now();
+        el_film_to_srgb8(ramp, RW, RH, &o, o8);
+        tt[r] = 1e9 * (cpu_now() - t0) / (RW * RH);
+      }
+      qsort(tt, 7, sizeof(double), cmp_double);
+      for (i = 0; i < RW * RH; i++) {
+        double e8 = srgb_decode(o8[3 * i + 1] / 255.0) - ramp[3 * i + 1];
+        sp += e8 * e8;
+      }
+      for (y = 0; y < RH; y += 8)
+        for (x = 0; x < RW; x += 8) {
+          double a = 0, b = 0;
+          int u, v;
+          for (v = 0; v < 8; v++)
+            for (u = 0; u < 8; u++) {
+              a += srgb_decode(o8[3 * ((y + v) * RW + x + u) + 1] / 255.0);
+              b += ramp[3 * ((y + v) * RW + x + u) + 1];
+            }
+          sb += (a - b) * (a - b) / 4096.0;
+          nb++;
+        }
+      printf("dither,%s,%.3f,%.5g,%.5g\n", d ? "TPDF dither" : "round (default)", tt[3], sqrt(sp / (RW * RH)),
+             sqrt(sb / nb));
+    }
+    free(ramp);
+    free(o8);
+  }
+  return 0;
+}
+
 int main(int argc, char **argv) {
   int use_cg = 1, t, e, i;
   float *area, *conv[5][2], *noisy;
   if (argc == 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]));
+  if (argc >= 2 && !strcmp(argv[1], "--csv")) return csv_mode(argc >= 3 && !strcmp(argv[2], "--quick"));
   if (argc == 2 && !strcmp(argv[1], "--no-callgrind")) use_cg = 0;
   else if (argc != 1) {
     fprintf(stderr, "usage: %s [--no-callgrind | --callgrind OP N]\n", argv[0]);
