@@ -18,6 +18,7 @@ import argparse
 import csv
 import datetime
 import io
+import json
 import math
 import os
 import re
@@ -106,9 +107,30 @@ def style(label, default):
 
 
 # ---------------------------------------------------------------------------------------------------
+# Every measurement goes through measured(): saved to OUT/measurements.json, so that --replot can
+# redraw the plots and the text from a run's numbers without measuring again.
+# ---------------------------------------------------------------------------------------------------
+MEAS = {}
+REPLOT = False
+
+
+def measured(key, fn):
+    if REPLOT:
+        if key not in MEAS:
+            sys.exit("report.py: --replot: %s is not in measurements.json" % key)
+        return MEAS[key]
+    MEAS[key] = fn()
+    return MEAS[key]
+
+
+# ---------------------------------------------------------------------------------------------------
 # Running things
 # ---------------------------------------------------------------------------------------------------
 def run_csv(build, prog, quick):
+    return measured("csv:" + prog, lambda: run_csv_now(build, prog, quick))
+
+
+def run_csv_now(build, prog, quick):
     cmd = [os.path.join(build, "bin", prog), "--csv"] + (["--quick"] if quick else [])
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -179,6 +201,11 @@ class Reference:
 
 
 def sweep(build, tmp, scene, ref, options, spps, reps):
+    return measured("sweep:%s:%s" % (os.path.basename(scene), options[0][0]),
+                    lambda: sweep_now(build, tmp, scene, ref, options, spps, reps))
+
+
+def sweep_now(build, tmp, scene, ref, options, spps, reps):
     """options: [(label, [render args])]. Returns {label: [(spp, median time, mean relMSE)]}.
     Interleaved: every repeat renders every (spp, option) once, with its own seed."""
     times = {(o, s): [] for o, _ in options for s in spps}
@@ -514,22 +541,25 @@ def render_family(args, info, md, tmp, refs, res):
     # ---- splitting: the infinite light's "samples" ----
     splits = [1, 4, 16] if not args.quick else [1, 4]
     ref = refs["matte_city"]
-    scenes = {k: make_scene("bench_city.pbrt", os.path.join(tmp, "split%d.pbrt" % k), res, light_samples=k) for k in splits}
-    times = {}
-    errs = {}
+    scenes = {} if REPLOT else {k: make_scene("bench_city.pbrt", os.path.join(tmp, "split%d.pbrt" % k), res, light_samples=k) for k in splits}
     sp_spps = [1, 4, 16] if not args.quick else [1, 4]
-    t0 = time.time()
-    for r in range(reps):
-        for s in sp_spps:
-            for k in splits:
-                img, t = render(args.build, scenes[k], tmp, s, 1 + r)
-                times.setdefault((k, s), []).append(t)
-                errs.setdefault((k, s), []).append(ref.error(img))
-    print("  render splitting: %.1f s" % (time.time() - t0), flush=True)
+
+    def split_now():
+        times, errs = {}, {}
+        t0 = time.time()
+        for r in range(reps):
+            for s in sp_spps:
+                for k in splits:
+                    img, t = render(args.build, scenes[k], tmp, s, 1 + r)
+                    times.setdefault((k, s), []).append(t)
+                    errs.setdefault((k, s), []).append(ref.error(img))
+        print("  render splitting: %.1f s" % (time.time() - t0), flush=True)
+        return [[k, [(s, statistics.median(times[(k, s)]), statistics.mean(errs[(k, s)])) for s in sp_spps]]
+                for k in splits]
+    split_list = measured("splitting", split_now)
     fig, (ax,) = new_fig()
     split_res = {}
-    for k in splits:
-        pts = [(s, statistics.median(times[(k, s)]), statistics.mean(errs[(k, s)])) for s in sp_spps]
+    for k, pts in split_list:
         split_res[k] = pts
         ax.plot([p[1] for p in pts], [p[2] for p in pts], **style("%d light + %d BSDF samples" % (k, k), "1 light + 1 BSDF samples"))
         for s, t, e in pts:
@@ -738,16 +768,26 @@ def main():
     ap.add_argument("--quick", action="store_true", help="tiny sizes, one repeat (CI)")
     ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="the CMake build directory")
     ap.add_argument("--out", default=None, help="output directory (default docs/, build/report-quick with --quick)")
+    ap.add_argument("--replot", action="store_true", help="redraw from OUT/measurements.json without measuring")
     args = ap.parse_args()
+    global REPLOT, MEAS
     if args.out is None:
         args.out = os.path.join(ROOT, "build", "report-quick") if args.quick else os.path.join(ROOT, "docs")
     os.makedirs(os.path.join(args.out, "img"), exist_ok=True)
     tmp = os.path.join(args.build, "report-tmp")
     os.makedirs(tmp, exist_ok=True)
-    info = machine_info(args.build)
+    jpath = os.path.join(args.out, "measurements.json")
+    if args.replot:
+        REPLOT = True
+        with open(jpath) as f:
+            MEAS = json.load(f)
+        if MEAS.get("quick") != args.quick:
+            sys.exit("report.py: --replot: %s was measured %s --quick" % (jpath, "with" if MEAS.get("quick") else "without"))
+    MEAS["quick"] = args.quick
+    info = measured("info", lambda: machine_info(args.build))
     t_start = time.time()
     try:
-        load = os.getloadavg()
+        load = measured("load_start", lambda: os.getloadavg())
     except OSError:
         load = (0, 0, 0)
     md = []
@@ -761,17 +801,26 @@ def main():
     t0 = time.time()
     for key, base in (("city", "bench_city.pbrt"), ("studio", "bench_studio.pbrt")):
         for kind, mat in (("matte", None), ("glossy", glossy)):
-            scene = make_scene(base, os.path.join(tmp, "%s_%s.pbrt" % (kind, key)), res, material=mat)
-            refs["%s_%s" % (kind, key)] = Reference(args.build, scene, tmp, ref_spp)
-            refs["%s_%s" % (kind, key)].scene = scene
+            scene = os.path.join(tmp, "%s_%s.pbrt" % (kind, key))
+            if REPLOT:
+                ref = Reference.__new__(Reference)
+            else:
+                make_scene(base, scene, res, material=mat)
+                ref = Reference(args.build, scene, tmp, ref_spp)
+            d = measured("ref:%s_%s" % (kind, key), lambda: {"spp": ref.spp, "noise": ref.noise})
+            ref.spp, ref.noise, ref.scene = d["spp"], d["noise"], scene
+            refs["%s_%s" % (kind, key)] = ref
     print("  references: %.1f s" % (time.time() - t0), flush=True)
     render_family(args, info, md, tmp, refs, res)
     family_film(args, info, md)
-    elapsed = time.time() - t_start
+    elapsed = measured("elapsed", lambda: time.time() - t_start)
     try:
-        load_end = os.getloadavg()
+        load_end = measured("load_end", lambda: os.getloadavg())
     except OSError:
         load_end = (0, 0, 0)
+    if not REPLOT:
+        with open(jpath, "w") as f:
+            json.dump(MEAS, f, indent=0)
     head = """# What accuracy costs in time
 
 Generated by `sh scripts/report.sh`%s (bench/report.py) on %s. Machine: %s, %d cores; %s; build: %s;
