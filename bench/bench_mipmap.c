@@ -749,7 +749,7 @@ static double rel_err2(const float *o, const float *ref) {
   return e / 3;
 }
 static int csv_mode(int quick) {
-  static const char *fname[7] = {"point", "bilinear", "trilinear", "EWA (max aniso 8, default)", "EWA (max aniso 64)",
+  static const char *fname[7] = {"point", "bilinear", "trilinear", "EWA max aniso 8 (default)", "EWA max aniso 64",
                                  "pbrt-v3 port: trilinear", "pbrt-v3 port: EWA"};
   static const float anisos[3] = {1, 8, 64};
   int w = quick ? 512 : 2048, h = w / 2, nq = quick ? 4000 : 100000, ne = quick ? 100 : 1000, reps = quick ? 3 : 7;

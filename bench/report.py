@@ -11,8 +11,8 @@ numbers are not meant to be read). Every measured number in the report comes fro
 
 Times are medians of repeated runs, the options of a family interleaved within every repeat (the
 machine is shared). The benchmarks time their own loops with the thread's CPU time; renders run on
-one thread and give the render phase's wall time (render's closing line), without parsing and table
-builds, which the environment light family plots on their own.
+one thread and are timed by the render loop's CPU time (render --stats), without parsing, Embree and
+the light's tables, which the environment light family plots on their own.
 """
 import argparse
 import csv
@@ -167,18 +167,18 @@ def make_scene(base, path, res, material=None, light_samples=None):
     return path
 
 
-RENDER_LINE = re.compile(r"(\d+) spp in ([0-9.]+) s \(total")
+RENDER_CPU = re.compile(r"\n  render +[0-9.]+ s \(([0-9.]+) s CPU")
 
 
 def render(build, scene, tmp, spp, seed, args=(), nthreads=1):
     out = os.path.join(tmp, "out_%d.pfm" % os.getpid())
     cmd = [os.path.join(build, "bin", "render"), scene, "--outfile", out, "--spp", str(spp), "--seed", str(seed),
-           "--nthreads", str(nthreads), "--quiet"] + list(args)
+           "--nthreads", str(nthreads), "--quiet", "--stats"] + list(args)
     p = subprocess.run(cmd, capture_output=True, text=True)
-    m = RENDER_LINE.search(p.stderr + p.stdout)
+    m = RENDER_CPU.search(p.stderr + p.stdout)
     if p.returncode != 0 or not m:
         sys.exit("report.py: %s failed (exit %d):\n%s%s" % (" ".join(cmd), p.returncode, p.stdout, p.stderr))
-    return read_pfm(out), float(m.group(2))
+    return read_pfm(out), max(float(m.group(1)), 1e-4)  # the render loop's CPU time (--stats)
 
 
 def relmse(img, ref):
@@ -507,7 +507,7 @@ def render_family(args, info, md, tmp, refs, res):
                 for s, t, e in pts:
                     ax.annotate("%d spp" % s, (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
         ax.set_xscale("log"); ax.set_yscale("log"); ax.grid(True, which="both", alpha=0.3)
-        ax.set_xlabel("render seconds (1 thread, median)"); ax.set_ylabel("relMSE vs reference")
+        ax.set_xlabel("render CPU seconds (1 thread, median)"); ax.set_ylabel("relMSE vs reference")
         ax.set_title("Renderer light strategies, glossy sphere under %s" % key, fontsize=9)
         ax.legend(fontsize=7)
         strat_imgs[key] = save(fig, args.out, "render_strategies_" + key, info,
@@ -531,7 +531,7 @@ def render_family(args, info, md, tmp, refs, res):
         for ax in (a1, a2):
             ax.set_xscale("log"); ax.set_yscale("log"); ax.grid(True, which="both", alpha=0.3)
             ax.set_ylabel("relMSE vs reference")
-        a1.set_xlabel("samples per pixel"); a2.set_xlabel("render seconds (1 thread, median)")
+        a1.set_xlabel("samples per pixel"); a2.set_xlabel("render CPU seconds (1 thread, median)")
         a1.set_title("Samplers, matte scene under %s: relMSE vs spp" % key, fontsize=9)
         a2.set_title("relMSE vs time", fontsize=9)
         a1.legend(fontsize=7)
@@ -565,7 +565,7 @@ def render_family(args, info, md, tmp, refs, res):
         for s, t, e in pts:
             ax.annotate("%d spp" % s, (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.set_xscale("log"); ax.set_yscale("log"); ax.grid(True, which="both", alpha=0.3)
-    ax.set_xlabel("render seconds (1 thread, median)"); ax.set_ylabel("relMSE vs reference")
+    ax.set_xlabel("render CPU seconds (1 thread, median)"); ax.set_ylabel("relMSE vs reference")
     ax.set_title('Splitting: the infinite light\'s "samples" per camera sample (city, matte)', fontsize=9)
     ax.legend(fontsize=7)
     split_img = save(fig, args.out, "render_splitting", info, '"samples" 1')
@@ -594,8 +594,8 @@ so that BSDF sampling has something to gain). Options are the renderer's `--ligh
 light|bsdf|mis`, `--compensated 1`, `--importance cellaverage` (the renderer's default importance is
 pbrt-v3's). **Reference**: zsobol, two independent halves averaged, the reference's own noise
 (relMSE of the halves / 4) taken off every number (%s). relMSE = mean over pixels and channels of
-(I - R)^2 / (R^2 + 0.01). Time: the render phase (render's closing line), one thread, median of %d
-repeats, all options interleaved; each repeat a different seed, the relMSE their mean.
+(I - R)^2 / (R^2 + 0.01). Time: the render loop's CPU time (one thread; `render --stats`, without parsing
+and table builds), median of %d repeats, all options interleaved; each repeat a different seed, the relMSE their mean.
 
 city:
 

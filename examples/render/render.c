@@ -287,6 +287,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
   elr_ctx C;
   elr_job J;
+  double cpu0;
   elr_sampler_tables T;
   el_film film;
   pthread_t *th = NULL;
@@ -347,6 +348,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
   pthread_mutex_init(&J.mu, NULL);
   J.t0 = elr_now(); J.last_print = 0;
+  cpu0 = elr_cpu_now();
   { /* <<Render image tiles in parallel>> */
     int started = 0;
     for (i = 0; i < nthreads; i++) {
@@ -369,6 +371,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   el_film_get_rgb(&film, 1.f, out->rgb);
   if (st) {
     st->t_render = elr_now() - J.t0;
+    st->t_render_cpu = elr_cpu_now() - cpu0;
     elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
   }
   rc = 0;
