@@ -35,11 +35,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXPECTED_PLOTS = [
-    "mipmap_lookups", "mipmap_build", "envlight_variance_city", "envlight_variance_studio",
-    "envlight_build", "render_strategies_city", "render_strategies_studio", "render_samplers_city",
-    "render_samplers_studio", "render_splitting", "film_filters", "film_dither",
-]
+import check_report  # noqa: E402 (bench/ is on the path when run as a script)
+from check_report import EXPECTED_PLOTS  # noqa: E402
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -847,9 +844,9 @@ apt-get like every other dependency of the build).
         head += "\n**This is a --quick run** (tiny sizes, one repeat): it checks that the command works; read the numbers of the full run in docs/.\n"
     with open(os.path.join(args.out, "accuracy-vs-time.md"), "w") as f:
         f.write(head + "\n" + "\n".join(md))
-    missing = [p for p in EXPECTED_PLOTS if not os.path.exists(os.path.join(args.out, "img", p + ".png"))]
-    if missing:
-        sys.exit("report.py: plots missing: %s" % ", ".join(missing))
+    problems = check_report.check(args.out, args.quick)  # every expected file, linked, a real PNG
+    if problems:
+        sys.exit("report.py: " + "\nreport.py: ".join(problems))
     shutil.rmtree(tmp, ignore_errors=True)
     print("report.py: wrote %s/accuracy-vs-time.md and %d plots in %.0f s" % (args.out, len(EXPECTED_PLOTS), elapsed))
 
