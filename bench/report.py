@@ -217,6 +217,18 @@ def sweep_now(build, tmp, scene, ref, options, spps, reps):
             for o, _ in options}
 
 
+def per_spp(pts):
+    """The render loop's cost is linear in spp; on a shared machine one render's time is noisy, so each
+    option's curve uses one cost per spp pooled over all its runs: sum of the median times / sum of spp
+    (dominated by the longest, least noisy runs). Returns [(spp, spp * cost, relMSE)] and the cost."""
+    c = sum(p[1] for p in pts) / sum(p[0] for p in pts)
+    return [(p[0], p[0] * c, p[2]) for p in pts], c
+
+
+def pooled(res_s):
+    return {k: per_spp(v)[0] for k, v in res_s.items()}
+
+
 # ---------------------------------------------------------------------------------------------------
 # Reading the plots: crossovers and efficiencies
 # ---------------------------------------------------------------------------------------------------
@@ -325,11 +337,12 @@ stays at %.2f there, because its isotropic footprint must cover the major axis; 
 EWA variant gives the same answer and the clamp costs nothing. %s
 
 - **Student's first renderer**: trilinear (`el_mipmap_lookup` with a width): one call, no differentials
-  needed, 3-5x cheaper than EWA; the blur at grazing angles is visible but never aliasing.
+  needed, %.0fx cheaper than EWA at anisotropy 8 here; it blurs at grazing angles (the error above)
+  but does not alias.
 - **Production renderer**: EWA (`el_mipmap_lookup_differentials`), the default clamp 8; raise
   `max_anisotropy` to 64 only for scenes with large grazing textured planes (floors, roads), where the
   error drops further for the cost shown.
-- **Real-time preview**: bilinear or trilinear; point sampling is no faster here and aliases.
+- **Real-time preview**: trilinear; %s
 
 ### Pyramid build
 
@@ -343,15 +356,22 @@ the resampled image). Time: init + every level, CPU time, median.
 
 %s
 
-keep_resolution never resamples, so it skips the Lanczos pass and its interpolation error; pick it
+keep_resolution never resamples, so it skips the Lanczos pass and its interpolation error (here %s
+the build time and %s the error of the default at the largest input); pick it
 (`opt.keep_resolution = 1`) when your textures are not powers of two and you do not need pbrt's
 pixel-for-pixel behaviour. Keep the default when you compare images with pbrt-v3.
 """ % (img1, "%d" % (4000 if args.quick else 100000),
        table(["filter", "anisotropy 1 (ns, error)", "8", "64"], trows),
        tri[0], tri[1], ewa8[1], ewa8[0], ewa64[1], ewa64[0],
        ("The pbrt-v3 port's EWA takes %.0f ns at anisotropy 8 against our %.0f ns (%.1fx)." % (p_ewa[0], o_ewa[0], p_ewa[0] / o_ewa[0])) if p_ewa else "",
+       by[(default, "8")][0] / by[("trilinear", "8")][0],
+       ("point (%.0f ns) and bilinear (%.0f ns) are no faster than trilinear (%.0f ns) at anisotropy 8 here and alias."
+        % (by[("point", "8")][0], by[("bilinear", "8")][0], by[("trilinear", "8")][0]))
+       if min(by[("point", "8")][0], by[("bilinear", "8")][0]) > 0.9 * by[("trilinear", "8")][0] else
+       ("point (%.0f ns) is faster than trilinear (%.0f ns) but aliases." % (by[("point", "8")][0], by[("trilinear", "8")][0])),
        img2, ", ".join(dict.fromkeys(r[2] for r in build)),
-       table(["method", "input width", "build", "error"], brows)))
+       table(["method", "input width", "build", "error"], brows),
+       "%.2fx" % (float(build[-1][3]) / float(build[-2][3])), "%.2fx" % (float(build[-1][4]) / float(build[-2][4]))))
     return {"trilinear64": tri, "ewa8_64": ewa8}
 
 
@@ -494,7 +514,8 @@ def render_family(args, info, md, tmp, refs, res):
     for key in ("city", "studio"):
         ref = refs["glossy_" + key]
         t0 = time.time()
-        res_s = sweep(args.build, tmp, ref.scene, ref, strat, spps, reps)
+        raw = sweep(args.build, tmp, ref.scene, ref, strat, spps, reps)
+        res_s = pooled(raw)
         print("  render strategies on %s: %.1f s" % (key, time.time() - t0), flush=True)
         fig, (ax,) = new_fig()
         for label, pts in res_s.items():
@@ -518,7 +539,8 @@ def render_family(args, info, md, tmp, refs, res):
     for key in ("city", "studio"):
         ref = refs["matte_" + key]
         t0 = time.time()
-        res_s = sweep(args.build, tmp, ref.scene, ref, [(s, ["--sampler", s]) for s in samplers], spps, reps)
+        raw = sweep(args.build, tmp, ref.scene, ref, [(s, ["--sampler", s]) for s in samplers], spps, reps)
+        res_s = pooled(raw)
         print("  render samplers on %s: %.1f s" % (key, time.time() - t0), flush=True)
         fig, (a1, a2) = new_fig(2)
         for label, pts in res_s.items():
@@ -557,6 +579,7 @@ def render_family(args, info, md, tmp, refs, res):
     fig, (ax,) = new_fig()
     split_res = {}
     for k, pts in split_list:
+        pts = per_spp(pts)[0]
         split_res[k] = pts
         ax.plot([p[1] for p in pts], [p[2] for p in pts], **style("%d light + %d BSDF samples" % (k, k), "1 light + 1 BSDF samples"))
         for s, t, e in pts:
@@ -569,7 +592,7 @@ def render_family(args, info, md, tmp, refs, res):
     out["splitting"] = split_res
 
     def rows_of(res_s):
-        return [[lab] + ["%.3g (%s)" % (e, fmt_t(t)) for s, t, e in pts] for lab, pts in res_s.items()]
+        return [[lab, "%.2f ms" % (1e3 * pts[0][1] / pts[0][0])] + ["%.3g" % e for s, t, e in pts] for lab, pts in res_s.items()]
 
     def cross_text(res_s, a, b):
         c = crossover([(p[1], p[2]) for p in res_s[a]], [(p[1], p[2]) for p in res_s[b]])
@@ -578,8 +601,33 @@ def render_family(args, info, md, tmp, refs, res):
     def best(res_s, i):
         return min(res_s, key=lambda k: res_s[k][i][2])
 
+    def eff(res_s, a, b, i=-1):
+        """how many times as efficient a is as b at point i (1 / (relMSE x time))"""
+        return (res_s[b][i][2] * res_s[b][i][1]) / (res_s[a][i][2] * res_s[a][i][1])
+
+    def near_best(res_s, i=-1, tol=1.15):
+        b = res_s[best(res_s, i)][i][2]
+        return [k for k in res_s if res_s[k][i][2] <= tol * b]
+
     ref_txt = ", ".join("%s: %d spp (noise %.2g)" % (k, r.spp, r.noise) for k, r in sorted(refs.items()))
-    head = ["option"] + ["%d spp: relMSE (time)" % s for s in spps]
+    head = ["option", "CPU per spp"] + ["%d spp: relMSE" % s for s in spps]
+    sc, ss = strat_res["city"], strat_res["studio"]
+    pc, ps = samp_res["city"], samp_res["studio"]
+    costs = [pts[0][1] / pts[0][0] for res_s in (pc, ps) for pts in res_s.values()]
+    sp_eff = ["samples %d: %.2fx" % (k, eff(split_res, k, 1)) for k in splits[1:]]
+    sp_eq = []
+    for k in splits[1:]:  # k light samples at s spp against 1 light sample at k*s spp (equal shading work)
+        for s in sp_spps:
+            if k * s in sp_spps:
+                e1 = [p for p in split_res[1] if p[0] == k * s][0]
+                ek = [p for p in split_res[k] if p[0] == s][0]
+                sp_eq.append("%d spp x %d light samples: relMSE %.3g in %s; %d spp x 1: %.3g in %s" % (
+                    s, k, ek[2], fmt_t(ek[1]), k * s, e1[2], fmt_t(e1[1])))
+    split_wins = all(eff(split_res, k, 1) > 1 for k in splits[1:])
+    ec, es = eff(sc, "MIS + compensation", "MIS"), eff(ss, "MIS + compensation", "MIS")
+    comp_text = ("measured %.2fx the efficiency of plain MIS on city and %.2fx on studio: %s" % (
+        ec, es, "turn it on" if min(ec, es) > 1.05 else "leave it off" if max(ec, es) < 0.95 else
+        "within this run's noise of plain MIS; the environment-light family above shows its gain per sample"))
     md.append("""## Renderer: light strategies
 
 ![city](%s)
@@ -591,8 +639,11 @@ so that BSDF sampling has something to gain). Options are the renderer's `--ligh
 light|bsdf|mis`, `--compensated 1`, `--importance cellaverage` (the renderer's default importance is
 pbrt-v3's). **Reference**: zsobol, two independent halves averaged, the reference's own noise
 (relMSE of the halves / 4) taken off every number (%s). relMSE = mean over pixels and channels of
-(I - R)^2 / (R^2 + 0.01). Time: the render loop's CPU time (one thread; `render --stats`, without parsing
-and table builds), median of %d repeats, all options interleaved; each repeat a different seed, the relMSE their mean.
+(I - R)^2 / (R^2 + 0.01), the mean over %d repeats with different seeds. **Time**: the render loop's CPU
+time (one thread; `render --stats`, without parsing and table builds), median of the %d repeats with all
+options interleaved; since the loop's cost is linear in spp and one render's time is noisy on this shared
+machine, each curve uses one cost per spp pooled over its runs (sum of the medians / sum of spp: the
+"CPU per spp" column; the raw medians are in measurements.json).
 
 city:
 
@@ -602,14 +653,18 @@ studio:
 
 %s
 
-Read off the plots: %s; %s on the sun map, %s on the studio map. Lowest error at the largest spp:
-%s on city, %s on studio.
+Read off the plots: %s; %s on the sun map; %s on the studio map. Lowest error at %d spp: %s on city, %s
+on studio. At %d spp, MIS is %.1fx as efficient (1 / (relMSE x time)) as light sampling alone on city
+and %.1fx on studio; BSDF sampling alone is %.0fx less efficient than MIS on city. Compensation: %.2fx
+the efficiency of MIS on city, %.2fx on studio; pbrt-v3's importance map (the renderer's default) against
+the cell averages: %.2fx on city, %.2fx on studio.
 
-- **Student's first renderer**: light sampling only is the shortest correct code and is fine on matte
-  scenes; move to MIS as soon as there is a glossy material.
-- **Production renderer**: MIS (the default); compensation and the cell-average importance are a few
-  percent either way here, within the run-to-run noise of this machine on some points.
-- **Real-time preview**: MIS at 1-4 spp; BSDF-only sampling is never competitive under a map with a sun.
+- **Student's first renderer**: light sampling only is the shortest correct code; on the smooth map MIS
+  has %.2fx its efficiency, but on the sun map with a glossy sphere MIS is %.1fx ahead: move to MIS as
+  soon as there is a glossy material.
+- **Production renderer**: MIS (the default): never far behind, far ahead where it matters.
+  Compensation (`"bool compensated" true` on the light) %s.
+- **Real-time preview**: MIS at 1-4 spp; BSDF-only sampling is never competitive under these maps.
 
 ## Renderer: samplers
 
@@ -617,8 +672,8 @@ Read off the plots: %s; %s on the sun map, %s on the studio map. Lowest error at
 ![studio](%s)
 
 The matte scenes as they are (the bench scenes bench_render --samplers uses), at %dx%d, `--sampler S`
-with pbrt's parameters; spp %s (sobol-type samplers round up to a power of two, so these are exact).
-Same reference and timing as above.
+with pbrt's parameters; spp %s (the Sobol'-type samplers round up to a power of two, so these are
+exact). Same reference and timing as above.
 
 city:
 
@@ -628,45 +683,67 @@ studio:
 
 %s
 
-Read off the plots: at the largest spp the lowest error is %s on city and %s on studio; %s on studio.
-Per sample, the samplers cost nearly the same (the time axis differs from the spp axis by a near-constant
-factor), so the choice is about error per sample, and stratification pays more the smoother the lighting.
+Read off the plots: at %d spp the lowest error is %s on city and %s on studio; within 15%% of the best:
+%s on city, %s on studio. Random sampling's error at %d spp is %.1fx the best on city and %.1fx on studio;
+pbrt-v3's unscrambled global sobol is %.1fx the best on city. The cost per sample varies by %.0f%% from
+the cheapest to the dearest sampler in this run (the samplers' own cost and this machine's noise are not
+told apart here; `bench_render --callgrind samples N --sampler S` counts instructions); the error per
+sample varies far more. %s on studio.
 
-- **Student's first renderer**: stratified (pbrt-v3's default in its scenes) or random: simplest to write.
-- **Production renderer**: zsobol or paddedsobol (pbrt-v4's randomized Sobol'): the lowest error at
-  16+ spp and they stay unbiased under any spp; pbrt-v3's unscrambled sobol is deterministic.
-- **Real-time preview**: zsobol at low spp; blue-noise-like error distribution at equal cost.
+- **Student's first renderer**: stratified (what pbrt-v3's scenes use): simple to write, and at %d spp
+  %.1fx the best error on city, %.1fx on studio.
+- **Production renderer**: zsobol, paddedsobol or 02sequence (randomized (0,2)-sequences, pbrt-v4's
+  choices): within 15%% of the lowest error at %d spp on both maps here, and unbiased at any spp.
+- **Real-time preview**: zsobol at low spp (pbrt-v4's default).
 
 ## Renderer: splitting
 
 ![splitting](%s)
 
 `"integer samples" [k]` on the infinite light of bench_city.pbrt (matte, %dx%d): directlighting draws k
-light samples and k BSDF samples per camera sample (MIS). Curves per k, points per spp (%s).
+light samples and k BSDF samples per camera sample (MIS). Curves per k, points per spp (%s); the
+scene's stratified sampler. Same reference and timing as above.
 
 %s
 
-Read off the plot: %s. Splitting spends time on shading only, the camera ray, the intersection and the
-film work are shared, so it pays when the variance is in the lighting (a sun map) and the camera
-rays are expensive; more camera samples also antialias edges and textures, which splitting never does.
+Efficiency at the largest spp against samples 1: %s. At equal shading work: %s.
+
+Read off the plot: %s. Splitting saves the camera rays, intersections and film work of the extra camera
+samples; on this cheap scene (two primitives) that saving is small, and splitting %s. More camera
+samples also antialias edges and textures, which splitting never does.
 
 - **Student's first renderer**: samples 1, more spp.
-- **Production renderer**: 4 light samples per camera sample under a sun map is where this scene's curves
-  sit lowest; check on your own scenes (geometric complexity moves the crossover).
-- **Real-time preview**: 1 spp with 4-16 light samples gives the smoothest first image.
-""" % (strat_imgs["city"], strat_imgs["studio"], res[0], res[1], ref_txt, reps,
-       table(head, rows_of(strat_res["city"])), table(head, rows_of(strat_res["studio"])),
-       cross_text(strat_res["city"], "MIS", "light only"), cross_text(strat_res["city"], "MIS", "BSDF only"),
-       cross_text(strat_res["studio"], "MIS", "BSDF only"),
-       best(strat_res["city"], -1), best(strat_res["studio"], -1),
+- **Production renderer**: %s; splitting can pay where camera rays are expensive (many
+  triangles, deep paths) and the variance is in the lighting; that is not measured here: measure on
+  your own scenes.
+- **Real-time preview**: 1 spp with samples 4-16 gives the smoothest first frame when only one camera
+  sample per pixel fits in the budget.
+""" % (strat_imgs["city"], strat_imgs["studio"], res[0], res[1], ref_txt, reps, reps,
+       table(head, rows_of(sc)), table(head, rows_of(ss)),
+       cross_text(sc, "MIS", "light only"), cross_text(sc, "MIS", "BSDF only"), cross_text(ss, "MIS", "BSDF only"),
+       spps[-1], best(sc, -1), best(ss, -1), spps[-1],
+       eff(sc, "MIS", "light only"), eff(ss, "MIS", "light only"), eff(sc, "MIS", "BSDF only"),
+       eff(sc, "MIS + compensation", "MIS"), eff(ss, "MIS + compensation", "MIS"),
+       eff(sc, "MIS", "MIS, cell-average importance"), eff(ss, "MIS", "MIS, cell-average importance"),
+       eff(ss, "MIS", "light only"), eff(sc, "MIS", "light only"),
+       comp_text,
        samp_imgs["city"], samp_imgs["studio"], res[0], res[1], ", ".join(map(str, spps)),
-       table(head, rows_of(samp_res["city"])), table(head, rows_of(samp_res["studio"])),
-       best(samp_res["city"], -1), best(samp_res["studio"], -1), cross_text(samp_res["studio"], "random", "zsobol"),
+       table(head, rows_of(pc)), table(head, rows_of(ps)),
+       spps[-1], best(pc, -1), best(ps, -1), ", ".join(near_best(pc)), ", ".join(near_best(ps)),
+       spps[-1], pc["random"][-1][2] / pc[best(pc, -1)][-1][2], ps["random"][-1][2] / ps[best(ps, -1)][-1][2],
+       pc["sobol"][-1][2] / pc[best(pc, -1)][-1][2], 100 * (max(costs) / min(costs) - 1),
+       cross_text(ps, "random", "zsobol"),
+       spps[-1], pc["stratified"][-1][2] / pc[best(pc, -1)][-1][2], ps["stratified"][-1][2] / ps[best(ps, -1)][-1][2],
+       spps[-1],
        split_img, res[0], res[1], ", ".join(map(str, sp_spps)),
-       table(["light samples"] + ["%d spp: relMSE (time)" % s for s in sp_spps],
-             [["%d" % k] + ["%.3g (%s)" % (e, fmt_t(t)) for s, t, e in split_res[k]] for k in splits]),
+       table(["light samples", "CPU per spp"] + ["%d spp: relMSE" % s for s in sp_spps],
+             [["%d" % k, "%.2f ms" % (1e3 * split_res[k][0][1] / split_res[k][0][0])] + ["%.3g" % e for s, t, e in split_res[k]]
+              for k in splits]),
+       "; ".join(sp_eff), "; ".join(sp_eq) if sp_eq else "(no pair at equal work in this run)",
        "; ".join(cross_text({("samples %d" % k): v for k, v in split_res.items()}, "samples 1", "samples %d" % k)
-                 for k in splits[1:])))
+                 for k in splits[1:]),
+       "loses here" if not split_wins else "does not win here",
+       "samples 1 on scenes like this one" if not split_wins else "samples %d on scenes like this one" % splits[-1]))
     return out
 
 
@@ -734,8 +811,8 @@ image (sample positions, chart, film), median of 3 interleaved repeats.
 Read off the plots: box aliases most (it passes the most energy above Nyquist) and keeps the most detail;
 triangle suppresses aliasing best but blurs the most; gaussian and Mitchell sit between; Lanczos (pbrt's
 "sinc") is sharp but its negative lobes make it unstable at 1 spp (aliasing error %s) and it is the
-slowest. %s. Exact weights cost %sx the table for Lanczos and change the error in the third digit: keep
-the table.
+slowest. %s. Exact weights cost %sx the table's time for Lanczos and change its aliasing error by %s at the largest
+spp: keep the table.
 
 - **Student's first renderer**: box (pbrt's simplest; the error from aliasing goes away only with spp).
 - **Production renderer**: gaussian or Mitchell with the table, at 16+ spp.
@@ -756,6 +833,7 @@ images are compared bit for bit.
        "%.2f" % float([r for r in fl if r[1] == "lanczos" and r[2] == "table"][0][5]),
        ("box and triangle cross at %s per image" % fmt_t(cx / 1e3)) if cx else "box and triangle do not cross in the measured range",
        "%.1f" % (float(at("lanczos", "exact", 4)) / float(at("lanczos", "table", 4))),
+       "%.0f%%" % (100 * abs(float(at("lanczos", "exact", 5)) / float(at("lanczos", "table", 5)) - 1)),
        img2, table(["mode", "ns/pixel", "per-pixel rms", "8x8 banding rms"], drows),
        float(di[0][4]) / float(di[1][4]), float(di[1][2]) / float(di[0][2])))
 
