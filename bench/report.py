@@ -922,10 +922,12 @@ Contents: [MIP map lookups](#mip-map-lookups) · [environment light importance](
 [light strategies](#renderer-light-strategies) · [samplers](#renderer-samplers) ·
 [splitting](#renderer-splitting) · [film](#film-pixel-filters-and-8-bit-output)
 
-Plots are drawn with matplotlib (Debian's python3-matplotlib, which `scripts/report.sh` installs with
-apt-get like every other dependency of the build).
+Plots are drawn with matplotlib %s and numpy %s from Debian (python3-matplotlib, python3-numpy), which
+`scripts/report.sh` installs with apt-get when they are missing, like every other dependency of the
+build (scripts/setup.sh): the same channel and the distribution's tested versions, no virtualenv and no
+network access to PyPI needed.
 """ % (" --quick" if args.quick else "", info["date"], info["cpu"], info["nproc"], info["cc"], info["flags"],
-       info["commit"], elapsed, load[0], load_end[0])
+       info["commit"], elapsed, load[0], load_end[0], matplotlib.__version__, np.__version__)
     if args.quick:
         head += "\n**This is a --quick run** (tiny sizes, one repeat): it checks that the command works; read the numbers of the full run in docs/.\n"
     with open(os.path.join(args.out, "accuracy-vs-time.md"), "w") as f:
