@@ -23,8 +23,8 @@
  * `bench_mipmap --instructions` runs those valgrind pairs itself (when valgrind is on the PATH) and
  * prints the table. Builds count init + el_mipmap_build_levels (every level), like pbrt's constructor.
  * Lookups use the same random inputs as the timing table. Last measured (gcc 12 -O3, x86-64): point 170,
- * bilinear 166, trilinear 225, ewa8 1,462, ewa64 1,632 instructions per lookup; the pbrt-v3 port 913
- * (trilinear) and 3,981 (ewa8); builds 26.7 M and 171.8 M against the port's 302.4 M and 785.1 M.
+ * bilinear 166, trilinear 225, ewa8 1,462, ewa64 1,632 instructions per lookup; the pbrt-v3 port 579
+ * (trilinear) and 2,928 (ewa8); builds 26.7 M and 171.8 M against the port's 91.8 M and 545.7 M.
  */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, popen */
 #define EL_IMPLEMENTATION
