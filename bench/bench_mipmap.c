@@ -18,8 +18,9 @@
  * Instruction counts (stable on a noisy machine), as DEVELOPERS.md describes:
  *     valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bin/bench_mipmap --callgrind OP N
  * prints nothing but a checksum; Ir(N) - Ir(0), divided by N, is the cost of one OP. OPs:
- *     build2048 build2000 point bilinear trilinear ewa8 ewa64
- *     pbrt_build2048 pbrt_build2000 pbrt_trilinear pbrt_ewa8     (the literal pbrt-v3 port)
+ *     build2048 build2000 build400 point bilinear trilinear ewa8 ewa64
+ *     pbrt_build2048 pbrt_build2000 pbrt_build400 pbrt_trilinear pbrt_ewa8     (the literal pbrt-v3 port)
+ * (build400: the course's 400x235 test image of chapter 1, resampled to 512x256.)
  * `bench_mipmap --instructions` runs those valgrind pairs itself (when valgrind is on the PATH) and
  * prints the table. Builds count init + el_mipmap_build_levels (every level), like pbrt's constructor.
  * Lookups use the same random inputs as the timing table. Last measured (gcc 12 -O3, x86-64): point 170,
@@ -29,6 +30,7 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, popen */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
+#include "picture.h" /* el_test_image: the course's 400x235 test image (examples/common) */
 
 #include <math.h>
 #include <stdio.h>
@@ -181,7 +183,7 @@ static int build_ours(el_mipmap *m, const float *img, int w, int h, float aniso)
 
 #define CG_POOL 20000
 static int callgrind_mode(const char *op, int n) {
-  float *img2048 = NULL, *img2000 = NULL, acc = 0;
+  float *img2048 = NULL, *img2000 = NULL, *img400 = NULL, acc = 0;
   el_mipmap m;
   pbrt_MIPMap pm;
   query *q;
@@ -191,6 +193,10 @@ static int callgrind_mode(const char *op, int n) {
   memset(&pm, 0, sizeof pm);
   if (!strcmp(op, "build2048") || !strcmp(op, "pbrt_build2048")) img2048 = make_image(2048, 1024);
   else if (!strcmp(op, "build2000") || !strcmp(op, "pbrt_build2000")) img2000 = make_image(2000, 1000);
+  else if (!strcmp(op, "build400") || !strcmp(op, "pbrt_build400")) {
+    img400 = (float *)malloc(sizeof(float) * 3 * 400 * 235);
+    el_test_image(img400, 400, 235);
+  }
   else if (!strcmp(op, "point")) { kind = OP_POINT; need_ours = 1; }
   else if (!strcmp(op, "bilinear")) { kind = OP_BILINEAR; need_ours = 1; }
   else if (!strcmp(op, "trilinear")) { kind = OP_TRILINEAR; need_ours = 1; }
@@ -202,9 +208,9 @@ static int callgrind_mode(const char *op, int n) {
     fprintf(stderr, "bench_mipmap: unknown operation '%s'\n", op);
     return 2;
   }
-  if (img2048 || img2000) {
-    int w = img2048 ? 2048 : 2000, h = img2048 ? 1024 : 1000;
-    const float *img = img2048 ? img2048 : img2000;
+  if (img2048 || img2000 || img400) {
+    int w = img2048 ? 2048 : (img2000 ? 2000 : 400), h = img2048 ? 1024 : (img2000 ? 1000 : 235);
+    const float *img = img2048 ? img2048 : (img2000 ? img2000 : img400);
     for (i = 0; i < n; ++i) {
       if (!strncmp(op, "pbrt_", 5)) {
         pbrt_init(&pm, w, h, img);
@@ -218,6 +224,7 @@ static int callgrind_mode(const char *op, int n) {
     }
     free(img2048);
     free(img2000);
+    free(img400);
     printf("checksum %g\n", acc);
     return 0;
   }
@@ -259,11 +266,11 @@ static double instructions(const char *self, const char *op, int n) {
 }
 
 static int instructions_table(const char *self) {
-  static const char *ops[] = {"build2048", "build2000", "point", "bilinear", "trilinear", "ewa8", "ewa64",
-                              "pbrt_build2048", "pbrt_build2000", "pbrt_trilinear", "pbrt_ewa8"};
-  static const int ns[] = {2, 2, 20000, 20000, 20000, 20000, 20000, 1, 1, 20000, 20000};
-  static const char *target[] = {"<= 135 M", "<= 388 M", "", "", "<= 250", "<= 1,500", "", "(269 M)",
-                                 "(776 M)", "(~820)", "(~3,700)"};
+  static const char *ops[] = {"build2048", "build2000", "build400", "point", "bilinear", "trilinear", "ewa8", "ewa64",
+                              "pbrt_build2048", "pbrt_build2000", "pbrt_build400", "pbrt_trilinear", "pbrt_ewa8"};
+  static const int ns[] = {2, 2, 5, 20000, 20000, 20000, 20000, 20000, 1, 1, 5, 20000, 20000};
+  static const char *target[] = {"<= 135 M", "<= 388 M", "", "", "", "<= 250", "<= 1,500", "", "(269 M)",
+                                 "(776 M)", "", "(~820)", "(~3,700)"};
   int i;
   printf("\nInstructions per operation (valgrind --tool=callgrind, (Ir(N) - Ir(0)) / N):\n");
   printf("| operation | N | instructions | target (pbrt-v3 figure in parentheses) |\n|---|---|---|---|\n");
