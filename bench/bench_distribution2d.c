@@ -73,22 +73,6 @@ static float *make_map(int nu, int nv) {
 }
 
 /* ---- pbrt-v3 Distribution1D / Distribution2D: the course's plain port (examples/pbrtv3/sampling.h) ---- */
-/* positive bins with a zero CDF step (never sampled), and the share of the integral they hold */
-static void pb2d_unreachable(const pbrt_Distribution2D *d, double *count, double *mass_share) {
-  double c = 0, m = 0, tot = 0;
-  int u, v;
-  for (v = 0; v < d->nv; ++v) {
-    const pbrt_Distribution1D *r = &d->pConditionalV[v];
-    int row_dead = d->pMarginal.func[v] > 0 && d->pMarginal.cdf[v + 1] == d->pMarginal.cdf[v];
-    for (u = 0; u < d->nu; ++u) {
-      tot += r->func[u];
-      if (r->func[u] > 0 && (row_dead || r->cdf[u + 1] == r->cdf[u])) { c += 1; m += r->func[u]; }
-    }
-  }
-  *count = c;
-  *mass_share = tot > 0 ? m / tot : 0;
-}
-
 /* ---- operations ---- */
 enum { NP = 1 << 20 };
 static float *g_u;
@@ -332,7 +316,7 @@ int main(int argc, char **argv) {
         if (rep < 2 && m != M_CDF) unbuild(&c);
       }
       if (m == M_CDF) build_ms = cdf_ms;
-      if (m == M_PBRT) pb2d_unreachable(&c.pb, &unreach, &share);
+      if (m == M_PBRT) pbrt_Distribution2D_unreachable(&c.pb, &unreach, &share);
       sink += run_samples(&c, 100000); /* warm up */
       for (rep = 0; rep < 3; ++rep) {
         double t0 = now();

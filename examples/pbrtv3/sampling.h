@@ -186,4 +186,25 @@ static inline size_t pbrt_Distribution2D_bytes(const pbrt_Distribution2D *d) {
          (2 * (size_t)d->nv + 1) * sizeof(float);
 }
 
+/* Not pbrt's: the course's count of the bins pbrt never samples. A bin with f > 0 whose CDF step is 0
+ * (its share rounded away in the float running sum), or in a row whose marginal step is 0, is never
+ * chosen: *count gets their number, *mass_share their share of the integral. */
+static inline void pbrt_Distribution2D_unreachable(const pbrt_Distribution2D *d, double *count, double *mass_share) {
+  double c = 0, m = 0, tot = 0;
+  int u, v;
+  for (v = 0; v < d->nv; ++v) {
+    const pbrt_Distribution1D *r = &d->pConditionalV[v];
+    int row_dead = d->pMarginal.func[v] > 0 && d->pMarginal.cdf[v + 1] == d->pMarginal.cdf[v];
+    for (u = 0; u < d->nu; ++u) {
+      tot += r->func[u];
+      if (r->func[u] > 0 && (row_dead || r->cdf[u + 1] == r->cdf[u])) {
+        c += 1;
+        m += r->func[u];
+      }
+    }
+  }
+  *count = c;
+  *mass_share = tot > 0 ? m / tot : 0;
+}
+
 #endif /* PBRTV3_SAMPLING_H */
