@@ -3,10 +3,16 @@
  *   bench_envlight                       every table below (runs itself under callgrind if valgrind exists)
  *   bench_envlight --no-callgrind        without the instruction counts
  *   bench_envlight --quick               1024x512 and 2048x1024 only, no callgrind, fewer samples
+ *   bench_envlight --product             tables 4 and 5 only (product sampling)
  *   bench_envlight --callgrind OP N [MAP] only N calls of OP after the setup (a generated 2048x1024 map,
  *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
  *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
- *                                        sample_rotated pdf_rotated build
+ *                                        sample_rotated pdf_rotated build; importance BILINEAR:
+ *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear;
+ *                                        product sampling (a new normal per call): sample_cos
+ *                                        sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated
+ *                                        build_product
+ *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
  * build/bin/bench_envlight --callgrind pdf N for N = 0 and N = 200000; (Ir(N) - Ir(0)) / N from the
@@ -37,6 +43,13 @@
  *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
  *     to light sampling with CELL_AVERAGE and the default (guide) sampler; and, for light sampling, the
  *     relative variance of lum(le) / pdf (how well the density matches the map, whatever the cosine).
+ *     BILINEAR (the continuous warp) is among the rows.
+ *  4. Product sampling: for each CC0 map and six normals (up, down, two sideways, facing the brightest
+ *     texel and away from it) the relative variance per sample of the irradiance estimate with
+ *     sample_li, sample_li in importance BILINEAR and sample_li_cos, each alone and with one cosine
+ *     sample (balance and power heuristics), the samples below the horizon, ns per estimate and the
+ *     efficiency; the tables' build time and memory.
+ *  5. Stratification: Var(256 independent samples) / Var(16x16 jittered) for each sampler.
  */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #define EL_IMPLEMENTATION
@@ -150,6 +163,23 @@ static double run_le(el_envlight *l, long n) {
   for (k = 0; k < n; ++k) { el_envlight_le(l, g_dir + 3 * (k & (NP - 1)), L); acc += L[1]; }
   return acc;
 }
+/* product sampling: each call with its own normal (the random directions), as a renderer's shading points */
+static double run_sample_cos(el_envlight *l, long n, int rgb) {
+  double acc = 0;
+  long k;
+  float wi[3], L[3], p;
+  for (k = 0; k < n; ++k) {
+    el_envlight_sample_li_cos(l, g_dir + 3 * ((k * 7) & (NP - 1)), g_u + 2 * (k & (NP - 1)), wi, rgb ? L : NULL, &p);
+    acc += p + wi[0];
+  }
+  return acc;
+}
+static double run_pdf_cos(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  for (k = 0; k < n; ++k) acc += el_envlight_pdf_li_cos(l, g_dir + 3 * ((k * 7) & (NP - 1)), g_dir + 3 * (k & (NP - 1)));
+  return acc;
+}
 static double run_loop(long n) { /* the loop alone: read the inputs, sum */
   double acc = 0;
   long k;
@@ -205,13 +235,15 @@ static double run_pollute_only(el_envlight *l, long n, int a) {
   return acc;
 }
 static double fn_sample(el_envlight *l, long n, int rgb) { return run_sample(l, n, rgb); }
+static double fn_sample_cos(el_envlight *l, long n, int rgb) { return run_sample_cos(l, n, rgb); }
+static double fn_pdf_cos(el_envlight *l, long n, int a) { (void)a; return run_pdf_cos(l, n); }
 static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l, n); }
 static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
 
 /* ---- --callgrind OP N ---- */
 static int callgrind_mode(const char *op, long n, const char *map) {
   static el_envlight l;
-  int w = 2048, h = 1024, sampler = 0, rot = 0;
+  int w = 2048, h = 1024, sampler = 0, rot = 0, imp = 0;
   float *px;
   volatile double sink = 0;
   el_image img;
@@ -230,9 +262,13 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   if (!strcmp(op, "sample_cdf")) sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
-  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated")) { sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot(); }
-  if (make_light(&l, px, w, h, 0, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
-  el_envlight_prepare_sampling(&l);
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated")) {
+    sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot();
+  }
+  if (!strcmp(op, "sample_bilinear") || !strcmp(op, "sample_bilinear_rgb") || !strcmp(op, "pdf_bilinear")) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (make_light(&l, px, w, h, imp, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
+  if (strstr(op, "_cos") || !strcmp(op, "build_product")) el_envlight_prepare_product(&l, NULL);
+  else el_envlight_prepare_sampling(&l);
   if (!strcmp(op, "build")) { /* n constructions (init + sampling tables) of the same light */
     long k;
     for (k = 0; k < n; ++k) {
@@ -241,8 +277,27 @@ static int callgrind_mode(const char *op, long n, const char *map) {
       el_envlight_prepare_sampling(&b);
       el_envlight_free(&b);
     }
-  } else if (!strcmp(op, "loop")) sink = run_loop(n);
-  else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb"));
+  } else if (!strcmp(op, "build_product")) { /* n builds of the product tables (warp + normal tables) */
+    long k;
+    for (k = 0; k < n; ++k) {
+      el_envlight b;
+      make_light(&b, px, w, h, 0, EL_ENVLIGHT_SAMPLER_GUIDE, 0, NULL);
+      el_envlight_prepare_product(&b, NULL);
+      el_envlight_free(&b);
+    }
+  } else if (!strcmp(op, "build_bilinear")) { /* n builds of importance BILINEAR's tables (the warp) */
+    long k;
+    for (k = 0; k < n; ++k) {
+      el_envlight b;
+      make_light(&b, px, w, h, EL_ENVLIGHT_IMPORTANCE_BILINEAR, EL_ENVLIGHT_SAMPLER_GUIDE, 0, NULL);
+      el_envlight_prepare_sampling(&b);
+      el_envlight_free(&b);
+    }
+  } else if (!strcmp(op, "sample_cos") || !strcmp(op, "sample_cos_rgb") || !strcmp(op, "sample_cos_rotated")) sink = run_sample_cos(&l, n, !strcmp(op, "sample_cos_rgb"));
+  else if (!strcmp(op, "pdf_cos") || !strcmp(op, "pdf_cos_rotated")) sink = run_pdf_cos(&l, n);
+  else if (!strcmp(op, "pdf_bilinear")) sink = run_pdf(&l, n);
+  else if (!strcmp(op, "loop")) sink = run_loop(n);
+  else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "le")) sink = run_le(&l, n);
   else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
@@ -308,10 +363,11 @@ static void quadrature(const image *im, const double n[][3], int nn, double *E) 
     }
 }
 
-enum { S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_COMP_MIS, S_ALIAS, S_N };
+enum { S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_COMP_MIS, S_ALIAS, S_BILIN, S_N };
 static const char *S_NAME[S_N] = {"uniform sphere", "cosine", "light: CELL_AVERAGE (ours)", "light: CELL_AVERAGE 2x",
                                   "light: PBRT_V3 (2x)",
-                                  "light: TEXEL (issue #62)", "compensated + MIS (pair)", "light: alias sampler"};
+                                  "light: TEXEL (issue #62)", "compensated + MIS (pair)", "light: alias sampler",
+                                  "light: BILINEAR (warp)"};
 
 static void frame(const double n[3], double b1[3], double b2[3]) {
   double t[3] = {1, 0, 0}, d, len;
@@ -385,7 +441,8 @@ static void variance_table(const char *path, int nsamp) {
   im.px = img.pixels; im.w = img.width; im.h = img.height;
   quadrature(&im, N3, 3, E);
   for (s = 0; s < S_N; ++s) {
-    int imp = s == S_PBRT ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3 : s == S_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL : 0;
+    int imp = s == S_PBRT ? EL_ENVLIGHT_IMPORTANCE_PBRT_V3 : s == S_TEXEL ? EL_ENVLIGHT_IMPORTANCE_TEXEL :
+              s == S_BILIN ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
     el_envlight_options o;
     memset(&o, 0, sizeof o);
     o.importance = imp;
@@ -452,16 +509,202 @@ static void variance_table(const char *path, int nsamp) {
   el_image_free(&img);
 }
 
+/* ---- product sampling: variance by orientation, against plain light sampling ---- */
+/* The strategies of table 4: light sampling alone (one sample) or with MIS (one light sample + one
+ * cosine sample, balance heuristic, as the renderer does), for sample_li (CELL_AVERAGE), sample_li in
+ * importance BILINEAR (the warp) and sample_li_cos (the warp x the cosine bound). */
+enum { P_PLAIN, P_BILIN, P_COS, P_N };
+static const char *P_NAME[P_N] = {"sample_li (CELL_AVERAGE)", "sample_li (BILINEAR warp)", "sample_li_cos (product)"};
+static double p_estimate(int s, int mis, el_envlight *l, const double n[3], const float nf[3], const double b1[3], const double b2[3], const float *u, int *below) {
+  float wi[3], L[3], p;
+  double c, f = 0;
+  if (s == P_COS) el_envlight_sample_li_cos(l, nf, u, wi, L, &p);
+  else el_envlight_sample_li(l, u, wi, L, &p);
+  if (p > 0) {
+    c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+    if (c > 0) f = lum3(L[0], L[1], L[2]) * c / (mis == 2 ? p * (1 + (c / PI) * (c / PI) / (p * p)) : mis ? p + c / PI : p);
+    else ++*below;
+  }
+  if (mis) { /* the cosine (BSDF) sample of the pair, weighted with the strategy's own pdf */
+    double rr = sqrt((double)u[2]), ph = 2 * PI * u[3], lx = rr * cos(ph), ly = rr * sin(ph), lz = sqrt(fmax(0.0, 1 - u[2]));
+    wi[0] = (float)(lx * b1[0] + ly * b2[0] + lz * n[0]);
+    wi[1] = (float)(lx * b1[1] + ly * b2[1] + lz * n[1]);
+    wi[2] = (float)(lx * b1[2] + ly * b2[2] + lz * n[2]);
+    if (lz > 0) {
+      p = s == P_COS ? el_envlight_pdf_li_cos(l, nf, wi) : el_envlight_pdf_li(l, wi);
+      el_envlight_le(l, wi, L);
+      f += lum3(L[0], L[1], L[2]) * lz / (mis == 2 ? (lz / PI) * (1 + p * p / ((lz / PI) * (lz / PI))) : lz / PI + p);
+    }
+  }
+  return f;
+}
+#define PN 6
+static const char *PN_NAME[PN] = {"up", "down", "side+x", "side+y", "sun", "away"};
+static void product_table(const char *path, int nsamp) {
+  el_image img;
+  char err[512];
+  image im;
+  double N[PN][3], E[PN], best = -1, t0;
+  el_envlight lights[P_N];
+  int s, k, x, y, mis;
+  if (el_image_load(path, &img, err, sizeof err) != 0) { printf("  (%s)\n", err); return; }
+  im.px = img.pixels; im.w = img.width; im.h = img.height;
+  memset(N, 0, sizeof N);
+  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
+  for (y = 0; y < img.height; ++y) /* "sun": the brightest texel's direction */
+    for (x = 0; x < img.width; ++x) {
+      double v = img_lum(&im, x, y);
+      if (v > best) {
+        double uu = (x + 0.5) / img.width, vv = (y + 0.5) / img.height;
+        best = v;
+        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
+      }
+    }
+  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  quadrature(&im, (const double(*)[3])N, PN, E);
+  printf("\n%s (%dx%d), brightest texel %.3g at theta %.0f deg; %d samples per cell\n", path, img.width, img.height, best,
+         acos(N[4][2]) * 180 / PI, nsamp);
+  for (s = 0; s < P_N; ++s) {
+    el_envlight_options o;
+    memset(&o, 0, sizeof o);
+    o.importance = s == P_BILIN ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
+    el_envlight_init(&lights[s], img.pixels, img.width, img.height, 3, &o);
+    t0 = now();
+    if (s == P_COS) el_envlight_prepare_product(&lights[s], NULL); else el_envlight_prepare_sampling(&lights[s]);
+    printf("  %-26s tables %6.1f ms, %6.2f MB\n", P_NAME[s], (now() - t0) * 1e3,
+           (el_envlight_sampling_bytes(&lights[s]) + el_envlight_product_bytes(&lights[s])) / 1048576.0);
+  }
+  printf("  %-26s %-5s", "relative variance per", "");
+  for (k = 0; k < PN; ++k) printf(" %8s", PN_NAME[k]);
+  printf(" %8s %7s %7s %10s\n", "geomean", "below", "ns", "efficiency");
+  for (mis = 0; mis < 3; ++mis) {
+    double ref = 0;
+    for (s = 0; s < P_N; ++s) {
+      double rv[PN], lg = 0, nbelow = 0, t;
+      t = now();
+      for (k = 0; k < PN; ++k) {
+        double b1[3], b2[3], sum = 0, sum2 = 0, mean;
+        float nf[3];
+        long i;
+        int below = 0;
+        rng r;
+        r.s = 0x853c49e6748fea9bULL + 7919u * (uint64_t)(s * PN + k);
+        frame(N[k], b1, b2);
+        nf[0] = (float)N[k][0]; nf[1] = (float)N[k][1]; nf[2] = (float)N[k][2];
+        for (i = 0; i < nsamp; ++i) {
+          float u[4];
+          double f;
+          u[0] = rng_f(&r); u[1] = rng_f(&r); u[2] = rng_f(&r); u[3] = rng_f(&r);
+          f = p_estimate(s, mis, &lights[s], N[k], nf, b1, b2, u, &below);
+          sum += f; sum2 += f * f;
+        }
+        mean = sum / nsamp;
+        rv[k] = fmax(0.0, sum2 / nsamp - mean * mean) / (E[k] * E[k]);
+        lg += log(rv[k] > 0 ? rv[k] : 1e-30) / PN;
+        nbelow += (double)below / nsamp / PN;
+      }
+      t = (now() - t) / (PN * (double)nsamp) * 1e9;
+      if (s == 0) ref = exp(lg) * t;
+      printf("  %-26s %-5s", P_NAME[s], mis == 2 ? "+MISp" : mis ? "+MIS" : "light");
+      for (k = 0; k < PN; ++k) printf(" %8.3g", rv[k]);
+      printf(" %8.3g %6.1f%% %7.0f %10.3g\n", exp(lg), 100 * nbelow, t, ref / (exp(lg) * t));
+    }
+  }
+  for (s = 0; s < P_N; ++s) el_envlight_free(&lights[s]);
+  el_image_free(&img);
+}
+
+/* Stratification: the variance of a 256-sample estimate with 16x16 jittered u against independent u,
+ * over 400 repeats; a warp that keeps stratification keeps much of the jittered points' advantage. */
+static void strat_table(const char *path) {
+  el_image img;
+  char err[512];
+  el_envlight lights[P_N];
+  static const double NS[2][3] = {{0, 0, 1}, {0.6, 0, -0.8}};
+  int s, k;
+  if (el_image_load(path, &img, err, sizeof err) != 0) { printf("  (%s)\n", err); return; }
+  printf("  %s:", path);
+  for (s = 0; s < P_N; ++s) {
+    el_envlight_options o;
+    memset(&o, 0, sizeof o);
+    o.importance = s == P_BILIN ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
+    el_envlight_init(&lights[s], img.pixels, img.width, img.height, 3, &o);
+  }
+  for (k = 0; k < 2; ++k)
+    for (s = 0; s < P_N; ++s) {
+      double var[2];
+      int st;
+      float nf[3];
+      nf[0] = (float)NS[k][0]; nf[1] = (float)NS[k][1]; nf[2] = (float)NS[k][2];
+      for (st = 0; st < 2; ++st) {
+        double sum = 0, sum2 = 0, m;
+        int rep, i;
+        rng r;
+        r.s = 0x1234567ULL + (uint64_t)(k * 10 + s);
+        for (rep = 0; rep < 400; ++rep) {
+          double est = 0;
+          for (i = 0; i < 256; ++i) {
+            float u[2], wi[3], L[3], p;
+            double c;
+            if (st) { u[0] = ((i % 16) + rng_f(&r)) / 16.0f; u[1] = ((i / 16) + rng_f(&r)) / 16.0f; }
+            else { u[0] = rng_f(&r); u[1] = rng_f(&r); }
+            if (s == P_COS) el_envlight_sample_li_cos(&lights[s], nf, u, wi, L, &p);
+            else el_envlight_sample_li(&lights[s], u, wi, L, &p);
+            c = NS[k][0] * wi[0] + NS[k][1] * wi[1] + NS[k][2] * wi[2];
+            if (p > 0 && c > 0) est += lum3(L[0], L[1], L[2]) * c / p;
+          }
+          est /= 256;
+          sum += est; sum2 += est * est;
+        }
+        m = sum / 400;
+        var[st] = fmax(1e-300, sum2 / 400 - m * m);
+      }
+      printf(" %s %s %.2fx;", k ? "n=(0.6,0,-0.8)" : "up", s == P_PLAIN ? "sample_li" : s == P_BILIN ? "BILINEAR" : "li_cos",
+             var[0] / var[1]);
+    }
+  printf("\n");
+  for (s = 0; s < P_N; ++s) el_envlight_free(&lights[s]);
+  el_image_free(&img);
+}
+
 int main(int argc, char **argv) {
   int sizes[3][2] = {{1024, 512}, {2048, 1024}, {8192, 4096}}, nsizes = 3, use_cg = 1, nsamp = 200000, i;
   const char *maps[5] = {"city", "forest", "night", "studio", "sunset"};
+  char map_dir[400];
+  /* the CC0 maps: EL_ENVMAPS, else ../shared/envmaps next to the repository (data/envmaps has city, studio) */
+  if (getenv("EL_ENVMAPS")) snprintf(map_dir, sizeof map_dir, "%s", getenv("EL_ENVMAPS"));
+  else snprintf(map_dir, sizeof map_dir, "%s/../shared/envmaps", EL_SOURCE_DIR);
 #ifdef __GLIBC__
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
   if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return callgrind_mode(argv[2], atol(argv[3]), argc >= 5 ? argv[4] : NULL);
+  if (argc == 2 && !strcmp(argv[1], "--product")) { /* tables 4 and 5 only */
+    make_random();
+    for (i = 0; i < 5; ++i) {
+      char path[512 + 64];
+      FILE *f;
+      snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
+      f = fopen(path, "rb");
+      if (!f) {
+        if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
+        snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+      } else fclose(f);
+      product_table(path, nsamp);
+    }
+    for (i = 0; i < 5; i += 3) {
+      char path[512 + 64];
+      FILE *f;
+      snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
+      f = fopen(path, "rb");
+      if (!f) snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+      else fclose(f);
+      strat_table(path);
+    }
+    return 0;
+  }
   if (argc == 2 && !strcmp(argv[1], "--no-callgrind")) use_cg = 0;
   else if (argc == 2 && !strcmp(argv[1], "--quick")) { use_cg = 0; nsizes = 2; nsamp = 50000; }
-  else if (argc != 1) { fprintf(stderr, "usage: %s [--no-callgrind | --quick | --callgrind OP N]\n", argv[0]); return 2; }
+  else if (argc != 1) { fprintf(stderr, "usage: %s [--no-callgrind | --quick | --product | --callgrind OP N [MAP]]\n", argv[0]); return 2; }
   if (use_cg && system("valgrind --version >/dev/null 2>&1") != 0) { printf("(valgrind not found: no instruction counts)\n"); use_cg = 0; }
   make_random();
 
@@ -473,11 +716,24 @@ int main(int argc, char **argv) {
     float *px = make_map(w, h);
     printf("\n  %d x %d\n", w, h);
     printf("  %-22s %9s %10s %10s %10s %10s\n", "importance map", "init ms", "sampling", "bins", "table MB", "total MB");
-    for (imp = 0; imp < 3; ++imp) {
+    for (imp = 0; imp < 5; ++imp) { /* 3: BILINEAR (the warp); 4: the product tables (warp + normal tables) */
       el_envlight l;
       double t0, t1 = 1e30, t2 = 1e30;
       int rep;
       if (imp == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 && w > 2048) continue; /* 16384x8192 bins: pbrt's choice, skipped */
+      if (imp == 4) {
+        for (rep = 0; rep < (w > 2048 ? 1 : 3); ++rep) {
+          make_light(&l, px, w, h, 0, 0, 0, NULL);
+          t0 = now();
+          el_envlight_prepare_product(&l, NULL);
+          t0 = now() - t0; if (t0 < t2) t2 = t0;
+          if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
+        }
+        printf("  %-22s %9s %7.1f ms %4dx%-5d %10.1f %10.1f\n", "product (sample_li_cos)", "", t2 * 1e3, 64, 32,
+               el_envlight_product_bytes(&l) / 1048576.0, el_envlight_bytes(&l) / 1048576.0);
+        el_envlight_free(&l);
+        continue;
+      }
       for (rep = 0; rep < (w > 2048 ? 1 : 3); ++rep) {
         t0 = now();
         if (make_light(&l, px, w, h, imp, 0, 0, NULL) != EL_SUCCESS) { printf("  init failed\n"); break; }
@@ -488,7 +744,7 @@ int main(int argc, char **argv) {
         if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
       }
       printf("  %-22s %9.1f %7.1f ms %4dx%-5d %10.1f %10.1f\n",
-             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : "TEXEL", t1 * 1e3, t2 * 1e3,
+             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : imp == 2 ? "TEXEL" : "BILINEAR (warp)", t1 * 1e3, t2 * 1e3,
              l.imp_w, l.imp_h, el_envlight_sampling_bytes(&l) / 1048576.0, el_envlight_bytes(&l) / 1048576.0);
       el_envlight_free(&l);
     }
@@ -502,6 +758,20 @@ int main(int argc, char **argv) {
         printf("  %-22s %12.1f %14.1f %12.1f %12.1f\n", smp == EL_ENVLIGHT_SAMPLER_GUIDE ? "guide table (default)" : smp == EL_ENVLIGHT_SAMPLER_CDF ? "CDF" : "alias table",
                rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), rate(fn_le, &l, 0));
         el_envlight_free(&l);
+      }
+      { /* importance BILINEAR's sample_li / pdf_li, and product sampling (one normal per call) */
+        el_envlight l;
+        if (make_light(&l, px, w, h, EL_ENVLIGHT_IMPORTANCE_BILINEAR, 0, 0, NULL) == EL_SUCCESS) {
+          el_envlight_prepare_sampling(&l);
+          printf("  %-22s %12.1f %14.1f %12.1f %12s\n", "BILINEAR (warp)", rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), "");
+          el_envlight_free(&l);
+        }
+        if (make_light(&l, px, w, h, 0, 0, 0, NULL) == EL_SUCCESS) {
+          el_envlight_prepare_product(&l, NULL);
+          printf("  %-22s %12.1f %14.1f %12.1f %12s  (sample_li_cos, pdf_li_cos)\n", "product", rate(fn_sample_cos, &l, 0),
+                 rate(fn_sample_cos, &l, 1), rate(fn_pdf_cos, &l, 0), "");
+          el_envlight_free(&l);
+        }
       }
     }
     if (w == 2048) {
@@ -529,12 +799,19 @@ int main(int argc, char **argv) {
   }
 
   if (use_cg) {
-    static const char *ops[] = {"sample_cdf", "sample_guide", "sample_alias", "sample_guide_rgb", "pdf", "le", "sample_rotated", "pdf_rotated"};
+    static const char *ops[] = {"sample_cdf", "sample_guide", "sample_alias", "sample_guide_rgb", "pdf", "le", "sample_rotated", "pdf_rotated",
+                                "sample_bilinear", "sample_bilinear_rgb", "pdf_bilinear", "sample_cos", "sample_cos_rgb", "pdf_cos",
+                                "sample_cos_rotated", "pdf_cos_rotated"};
     static const char *what[] = {"sample_li, CDF sampler, no radiance", "sample_li, guide sampler, no radiance",
                                  "sample_li, alias sampler, no radiance", "sample_li, guide sampler, with radiance",
                                  "pdf_li (random directions)", "le (random directions)",
-                                 "sample_li, guide, general rotation", "pdf_li, general rotation"};
+                                 "sample_li, guide, general rotation", "pdf_li, general rotation",
+                                 "sample_li, BILINEAR, no radiance", "sample_li, BILINEAR, with radiance", "pdf_li, BILINEAR",
+                                 "sample_li_cos, no radiance (random normals)", "sample_li_cos, with radiance",
+                                 "pdf_li_cos (random normals, directions)", "sample_li_cos, general rotation",
+                                 "pdf_li_cos, general rotation"};
     double loop = instr_per_call(argv[0], "loop", 200000), build = instr_per_call(argv[0], "build", 2);
+    double build_p = instr_per_call(argv[0], "build_product", 2), build_b = instr_per_call(argv[0], "build_bilinear", 2);
     unsigned k;
     printf("\n2. Instructions per call (callgrind, 2048x1024, 200000 calls, the loop's %.1f subtracted)\n", loop);
     printf("   targets: sample_li <= 100 without the radiance lookup (pbrt-v3 ~470), pdf_li <= 80 (pbrt-v3 ~300)\n");
@@ -543,20 +820,50 @@ int main(int argc, char **argv) {
       printf("  %-44s %8.1f\n", what[k], ipc - loop);
     }
     printf("  %-44s %8.1f M (%.1f per texel)\n", "construction: init + tables (default: guide)", build * 1e-6, build / (2048.0 * 1024.0));
+    printf("  %-44s %8.1f M (%.1f per texel)\n", "construction: init + BILINEAR's warp", build_b * 1e-6, build_b / (2048.0 * 1024.0));
+    printf("  %-44s %8.1f M (%.1f per texel)\n", "construction: init + product tables", build_p * 1e-6, build_p / (2048.0 * 1024.0));
   }
 
   printf("\n3. Variance of a direct-lighting estimate (irradiance, luminance, of a diffuse point; light space\n"
          "   normals up (0,0,1), horizon (1,0,0), down (0,0.6,-0.8)); efficiency relative to CELL_AVERAGE + guide\n");
   for (i = 0; i < 5; ++i) {
-    char path[512];
+    char path[512 + 64];
     FILE *f;
-    snprintf(path, sizeof path, "%s/../shared/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+    snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
     f = fopen(path, "rb");
     if (!f) {
       if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
       snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
     } else fclose(f);
     variance_table(path, nsamp);
+  }
+
+  printf("\n4. Product sampling (el_envlight_sample_li_cos): relative variance per sample of the irradiance estimate by\n"
+         "   normal (light space: up +z, down -z, sideways, facing the brightest texel and away from it); 'light' one\n"
+         "   sample of the strategy, '+MIS' one of it and one cosine sample (balance heuristic; '+MISp' power heuristic)\n"
+         "   per estimate; 'below' the\n"
+         "   light samples below the horizon (wasted); ns per estimate; efficiency 1 / (geomean x ns), normalised to\n"
+         "   the first row of each block\n");
+  for (i = 0; i < 5; ++i) {
+    char path[512 + 64];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
+    f = fopen(path, "rb");
+    if (!f) {
+      if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
+      snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+    } else fclose(f);
+    product_table(path, nsamp);
+  }
+  printf("\n5. Stratification kept by each sampler: Var(256 independent samples) / Var(16x16 jittered), 400 repeats\n");
+  for (i = 0; i < 5; i += 3) { /* city, studio */
+    char path[512 + 64];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
+    f = fopen(path, "rb");
+    if (!f) snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
+    else fclose(f);
+    strat_table(path);
   }
   return 0;
 }

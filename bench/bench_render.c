@@ -20,6 +20,16 @@
  * image's resolution from point lookups: the renderer's default); --full adds MIS with envlight's
  * default map of cell averages. relMSE x time is the efficiency (lower is better).
  *
+ * Part 3, --samplers (alone): every sampler (random, stratified, halton, sobol, 02sequence, zsobol,
+ * paddedsobol, and sobol with pbrt-v4's fastowen randomization) at 16, 64 and 256 spp with MIS, on
+ * the sun map (bench_city) and the smooth studio map (scenes/bench_studio.pbrt), for the
+ * directlighting and the path integrator (maxdepth 5): relMSE against a stratified reference of
+ * --ref-spp samples rendered as two halves with other seeds, the same minus the reference's own noise
+ * (relMSE of the halves / 4), that against the random sampler's, and ns per sample (wall time x
+ * threads / samples). --scene and --integrator pick one of the four tables. The cost per sample is
+ * better read from instruction counts (--callgrind samples N --sampler S, below): wall times move with
+ * the machine's load. examples/render/README.md has the measured tables.
+ *
  * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--packets] [--ref-spp N] [--threads N]
  *       --rays-only: part 1 alone (a few seconds). --packets: what Embree's packet and stream calls
  *       would gain on the camera rays (see packet_rates), alone. The default run renders about 390 M camera samples:
@@ -30,7 +40,7 @@
  * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
  * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
  * rounded up to whole rows of 320) or samples1 (the same with light samples drawn one at a time:
- * render_options.no_batch).
+ * render_options.no_batch); --sampler S renders those samples with sampler S (default stratified).
  *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 102400
  *     valgrind --tool=callgrind build/bin/bench_render --callgrind samples 0
  * instructions per sample = (Ir(102400) - Ir(0)) / 102400 (the run prints the samples it rendered).
@@ -58,7 +68,10 @@
  *     rays/s: Embree alone takes 0.104 s, 85 ns per camera sample.
  * Measured 2026-12-01, the renderer laid out by pbrt-v3's concepts (no wrappers around the library's
  * calls; render_batched.c apart from the reference path), N = 102400: 4485 -> 4319 instructions per
- * camera sample batched, 4351 -> 4379 one at a time; the same images (examples/render/README.md). */
+ * camera sample batched, 4351 -> 4379 one at a time; the same images (examples/render/README.md).
+ * Measured 2026-12-02, issue 16's format (instances, glass, metal, uber, substrate, Loop subdivision):
+ * 4317 -> 4334 instructions per camera sample batched (main's binary and this one, N = 102400); the
+ * same images for scenes that use none of it. */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
@@ -201,12 +214,13 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
 }
 
 static int g_no_batch; /* render_once: elr_render_options.no_batch */
+static int g_randomization = -1; /* render_once: elr_render_options.randomization */
 static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int imp, int threads, uint64_t seed,
                        elr_image *img, elr_stats *st) {
   elr_render_options o;
   char err[512];
   elr_render_options_default(&o);
-  o.no_batch = g_no_batch;
+  o.no_batch = g_no_batch; o.randomization = g_randomization;
   o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.importance = imp; o.nthreads = threads;
   o.seed = seed;
   o.quiet = 1;
@@ -214,23 +228,94 @@ static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int
   return 0;
 }
 
+/* --samplers: relMSE against a high-spp reference at 16, 64, 256 spp for every sampler, on the sun map
+ * (bench_city) and the smooth map (bench_studio), with both integrators; and the time per sample.
+ * The reference is two stratified renders of ref_spp / 2 samples with other seeds, averaged; its own
+ * noise, relMSE(half 1, half 2) / 4 for independent halves, is subtracted ("corrected"), so that
+ * errors below the reference's noise are not hidden by it. */
+static void sampler_table(int ref_spp, int threads, int quick, const char *only_scene, int only_integrator) {
+  static const char *scenes[2] = {"bench_city", "bench_studio"};
+  const int nspp = quick ? 2 : 3, spps[3] = {16, 64, 256};
+  int sc, ig, k, c;
+  printf("sampler table: relMSE against a %d-spp stratified reference (two halves, other seeds), %s threads\n", ref_spp,
+         threads > 0 ? "the given" : "all");
+  printf("  corrected = relMSE - the reference's own noise (relMSE of its halves / 4); ns/sample: wall time x threads / samples\n\n");
+  for (sc = 0; sc < 2; sc++) {
+    char path[1024], err[1024];
+    elr_scene *s = NULL;
+    if (only_scene && strcmp(only_scene, scenes[sc]) != 0) continue;
+    snprintf(path, sizeof path, "%s/scenes/%s.pbrt", EL_SOURCE_DIR, scenes[sc]);
+    if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return; }
+    for (ig = 0; ig < 2; ig++) {
+      elr_image r1, r2;
+      elr_stats st;
+      size_t n;
+      double noise, t0 = elr_now(), base_ns = 0;
+      if (only_integrator >= 0 && ig != only_integrator) continue;
+      s->d.integrator_path = ig; /* the scene's maxdepth (5) for both */
+      if (render_once(s, ref_spp / 2, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, threads, 1001, &r1, &st) != 0) break;
+      if (render_once(s, ref_spp / 2, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, threads, 1002, &r2, &st) != 0) break;
+      n = (size_t)r1.width * r1.height * 3;
+      noise = relmse(r1.rgb, r2.rgb, n) / 4.0;
+      for (k = 0; k < (int)n; k++) r1.rgb[k] = 0.5f * (r1.rgb[k] + r2.rgb[k]);
+      printf("%s, %s (maxdepth %d): reference %.1f s, its noise %.3g\n", scenes[sc], ig ? "path" : "directlighting", s->d.maxdepth,
+             elr_now() - t0, noise);
+      printf("  %-14s %5s %10s %10s %9s %9s %12s\n", "sampler", "spp", "relMSE", "corrected", "vs random", "ns/sample", "relMSE x s");
+      for (c = 0; c < nspp; c++) {
+        double e_random = 0;
+        /* every sampler with pbrt's defaults, then pbrt-v3's sobol with pbrt-v4's default randomization */
+        for (k = ELR_SAMPLER_RANDOM; k <= ELR_SAMPLER_COUNT; k++) {
+          elr_image img;
+          double e, ns, t1 = elr_now();
+          int r;
+          g_randomization = k == ELR_SAMPLER_COUNT ? ELR_RANDOMIZE_FAST_OWEN : -1;
+          r = render_once(s, spps[c], k == ELR_SAMPLER_COUNT ? ELR_SAMPLER_SOBOL : k, ELR_LS_MIS, -1, -1, threads, 7, &img, &st);
+          g_randomization = -1;
+          if (r != 0) continue;
+          e = relmse(img.rgb, r1.rgb, n);
+          ns = st.t_render * st.nthreads / (double)st.samples * 1e9;
+          if (k == ELR_SAMPLER_RANDOM) { e_random = e - noise; if (c == nspp - 1) base_ns = ns; }
+          printf("  %-14s %5d %10.3g %10.3g %9.3f %9.0f %12.3g\n", k == ELR_SAMPLER_COUNT ? "sobol+fastowen" : elr_sampler_kind_name(k), st.spp, e, e - noise,
+                 e_random > 0 ? (e - noise) / e_random : 0.0, ns, e * (elr_now() - t1));
+          elr_image_free(&img);
+        }
+      }
+      (void)base_ns;
+      elr_image_free(&r1); elr_image_free(&r2);
+    }
+    s->d.integrator_path = 0;
+    elr_scene_free(s);
+  }
+}
+
 int main(int argc, char **argv) {
   char path[1024], err[1024];
   elr_scene *s = NULL;
-  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0;
+  int cg_sampler = ELR_SAMPLER_STRATIFIED; /* --sampler: the callgrind loop's */
+  const char *only_scene = NULL;           /* --samplers --scene bench_city|bench_studio */
+  int only_integrator = -1;                /* --samplers --integrator directlighting|path */
   const char *cg_op = NULL;
   for (i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--quick")) { quick = 1; ref_spp = 256; }
     else if (!strcmp(argv[i], "--rays-only")) rays_only = 1;
     else if (!strcmp(argv[i], "--full")) full = 1;
     else if (!strcmp(argv[i], "--packets")) packets = 1;
+    else if (!strcmp(argv[i], "--samplers")) samplers = 1;
+    else if (!strcmp(argv[i], "--scene") && i + 1 < argc) only_scene = argv[++i];
+    else if (!strcmp(argv[i], "--integrator") && i + 1 < argc) { i++; only_integrator = !strcmp(argv[i], "path") ? 1 : 0; }
+    else if (!strcmp(argv[i], "--sampler") && i + 1 < argc) {
+      cg_sampler = elr_sampler_kind_from_name(argv[++i]);
+      if (cg_sampler <= 0) { fprintf(stderr, "bench_render: unknown sampler \"%s\"\n", argv[i]); return 1; }
+    }
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples|samples1 N]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples|samples1 N [--sampler S]]\n"); return 1; }
   }
-  if (ref_spp < 1) ref_spp = 1;
+  if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
+  if (samplers) { sampler_table(ref_spp, threads, quick, only_scene, only_integrator); return 0; }
   snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
   if (packets) setenv("ELR_EMBREE_SPHERES", "1", 1);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
@@ -258,7 +343,7 @@ int main(int argc, char **argv) {
         /* half a pixel inside each bound: the film's ceil(res * fraction) gives the bound back whatever the
          * float rounding (117 / 240 * 240 rounds up to 118) */
         s->d.crop[2] = ((float)((h - rows) / 2) - 0.5f) / (float)h; s->d.crop[3] = ((float)((h - rows) / 2 + rows) - 0.5f) / (float)h;
-        if (render_once(s, 16, ELR_SAMPLER_STRATIFIED, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
+        if (render_once(s, 16, cg_sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
           printf("%llu camera samples, %llu shadow rays, %llu BSDF-sampled light rays\n", (unsigned long long)st.samples,
                  (unsigned long long)st.shadow_rays, (unsigned long long)st.bsdf_light_rays);
           elr_image_free(&img);

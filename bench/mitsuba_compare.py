@@ -62,6 +62,13 @@ Setup (this script installs nothing):
 Run (from the repository root, after `cmake --build build` for our side):
     python3 bench/mitsuba_compare.py [--spp 4,16,64,256] [--ref-spp 8192] [--render build/bin/render]
                                      [--scene scenes/bench_city.pbrt] [--threads 2] [--outdir out/mitsuba]
+Samplers (--samplers S1,S2,... [--mitsuba-samplers stratified,multijitter,ldsampler]): each of our
+samplers (render --sampler S) and each Mitsuba sampler at every --spp, the runs of both sides
+interleaved; both references (each side's own, at --ref-spp, in two halves whose relMSE / 4 estimates
+the reference's own noise, subtracted as "corrected") and then a table of the equal-spp relMSE ratio
+ours / Mitsuba per sampler pair: error per sample, independent of the two renderers' speeds.
+    python3 bench/mitsuba_compare.py --samplers stratified,halton,sobol,02sequence,zsobol,paddedsobol \
+        --mitsuba-samplers stratified,multijitter,ldsampler --spp 16,64,256 --ref-spp 4096
 References are cached in --outdir (keyed by scene text and reference spp); delete them to recompute.
 Running everything from scratch takes about 15 CPU minutes (the two 8192-spp references).
 
@@ -315,7 +322,7 @@ def parse_pbrt(path, text):
 M_PBRT_TO_MITSUBA_ENV = [[0, 0, -1, 0], [1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1]]
 
 
-def mitsuba_scene_dict(mi, sc, spp, workdir, with_shapes=True):
+def mitsuba_scene_dict(mi, sc, spp, workdir, with_shapes=True, sampler="stratified"):
     T = mi.ScalarTransform4f
     d = {"type": "scene",
          "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 1},
@@ -324,7 +331,7 @@ def mitsuba_scene_dict(mi, sc, spp, workdir, with_shapes=True):
                     "to_world": T(mat_mul(sc["camera_to_world"], mat_scale(-1, 1, 1))),
                     "film": {"type": "hdrfilm", "width": sc["xres"], "height": sc["yres"],
                              "rfilter": {"type": "box"}, "pixel_format": "rgb"},
-                    "sampler": {"type": "stratified", "sample_count": spp}}}
+                    "sampler": {"type": sampler, "sample_count": spp}}}
     if sc["filter"] != "box":
         die("PixelFilter %s: only box is compared here" % sc["filter"])
     for k, light in enumerate(sc["lights"]):
@@ -379,16 +386,16 @@ class MitsubaRunner:
         self.mi, self.dr, self.sc, self.workdir = mi, dr, sc, workdir
         self.scenes = {}
 
-    def scene(self, spp, with_shapes=True):
-        key = (spp, with_shapes)
+    def scene(self, spp, with_shapes=True, sampler="stratified"):
+        key = (spp, with_shapes, sampler)
         if key not in self.scenes:
             self.scenes[key] = self.mi.load_dict(
-                mitsuba_scene_dict(self.mi, self.sc, spp, self.workdir, with_shapes))
+                mitsuba_scene_dict(self.mi, self.sc, spp, self.workdir, with_shapes, sampler))
         return self.scenes[key]
 
-    def render(self, spp, seed, with_shapes=True):
+    def render(self, spp, seed, with_shapes=True, sampler="stratified"):
         import numpy as np
-        scene = self.scene(spp, with_shapes)
+        scene = self.scene(spp, with_shapes, sampler)
         r0 = resource.getrusage(resource.RUSAGE_SELF)
         t0 = time.perf_counter()
         img = self.mi.render(scene, spp=spp, seed=seed)
@@ -471,6 +478,101 @@ def fmt_table(rows, header):
     return "\n".join(lines)
 
 
+def run_render(args, scene_file, spp, out, seed=0, sampler=None):
+    """our renderer on scene_file; returns (image, wall s, render-loop s, CPU s)"""
+    cmd = [args.render, scene_file, "--spp", str(spp), "--nthreads", str(args.threads),
+           "--quiet", "--seed", str(seed), "--outfile", out]
+    if sampler:
+        cmd += ["--sampler", sampler]
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    t = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if p.returncode != 0:
+        die("%s failed (%d): %s" % (" ".join(cmd), p.returncode, p.stderr.strip()))
+    m = re.search(r"spp in ([0-9.eE+-]+) s", p.stdout + p.stderr)
+    return (read_image(out), t, (float(m.group(1)) if m else float("nan")),
+            (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime))
+
+
+def sampler_mode(args, mr, scene_path, tag, spps, workdir):
+    """--samplers: relMSE per sample of each of our samplers against each Mitsuba sampler.
+
+    For each spp and run (seeds 1..runs), interleaved: every Mitsuba sampler, then every one of ours.
+    Each renderer is compared with its own reference (Mitsuba: its stratified sampler at --ref-spp;
+    ours: the scene's sampler at --ref-spp), so the two renderers' conventions (half-texel offsets,
+    filtering) do not count. Each reference is rendered as two halves with different seeds: its own
+    noise, relMSE(half 1, half 2) / 4, is printed and subtracted ("corrected"): at 256 spp the
+    low-discrepancy samplers' error is not far above it. The ratio table is ours / Mitsuba at equal
+    spp (error per sample), corrected values."""
+    import numpy as np
+    ours = [x for x in args.samplers.split(",") if x]
+    mits = [x for x in args.mitsuba_samplers.split(",") if x]
+    # Mitsuba reference noise: two halves of --ref-spp (cached like the reference)
+    halves = []
+    for h in range(2):
+        hp = os.path.join(args.outdir, "mitsuba_ref_half%d_%s.npy" % (h, tag))
+        if os.path.exists(hp):
+            halves.append(np.load(hp))
+            continue
+        chunk = min(1024, args.ref_spp // 2)
+        n = max(1, (args.ref_spp // 2) // chunk)
+        acc = None
+        for k in range(n):
+            img, _ = mr.render(chunk, 5000 + 100 * h + k)
+            acc = img if acc is None else acc + img
+        halves.append(acc / n)
+        np.save(hp, halves[-1])
+    mref = 0.5 * (halves[0] + halves[1])
+    mnoise = relmse(halves[0], halves[1]) / 4
+    ohalves = []
+    for h in range(2):
+        op = os.path.join(args.outdir, "ours_ref_half%d_%s.exr" % (h, tag))
+        if not os.path.exists(op):
+            t0 = time.perf_counter()
+            run_render(args, scene_path, args.ref_spp // 2, op, seed=12345 + h)
+            print("our reference half %d: %d spp in %.1f s" % (h, args.ref_spp // 2, time.perf_counter() - t0))
+        ohalves.append(read_image(op))
+    oref = 0.5 * (ohalves[0] + ohalves[1])
+    onoise = relmse(ohalves[0], ohalves[1]) / 4
+    print("references (%d spp each, as two halves): noise Mitsuba %.3g, ours %.3g" % (args.ref_spp, mnoise, onoise))
+    res = {}  # (side, sampler, spp) -> lists of (relMSE, render s, CPU s)
+    for spp in spps:
+        for ms in mits:
+            mr.render(spp, 7, sampler=ms)  # warm-up: JIT compilation
+        for r in range(args.runs):
+            for ms in mits:
+                img, t = mr.render(spp, r + 1, sampler=ms)
+                res.setdefault(("mitsuba", ms, spp), []).append((relmse(img, mref), t, mr.last_cpu))
+            for os_ in ours:
+                img, t, tr, c = run_render(args, scene_path, spp, os.path.join(workdir, "o.exr"), seed=r + 1,
+                                           sampler=os_)
+                res.setdefault(("ours", os_, spp), []).append((relmse(img, oref), tr, c))
+    rows = []
+    for (side, smp, spp), v in sorted(res.items(), key=lambda kv: (kv[0][2], kv[0][0], kv[0][1])):
+        e = statistics.mean(x[0] for x in v)
+        t = statistics.median(x[1] for x in v)
+        c = statistics.median(x[2] for x in v)
+        noise = mnoise if side == "mitsuba" else onoise
+        rows.append([side, smp, spp, "%.3g" % e, "%.3g" % (e - noise), "%.3f" % t, "%.3f" % c])
+    print("\nrelMSE against each renderer's own reference (mean of %d runs), render wall s and CPU s (medians):"
+          % args.runs)
+    print(fmt_table(rows, ["renderer", "sampler", "spp", "relMSE", "corrected", "render s", "CPU s"]))
+    print("\nequal-spp relMSE ratio ours / Mitsuba (corrected values; < 1: less error per sample than Mitsuba):")
+    header = ["ours \\ Mitsuba", "spp"] + mits
+    rows = []
+    for os_ in ours:
+        for spp in spps:
+            eo = statistics.mean(x[0] for x in res[("ours", os_, spp)]) - onoise
+            row = [os_, spp]
+            for ms in mits:
+                em = statistics.mean(x[0] for x in res[("mitsuba", ms, spp)]) - mnoise
+                row.append("%.2f" % (eo / em) if em > 0 else "-")
+            rows.append(row)
+    print(fmt_table(rows, header))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scene", default=os.path.join(ROOT, "scenes", "bench_city.pbrt"))
@@ -480,6 +582,13 @@ def main():
     ap.add_argument("--render", default=os.path.join(ROOT, "build", "bin", "render"))
     ap.add_argument("--outdir", default=os.path.join(ROOT, "out", "mitsuba"))
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--samplers", default="",
+                    help="comma-separated samplers for our side (render --sampler), e.g. "
+                         "stratified,halton,sobol,02sequence,zsobol,paddedsobol; then both sides are run per "
+                         "sampler, interleaved, and an equal-spp relMSE ratio table is printed")
+    ap.add_argument("--mitsuba-samplers", default="stratified,multijitter",
+                    help="comma-separated Mitsuba 3 samplers for --samplers mode (independent, stratified, "
+                         "multijitter, orthogonal, ldsampler)")
     args = ap.parse_args()
     try:
         import numpy as np
@@ -520,6 +629,11 @@ def main():
         import mitsuba as mi
         mi.Bitmap(bg.astype(np.float32)).write(os.path.join(args.outdir, "mitsuba_background.exr"))
         mi.Bitmap(ref_bg.astype(np.float32)).write(os.path.join(args.outdir, "pbrt_model_background.exr"))
+
+    if args.samplers:  # its own references, in halves
+        sampler_mode(args, mr, scene_path, tag, spps, workdir)
+        shutil.rmtree(workdir, ignore_errors=True)
+        return
 
     # ---- Mitsuba reference (cached) ----
     ref_path = os.path.join(args.outdir, "mitsuba_ref_%s.npy" % tag)

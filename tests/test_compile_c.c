@@ -52,6 +52,12 @@ int main(void) {
   check(el_envlight_init(&light, img, 4, 2, 3, NULL) == EL_SUCCESS, "envlight init");
   el_envlight_le(&light, dir, out);
   check(out[1] > 0.999f && out[1] < 1.001f, "envlight le of a constant map");
+  { /* product sampling: a sample above the normal's horizon whose pdf the pdf function repeats */
+    float u[2] = {0.3f, 0.6f}, wi[3], L[3], p;
+    el_envlight_sample_li_cos(&light, dir, u, wi, L, &p);
+    check(p > 0.0f && p == el_envlight_pdf_li_cos(&light, dir, wi) && el_envlight_product_bytes(&light) > 0,
+          "envlight sample_li_cos and pdf_li_cos agree");
+  }
   el_envlight_free(&light);
 
   memset(&fo, 0, sizeof fo);

@@ -1467,6 +1467,695 @@ static void test_pdf_round_trip(const el_image *city) {
         }
 }
 
+/* ======================================================================================== */
+/* 9. Product sampling (sample_li_cos / pdf_li_cos) and the bilinear warp (importance BILINEAR) */
+/* ======================================================================================== */
+/* A sampler under test: sample_li_cos for a normal (kind 0) or sample_li of a light in importance mode
+ * BILINEAR (kind 1), and the pdf the chi-square test compares its samples with (normally the matching
+ * pdf function; the negative controls give another one, which the test must reject). */
+typedef struct {
+  el_envlight *l;
+  int kind;               /* 0: sample_li_cos(n); 1: sample_li */
+  float n[3];             /* the world normal of kind 0 */
+  el_envlight *pdf_light; /* the light whose pdf is compared (normally l) */
+  int pdf_kind;           /* 0: pdf_li_cos(pdf_n); 1: pdf_li */
+  float pdf_n[3];
+} psrc;
+static void ps_sample(const psrc *s, const float u[2], float wi[3], float rgb[3], float *pdf) {
+  if (s->kind == 0) el_envlight_sample_li_cos(s->l, s->n, u, wi, rgb, pdf);
+  else el_envlight_sample_li(s->l, u, wi, rgb, pdf);
+}
+static float ps_pdf_self(const psrc *s, const float wi[3]) {
+  return s->kind == 0 ? el_envlight_pdf_li_cos(s->l, s->n, wi) : el_envlight_pdf_li(s->l, wi);
+}
+static float ps_pdf_tested(const psrc *s, const float wi[3]) {
+  return s->pdf_kind == 0 ? el_envlight_pdf_li_cos(s->pdf_light, s->pdf_n, wi) : el_envlight_pdf_li(s->pdf_light, wi);
+}
+
+/* Chi-square over cells of the warp's bilinear patches (patch column i spans the texel centres i and
+ * i + 1, patch row r spans vertex rows r and r + 1 at v = 0, 0.5 / h, 1.5 / h, ..., 1): gu x gv cells,
+ * gu dividing w. A density bilinear in each patch (the warp's, and the product's, which is the warp
+ * times a per-cell constant) integrates exactly by the patch midpoint, so the expected probability of a
+ * cell is the sum over its patches of pdf(midpoint) x 2 pi^2 sin(theta) x the patch's (u, v) area.
+ * Also: every sample's pdf is finite and > 0 and equals the pdf function at its direction bit for bit,
+ * and its radiance equals le(wi) bit for bit. Returns the p-value (1 when the test could not run). */
+static int g_prod_tests = 0;
+#define PROD_TESTS_PLANNED 28
+static double chi2_patches(const char *name, const psrc *s, const float m[9], int w, int h, int gu, int gv, int n,
+                           uint64_t seed, int expect_pass) {
+  int cells = gu * gv, i, r, pooled = 0, dof, impossible = 0, mismatch = 0, nonfinite = 0, rgb_mismatch = 0, zero = 0;
+  double *expect = (double *)calloc((size_t)cells, sizeof(double)), *obs = (double *)calloc((size_t)cells, sizeof(double));
+  double chi2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / PROD_TESTS_PLANNED;
+  rng g = rng_make(seed);
+  for (r = 0; r <= h; ++r) {
+    double v0 = r == 0 ? 0.0 : (r - 0.5) / h, v1 = r == h ? 1.0 : (r + 0.5) / h, v = 0.5 * (v0 + v1);
+    for (i = 0; i < w; ++i) {
+      double u = (i + 1.0) / w, dl[3], dw[3];
+      float fd[3], p;
+      if (u >= 1) u -= 1;
+      ref_uv_to_dir(u, v, dl);
+      mat_mul(m, dl, dw);
+      fd[0] = (float)dw[0]; fd[1] = (float)dw[1]; fd[2] = (float)dw[2];
+      p = ps_pdf_tested(s, fd);
+      expect[(r * gv / (h + 1)) * gu + i * gu / w] += p * 2 * PI * PI * sin(PI * v) * (v1 - v0) / w;
+    }
+  }
+  for (i = 0; i < cells; ++i) total += expect[i];
+  for (i = 0; i < n; ++i) {
+    float uu[2], wi[3], rgb[3], L[3], p, q;
+    double dw[3], dl[3], u, v, x;
+    int pi, pr;
+    uu[0] = rng_f(&g); uu[1] = rng_f(&g);
+    ps_sample(s, uu, wi, rgb, &p);
+    if (!(p > 0)) { ++zero; continue; }
+    if (!(p < 1e30f) || wi[0] != wi[0]) { ++nonfinite; continue; }
+    q = ps_pdf_self(s, wi);
+    if (q != p) ++mismatch;
+    el_envlight_le(s->l, wi, L);
+    if (L[0] != rgb[0] || L[1] != rgb[1] || L[2] != rgb[2]) ++rgb_mismatch;
+    dw[0] = wi[0]; dw[1] = wi[1]; dw[2] = wi[2];
+    mat_mul_t(m, dw, dl);
+    ref_dir_to_uv(dl, &u, &v);
+    x = u * w - 0.5;
+    if (x < 0) x += w;
+    pi = (int)x; if (pi > w - 1) pi = w - 1;
+    pr = (int)(v * h + 0.5); if (pr > h) pr = h;
+    obs[(pr * gv / (h + 1)) * gu + pi * gu / w] += 1;
+  }
+  for (i = 0; i < cells; ++i) {
+    double e = expect[i] / total * n;
+    if (expect[i] == 0) { if (obs[i] > 0) ++impossible; continue; }
+    if (e < 5) { pool_e += e; pool_o += obs[i]; continue; }
+    chi2 += (obs[i] - e) * (obs[i] - e) / e;
+    ++pooled;
+  }
+  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++pooled; }
+  dof = pooled - 1;
+  pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
+  if (expect_pass) {
+    ++g_prod_tests;
+    check(pval > alpha && impossible == 0 && fabs(total - 1) < 2e-3 && zero == 0,
+          "chi2 %-46s: chi2 = %.1f, %d dof, p = %.3g (> %.2g), pdf integrates to %.5f, %d in zero-pdf cells, %d pdf 0",
+          name, chi2, dof, pval, alpha, total, impossible, zero);
+    check(mismatch == 0 && nonfinite == 0 && rgb_mismatch == 0,
+          "chi2 %-46s: every pdf finite, > 0, == the pdf function bit for bit, radiance == le (%d, %d, %d differ of %d)",
+          name, nonfinite, mismatch, rgb_mismatch, n);
+  } else {
+    /* a negative control: the samples against a wrong pdf must be rejected */
+    check(pval < 1e-6 || impossible > 0, "chi2 negative control %-36s: rejected (chi2 = %.1f, %d dof, p = %.2g, %d impossible)",
+          name, chi2, dof, pval, impossible);
+  }
+  free(expect);
+  free(obs);
+  return pval;
+}
+
+/* Inside the patches: a chi-square over the 4 x 4 sub-squares of every patch (the expectation from the pdf
+ * at each sub-square's midpoint, exact for a bilinear density; cells expecting fewer than 5 samples
+ * pooled). The patch-aligned test above cannot see how samples spread inside a patch; this one does
+ * (small maps only: 16 pdf evaluations per patch). */
+static void chi2_fractions(const char *name, const psrc *s, const float m[9], int w, int h, int n, uint64_t seed) {
+  size_t cells = (size_t)(h + 1) * w * 16, k;
+  double *expect = (double *)calloc(cells, sizeof(double)), *obs = (double *)calloc(cells, sizeof(double));
+  double chi2 = 0, total = 0, pval, pool_e = 0, pool_o = 0;
+  int i, r, a, b, dof, used = 0;
+  rng g = rng_make(seed);
+  for (r = 0; r <= h; ++r) {
+    double v0 = r == 0 ? 0.0 : (r - 0.5) / h, v1 = r == h ? 1.0 : (r + 0.5) / h;
+    for (i = 0; i < w; ++i)
+      for (b = 0; b < 4; ++b)
+        for (a = 0; a < 4; ++a) {
+          double u = (i + 0.5 + (a + 0.5) / 4) / w, v = v0 + (b + 0.5) / 4 * (v1 - v0), dl[3], dw[3];
+          float fd[3];
+          if (u >= 1) u -= 1;
+          ref_uv_to_dir(u, v, dl);
+          mat_mul(m, dl, dw);
+          fd[0] = (float)dw[0]; fd[1] = (float)dw[1]; fd[2] = (float)dw[2];
+          expect[(((size_t)r * w + i) * 4 + b) * 4 + a] = ps_pdf_tested(s, fd) * 2 * PI * PI * sin(PI * v) * (v1 - v0) / w / 16;
+        }
+  }
+  for (k = 0; k < cells; ++k) total += expect[k];
+  for (i = 0; i < n; ++i) {
+    float uu[2], wi[3], rgb[3], p;
+    double dw[3], dl[3], u, v, x, y, fs, ft;
+    int pr, pi;
+    uu[0] = rng_f(&g); uu[1] = rng_f(&g);
+    ps_sample(s, uu, wi, rgb, &p);
+    if (!(p > 0)) continue;
+    dw[0] = wi[0]; dw[1] = wi[1]; dw[2] = wi[2];
+    mat_mul_t(m, dw, dl);
+    ref_dir_to_uv(dl, &u, &v);
+    x = u * w - 0.5;
+    if (x < 0) x += w;
+    pi = (int)x; if (pi > w - 1) pi = w - 1;
+    fs = x - pi;
+    y = v * h + 0.5;
+    pr = (int)y; if (pr > h) pr = h;
+    ft = pr == 0 ? 2 * v * h : pr == h ? 1 - 2 * (1 - v) * h : y - pr;
+    a = (int)(fs * 4); b = (int)(ft * 4);
+    a = a < 0 ? 0 : a > 3 ? 3 : a; b = b < 0 ? 0 : b > 3 ? 3 : b;
+    obs[(((size_t)pr * w + pi) * 4 + b) * 4 + a] += 1;
+  }
+  for (k = 0; k < cells; ++k) {
+    double e = expect[k] / total * n;
+    if (e < 5) { pool_e += e; pool_o += obs[k]; continue; }
+    chi2 += (obs[k] - e) * (obs[k] - e) / e;
+    ++used;
+  }
+  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++used; }
+  dof = used - 1;
+  pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
+  ++g_prod_tests;
+  check(pval > 0.01 / PROD_TESTS_PLANNED && dof > 10, "chi2 inside patches %-30s: 4x4 sub-squares of every patch: chi2 = %.1f, "
+        "%d dof, p = %.3g", name, chi2, dof, pval);
+  free(expect);
+  free(obs);
+}
+
+static el_result make_light_imp(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int imp) {
+  el_envlight_options o;
+  memset(&o, 0, sizeof o);
+  if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
+  o.compensated = comp;
+  o.importance = imp;
+  return el_envlight_init(l, px, w, h, 3, &o);
+}
+/* a box-filtered copy of an image at w / f x h / f (keeps the tests fast on the 1024x512 maps) */
+static float *shrink(const el_image *im, int f) {
+  int w = im->width / f, h = im->height / f, x, y, a, b, c;
+  float *px = (float *)calloc((size_t)w * h * 3, sizeof(float));
+  for (y = 0; y < h; ++y)
+    for (x = 0; x < w; ++x)
+      for (b = 0; b < f; ++b)
+        for (a = 0; a < f; ++a)
+          for (c = 0; c < 3; ++c)
+            px[((size_t)y * w + x) * 3 + c] += im->pixels[((size_t)(y * f + b) * im->width + x * f + a) * 3 + c] / (float)(f * f);
+  return px;
+}
+/* light-space normal -> world normal */
+static void world_normal(const float m[9], const double nl[3], float n[3]) {
+  double nw[3];
+  mat_mul(m, nl, nw);
+  n[0] = (float)nw[0]; n[1] = (float)nw[1]; n[2] = (float)nw[2];
+}
+
+static void chi2_product_case(const char *name, const float *px, int w, int h, int matrix, int comp, const double nl[3],
+                              int gu, int gv, int n, uint64_t seed) {
+  el_envlight l;
+  float m[9];
+  psrc s;
+  char label[160];
+  if (matrix == 1) some_rotation(m);
+  else if (matrix == 2) el_envlight_yup_matrix(m);
+  else if (matrix == 3) el_envlight_zup_matrix(m);
+  else identity(m);
+  if (make_light_imp(&l, px, w, h, m, comp, 0) != EL_SUCCESS) { check(0, "chi2 %s: init failed", name); return; }
+  memset(&s, 0, sizeof s);
+  s.l = s.pdf_light = &l;
+  world_normal(m, nl, s.n);
+  memcpy(s.pdf_n, s.n, sizeof s.n);
+  snprintf(label, sizeof label, "cos %s%s%s n=(%.2g,%.2g,%.2g)", name, comp ? " comp" : "",
+           matrix == 1 ? " rotated" : matrix == 2 ? " y-up" : matrix == 3 ? " z-up" : "", nl[0], nl[1], nl[2]);
+  chi2_patches(label, &s, m, w, h, gu, gv, n, seed, 1);
+  el_envlight_free(&l);
+}
+
+static void chi2_bilinear_case(const char *name, const float *px, int w, int h, int matrix, int comp, int gu, int gv, int n, uint64_t seed) {
+  el_envlight l;
+  float m[9];
+  psrc s;
+  char label[160];
+  if (matrix == 1) some_rotation(m); else identity(m);
+  if (make_light_imp(&l, px, w, h, m, comp, EL_ENVLIGHT_IMPORTANCE_BILINEAR) != EL_SUCCESS) { check(0, "chi2 %s: init failed", name); return; }
+  memset(&s, 0, sizeof s);
+  s.l = s.pdf_light = &l;
+  s.kind = s.pdf_kind = 1;
+  snprintf(label, sizeof label, "BILINEAR %s%s%s", name, comp ? " comp" : "", matrix == 1 ? " rotated" : "");
+  chi2_patches(label, &s, m, w, h, gu, gv, n, seed, 1);
+  el_envlight_free(&l);
+}
+
+/* maps for the hard cases, 64 x 32 unless said */
+enum { PW = 64, PH = 32 };
+static float *map_sun(void) { /* a one-texel sun at 1e12 on a dim sky (1 above, 0.1 below the horizon) */
+  float *px = (float *)malloc(PW * PH * 3 * sizeof(float));
+  int k;
+  for (k = 0; k < PW * PH; ++k) px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = (k / PW) < PH / 2 ? 1.0f : 0.1f;
+  px[(9 * PW + 40) * 3] = px[(9 * PW + 40) * 3 + 1] = px[(9 * PW + 40) * 3 + 2] = 1e12f;
+  return px;
+}
+static float *map_black_half(void) { /* the upper half black, the lower half a ramp */
+  float *px = (float *)calloc(PW * PH * 3, sizeof(float));
+  int k;
+  for (k = PW * PH / 2; k < PW * PH; ++k) px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = 1.0f + (float)(k % PW) / 8.0f;
+  return px;
+}
+static float *map_pole_rows(void) { /* bright first and last rows */
+  float *px = (float *)malloc(PW * PH * 3 * sizeof(float));
+  int k;
+  for (k = 0; k < PW * PH; ++k) {
+    int y = k / PW, x = k % PW;
+    float v = (y == 0 || y == PH - 1) ? 1000.0f * (1.0f + (float)(x % 5)) : 0.25f;
+    px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = v;
+  }
+  return px;
+}
+
+static void test_product_chi2(const el_image *studio, const el_image *city) {
+  static const double UP[3] = {0, 0, 1}, DOWN[3] = {0, 0, -1}, SEAM[3] = {1, 0, 0}, SIDE[3] = {0, 1, 0};
+  static const double TILT[3] = {0.36, -0.48, 0.8}, NEAR_POLE[3] = {1e-4, 0, -1};
+  double sun[3];
+  float *st = shrink(studio, 4), *ct = shrink(city, 4), *sunmap = map_sun(), *half = map_black_half(), *poles = map_pole_rows();
+  float col[1 * 48 * 3], row[64 * 1 * 3];
+  int k, n = 100000;
+  { /* the direction of the sun texel (9, 40) of map_sun, and the way away from it */
+    double u = 40.5 / PW, v = 9.5 / PH;
+    ref_uv_to_dir(u, v, sun);
+  }
+  for (k = 0; k < 48 * 3; ++k) col[k] = (float)(1 + (k / 3) % 7) * ((k / 3) == 20 ? 500.0f : 1.0f);
+  for (k = 0; k < 64 * 3; ++k) row[k] = (float)(1 + (k / 3) % 9);
+  /* real maps (studio and city box-filtered to 256x128; studio full size once) */
+  chi2_product_case("studio 256x128", st, 256, 128, 0, 0, UP, 64, 32, n, 101);
+  chi2_product_case("studio 256x128", st, 256, 128, 0, 0, SEAM, 64, 32, n, 102);
+  chi2_product_case("studio 256x128", st, 256, 128, 1, 0, TILT, 64, 32, n, 103);
+  chi2_product_case("studio 256x128", st, 256, 128, 2, 0, DOWN, 64, 32, n, 104);
+  chi2_product_case("city 256x128", ct, 256, 128, 3, 0, SIDE, 64, 32, n, 105);
+  chi2_product_case("city 256x128", ct, 256, 128, 1, 1, UP, 64, 32, n, 106);
+  chi2_product_case("studio 1024x512", studio->pixels, studio->width, studio->height, 0, 0, TILT, 64, 32, n, 107);
+  /* synthetic hard maps */
+  chi2_product_case("sun 1e12 64x32", sunmap, PW, PH, 0, 0, DOWN, 32, 16, n, 108);    /* the sun below the horizon */
+  chi2_product_case("sun 1e12 64x32", sunmap, PW, PH, 1, 0, NEAR_POLE, 32, 16, n, 109);
+  chi2_product_case("black upper half 64x32", half, PW, PH, 0, 0, SEAM, 32, 16, n, 110);
+  chi2_product_case("pole rows 64x32", poles, PW, PH, 0, 0, UP, 32, 16, n, 111);
+  chi2_product_case("pole rows 64x32", poles, PW, PH, 2, 1, NEAR_POLE, 32, 16, n, 112);
+  chi2_product_case("1x48", col, 1, 48, 0, 0, TILT, 1, 24, n, 113);
+  chi2_product_case("64x1", row, 64, 1, 1, 0, SIDE, 32, 2, n, 114);
+  { /* sizes the cells do not divide: 300x100 (64 cells over 300 patch columns), 60x21 (fewer patches than cells) */
+    float *odd = (float *)malloc(300 * 100 * 3 * sizeof(float));
+    rng g = rng_make(7);
+    for (k = 0; k < 300 * 100 * 3; ++k) odd[k] = rng_f(&g) * (k % 97 == 0 ? 50.0f : 1.0f);
+    chi2_product_case("random 300x100", odd, 300, 100, 1, 0, TILT, 60, 20, n, 140);
+    chi2_product_case("random 60x21", odd, 60, 21, 0, 1, SEAM, 30, 11, n, 141);
+    free(odd);
+  }
+  /* the bilinear warp alone (importance BILINEAR) */
+  chi2_bilinear_case("studio 256x128", st, 256, 128, 0, 0, 64, 32, n, 121);
+  chi2_bilinear_case("city 256x128", ct, 256, 128, 1, 0, 64, 32, n, 122);
+  chi2_bilinear_case("city 256x128", ct, 256, 128, 0, 1, 64, 32, n, 123);
+  chi2_bilinear_case("pole rows 64x32", poles, PW, PH, 1, 0, 32, 16, n, 124);
+  chi2_bilinear_case("black upper half 64x32", half, PW, PH, 0, 0, 32, 16, n, 125);
+  chi2_bilinear_case("1x48", col, 1, 48, 0, 0, 1, 24, n, 126);
+  chi2_bilinear_case("64x1", row, 64, 1, 0, 0, 32, 2, n, 127);
+  { /* the sun map seen from the sun's side: most samples in the sun's patches (few cells tested) */
+    el_envlight l;
+    psrc s;
+    float m[9];
+    identity(m);
+    make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
+    memset(&s, 0, sizeof s);
+    s.l = s.pdf_light = &l;
+    world_normal(m, sun, s.n);
+    memcpy(s.pdf_n, s.n, sizeof s.n);
+    chi2_patches("cos sun 1e12 64x32, facing the sun", &s, m, PW, PH, 32, 16, n, 115, 1);
+    el_envlight_free(&l);
+  }
+  { /* y-up city at 512x256, the sun's side of the normal */
+    float m[9], *c2 = shrink(city, 2);
+    el_envlight l;
+    psrc s;
+    el_envlight_yup_matrix(m);
+    make_light_imp(&l, c2, 512, 256, m, 0, 0);
+    memset(&s, 0, sizeof s);
+    s.l = s.pdf_light = &l;
+    world_normal(m, TILT, s.n);
+    memcpy(s.pdf_n, s.n, sizeof s.n);
+    chi2_patches("cos city 512x256 y-up n=(0.36,-0.48,0.8)", &s, m, 512, 256, 64, 32, n, 116, 1);
+    /* negative controls (the harness must have the power to see a wrong pdf): the samples of this
+     * normal against the pdf of a normal 10 degrees away, against the warp without the cosine (the
+     * plain table: a zero normal) and against the light's piecewise-constant pdf_li */
+    {
+      double t = tan(10.0 * PI / 180.0), nl2[3], len; /* TILT tilted towards (0.8, 0.6, 0), perpendicular to it */
+      nl2[0] = TILT[0] + 0.8 * t; nl2[1] = TILT[1] + 0.6 * t; nl2[2] = TILT[2];
+      len = sqrt(nl2[0] * nl2[0] + nl2[1] * nl2[1] + nl2[2] * nl2[2]);
+      nl2[0] /= len; nl2[1] /= len; nl2[2] /= len;
+      world_normal(m, nl2, s.pdf_n);
+      chi2_patches("(normal 10 degrees off)", &s, m, 512, 256, 64, 32, n, 117, 0);
+      s.pdf_n[0] = s.pdf_n[1] = s.pdf_n[2] = 0.0f;
+      chi2_patches("(no cosine: the warp alone)", &s, m, 512, 256, 64, 32, n, 118, 0);
+      s.pdf_kind = 1;
+      chi2_patches("(the piecewise-constant pdf_li)", &s, m, 512, 256, 64, 32, n, 119, 0);
+    }
+    el_envlight_free(&l);
+    free(c2);
+  }
+  { /* importance BILINEAR's sample_li against the CELL_AVERAGE light's pdf_li, on city: must be rejected */
+    el_envlight lb, lc;
+    psrc s;
+    float m[9];
+    identity(m);
+    make_light_imp(&lb, ct, 256, 128, m, 0, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+    make_light_imp(&lc, ct, 256, 128, m, 0, 0);
+    memset(&s, 0, sizeof s);
+    s.l = &lb; s.kind = 1; s.pdf_light = &lc; s.pdf_kind = 1;
+    chi2_patches("(BILINEAR samples vs CELL_AVERAGE pdf)", &s, m, 256, 128, 64, 32, n, 120, 0);
+    el_envlight_free(&lb);
+    el_envlight_free(&lc);
+  }
+  { /* inside the patches: the sun map facing the sun (the sun's four patches hold nearly all the mass,
+       each steeply linear), pole rows (the linear ramp of the pole patches), city 128x64 (BILINEAR) */
+    el_envlight l;
+    psrc s;
+    float m[9], *c8 = shrink(city, 8);
+    identity(m);
+    make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
+    memset(&s, 0, sizeof s);
+    s.l = s.pdf_light = &l;
+    world_normal(m, sun, s.n);
+    memcpy(s.pdf_n, s.n, sizeof s.n);
+    chi2_fractions("cos sun 1e12, facing the sun", &s, m, PW, PH, n, 131);
+    el_envlight_free(&l);
+    make_light_imp(&l, poles, PW, PH, m, 0, 0);
+    s.l = s.pdf_light = &l;
+    s.n[0] = s.n[1] = 0; s.n[2] = 1;
+    memcpy(s.pdf_n, s.n, sizeof s.n);
+    chi2_fractions("cos pole rows, normal up", &s, m, PW, PH, n, 132);
+    el_envlight_free(&l);
+    make_light_imp(&l, c8, 128, 64, m, 0, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+    s.l = s.pdf_light = &l;
+    s.kind = s.pdf_kind = 1;
+    chi2_fractions("BILINEAR city 128x64", &s, m, 128, 64, n, 133);
+    el_envlight_free(&l);
+    free(c8);
+  }
+  check(g_prod_tests == PROD_TESTS_PLANNED, "chi2 product and warp: %d goodness-of-fit tests, Bonferroni over %d", g_prod_tests, PROD_TESTS_PLANNED);
+  free(st); free(ct); free(sunmap); free(half); free(poles);
+}
+
+/* pdf_li_cos > 0 wherever le > 0 and n.w > 0 (no compensation), over a grid of directions finer than
+ * the maps' texels and 12 normals (both poles, the seam and its other side, random ones), on the hard
+ * maps. (That it integrates to 1 the chi-square tests check exactly, over the patches.) */
+static void test_product_coverage(const el_image *studio) {
+  float *sunmap = map_sun(), *half = map_black_half(), *poles = map_pole_rows(), *st = shrink(studio, 8);
+  const float *maps[4];
+  const char *names[4] = {"sun 1e12", "black half", "pole rows", "studio 128x64"};
+  int sizes[4][2] = {{PW, PH}, {PW, PH}, {PW, PH}, {128, 64}}, mi, rot;
+  maps[0] = sunmap; maps[1] = half; maps[2] = poles; maps[3] = st;
+  for (mi = 0; mi < 4; ++mi)
+    for (rot = 0; rot < 2; ++rot) {
+      el_envlight l;
+      float m[9];
+      int k, i, j, bad = 0, tried = 0, NU = 240, NV = 120;
+      rng g = rng_make(500 + mi);
+      if (rot) some_rotation(m); else identity(m);
+      make_light_imp(&l, maps[mi], sizes[mi][0], sizes[mi][1], m, 0, 0);
+      for (k = 0; k < 12; ++k) { /* normals: the poles, the seam, and random ones */
+        float n[3];
+        if (k == 0) { n[0] = 0; n[1] = 0; n[2] = 1; }
+        else if (k == 1) { n[0] = 0; n[1] = 0; n[2] = -1; }
+        else if (k == 2) { n[0] = 1; n[1] = 0; n[2] = 0; }
+        else if (k == 3) { n[0] = 1; n[1] = -1e-7f; n[2] = 0; }
+        else {
+          double z = 1 - 2 * rng_f(&g), r = sqrt(fmax(0.0, 1 - z * z)), ph = 2 * PI * rng_f(&g);
+          n[0] = (float)(r * cos(ph)); n[1] = (float)(r * sin(ph)); n[2] = (float)z;
+        }
+        for (j = 0; j < NV; ++j) {
+          double v = (j + 0.5) / NV;
+          for (i = 0; i < NU; ++i) {
+            double d[3];
+            float fd[3], L[3], p;
+            ref_uv_to_dir((i + 0.5) / NU, v, d);
+            fd[0] = (float)d[0]; fd[1] = (float)d[1]; fd[2] = (float)d[2];
+            p = el_envlight_pdf_li_cos(&l, n, fd);
+            if (n[0] * fd[0] + n[1] * fd[1] + n[2] * fd[2] > 1e-6f) {
+              el_envlight_le(&l, fd, L);
+              if (L[0] + L[1] + L[2] > 0) { ++tried; if (!(p > 0 && p < 1e30f)) ++bad; }
+            }
+          }
+        }
+      }
+      check(bad == 0 && tried > 0, "pdf_li_cos on %s%s, 12 normals (poles, seam): > 0 at all %d grid directions above the "
+            "surface with le > 0 (%d not)", names[mi], rot ? " rotated" : "", tried, bad);
+      el_envlight_free(&l);
+    }
+  free(sunmap); free(half); free(poles); free(st);
+}
+
+/* Unbiased: irradiance E(n) for the NORMALS above from sample_li_cos alone (and, compensated, with MIS
+ * against cosine sampling through pdf_li_cos) against the quadrature of the texels, within 3.5 standard
+ * errors; also importance BILINEAR's sample_li. A negative control scales the pdf by 1.03: must fail. */
+static void test_product_unbiased(const el_image *studio, const el_image *city) {
+  int mapi, mode;
+  float *half[2];
+  half[0] = shrink(studio, 2); half[1] = shrink(city, 2); /* 512x256: a quarter of the quadrature */
+  for (mapi = 0; mapi < 2; ++mapi)
+    for (mode = 0; mode < 5; ++mode) {
+      image ref;
+      el_envlight l;
+      float m[9];
+      double E[NNORM], worst = 0, worst_bad = 0;
+      int k, i, nsamp = 60000, comp = mode == 2, imp = mode == 3 ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
+      if (mode == 1 || mode == 2) some_rotation(m); else identity(m);
+      ref.px = half[mapi]; ref.w = 512; ref.h = 256;
+      quadrature(&ref, 2, NORMALS, NNORM, E);
+      make_light_imp(&l, half[mapi], 512, 256, m, comp, imp);
+      for (k = 0; k < NNORM; ++k) {
+        double nl[3], sum = 0, sum2 = 0, sumb = 0, mean, se, b1[3], b2[3];
+        float n[3];
+        rng g = rng_make(900 + 10 * mode + k + 100 * mapi);
+        nl[0] = NORMALS[k][0]; nl[1] = NORMALS[k][1]; nl[2] = NORMALS[k][2];
+        world_normal(m, nl, n);
+        { /* a frame around n for the cosine samples */
+          double t[3] = {1, 0, 0}, d, len, nw[3] = {n[0], n[1], n[2]};
+          if (fabs(nw[0]) > 0.9) { t[0] = 0; t[1] = 1; }
+          d = t[0] * nw[0] + t[1] * nw[1] + t[2] * nw[2];
+          b1[0] = t[0] - d * nw[0]; b1[1] = t[1] - d * nw[1]; b1[2] = t[2] - d * nw[2];
+          len = sqrt(b1[0] * b1[0] + b1[1] * b1[1] + b1[2] * b1[2]);
+          b1[0] /= len; b1[1] /= len; b1[2] /= len;
+          b2[0] = nw[1] * b1[2] - nw[2] * b1[1]; b2[1] = nw[2] * b1[0] - nw[0] * b1[2]; b2[2] = nw[0] * b1[1] - nw[1] * b1[0];
+        }
+        for (i = 0; i < nsamp; ++i) {
+          float uu[2], wi[3], rgb[3], p;
+          double f = 0;
+          uu[0] = rng_f(&g); uu[1] = rng_f(&g);
+          if (mode == 2 && rng_f(&g) >= 0.5f) { /* MIS: the cosine half */
+            double rr = sqrt((double)uu[0]), ph = 2 * PI * uu[1], lx = rr * cos(ph), ly = rr * sin(ph), lz = sqrt(fmax(0.0, 1 - uu[0]));
+            float fd[3];
+            fd[0] = (float)(lx * b1[0] + ly * b2[0] + lz * n[0]);
+            fd[1] = (float)(lx * b1[1] + ly * b2[1] + lz * n[1]);
+            fd[2] = (float)(lx * b1[2] + ly * b2[2] + lz * n[2]);
+            if (lz > 0) {
+              el_envlight_le(&l, fd, rgb);
+              f = lum3(rgb[0], rgb[1], rgb[2]) * lz / (0.5 * el_envlight_pdf_li_cos(&l, n, fd) + 0.5 * lz / PI);
+            }
+          } else {
+            if (mode == 3) el_envlight_sample_li(&l, uu, wi, rgb, &p);
+            else el_envlight_sample_li_cos(&l, n, uu, wi, rgb, &p);
+            if (p > 0) {
+              double c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+              if (c > 0) f = lum3(rgb[0], rgb[1], rgb[2]) * c / (mode == 2 ? 0.5 * p + 0.5 * c / PI : p);
+            }
+          }
+          sum += f; sum2 += f * f;
+          sumb += mode == 2 ? f : f / 1.03; /* the negative control: a pdf 3% too high */
+        }
+        mean = sum / nsamp;
+        se = sqrt(fmax(0.0, sum2 / nsamp - mean * mean) / (nsamp - 1));
+        worst = fmax(worst, fabs(mean - E[k]) / se);
+        worst_bad = fmax(worst_bad, fabs(sumb / nsamp - E[k]) / se);
+      }
+      if (mode == 4) { /* the negative control, reported as such */
+        check(worst_bad > 4.0, "unbiased negative control (%s 512x256, pdf x 1.03): detected, worst |z| = %.1f", mapi ? "city" : "studio", worst_bad);
+      } else {
+        check(worst < 3.5, "unbiased %-6s 512x256 %-30s: E at %d normals within 3.5 SE of the quadrature (worst |z| %.2f)",
+              mapi ? "city" : "studio", mode == 0 ? "sample_li_cos" : mode == 1 ? "sample_li_cos rotated" :
+              mode == 2 ? "compensated, MIS with cosine" : "BILINEAR sample_li", NNORM, worst);
+      }
+      el_envlight_free(&l);
+    }
+  free(half[0]);
+  free(half[1]);
+}
+
+/* Hard inputs: NaN / zero / huge / infinite normals, u at the ends and NaN, zero and NaN directions,
+ * black maps, the constant light, 1x1; prepare_product's options; the lazy build from two threads. */
+typedef struct { el_envlight *l; float out[64]; } prod_thread_arg;
+static void *prod_thread_fn(void *p) {
+  prod_thread_arg *a = (prod_thread_arg *)p;
+  int i;
+  for (i = 0; i < 16; ++i) {
+    float uu[2], wi[3], rgb[3], pdf, n[3] = {0.3f, 0.4f, 0.5f};
+    uu[0] = (float)i / 16.0f; uu[1] = 0.37f;
+    el_envlight_sample_li_cos(a->l, n, uu, wi, rgb, &pdf);
+    a->out[4 * i] = wi[0]; a->out[4 * i + 1] = wi[1]; a->out[4 * i + 2] = wi[2]; a->out[4 * i + 3] = pdf;
+  }
+  return NULL;
+}
+static void test_product_hard(const el_image *city) {
+  el_envlight l;
+  float *sunmap = map_sun();
+  float wi[3], rgb[3], p, uu[2] = {0.3f, 0.6f}, dir[3] = {0.2f, -0.4f, 0.5f}, n[3] = {0, 0, 1};
+  int k, ok;
+  { /* normals that are not unit: scaled ones give the unit normal's results; zero, NaN, Inf the warp alone */
+    float nu[3] = {0.2f, -0.7f, 0.4f}, ns[3], zero[3] = {0, 0, 0}, nan3[3] = {NAN, 0, 1}, inf3[3] = {INFINITY, 0, 0};
+    float scales[4] = {5.0f, 1e-30f, 1e30f, 1e-41f}, p0, pz, pn, pi, pw;
+    el_envlight lb;
+    make_light_imp(&l, sunmap, PW, PH, NULL, 0, 0);
+    make_light_imp(&lb, sunmap, PW, PH, NULL, 0, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+    p0 = el_envlight_pdf_li_cos(&l, nu, dir);
+    ok = p0 > 0;
+    for (k = 0; k < 4; ++k) {
+      int c;
+      for (c = 0; c < 3; ++c) ns[c] = nu[c] * scales[k];
+      if (el_envlight_pdf_li_cos(&l, ns, dir) != p0) ok = 0;
+    }
+    check(ok, "pdf_li_cos: a normal scaled by 5, 1e-30, 1e30, 1e-41 (subnormal) gives the unit normal's pdf");
+    pz = el_envlight_pdf_li_cos(&l, zero, dir); pn = el_envlight_pdf_li_cos(&l, nan3, dir); pi = el_envlight_pdf_li_cos(&l, inf3, dir);
+    pw = el_envlight_pdf_li(&lb, dir);
+    check(pz > 0 && pz == pn && pz == pi && pz == pw,
+          "zero, NaN and infinite normals: the warp density without the cosine (%.4g, %.4g, %.4g; BILINEAR pdf_li %.4g)", pz, pn, pi, pw);
+    el_envlight_sample_li_cos(&l, nan3, uu, wi, rgb, &p);
+    check(p > 0 && p == el_envlight_pdf_li_cos(&l, zero, wi) && wi[0] == wi[0], "sample_li_cos with a NaN normal: a finite sample of the warp");
+    el_envlight_free(&lb);
+  }
+  { /* u at the ends, NaN; directions zero / NaN / huge */
+    float us[5] = {0.0f, 0.99999994f, 1.0f, -3.0f, NAN}, z3[3] = {0, 0, 0}, nan3[3] = {NAN, 1, 0}, big[3];
+    int a, b;
+    ok = 1;
+    for (a = 0; a < 5; ++a)
+      for (b = 0; b < 5; ++b) {
+        float q, len;
+        uu[0] = us[a]; uu[1] = us[b];
+        el_envlight_sample_li_cos(&l, n, uu, wi, rgb, &p);
+        q = el_envlight_pdf_li_cos(&l, n, wi);
+        len = wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2];
+        if (!(p > 0 && p < 1e30f && p == q && fabsf(len - 1) < 1e-5f && rgb[0] == rgb[0])) ok = 0;
+      }
+    check(ok, "sample_li_cos: u in {0, 1-ulp, 1, -3, NaN}^2 gives finite unit directions with pdf > 0 == pdf_li_cos");
+    for (k = 0; k < 3; ++k) big[k] = dir[k] * 1e30f;
+    check(el_envlight_pdf_li_cos(&l, n, z3) == 0 && el_envlight_pdf_li_cos(&l, n, nan3) == 0 &&
+          el_envlight_pdf_li_cos(&l, n, big) == el_envlight_pdf_li_cos(&l, n, dir),
+          "pdf_li_cos: zero and NaN directions give 0, a huge one the unit direction's pdf");
+    el_envlight_free(&l);
+  }
+  { /* the warp is monotone: for a fixed u0, theta never decreases as u1 grows from 0 (tiny steps near 0
+     * and 1, where the pole rows' linear ramps start from 0), for the warp alone and with a normal */
+    int mode, bad = 0, tried = 0;
+    float *poles = map_pole_rows();
+    for (mode = 0; mode < 2; ++mode) {
+      el_envlight lm;
+      float u0s[3] = {0.0f, 0.37f, 0.99999994f};
+      int a;
+      make_light_imp(&lm, poles, PW, PH, NULL, 0, mode ? 0 : EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+      for (a = 0; a < 3; ++a) {
+        double prev = -1;
+        for (k = 0; k <= 2000; ++k) {
+          float u1 = k == 0 ? 0.0f : k < 100 ? (float)k * 1e-7f : k > 1900 ? 1.0f - (float)(2000 - k) * 6e-8f : (float)k / 2000.0f, th;
+          uu[0] = u0s[a]; uu[1] = u1 < 0.99999994f ? u1 : 0.99999994f;
+          if (mode) el_envlight_sample_li_cos(&lm, n, uu, wi, rgb, &p);
+          else el_envlight_sample_li(&lm, uu, wi, rgb, &p);
+          th = (float)atan2(sqrt((double)wi[0] * wi[0] + (double)wi[1] * wi[1]), (double)wi[2]); /* accurate at the poles */
+          ++tried;
+          if ((double)th < prev - 1e-6) ++bad;
+          prev = th;
+        }
+      }
+      el_envlight_free(&lm);
+    }
+    check(bad == 0, "the warp is monotone in u1 (theta never decreases), BILINEAR and sample_li_cos, from u1 = 0: %d of %d steps back", bad, tried);
+    free(poles);
+  }
+  { /* black maps: pdf 0 everywhere, samples with pdf 0; a map black where the normal looks */
+    static float black[16 * 8 * 3];
+    float *half = map_black_half(), up[3] = {0, 0, 1};
+    el_result r1 = make_light_imp(&l, black, 16, 8, NULL, 0, 0);
+    el_envlight_sample_li_cos(&l, n, uu, wi, rgb, &p);
+    check(r1 == EL_SUCCESS && p == 0 && rgb[0] == 0 && wi[0] == wi[0] && el_envlight_pdf_li_cos(&l, n, dir) == 0,
+          "all-black map: sample_li_cos pdf 0, radiance 0, direction finite; pdf_li_cos 0");
+    el_envlight_free(&l);
+    make_light_imp(&l, black, 16, 8, NULL, 1, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
+    el_envlight_sample_li(&l, uu, wi, rgb, &p);
+    check(p == 0 && el_envlight_pdf_li(&l, dir) == 0, "all-black map, BILINEAR, compensated: sample_li pdf 0, pdf_li 0");
+    el_envlight_free(&l);
+    /* the upper half black and the normal straight up: nothing above the surface emits except the
+     * bilinear spill of the lower half's first row, 1.5 texels above the horizon at most */
+    make_light_imp(&l, half, PW, PH, NULL, 0, 0);
+    el_envlight_sample_li_cos(&l, up, uu, wi, rgb, &p);
+    check(p > 0 && p == el_envlight_pdf_li_cos(&l, up, wi), "black upper half, normal up: a sample with pdf %.3g (the horizon's cells)", p);
+    el_envlight_free(&l);
+    free(half);
+  }
+  { /* the constant light: exactly cosine-weighted sampling */
+    float c[3] = {1, 2, 3}, zero3[3] = {0, 0, 0}, nn[3] = {0.6f, 0, 0.8f}, nan3[3] = {NAN, 0, 0};
+    double sum = 0;
+    int below = 0, bad = 0;
+    rng g = rng_make(77);
+    el_envlight_init_constant(&l, c, NULL);
+    for (k = 0; k < 20000; ++k) {
+      float cth;
+      uu[0] = rng_f(&g); uu[1] = rng_f(&g);
+      el_envlight_sample_li_cos(&l, nn, uu, wi, rgb, &p);
+      cth = nn[0] * wi[0] + nn[1] * wi[1] + nn[2] * wi[2];
+      if (p > 0 && cth <= 0) ++below;
+      if (p > 0 && (fabsf(p - cth / (float)PI) > 1e-5f || p != el_envlight_pdf_li_cos(&l, nn, wi) || rgb[1] != 2)) ++bad;
+      if (p > 0) sum += lum3(rgb[0], rgb[1], rgb[2]) * cth / p;
+    }
+    sum /= 20000;
+    check(below == 0 && bad == 0 && fabs(sum - PI * lum3(1, 2, 3)) < 1e-3 * sum,
+          "constant light: sample_li_cos is cosine sampling (pdf cos/pi, %d below, %d wrong), E = pi L exactly (%.6g)", below, bad, sum);
+    el_envlight_sample_li_cos(&l, nan3, uu, wi, rgb, &p);
+    check(fabsf(p - 0.0795774715f) < 1e-7f && el_envlight_pdf_li_cos(&l, nan3, wi) == p, "constant light, NaN normal: uniform sphere, pdf 1/4pi");
+    el_envlight_free(&l);
+    el_envlight_init_constant(&l, zero3, NULL);
+    el_envlight_sample_li_cos(&l, nn, uu, wi, rgb, &p);
+    check(p == 0 && el_envlight_pdf_li_cos(&l, nn, dir) == 0, "black constant light: pdf 0");
+    el_envlight_free(&l);
+  }
+  { /* 1x1: the warp is constant, the product is the cells' bound */
+    float one[3] = {2, 3, 4};
+    int bad;
+    make_light_imp(&l, one, 1, 1, NULL, 0, 0);
+    bad = 0;
+    for (k = 0; k < 1000; ++k) {
+      uu[0] = (k % 37) / 37.0f; uu[1] = (float)k / 1000.0f;
+      el_envlight_sample_li_cos(&l, n, uu, wi, rgb, &p);
+      if (!(p > 0 && p == el_envlight_pdf_li_cos(&l, n, wi) && rgb[0] == 2)) ++bad;
+    }
+    check(bad == 0, "1x1 map: samples finite, pdf == pdf_li_cos, radiance the texel (%d bad)", bad);
+    el_envlight_free(&l);
+  }
+  { /* prepare_product: options */
+    el_envlight_product_options po;
+    size_t b0, b1;
+    make_light_imp(&l, city->pixels, city->width, city->height, NULL, 0, 0);
+    memset(&po, 0, sizeof po);
+    po.cells_u = 16; /* cells_v missing */
+    check(el_envlight_prepare_product(&l, &po) == EL_ERROR_INVALID_ARGUMENT, "prepare_product: cells_u without cells_v is an error");
+    po.cells_v = 300;
+    check(el_envlight_prepare_product(&l, &po) == EL_ERROR_INVALID_ARGUMENT, "prepare_product: 300 cells is an error");
+    b0 = el_envlight_product_bytes(&l);
+    po.cells_u = 16; po.cells_v = 8; po.normal_bins = 8;
+    check(el_envlight_prepare_product(&l, &po) == EL_SUCCESS, "prepare_product: 16x8 cells, 8x8 normal bins");
+    b1 = el_envlight_product_bytes(&l);
+    po.normal_bins = 16;
+    check(b0 == 0 && b1 > 0 && el_envlight_prepare_product(&l, &po) == EL_ERROR_INVALID_ARGUMENT &&
+          el_envlight_prepare_product(&l, NULL) == EL_SUCCESS && el_envlight_sampling_bytes(&l) == 0,
+          "prepare_product: no tables before, %zu bytes after (the light's own sampling tables not built); other sizes later: an error", b1);
+    el_envlight_free(&l);
+  }
+  { /* the lazy build from two threads at once */
+    prod_thread_arg a[2];
+    pthread_t t[2];
+    int same;
+    make_light_imp(&l, city->pixels, city->width, city->height, NULL, 0, 0);
+    for (k = 0; k < 2; ++k) { a[k].l = &l; pthread_create(&t[k], NULL, prod_thread_fn, &a[k]); }
+    for (k = 0; k < 2; ++k) pthread_join(t[k], NULL);
+    same = memcmp(a[0].out, a[1].out, sizeof a[0].out) == 0 && a[0].out[3] > 0;
+    check(same && el_envlight_product_bytes(&l) > 0, "product tables: two threads' first use at once gives identical samples");
+    el_envlight_free(&l);
+  }
+  free(sunmap);
+}
+
 int main(void) {
   el_image studio, city;
   memset(&studio, 0, sizeof studio);
@@ -1494,6 +2183,10 @@ int main(void) {
   test_guide_equals_cdf(&city);
   test_sample_li_n(&city);
   test_threads(&city);
+  test_product_chi2(&studio, &city);
+  test_product_coverage(&studio);
+  test_product_unbiased(&studio, &city);
+  test_product_hard(&city);
   el_image_free(&studio);
   el_image_free(&city);
   printf("test_envlight: %d passed, %d failed\n", g_pass, g_fail);

@@ -1,10 +1,11 @@
 /* el_render.h: the pieces of `render`, a pbrt-v3-format scene renderer on Embree (examples/render).
  *
  * Not part of the envlight library: an application of it. The renderer reads a pbrt-v3 scene file
- * (parser.c), builds an Embree scene of exact spheres and triangle meshes (scene.c, shapes.c), shades
- * with pbrt-v3's matte / mirror / plastic materials and its textures (materials.c, textures.c,
- * reflection.c), lights with the infinite area light of envlight.h plus point and distant lights
- * (lights.c), and integrates with pbrt-v3's DirectLightingIntegrator or a path tracer with next-event
+ * (parser.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
+ * and instances (scene.c, shapes.c, loopsubdiv.c), shades with pbrt-v3's matte / mirror / plastic / glass /
+ * metal / uber / substrate materials and its textures (materials.c, textures.c, reflection.c), lights with
+ * the infinite area light of envlight.h plus point, distant and diffuse area lights (lights.c, chosen
+ * among by lightdistrib.c), and integrates with pbrt-v3's DirectLightingIntegrator or a path tracer with next-event
  * estimation and MIS (integrator*.c), accumulating through film.h over tiles on all cores (render.c).
  * README.md's file table lists every file with the part of pbrt-v3 it mirrors.
  *
@@ -16,8 +17,8 @@
  *   elr_image_write(&img, "out.png", err, sizeof err);
  *   elr_image_free(&img); elr_scene_free(s);
  *
- * The pipeline is assembled from what the scene uses (see elr_render): no shadow rays or light
- * sampling when nothing emits or when a surface has no non-specular lobe, no environment sampling
+ * The pipeline is assembled from what the scene uses (see elr_render): no ray at all when nothing
+ * emits, no shadow rays or light sampling when no surface has a non-specular lobe, no environment sampling
  * distribution when the environment is only seen directly or through mirrors, no MIP levels above 0
  * for textures never minified, no splat buffer (nothing in this renderer splats), no bounce past
  * maxdepth. elr_stats reports what was built and what each part cost.
@@ -49,7 +50,17 @@ int elr_scene_spp(const elr_scene *s);
 
 /* Light sampling strategies (the integrator's "string lightsampling" parameter, a test/bench hook). */
 enum { ELR_LS_MIS = 0, ELR_LS_LIGHT = 1, ELR_LS_BSDF = 2 };
-enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3 };
+/* Samplers: pbrt-v3's random, stratified, halton, sobol, 02sequence (also "lowdiscrepancy"); pbrt-v4's
+ * zsobol and paddedsobol. */
+enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED = 2, ELR_SAMPLER_HALTON = 3, ELR_SAMPLER_SOBOL = 4,
+       ELR_SAMPLER_ZEROTWO = 5, ELR_SAMPLER_ZSOBOL = 6, ELR_SAMPLER_PADDEDSOBOL = 7, ELR_SAMPLER_COUNT = 8 };
+/* the scene-file name of a sampler kind ("02sequence" for ELR_SAMPLER_ZEROTWO), or "default"; and back
+ * (-1 for an unknown name) */
+const char *elr_sampler_kind_name(int kind);
+int elr_sampler_kind_from_name(const char *name);
+/* the sampler of a scene without a Sampler directive (a scene's named sampler is always used) */
+#define ELR_DEFAULT_SAMPLER ELR_SAMPLER_HALTON
+#define ELR_DEFAULT_SPP 16
 
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
@@ -60,11 +71,26 @@ typedef struct elr_render_options {
   int compensated;    /* -1: the scene's, else 0/1 (envlight's compensated distribution) */
   int importance;     /* -1: the scene's, else 0 cell average (envlight's default), 1 pbrt-v3 (2x res), 2 texel */
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
+  int randomization;  /* -1: the sampler's (the scene's "randomization", or pbrt's default); else sobol, zsobol and
+                         paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
+
+/* What was built for one light (elr_stats.light) */
+#define ELR_STATS_LIGHTS 16
+typedef struct elr_light_stats {
+  int kind;             /* 0 infinite, 1 point, 2 distant, 3 area */
+  int shape_kind, shape, ntri; /* an area light's shape: 0 triangle mesh (ntri triangles), 1 sphere, 2 disk; its index */
+  int twosided, nsamples, emits;
+  double area, power;   /* area: world area; power: pbrt-v3's Power().y() (computed for the "power" strategy) */
+  float pick;           /* the probability that next-event estimation chooses it (1: every light is sampled) */
+  int tables_built;     /* environment: its sampling tables; area light on a mesh: its area CDF */
+  size_t bytes;         /* those tables */
+  double seconds;       /* and their build time */
+} elr_light_stats;
 
 typedef struct elr_stats {
   double t_parse, t_images, t_embree, t_distribution, t_render, t_total;
@@ -73,7 +99,17 @@ typedef struct elr_stats {
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
+  int sampler_randomization; /* sobol, zsobol, paddedsobol: 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   uint64_t rejected_samples;
+  /* the lights: which emit, how next-event estimation chooses among them, what was built for each */
+  int nothing_emits;            /* no light emits: nothing was traced, the image is black */
+  int lights, lights_emitting, lights_area;
+  char light_strategy[32];      /* "all" (every light at every vertex), "uniform", "power", "power (for spatial)" */
+  int light_distribution_built; /* more than one light to choose from */
+  size_t bytes_light_distribution;
+  double t_light_distribution, t_area_lights;
+  int nlight_stats;             /* the first ELR_STATS_LIGHTS lights */
+  elr_light_stats light[ELR_STATS_LIGHTS];
 } elr_stats;
 
 typedef struct elr_image { int width, height; float *rgb; } elr_image; /* linear RGB, top row first */

@@ -3,7 +3,7 @@
  * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
  * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
  * them as float[3] (elr_to3, elr_from3).
- *   vectors, transforms (transform.c)      scene description (parser.c, scene.c)
+ *   vectors, transforms (transform.c)      scene description (parser.c, scene.c, ply.c, loopsubdiv.c)
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
@@ -23,6 +23,12 @@
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
+/* rarely taken branches of hot functions stay out of line, so that the common case keeps its registers */
+#if defined(__GNUC__)
+#define ELR_NOINLINE __attribute__((noinline))
+#else
+#define ELR_NOINLINE
+#endif
 
 /* >> vectors */
 typedef struct elr_v3 { float x, y, z; } elr_v3;
@@ -63,51 +69,108 @@ elr_v3 elr_xpoint(const elr_xform *t, elr_v3 p);
 elr_v3 elr_xvector(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
+elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 
 /* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
 
-enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2 };
+enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2, ELR_TEX_SCALE = 3, ELR_TEX_MIX = 4 };
 typedef struct elr_texture {
   int kind;
   elr_v3 value;            /* constant */
-  int tex1, tex2;          /* checkerboard: sub-textures */
+  int tex1, tex2;          /* checkerboard, scale, mix: sub-textures */
+  int amount;              /* mix: the float texture that blends tex1 (0) to tex2 (1) */
   int aa_closedform;       /* checkerboard aamode */
   float su, sv, du, dv;    /* uv mapping */
   el_mipmap *mip;          /* imagemap (mipmap.h; upper levels built on the first lookup that needs them) */
   int is_float;
 } elr_texture;
 
-enum { ELR_MAT_MATTE = 0, ELR_MAT_MIRROR = 1, ELR_MAT_PLASTIC = 2 };
+enum { ELR_MAT_MATTE = 0, ELR_MAT_MIRROR = 1, ELR_MAT_PLASTIC = 2, ELR_MAT_GLASS = 3, ELR_MAT_METAL = 4, ELR_MAT_UBER = 5,
+       ELR_MAT_SUBSTRATE = 6 };
 typedef struct elr_material {
   int kind;
-  int kd, ks, kr, rough; /* texture indices */
+  int kd, ks, kr, rough; /* texture indices (-1: none) */
   int remap;
+  int kt, urough, vrough, index, eta, k, opacity; /* glass, metal, uber, substrate (-1: none) */
 } elr_material;
+#define ELR_MAT_NTEX 11 /* the texture indices of a material, as an array: elr_material_textures */
+static inline void elr_material_textures(const elr_material *m, int t[ELR_MAT_NTEX]) {
+  t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough; t[4] = m->kt; t[5] = m->urough; t[6] = m->vrough;
+  t[7] = m->index; t[8] = m->eta; t[9] = m->k; t[10] = m->opacity;
+}
 
+/* Every shape: its material, the area light it carries (an index in elr_scene.light, or -1) and its
+ * orientation: flip = 1 when pbrt-v3 turns its normals around (ReverseOrientation; for a triangle mesh
+ * without normals also a transformation that swaps handedness), which the hit records and the sampled
+ * points of shapes.c apply. The normals decide which side of a one-sided area light emits. */
 typedef struct elr_mesh {
   int ntri, nvert;
   unsigned *idx;  /* 3*ntri */
   float *p;       /* 3*nvert, world space */
   float *n;       /* 3*nvert or NULL, world space */
   float *uv;      /* 2*nvert or NULL */
-  int material;
+  int material, light; /* light: the area light this shape carries (an index in elr_scene.light), or -1 */
+  int flip;       /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness (see shapes.c) */
+  int object;     /* -1: in the world; else the ObjectBegin prototype (elr_object) it belongs to */
 } elr_mesh;
 
 typedef struct elr_sphere {
-  elr_xform o2w; /* object to world */
+  elr_xform o2w; /* object to world (an instance's object space, for a prototype's sphere) */
   float radius;
-  int material;
+  int material, light;
+  int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
+  int object;    /* -1, or the prototype it belongs to */
 } elr_sphere;
 
-enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2 };
+/* pbrt-v3's Disk (shapes/disk.cpp): the annulus innerradius <= r <= radius, 0 <= phi <= phimax, at
+ * z = height in object space (in the world only: not inside ObjectBegin) */
+typedef struct elr_disk {
+  elr_xform o2w;
+  float height, radius, inner, phimax; /* phimax in radians */
+  int material, light, flip;
+} elr_disk;
+
+/* ObjectBegin ... ObjectEnd: a prototype (pbrt-v3's renderOptions->instances[name]) whose shapes are the
+ * meshes and spheres with .object == its index, in its own space (the CTM at each Shape); ObjectInstance
+ * places it with the CTM of that line (pbrt-v3's TransformedPrimitive). scene.c makes each prototype that
+ * is instanced one Embree scene, and each instance an Embree instance of it: one copy of the geometry. */
+typedef struct elr_sphere_set { const struct elr_sphere *sph; const int *idx; } elr_sphere_set; /* user-geometry primID -> sphere */
+typedef struct elr_object {
+  int nmesh, nsph, ninstances;
+  double lo[3], hi[3];        /* the bounds of its shapes, in its space */
+  /* Embree (scene.c) */
+  void *rtscene;
+  int *geom_mesh;             /* per geometry id of its scene: the mesh, or -1 (the spheres) */
+  unsigned ngeom, sphere_geom;
+  int *sph_user;
+  elr_sphere_set spheres;
+} elr_object;
+typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ } elr_instance;
+
+enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
+enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
   int kind;
-  elr_v3 L;          /* L * scale (point: I * scale) */
+  elr_v3 L;          /* L * scale (point: I * scale; area: the emitted radiance Lemit) */
   elr_v3 pos, dir;   /* point: world position; distant: world direction towards the light */
   int nsamples;
+  /* area: pbrt-v3's DiffuseAreaLight on one shape (a whole triangle mesh is one light, sampled by area
+   * over its triangles); lights.c, and shapes.c for the shape's Sample and Pdf. Built before a render
+   * that samples the light (elr_area_light_prepare): the area and, for a mesh, its area CDF. */
+  int shape_kind, shape;   /* ELR_SHAPE_* and the index in s->mesh, s->sph or s->disk */
+  int twosided;
+  int prepared;
+  double area;             /* world-space area */
+  double *tri_cdf;         /* mesh: ntri + 1 cumulative triangle areas, tri_cdf[ntri] = area */
+  int cone;                /* sphere under a similarity transform: sampled in the cone it subtends */
+  elr_v3 center;           /* sphere: world centre; */
+  float wradius;           /* and world radius (cone) */
+  double det;              /* sphere (ellipsoid) and disk: |det| of the object-to-world 3x3 */
+  elr_v3 n_disk;           /* disk: the world normal, oriented */
+  double build_seconds;
   /* infinite: envlight.h's light (a constant L is a constant light); lights.c */
   el_envlight *env;        /* the radiance, as the scene gave it: le */
   el_envlight *env_sample; /* the density sample_li and pdf_li use: env, or env_alt */
@@ -129,9 +192,13 @@ typedef struct elr_scene_desc {
   elr_filter_desc filter;
   /* sampler */
   int sampler, spp, xs, ys, jitter, dims;
+  int randomize, has_seed; /* sobol, zsobol, paddedsobol: "string randomization", "integer seed" */
+  int64_t sseed;
   /* integrator */
   int integrator_path, maxdepth, light_sampling;
   float rrthreshold;
+  int direct_one;     /* directlighting: pbrt-v3's "strategy" "one" (else "all") */
+  int light_strategy; /* path: pbrt-v3's "lightsamplestrategy" (ELR_LSTRAT_*) */
 } elr_scene_desc;
 
 struct elr_scene {
@@ -140,7 +207,10 @@ struct elr_scene {
   elr_material *mat; int nmat, capmat;
   elr_mesh *mesh; int nmesh, capmesh;
   elr_sphere *sph; int nsph, capsph;
+  elr_disk *disk; int ndisk, capdisk;
   elr_light *light; int nlight, caplight;
+  elr_object *obj; int nobj, capobj;
+  elr_instance *inst; int ninst, capinst;
   int warnings;
   char last_warning[512];
   int quiet;
@@ -148,12 +218,14 @@ struct elr_scene {
   size_t bytes_textures, bytes_embree;
   /* Embree */
   void *device, *rtscene;
-  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres */
+  unsigned *geom_kind;  /* per Embree geometry id: 0 mesh, 1 spheres, 2 an instance (geom_index: which), 3 the disks */
   int *geom_index;
   unsigned ngeom;
   unsigned sphere_geom; /* geometry id of the sphere user geometry, or ~0u */
+  unsigned disk_geom;   /* geometry id of the disk user geometry (primID = disk index), or ~0u */
   unsigned builtin_geom; /* geometry id of Embree's sphere primitives (similarity transforms), or ~0u */
   int *sph_builtin, *sph_user, nbuiltin, nuser; /* primID -> sphere index */
+  elr_sphere_set world_spheres; /* the user geometry's data: sph, sph_user */
   float world_radius;
   elr_v3 world_center;
   int *mat_textured; /* per material: 1 when a texture varies over the surface (needs uv) */
@@ -164,6 +236,10 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+/* loopsubdiv.c: pbrt-v3's LoopSubdivide of the control mesh (indices in [0, npoints), P: 3 npoints) into
+ * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
+int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
+                       char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
@@ -177,8 +253,13 @@ typedef struct elr_hit {
   float u, v;          /* texture coordinates */
   int material;
   float eps;           /* offset for spawned rays */
+  int light;           /* the area light of the shape hit (an index in s->light), or -1 */
   /* for elr_hit_uv */
-  int kind, mesh, has_uv; /* kind 0 triangle, 1 sphere */
+  int kind, mesh, has_uv; /* kind ELR_SHAPE_*: 0 triangle, 1 sphere, 2 disk */
+  int flip;               /* the shape's flip (ReverseOrientation xor a mirroring transform): ng, ns and, from
+                             elr_hit_uv, dndu and dndv above are already turned */
+  int inst;               /* -1, or the instance (elr_instance) whose prototype's shape was hit: the shape's
+                             data are in the prototype's space, the hit record in world space */
   unsigned prim;
   float b1, b2;
   elr_v3 pobj;
@@ -193,6 +274,17 @@ struct RTCOccludedFunctionNArguments;
 void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
 void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
 void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
+void elr_disk_hit(const elr_scene *s, int di, elr_v3 o, elr_v3 d, elr_hit *h);
+void elr_disk_bounds(const struct RTCBoundsFunctionArguments *a);
+void elr_disk_intersect(const struct RTCIntersectFunctionNArguments *a);
+void elr_disk_occluded(const struct RTCOccludedFunctionNArguments *a);
+/* shapes.c: a point on an area light's shape (pbrt-v3's Shape::Sample(ref, u)) with its normal and its
+ * solid-angle density seen from ref (0 when it cannot be used), and that density for the point lh where
+ * a ray from ref reached the shape (Shape::Pdf(ref, wi), which intersects the ray itself; the
+ * integrators have the hit already). elr_shape_prepare computes the area and a mesh's area CDF. */
+void elr_shape_sample(const elr_scene *s, const elr_light *l, elr_v3 ref, const float u[2], elr_v3 *p, elr_v3 *n, float *pdf);
+float elr_shape_pdf(const elr_scene *s, const elr_light *l, elr_v3 ref, const elr_hit *lh);
+int elr_shape_prepare(const elr_scene *s, elr_light *l, int build_cdf);
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
@@ -208,27 +300,63 @@ typedef struct elr_tex_ctx { /* where textures are evaluated: (u, v) and its scr
 } elr_tex_ctx;
 elr_v3 elr_tex_eval(const elr_scene *s, int tex, const elr_tex_ctx *c);
 
-/* A BSDF in the shading frame: up to one diffuse, one glossy and one specular lobe. */
+/* pbrt-v3's BxDFType flags and the BxDFs of core/reflection.h that the materials use (reflection.c) */
+enum { ELR_BSDF_REFLECTION = 1, ELR_BSDF_TRANSMISSION = 2, ELR_BSDF_DIFFUSE = 4, ELR_BSDF_GLOSSY = 8, ELR_BSDF_SPECULAR = 16,
+       ELR_BSDF_ALL = 31 };
+enum { ELR_BXDF_LAMBERTIAN = 0, ELR_BXDF_SPECULAR_REFLECTION, ELR_BXDF_SPECULAR_TRANSMISSION, ELR_BXDF_FRESNEL_SPECULAR,
+       ELR_BXDF_MICROFACET_REFLECTION, ELR_BXDF_MICROFACET_TRANSMISSION, ELR_BXDF_FRESNEL_BLEND };
+enum { ELR_FRESNEL_NOOP = 0, ELR_FRESNEL_DIELECTRIC, ELR_FRESNEL_CONDUCTOR };
+typedef struct elr_bxdf {
+  int type, flags, fresnel; /* ELR_BXDF_*, ELR_BSDF_* flags, the Fresnel term of a reflection (ELR_FRESNEL_*) */
+  elr_v3 R, T;              /* the reflection and transmission scales; FresnelBlend: R = Rd, T = Rs */
+  float ax, ay;             /* Trowbridge-Reitz alphas (microfacet lobes, FresnelBlend) */
+  float eta_a, eta_b;       /* dielectric Fresnel: etaI, etaT; transmission: etaA outside, etaB inside */
+  elr_v3 eta, k;            /* conductor Fresnel: eta and k of the metal (etaI 1) */
+} elr_bxdf;
+#define ELR_MAX_BXDFS 6
+
+/* A BSDF in the shading frame. matte, mirror and plastic use the fixed lobes (up to one diffuse, one
+ * glossy and one specular reflection; nlobes = 0); glass, metal, uber and substrate a list of pbrt-v3's
+ * BxDFs (nlobes > 0), in a frame around the shading normal turned as pbrt-v3 orients it (the side a
+ * dielectric calls outside). spec_r, spec_t: a specular reflection, a specular transmission lobe exists
+ * (the direct-lighting integrator follows them); eta: pbrt-v3's BSDF::eta, the relative index of
+ * refraction of the inside (1 for materials that do not refract). */
 typedef struct elr_bsdf {
   elr_v3 ns, ss, ts, ng;
   elr_v3 kd, ks, kr;
   float alpha;
   int has_diffuse, has_glossy, has_specular, ncomp;
+  int spec_r, spec_t, nlobes;
+  float eta;
+  elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
-/* Returns f; *specular set when the sampled lobe was the specular one. */
+/* Returns f; *specular is 0 when the sampled lobe was not specular, 1 for a specular reflection, 2 for a
+ * specular transmission. */
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
+/* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
+ * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
+elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);
+/* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
+void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
+elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type);
 float elr_roughness_to_alpha(float r);
+/* pbrt-v3's FrDielectric (cos_i signed: below the surface, the indices swap) and FrConductor (etaI 1) */
+float elr_fr_dielectric(float cos_i, float eta_i, float eta_t);
+elr_v3 elr_fr_conductor(float cos_i, elr_v3 eta, elr_v3 k);
 
-/* >> ray differentials at a hit (interaction.c): the texture footprint */
+/* >> ray differentials at a hit (interaction.c): the texture footprint; the radiance a hit emits */
 void elr_compute_differentials(const elr_scene *s, const elr_ray *r, elr_hit *h, elr_tex_ctx *c, elr_v3 *dpdx, elr_v3 *dpdy);
+/* pbrt-v3's SurfaceInteraction::Le: the radiance the hit's area light (if any) emits towards w */
+elr_v3 elr_hit_le(const elr_scene *s, const elr_hit *h, elr_v3 w);
 
-/* >> lights (lights.c): pbrt-v3's Light interface for point, distant and infinite lights */
+/* >> lights (lights.c): pbrt-v3's Light interface for point, distant, infinite and area lights */
 /* pbrt-v3's Sample_Li results with its VisibilityTester: the radiance arriving at the shading point
  * from the light sample, the unit direction towards it, its solid-angle density (1 for delta lights),
- * and where the shadow ray ends (at p_light when at_point, else after dist: INFINITY for the environment) */
+ * and where the shadow ray ends (at p_light when at_point: 1 a point light, 2 a point on an area light;
+ * else after dist: INFINITY for the environment) */
 typedef struct elr_light_sample {
   elr_v3 L, wi;
   float pdf;
@@ -247,6 +375,42 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
 int elr_infinite_prepare(elr_light *l, int compensated, int importance);
 void elr_light_prefetch(const elr_light *l, elr_v3 wi);
 void elr_light_free(elr_light *l);
+/* area lights: pbrt-v3's DiffuseAreaLight::L (the radiance leaving a point of normal n towards w) */
+static inline elr_v3 elr_area_light_L(const elr_light *l, elr_v3 n, elr_v3 w) {
+  return l->twosided || elr_dot(n, w) > 0.f ? l->L : elr_v(0, 0, 0);
+}
+/* Pdf_Li of an area light for the ray from ref that reached it at lh (see elr_shape_pdf) */
+float elr_area_light_pdf(const elr_scene *s, const elr_light *l, elr_v3 ref, const elr_hit *lh);
+int elr_area_light_prepare(const elr_scene *s, elr_light *l, int build_cdf); /* -1: out of memory */
+/* pbrt-v3's Light::Power, its luminance (RGBSpectrum::y): the "power" light sample strategy's weight */
+double elr_light_power(const elr_scene *s, const elr_light *l);
+
+/* >> light selection (lightdistrib.c): pbrt-v3's LightDistribution (core/lightdistrib.cpp) */
+enum { ELR_LSTRAT_UNIFORM = 0, ELR_LSTRAT_POWER = 1, ELR_LSTRAT_SPATIAL = 2 };
+typedef struct elr_light_distrib {
+  int n;               /* the emitting lights it chooses among */
+  int *index;          /* their indices in s->light */
+  el_distribution1d d; /* pbrt-v3's Distribution1D over them, built only when n > 1 */
+  float *pick;         /* per light of the scene: the probability that it is chosen (0: never) */
+  int strategy;        /* ELR_LSTRAT_UNIFORM or ELR_LSTRAT_POWER */
+  size_t bytes;
+  double seconds;
+} elr_light_distrib;
+int elr_light_distrib_init(elr_light_distrib *D, const elr_scene *s, int strategy);
+void elr_light_distrib_free(elr_light_distrib *D);
+/* the light chosen by u (D->n > 1; with one light it is that light and no number is needed) */
+static inline const elr_light *elr_light_distrib_sample(const elr_light_distrib *D, const elr_scene *s, float u, float *pick) {
+  int k = D->n > 1 ? el_distribution1d_sample_discrete(&D->d, u, NULL, NULL) : 0;
+  *pick = D->pick[D->index[k]];
+  return &s->light[D->index[k]];
+}
+
+/* >> spectra (spectrum.c): pbrt-v3's spectral parameter values as RGB (its RGBSpectrum build) */
+void elr_xyz_to_rgb(const double xyz[3], double rgb[3]);                                    /* XYZToRGB */
+void elr_spectrum_from_sampled(const double *lambda, const double *v, int n, double rgb[3]); /* FromSampled */
+void elr_blackbody(const double *lambda, int n, double T, double *Le);                       /* Blackbody */
+void elr_blackbody_rgb(double T, double rgb[3]); /* FromSampled(BlackbodyNormalized(T)): a "blackbody" value of scale 1 */
+int elr_float_file_parse(const char *text, size_t len, double *vals, int cap, int *bad_line); /* ReadFloatFile */
 
 /* >> camera (camera.c): pbrt-v3's PerspectiveCamera */
 typedef struct elr_camera {
@@ -260,7 +424,8 @@ typedef struct elr_camera {
 void elr_camera_init(elr_camera *C, const elr_scene_desc *d, int spp, int differentials);
 void elr_camera_ray(const elr_camera *C, float fx, float fy, elr_ray *r);
 
-/* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_halton.c) */
+/* >> samplers (sampler.c: the interface and "random"; sampler_stratified.c, sampler_zerotwo.c, sampler_halton.c,
+ *    sampler_sobol.c, sampler_zsobol.c, sampler_paddedsobol.c; lowdiscrepancy.c their shared helpers) */
 /* PCG32, pbrt-v3's RNG (core/rng.h) */
 typedef struct elr_rng { uint64_t state, inc; } elr_rng;
 static inline uint32_t elr_rng_u32(elr_rng *r) {
@@ -282,6 +447,23 @@ static inline uint64_t elr_mix64(uint64_t x) {
   return x;
 }
 
+/* a 32-bit binary fraction as a float in [0, 1): its first 24 digits, exactly. pbrt's min(v * 0x1p-32f,
+ * OneMinusEpsilon) rounds to nearest instead, which can carry a point across the boundary of its
+ * elementary interval (0x3fffffff becomes 0.25) or to 1 */
+static inline float elr_bits_to_float(uint32_t v) { return (float)(v >> 8) * 0x1p-24f; }
+static inline uint32_t elr_reverse_bits32(uint32_t n) {
+  n = (n << 16) | (n >> 16);
+  n = ((n & 0x00ff00ffu) << 8) | ((n & 0xff00ff00u) >> 8);
+  n = ((n & 0x0f0f0f0fu) << 4) | ((n & 0xf0f0f0f0u) >> 4);
+  n = ((n & 0x33333333u) << 2) | ((n & 0xccccccccu) >> 2);
+  return ((n & 0x55555555u) << 1) | ((n & 0xaaaaaaaau) >> 1);
+}
+/* a uniform integer in [0, b) without modulo bias (pbrt's RNG::UniformUInt32(b)) */
+static inline uint32_t elr_rng_bounded(elr_rng *r, uint32_t b) {
+  uint32_t threshold = (0u - b) % b;
+  for (;;) { uint32_t v = elr_rng_u32(r); if (v >= threshold) return v % b; }
+}
+
 /* the halton sampler's tables (sampler_halton.c), one per render, shared by its threads */
 #define ELR_HALTON_DIMS 256
 typedef struct elr_halton {
@@ -296,23 +478,80 @@ void elr_halton_free(elr_halton *H);
 int64_t elr_halton_pixel_offset(const elr_halton *H, int px, int py);
 float elr_halton_sample(const elr_halton *H, int64_t index, int dim, elr_rng *rng);
 
+/* the Sobol' generator matrices and index tables (lowdiscrepancy.c), one set per render */
+#define ELR_SOBOL_DIMS 1024   /* pbrt's NumSobolDimensions */
+#define ELR_SOBOL_COLUMNS 52  /* pbrt's SobolMatrixSize: index bits a matrix has columns for */
+typedef struct elr_sobol {
+  int ndims;                          /* matrices made (2 for the samplers that use dimensions 0 and 1 only) */
+  uint32_t *C;                        /* ndims x ELR_SOBOL_COLUMNS */
+  int log2res;                        /* SobolIntervalToIndex's image: 2^log2res pixels square */
+  uint64_t inv[64], delta[64];        /* its tables (lowdiscrepancy.c) */
+  uint32_t lut[2][7][256];            /* dimensions 0 and 1 a byte of the index at a time: the XOR of the
+                                         columns of each byte value (the zsobol, paddedsobol and 02sequence loops) */
+} elr_sobol;
+int elr_sobol_init(elr_sobol *T, int ndims, int log2res);
+void elr_sobol_free(elr_sobol *T);
+uint64_t elr_sobol_interval_to_index(const elr_sobol *T, uint64_t frame, int x, int y);
+/* dimension d (< T->ndims) of Sobol' point `index`, unrandomized, as a 32-bit fraction (pbrt's SobolSample
+ * before its randomizer); index bits past ELR_SOBOL_COLUMNS are ignored */
+static inline uint32_t elr_sobol_bits(const elr_sobol *T, uint64_t index, int d) {
+  const uint32_t *c = T->C + (size_t)d * ELR_SOBOL_COLUMNS, *end = c + ELR_SOBOL_COLUMNS;
+  uint32_t v = 0;
+  if (d < 2) { /* the same sum, a byte at a time (the plain loop below is the definition) */
+    const uint32_t (*l)[256] = T->lut[d];
+    return l[0][index & 255u] ^ l[1][(index >> 8) & 255u] ^ l[2][(index >> 16) & 255u] ^ l[3][(index >> 24) & 255u] ^
+           l[4][(index >> 32) & 255u] ^ l[5][(index >> 40) & 255u] ^ l[6][(index >> 48) & 15u];
+  }
+  for (; index && c < end; index >>= 1, c++) if (index & 1u) v ^= *c;
+  return v;
+}
+/* pbrt-v4's RandomizeStrategy ("string randomization": none, permutedigits, fastowen, owen) */
+enum { ELR_RANDOMIZE_NONE = 0, ELR_RANDOMIZE_PERMUTE_DIGITS = 1, ELR_RANDOMIZE_FAST_OWEN = 2, ELR_RANDOMIZE_OWEN = 3 };
+uint32_t elr_randomize(uint32_t v, int strategy, uint32_t seed);
+uint32_t elr_permutation_element(uint32_t i, uint32_t n, uint32_t p);
+void elr_gray_code_sample(const uint32_t *C, uint32_t n, uint32_t scramble, uint32_t *out);
+
+/* a render's sampler tables, made once and shared by its threads: Halton's permutations, Sobol's
+ * matrices, the sample bounds the global samplers index their sequence over */
+typedef struct elr_sampler_tables {
+  elr_halton halton;
+  elr_sobol sobol;
+  int bx0, by0, res, log2res; /* sample bounds' corner; the power-of-two square that covers them (sobol, zsobol) */
+} elr_sampler_tables;
+
 /* which sampler a render's threads make, with pbrt's parameters (elr_sampler_choose) */
-typedef struct elr_sampler_desc { int kind, spp, xs, ys, jitter, dims; } elr_sampler_desc;
+typedef struct elr_sampler_desc {
+  int kind, spp, xs, ys, jitter, dims;
+  int randomize;  /* ELR_RANDOMIZE_*: sobol, zsobol, paddedsobol */
+  int has_seed;   /* pbrt-v4's "integer seed" given: it replaces --seed for the scrambles */
+  int64_t seed;
+} elr_sampler_desc;
+int elr_sampler_tables_init(elr_sampler_tables *T, const elr_sampler_desc *d, const int sample_bounds[4], uint64_t seed);
+void elr_sampler_tables_free(elr_sampler_tables *T);
+/* whether every draw render_batched.c makes ahead gives the same number in any order (pixel samplers
+ * only within their `dimensions`) */
+int elr_sampler_order_free(const elr_sampler_desc *d);
 
 /* one thread's sampler: its parameters and where it is (pixel, sample, dimension) */
 typedef struct elr_sampler {
-  int kind, spp, xs, ys, jitter, dims;
-  uint64_t seed;
-  const elr_halton *H;
+  int kind, spp, xs, ys, jitter, dims, randomize;
+  uint64_t seed;   /* --seed: the random streams */
+  uint32_t sseed;  /* the scrambles' seed (zsobol, paddedsobol, sobol): the scene's "seed" or --seed */
+  int log2spp;
+  const elr_sampler_tables *T;
   /* per pixel */
   int px, py, sample;
   elr_rng rng;
-  float *s1d, *s2d; /* stratified: dims * spp, dims * spp * 2 */
+  float *s1d, *s2d; /* stratified, 02sequence: dims * spp, dims * spp * 2 */
+  uint32_t *bits;   /* 02sequence: spp * 2 scratch */
   int d1, d2, dim, made1, made2;
-  int64_t hindex, hoffset;
+  int64_t hindex, hoffset; /* halton: the sample's index and the pixel's first; sobol: the sample's index;
+                              zsobol: the Morton index of pixel and sample */
+  uint64_t zvalid, zpixel[64]; /* zsobol: the pixel's permuted digits for dimensions 0..63 (bit d of zvalid: known) */
+  uint64_t dhash[72];          /* elr_dim_hash(d, sseed) of the first dimensions: the scrambles' seeds */
 } elr_sampler;
 int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
-int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_halton *H);
+int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, const elr_sampler_tables *T);
 void elr_sampler_free(elr_sampler *S);
 void elr_sampler_start_pixel(elr_sampler *S, int px, int py);
 void elr_sampler_start_sample(elr_sampler *S, int sample);
@@ -320,6 +559,20 @@ float elr_sampler_get1d(elr_sampler *S);
 void elr_sampler_get2d(elr_sampler *S, float u[2]);
 void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy);
 void elr_stratified_make(elr_sampler *S, int two, int d);
+void elr_zerotwo_make(elr_sampler *S, int two, int d);
+float elr_sobol_sampler_1d(const elr_sampler *S, int dim);
+float elr_zsobol_1d(elr_sampler *S, int dim);
+void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]);
+float elr_paddedsobol_1d(const elr_sampler *S, int dim);
+void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);
+/* a 64-bit hash of a dimension and a seed (pbrt-v4's Hash(dimension, seed)): a scramble's seed */
+static inline uint64_t elr_dim_hash(int dim, uint32_t seed) {
+  return elr_mix64((((uint64_t)(uint32_t)dim << 32) | seed) ^ 0x9e3779b97f4a7c15ULL);
+}
+/* the scramble seed of dimension d (elr_dim_hash(d, S->sseed), kept for the first 72) */
+static inline uint64_t elr_sampler_dim_hash(const elr_sampler *S, int d) { return d >= 0 && d < 72 ? S->dhash[d] : elr_dim_hash(d, S->sseed); }
+/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension */
+float elr_sampler_hash_float(const elr_sampler *S, int dim);
 /* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
 typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
 void elr_sampler_skip2d(elr_sampler *S);
@@ -343,14 +596,26 @@ typedef struct elr_ctx {
   int ls;                 /* ELR_LS_*: the strategies that estimate direct light */
   int light_sampling;     /* 0: no light is ever sampled (nothing emits, or nothing non-specular) */
   int has_env;            /* an emitting infinite light exists */
+  int has_area;           /* an emitting area light exists */
+  int direct_one;         /* directlighting: strategy "one" (one light chosen per vertex) */
+  elr_light_distrib ld;   /* which light next-event estimation samples (built for the path tracer and
+                             strategy "one" when more than one light emits) */
   /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
-/* pbrt-v3's PowerHeuristic(1, f, 1, g) */
-static inline float elr_power_heuristic(float f, float g) { float f2 = f * f, g2 = g * g; return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f; }
+/* pbrt-v3's PowerHeuristic(1, f, 1, g); for densities whose squares would overflow (an area light seen
+ * at a grazing angle: 1e20 and more) the same weight from their ratio, instead of inf / inf */
+static inline float elr_power_heuristic(float f, float g) {
+  float f2 = f * f, g2 = g * g;
+  if (f > 1e18f || g > 1e18f) {
+    float r = f >= g ? g / f : f / g, w = 1.f / (1.f + r * r);
+    return f >= g ? w : 1.f - w;
+  }
+  return f2 + g2 > 0.f ? f2 / (f2 + g2) : 0.f;
+}
 /* A path in flight (the locals of pbrt-v3's Li loops): the ray it continues along, the bounces so far,
  * the radiance gathered and the throughput; for the path tracer whether the last bounce was specular
  * and its BSDF pdf. */
@@ -360,18 +625,33 @@ typedef struct elr_path_state {
   elr_v3 L, beta;
   int specular;
   float prev_pdf;
+  float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
+  p->eta_scale = 1.f;
 }
+
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
-                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld);
+                         const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld);
 elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
                                      int sample_bsdf, elr_tstats *ts);
+elr_v3 elr_uniform_sample_one_light(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int sample_bsdf,
+                                    elr_tstats *ts);
 int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
+int elr_specular_transmit(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts);
+int elr_direct_specular(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                        elr_v3 dpdy, const elr_bsdf *b, elr_v3 beta, int depth, int allow_split, elr_path_state out[2], elr_tstats *ts);
+/* <<Update the term that tracks radiance scaling for refraction>> after a specular transmission from wo */
+static inline float elr_eta_scale(float eta_scale, const struct elr_bsdf *b, elr_v3 wo) {
+  return eta_scale * (elr_dot(wo, b->ng) > 0.f ? b->eta * b->eta : 1.f / (b->eta * b->eta));
+}
 elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
+                              int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
 /* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
 void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);

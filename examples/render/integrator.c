@@ -4,14 +4,17 @@
  *   elr_estimate_direct             EstimateDirect: one light, one light sample and one BSDF sample,
  *                                   combined with the power heuristic (MIS)
  *   elr_uniform_sample_all_lights   UniformSampleAllLights: every light, with its own sample count
+ *   elr_uniform_sample_one_light    UniformSampleOneLight: one light chosen by the light distribution
  *   elr_specular_reflect            SpecularReflect: the mirror bounce and its ray differentials
+ *   elr_specular_transmit           SpecularTransmit: the refracted bounce and its ray differentials
+ *   elr_direct_specular             both, at a vertex of the direct-lighting integrator
  *   elr_infinite_le                 the radiance of the lights at infinity along a ray that leaves
  *
  * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
  * loop (render.c) calls the integrators of integrator_direct.c and integrator_path.c per camera
  * sample; render_batched.c is the faster arrangement of the same computation for scenes lit by the
- * environment alone. The light interface (lights.c) hides which kind of light is sampled: area lights
- * join there, and EstimateDirect's BSDF-sampled term then needs the ray's hit (is it this light?)
+ * environment alone. The light interface (lights.c) hides which kind of light is sampled, except in
+ * EstimateDirect's BSDF-sampled term: for an area light it needs the ray's hit (is it this light?),
  * where the environment only needs to know that nothing is in the way. */
 #include "elr_internal.h"
 
@@ -29,9 +32,11 @@ elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d) {
  * ul (the light sample) and us (the BSDF sample). Adds the light-sampled term, then the BSDF-sampled
  * term to *Ld. C->ls chooses the strategies (MIS, light only, BSDF only); delta lights take light
  * sampling alone, and sample_bsdf = 0 leaves out the BSDF-sampled term (the path tracer, whose
- * continuation ray plays that part). */
+ * continuation ray plays that part: its MIS partner can reach any light, so the light sample's weight
+ * compares the BSDF's pdf with pick, the probability that l was chosen, times the light's; pbrt-v3's
+ * own pair of samples is drawn for l alone: pick 1). */
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
-                         const float us[2], int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
+                         const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld) {
   const elr_scene *s = C->s;
   int delta = elr_light_is_delta(l);
   /* <<Sample light source with multiple importance sampling>> */
@@ -46,7 +51,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
         if (elr_light_unoccluded(s, h, &ls)) {
           /* <<Add light's contribution to reflected radiance>> */
           float w = 1.f;
-          if (!delta && C->ls == ELR_LS_MIS) w = elr_power_heuristic(ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
+          if (!delta && C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
           *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls.L), w / ls.pdf));
         }
       }
@@ -60,10 +65,22 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
     f = elr_bsdf_sample(b, wo, us[0], us[1], &wi, &pdf, &spec);
     if (!spec && pdf > 0.f && !elr_isblack(f)) {
       f = elr_mul(f, fabsf(elr_dot(wi, b->ns)));
+      ts->bsdfl++;
+      if (l->kind == ELR_LIGHT_AREA) {
+        /* <<Find intersection and compute transmittance>>, <<Add light contribution from material
+         * sampling>>: the ray's first hit must be this light's shape (its Pdf_Li from that hit) */
+        elr_hit lh;
+        if (elr_intersect(s, elr_spawn_origin(h, wi), wi, INFINITY, &lh) && lh.light == (int)(l - s->light)) {
+          elr_v3 Li = elr_hit_le(s, &lh, elr_mul(wi, -1.f));
+          float w = 1.f;
+          if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_area_light_pdf(s, l, h->p, &lh));
+          *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, Li), w / pdf));
+        }
+        return;
+      }
       /* the light's pdf and radiance in direction wi are read after the shadow ray: their cache lines
        * (texels, pdf bin: misses in multi-megabyte tables) are asked for now and arrive meanwhile */
       elr_light_prefetch(l, wi);
-      ts->bsdfl++;
       /* <<Find intersection and compute transmittance>>: the environment is reached when nothing is in
        * the way (pbrt-v3 returns when Pdf_Li is 0; with envlight's compensated density that would drop
        * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
@@ -94,11 +111,28 @@ elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr
       float ul[2], us[2];
       elr_sampler_get2d(S, ul);
       elr_sampler_get2d(S, us);
-      elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, ts, &Ld);
+      elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
     }
     L = elr_add(L, elr_mul(Ld, 1.f / (float)n));
   }
   return L;
+}
+
+/* pbrt-v3's UniformSampleOneLight: one light chosen by C->ld (the path tracer's lightsamplestrategy;
+ * uniform for directlighting's strategy "one"), one EstimateDirect for it, divided by the probability
+ * of the choice. With a single emitting light no number is drawn for the choice. */
+elr_v3 elr_uniform_sample_one_light(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int sample_bsdf,
+                                    elr_tstats *ts) {
+  const elr_light *l;
+  elr_v3 Ld = elr_v(0, 0, 0);
+  float pick, ul[2], us[2];
+  if (C->ld.n == 0) return Ld;
+  /* <<Randomly choose a single light to sample, light>> */
+  l = elr_light_distrib_sample(&C->ld, C->s, C->ld.n > 1 ? elr_sampler_get1d(S) : 0.f, &pick);
+  elr_sampler_get2d(S, ul);
+  elr_sampler_get2d(S, us);
+  elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, sample_bsdf ? 1.f : pick, ts, &Ld);
+  return elr_mul(Ld, 1.f / pick);
 }
 
 /* pbrt-v3's SpecularReflect up to its recursion: the mirror direction at h (ray r arrived, BSDF b,
@@ -112,7 +146,12 @@ int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, con
   int spec;
   /* <<Compute specular reflection direction wi and BSDF value>> */
   elr_sampler_get2d(S, u);
-  f = elr_bsdf_sample(b, wo, u[0], u[1], &wi, &pdf, &spec);
+  if (b->nlobes) { /* pbrt-v3's Sample_f with type BSDF_REFLECTION | BSDF_SPECULAR */
+    f = elr_bsdf_sample_type(b, wo, u[0], u[1], ELR_BSDF_REFLECTION | ELR_BSDF_SPECULAR, &wi, &pdf, &spec);
+    spec &= ELR_BSDF_SPECULAR;
+  } else {
+    f = elr_bsdf_sample(b, wo, u[0], u[1], &wi, &pdf, &spec);
+  }
   if (!(spec && pdf > 0.f && !elr_isblack(f) && elr_dot(wi, b->ns) != 0.f)) return 0;
   out.o = elr_spawn_origin(h, wi); out.d = wi; out.has_diff = 0;
   if (r->has_diff && C->s->any_textured) {
@@ -131,4 +170,70 @@ int elr_specular_reflect(const elr_ctx *C, elr_sampler *S, const elr_ray *r, con
   *beta = elr_mul(elr_vmul(*beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
   *rd = out;
   return 1;
+}
+
+/* pbrt-v3's SpecularTransmit up to its recursion: the refracted direction at h as the next ray *rd
+ * (with pbrt-v3's ray differentials for refraction when r has them) and the throughput *beta times
+ * f |cos| / pdf (f carries the radiance scaling (etaI / etaT)^2). Returns 0 when nothing transmits. */
+int elr_specular_transmit(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                          elr_v3 dpdy, const elr_bsdf *b, elr_ray *rd, elr_v3 *beta, elr_tstats *ts) {
+  elr_v3 wo = elr_mul(r->d, -1.f), wi, f, ns = b->ns;
+  elr_ray out;
+  float pdf, u[2];
+  int flags;
+  elr_sampler_get2d(S, u);
+  f = elr_bsdf_sample_type(b, wo, u[0], u[1], ELR_BSDF_TRANSMISSION | ELR_BSDF_SPECULAR, &wi, &pdf, &flags);
+  if (!(pdf > 0.f && !elr_isblack(f) && elr_dot(wi, ns) != 0.f)) return 0;
+  out.o = elr_spawn_origin(h, wi); out.d = wi; out.has_diff = 0;
+  if (r->has_diff && C->s->any_textured) {
+    /* <<Compute ray differential rd for specular transmission>> */
+    elr_v3 dndx = elr_add(elr_mul(h->dndu, tc->dudx), elr_mul(h->dndv, tc->dvdx));
+    elr_v3 dndy = elr_add(elr_mul(h->dndu, tc->dudy), elr_mul(h->dndv, tc->dvdy));
+    elr_v3 dwodx, dwody;
+    float eta = 1.f / b->eta, dDNdx, dDNdy, mu, cwi, dmudx, dmudy;
+    if (elr_dot(wo, ns) < 0.f) { /* leaving: the relative index inverted, the normal and its derivatives turned */
+      eta = 1.f / eta; ns = elr_mul(ns, -1.f); dndx = elr_mul(dndx, -1.f); dndy = elr_mul(dndy, -1.f);
+    }
+    dwodx = elr_sub(elr_mul(r->rxd, -1.f), wo); dwody = elr_sub(elr_mul(r->ryd, -1.f), wo);
+    dDNdx = elr_dot(dwodx, ns) + elr_dot(wo, dndx); dDNdy = elr_dot(dwody, ns) + elr_dot(wo, dndy);
+    cwi = fabsf(elr_dot(wi, ns));
+    mu = eta * elr_dot(wo, ns) - cwi;
+    dmudx = (eta - (eta * eta * elr_dot(wo, ns)) / cwi) * dDNdx;
+    dmudy = (eta - (eta * eta * elr_dot(wo, ns)) / cwi) * dDNdy;
+    out.has_diff = 1;
+    out.rxo = elr_add(out.o, dpdx); out.ryo = elr_add(out.o, dpdy);
+    out.rxd = elr_add(elr_sub(wi, elr_mul(dwodx, eta)), elr_add(elr_mul(dndx, mu), elr_mul(ns, dmudx)));
+    out.ryd = elr_add(elr_sub(wi, elr_mul(dwody, eta)), elr_add(elr_mul(dndy, mu), elr_mul(ns, dmudy)));
+  }
+  ts->bounce++;
+  *beta = elr_mul(elr_vmul(*beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
+  *rd = out;
+  return 1;
+}
+
+/* The direct-lighting integrator's specular continuations at h (pbrt-v3's DirectLightingIntegrator::Li:
+ * SpecularReflect, then SpecularTransmit): up to two next path states (ray, throughput, depth + 1) in
+ * out, their number returned. pbrt-v3 follows both, so glass doubles the rays at every vertex; where the
+ * caller has no room left for that (allow_split = 0), one of the two is followed, chosen with a sampler
+ * draw in proportion to its throughput's largest component and divided by that probability (the same
+ * expectation, a bounded cost). */
+int elr_direct_specular(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_hit *h, const elr_tex_ctx *tc, elr_v3 dpdx,
+                        elr_v3 dpdy, const elr_bsdf *b, elr_v3 beta, int depth, int allow_split, elr_path_state out[2], elr_tstats *ts) {
+  int n = 0;
+  if (b->spec_r) {
+    out[n].beta = beta;
+    if (elr_specular_reflect(C, S, r, h, tc, dpdx, dpdy, b, &out[n].ray, &out[n].beta, ts)) out[n++].depth = depth + 1;
+  }
+  if (b->spec_t) {
+    out[n].beta = beta;
+    if (elr_specular_transmit(C, S, r, h, tc, dpdx, dpdy, b, &out[n].ray, &out[n].beta, ts)) out[n++].depth = depth + 1;
+  }
+  if (n == 2 && !allow_split) {
+    float m0 = elr_maxc(out[0].beta), m1 = elr_maxc(out[1].beta), p0 = m0 + m1 > 0.f ? m0 / (m0 + m1) : 0.5f;
+    if (elr_sampler_get1d(S) < p0) out[0].beta = elr_mul(out[0].beta, 1.f / p0);
+    else { out[0] = out[1]; out[0].beta = elr_mul(out[0].beta, 1.f / (1.f - p0)); }
+    ts->bounce--; /* one of the two rays is not traced */
+    n = 1;
+  }
+  return n;
 }

@@ -1,16 +1,16 @@
 /* integrator_path.c: the path tracer (pbrt-v3's PathIntegrator, integrators/path.cpp; the book's section
  * 14.5).
  *
- * Next-event estimation from every light at every vertex, one sample each (UniformSampleAllLights;
- * pbrt-v3 samples one light per vertex, chosen by "lightsamplestrategy", which is the same estimator
- * for a scene of one light), and the continuation ray's BSDF sample reused as the MIS partner of the
- * light sample: when it leaves
- * the scene, the environment it sees is weighted by the power heuristic against light sampling
- * (pbrt-v4's arrangement: one fewer ray per vertex than pbrt-v3's EstimateDirect, the same
- * expectation). pbrt-v3's Russian roulette: after 3 bounces, when the throughput's largest component
- * is below rrthreshold. Later rays carry no differentials (pbrt-v3 spawns them without), so their
- * textures are point sampled. Area lights hit by the path would add their emission here, MIS-weighted
- * in the same way (the previous vertex's BSDF pdf against the light's Pdf_Li from it). */
+ * Next-event estimation from one light per vertex (UniformSampleOneLight, the light chosen by the
+ * "lightsamplestrategy": lightdistrib.c), and the continuation ray's BSDF sample reused as the MIS
+ * partner of the light sample: the environment it sees when it leaves the scene, and the area light it
+ * hits, are weighted by the power heuristic of the previous vertex's BSDF pdf against the probability
+ * of that light's choice times its Pdf_Li from that vertex (pbrt-v4's arrangement: one fewer ray per
+ * vertex than pbrt-v3's EstimateDirect, the same expectation). Camera rays and specular bounces see
+ * emitters unweighted. pbrt-v3's Russian roulette: after 3 bounces, when the throughput's largest
+ * component is below rrthreshold. Later rays carry no differentials (pbrt-v3 spawns them without), so
+ * their textures are point sampled. Refraction (glass, uber's Kt) scales the radiance by (etaI / etaT)^2
+ * in the BSDF (pbrt-v3's radiance transport), and Russian roulette leaves that scaling out (etaScale). */
 #include "elr_internal.h"
 #include <string.h>
 
@@ -21,7 +21,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   elr_v3 L = p->L, beta = p->beta;
   elr_ray r = p->ray;
   int depth, specular = p->specular;
-  float prev_pdf = p->prev_pdf;
+  float prev_pdf = p->prev_pdf, eta_scale = p->eta_scale;
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;
@@ -39,11 +39,21 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
         if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l)) continue;
         if (depth > 0 && !specular && C->light_sampling) {
           if (C->ls == ELR_LS_LIGHT) continue;
-          if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(prev_pdf, elr_light_pdf_li(l, NULL, r.d));
+          if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * elr_light_pdf_li(l, NULL, r.d));
         }
         L = elr_add(L, elr_mul(elr_vmul(beta, elr_light_le(l, r.d)), w));
       }
       break;
+    }
+    /* <<Possibly add emitted light at intersection>>: an area light, weighted as the environment above */
+    if (h.light >= 0) {
+      elr_v3 Le = elr_hit_le(s, &h, elr_mul(r.d, -1.f));
+      float w = 1.f;
+      if (depth > 0 && !specular && C->light_sampling) {
+        if (C->ls == ELR_LS_LIGHT) w = 0.f;
+        else if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(prev_pdf, C->ld.pick[h.light] * elr_area_light_pdf(s, &s->light[h.light], r.o, &h));
+      }
+      L = elr_add(L, elr_mul(elr_vmul(beta, Le), w));
     }
     /* <<Terminate path if maxDepth was reached>> */
     if (depth >= C->maxdepth) break;
@@ -57,19 +67,21 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
     wo = elr_mul(r.d, -1.f);
     /* <<Sample illumination from lights to find path contribution>> */
     if (C->light_sampling && (b.has_diffuse || b.has_glossy))
-      L = elr_add(L, elr_vmul(beta, elr_uniform_sample_all_lights(C, S, &h, &b, wo, 0, 0, ts)));
+      L = elr_add(L, elr_vmul(beta, elr_uniform_sample_one_light(C, S, &h, &b, wo, 0, ts)));
     /* <<Sample BSDF to get new path direction>> */
     elr_sampler_get2d(S, u);
     f = elr_bsdf_sample(&b, wo, u[0], u[1], &wi, &pdf, &spec);
     if (elr_isblack(f) || pdf == 0.f) break;
     beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
     specular = spec; prev_pdf = pdf;
-    /* the last vertex's continuation only matters for the environment's BSDF-sampled part */
-    if (depth + 1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;
+    if (spec == 2) eta_scale = elr_eta_scale(eta_scale, &b, wo); /* a specular transmission */
+    /* the last vertex's continuation only matters for the emitters' BSDF-sampled part */
+    if (depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;
     r.o = elr_spawn_origin(&h, wi); r.d = wi; r.has_diff = 0;
     ts->bounce++;
-    { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3) */
-      float mc = elr_maxc(beta);
+    { /* <<Possibly terminate the path with Russian roulette>> (pbrt-v3: after bounce 3; rrBeta = beta etaScale:
+       * the radiance scaling of refraction left out, so that a ray about to leave glass is not ended) */
+      float mc = elr_maxc(beta) * eta_scale;
       if (depth > 3 && mc < C->rr) {
         float q = fmaxf(0.05f, 1.f - mc);
         if (elr_sampler_get1d(S) < q) break;

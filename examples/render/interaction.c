@@ -2,9 +2,16 @@
  *
  * The hit record itself (elr_hit: point, normals, the shape's parameterisation) is made by
  * elr_intersect and elr_hit_uv (scene.c); here the screen-space footprint of the hit that the textures
- * filter over (ray differentials from the camera, and from specular reflection in directlighting).
- * The emitted radiance of a hit on an area light (pbrt-v3's SurfaceInteraction::Le) would be here. */
+ * filter over (ray differentials from the camera, and from specular reflection in directlighting),
+ * and the radiance a hit on an area light emits (pbrt-v3's SurfaceInteraction::Le). */
 #include "elr_internal.h"
+
+/* pbrt-v3's SurfaceInteraction::Le(w): the hit shape's area light, DiffuseAreaLight::L(*this, w): its
+ * radiance towards w on the side its normal points to, or on both sides when twosided */
+elr_v3 elr_hit_le(const elr_scene *s, const elr_hit *h, elr_v3 w) {
+  if (h->light < 0) return elr_v(0, 0, 0);
+  return elr_area_light_L(&s->light[h->light], h->ng, w);
+}
 
 /* pbrt-v3's SurfaceInteraction::ComputeDifferentials: where the ray's two differential rays meet the
  * hit's tangent plane, dp/dx and dp/dy, and from them the texture footprint du/dx, dv/dx, du/dy, dv/dy

@@ -4,13 +4,13 @@
  * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample) and
  * lights/point.cpp (PointLight), lights/distant.cpp (DistantLight), lights/infinite.cpp
  * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li,
- * el_envlight_pdf_li, el_envlight_le). Point and distant lights are delta lights: light sampling
- * only, pdf 1, never hit by a ray. The environment is the one non-delta light: sampled, and seen
- * by rays that leave the scene.
- *
- * Area lights (pbrt-v3 lights/diffuse.cpp, DiffuseAreaLight: Sample_Li through its shape's
- * Shape::Sample, Pdf_Li through Shape::Pdf, L on the emitting surface) join as another ELR_LIGHT_
- * kind in each switch below; what the integrators do with a light goes through these functions. */
+ * el_envlight_pdf_li, el_envlight_le), lights/diffuse.cpp (DiffuseAreaLight). Point and distant
+ * lights are delta lights: light sampling only, pdf 1, never hit by a ray. The environment is
+ * sampled, and seen by rays that leave the scene. An area light is sampled through its shape's
+ * Shape::Sample (shapes.c), and seen by rays that hit its shape (elr_hit.light; interaction.c's
+ * elr_hit_le is SurfaceInteraction::Le), Pdf_Li from such a hit (elr_area_light_pdf). A triangle mesh
+ * is one light here, sampled by area over its triangles (pbrt-v3 makes one light per triangle: the
+ * same expected value, and with the "power" strategy the same probability for each triangle). */
 #include "elr_internal.h"
 #include <stdlib.h>
 #include <string.h>
@@ -35,6 +35,18 @@ void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const
     ls->wi = l->dir; ls->L = l->L; ls->pdf = 1.f;
     ls->dist = 2.f * s->world_radius + elr_len(elr_sub(p, s->world_center)) + 1.f;
     return;
+  case ELR_LIGHT_AREA: { /* DiffuseAreaLight::Sample_Li: a point on the shape, L(pShape, -wi) */
+    elr_v3 pl, nl, dp;
+    float d2;
+    elr_shape_sample(s, l, p, u, &pl, &nl, &ls->pdf);
+    dp = elr_sub(pl, p);
+    d2 = elr_dot(dp, dp);
+    if (ls->pdf == 0.f || d2 == 0.f) { ls->pdf = 0.f; ls->L = ls->wi = elr_v(0, 0, 0); return; }
+    ls->wi = elr_mul(dp, 1.f / sqrtf(d2));
+    ls->L = elr_area_light_L(l, nl, elr_mul(ls->wi, -1.f));
+    ls->p_light = pl; ls->at_point = 2; /* (the shadow ray aims at pl from its offset origin) */
+    return;
+  }
   default: { /* InfiniteAreaLight::Sample_Li: the radiance comes with the sample (the map at the sampled
               * (u, v), no second direction-to-(u, v) mapping) */
     float wi[3], L[3];
@@ -46,7 +58,7 @@ void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const
 }
 
 /* pbrt-v3's Pdf_Li: the solid-angle density with which elr_light_sample_li from ref would choose wi
- * (0 for delta lights, which no direction can hit). */
+ * (0 for delta lights, which no direction can hit; an area light's is elr_area_light_pdf). */
 float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi) {
   float d[3];
   (void)ref; /* an area light will need it: its density in solid angle depends on the distance */
@@ -65,12 +77,52 @@ elr_v3 elr_light_le(const elr_light *l, elr_v3 d) {
   return elr_from3(L);
 }
 
+/* DiffuseAreaLight::Pdf_Li (Shape::Pdf) for the ray from ref that reached the light at lh. */
+float elr_area_light_pdf(const elr_scene *s, const elr_light *l, elr_v3 ref, const elr_hit *lh) { return elr_shape_pdf(s, l, ref, lh); }
+
+/* The area and (build_cdf) a mesh's area CDF, once per scene: shapes.c. */
+int elr_area_light_prepare(const elr_scene *s, elr_light *l, int build_cdf) {
+  double t0 = elr_now();
+  int r = elr_shape_prepare(s, l, build_cdf);
+  l->build_seconds += elr_now() - t0;
+  return r;
+}
+
+/* pbrt-v3's Light::Power(), as its luminance y() (the "power" strategy's weight): 4 pi I for a point
+ * light, pi r^2 L for a distant light (r: the scene's bounding sphere), (twosided ? 2 : 1) pi A L for an
+ * area light; for the environment pi r^2 times the integral of L over the sphere (envlight.h's
+ * power: pbrt-v4's, where pbrt-v3 took the mean texel, 4 pi too little and blind to sin(theta)). */
+double elr_light_power(const elr_scene *s, const elr_light *l) {
+  double r = s->world_radius, pi = 3.14159265358979323846;
+  elr_v3 P;
+  switch (l->kind) {
+  case ELR_LIGHT_POINT: P = elr_mul(l->L, 4.f); return pi * (0.212671 * P.x + 0.715160 * P.y + 0.072169 * P.z);
+  case ELR_LIGHT_DISTANT: P = l->L; return pi * r * r * (0.212671 * P.x + 0.715160 * P.y + 0.072169 * P.z);
+  case ELR_LIGHT_AREA: P = l->L; return (l->twosided ? 2.0 : 1.0) * pi * l->area * (0.212671 * P.x + 0.715160 * P.y + 0.072169 * P.z);
+  default: {
+    float in[3];
+    el_envlight_integral(l->env, in);
+    return pi * r * r * (0.212671 * in[0] + 0.715160 * in[1] + 0.072169 * in[2]);
+  }
+  }
+}
+
 /* pbrt-v3's VisibilityTester::Unoccluded for a light sample taken at h: the shadow ray from h's
- * offset origin towards the light, ending just before a point light and past the scene for the others. */
+ * offset origin towards the light, ending just before a point light or the sampled point of an area
+ * light, and past the scene for the others. For an area light the ray aims at the point from the offset
+ * origin (pbrt-v3's SpawnRayTo): along wi, a ray that meets the light's surface at a grazing angle
+ * would enter it before the point (the origin's offset, 2e-5 of the coordinates, moves the entry by
+ * that over the cosine: 0.3% of a sphere light's samples were lost so, at 3 radii, before this). */
 int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls) {
-  elr_v3 o = elr_spawn_origin(h, ls->wi);
-  float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
-  return !elr_occluded(s, o, ls->wi, tmax);
+  elr_v3 o = elr_spawn_origin(h, ls->wi), d;
+  float dist;
+  if (ls->at_point != 2) {
+    float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
+    return !elr_occluded(s, o, ls->wi, tmax);
+  }
+  d = elr_sub(ls->p_light, o);
+  dist = elr_len(d);
+  return !(dist > 0.f) || !elr_occluded(s, o, elr_mul(d, 1.f / dist), dist * (1.f - 1e-4f));
 }
 
 /* >> infinite light (pbrt-v3 lights/infinite.cpp: envlight.h's el_envlight) */
@@ -214,6 +266,8 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
 }
 
 void elr_light_free(elr_light *l) {
+  free(l->tri_cdf);
+  l->tri_cdf = NULL;
   if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }
   if (l->env) { el_envlight_free(l->env); free(l->env); }
   l->env = l->env_alt = l->env_sample = NULL;

@@ -10,7 +10,7 @@
  * (nothing is written then).
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
- * --sampler random|stratified|halton, --importance cellaverage|pbrt-v3|texel (the environment's
+ * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels). */
 #include "el_render.h"
 #include <errno.h>
@@ -18,8 +18,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define SAMPLERS "random|stratified|halton|sobol|02sequence|zsobol|paddedsobol"
 static void usage(void) {
-  fprintf(stderr, "usage: render SCENE.pbrt [--outfile F] [--spp N] [--nthreads N] [--seed S] [--stats] [--quiet]\n");
+  fprintf(stderr, "usage: render SCENE.pbrt [--outfile F] [--spp N] [--nthreads N] [--seed S] [--stats] [--quiet]\n"
+                  "  --spp N       samples per pixel instead of the scene's (sobol, 02sequence, zsobol: rounded up to a power of two)\n"
+                  "  --seed S      the random streams and scrambles (the same seed gives the same image on any thread count)\n"
+                  "  --stats       what was built and what each part cost, with the sampler that ran\n"
+                  "  --sampler S   instead of the scene's Sampler: " SAMPLERS "\n"
+                  "  --randomization none|permutedigits|fastowen|owen   the scramble of sobol, zsobol, paddedsobol\n"
+                  "A scene without a Sampler directive is rendered with %s, %d spp (pbrt-v3's default is halton, 16 spp).\n",
+          elr_sampler_kind_name(ELR_DEFAULT_SAMPLER), ELR_DEFAULT_SPP);
 }
 static int parse_int(const char *s, long lo, long hi, long *out) {
   char *e;
@@ -72,10 +80,14 @@ int main(int argc, char **argv) {
       else if (!strcmp(m, "texel")) o.importance = 2;
       else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel\n"); return 1; }
     } else if (!strcmp(a, "--sampler") && i + 1 < argc) {
+      int k = elr_sampler_kind_from_name(argv[++i]);
+      if (k <= 0) { fprintf(stderr, "render: --sampler %s\n", SAMPLERS); return 1; }
+      o.sampler = k;
+    } else if (!strcmp(a, "--randomization") && i + 1 < argc) {
       const char *m = argv[++i];
-      if (!strcmp(m, "random")) o.sampler = 1; else if (!strcmp(m, "stratified")) o.sampler = 2;
-      else if (!strcmp(m, "halton")) o.sampler = 3;
-      else { fprintf(stderr, "render: --sampler random|stratified|halton\n"); return 1; }
+      if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
+      else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
+      else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
     } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(); return 0; }
     else if (a[0] == '-' && a[1] == '-') { fprintf(stderr, "render: unknown or incomplete option \"%s\"\n", a); usage(); return 1; }
     else if (!scene) scene = a;

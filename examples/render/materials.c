@@ -4,12 +4,104 @@
  *   mirror.cpp   SpecularReflection(Kr, FresnelNoOp)
  *   plastic.cpp  LambertianReflection(Kd) + MicrofacetReflection(Ks, Trowbridge-Reitz(roughness),
  *                FresnelDielectric(1.5, 1))
- * Further materials (glass, metal, uber, substrate) join here as another ELR_MAT_ kind. */
+ *   glass.cpp    smooth: FresnelSpecular(Kr, Kt, 1, eta) in the path tracer (pbrt-v3's
+ *                allowMultipleLobes), SpecularReflection(Kr, FresnelDielectric(1, eta)) +
+ *                SpecularTransmission(Kt, 1, eta) in directlighting; rough (uroughness or vroughness
+ *                not 0): MicrofacetReflection + MicrofacetTransmission
+ *   metal.cpp    MicrofacetReflection(1, Trowbridge-Reitz, FresnelConductor(1, eta, k)); pbrt-v3's
+ *                default eta and k are its copper spectra as RGB (below)
+ *   uber.cpp     SpecularTransmission(1 - opacity, 1, 1) + LambertianReflection(opacity Kd) +
+ *                MicrofacetReflection(opacity Ks, FresnelDielectric(1, eta)) +
+ *                SpecularReflection(opacity Kr, FresnelDielectric(1, eta)) + SpecularTransmission(opacity Kt, 1, eta)
+ *   substrate.cpp FresnelBlend(Kd, Ks, Trowbridge-Reitz(uroughness, vroughness))
+ * Spectra are RGB (pbrt-v3's default RGBSpectrum); "Clamp" is pbrt-v3's Spectrum::Clamp (negatives to 0). */
 #include "elr_internal.h"
+
+static elr_v3 elr__clamp0(elr_v3 v) { return elr_v(fmaxf(v.x, 0.f), fmaxf(v.y, 0.f), fmaxf(v.z, 0.f)); }
+static float elr__ftex(const elr_scene *s, int t, const elr_tex_ctx *c) { return elr_tex_eval(s, t, c).x; }
+/* an index of refraction from a texture, kept where the Fresnel and refraction maths stay finite */
+static float elr__eta(float e) { return e > 1e-3f ? (e < 1e3f ? e : 1e3f) : 1e-3f; }
+/* TrowbridgeReitzDistribution's alphas (its constructor's floor of 0.001), remapped from roughness or not */
+static float elr__alpha(float r, int remap) {
+  float a = remap ? elr_roughness_to_alpha(r) : r;
+  return a > 0.001f ? a : 0.001f;
+}
+
+/* glass, metal, uber, substrate: pbrt-v3's BxDF lists, in the frame pbrt-v3 orients */
+static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *m, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
+  elr_v3 ns = h->ns, ng = h->ng; /* oriented as pbrt-v3 orients them (the shape's flip is in the hit record) */
+  elr_bxdf *x;
+  int multiple = s->d.integrator_path; /* pbrt-v3's allowMultipleLobes: the path tracer's */
+  switch (m->kind) {
+  case ELR_MAT_GLASS: { /* GlassMaterial::ComputeScatteringFunctions */
+    float eta = elr__eta(elr__ftex(s, m->index, c)), ur = elr__ftex(s, m->urough, c), vr = elr__ftex(s, m->vrough, c);
+    elr_v3 R = elr__clamp0(elr_tex_eval(s, m->kr, c)), T = elr__clamp0(elr_tex_eval(s, m->kt, c));
+    int specular = ur == 0.f && vr == 0.f;
+    elr_bsdf_begin(b, ns, ng, eta);
+    if (elr_isblack(R) && elr_isblack(T)) break;
+    if (specular && multiple) {
+      x = elr_bsdf_add(b, ELR_BXDF_FRESNEL_SPECULAR);
+      x->R = R; x->T = T; x->eta_a = 1.f; x->eta_b = eta;
+    } else {
+      float ax = elr__alpha(ur, m->remap), ay = elr__alpha(vr, m->remap);
+      if (!elr_isblack(R)) {
+        x = elr_bsdf_add(b, specular ? ELR_BXDF_SPECULAR_REFLECTION : ELR_BXDF_MICROFACET_REFLECTION);
+        x->R = R; x->fresnel = ELR_FRESNEL_DIELECTRIC; x->eta_a = 1.f; x->eta_b = eta; x->ax = ax; x->ay = ay;
+      }
+      if (!elr_isblack(T)) {
+        x = elr_bsdf_add(b, specular ? ELR_BXDF_SPECULAR_TRANSMISSION : ELR_BXDF_MICROFACET_TRANSMISSION);
+        x->T = T; x->eta_a = 1.f; x->eta_b = eta; x->ax = ax; x->ay = ay;
+      }
+    }
+    break;
+  }
+  case ELR_MAT_METAL: { /* MetalMaterial::ComputeScatteringFunctions */
+    float ur = elr__ftex(s, m->urough >= 0 ? m->urough : m->rough, c), vr = elr__ftex(s, m->vrough >= 0 ? m->vrough : m->rough, c);
+    elr_bsdf_begin(b, ns, ng, 1.f);
+    x = elr_bsdf_add(b, ELR_BXDF_MICROFACET_REFLECTION);
+    x->R = elr_v(1, 1, 1); x->fresnel = ELR_FRESNEL_CONDUCTOR;
+    x->eta = elr_tex_eval(s, m->eta, c); x->k = elr_tex_eval(s, m->k, c);
+    x->ax = elr__alpha(ur, m->remap); x->ay = elr__alpha(vr, m->remap);
+    break;
+  }
+  case ELR_MAT_UBER: { /* UberMaterial::ComputeScatteringFunctions */
+    float e = elr__eta(elr__ftex(s, m->index, c));
+    elr_v3 op = elr__clamp0(elr_tex_eval(s, m->opacity, c)), t = elr__clamp0(elr_sub(elr_v(1, 1, 1), op)), kd, ks, kr, kt;
+    elr_bsdf_begin(b, ns, ng, elr_isblack(t) ? e : 1.f);
+    if (!elr_isblack(t)) { x = elr_bsdf_add(b, ELR_BXDF_SPECULAR_TRANSMISSION); x->T = t; x->eta_a = x->eta_b = 1.f; }
+    kd = elr_vmul(op, elr__clamp0(elr_tex_eval(s, m->kd, c)));
+    if (!elr_isblack(kd)) { x = elr_bsdf_add(b, ELR_BXDF_LAMBERTIAN); x->R = kd; }
+    ks = elr_vmul(op, elr__clamp0(elr_tex_eval(s, m->ks, c)));
+    if (!elr_isblack(ks)) {
+      float ru = elr__ftex(s, m->urough >= 0 ? m->urough : m->rough, c), rv = m->vrough >= 0 ? elr__ftex(s, m->vrough, c) : ru;
+      x = elr_bsdf_add(b, ELR_BXDF_MICROFACET_REFLECTION);
+      x->R = ks; x->fresnel = ELR_FRESNEL_DIELECTRIC; x->eta_a = 1.f; x->eta_b = e;
+      x->ax = elr__alpha(ru, m->remap); x->ay = elr__alpha(rv, m->remap);
+    }
+    kr = elr_vmul(op, elr__clamp0(elr_tex_eval(s, m->kr, c)));
+    if (!elr_isblack(kr)) { x = elr_bsdf_add(b, ELR_BXDF_SPECULAR_REFLECTION); x->R = kr; x->fresnel = ELR_FRESNEL_DIELECTRIC; x->eta_a = 1.f; x->eta_b = e; }
+    kt = elr_vmul(op, elr__clamp0(elr_tex_eval(s, m->kt, c)));
+    if (!elr_isblack(kt)) { x = elr_bsdf_add(b, ELR_BXDF_SPECULAR_TRANSMISSION); x->T = kt; x->eta_a = 1.f; x->eta_b = e; }
+    break;
+  }
+  default: { /* SubstrateMaterial::ComputeScatteringFunctions */
+    elr_v3 d = elr__clamp0(elr_tex_eval(s, m->kd, c)), sp = elr__clamp0(elr_tex_eval(s, m->ks, c));
+    elr_bsdf_begin(b, ns, ng, 1.f);
+    if (!elr_isblack(d) || !elr_isblack(sp)) {
+      x = elr_bsdf_add(b, ELR_BXDF_FRESNEL_BLEND);
+      x->R = d; x->T = sp;
+      x->ax = elr__alpha(elr__ftex(s, m->urough, c), m->remap); x->ay = elr__alpha(elr__ftex(s, m->vrough, c), m->remap);
+    }
+    break;
+  }
+  }
+}
 
 /* The BSDF of the hit's material at the shading point c (its textures evaluated there). */
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
   const elr_material *m = &s->mat[h->material];
+  if (m->kind > ELR_MAT_PLASTIC) { elr__bsdf_list(s, m, h, c, b); return; }
+  b->nlobes = 0; b->eta = 1.f;
   b->ns = h->ns; b->ng = h->ng;
   elr_onb(b->ns, &b->ss, &b->ts);
   b->has_diffuse = b->has_glossy = b->has_specular = 0;
@@ -32,4 +124,5 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
     b->has_glossy = !elr_isblack(b->ks);
   }
   b->ncomp = b->has_diffuse + b->has_glossy + b->has_specular;
+  b->spec_r = b->has_specular; b->spec_t = 0;
 }

@@ -2,9 +2,10 @@
  * core/api.cpp's RenderOptions): what the scene calls for, then tiles of 16 x 16 pixels on threads.
  *
  * elr_render decides once per render what to build and simulate: the sampler (sampler.c), the camera
- * (camera.c), the film (film.c); whether any light is sampled (not when nothing emits or no surface
- * has a non-specular lobe); the environment's sampling distribution only when some surface samples
- * it; whether a pixel's environment samples are drawn together (render_batched.c) or each in its own
+ * (camera.c), the film (film.c); nothing at all when nothing emits (a black image, no ray traced);
+ * whether any light is sampled (not when no surface has a non-specular lobe); the environment's
+ * sampling distribution only when some surface samples it; an area light's area CDF only when it is
+ * sampled; the light distribution (lightdistrib.c) only when there is a choice to make; whether a pixel's environment samples are drawn together (render_batched.c) or each in its own
  * sample's shading (the reference: integrator_direct.c, integrator_path.c). Threads take tiles in
  * turn; each tile has its own film tile and the tiles are merged in tile order, whatever order they
  * finish in, so the image is the same for any thread count. A wave loop (packets of camera, shadow and
@@ -28,7 +29,7 @@ typedef struct elr_job {
   elr_tstats total;
   double t0, last_print;
   int failed;
-  const elr_halton *H;
+  const elr_sampler_tables *T; /* the sampler's tables, shared by the threads */
 } elr_job;
 
 static void elr__progress(elr_job *J, int final) {
@@ -59,7 +60,7 @@ static void *elr__worker(void *arg) {
   elr_sampler S;
   elr_tstats ts;
   memset(&ts, 0, sizeof ts);
-  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->H) != 0) {
+  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->T) != 0) {
     pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
     return NULL;
   }
@@ -128,7 +129,7 @@ static void *elr__worker(void *arg) {
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1;
 }
 
 /* >> what the scene calls for */
@@ -140,35 +141,70 @@ static int elr__find_textured(elr_scene *s) {
   s->mat_textured = (int *)calloc((size_t)s->nmat + 1, sizeof(int));
   if (!s->mat_textured) return -1;
   for (i = 0; i < s->nmat; i++) {
-    const elr_material *m = &s->mat[i];
-    int t[4], k;
-    t[0] = m->kd; t[1] = m->ks; t[2] = m->kr; t[3] = m->rough;
-    for (k = 0; k < 4; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
+    int t[ELR_MAT_NTEX], k;
+    elr_material_textures(&s->mat[i], t);
+    for (k = 0; k < ELR_MAT_NTEX; k++) if (t[k] >= 0 && s->tex[t[k]].kind != ELR_TEX_CONST) s->mat_textured[i] = 1;
     if (s->mat_textured[i]) s->any_textured = 1;
   }
   return 0;
 }
 
+/* whether material m may have a non-specular lobe somewhere: all but mirror and smooth glass (its
+ * roughness textures constant 0) */
+static int elr__may_be_nonspecular(const elr_scene *s, const elr_material *m) {
+  if (m->kind == ELR_MAT_MIRROR) return 0;
+  if (m->kind == ELR_MAT_GLASS) {
+    const elr_texture *u = &s->tex[m->urough], *v = &s->tex[m->vrough];
+    return !(u->kind == ELR_TEX_CONST && u->value.x == 0.f && v->kind == ELR_TEX_CONST && v->value.x == 0.f);
+  }
+  return 1;
+}
 static int elr__mat_nonspecular(const elr_scene *s) {
   int i;
   /* a material with a non-specular lobe, used by some shape */
-  for (i = 0; i < s->nmesh; i++) if (s->mat[s->mesh[i].material].kind != ELR_MAT_MIRROR) return 1;
-  for (i = 0; i < s->nsph; i++) if (s->mat[s->sph[i].material].kind != ELR_MAT_MIRROR) return 1;
+  for (i = 0; i < s->nmesh; i++) if (elr__may_be_nonspecular(s, &s->mat[s->mesh[i].material])) return 1;
+  for (i = 0; i < s->nsph; i++) if (elr__may_be_nonspecular(s, &s->mat[s->sph[i].material])) return 1;
+  for (i = 0; i < s->ndisk; i++) if (elr__may_be_nonspecular(s, &s->mat[s->disk[i].material])) return 1;
   return 0;
 }
 
-/* Whether any light is sampled (some light emits and some surface has a non-specular lobe); the
- * sampling distributions of the environments that will be sampled, built now (*env_sampled); whether
- * a pixel's light samples are drawn together (render_batched.c). */
-static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats *st, int *env_sampled, char *err, size_t errlen) {
+/* Whether anything emits (*emits) and whether any light is sampled (some light emits and some surface
+ * has a non-specular lobe); the sampling distributions of the environments that will be sampled, built
+ * now (*env_sampled); the areas of the emitting area lights and the area CDFs of those that are
+ * sampled; the light distribution of next-event estimation when it chooses one light among several;
+ * whether a pixel's light samples are drawn together (render_batched.c). */
+static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats *st, int *env_sampled, int *emits, char *err,
+                              size_t errlen) {
   elr_scene *s = C->s;
-  int i, emits = 0;
-  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) emits = 1;
+  int i;
+  *emits = 0;
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) *emits = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C->has_env = 1;
-  C->light_sampling = emits && elr__mat_nonspecular(s);
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_AREA) C->has_area = 1;
+  C->light_sampling = *emits && elr__mat_nonspecular(s);
+  C->direct_one = !C->path && s->d.direct_one;
+  if (!C->light_sampling) return 0;
+  /* area lights: the area (the sampling pdfs, the "power" weights) and, when they are sampled, a mesh's
+   * area CDF (pbrt-v3's one light per triangle chosen by area) */
   for (i = 0; i < s->nlight; i++) {
     elr_light *l = &s->light[i];
-    if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->light_sampling && C->ls != ELR_LS_BSDF) {
+    if (l->kind == ELR_LIGHT_AREA && elr_light_emits(l)) {
+      double t0 = elr_now();
+      if (elr_area_light_prepare(s, l, C->ls != ELR_LS_BSDF) != 0) { snprintf(err, errlen, "out of memory for an area light's area CDF"); return -1; }
+      if (st) st->t_area_lights += elr_now() - t0;
+    }
+  }
+  /* the light distribution: which light next-event estimation samples (path: lightsamplestrategy;
+   * directlighting "one": uniform; "all" samples every light and needs none) */
+  if (C->path || C->direct_one) {
+    if (elr_light_distrib_init(&C->ld, s, C->path ? s->d.light_strategy : ELR_LSTRAT_UNIFORM) != 0) {
+      snprintf(err, errlen, "out of memory for the light distribution");
+      return -1;
+    }
+  }
+  for (i = 0; i < s->nlight; i++) {
+    elr_light *l = &s->light[i];
+    if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->ls != ELR_LS_BSDF) {
       double t0 = elr_now();
       if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); return -1; }
       if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
@@ -176,9 +212,9 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     }
   }
   /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
-  /* (with the stratified sampler, only when its strata cover the three 2D draws made ahead: draws
-   * past them come from the pixel's one random stream, whose order batching would change) */
-  if (*env_sampled && !o->no_batch && (C->sampler.kind != ELR_SAMPLER_STRATIFIED || C->sampler.dims >= 3)) {
+  /* (with a pixel sampler, only when its dimensions cover the three 2D draws made ahead: draws past
+   * them come from the pixel's one random stream, whose order batching would change) */
+  if (*env_sampled && !o->no_batch && elr_sampler_order_free(&C->sampler)) {
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
@@ -199,6 +235,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->light_samples_batched = C->batch_light != NULL;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
+  st->sampler_randomization = C->sampler.randomize;
   st->rejected_samples = el_film_rejected_samples(film);
   for (i = 0; i < s->ntex; i++) {
     if (s->tex[i].kind == ELR_TEX_IMAGE) {
@@ -215,17 +252,47 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
       st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
       if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
     }
+  /* the lights: what was built for which */
+  st->lights = s->nlight;
+  if (!C->light_sampling) snprintf(st->light_strategy, sizeof st->light_strategy, "none");
+  else if (!C->path && !C->direct_one) snprintf(st->light_strategy, sizeof st->light_strategy, "all");
+  else snprintf(st->light_strategy, sizeof st->light_strategy, "%s",
+                C->ld.strategy == ELR_LSTRAT_UNIFORM ? "uniform" : (C->path && s->d.light_strategy == ELR_LSTRAT_SPATIAL ? "power (for spatial)" : "power"));
+  st->light_distribution_built = C->ld.n > 1;
+  st->bytes_light_distribution = C->ld.n > 1 ? C->ld.bytes : 0;
+  st->t_light_distribution = C->ld.seconds;
+  for (i = 0; i < s->nlight; i++) {
+    const elr_light *l = &s->light[i];
+    elr_light_stats *ls;
+    st->lights_emitting += elr_light_emits(l);
+    st->lights_area += l->kind == ELR_LIGHT_AREA;
+    if (i >= ELR_STATS_LIGHTS) continue;
+    ls = &st->light[st->nlight_stats++];
+    ls->kind = l->kind; ls->emits = elr_light_emits(l); ls->nsamples = l->nsamples;
+    ls->pick = C->ld.pick ? C->ld.pick[i] : (ls->emits && C->light_sampling ? 1.f : 0.f);
+    if (l->kind == ELR_LIGHT_INFINITE && env_sampled && ls->emits && C->ls != ELR_LS_BSDF && C->light_sampling) {
+      ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample);
+    }
+    if (l->kind == ELR_LIGHT_AREA) {
+      ls->shape_kind = l->shape_kind; ls->shape = l->shape; ls->twosided = l->twosided; ls->area = l->area;
+      ls->ntri = l->shape_kind == ELR_SHAPE_MESH ? s->mesh[l->shape].ntri : 0;
+      ls->tables_built = l->tri_cdf != NULL;
+      ls->bytes = l->tri_cdf ? sizeof(double) * ((size_t)ls->ntri + 1) : 0;
+      ls->seconds = l->build_seconds;
+    }
+    if (C->light_sampling && ls->emits && (l->kind != ELR_LIGHT_AREA || l->prepared)) ls->power = elr_light_power(s, l);
+  }
 }
 
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
   elr_ctx C;
   elr_job J;
-  elr_halton H;
+  elr_sampler_tables T;
   el_film film;
   pthread_t *th = NULL;
-  int i, nthreads, x0, y0, x1, y1, rc = -1, env_sampled = 0, fb[4];
+  int i, nthreads, x0, y0, x1, y1, rc = -1, env_sampled = 0, emits = 0, fb[4];
   double t_start = elr_now();
-  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&H, 0, sizeof H); memset(&film, 0, sizeof film);
+  memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&T, 0, sizeof T); memset(&film, 0, sizeof film);
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
   C.s = s;
@@ -244,16 +311,28 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   /* <<Decide what the scene calls for>> */
   if (elr__find_textured(s) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
   elr_camera_init(&C.cam, &s->d, C.spp, s->any_textured);
-  if (elr__decide_lights(&C, o, st, &env_sampled, err, errlen) != 0) goto done;
-  if (C.sampler.kind == ELR_SAMPLER_HALTON) {
+  if (elr__decide_lights(&C, o, st, &env_sampled, &emits, err, errlen) != 0) goto done;
+  if (!emits) { /* nothing emits: the image is black whatever is traced (the parser warned), so nothing is */
+    out->width = x1 - x0; out->height = y1 - y0;
+    out->rgb = (float *)calloc((size_t)out->width * (size_t)out->height * 3, sizeof(float));
+    if (!out->rgb) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (st) {
+      memset(&J.total, 0, sizeof J.total);
+      elr__fill_stats(st, s, &C, &J.total, &film, 0, 0, out);
+      st->nothing_emits = 1;
+    }
+    rc = 0;
+    goto done;
+  }
+  { /* the sampler's tables (Halton's permutations, Sobol's matrices), for the film's sample bounds */
     int b[4];
     el_film_sample_bounds(&film, b);
-    if (elr_halton_init(&H, b[2] - b[0], b[3] - b[1], o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (elr_sampler_tables_init(&T, &C.sampler, b, o->seed) != 0) { snprintf(err, errlen, "out of memory"); goto done; }
   }
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 1024) nthreads = 1024;
-  J.C = &C; J.film = &film; J.o = o; J.H = &H;
+  J.C = &C; J.film = &film; J.o = o; J.T = &T;
   {
     int b[4];
     el_film_sample_bounds(&film, b);
@@ -295,7 +374,8 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   rc = 0;
 done:
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
-  free(J.ready); free(th); elr_halton_free(&H);
+  free(J.ready); free(th); elr_sampler_tables_free(&T);
+  elr_light_distrib_free(&C.ld);
   el_film_free(&film);
   if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }
   return rc;

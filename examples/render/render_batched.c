@@ -84,7 +84,7 @@ static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const e
   for (k = 1; k < n; k++) { /* the light's further samples, as the reference draws them */
     elr_sampler_get2d(S, ul);
     elr_sampler_get2d(S, us);
-    elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, ts, &Ld);
+    elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
   }
   return elr_add(L, elr_mul(Ld, 1.f / (float)n));
 }
@@ -96,12 +96,16 @@ static elr_v3 elr__direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray 
   elr_path_begin(&p, r);
   if (!f->hit) return elr_add(p.L, elr_vmul(p.beta, elr_infinite_le(C->s, r->d)));
   wo = elr_mul(r->d, -1.f);
-  if (C->light_sampling && (f->b.has_diffuse || f->b.has_glossy))
-    p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &f->b, wo, f, 1, 1, ts)));
-  if (!(1 < C->maxdepth && f->b.has_specular)) return p.L;
-  if (!elr_specular_reflect(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, &p.ray, &p.beta, ts)) return p.L;
-  p.depth = 1;
-  return elr_direct_li(C, S, &p, ts);
+  if (f->h->light >= 0) p.L = elr_add(p.L, elr_vmul(p.beta, elr_hit_le(C->s, f->h, wo)));
+  if (C->light_sampling && (f->b.has_diffuse || f->b.has_glossy)) /* (strategy "one" with one light: "all" with 1 sample) */
+    p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &f->b, wo, f, !C->direct_one, 1, ts)));
+  if (1 < C->maxdepth && (f->b.spec_r || f->b.spec_t)) {
+    elr_path_state next[2];
+    int n = elr_direct_specular(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, p.beta, 0, 1, next, ts);
+    /* the reference's state after its first vertex: the first branch followed, the second waiting */
+    if (n >= 1) { next[0].L = p.L; return elr_direct_li_branches(C, S, &next[0], &next[1], n - 1, n - 1, ts); }
+  }
+  return p.L;
 }
 
 /* elr_path_li's first iteration with the hit and its light sample computed ahead, then the reference
@@ -117,6 +121,7 @@ static elr_v3 elr__path_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r
   elr_path_begin(&p, r);
   /* escaped at the camera: the environment, unweighted (the only infinite light that emits) */
   if (!f->hit) return elr_add(p.L, elr_vmul(p.beta, elr_light_le(C->batch_light, r->d)));
+  if (f->h->light >= 0) p.L = elr_add(p.L, elr_vmul(p.beta, elr_hit_le(s, f->h, elr_mul(r->d, -1.f))));
   if (C->maxdepth <= 0) return p.L;
   elr_compute_differentials(s, r, f->h, &tc, &dpdx, &dpdy);
   elr_bsdf_init(s, f->h, &tc, &b);
@@ -128,7 +133,8 @@ static elr_v3 elr__path_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r
   if (elr_isblack(fs) || pdf == 0.f) return p.L;
   p.beta = elr_mul(elr_vmul(p.beta, fs), fabsf(elr_dot(wi, b.ns)) / pdf);
   p.specular = spec; p.prev_pdf = pdf;
-  if (1 == C->maxdepth && (!C->has_env || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) return p.L;
+  if (spec == 2) p.eta_scale = elr_eta_scale(p.eta_scale, &b, wo);
+  if (1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) return p.L;
   p.ray.o = elr_spawn_origin(f->h, wi); p.ray.d = wi; p.ray.has_diff = 0;
   ts->bounce++; /* (Russian roulette starts after bounce 3) */
   p.depth = 1;

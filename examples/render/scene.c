@@ -2,8 +2,10 @@
  * integrators trace rays in (pbrt-v3 core/scene.cpp and api.cpp's MakeScene; Embree replaces its
  * accelerators/). One Embree triangle geometry per mesh; the spheres as one user geometry of exact
  * object-space spheres (shapes.c), or Embree's own sphere primitive for similarity transforms with
- * ELR_EMBREE_SPHERES=1. elr_intersect makes the hit record through shapes.c, elr_occluded answers
- * shadow rays. Instances (ObjectInstance as Embree instances) would be built here. */
+ * ELR_EMBREE_SPHERES=1; the disks as another user geometry. ObjectInstance: each instanced prototype is
+ * an Embree scene of its own, built once, and each instance an RTC_GEOMETRY_TYPE_INSTANCE of it with the
+ * instance's transform. elr_intersect makes the hit record through shapes.c (in world space, also for
+ * instances), elr_occluded answers shadow rays. */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include "image_io.h"
@@ -19,10 +21,68 @@ static bool elr__memmon(void *ptr, ssize_t bytes, bool post) {
   return true;
 }
 
+/* One Embree triangle geometry of mesh i in scene sc; its geometry id, or RTC_INVALID_GEOMETRY_ID */
+static unsigned elr__attach_mesh(const elr_scene *s, RTCDevice dev, RTCScene sc, int i, char *err, size_t errlen) {
+  const elr_mesh *m = &s->mesh[i];
+  RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+  float *vb = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), (size_t)m->nvert);
+  unsigned *ib = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), (size_t)m->ntri);
+  unsigned id;
+  if (!vb || !ib) { rtcReleaseGeometry(g); snprintf(err, errlen, "Embree: out of memory for mesh %d", i); return RTC_INVALID_GEOMETRY_ID; }
+  memcpy(vb, m->p, sizeof(float) * 3 * (size_t)m->nvert);
+  memcpy(ib, m->idx, sizeof(unsigned) * 3 * (size_t)m->ntri);
+  rtcCommitGeometry(g);
+  id = rtcAttachGeometry(sc, g);
+  rtcReleaseGeometry(g);
+  return id;
+}
+/* The user geometry of the spheres set->idx[0 .. n) (shapes.c's callbacks, set as their data) */
+static unsigned elr__attach_spheres(RTCDevice dev, RTCScene sc, elr_sphere_set *set, int n) {
+  RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+  unsigned id;
+  rtcSetGeometryUserPrimitiveCount(g, (unsigned)n);
+  rtcSetGeometryUserData(g, set);
+  rtcSetGeometryBoundsFunction(g, elr_sphere_bounds, NULL);
+  rtcSetGeometryIntersectFunction(g, elr_sphere_intersect);
+  rtcSetGeometryOccludedFunction(g, elr_sphere_occluded);
+  rtcCommitGeometry(g);
+  id = rtcAttachGeometry(sc, g);
+  rtcReleaseGeometry(g);
+  return id;
+}
+
+/* An instanced prototype's Embree scene: its meshes and its spheres, in its own space (built once,
+ * however many instances place it) */
+static int elr__build_object(elr_scene *s, RTCDevice dev, int oi, char *err, size_t errlen) {
+  elr_object *o = &s->obj[oi];
+  RTCScene sc = rtcNewScene(dev);
+  int i, n = 0;
+  o->rtscene = sc;
+  rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
+  o->geom_mesh = (int *)calloc((size_t)o->nmesh + 2, sizeof(int));
+  o->sph_user = (int *)calloc((size_t)o->nsph + 1, sizeof(int));
+  if (!o->geom_mesh || !o->sph_user) { snprintf(err, errlen, "out of memory"); return -1; }
+  o->sphere_geom = RTC_INVALID_GEOMETRY_ID;
+  for (i = 0; i < s->nmesh; i++)
+    if (s->mesh[i].object == oi) {
+      unsigned id = elr__attach_mesh(s, dev, sc, i, err, errlen);
+      if (id == RTC_INVALID_GEOMETRY_ID) return -1;
+      o->geom_mesh[id] = i;
+    }
+  for (i = 0; i < s->nsph; i++) if (s->sph[i].object == oi) o->sph_user[n++] = i;
+  if (n) {
+    o->spheres.sph = s->sph; o->spheres.idx = o->sph_user;
+    o->sphere_geom = elr__attach_spheres(dev, sc, &o->spheres, n);
+    o->geom_mesh[o->sphere_geom] = -1;
+  }
+  rtcCommitScene(sc);
+  return 0;
+}
+
 int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   RTCDevice dev;
   RTCScene sc;
-  int i;
+  int i, nworld = 0;
   double t0 = elr_now();
   elr__embree_bytes = 0;
   dev = rtcNewDevice("verbose=0");
@@ -32,25 +92,21 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   sc = rtcNewScene(dev);
   s->rtscene = sc;
   rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
-  s->ngeom = (unsigned)s->nmesh + (s->nsph ? 2u : 0u);
+  s->ngeom = (unsigned)s->nmesh + 3u + (unsigned)s->ninst;
   s->geom_kind = (unsigned *)calloc(s->ngeom + 1, sizeof(unsigned));
   s->geom_index = (int *)calloc(s->ngeom + 1, sizeof(int));
   if (!s->geom_kind || !s->geom_index) { snprintf(err, errlen, "out of memory"); return -1; }
   s->sphere_geom = ~0u;
+  s->disk_geom = ~0u;
+  /* the world's meshes, one geometry each (a prototype's belong to its own scene, below) */
   for (i = 0; i < s->nmesh; i++) {
-    elr_mesh *m = &s->mesh[i];
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *vb = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), (size_t)m->nvert);
-    unsigned *ib = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), (size_t)m->ntri);
     unsigned id;
-    if (!vb || !ib) { rtcReleaseGeometry(g); snprintf(err, errlen, "Embree: out of memory for mesh %d", i); return -1; }
-    memcpy(vb, m->p, sizeof(float) * 3 * (size_t)m->nvert);
-    memcpy(ib, m->idx, sizeof(unsigned) * 3 * (size_t)m->ntri);
-    rtcCommitGeometry(g);
-    id = rtcAttachGeometry(sc, g);
-    rtcReleaseGeometry(g);
+    if (s->mesh[i].object >= 0) continue;
+    id = elr__attach_mesh(s, dev, sc, i, err, errlen);
+    if (id == RTC_INVALID_GEOMETRY_ID) return -1;
     s->geom_kind[id] = 0; s->geom_index[id] = i;
   }
+  for (i = 0; i < s->nsph; i++) nworld += s->sph[i].object < 0;
   /* Spheres are the user geometry above (pbrt-v3's Sphere in object space, in double precision: any
    * affine transform, so a non-uniform Scale gives an exact ellipsoid). With the environment variable
    * ELR_EMBREE_SPHERES set, spheres whose object-to-world transform is a similarity (rotation, uniform
@@ -66,6 +122,7 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
       const double(*m)[4] = (const double(*)[4])s->sph[i].o2w.m;
       double g[3][3], sc;
       int a, b, k, sim = 1;
+      if (s->sph[i].object >= 0) continue;
       for (a = 0; a < 3; a++)
         for (b = 0; b < 3; b++) { g[a][b] = 0; for (k = 0; k < 3; k++) g[a][b] += m[k][a] * m[k][b]; }
       sc = g[0][0];
@@ -96,30 +153,56 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     if (!s->sph_user) { snprintf(err, errlen, "out of memory"); return -1; }
     for (i = 0; i < s->nsph; i++) {
       int k, b = 0;
+      if (s->sph[i].object >= 0) continue;
       for (k = 0; k < nb; k++) if (s->sph_builtin[k] == i) b = 1;
       if (!b) s->sph_user[s->nuser++] = i;
     }
   }
   if (s->nuser) {
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
     unsigned id;
-    rtcSetGeometryUserPrimitiveCount(g, (unsigned)s->nuser);
-    rtcSetGeometryUserData(g, s);
-    rtcSetGeometryBoundsFunction(g, elr_sphere_bounds, NULL);
-    rtcSetGeometryIntersectFunction(g, elr_sphere_intersect);
-    rtcSetGeometryOccludedFunction(g, elr_sphere_occluded);
+    s->world_spheres.sph = s->sph; s->world_spheres.idx = s->sph_user;
+    id = elr__attach_spheres(dev, sc, &s->world_spheres, s->nuser);
+    s->geom_kind[id] = 1; s->geom_index[id] = 0;
+    s->sphere_geom = id;
+  }
+  /* ObjectInstance: each prototype that is placed somewhere gets its scene once, each placement an
+   * Embree instance of it with the instance-to-world transform */
+  for (i = 0; i < s->nobj; i++)
+    if (s->obj[i].ninstances > 0 && elr__build_object(s, dev, i, err, errlen) != 0) return -1;
+  for (i = 0; i < s->ninst; i++) {
+    const elr_instance *in = &s->inst[i];
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+    float xf[12];
+    int r, c;
+    unsigned id;
+    for (r = 0; r < 3; r++) for (c = 0; c < 4; c++) xf[4 * r + c] = (float)in->xf.m[r][c];
+    rtcSetGeometryInstancedScene(g, (RTCScene)s->obj[in->object].rtscene);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xf);
     rtcCommitGeometry(g);
     id = rtcAttachGeometry(sc, g);
     rtcReleaseGeometry(g);
-    s->geom_kind[id] = 1; s->geom_index[id] = 0;
-    s->sphere_geom = id;
+    s->geom_kind[id] = 2; s->geom_index[id] = i;
+  }
+  if (s->ndisk) { /* pbrt-v3's disks, exact: shapes.c */
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
+    unsigned id;
+    rtcSetGeometryUserPrimitiveCount(g, (unsigned)s->ndisk);
+    rtcSetGeometryUserData(g, s);
+    rtcSetGeometryBoundsFunction(g, elr_disk_bounds, NULL);
+    rtcSetGeometryIntersectFunction(g, elr_disk_intersect);
+    rtcSetGeometryOccludedFunction(g, elr_disk_occluded);
+    rtcCommitGeometry(g);
+    id = rtcAttachGeometry(sc, g);
+    rtcReleaseGeometry(g);
+    s->geom_kind[id] = 3; s->geom_index[id] = 0;
+    s->disk_geom = id;
   }
   rtcCommitScene(sc);
   if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) { snprintf(err, errlen, "Embree: building the scene failed"); return -1; }
   {
     struct RTCBounds b;
     rtcGetSceneBounds(sc, &b);
-    if (s->nmesh + s->nsph > 0 && b.lower_x <= b.upper_x) {
+    if (s->nmesh + s->nsph + s->ndisk > 0 && b.lower_x <= b.upper_x) {
       s->world_center = elr_v(0.5f * (b.lower_x + b.upper_x), 0.5f * (b.lower_y + b.upper_y), 0.5f * (b.lower_z + b.upper_z));
       s->world_radius = 0.5f * elr_len(elr_v(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z));
     } else {
@@ -132,7 +215,14 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
 }
 
 void elr_scene_release(elr_scene *s) {
+  int i;
   if (s->rtscene) rtcReleaseScene((RTCScene)s->rtscene);
+  for (i = 0; i < s->nobj; i++) {
+    elr_object *o = &s->obj[i];
+    if (o->rtscene) rtcReleaseScene((RTCScene)o->rtscene);
+    free(o->geom_mesh); free(o->sph_user);
+    o->rtscene = NULL; o->geom_mesh = NULL; o->sph_user = NULL;
+  }
   if (s->device) rtcReleaseDevice((RTCDevice)s->device);
   s->rtscene = s->device = NULL;
   free(s->geom_kind); free(s->geom_index); free(s->sph_builtin); free(s->sph_user);
@@ -178,6 +268,25 @@ int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax) {
   return r.tfar < 0.f;
 }
 
+/* A hit on the prototype of instance ii (geometry geom of its scene): the hit record made in the
+ * prototype's space (the ray taken there by the inverse transform; t is the same in both spaces), then
+ * taken to world space (pbrt-v3's TransformedPrimitive::Intersect: the point, the normals by the inverse
+ * transpose, the shading normal turned to the geometric normal's side) */
+static ELR_NOINLINE void elr__instance_hit(const elr_scene *s, int ii, unsigned geom, unsigned prim, float b1, float b2, elr_v3 o, elr_v3 d, elr_hit *h) {
+  const elr_instance *in = &s->inst[ii];
+  const elr_object *ob = &s->obj[in->object];
+  if (geom == ob->sphere_geom) {
+    elr_sphere_hit(s, ob->sph_user[prim], elr_xpoint_inv(&in->xf, o), elr_xvector_inv(&in->xf, d), h);
+  } else {
+    elr_triangle_hit(s, ob->geom_mesh[geom], prim, b1, b2, h);
+  }
+  h->inst = ii;
+  h->p = elr_xpoint(&in->xf, h->p);
+  h->ng = elr_norm(elr_xnormal(&in->xf, h->ng));
+  h->ns = elr_norm(elr_xnormal(&in->xf, h->ns));
+  if (elr_dot(h->ns, h->ng) < 0.f) h->ns = elr_mul(h->ns, -1.f);
+}
+
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h) {
   struct RTCRayHit rh;
   float pmax;
@@ -195,8 +304,13 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
   h->t = rh.ray.tfar;
   h->prim = rh.hit.primID;
   h->has_uv = 0;
-  if (rh.hit.geomID == s->sphere_geom || rh.hit.geomID == s->builtin_geom)
+  h->inst = -1;
+  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID)
+    elr__instance_hit(s, s->geom_index[rh.hit.instID[0]], rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, o, d, h);
+  else if (rh.hit.geomID == s->sphere_geom || rh.hit.geomID == s->builtin_geom)
     elr_sphere_hit(s, rh.hit.geomID == s->sphere_geom ? s->sph_user[rh.hit.primID] : s->sph_builtin[rh.hit.primID], o, d, h);
+  else if (rh.hit.geomID == s->disk_geom)
+    elr_disk_hit(s, (int)rh.hit.primID, o, d, h);
   else
     elr_triangle_hit(s, s->geom_index[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, h);
   pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
@@ -253,7 +367,7 @@ void elr_scene_free(elr_scene *s) {
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
-  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->light); free(s->mat_textured);
+  free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->disk); free(s->light); free(s->mat_textured); free(s->obj); free(s->inst);
   free(s);
 }
 int elr_scene_warnings(const elr_scene *s) { return s->warnings; }

@@ -15,18 +15,48 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   FILE *f = (FILE *)fp;
   uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
   fprintf(f, "render statistics\n");
-  fprintf(f, "  image              %d x %d, %d spp (%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
-          st->sampler == ELR_SAMPLER_RANDOM ? "random" : (st->sampler == ELR_SAMPLER_STRATIFIED ? "stratified" : "halton"),
+  static const char *rz[4] = {", no randomization", ", random digit permutation", ", fast Owen scrambling", ", Owen scrambling"};
+  int scrambled = st->sampler == ELR_SAMPLER_SOBOL || st->sampler == ELR_SAMPLER_ZSOBOL || st->sampler == ELR_SAMPLER_PADDEDSOBOL;
+  const char *r = scrambled ? rz[st->sampler_randomization & 3] : "";
+  fprintf(f, "  image              %d x %d, %d spp (sampler %s%s), %d thread%s, %s, maxdepth %d\n", st->width, st->height, st->spp,
+          elr_sampler_kind_name(st->sampler), r,
           st->nthreads, st->nthreads == 1 ? "" : "s", st->integrator_path ? "path" : "directlighting", st->maxdepth);
   fprintf(f, "  parse              %8.3f s (images and meshes read: %.3f s)\n", st->t_parse, st->t_images);
   fprintf(f, "  embree build       %8.3f s  %10.1f KiB\n", st->t_embree, (double)st->bytes_embree / 1024.0);
   fprintf(f, "  textures (level 0) %10.1f KiB  (environment map image included)\n", (double)st->bytes_textures / 1024.0);
   fprintf(f, "  MIP maps           %d image texture%s, %d level%s built, %.1f KiB\n", st->mip_textures,
           st->mip_textures == 1 ? "" : "s", st->mip_levels_built, st->mip_levels_built == 1 ? "" : "s", (double)st->bytes_mip / 1024.0);
-  fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (nothing emits, or no surface has a non-specular lobe)",
-          st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+  if (st->nothing_emits) fprintf(f, "  light sampling     no: nothing emits (the image is black; no ray traced)\n");
+  else
+    fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
+            st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
           (double)st->bytes_distribution / 1024.0);
+  fprintf(f, "  lights             %d, %d emitting (%d area); next-event estimation: %s; light distribution %s", st->lights,
+          st->lights_emitting, st->lights_area, st->light_strategy, st->light_distribution_built ? "built" : "not built");
+  if (st->light_distribution_built) fprintf(f, " (%.1f KiB, %.3f s)", (double)st->bytes_light_distribution / 1024.0, st->t_light_distribution);
+  fprintf(f, "\n");
+  {
+    static const char *kinds[4] = {"infinite", "point", "distant", "area"}, *shapes[3] = {"trianglemesh", "sphere", "disk"};
+    int i;
+    for (i = 0; i < st->nlight_stats; i++) {
+      const elr_light_stats *l = &st->light[i];
+      fprintf(f, "    light %-3d        %s", i, kinds[l->kind & 3]);
+      if (l->kind == 3) {
+        fprintf(f, " on %s %d", shapes[l->shape_kind % 3], l->shape);
+        if (l->shape_kind == 0) fprintf(f, " (%d triangle%s)", l->ntri, l->ntri == 1 ? "" : "s");
+        fprintf(f, "%s, area %.4g", l->twosided ? ", two-sided" : "", l->area);
+      }
+      if (!l->emits) { fprintf(f, ": emits nothing\n"); continue; }
+      if (l->pick > 0.f) fprintf(f, "; chosen with p = %.4g", l->pick);
+      if (l->power > 0.0) fprintf(f, ", power %.4g", l->power);
+      if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
+      if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");
+      if (l->tables_built) fprintf(f, " (%.1f KiB)", (double)l->bytes / 1024.0);
+      fprintf(f, "\n");
+    }
+    if (st->lights > st->nlight_stats) fprintf(f, "    (%d more lights)\n", st->lights - st->nlight_stats);
+  }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
           st->splats_allocated ? "allocated" : "not allocated (nothing splats)");
   fprintf(f, "  render             %8.3f s\n", st->t_render);

@@ -1,8 +1,10 @@
 /* textures.c: pbrt-v3's textures/ directory: constant.cpp, checkerboard.cpp (Checkerboard2DTexture,
- * with its closed-form box filter over the ray footprint) and imagemap.cpp (ImageTexture: a MIP map of
- * mipmap.h, filtered by el_mipmap_lookup_differentials), all through the UVMapping2D of core/texture.cpp.
- * The parser (parser.c) builds them; materials.c evaluates them at shading points. New textures
- * (pbrt-v3's scale, mix) join here as another ELR_TEX_ kind. */
+ * with its closed-form box filter over the ray footprint), imagemap.cpp (ImageTexture: a MIP map of
+ * mipmap.h, filtered by el_mipmap_lookup_differentials), all through the UVMapping2D of core/texture.cpp,
+ * and scale.cpp (ScaleTexture: tex1 * tex2) and mix.cpp (MixTexture: (1 - amount) tex1 + amount tex2),
+ * which combine other textures. The parser (parser.c) builds them (a scale or mix of constants is made a
+ * constant there); materials.c evaluates them at shading points. Float textures hold their value in all
+ * three components. */
 #include "elr_internal.h"
 
 /* The texture ti at the shading point's (u, v) and its screen-space differentials: pbrt-v3's
@@ -13,6 +15,13 @@ elr_v3 elr_tex_eval(const elr_scene *s, int ti, const elr_tex_ctx *c) {
   if (ti < 0 || ti >= s->ntex) return elr_v(0, 0, 0);
   t = &s->tex[ti];
   if (t->kind == ELR_TEX_CONST) return t->value; /* textures/constant.cpp */
+  if (t->kind == ELR_TEX_SCALE) /* textures/scale.cpp, ScaleTexture::Evaluate */
+    return elr_vmul(elr_tex_eval(s, t->tex1, c), elr_tex_eval(s, t->tex2, c));
+  if (t->kind == ELR_TEX_MIX) { /* textures/mix.cpp, MixTexture::Evaluate */
+    elr_v3 t1 = elr_tex_eval(s, t->tex1, c), t2 = elr_tex_eval(s, t->tex2, c);
+    float amt = elr_tex_eval(s, t->amount, c).x;
+    return elr_add(elr_mul(t1, 1.f - amt), elr_mul(t2, amt));
+  }
   /* <<UVMapping2D::Map>> */
   st0 = t->su * c->u + t->du; st1 = t->sv * c->v + t->dv;
   ds0x = t->su * c->dudx; ds1x = t->sv * c->dvdx;

@@ -94,3 +94,8 @@ elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v) {
   return elr_v((float)(m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z), (float)(m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z),
                (float)(m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z));
 }
+elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p) {
+  elr_xform inv;
+  elr_xform_invert(&inv, t);
+  return elr_xpoint(&inv, p);
+}

@@ -2,7 +2,7 @@
  * text (parser.c, Include, PLY meshes) and the image files image_io.c reads (HDR, EXR, PFM, PNG).
  *
  * Every case starts from a valid input (the scenes in scenes/, a scene built here that uses every
- * directive, small images and PLY files written here) and applies a few seeded mutations: byte flips,
+ * directive, small images, PLY and .spd spectrum files written here) and applies a few seeded mutations: byte flips,
  * token deletion and duplication, numbers replaced by extremes (1e38, -1, 0, nan, 4294967296...),
  * truncation, bracket removal, strings and numbers swapped, directives and parameter names spliced in.
  * The project rule for bad input is checked on each: the loader returns an error with a non-empty
@@ -94,7 +94,18 @@ static const char *fz_words[] = {
     "LightSource \"infinite\" \"string mapname\" \"tiny.pfm\"", "LightSource \"infinite\" \"string mapname\" \"tiny.png\"",
     "LightSource \"infinite\" \"rgb L\" [ 1e38 1e38 1e38 ]", "LightSource \"infinite\" \"rgb L\" [ -1 -1 -1 ]",
     "LightSource \"point\" \"point from\" [ 0 1 0 ] \"rgb I\" [ 1e38 1 1 ]", "LightSource \"distant\" \"point from\" [ 0 0 0 ] \"point to\" [ 0 0 0 ]",
-    "LightSource \"spot\"", "AreaLightSource \"diffuse\"", "Material \"matte\"", "Material \"mirror\"",
+    "LightSource \"spot\"", "AreaLightSource \"diffuse\"", "AreaLightSource \"area\" \"rgb L\" [ 4 4 4 ] \"bool twosided\" \"true\"",
+    "AreaLightSource \"diffuse\" \"blackbody L\" [ 6500 2 ] \"integer nsamples\" 3", "AreaLightSource \"diffuse\" \"rgb L\" [ -1 1 1 ]",
+    "AreaLightSource \"diffuse\" \"spectrum L\" \"s.spd\"", "AreaLightSource \"diffuse\" \"spectrum L\" [ 400 1 700 1e38 ]",
+    "AreaLightSource \"diffuse\" \"xyz L\" [ 1 1 1 ] \"integer samples\" 0", "AreaLightSource \"goniometric\"",
+    "Shape \"disk\" \"float radius\" 0.5 \"float innerradius\" 0.2 \"float phimax\" 90 \"float height\" 1",
+    "Shape \"disk\" \"float innerradius\" 2", "Shape \"disk\" \"float phimax\" 0", "Shape \"disk\" \"float radius\" 1e38",
+    "LightSource \"point\" \"blackbody I\" [ 0 1 ]", "LightSource \"point\" \"blackbody I\" [ 1e-30 1 ]",
+    "Integrator \"directlighting\" \"string strategy\" \"one\"", "Integrator \"path\" \"string lightsamplestrategy\" \"uniform\"",
+    "Integrator \"path\" \"string lightsamplestrategy\" \"power\"", "Integrator \"path\" \"string lightsamplestrategy\" \"spatial\"",
+    "Material \"matte\" \"spectrum Kd\" \"s.spd\"", "Material \"matte\" \"spectrum Kd\" [ 500 0.5 400 0.5 ]",
+    "Material \"matte\" \"xyz Kd\" [ 0.2 0.3 0.4 ]", "Material \"matte\" \"blackbody Kd\" [ 3000 0.5 ]", "Material \"matte\"",
+    "Material \"mirror\"",
     "Material \"plastic\" \"float roughness\" 0", "Material \"plastic\" \"float roughness\" -1e38 \"bool remaproughness\" \"false\"",
     "Material \"glass\"", "Material \"\"", "MakeNamedMaterial \"m\" \"string type\" \"plastic\"", "NamedMaterial \"m\"",
     "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"tiny.png\"",
@@ -107,9 +118,24 @@ static const char *fz_words[] = {
     "PixelFilter \"gaussian\" \"float alpha\" -1e38", "PixelFilter \"triangle\" \"float xwidth\" 1e-3",
     "Sampler \"stratified\" \"integer xsamples\" 4096 \"integer ysamples\" 4096", "Sampler \"random\" \"integer pixelsamples\" 1",
     "Sampler \"halton\" \"integer pixelsamples\" 16777216", "Sampler \"sobol\"",
+    "Sampler \"zsobol\" \"string randomization\" \"owen\"", "Sampler \"02sequence\" \"integer dimensions\" 0",
+    "Sampler \"paddedsobol\" \"integer pixelsamples\" 3 \"integer seed\" -7", "Sampler \"sobol\" \"string randomization\" \"x\"",
+    "Sampler \"lowdiscrepancy\" \"integer pixelsamples\" 16777215", "Sampler \"pmj02bn\"",
     "Integrator \"path\" \"integer maxdepth\" 100000", "Integrator \"directlighting\" \"integer maxdepth\" 100000",
     "Integrator \"path\" \"float rrthreshold\" -1e38", "Integrator \"path\" \"float rrthreshold\" 1e38", "Integrator \"bdpt\"",
-    "ObjectBegin \"o\"", "ObjectEnd", "ObjectInstance \"o\"", "Option \"bool x\" \"true\"", "Attribute \"shape\" \"float radius\" 2",
+    "ObjectBegin \"o\"", "ObjectEnd", "ObjectInstance \"o\"", "ObjectInstance \"obj\"", "ObjectBegin \"obj\"",
+    "Option \"bool x\" \"true\"", "Attribute \"shape\" \"float radius\" 2",
+    "Shape \"loopsubdiv\" \"integer levels\" 2 \"integer indices\" [ 0 2 1 0 1 3 0 3 2 1 2 3 ] \"point P\" [ 1 1 1 -1 -1 1 -1 1 -1 1 -1 -1 ]",
+    "Shape \"loopsubdiv\" \"integer levels\" 12 \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ 0 0 0 1 0 0 1 1 0 0 1 0 ]",
+    "Shape \"loopsubdiv\" \"integer indices\" [ 0 1 2 0 1 2 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 ]",
+    "Shape \"loopsubdiv\" \"integer indices\" [ 0 1 2 1 0 3 0 1 3 ] \"point P\" [ 0 0 0 1 0 0 0 1 0 0 0 1 ]",
+    "Material \"glass\" \"float index\" 1e-30", "Material \"glass\" \"float uroughness\" 0.3 \"float vroughness\" 0", "Material \"metal\" \"rgb eta\" [ 0 0 0 ] \"rgb k\" [ 0 0 0 ]",
+    "Material \"metal\" \"float roughness\" -1e38", "Material \"uber\" \"rgb opacity\" [ 0.5 -1 2 ]", "Material \"uber\" \"rgb Kt\" [ 1 1 1 ] \"float index\" 1",
+    "Material \"substrate\" \"float uroughness\" 0 \"bool remaproughness\" \"false\"", "MakeNamedMaterial \"g\" \"string type\" \"glass\"", "NamedMaterial \"g\"",
+    "Texture \"s\" \"spectrum\" \"scale\" \"texture tex1\" \"t\" \"texture tex2\" \"s\"", "Texture \"x\" \"float\" \"mix\" \"texture amount\" \"x\"",
+    "Texture \"t\" \"spectrum\" \"mix\" \"texture tex1\" \"t\" \"texture tex2\" \"t\" \"texture amount\" \"t\"",
+    "Accelerator \"bvh\"", "Integrator \"mlt\" \"integer maxdepth\" 3", "Integrator \"sppm\"", "ActiveTransform EndTime", "ActiveTransform Foo",
+    "MediumInterface \"a\" \"b\"", "Shape \"curve\"", "Shape \"cylinder\"",
     "MakeNamedMedium \"m\" \"string type\" \"homogeneous\"", "MediumInterface \"\" \"m\"", "ActiveTransform All", "TransformTimes 0 1",
     "Foo", "[", "]", "\"", "#", "\"float", "1", "-", "\\",
     /* PLY header lines (the ASCII PLY seed goes through this mutator too) */
@@ -119,6 +145,10 @@ static const char *fz_words[] = {
 static const char *fz_strings[] = {"\"float radius\"", "\"integer indices\"", "\"point P\"", "\"point3 P\"", "\"normal N\"",
                                    "\"float uv\"", "\"point2 uv\"", "\"float st\"", "\"rgb Kd\"", "\"spectrum Kd\"",
                                    "\"blackbody L\"", "\"texture Kd\"", "\"string filename\"", "\"string mapname\"",
+                                   "\"spectrum L\"", "\"xyz Kd\"", "\"blackbody I\"", "\"bool twosided\"", "\"integer nsamples\"",
+                                   "\"float innerradius\"", "\"float phimax\"", "\"float height\"", "\"string strategy\"",
+                                   "\"string lightsamplestrategy\"", "\"s.spd\"", "\"one\"", "\"power\"", "\"uniform\"", "\"spatial\"",
+                                   "\"diffuse\"", "\"area\"", "\"disk\"",
                                    "\"bool jitter\"", "\"integer pixelsamples\"", "\"integer maxdepth\"", "\"float fov\"",
                                    "\"float screenwindow\"", "\"float cropwindow\"", "\"integer xresolution\"",
                                    "\"float scale\"", "\"rgb scale\"", "\"integer samples\"", "\"string importance\"",
@@ -130,8 +160,12 @@ static const char *fz_strings[] = {"\"float radius\"", "\"integer indices\"", "\
                                    "\"integer indices indices\"", "\"tiny.hdr\"", "\"tiny.exr\"", "\"tiny.pfm\"", "\"tiny.png\"",
                                    "\"a.ply\"", "\"b.ply\"", "\"inc.pbrt\"", "\"missing.hdr\"", "\"/\"", "\".\"", "\"true\"",
                                    "\"false\"", "\"perspective\"", "\"infinite\"", "\"imagemap\"", "\"checkerboard\"",
-                                   "\"stratified\"", "\"halton\"", "\"texel\"", "\"cellaverage\"", "\"clamp\"", "\"ewa\"",
-                                   "\"t\"", "\"m\"", "\"c\"", "\"world\"", "\"camera\"", "\"a\\\"b\"", "\"\\\\\""};
+                                   "\"stratified\"", "\"halton\"", "\"zsobol\"", "\"02sequence\"", "\"string randomization\"", "\"integer seed\"",
+                                   "\"texel\"", "\"cellaverage\"", "\"clamp\"", "\"ewa\"",
+                                   "\"t\"", "\"m\"", "\"c\"", "\"world\"", "\"camera\"", "\"a\\\"b\"", "\"\\\\\"",
+                                   "\"integer levels\"", "\"float index\"", "\"float eta\"", "\"rgb eta\"", "\"rgb k\"", "\"float uroughness\"",
+                                   "\"float vroughness\"", "\"rgb Kt\"", "\"rgb opacity\"", "\"texture tex1\"", "\"texture amount\"", "\"float amount\"",
+                                   "\"glass\"", "\"metal\"", "\"uber\"", "\"substrate\"", "\"scale\"", "\"mix\"", "\"loopsubdiv\"", "\"obj\""};
 
 /* >> token positions of a scene text (whitespace-separated; a quoted string is one token) */
 typedef struct fz_tok { size_t at, len; } fz_tok;
@@ -381,7 +415,9 @@ static void fz_mutate_bytes(fz_buf *b) {
 }
 
 /* >> the seed inputs */
-static const char *fz_img_names[] = {"tiny.hdr", "flat.hdr", "tiny.exr", "tiny.pfm", "grey.pfm", "tiny.png", "grey.png", "a.ply", "b.ply", "inc.pbrt"};
+/* (the code below names tiny.pfm and tiny.exr by position, and the last three by their distance from the end) */
+static const char *fz_img_names[] = {"tiny.hdr", "flat.hdr", "tiny.exr", "tiny.pfm", "grey.pfm", "tiny.png", "grey.png", "s.spd",
+                                     "a.ply", "b.ply", "inc.pbrt"};
 #define FZ_NIMG ((int)(sizeof fz_img_names / sizeof fz_img_names[0]))
 static fz_buf fz_img_seed[FZ_NIMG];
 
@@ -418,6 +454,26 @@ static const char *fz_every_directive =
     "  \"normal N\" [ 0 1 0 0 1 0 0 1 0 0 1 0 ] \"float uv\" [ 0 0 1 0 1 1 0 1 ]\n"
     "Shape \"plymesh\" \"string filename\" \"b.ply\"\n"
     "Include \"inc.pbrt\"\n"
+    /* issue 16's format: instances, Loop subdivision, glass, metal, uber, substrate, scale and mix */
+    "Texture \"sc\" \"spectrum\" \"scale\" \"texture tex1\" \"c\" \"rgb tex2\" [ 0.5 0.5 0.5 ]\n"
+    "Texture \"mx\" \"float\" \"mix\" \"float tex1\" 0.1 \"texture tex2\" \"k\" \"float amount\" 0.3\n"
+    "MakeNamedMaterial \"rough\" \"string type\" \"glass\" \"float uroughness\" 0.2 \"texture vroughness\" \"mx\" \"float index\" 1.4\n"
+    "ObjectBegin \"obj\"\n  Material \"metal\" \"float roughness\" 0.1\n  Shape \"sphere\" \"float radius\" 0.2\n"
+    "  Material \"uber\" \"texture Kd\" \"sc\" \"rgb Kr\" [ 0.2 0.2 0.2 ] \"rgb opacity\" [ 0.7 0.7 0.7 ]\n"
+    "  Shape \"loopsubdiv\" \"integer levels\" 1 \"integer indices\" [ 0 2 1 0 1 3 0 3 2 1 2 3 ] \"point P\" [ 0.3 0.3 0.3 -0.3 -0.3 0.3 -0.3 0.3 -0.3 0.3 -0.3 -0.3 ]\n"
+    "ObjectEnd\n"
+    "AttributeBegin\n  Translate 0 1.5 0\n  ObjectInstance \"obj\"\n  Translate 0.6 0 0\n  Scale -1 1 1\n  ObjectInstance \"obj\"\nAttributeEnd\n"
+    "AttributeBegin\n  Material \"glass\" \"float index\" 1.5\n  Translate 0 0.4 -1.5\n  ReverseOrientation\n  Shape \"sphere\" \"float radius\" 0.2\nAttributeEnd\n"
+    "AttributeBegin\n  NamedMaterial \"rough\"\n  Material \"substrate\" \"float uroughness\" 0.05\n  Translate -1 0.2 -1.5\n  Shape \"sphere\" \"float radius\" 0.2\nAttributeEnd\n"
+    /* area lights on every shape, their orientation, spectral values */
+    "AttributeBegin\n  AreaLightSource \"diffuse\" \"blackbody L\" [ 5500 2 ] \"bool twosided\" \"true\" \"integer nsamples\" 2\n"
+    "  Translate 0 2 0\n  ReverseOrientation\n"
+    "  Shape \"disk\" \"float radius\" 0.3 \"float innerradius\" 0.1 \"float phimax\" 270 \"float height\" 0.1\nAttributeEnd\n"
+    "AttributeBegin\n  AreaLightSource \"area\" \"spectrum L\" \"s.spd\" \"rgb scale\" [ 1 1 1 ]\n  Translate 0 2.5 1\n"
+    "  Shape \"sphere\" \"float radius\" 0.2\nAttributeEnd\n"
+    "AttributeBegin\n  AreaLightSource \"diffuse\" \"xyz L\" [ 0.5 0.5 0.5 ] \"spectrum scale\" [ 400 1 700 2 ]\n"
+    "  Material \"matte\" \"spectrum Kd\" [ 400 0.2 550 0.8 700 0.4 ]\n"
+    "  Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 ] \"point P\" [ -1 3 0 1 3 0 0 3 1 ]\nAttributeEnd\n"
     "WorldEnd\n";
 
 static void fz_write_le32(FILE *f, uint32_t v) { unsigned char b[4]; b[0] = (unsigned char)v; b[1] = (unsigned char)(v >> 8); b[2] = (unsigned char)(v >> 16); b[3] = (unsigned char)(v >> 24); fwrite(b, 1, 4, f); }
@@ -459,6 +515,7 @@ static void fz_make_seeds(void) {
   }
   rt_write("inc.pbrt", "# included\nAttributeBegin\n  Translate 0 0.3 -1\n  Material \"matte\" \"rgb Kd\" [ 0.2 0.7 0.2 ]\n"
                        "  Shape \"sphere\" \"float radius\" 0.3\nAttributeEnd\n");
+  rt_write("s.spd", "# a spectrum: wavelength (nm), value\n380 0.5\n450 1.5\n550 1.0 # a comment\n650 2.0\n780 0.7\n");
   for (i = 0; i < FZ_NIMG; i++)
     if (fz_read_file(rt_path(fz_img_names[i]), &fz_img_seed[i])) { printf("cannot read %s\n", fz_img_names[i]); exit(1); }
 
@@ -466,9 +523,9 @@ static void fz_make_seeds(void) {
    * film shrunk to 8 x 8), small scenes */
   fz_set(&fz_scene_seed[fz_nscene_seeds++], fz_every_directive, strlen(fz_every_directive));
   {
-    static const char *files[2] = {"envlight_demo.pbrt", "bench_city.pbrt"};
+    static const char *files[4] = {"envlight_demo.pbrt", "bench_city.pbrt", "glass_metal.pbrt", "loopsubdiv.pbrt"};
     int k;
-    for (k = 0; k < 2; k++) {
+    for (k = 0; k < 4; k++) {
       char path[1024];
       fz_buf *b = &fz_scene_seed[fz_nscene_seeds];
       char *q;
@@ -479,6 +536,8 @@ static void fz_make_seeds(void) {
       while ((q = strstr((char *)b->p, "[ 400 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       while ((q = strstr((char *)b->p, "[ 320 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       while ((q = strstr((char *)b->p, "[ 240 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
+      while ((q = strstr((char *)b->p, "[ 192 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
+      while ((q = strstr((char *)b->p, "[ 180 ]")) != NULL) fz_splice(b, (size_t)(q - (char *)b->p), 7, "[ 8 ]", 5);
       fz_nscene_seeds++;
     }
   }
@@ -491,9 +550,20 @@ static void fz_make_seeds(void) {
         "Shape \"plymesh\" \"string filename\" \"a.ply\"\nWorldEnd\n",
         "Film \"image\" \"integer xresolution\" 5 \"integer yresolution\" 5\nWorldBegin\nLightSource \"infinite\" \"string mapname\" \"tiny.pfm\"\n"
         "Shape \"trianglemesh\" \"point P\" [ 0 0 1 1 0 1 0 1 1 ]\nTexture \"g\" \"float\" \"imagemap\" \"string filename\" \"grey.png\"\n"
-        "Material \"plastic\" \"texture roughness\" \"g\"\nShape \"sphere\" \"float radius\" 0.5\nWorldEnd\n"};
+        "Material \"plastic\" \"texture roughness\" \"g\"\nShape \"sphere\" \"float radius\" 0.5\nWorldEnd\n",
+        /* area lights: a quad light over a box (directlighting, one light at a time), a sphere light beside the environment */
+        "Film \"image\" \"integer xresolution\" 4 \"integer yresolution\" 4\nLookAt 0 1 -3 0 1 0 0 1 0\n"
+        "Integrator \"directlighting\" \"string strategy\" \"one\"\nWorldBegin\nAttributeBegin\n"
+        "AreaLightSource \"diffuse\" \"rgb L\" [ 8 8 8 ]\nShape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ]\n"
+        "  \"point P\" [ -0.3 1.9 -0.3 0.3 1.9 -0.3 0.3 1.9 0.3 -0.3 1.9 0.3 ]\nAttributeEnd\n"
+        "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -1 0 -1 1 0 -1 1 0 1 -1 0 1 ]\n"
+        "LightSource \"point\" \"point from\" [ 0 1 0 ] \"blackbody I\" [ 4000 1 ]\nWorldEnd\n",
+        "Film \"image\" \"integer xresolution\" 4 \"integer yresolution\" 4\nIntegrator \"path\" \"string lightsamplestrategy\" \"power\"\n"
+        "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"tiny.hdr\"\nAttributeBegin\nTranslate 0 0 3\nScale 1 2 1\n"
+        "AreaLightSource \"area\" \"xyz L\" [ 1 1 1 ]\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+        "Shape \"disk\" \"float height\" -1 \"float radius\" 4\nWorldEnd\n"};
     int k;
-    for (k = 0; k < 3 && fz_nscene_seeds < FZ_NSEEDS; k++) fz_set(&fz_scene_seed[fz_nscene_seeds++], small[k], strlen(small[k]));
+    for (k = 0; k < 5 && fz_nscene_seeds < FZ_NSEEDS; k++) fz_set(&fz_scene_seed[fz_nscene_seeds++], small[k], strlen(small[k]));
   }
 }
 
@@ -543,7 +613,7 @@ static void fz_render_check(elr_scene *s, long kase, const fz_buf *in) {
   if (kase >= 0) { /* the render options' overrides too, varied by case (deterministically) */
     uint64_t h = (uint64_t)kase * 0x9e3779b97f4a7c15ULL;
     o.light_sampling = (int)((h >> 20) % 4) - 1;  /* -1 (the scene's), mis, light, bsdf */
-    o.sampler = (int)((h >> 24) % 4);             /* the scene's, random, stratified, halton */
+    o.sampler = (int)((h >> 24) % ELR_SAMPLER_COUNT); /* the scene's, or one of the 7 samplers */
     o.importance = (int)((h >> 28) % 4) - 1;
     o.compensated = (int)((h >> 32) % 3) - 1;
     if ((h >> 36) % 4 == 0) o.spp = 2 + (int)((h >> 40) % 3);
@@ -644,10 +714,10 @@ static void fz_image_case(uint64_t seed, long kase, fz_buf *b) {
   nm = 1 + (int)fz_below(3);
   for (i = 0; i < nm; i++) {
     /* text formats (the included scene, the ASCII PLY, PFM headers) also get token mutations */
-    if (which == FZ_NIMG - 1 || (which == FZ_NIMG - 3 && fz_below(2)) || (which == 3 && fz_below(4) == 0)) fz_mutate_scene(b);
+    if (which == FZ_NIMG - 1 || which == FZ_NIMG - 4 || (which == FZ_NIMG - 3 && fz_below(2)) || (which == 3 && fz_below(4) == 0)) fz_mutate_scene(b);
     else fz_mutate_bytes(b);
   }
-  if (which == FZ_NIMG - 1) b->n = strlen((const char *)b->p);
+  if (which == FZ_NIMG - 1 || which == FZ_NIMG - 4) b->n = strlen((const char *)b->p);
   ext = strrchr(fz_img_names[which], '.');
   snprintf(name, sizeof name, "m%s", ext);
   fz_write_file(rt_path(name), b->p, b->n);
@@ -679,7 +749,7 @@ static void fz_image_case(uint64_t seed, long kase, fz_buf *b) {
       } else if (fz_verbose) printf("  -> %s\n", err);
     }
   }
-  if (kase % 4 == 0 || !strcmp(ext, ".ply") || !strcmp(ext, ".pbrt")) {
+  if (kase % 4 == 0 || !strcmp(ext, ".ply") || !strcmp(ext, ".pbrt") || !strcmp(ext, ".spd")) {
     /* through the scene: an environment map and a texture (or the mesh, or the include) */
     char scene[1024];
     elr_scene *s = NULL;
@@ -687,6 +757,10 @@ static void fz_image_case(uint64_t seed, long kase, fz_buf *b) {
     if (!strcmp(ext, ".ply"))
       snprintf(scene, sizeof scene, "Film \"image\" \"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n"
                                     "LightSource \"infinite\"\nShape \"plymesh\" \"string filename\" \"%s\"\nWorldEnd\n", name);
+    else if (!strcmp(ext, ".spd")) /* a spectrum file: an area light's L and a material's Kd */
+      snprintf(scene, sizeof scene, "Film \"image\" \"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n"
+                                    "AreaLightSource \"diffuse\" \"spectrum L\" \"%s\"\nShape \"disk\"\nAttributeBegin\n"
+                                    "Material \"matte\" \"spectrum Kd\" \"%s\"\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\nWorldEnd\n", name, name);
     else if (!strcmp(ext, ".pbrt"))
       snprintf(scene, sizeof scene, "Film \"image\" \"integer xresolution\" 4 \"integer yresolution\" 4\nWorldBegin\n"
                                     "LightSource \"infinite\"\nInclude \"%s\"\nWorldEnd\n", name);
@@ -703,7 +777,7 @@ static void fz_image_case(uint64_t seed, long kase, fz_buf *b) {
     } else if (!err[0] || (!fz_has_file_line(err) && !strstr(err, name))) {
       char d[700];
       snprintf(d, sizeof d, "the message does not name the file: \"%s\"", err);
-      fz_bad_case("image scene", kase, d, b->p, !strcmp(ext, ".pbrt") || !strcmp(ext, ".ply") ? b->n : 0);
+      fz_bad_case("image scene", kase, d, b->p, !strcmp(ext, ".pbrt") || !strcmp(ext, ".ply") || !strcmp(ext, ".spd") ? b->n : 0);
     } else if (fz_verbose) printf("  scene -> %s\n", err);
     free(in.p);
   }

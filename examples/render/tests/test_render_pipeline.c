@@ -152,7 +152,8 @@ int main(void) {
    * light-only sampling, textures (ray differentials), a mirror (its bounce must not take the first
    * vertex's light sample), sample counts that are not a multiple of the batch of 32, an environment
    * with several samples per vertex (the batched first sample, then the others one at a time), and the
-   * cases that turn batching off (a second emitting light; stratified strata that cover fewer draws). */
+   * cases that turn batching off (a second emitting light; stratified strata or 02sequence dimensions
+   * that cover fewer draws). */
   {
     static const char *cases[][3] = { /* sampler and integrator, batched?, the environment's parameters */
       {"Sampler \"stratified\" \"integer xsamples\" 6 \"integer ysamples\" 7\nIntegrator \"directlighting\"\n", "1", ""},
@@ -166,6 +167,16 @@ int main(void) {
       {"Sampler \"halton\" \"integer pixelsamples\" 8\nIntegrator \"directlighting\"\n", "0", ""},
       {"Sampler \"halton\" \"integer pixelsamples\" 5\nIntegrator \"directlighting\"\n", "1", " \"integer samples\" 3"},
       {"Sampler \"random\" \"integer pixelsamples\" 4\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1", " \"integer samples\" 3"},
+      /* the Sobol' samplers: dimensions computed from (pixel, sample, dimension), or a pixel sampler */
+      {"Sampler \"sobol\" \"integer pixelsamples\" 64\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"sobol\" \"integer pixelsamples\" 16 \"string randomization\" \"owen\"\nIntegrator \"path\" \"integer maxdepth\" 4\n", "1", ""},
+      {"Sampler \"02sequence\" \"integer pixelsamples\" 16\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"02sequence\" \"integer pixelsamples\" 8\nIntegrator \"path\" \"integer maxdepth\" 3\n", "1", " \"integer samples\" 3"},
+      {"Sampler \"02sequence\" \"integer pixelsamples\" 8 \"integer dimensions\" 2\nIntegrator \"directlighting\"\n", "0", ""},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 64\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8\nIntegrator \"path\" \"integer maxdepth\" 5\n", "1", " \"integer samples\" 3"},
+      {"Sampler \"paddedsobol\" \"integer pixelsamples\" 37\nIntegrator \"directlighting\"\n", "1", ""},
+      {"Sampler \"paddedsobol\" \"integer pixelsamples\" 16 \"string randomization\" \"owen\"\nIntegrator \"path\" \"integer maxdepth\" 4\n", "1", ""},
     };
     int c;
     for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
