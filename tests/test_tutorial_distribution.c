@@ -169,7 +169,7 @@ static void test_map(void) {
       if (fabs(lib - pb) / bound > worst) worst = fabs(lib - pb) / bound;
     }
   }
-  checkf(ok, "64 x 32 map: every bin's pdf agrees within the two rows' integer-CDF and float bounds (worst %.2f of the bound)%.0s", worst, 0);
+  checkf(ok, "64 x 32 map: every bin's pdf agrees within the two rows' integer-CDF and float bounds (worst %.2f of the bound)", worst, 0);
   /* 2. points: marginal at u[1], the conditional of the library's row at u[0] */
   Dm = cdf_gap(&p.pMarginal, d.marginal);
   for (k = 0; k < 200000; ++k) {
@@ -189,7 +189,7 @@ static void test_map(void) {
     if (ec > worst_c) worst_c = ec;
   }
   checkf(okm, "64 x 32 map: pbrt's marginal CDF at the library's v is u[1] to within D + rounding (D = %.3g, worst %.3g)", Dm, worst_m);
-  checkf(okc, "64 x 32 map: the row's conditional CDF at the library's u is u[0] to within that row's D + rounding (worst %.3g)%.0s", worst_c, 0);
+  checkf(okc, "64 x 32 map: the row's conditional CDF at the library's u is u[0] to within that row's D + rounding (worst %.3g)", worst_c, 0);
   pbrt_Distribution2D_free(&p);
   el_distribution2d_free(&d);
 }

@@ -203,7 +203,7 @@ static void test_importance(void) {
       total += f[(size_t)j * W + i];
       if (j == 0 || j == H - 1) pole = fmax(pole, fabs(ca - cell_average(m, i, j, 0)) / cell_average(m, i, j, 0));
     }
-  checkf(ok_port, "importance: the port's 4 point lookups per texel add up to 4 x the texel's cell average (Repeat in v), to %.2g (bound 4e-6)%.0s", worst_port, 0);
+  checkf(ok_port, "importance: the port's 4 point lookups per texel add up to 4 x the texel's cell average (Repeat in v), to %.2g (bound 4e-6)", worst_port, 0);
   check(g_lib.imp_w == W && g_lib.imp_h == H, "importance: the library's default map has one bin per texel");
   for (j = 0; j < H; ++j) {
     double row = 0, qv, ev, pv = (g_lib.dist.marginal[j + 1] - g_lib.dist.marginal[j]) * UNIT;
@@ -218,7 +218,7 @@ static void test_importance(void) {
       worst_lib = fmax(worst_lib, fabs(pv * pu - qv * qu) / bound);
     }
   }
-  checkf(ok_lib, "importance: the library's probability of every texel is its cell average (Clamp in v) x sin theta, normalised, within the integer-CDF bound (worst %.2f of it)%.0s", worst_lib, 0);
+  checkf(ok_lib, "importance: the library's probability of every texel is its cell average (Clamp in v) x sin theta, normalised, within the integer-CDF bound (worst %.2f of it)", worst_lib, 0);
   printf("      (in the two pole rows Repeat and Clamp cell averages differ by up to %.3g: the pole fix)\n", pole);
   free(f);
 }
@@ -269,7 +269,7 @@ static void test_sampling(void) {
     }
   }
   checkf(okm, "sampling: pbrt's marginal CDF at the library's v is u[1] to within the CDF gap (%.3g) and the direction's error (worst %.2f of the bound)", Dm, wm);
-  checkf(okc, "sampling: the row's conditional CDF at the library's u is u[0] to within that row's gap and the direction's error (worst %.2f of the bound)%.0s", wc, 0);
+  checkf(okc, "sampling: the row's conditional CDF at the library's u is u[0] to within that row's gap and the direction's error (worst %.2f of the bound)", wc, 0);
   checkf(okp, "sampling: the library's pdf is pbrt's Pdf_Li of the same direction within the bin's integer-CDF bound and the pole rows' shift (%.0f samples; worst %.2f of the bound)", npdf, wp);
 }
 
