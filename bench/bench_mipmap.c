@@ -454,17 +454,19 @@ static double median(double *v, int n) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 /* one lookup of filter f: 0 point, 1 bilinear, 2 trilinear, 3 EWA (m), 4 EWA (m64), 5/6 pbrt-v3 port */
-static void csv_lookup(int f, const el_mipmap *m, const el_mipmap *m64, const pbrt_mipmap *pm, const query *k,
+static void csv_lookup(int f, const el_mipmap *m, const el_mipmap *m64, const pbrt_MIPMap *pm, const query *k,
                        float *o) {
-  pbrt_rgb r;
+  pbrt_RGBSpectrum r;
   switch (f) {
   case 0: el_mipmap_lookup_filtered(m, EL_MIPMAP_FILTER_POINT, k->s, k->t, k->width, o); return;
   case 1: el_mipmap_lookup_filtered(m, EL_MIPMAP_FILTER_BILINEAR, k->s, k->t, k->width, o); return;
   case 2: el_mipmap_lookup(m, k->s, k->t, k->width, o); return;
   case 3: el_mipmap_lookup_differentials(m, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o); return;
   case 4: el_mipmap_lookup_differentials(m64, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o); return;
-  case 5: r = pbrt_Lookup_width(pm, k->s, k->t, k->width); break;
-  default: r = pbrt_Lookup_d(pm, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t);
+  case 5: r = pbrt_MIPMap_Lookup(pm, pbrt_Point2f_make(k->s, k->t), k->width); break;
+  default:
+    r = pbrt_MIPMap_Lookup_dst(pm, pbrt_Point2f_make(k->s, k->t), pbrt_Vector2f_make(k->d0s, k->d0t),
+                               pbrt_Vector2f_make(k->d1s, k->d1t));
   }
   o[0] = r.c[0]; o[1] = r.c[1]; o[2] = r.c[2];
 }
@@ -481,13 +483,13 @@ static int csv_mode(int quick) {
   int w = quick ? 512 : 2048, h = w / 2, nq = quick ? 4000 : 100000, ne = quick ? 100 : 1000, reps = quick ? 3 : 7;
   float *img = make_image(w, h), o[4];
   el_mipmap m, m64;
-  pbrt_mipmap pm;
+  pbrt_MIPMap pm;
   int a, f, i, r;
   double t[7][15];
   printf("kind,option,x,value,error\n");
   build_ours(&m, img, w, h, 8);
   build_ours(&m64, img, w, h, 64);
-  pbrt_init(&pm, w, h, img, 0, 8, 0);
+  pbrt_init(&pm, w, h, img);
   for (a = 0; a < 3; ++a) {
     query *q = make_queries_aniso(nq, anisos[a]), *qe = make_queries_aniso(ne, anisos[a]);
     double err[7] = {0, 0, 0, 0, 0, 0, 0};
@@ -520,7 +522,7 @@ static int csv_mode(int quick) {
   }
   el_mipmap_free(&m);
   el_mipmap_free(&m64);
-  pbrt_free(&pm);
+  pbrt_MIPMap_free(&pm);
   free(img);
   { /* builds */
     static const int widths_full[4] = {500, 1000, 2000, 4000}, widths_quick[2] = {250, 500};
