@@ -73,6 +73,7 @@ typedef struct elr_render_options {
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
   int randomization;  /* -1: the sampler's (the scene's "randomization", or pbrt's default); else sobol, zsobol and
                          paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
+  int env_sampling;   /* -1: the infinite lights' "lightsampling"; 1 product sampling (map x cosine), 0 the map alone */
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */
@@ -90,6 +91,9 @@ typedef struct elr_light_stats {
   int tables_built;     /* environment: its sampling tables; area light on a mesh: its area CDF */
   size_t bytes;         /* those tables */
   double seconds;       /* and their build time */
+  int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
+  int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
+  int env_importance;   /* environment: the map's importance mode (EL_ENVLIGHT_IMPORTANCE_*) */
 } elr_light_stats;
 
 typedef struct elr_stats {

@@ -150,6 +150,9 @@ typedef struct elr_object {
 } elr_object;
 typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ } elr_instance;
 
+/* how an infinite light is sampled at a vertex whose lobes all reflect: the product of the map and the
+ * clamped cosine (el_envlight_sample_li_cos), or the map alone (el_envlight_sample_li, pbrt-v3's) */
+enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
@@ -177,6 +180,8 @@ typedef struct elr_light {
   el_envlight *env_alt;    /* another density the render options asked for, or NULL */
   int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
   int alt_compensated, alt_importance;
+  int sampling;            /* the scene's "lightsampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
+  int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
 } elr_light;
 
@@ -339,6 +344,21 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 
 /* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
  * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
 elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);
+/* The normal whose clamped cosine product sampling of the environment weights at this vertex (seen
+ * from wo): the GEOMETRIC normal ng turned to wo's side. Every reflection lobe's f is 0 unless wi is on
+ * wo's side of ng (pbrt-v3's BSDF::f tests reflect = (wi.ng)(wo.ng) > 0; Lambertian then reflects even
+ * below the shading hemisphere), so max(0, n.wi) > 0 wherever f |wi.ns| > 0 and light sampling alone
+ * stays unbiased; with the shading normal it would miss that sliver of smooth-shaded meshes (ns = ng on
+ * spheres, disks and flat triangles). Returns 0 (sample the map alone) when a non-specular lobe
+ * transmits (rough glass): its light comes from both sides. Light sample and BSDF sample's MIS weight
+ * use the same normal, and the path tracer keeps it for its continuation ray (elr_path_state.prev_n). */
+static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
+  int i;
+  for (i = 0; i < b->nlobes; i++)
+    if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
+  *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
+  return 1;
+}
 /* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
 void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
 elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type);
@@ -366,13 +386,15 @@ typedef struct elr_light_sample {
 } elr_light_sample;
 static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
 static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
-void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
-float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
+/* n: the vertex's product-sampling normal (elr_bsdf_cos_normal), or NULL where the BSDF transmits; an
+ * infinite light with product = 1 then samples the map times max(0, n.wi), and pdf_li is that density */
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls);
+float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
 int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
                       size_t errlen);
-int elr_infinite_prepare(elr_light *l, int compensated, int importance);
+int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map);
 void elr_light_prefetch(const elr_light *l, elr_v3 wi);
 void elr_light_free(elr_light *l);
 /* area lights: pbrt-v3's DiffuseAreaLight::L (the radiance leaving a point of normal n towards w) */
@@ -625,11 +647,13 @@ typedef struct elr_path_state {
   elr_v3 L, beta;
   int specular;
   float prev_pdf;
+  int prev_has_n;  /* the last vertex's product-sampling normal (elr_bsdf_cos_normal) exists: prev_n */
+  elr_v3 prev_n;
   float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
-  p->eta_scale = 1.f;
+  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f;
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);

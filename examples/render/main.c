@@ -10,6 +10,7 @@
  * (nothing is written then).
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
+ * --env-sampling product|map (the environment sampled by the map x the surface's cosine, or the map alone),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels). */
 #include "el_render.h"
@@ -74,11 +75,15 @@ int main(int argc, char **argv) {
     } else if (!strcmp(a, "--compensated") && i + 1 < argc) {
       if (parse_int(argv[++i], 0, 1, &v)) { fprintf(stderr, "render: --compensated 0|1\n"); return 1; }
       o.compensated = (int)v;
+    } else if (!strcmp(a, "--env-sampling") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "product")) o.env_sampling = 1; else if (!strcmp(m, "map")) o.env_sampling = 0;
+      else { fprintf(stderr, "render: --env-sampling product|map\n"); return 1; }
     } else if (!strcmp(a, "--importance") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "cellaverage")) o.importance = 0; else if (!strcmp(m, "pbrt-v3")) o.importance = 1;
-      else if (!strcmp(m, "texel")) o.importance = 2;
-      else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel\n"); return 1; }
+      else if (!strcmp(m, "texel")) o.importance = 2; else if (!strcmp(m, "bilinear")) o.importance = 3;
+      else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel|bilinear\n"); return 1; }
     } else if (!strcmp(a, "--sampler") && i + 1 < argc) {
       int k = elr_sampler_kind_from_name(argv[++i]);
       if (k <= 0) { fprintf(stderr, "render: --sampler %s\n", SAMPLERS); return 1; }

@@ -129,7 +129,7 @@ static void *elr__worker(void *arg) {
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
 }
 
 /* >> what the scene calls for */
@@ -158,6 +158,16 @@ static int elr__may_be_nonspecular(const elr_scene *s, const elr_material *m) {
     return !(u->kind == ELR_TEX_CONST && u->value.x == 0.f && v->kind == ELR_TEX_CONST && v->value.x == 0.f);
   }
   return 1;
+}
+/* whether material m may have a non-specular transmission lobe (rough glass): its vertices sample the
+ * environment's map alone (elr_bsdf_cos_normal), so the map's tables are needed with product sampling */
+static int elr__may_transmit_rough(const elr_scene *s, const elr_material *m) { return m->kind == ELR_MAT_GLASS && elr__may_be_nonspecular(s, m); }
+static int elr__mat_transmits_rough(const elr_scene *s) {
+  int i;
+  for (i = 0; i < s->nmesh; i++) if (elr__may_transmit_rough(s, &s->mat[s->mesh[i].material])) return 1;
+  for (i = 0; i < s->nsph; i++) if (elr__may_transmit_rough(s, &s->mat[s->sph[i].material])) return 1;
+  for (i = 0; i < s->ndisk; i++) if (elr__may_transmit_rough(s, &s->mat[s->disk[i].material])) return 1;
+  return 0;
 }
 static int elr__mat_nonspecular(const elr_scene *s) {
   int i;
@@ -206,18 +216,22 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     elr_light *l = &s->light[i];
     if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->ls != ELR_LS_BSDF) {
       double t0 = elr_now();
-      if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); return -1; }
-      if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
+      if (elr_infinite_prepare(l, o->compensated, o->importance, o->env_sampling, elr__mat_transmits_rough(s)) != 0) {
+        snprintf(err, errlen, "environment: cannot build the sampling distribution");
+        return -1;
+      }
+      if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
     }
   }
   /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
   /* (with a pixel sampler, only when its dimensions cover the three 2D draws made ahead: draws past
    * them come from the pixel's one random stream, whose order batching would change) */
+  /* (and only for the map's own sampling: el_envlight_sample_li_n; product sampling has no such form) */
   if (*env_sampled && !o->no_batch && elr_sampler_order_free(&C->sampler)) {
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
-    if (nemit != 1) C->batch_light = NULL;
+    if (nemit != 1 || C->batch_light->product) C->batch_light = NULL;
   }
   return 0;
 }
@@ -250,7 +264,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     if (s->light[i].kind == ELR_LIGHT_INFINITE) {
       const el_envlight *e = s->light[i].env;
       st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
-      if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
+      if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample) + el_envlight_product_bytes(s->light[i].env_sample);
     }
   /* the lights: what was built for which */
   st->lights = s->nlight;
@@ -271,7 +285,9 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     ls->kind = l->kind; ls->emits = elr_light_emits(l); ls->nsamples = l->nsamples;
     ls->pick = C->ld.pick ? C->ld.pick[i] : (ls->emits && C->light_sampling ? 1.f : 0.f);
     if (l->kind == ELR_LIGHT_INFINITE && env_sampled && ls->emits && C->ls != ELR_LS_BSDF && C->light_sampling) {
-      ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample);
+      ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample) + el_envlight_product_bytes(l->env_sample);
+      ls->env_product = l->product; ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
+      ls->env_importance = l->env_sample->importance;
     }
     if (l->kind == ELR_LIGHT_AREA) {
       ls->shape_kind = l->shape_kind; ls->shape = l->shape; ls->twosided = l->twosided; ls->area = l->area;

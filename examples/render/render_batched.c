@@ -2,7 +2,9 @@
  *
  * The same computation as the one-sample-at-a-time loop of render.c with integrator_direct.c and
  * integrator_path.c, in another order, for the scenes where the environment is the only light that
- * emits and is sampled (elr_render decides: elr_ctx.batch_light). One environment light sample on its
+ * emits and is sampled, by its map alone (elr_render decides: elr_ctx.batch_light; product sampling,
+ * el_envlight_sample_li_cos, has no n-at-once form and needs each vertex's normal, which the path
+ * tracer's first vertex knows only after this file's first phase, so it runs one sample at a time). One environment light sample on its
  * own is a chain of dependent cache misses (guide entry, CDF row, texels) that the shading between
  * two samples cannot hide; el_envlight_sample_li_n overlaps the misses of many. So for up to 32 camera
  * samples of a pixel at a time:
@@ -133,6 +135,7 @@ static elr_v3 elr__path_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r
   if (elr_isblack(fs) || pdf == 0.f) return p.L;
   p.beta = elr_mul(elr_vmul(p.beta, fs), fabsf(elr_dot(wi, b.ns)) / pdf);
   p.specular = spec; p.prev_pdf = pdf;
+  p.prev_has_n = elr_bsdf_cos_normal(&b, wo, &p.prev_n); /* (as elr_path_li; batching runs with map sampling) */
   if (spec == 2) p.eta_scale = elr_eta_scale(p.eta_scale, &b, wo);
   if (1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) return p.L;
   p.ray.o = elr_spawn_origin(f->h, wi); p.ray.d = wi; p.ray.has_diff = 0;

@@ -50,6 +50,13 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       if (!l->emits) { fprintf(f, ": emits nothing\n"); continue; }
       if (l->pick > 0.f) fprintf(f, "; chosen with p = %.4g", l->pick);
       if (l->power > 0.0) fprintf(f, ", power %.4g", l->power);
+      if (l->kind == 0 && l->tables_built) {
+        static const char *im[4] = {"cellaverage", "pbrt-v3", "texel", "bilinear"};
+        if (l->env_product)
+          fprintf(f, "; sampled by product sampling (map x cosine: el_envlight_sample_li_cos)%s",
+                  l->env_map_built ? ", the map alone where a rough lobe transmits" : "");
+        else fprintf(f, "; sampled by the map alone (el_envlight_sample_li, importance %s)", im[l->env_importance & 3]);
+      }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
       if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");
       if (l->tables_built) fprintf(f, " (%.1f KiB)", (double)l->bytes / 1024.0);
