@@ -190,7 +190,7 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   elr_light *env = scene_env(s);
   int i, k = 0;
   uint32_t st = 12345;
-  elr_infinite_prepare(env, -1, -1);
+  elr_infinite_prepare(env, -1, -1, 0, 1); /* the map alone: these shadow rays use el_envlight_sample_li */
   for (i = 0; i < n && k < max; i++) {
     elr_hit h;
     int tries;

@@ -98,6 +98,7 @@ typedef struct elr_light_stats {
 
 typedef struct elr_stats {
   double t_parse, t_images, t_embree, t_distribution, t_render, t_total;
+  double t_render_cpu; /* CPU seconds of the render loop (all threads) */
   size_t bytes_embree, bytes_textures, bytes_film, bytes_distribution, bytes_splats, bytes_mip;
   uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
@@ -126,6 +127,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
 void elr_stats_print(const elr_stats *st, void *file /* FILE* */);
 
 double elr_now(void); /* seconds, monotonic */
+double elr_cpu_now(void); /* CPU seconds of the process */
 
 #ifdef __cplusplus
 }

@@ -27,7 +27,7 @@ typedef struct elr_job {
   int next_tile, next_merge, done;
   el_film_tile **ready; /* finished tiles waiting for their turn to merge */
   elr_tstats total;
-  double t0, last_print;
+  double t0, last_print, cpu0;
   int failed;
   const elr_sampler_tables *T; /* the sampler's tables, shared by the threads */
 } elr_job;
@@ -363,6 +363,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
   pthread_mutex_init(&J.mu, NULL);
   J.t0 = elr_now(); J.last_print = 0;
+  J.cpu0 = elr_cpu_now();
   { /* <<Render image tiles in parallel>> */
     int started = 0;
     for (i = 0; i < nthreads; i++) {
@@ -385,6 +386,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   el_film_get_rgb(&film, 1.f, out->rgb);
   if (st) {
     st->t_render = elr_now() - J.t0;
+    st->t_render_cpu = elr_cpu_now() - J.cpu0;
     elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
   }
   rc = 0;

@@ -11,6 +11,13 @@ double elr_now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* CPU seconds of the whole process (every thread) */
+double elr_cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 void elr_stats_print(const elr_stats *st, void *fp) {
   FILE *f = (FILE *)fp;
   uint64_t rays = st->camera_rays + st->bounce_rays + st->shadow_rays + st->bsdf_light_rays;
@@ -66,7 +73,7 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
           st->splats_allocated ? "allocated" : "not allocated (nothing splats)");
-  fprintf(f, "  render             %8.3f s\n", st->t_render);
+  fprintf(f, "  render             %8.3f s  (CPU %.3f s)\n", st->t_render, st->t_render_cpu);
   fprintf(f, "  rays               %llu camera, %llu bounce, %llu shadow (light samples), %llu BSDF-sampled light; %llu total\n",
           (unsigned long long)st->camera_rays, (unsigned long long)st->bounce_rays, (unsigned long long)st->shadow_rays,
           (unsigned long long)st->bsdf_light_rays, (unsigned long long)rays);
