@@ -830,7 +830,7 @@ def sampler_variance_mode(args):
                 v = relvar(imgs[s])
                 rows.append([sc_key, spp, s, "%.3g" % v, "%.3f" % (v / base), "%.3f" % statistics.median(cpus[s]),
                              "%.3g" % (v * statistics.median(cpus[s]))])
-            sys.stdout.write(".")
+                print("  %s %d %s %.3g (%.3f of random)" % (sc_key, spp, s, v, v / base))
             sys.stdout.flush()
     print()
     print(fmt_table(rows, ["map", "spp", "sampler", "rel. variance", "vs random", "CPU s", "cost"]))

@@ -73,7 +73,7 @@ typedef struct elr_render_options {
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
   int randomization;  /* -1: the sampler's (the scene's "randomization", or pbrt's default); else sobol, zsobol and
                          paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
-  int env_sampling;   /* -1: the infinite lights' "lightsampling"; 1 product sampling (map x cosine), 0 the map alone */
+  int env_sampling;   /* -1: the infinite lights' "sampling"; 1 product sampling (map x cosine), 0 the map alone */
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */

@@ -180,7 +180,7 @@ typedef struct elr_light {
   el_envlight *env_alt;    /* another density the render options asked for, or NULL */
   int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
   int alt_compensated, alt_importance;
-  int sampling;            /* the scene's "lightsampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
+  int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
 } elr_light;

@@ -6,7 +6,7 @@
  * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li_cos and
  * el_envlight_pdf_li_cos, the product of the map and the clamped cosine of the shading point's normal,
  * where the BSDF only reflects; el_envlight_sample_li and el_envlight_pdf_li, the map alone, pbrt-v3's,
- * elsewhere or with "string lightsampling" "map"; el_envlight_le), lights/diffuse.cpp (DiffuseAreaLight). Point and distant
+ * elsewhere or with "string sampling" "map"; el_envlight_le), lights/diffuse.cpp (DiffuseAreaLight). Point and distant
  * lights are delta lights: light sampling only, pdf 1, never hit by a ray. The environment is
  * sampled, and seen by rays that leave the scene. An area light is sampled through its shape's
  * Shape::Sample (shapes.c), and seen by rays that hit its shape (elr_hit.light; interaction.c's
@@ -192,7 +192,7 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
 /* Builds the sampling distribution now (before the render threads start). compensated and importance:
  * -1 for the scene's, else a density the render asks for instead (elr_render_options), made on the
  * first request as a second el_envlight of the same image (env_alt), which sample_li and pdf_li then
- * use (le always reads env). product: -1 the scene's "lightsampling", else 1 product sampling, 0 the map
+ * use (le always reads env). product: -1 the light's "sampling", else 1 product sampling, 0 the map
  * alone; with product sampling the product tables are built (el_envlight_prepare_product), and the
  * map's own tables only when need_map (some surface transmits through a non-specular lobe: its vertices
  * sample the map alone). Returns -1 when the distribution cannot be built. */

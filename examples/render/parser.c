@@ -1000,10 +1000,10 @@ static void elr__light(elr__parser *P, const char *type) {
       /* envlight's extension: how a surface that only reflects samples the light. "product" (the
        * default): the map times the clamped cosine of the surface's normal (el_envlight_sample_li_cos),
        * no sample below the horizon; "map": the map alone (pbrt-v3's, with the importance map above) */
-      const char *ls = elr__pstring(P, "lightsampling", "product");
+      const char *ls = elr__pstring(P, "sampling", "product");
       if (!strcmp(ls, "product")) l->sampling = ELR_ENVLS_PRODUCT;
       else if (!strcmp(ls, "map")) l->sampling = ELR_ENVLS_MAP;
-      else elr__failf(P, elr__find(P, "lightsampling")->file, elr__find(P, "lightsampling")->line, "LightSource \"infinite\": lightsampling must be \"product\" or \"map\"");
+      else elr__failf(P, elr__find(P, "sampling")->file, elr__find(P, "sampling")->line, "LightSource \"infinite\": sampling must be \"product\" or \"map\"");
     }
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;

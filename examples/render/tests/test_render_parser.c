@@ -435,6 +435,17 @@ static void errors(void) {
   }
   expect_error("aniso.pbrt", W("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"one.pfm\" \"float maxanisotropy\" 1e6\n"),
                "aniso.pbrt:3:", "\"maxanisotropy\" = 1e+06 is out of range [1, 1024]");
+  expect_error("envsampling.pbrt", W("LightSource \"infinite\" \"string sampling\" \"cosine\"\n"), "envsampling.pbrt:3:",
+               "sampling must be \"product\" or \"map\"");
+  { /* the infinite light's "sampling": product by default, "map" for pbrt-v3's (the map alone) */
+    char err[512];
+    elr_scene *a = rt_load("envs1.pbrt", W("LightSource \"infinite\"\n"), err, sizeof err);
+    elr_scene *b = rt_load("envs2.pbrt", W("LightSource \"infinite\" \"string sampling\" \"map\"\n"), err, sizeof err);
+    rt_check(a && b && a->nlight == 1 && b->nlight == 1 && a->light[0].sampling == ELR_ENVLS_PRODUCT && b->light[0].sampling == ELR_ENVLS_MAP,
+             "LightSource \"infinite\": \"string sampling\" product by default, \"map\" read");
+    elr_scene_free(a);
+    elr_scene_free(b);
+  }
   expect_error("envneg.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1 -1 1 ]\n"), "envneg.pbrt:3:", "L times scale (1 -1 1) must be finite and not negative");
   expect_error("envinf.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1e38 1 1 ] \"rgb scale\" [ 10 1 1 ]\n"), "envinf.pbrt:3:", "must be finite");
   expect_error("crop.pbrt", "Film \"image\" \"integer xresolution\" 8 \"float cropwindow\" [ 0.51 0.55 0 1 ]\nWorldBegin\nWorldEnd\n",

@@ -12,7 +12,7 @@
  * does) loses 10% of the image with the compensated density.
  *
  * Product sampling (the default: el_envlight_sample_li_cos with the vertex's geometric normal on wo's
- * side) against the map alone ("string lightsampling" "map", pbrt-v3's): the scene also holds a quad
+ * side) against the map alone ("string sampling" "map", pbrt-v3's): the scene also holds a quad
  * seen from its back (its normal faces away from the camera: the side of the normal must follow wo).
  * The light is turned by a general rotation (product sampling's light-space normal tables). MIS with
  * product sampling is the reference; light-only and BSDF-only with it, and MIS and light-only with the
