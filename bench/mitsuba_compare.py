@@ -1,7 +1,39 @@
 #!/usr/bin/env python3
 """mitsuba_compare.py: our renderer against Mitsuba 3 on the same environment-lit scene.
 
-What it measures
+The default run (variance mode; issues 13 and 14)
+  Both renderers render scenes/bench_city.pbrt (the sun map: city.hdr, a 3e4 sun) and
+  scenes/bench_studio.pbrt (the smooth map: studio.hdr), each with the directlighting and the path
+  integrator (maxdepth 5; Mitsuba's 'direct' and 'path', max_depth 6 as it counts segments), at 16,
+  64 and 256 spp, each configuration with --seeds seeds (default 3). Error is the RELATIVE VARIANCE
+  ACROSS SEEDS: the mean over pixels and channels of the variance of the seeds' images over
+  (mean^2 + 1e-2); no reference image, so the two renderers' half-texel conventions do not count (the
+  means are compared separately: "bias check"). Configurations:
+    Mitsuba (llvm_ad_rgb, else scalar_rgb): independent 1/1, multijitter 1/1, 2/2, 4/4, stratified
+      1/1 (and 2/2, 4/4 unless --no-stratified-splitting); n/n = emitter_samples / bsdf_samples of
+      'direct' (path: 1/1 only);
+    ours: random 1/1, --our-sampler (default zsobol; 02sequence is the renderer's default) 1/1 and 2/2
+      (the light's "integer samples", pbrt-v3's nsamples), and with --map-too the map alone
+      (--env-sampling map, pbrt-v3's light sampling) against product sampling (the default).
+  Runs are interleaved: every configuration once per seed round, so the machine's load falls on all.
+  CPU seconds: ours, the render loop's (render --stats: "render ... (CPU x s)", all threads); Mitsuba,
+  the process CPU time of mi.render() and reading the image back (which forces the JIT's evaluation),
+  after one warm-up render per configuration (compilation). Fixed costs are printed apart: ours,
+  parsing with the map load, Embree's build and the sampling tables (from --stats); Mitsuba,
+  load_dict (map, its distribution, BVH) and the first render with its JIT compilation.
+  Tables: (a) issue 13's equal-spp ratio, ours / Mitsuba with matched samplers (our random against
+  independent, our low-discrepancy sampler against multijitter), one light + one BSDF sample
+  (target <= 0.5); (b) issue 14's equal-time ratio: cost = relative variance x CPU s of our best
+  configuration over Mitsuba's best at each spp (target <= 0.5).
+    python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--our-sampler 02sequence]
+                                     [--map-too] [--no-stratified-splitting] [--threads 2]
+  --quick: 160x120, 16 and 64 spp, 2 seeds, fewer configurations (about 2 CPU minutes).
+  --sampler-variance: our seven samplers alone (directlighting, both maps), the table of the render
+  README's "Samplers" section.
+  Mitsuba is installed from PyPI (pip install mitsuba numpy) when it is missing; its llvm variants
+  need libLLVM (Debian: apt-get install libllvm19), else scalar_rgb is used.
+
+The older measure (--reference; issue 5)
   Accuracy against time for direct lighting of a diffuse sphere on a plane under the city map
   (data/envmaps/city.hdr: a 3e4 sun, so nearly all the light comes from a few texels), 320x240:
   - Mitsuba 3 (variant llvm_ad_rgb: a vectorised LLVM JIT renderer), integrator 'direct' (one
@@ -681,7 +713,7 @@ def variance_mode(args):
     """Issue 13's equal-spp ratio and issue 14's equal-time cost, from the variance across seeds."""
     import numpy as np
     quick = args.quick
-    res = (160, 120) if quick else None
+    res = (160, 120) if quick else (tuple(args.var_res) if args.var_res else None)
     spps = [16, 64] if quick else [16, 64, 256]
     seeds = 2 if quick else args.seeds
     ld = args.our_sampler
@@ -706,13 +738,14 @@ def variance_mode(args):
             ("ours", "%s 1/1" % ld, None, ld, 1),
             ("ours", "%s 2/2" % ld, "direct", ld, 2)]
     if not quick:
-        cfgs += [("mitsuba", "multijitter 4/4", "direct", "multijitter", 4),
-                 ("mitsuba", "stratified 2/2", "direct", "stratified", 2),
-                 ("mitsuba", "stratified 4/4", "direct", "stratified", 4)]
+        cfgs += [("mitsuba", "multijitter 4/4", "direct", "multijitter", 4)]
+        if not args.no_stratified_splitting:
+            cfgs += [("mitsuba", "stratified 2/2", "direct", "stratified", 2),
+                     ("mitsuba", "stratified 4/4", "direct", "stratified", 4)]
     if args.map_too:
         cfgs += [("ours", "%s 1/1, map alone" % ld, None, ld, 1)]
     print("variance mode: %s x %s, spp %s, %d seeds per configuration, %d threads; Mitsuba %s %s"
-          % ("160x120" if quick else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
+          % ("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
              ",".join(map(str, spps)), seeds, args.threads, mi.__version__, variant))
     results = {}  # (scene, integ, spp, side, name) -> (relvar, median CPU s, mean image)
     for sc_key, fname in VAR_SCENES:
@@ -727,8 +760,8 @@ def variance_mode(args):
             mine = [c for c in cfgs if c[2] in (None, integ)]
             for spp in spps:
                 imgs, cpus = {}, {}
-                for c in mine:  # Mitsuba's warm-up render (JIT compilation, timed apart)
-                    if c[0] == "mitsuba":
+                for c in mine:  # Mitsuba's warm-up render (JIT compilation, timed apart; once per configuration)
+                    if c[0] == "mitsuba" and spp == spps[0]:
                         t0 = time.perf_counter()
                         mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], 5), spp, 999)
                         mr.compile_s.setdefault((sc_key, integ, c[1]), time.perf_counter() - t0)
@@ -744,7 +777,9 @@ def variance_mode(args):
                 for c in mine:
                     results[(sc_key, integ, spp, c[0], c[1])] = (relvar(imgs[c[1]]), statistics.median(cpus[c[1]]),
                                                               np.mean(imgs[c[1]], axis=0))
-                sys.stdout.write(".")
+                for c in mine:
+                    v = results[(sc_key, integ, spp, c[0], c[1])]
+                    print("  %s %s %d %s %s: relvar %.3g, CPU %.3f s" % (sc_key, integ, spp, c[0], c[1], v[0], v[1]))
                 sys.stdout.flush()
         mr.drop(sc_key)
     print()
@@ -804,7 +839,7 @@ def sampler_variance_mode(args):
     samplers = args.samplers.split(",") if args.samplers else \
         ["random", "stratified", "halton", "sobol", "02sequence", "zsobol", "paddedsobol"]
     quick = args.quick
-    res = (160, 120) if quick else (args.var_res[0], args.var_res[1])
+    res = (160, 120) if quick else (tuple(args.var_res) if args.var_res else (320, 240))
     spps = [16, 64] if quick else [16, 64, 256]
     seeds = 2 if quick else args.seeds
     import mitsuba as mi
@@ -861,7 +896,10 @@ def main():
     ap.add_argument("--seeds", type=int, default=3, help="seeds per configuration in the variance modes")
     ap.add_argument("--our-sampler", default="zsobol", help="our low-discrepancy sampler in the variance mode")
     ap.add_argument("--map-too", action="store_true", help="variance mode: also ours with the map alone (no product)")
-    ap.add_argument("--var-res", type=int, nargs=2, default=[320, 240], help="--sampler-variance resolution")
+    ap.add_argument("--var-res", type=int, nargs=2, default=None,
+                    help="resolution of the variance modes (default: the scene's, 320x240; --sampler-variance 320x240)")
+    ap.add_argument("--no-stratified-splitting", action="store_true",
+                    help="variance mode: leave out Mitsuba's stratified 2/2 and 4/4 (its multijitter is the stronger)")
     args = ap.parse_args()
     try:
         import numpy as np
