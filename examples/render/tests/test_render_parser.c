@@ -27,7 +27,8 @@ static void defaults(void) {
   rt_check(!strcmp(s->d.filename, "pbrt.exr"), "defaults: filename pbrt.exr");
   rt_check(s->d.fov == 90.f, "defaults: fov 90");
   rt_check(s->d.sampler == ELR_SAMPLER_ZEROTWO && s->d.spp == 16 && s->d.dims == 16,
-           "defaults: 02sequence (the best measured; pbrt-v3's is halton), 16 pixel samples, 16 dimensions");
+           "defaults: 02sequence (the best measured; pbrt-v3's is halton), 16 pixel samples, 16 dimensions (%d, %d, %d)", s->d.sampler,
+           s->d.spp, s->d.dims);
   rt_check(s->d.integrator_path == 1 && s->d.maxdepth == 5, "defaults: path, maxdepth 5");
   rt_check(s->d.filter.type == ELR_PF_BOX && s->d.filter.xw == 0.5f, "defaults: box filter, radius 0.5");
   rt_check(s->nmat == 1 && s->mat[0].kind == ELR_MAT_MATTE && s->tex[s->mat[0].kd].value.x == 0.5f, "defaults: matte Kd 0.5");
