@@ -62,6 +62,9 @@ int elr_sampler_kind_from_name(const char *name);
 #define ELR_DEFAULT_SAMPLER ELR_SAMPLER_HALTON
 #define ELR_DEFAULT_SPP 16
 
+/* the per-tile loops: one sample at a time (the reference), a pixel's light samples drawn together
+ * (render_batched.c), waves of samples (render_wave.c) */
+enum { ELR_LOOP_ONE = 0, ELR_LOOP_BATCHED = 1, ELR_LOOP_WAVE = 2 };
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
   int nthreads;       /* 0: all cores */
@@ -76,6 +79,10 @@ typedef struct elr_render_options {
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */
+  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the batched and wave loops only where
+                         render.c can use them: the environment the only light that emits, and sampled) */
+  int wave_api;       /* -1: the wave loop's default; else how it traces (ELR_WAVE_API_* of elr_internal.h:
+                         0 rtcIntersect1, 1 packets of 16, 2 rtcIntersect1M streams, 3 rtcIntersectNp) */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
 
@@ -98,6 +105,7 @@ typedef struct elr_stats {
   uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
+  int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
   int sampler_randomization; /* sobol, zsobol, paddedsobol: 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   uint64_t rejected_samples;

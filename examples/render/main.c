@@ -11,7 +11,8 @@
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
- * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels). */
+ * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
+ * --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -88,6 +89,15 @@ int main(int argc, char **argv) {
       if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
       else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
       else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
+    } else if (!strcmp(a, "--loop") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "one")) o.loop = 0; else if (!strcmp(m, "batched")) o.loop = 1; else if (!strcmp(m, "wave")) o.loop = 2;
+      else { fprintf(stderr, "render: --loop one|batched|wave\n"); return 1; }
+    } else if (!strcmp(a, "--wave-api") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "single")) o.wave_api = 0; else if (!strcmp(m, "packet16")) o.wave_api = 1;
+      else if (!strcmp(m, "stream")) o.wave_api = 2; else if (!strcmp(m, "soa")) o.wave_api = 3;
+      else { fprintf(stderr, "render: --wave-api single|packet16|stream|soa\n"); return 1; }
     } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(); return 0; }
     else if (a[0] == '-' && a[1] == '-') { fprintf(stderr, "render: unknown or incomplete option \"%s\"\n", a); usage(); return 1; }
     else if (!scene) scene = a;

@@ -59,8 +59,11 @@ static void *elr__worker(void *arg) {
   elr_ctx *C = J->C;
   elr_sampler S;
   elr_tstats ts;
+  elr_wave *W = NULL;
   memset(&ts, 0, sizeof ts);
-  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->T) != 0) {
+  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->T) != 0 ||
+      (C->loop == ELR_LOOP_WAVE && !(W = elr_wave_new(C, J->T, J->o->seed, J->tile)))) {
+    elr_sampler_free(&S);
     pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
     return NULL;
   }
@@ -83,10 +86,11 @@ static void *elr__worker(void *arg) {
       break;
     }
     /* <<Loop over pixels in tile to render them>> */
-    for (y = y0; y < y1; y++)
+    if (W) elr_wave_render_tile(C, W, x0, y0, x1, y1, tile, &ts); /* render_wave.c */
+    else for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr_sampler_start_pixel(&S, x, y);
-        if (C->batch_light) { elr_pixel_batched(C, &S, x, y, tile, &ts); continue; } /* render_batched.c */
+        if (C->loop == ELR_LOOP_BATCHED) { elr_pixel_batched(C, &S, x, y, tile, &ts); continue; } /* render_batched.c */
         /* <<Loop over pixel samples>> */
         for (k = 0; k < C->spp; k++) {
           float fx, fy, rgb[3];
@@ -124,12 +128,13 @@ static void *elr__worker(void *arg) {
   J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
+  elr_wave_free(W);
   return NULL;
 }
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->loop = -1; o->wave_api = -1;
 }
 
 /* >> what the scene calls for */
@@ -219,6 +224,11 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
   }
+  /* the per-tile loop: the batched and wave loops need batch_light; the default is the wave loop
+   * (bench_render measures the three) */
+  C->loop = ELR_LOOP_ONE;
+  if (C->batch_light) C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_BATCHED ? o->loop : ELR_LOOP_WAVE;
+  C->wave_api = o->wave_api >= ELR_WAVE_API_SINGLE && o->wave_api <= ELR_WAVE_API_SOA ? o->wave_api : ELR_WAVE_API_DEFAULT;
   return 0;
 }
 
@@ -233,6 +243,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
   st->light_samples_batched = C->batch_light != NULL;
+  st->loop = C->loop; st->wave_api = C->wave_api;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
   st->sampler_randomization = C->sampler.randomize;

@@ -30,6 +30,14 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   else
     fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
             st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+  if (!st->nothing_emits) {
+    static const char *loops[3] = {"one sample at a time (the reference)", "a pixel's light samples together (render_batched.c)",
+                                   "waves of up to 256 camera samples (render_wave.c)"};
+    static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
+    fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
+    if (st->loop == 2) fprintf(f, ", Embree %s", st->wave_api >= 0 && st->wave_api < 4 ? apis[st->wave_api] : "?");
+    fprintf(f, "\n");
+  }
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
           (double)st->bytes_distribution / 1024.0);
   fprintf(f, "  lights             %d, %d emitting (%d area); next-event estimation: %s; light distribution %s", st->lights,
