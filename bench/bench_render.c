@@ -213,14 +213,57 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   return k;
 }
 
+/* bounce rays: from the camera rays' hit points in cosine-distributed directions about the normal (on
+ * the side the camera ray came from), as a diffuse bounce leaves */
+static int bounce_rays(elr_scene *s, const bray *cam, int n, bray *out, int max) {
+  int i, k = 0;
+  uint32_t st = 777;
+  for (i = 0; i < n && k < max; i++) {
+    elr_hit h;
+    elr_v3 nn, t1, t2, d;
+    float u1, u2, r, ph;
+    if (!elr_intersect(s, cam[i].o, cam[i].d, INFINITY, &h)) continue;
+    nn = elr_dot(cam[i].d, h.ng) < 0 ? h.ng : elr_mul(h.ng, -1.f);
+    elr_onb(nn, &t1, &t2);
+    st = st * 1664525u + 1013904223u; u1 = (st >> 8) * 0x1p-24f;
+    st = st * 1664525u + 1013904223u; u2 = (st >> 8) * 0x1p-24f;
+    r = sqrtf(u1); ph = 6.2831853f * u2;
+    d = elr_add(elr_add(elr_mul(t1, r * cosf(ph)), elr_mul(t2, r * sinf(ph))), elr_mul(nn, sqrtf(fmaxf(0.f, 1.f - u1))));
+    out[k].o = elr_add(h.p, elr_mul(nn, h.eps)); out[k].d = d;
+    k++;
+  }
+  return k;
+}
+
+/* rays per second of the wave functions (scene.c) with Embree call api, in waves of 256 rays (camera rays
+ * in the order a tile's wave takes them: pixel rows of 16) */
+static double wave_rate(elr_scene *s, const bray *r, int n, int api, int occluded, int coherent) {
+  static elr_wave_rays w;
+  double t0 = elr_now(), cnt = 0;
+  volatile float sink = 0;
+  int pass, i, k;
+  for (pass = 0; elr_now() - t0 < 0.3 || pass < 2; pass++) {
+    for (i = 0; i < n; i += 256) {
+      w.n = 0;
+      for (k = i; k < n && k < i + 256; k++) elr_wave_add(&w, r[k].o, r[k].d, INFINITY);
+      if (occluded) elr_wave_occluded(s, &w, api, coherent); else elr_wave_intersect(s, &w, api, coherent);
+      sink += w.tfar[0];
+    }
+    cnt += n;
+  }
+  (void)sink;
+  return cnt / (elr_now() - t0);
+}
+
 static int g_no_batch; /* render_once: elr_render_options.no_batch */
 static int g_randomization = -1; /* render_once: elr_render_options.randomization */
+static int g_loop = -1, g_wave_api = -1; /* render_once: elr_render_options.loop, wave_api */
 static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int imp, int threads, uint64_t seed,
                        elr_image *img, elr_stats *st) {
   elr_render_options o;
   char err[512];
   elr_render_options_default(&o);
-  o.no_batch = g_no_batch; o.randomization = g_randomization;
+  o.no_batch = g_no_batch; o.randomization = g_randomization; o.loop = g_loop; o.wave_api = g_wave_api;
   o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.importance = imp; o.nthreads = threads;
   o.seed = seed;
   o.quiet = 1;
@@ -288,10 +331,93 @@ static void sampler_table(int ref_spp, int threads, int quick, const char *only_
   }
 }
 
+/* --loops (and part 1): the per-tile loops (one sample at a time, render_batched.c, render_wave.c with each
+ * of its Embree calls) on bench_city, direct lighting (16 spp) and path (maxdepth 5, 4 spp), one thread,
+ * rounds interleaved, the best of each kept. Per loop: its rays per second; Embree's share of its time
+ * ESTIMATED from the raw rates (rtcIntersect1 for camera and bounce rays, rtcOccluded1 for shadow rays,
+ * measured here on rays of each kind) as the time Embree alone would take for the loop's rays over the
+ * loop's time; for the wave loop also MEASURED (its Embree calls timed: elr_stats.t_embree_loop). */
+static void loop_table(elr_scene *s, int rounds, int sampler) {
+  static const char *names[6] = {"one at a time", "batched", "wave, rtcIntersect1", "wave, packets of 16", "wave, 1M streams",
+                                 "wave, Np streams"};
+  static const int loops[6] = {ELR_LOOP_ONE, ELR_LOOP_BATCHED, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE};
+  static const int apis[6] = {-1, -1, ELR_WAVE_API_SINGLE, ELR_WAVE_API_PACKET16, ELR_WAVE_API_STREAM, ELR_WAVE_API_SOA};
+  int w = s->d.xres, h = s->d.yres, nsh, nb, ig, round, k, a;
+  bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
+  bray *bo = (bray *)malloc(sizeof(bray) * (size_t)w * h), *blk = (bray *)malloc(sizeof(bray) * (size_t)w * h);
+  double rate[3][4]; /* camera, shadow, bounce x the four APIs */
+  if (!cam || !sh || !bo || !blk) { free(cam); free(sh); free(bo); free(blk); return; }
+  camera_rays(s, cam);
+  { /* the camera rays in the wave loop's order: 16 x 16 tiles, rows of 16 pixels */
+    int n = 0, tx, ty, x, y;
+    for (ty = 0; ty < h; ty += 16)
+      for (tx = 0; tx < w; tx += 16)
+        for (y = ty; y < ty + 16 && y < h; y++)
+          for (x = tx; x < tx + 16 && x < w; x++) blk[n++] = cam[y * w + x];
+  }
+  nsh = shadow_rays(s, cam, w * h, sh, w * h);
+  nb = bounce_rays(s, cam, w * h, bo, w * h);
+  for (a = 0; a < 4; a++) { rate[0][a] = rate[1][a] = rate[2][a] = 0; }
+  for (round = 0; round < 3; round++)
+    for (a = 0; a < 4; a++) {
+      double r0 = wave_rate(s, blk, w * h, a, 0, 1), r1 = wave_rate(s, sh, nsh, a, 1, 0), r2 = wave_rate(s, bo, nb, a, 0, 0);
+      if (r0 > rate[0][a]) rate[0][a] = r0;
+      if (r1 > rate[1][a]) rate[1][a] = r1;
+      if (r2 > rate[2][a]) rate[2][a] = r2;
+    }
+  printf("Embree's raw rates through the wave functions (waves of 256 rays, arrays prepared beforehand; 1 thread, best of 3), M rays/s:\n");
+  printf("  %-22s %10s %10s %10s %10s\n", "", "1 by 1", "packet16", "1M stream", "Np stream");
+  printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "camera (intersect)", rate[0][0] * 1e-6, rate[0][1] * 1e-6, rate[0][2] * 1e-6, rate[0][3] * 1e-6);
+  printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "shadow (occluded)", rate[1][0] * 1e-6, rate[1][1] * 1e-6, rate[1][2] * 1e-6, rate[1][3] * 1e-6);
+  printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "bounce (intersect)", rate[2][0] * 1e-6, rate[2][1] * 1e-6, rate[2][2] * 1e-6, rate[2][3] * 1e-6);
+  for (ig = 0; ig < 2; ig++) {
+    double best[6], emb[6], ncam = 0, nbo = 0, nshr = 0;
+    int spp = ig ? 4 : 16, same[6];
+    elr_image ref;
+    memset(&ref, 0, sizeof ref);
+    s->d.integrator_path = ig;
+    for (k = 0; k < 6; k++) { best[k] = 1e30; emb[k] = 0; same[k] = 1; }
+    for (round = 0; round < rounds; round++)
+      for (k = 0; k < 6; k++) {
+        elr_image img;
+        elr_stats st;
+        g_loop = loops[k]; g_wave_api = apis[k];
+        if (render_once(s, spp, sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) != 0) continue;
+        g_loop = g_wave_api = -1;
+        if (st.t_render < best[k]) { best[k] = st.t_render; emb[k] = st.t_embree_loop; }
+        if (k == 0) { ncam = (double)st.camera_rays; nbo = (double)st.bounce_rays; nshr = (double)st.shadow_rays + st.bsdf_light_rays; }
+        if (k == 0 && !ref.rgb) ref = img;
+        else {
+          same[k] &= ref.rgb && memcmp(ref.rgb, img.rgb, sizeof(float) * 3 * (size_t)img.width * img.height) == 0;
+          elr_image_free(&img);
+        }
+      }
+    printf("\n%s loop on bench_city, %d spp %s + MIS, 1 thread, best of %d interleaved rounds:\n", ig ? "path (maxdepth 5)" : "direct-lighting", spp,
+           elr_sampler_kind_name(sampler), rounds);
+    printf("  %.0f camera + %.0f bounce + %.0f shadow rays; Embree alone at the raw 1-by-1 rates: %.3f s\n", ncam, nbo, nshr,
+           ncam / rate[0][0] + nbo / rate[2][0] + nshr / rate[1][0]);
+    printf("  %-22s %8s %8s %10s %13s %13s %9s\n", "loop", "time s", "speed-up", "M rays/s", "Embree est.", "Embree meas.", "image");
+    for (k = 0; k < 6; k++) {
+      int a2 = apis[k] < 0 ? 0 : apis[k];
+      double raw = ncam / rate[0][a2] + nbo / rate[2][a2] + nshr / rate[1][a2];
+      if (best[k] >= 1e30) continue;
+      printf("  %-22s %8.3f %7.2fx %10.2f %12.0f%% ", names[k], best[k], best[0] / best[k], (ncam + nbo + nshr) / best[k] * 1e-6,
+             100.0 * raw / best[k]);
+      if (loops[k] == ELR_LOOP_WAVE) printf("%12.0f%% ", 100.0 * emb[k] / best[k]); else printf("%13s ", "-");
+      printf("%9s\n", k == 0 ? "reference" : same[k] ? "same" : "DIFFERENT");
+    }
+    elr_image_free(&ref);
+  }
+  printf("  (Embree est.: at the raw rates of the loop's own Embree call; wave loops: that call's rate from the table above)\n");
+  s->d.integrator_path = 0;
+  free(cam); free(sh); free(bo); free(blk);
+}
+
 int main(int argc, char **argv) {
   char path[1024], err[1024];
   elr_scene *s = NULL;
-  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0, loops_only = 0;
+  int cg_path = 0; /* --callgrind ... --integrator path */
   int cg_sampler = ELR_SAMPLER_STRATIFIED; /* --sampler: the callgrind loop's */
   const char *only_scene = NULL;           /* --samplers --scene bench_city|bench_studio */
   int only_integrator = -1;                /* --samplers --integrator directlighting|path */
@@ -302,8 +428,15 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--full")) full = 1;
     else if (!strcmp(argv[i], "--packets")) packets = 1;
     else if (!strcmp(argv[i], "--samplers")) samplers = 1;
+    else if (!strcmp(argv[i], "--loops")) loops_only = 1;
+    else if (!strcmp(argv[i], "--loop") && i + 1 < argc) {
+      i++; g_loop = !strcmp(argv[i], "one") ? ELR_LOOP_ONE : !strcmp(argv[i], "batched") ? ELR_LOOP_BATCHED : ELR_LOOP_WAVE;
+    }
+    else if (!strcmp(argv[i], "--wave-api") && i + 1 < argc) {
+      i++; g_wave_api = !strcmp(argv[i], "single") ? 0 : !strcmp(argv[i], "packet16") ? 1 : !strcmp(argv[i], "stream") ? 2 : 3;
+    }
     else if (!strcmp(argv[i], "--scene") && i + 1 < argc) only_scene = argv[++i];
-    else if (!strcmp(argv[i], "--integrator") && i + 1 < argc) { i++; only_integrator = !strcmp(argv[i], "path") ? 1 : 0; }
+    else if (!strcmp(argv[i], "--integrator") && i + 1 < argc) { i++; only_integrator = cg_path = !strcmp(argv[i], "path") ? 1 : 0; }
     else if (!strcmp(argv[i], "--sampler") && i + 1 < argc) {
       cg_sampler = elr_sampler_kind_from_name(argv[++i]);
       if (cg_sampler <= 0) { fprintf(stderr, "bench_render: unknown sampler \"%s\"\n", argv[i]); return 1; }
@@ -311,7 +444,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples|samples1 N [--sampler S]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|batched|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
@@ -321,6 +454,7 @@ int main(int argc, char **argv) {
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
   w = s->d.xres; h = s->d.yres;
   if (packets) { packet_rates(s); elr_scene_free(s); return 0; }
+  if (loops_only) { loop_table(s, 3, ELR_SAMPLER_ZSOBOL); elr_scene_free(s); return 0; }
 
   if (cg_op) {
     bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
@@ -337,13 +471,14 @@ int main(int argc, char **argv) {
       if (cg_n > 0) {
         elr_image img;
         elr_stats st;
-        int rows = (cg_n / 16 + w - 1) / w;
+        int rows = (cg_n / (cg_path ? 4 : 16) + w - 1) / w;
         if (rows > h) rows = h;
         /* the middle rows: sphere, plane and sky, like the whole image */
         /* half a pixel inside each bound: the film's ceil(res * fraction) gives the bound back whatever the
          * float rounding (117 / 240 * 240 rounds up to 118) */
         s->d.crop[2] = ((float)((h - rows) / 2) - 0.5f) / (float)h; s->d.crop[3] = ((float)((h - rows) / 2 + rows) - 0.5f) / (float)h;
-        if (render_once(s, 16, cg_sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
+        s->d.integrator_path = cg_path;
+        if (render_once(s, cg_path ? 4 : 16, cg_sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
           printf("%llu camera samples, %llu shadow rays, %llu BSDF-sampled light rays\n", (unsigned long long)st.samples,
                  (unsigned long long)st.shadow_rays, (unsigned long long)st.bsdf_light_rays);
           elr_image_free(&img);
@@ -427,6 +562,8 @@ int main(int argc, char **argv) {
     }
     (void)sink;
     free(cam); free(sh);
+    printf("\n");
+    loop_table(s, 3, ELR_SAMPLER_ZSOBOL);
   }
   /* >> part 2: relative MSE against time */
   if (!rays_only) {

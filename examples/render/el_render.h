@@ -106,6 +106,7 @@ typedef struct elr_stats {
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
   int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */
+  double t_embree_loop;      /* the wave loop: seconds inside Embree, summed over the threads (0 for the other loops) */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
   int sampler_randomization; /* sobol, zsobol, paddedsobol: 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   uint64_t rejected_samples;

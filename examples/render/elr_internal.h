@@ -603,7 +603,10 @@ void elr_film_bounds(const elr_scene_desc *d, int b[4]);
 int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
 
 /* >> a render (render.c): what it decided, read by every thread */
-typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats; /* one thread's counts */
+typedef struct elr_tstats { /* one thread's counts */
+  uint64_t camera, bounce, shadow, bsdfl, samples;
+  double t_embree; /* the wave loop: seconds inside its Embree calls */
+} elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
   elr_camera cam;

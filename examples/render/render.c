@@ -125,7 +125,7 @@ static void *elr__worker(void *arg) {
   }
   pthread_mutex_lock(&J->mu);
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
-  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
+  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples; J->total.t_embree += ts.t_embree;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
   elr_wave_free(W);
@@ -225,9 +225,17 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     if (nemit != 1) C->batch_light = NULL;
   }
   /* the per-tile loop: the batched and wave loops need batch_light; the default is the wave loop
-   * (bench_render measures the three) */
+   * (bench_render --loops measures them), except for the path tracer with a pixel sampler (stratified,
+   * 02sequence), whose draws past its dimensions come from the pixel's one stream: the wave loop would
+   * take them in another order (other numbers of the same distribution), the batched loop keeps the
+   * reference's image */
   C->loop = ELR_LOOP_ONE;
-  if (C->batch_light) C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_BATCHED ? o->loop : ELR_LOOP_WAVE;
+  if (C->batch_light) {
+    int pixel_sampler = C->sampler.kind == ELR_SAMPLER_STRATIFIED || C->sampler.kind == ELR_SAMPLER_ZEROTWO;
+    C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_BATCHED || o->loop == ELR_LOOP_WAVE ? o->loop
+              : C->path && pixel_sampler                                                       ? ELR_LOOP_BATCHED
+                                                                                              : ELR_LOOP_WAVE;
+  }
   C->wave_api = o->wave_api >= ELR_WAVE_API_SINGLE && o->wave_api <= ELR_WAVE_API_SOA ? o->wave_api : ELR_WAVE_API_DEFAULT;
   return 0;
 }
@@ -243,7 +251,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
   st->light_samples_batched = C->batch_light != NULL;
-  st->loop = C->loop; st->wave_api = C->wave_api;
+  st->loop = C->loop; st->wave_api = C->wave_api; st->t_embree_loop = T->t_embree;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
   st->sampler_randomization = C->sampler.randomize;

@@ -31,6 +31,18 @@
 
 #define ELR_WAVE 256 /* camera samples in a wave at most */
 
+/* the wave's Embree calls, timed (a few calls per wave: the clock costs nothing next to them) */
+static void elr__intersect(const elr_ctx *C, elr_wave_rays *w, int coherent, elr_tstats *ts) {
+  double t0 = elr_now();
+  elr_wave_intersect(C->s, w, C->wave_api, coherent);
+  ts->t_embree += elr_now() - t0;
+}
+static void elr__occluded(const elr_ctx *C, elr_wave_rays *w, elr_tstats *ts) {
+  double t0 = elr_now();
+  elr_wave_occluded(C->s, w, C->wave_api, 0);
+  ts->t_embree += elr_now() - t0;
+}
+
 struct elr_wave {
   elr_sampler *S; /* one per pixel of a wave */
   int nS, npix;   /* samplers made, pixels per wave */
@@ -79,7 +91,7 @@ void elr_wave_free(elr_wave *W) {
 
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
  * in W->rays, traced): render_batched.c's phases 1 and 2 for the whole wave, then its shadow rays */
-static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m) {
+static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
   int j, n = 0;
   W->shadows.n = 0;
@@ -139,7 +151,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m) {
       elr_wave_add(&W->shadows, elr_spawn_origin(q->h, q->wb), q->wb, INFINITY);
     }
   }
-  elr_wave_occluded(C->s, &W->shadows, C->wave_api, 0);
+  elr__occluded(C, &W->shadows, ts);
   for (j = 0; j < m; j++) {
     elr_first *q = &W->f[j];
     if (!q->hit) continue;
@@ -162,7 +174,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
     if (depth > 0) { /* the rays of the paths alive, in one call */
       W->rays.n = 0;
       for (j = 0; j < m; j++) if (W->alive[j]) { W->ray[j] = W->rays.n; elr_wave_add(&W->rays, W->p[j].ray.o, W->p[j].ray.d, INFINITY); }
-      elr_wave_intersect(s, &W->rays, C->wave_api, 0);
+      elr__intersect(C, &W->rays, 0, ts);
     }
     /* <<Intersect ray with scene and store intersection in isect>>, <<Possibly add emitted light at
      * intersection>>, the BSDF, the draws of light sampling and of the BSDF sample */
@@ -258,7 +270,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         }
       }
     }
-    elr_wave_occluded(s, &W->shadows, C->wave_api, 0);
+    elr__occluded(C, &W->shadows, ts);
     /* each path's direct light, then its next ray (<<Possibly terminate the path with Russian roulette>>) */
     for (j = 0; j < m; j++) {
       elr_path_state *p = &W->p[j];
@@ -328,9 +340,9 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
     /* the camera rays in one call */
     W->rays.n = 0;
     for (j = 0; j < m; j++) elr_wave_add(&W->rays, W->cam[j].o, W->cam[j].d, INFINITY);
-    elr_wave_intersect(C->s, &W->rays, C->wave_api, 1);
+    elr__intersect(C, &W->rays, 1, ts);
     if (C->path) elr__path_wave(C, W, m, ts);
-    else elr__direct_wave(C, W, m);
+    else elr__direct_wave(C, W, m, ts);
     /* <<Add camera ray's contribution to image>>, in the reference's order */
     for (j = 0; j < m; j++) {
       float rgb[3];

@@ -35,7 +35,11 @@ void elr_stats_print(const elr_stats *st, void *fp) {
                                    "waves of up to 256 camera samples (render_wave.c)"};
     static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
     fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
-    if (st->loop == 2) fprintf(f, ", Embree %s", st->wave_api >= 0 && st->wave_api < 4 ? apis[st->wave_api] : "?");
+    if (st->loop == 2) {
+      fprintf(f, ", Embree %s", st->wave_api >= 0 && st->wave_api < 4 ? apis[st->wave_api] : "?");
+      if (st->t_render > 0 && st->nthreads > 0)
+        fprintf(f, "; %.0f%% of the loop's time inside Embree", 100.0 * st->t_embree_loop / (st->t_render * st->nthreads));
+    }
     fprintf(f, "\n");
   }
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
