@@ -198,6 +198,7 @@ typedef struct elr_scene_desc {
   int integrator_path, maxdepth, light_sampling;
   float rrthreshold;
   int direct_one;     /* directlighting: pbrt-v3's "strategy" "one" (else "all") */
+  int split_auto;     /* directlighting: envlight's "splitting" "auto" (1) or "off" (0): render.c's pilot */
   int light_strategy; /* path: pbrt-v3's "lightsamplestrategy" (ELR_LSTRAT_*) */
 } elr_scene_desc;
 
@@ -603,6 +604,8 @@ void elr_film_bounds(const elr_scene_desc *d, int b[4]);
 int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
 
 /* >> a render (render.c): what it decided, read by every thread */
+#define ELR_SPLIT_LIGHTS 64      /* splitting applies to scenes of at most this many lights */
+#define ELR_SPLIT_MAX_GIVEN 1024 /* --split N: at most this */
 typedef struct elr_tstats { /* one thread's counts */
   uint64_t camera, bounce, shadow, bsdfl, samples;
   double t_embree; /* the wave loop: seconds inside its Embree calls */
@@ -696,6 +699,11 @@ typedef struct elr_first {
   /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading (render_batched.c),
    * else their answers, traced by the wave loop (1: occluded) */
   int occ_l, occ_b;
+  /* the light's further samples (its "samples" count, or splitting) drawn ahead the same way: their light
+   * sample, BSDF sample and shadow rays' answers (the wave loop); the others, from nmore + 1 on, drawn in
+   * the shading */
+  const struct elr_first *more;
+  int nmore;
 } elr_first;
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */

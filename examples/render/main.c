@@ -12,7 +12,7 @@
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
- * --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
+ * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -93,6 +93,11 @@ int main(int argc, char **argv) {
       const char *m = argv[++i];
       if (!strcmp(m, "one")) o.loop = 0; else if (!strcmp(m, "batched")) o.loop = 1; else if (!strcmp(m, "wave")) o.loop = 2;
       else { fprintf(stderr, "render: --loop one|batched|wave\n"); return 1; }
+    } else if (!strcmp(a, "--split") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "off")) o.split = 0; else if (!strcmp(m, "auto")) o.split = 1;
+      else if (!parse_int(m, 2, 1024, &v)) o.split = (int)v;
+      else { fprintf(stderr, "render: --split off|auto|N (N in [2, 1024])\n"); return 1; }
     } else if (!strcmp(a, "--wave-api") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "single")) o.wave_api = 0; else if (!strcmp(m, "packet16")) o.wave_api = 1;

@@ -63,7 +63,15 @@ static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const e
   elr_sampler_skip2d(S);                                  /* the light draw, made ahead */
   if (f->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us); /* the BSDF draw (made ahead with its sample) */
   elr__estimate_direct_ahead(C, h, b, wo, f, sample_bsdf, ts, &Ld);
-  for (k = 1; k < n; k++) { /* the light's further samples, as the reference draws them */
+  for (k = 1; k < n; k++) { /* the light's further samples: drawn ahead too (the wave loop's splitting), or as the
+                              * reference draws them */
+    if (k - 1 < f->nmore) {
+      const elr_first *q = &f->more[k - 1];
+      elr_sampler_skip2d(S);
+      if (q->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us);
+      elr__estimate_direct_ahead(C, h, b, wo, q, sample_bsdf, ts, &Ld);
+      continue;
+    }
     elr_sampler_get2d(S, ul);
     elr_sampler_get2d(S, us);
     elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
@@ -148,6 +156,7 @@ void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_t
       f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
       f[k].bs = f[k].bray = 0;
       f[k].occ_l = f[k].occ_b = -1; /* the shadow rays traced in the shading */
+      f[k].more = NULL; f[k].nmore = 0;
       idx[k] = -1;
       if (!f[k].hit) continue;
       elr_sampler_get2d(S, &u[2 * n]); /* the first light draw at the hit */

@@ -53,6 +53,10 @@ struct elr_wave {
   elr_ray cam[ELR_WAVE];
   elr_hit h[ELR_WAVE];
   elr_first f[ELR_WAVE]; /* direct lighting */
+  int npair, cap;        /* the light sample pairs drawn ahead per camera sample; camera samples per wave (ELR_WAVE / npair) */
+  elr_first more[ELR_WAVE]; /* the further pairs of each camera sample (elr_first.more) */
+  elr_first *pair[ELR_WAVE];
+  int pair_of[ELR_WAVE];
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
   elr_path_state p[ELR_WAVE];
   int alive[ELR_WAVE], ray[ELR_WAVE], light[ELR_WAVE], shadow[ELR_WAVE], escaped[ELR_WAVE], bshadow[ELR_WAVE];
@@ -69,7 +73,11 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   elr_wave *W = (elr_wave *)calloc(1, sizeof *W);
   int i, npix;
   if (!W) return NULL;
-  npix = C->spp >= ELR_WAVE ? 1 : ELR_WAVE / C->spp;
+  /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
+  W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
+  if (W->npair > ELR_WAVE) W->npair = ELR_WAVE;
+  W->cap = ELR_WAVE / W->npair;
+  npix = C->spp >= W->cap ? 1 : W->cap / C->spp;
   if (npix > tile * tile) npix = tile * tile;
   W->S = (elr_sampler *)calloc((size_t)npix, sizeof(elr_sampler));
   if (!W->S) { free(W); return NULL; }
@@ -90,73 +98,80 @@ void elr_wave_free(elr_wave *W) {
 }
 
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
- * in W->rays, traced): render_batched.c's phases 1 and 2 for the whole wave, then its shadow rays */
+ * in W->rays, traced): render_batched.c's phases 1 and 2 for the whole wave, for each of the light's
+ * W->npair sample pairs (its "samples" count, or splitting's), then all their shadow rays */
 static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
-  int j, n = 0;
+  int j, k, n = 0, np = 0, nm = 0;
   W->shadows.n = 0;
   for (j = 0; j < m; j++) {
     elr_first *q = &W->f[j];
     elr_sampler *S = &W->S[W->pix[j]];
-    float us[2];
+    elr_v3 wo = elr_mul(W->cam[j].d, -1.f);
     q->h = &W->h[j];
     q->bs = q->bray = 0;
     q->occ_l = q->occ_b = -1;
     q->pdf = 0.f;
-    W->light[j] = -1;
+    q->more = NULL; q->nmore = 0;
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     if (!q->hit) continue;
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
     elr_bsdf_init(C->s, &W->h[j], &q->tc, &q->b);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
-    /* the first light draw at the hit, then the BSDF draw */
-    elr_sampler_get2d(S, &W->u[2 * n]);
-    elr_sampler_get2d(S, us);
-    if (C->ls != ELR_LS_BSDF) W->light[j] = n++;
-    if (C->ls != ELR_LS_LIGHT) {
-      int spec;
-      q->fb = elr_bsdf_sample(&q->b, elr_mul(W->cam[j].d, -1.f), us[0], us[1], &q->wb, &q->bpdf, &spec);
-      q->bs = 1;
-      q->bray = !spec && q->bpdf > 0.f && !elr_isblack(q->fb); /* elr_estimate_direct's BSDF ray */
+    q->more = &W->more[nm]; q->nmore = W->npair - 1; nm += W->npair - 1;
+    for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
+      elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
+      float us[2];
+      p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f;
+      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1;
+      elr_sampler_get2d(S, &W->u[2 * n]);
+      elr_sampler_get2d(S, us);
+      if (C->ls != ELR_LS_BSDF) W->light[np] = n++;
+      if (C->ls != ELR_LS_LIGHT) {
+        int spec;
+        p->fb = elr_bsdf_sample(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
+        p->bs = 1;
+        p->bray = !spec && p->bpdf > 0.f && !elr_isblack(p->fb); /* elr_estimate_direct's BSDF ray */
+      }
+      np++;
     }
   }
   /* the environment's pdf and radiance in the BSDF samples' directions, then the light samples */
-  for (j = 0; j < m; j++) {
-    elr_first *q = &W->f[j];
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k];
     float d[3], L3[3];
-    if (!q->bray) continue;
-    elr_to3(q->wb, d);
-    q->bpdf_env = el_envlight_pdf_li(env_sample, d);
+    if (!p->bray) continue;
+    elr_to3(p->wb, d);
+    p->bpdf_env = el_envlight_pdf_li(env_sample, d);
     el_envlight_le(env, d, L3);
-    q->Lb = elr_from3(L3);
+    p->Lb = elr_from3(L3);
   }
   el_envlight_sample_li_n(env_sample, n, W->u, W->wi, W->Le, W->pdf);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
-   * black, the BSDF sample's (W->shadow: their index in W->shadows) */
-  for (j = 0; j < m; j++) {
-    elr_first *q = &W->f[j];
-    int i = W->light[j];
-    W->shadow[j] = W->bshadow[j] = -1;
+   * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k], *q = &W->f[W->pair_of[k]];
+    int i = W->light[k];
+    W->shadow[k] = W->bshadow[k] = -1;
     if (i >= 0) {
-      elr_v3 wo = elr_mul(W->cam[j].d, -1.f);
-      q->wi = elr_from3(&W->wi[3 * i]); q->L = elr_from3(&W->Le[3 * i]); q->pdf = W->pdf[i];
-      if (q->pdf > 0.f && !elr_isblack(elr_mul(elr_bsdf_f(&q->b, wo, q->wi), fabsf(elr_dot(q->wi, q->b.ns))))) {
-        W->shadow[j] = W->shadows.n;
-        elr_wave_add(&W->shadows, elr_spawn_origin(q->h, q->wi), q->wi, INFINITY);
+      elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
+      p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
+      if (p->pdf > 0.f && !elr_isblack(elr_mul(elr_bsdf_f(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
+        W->shadow[k] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi), p->wi, INFINITY);
       }
     }
-    if (q->bray) {
-      W->bshadow[j] = W->shadows.n;
-      elr_wave_add(&W->shadows, elr_spawn_origin(q->h, q->wb), q->wb, INFINITY);
+    if (p->bray) {
+      W->bshadow[k] = W->shadows.n;
+      elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wb), p->wb, INFINITY);
     }
   }
   elr__occluded(C, &W->shadows, ts);
-  for (j = 0; j < m; j++) {
-    elr_first *q = &W->f[j];
-    if (!q->hit) continue;
-    q->occ_l = W->shadow[j] >= 0 ? W->shadows.tfar[W->shadow[j]] < 0.f : 0;
-    q->occ_b = W->bshadow[j] >= 0 ? W->shadows.tfar[W->bshadow[j]] < 0.f : 0;
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k];
+    p->occ_l = W->shadow[k] >= 0 ? W->shadows.tfar[W->shadow[k]] < 0.f : 0;
+    p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
   }
 }
 
@@ -310,7 +325,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
 }
 
 /* The camera samples of tile [x0, x1) x [y0, y1) into tile, a wave at a time: whole pixels while they
- * fit (each with its own sampler), or, when a pixel has more than ELR_WAVE samples, ELR_WAVE of them
+ * fit (each with its own sampler), or, when a pixel has more than W->cap samples, W->cap of them
  * (then a wave is one pixel and its sampler goes on in the next). */
 void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1, int y1, el_film_tile *tile, elr_tstats *ts) {
   int w = x1 - x0, npx = w * (y1 - y0), p = 0, k0 = 0;
@@ -319,9 +334,9 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
     while (p < npx && np < W->npix) {
       int x = x0 + (p % w), y = y0 + (p / w), k, take = C->spp - k0;
       elr_sampler *S = &W->S[np];
-      if (take > ELR_WAVE - m) {
+      if (take > W->cap - m) {
         if (m > 0) break;
-        take = ELR_WAVE;
+        take = W->cap;
       }
       if (k0 == 0) elr_sampler_start_pixel(S, x, y);
       for (k = k0; k < k0 + take; k++, m++) {

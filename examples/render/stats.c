@@ -41,6 +41,12 @@ void elr_stats_print(const elr_stats *st, void *fp) {
         fprintf(f, "; %.0f%% of the loop's time inside Embree", 100.0 * st->t_embree_loop / (st->t_render * st->nthreads));
     }
     fprintf(f, "\n");
+    if (st->split_auto)
+      fprintf(f, "  splitting          %d light and BSDF sample pair%s per camera sample, chosen by a pilot (%.3f s): relative "
+              "variance %.3g / %.3g and CPU %.3f / %.3f s at 1 / 4 pairs; predicted error x time %.2fx better than 1 pair\n",
+              st->split, st->split == 1 ? "" : "s", st->t_split_pilot, st->split_var[0], st->split_var[1], st->split_cpu[0], st->split_cpu[1],
+              st->split_gain);
+    else if (st->split > 1) fprintf(f, "  splitting          %d light and BSDF sample pairs per camera sample (given)\n", st->split);
   }
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
           (double)st->bytes_distribution / 1024.0);
