@@ -413,10 +413,56 @@ static void loop_table(elr_scene *s, int rounds, int sampler) {
   free(cam); free(sh); free(bo); free(blk);
 }
 
+/* --split: error x time of splitting (direct lighting) on the sun map (bench_city) and the smooth studio
+ * map (bench_studio) at 16 and 64 spp: for 1 pair (off), 2, 4 and auto, the variance across seeds
+ * (relMSE between two renders of other seeds, halved: no reference needed) and the CPU time (wall x
+ * threads, the pilot included for auto), their product relative to off's. Rounds interleaved. */
+static void split_table(int threads, int rounds) {
+  static const char *scenes[2] = {"bench_city", "bench_studio"};
+  static const int splits[4] = {ELR_SPLIT_OFF, 2, 4, ELR_SPLIT_AUTO};
+  static const char *names[4] = {"off (1 pair)", "2 pairs", "4 pairs", "auto"};
+  int sc, c, k, r;
+  printf("splitting: variance across seeds x CPU time, direct lighting, the scene's sampler, %s threads, %d interleaved rounds\n",
+         threads > 0 ? "the given" : "all", rounds);
+  for (sc = 0; sc < 2; sc++) {
+    char path[1024], err[1024];
+    elr_scene *s = NULL;
+    snprintf(path, sizeof path, "%s/scenes/%s.pbrt", EL_SOURCE_DIR, scenes[sc]);
+    if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return; }
+    s->d.integrator_path = 0;
+    for (c = 0; c < 2; c++) {
+      int spp = c ? 64 : 16, chosen[4] = {0, 0, 0, 0};
+      double var[4] = {0, 0, 0, 0}, cpu[4] = {0, 0, 0, 0};
+      for (r = 0; r < rounds; r++)
+        for (k = 0; k < 4; k++) {
+          elr_render_options o;
+          elr_image a, b;
+          elr_stats sa, sb;
+          elr_render_options_default(&o);
+          o.spp = spp; o.nthreads = threads; o.quiet = 1; o.split = splits[k];
+          o.seed = 100 + 2 * r;
+          if (elr_render(s, &o, &a, &sa, err, sizeof err) != 0) continue;
+          o.seed = 101 + 2 * r;
+          if (elr_render(s, &o, &b, &sb, err, sizeof err) != 0) { elr_image_free(&a); continue; }
+          var[k] += relmse(a.rgb, b.rgb, (size_t)a.width * a.height * 3) / 2.0;
+          cpu[k] += ((sa.t_render + sa.t_split_pilot) * sa.nthreads + (sb.t_render + sb.t_split_pilot) * sb.nthreads) / 2.0;
+          chosen[k] = sa.split;
+          elr_image_free(&a); elr_image_free(&b);
+        }
+      printf("%s, %d spp:\n  %-14s %6s %12s %10s %12s %10s\n", scenes[sc], spp, "splitting", "pairs", "variance", "CPU s", "var x CPU", "vs off");
+      for (k = 0; k < 4; k++) {
+        double e = var[k] / rounds * cpu[k] / rounds, e0 = var[0] / rounds * cpu[0] / rounds;
+        printf("  %-14s %6d %12.4g %10.3f %12.4g %9.2fx\n", names[k], chosen[k], var[k] / rounds, cpu[k] / rounds, e, e0 > 0 ? e / e0 : 0.0);
+      }
+    }
+    elr_scene_free(s);
+  }
+}
+
 int main(int argc, char **argv) {
   char path[1024], err[1024];
   elr_scene *s = NULL;
-  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0, loops_only = 0;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0, loops_only = 0, split_only = 0;
   int cg_path = 0; /* --callgrind ... --integrator path */
   int cg_sampler = ELR_SAMPLER_STRATIFIED; /* --sampler: the callgrind loop's */
   const char *only_scene = NULL;           /* --samplers --scene bench_city|bench_studio */
@@ -429,6 +475,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--packets")) packets = 1;
     else if (!strcmp(argv[i], "--samplers")) samplers = 1;
     else if (!strcmp(argv[i], "--loops")) loops_only = 1;
+    else if (!strcmp(argv[i], "--split")) split_only = 1;
     else if (!strcmp(argv[i], "--loop") && i + 1 < argc) {
       i++; g_loop = !strcmp(argv[i], "one") ? ELR_LOOP_ONE : !strcmp(argv[i], "batched") ? ELR_LOOP_BATCHED : ELR_LOOP_WAVE;
     }
@@ -444,11 +491,12 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|batched|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|batched|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
   if (samplers) { sampler_table(ref_spp, threads, quick, only_scene, only_integrator); return 0; }
+  if (split_only) { split_table(threads, quick ? 1 : 3); return 0; }
   snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
   if (packets) setenv("ELR_EMBREE_SPHERES", "1", 1);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
