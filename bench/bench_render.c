@@ -30,14 +30,22 @@
  * better read from instruction counts (--callgrind samples N --sampler S, below): wall times move with
  * the machine's load. examples/render/README.md has the measured tables.
  *
- * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--packets] [--ref-spp N] [--threads N]
+ * Part 1b (also --loops alone): the per-tile loops (one sample at a time, render_batched.c, the wave
+ * loop with each of its four Embree call kinds) for the direct-lighting (16 spp) and path (4 spp)
+ * integrators, zsobol (an order-free sampler, so every loop gives the same image): time, speed-up,
+ * rays per second, Embree's share estimated from raw rates measured on rays of each kind through the
+ * same call, and for the wave loop measured (its Embree calls timed). --split (alone): splitting's
+ * variance across seeds x CPU time for 1, 2, 4 pairs and auto on bench_city and bench_studio.
+ *
+ * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--packets] [--loops] [--split] [--ref-spp N] [--threads N]
  *       --rays-only: part 1 alone (a few seconds). --packets: what Embree's packet and stream calls
  *       would gain on the camera rays (see packet_rates), alone. The default run renders about 390 M camera samples:
  *       6 minutes measured on the shared 2-core development machine (load average about 4); --full
  *       (465 M) took 12 minutes there at load average 6.
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
- * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
+ * after the setup (--integrator path: the path tracer at 4 spp; --loop one|batched|wave and --wave-api
+ * single|packet16|stream|soa choose the loop); OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
  * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
  * rounded up to whole rows of 320) or samples1 (the same with light samples drawn one at a time:
  * render_options.no_batch); --sampler S renders those samples with sampler S (default stratified).
@@ -502,7 +510,7 @@ int main(int argc, char **argv) {
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
   w = s->d.xres; h = s->d.yres;
   if (packets) { packet_rates(s); elr_scene_free(s); return 0; }
-  if (loops_only) { loop_table(s, 3, ELR_SAMPLER_ZSOBOL); elr_scene_free(s); return 0; }
+  if (loops_only) { loop_table(s, quick ? 2 : 5, ELR_SAMPLER_ZSOBOL); elr_scene_free(s); return 0; }
 
   if (cg_op) {
     bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);

@@ -8,8 +8,11 @@
  * sampled; the light distribution (lightdistrib.c) only when there is a choice to make; whether a pixel's environment samples are drawn together (render_batched.c) or each in its own
  * sample's shading (the reference: integrator_direct.c, integrator_path.c). Threads take tiles in
  * turn; each tile has its own film tile and the tiles are merged in tile order, whatever order they
- * finish in, so the image is the same for any thread count. A wave loop (packets of camera, shadow and
- * bounce rays) would be another per-tile loop here, chosen the way batching is. */
+ * finish in, so the image is the same for any thread count. The per-tile loop (elr_ctx.loop): one
+ * sample at a time (the reference, below), a pixel's light samples together (render_batched.c) or
+ * waves of camera samples (render_wave.c, the default where the environment is the only light that
+ * emits). For directlighting, splitting (elr__split_choose) may give each camera sample several light
+ * and BSDF sample pairs, chosen by a pilot from measured variance and cost. */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include <pthread.h>

@@ -18,7 +18,8 @@
  * the first-vertex shading below is the reference's with its sums in the same order, so the image is
  * bit for bit the one-at-a-time image (test_render_pipeline compares them for every sampler and both
  * integrators). A change to EstimateDirect or to either integrator's first vertex must be made here
- * too; the wave loop (issue 14: packets of camera, shadow and bounce rays) replaces this file. */
+ * too; the wave loop (render_wave.c) computes the same first vertex for a whole wave of samples and is
+ * the default where both apply, except for the path tracer with a pixel sampler (render.c). */
 #include "elr_internal.h"
 
 #define ELR_BATCH 32

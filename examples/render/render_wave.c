@@ -29,7 +29,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifndef ELR_WAVE
 #define ELR_WAVE 256 /* camera samples in a wave at most */
+#endif
 
 /* the wave's Embree calls, timed (a few calls per wave: the clock costs nothing next to them) */
 static void elr__intersect(const elr_ctx *C, elr_wave_rays *w, int coherent, elr_tstats *ts) {
