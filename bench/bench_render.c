@@ -79,7 +79,13 @@
  * camera sample batched, 4351 -> 4379 one at a time; the same images (examples/render/README.md).
  * Measured 2026-12-02, issue 16's format (instances, glass, metal, uber, substrate, Loop subdivision):
  * 4317 -> 4334 instructions per camera sample batched (main's binary and this one, N = 102400); the
- * same images for scenes that use none of it. */
+ * same images for scenes that use none of it.
+ * Measured 2026-12-02, the wave loop (render_wave.c; zsobol, N = 25600, instructions per camera sample,
+ * Embree inclusive of the sphere callbacks): direct lighting one at a time 5379 (Embree 1757), wave
+ * with packets of 16 4532 (Embree 643); path one at a time 7234 (2274), wave 6389 (979). --loops, best
+ * of 5 interleaved rounds at load average 6-9: direct 2.343 -> 1.432 s (1.64x; batched 1.48x), path
+ * 0.831 -> 0.439 s (1.89x); Embree's calls 11% and 14% of the wave loop's time (timed). --split on
+ * bench_city: 2 and 4 pairs cost 1.25-2.34x more error x time than one; auto keeps one. */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
