@@ -485,7 +485,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    1024x512 maps in ../shared/envmaps: --callgrind OP N MAP), 394 with CDF inversion, 240 with the
  *    alias table; with the radiance 257; pdf_li 75 (general rotation 93); le 248; construction 117 M
  *    instructions, 27-31 ms with fresh memory, about 11 ms of it page faults (pbrt-v3: ~470, ~300,
- *    313 ms). See tutorials/03-infinite-light.md, section 9.
+ *    313 ms). See tutorials/05-appendix-fast-paths.md, A3.9.
  *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
  *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
  *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples

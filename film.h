@@ -345,7 +345,8 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
  *    rejected whole (it adds no filter weight either) and COUNTED by reason (el_film_stats,
  *    el_film_rejected_samples). pbrt-v3's integrators log such radiance and replace it by 0, which still
  *    adds the filter weight and so darkens the pixel; FilmTile::AddSample itself checks nothing, so a
- *    NaN that reaches it makes the pixel NaN.
+ *    NaN (or an Inf, through Inf - Inf in XYZToRGB) that reaches it makes the pixel's sums NaN, and
+ *    WriteImage's std::max(0, NaN) outputs 0: the whole pixel goes black (tests/test_tutorial_film.c).
  *  - The optional clamp is pbrt-v4's maxcomponentvalue (scale the sample so its largest component is at
  *    most the limit), not pbrt-v3's maxsampleluminance.
  *  - Splats land on floor(p), so p in (-1, 0) never doubles onto the edge pixel (pbrt-v3 once truncated

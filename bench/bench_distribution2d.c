@@ -15,11 +15,12 @@
  * summing the outputs), measured the same way with OP loop.
  * Measured (gcc 12 -O3, loop subtracted): guide s=2 106 instructions per 2D sample at 1024x512 to
  * 4096x2048 and 129 at 4000x2000 (123 and 148 before crowded guide cells were flagged in the table),
- * alias 125; see tutorials/03a-distributions.md for the full table.
+ * alias 125; tutorials/05-appendix-fast-paths.md (section A2) has the full table.
  *
  * Methods, all on the same input:
- *  - pbrt-v3: a transcription of Distribution1D / Distribution2D (src/core/sampling.h): float func and
- *    float CDF per row, FindInterval's binary search, pdf = func / funcInt. The "before".
+ *  - pbrt-v3: Distribution1D / Distribution2D (src/core/sampling.h) as the course ports them
+ *    (examples/pbrtv3/sampling.h): float func and float CDF per row, FindInterval's binary search,
+ *    pdf = func / funcInt. The "before".
  *  - CDF: el_distribution2d_sample, integer CDF, branch-free binary search.
  *  - guide s: el_distribution2d_fast with a guide table of next_pow2(n) / 2^s cells per row (s = 2 is
  *    the default: 1 byte per bin; s = 0: 4 bytes per bin). Same points as CDF (stratification kept).
@@ -34,6 +35,7 @@
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #define EL_DISTRIBUTION2D_IMPLEMENTATION
 #include "distribution2d.h"
+#include "../examples/pbrtv3/sampling.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -70,89 +72,7 @@ static float *make_map(int nu, int nv) {
   return f;
 }
 
-/* ---- pbrt-v3 Distribution1D / Distribution2D, transcribed (float func and cdf per row) ---- */
-typedef struct { float *func, *cdf, func_int; int n; } pb1d;
-typedef struct { pb1d *cond; pb1d marg; int nu, nv; } pb2d;
-static void pb1d_init(pb1d *d, const float *f, int n) {
-  int i;
-  d->n = n;
-  d->func = (float *)malloc(n * sizeof(float));
-  d->cdf = (float *)malloc((n + 1) * sizeof(float));
-  memcpy(d->func, f, n * sizeof(float));
-  /* <<Compute integral of step function at x_i>> */
-  d->cdf[0] = 0;
-  for (i = 1; i < n + 1; ++i) d->cdf[i] = d->cdf[i - 1] + d->func[i - 1] / n;
-  /* <<Transform step function integral into CDF>> */
-  d->func_int = d->cdf[n];
-  if (d->func_int == 0) for (i = 1; i < n + 1; ++i) d->cdf[i] = (float)i / (float)n;
-  else for (i = 1; i < n + 1; ++i) d->cdf[i] /= d->func_int;
-}
-static void pb1d_free(pb1d *d) { free(d->func); free(d->cdf); }
-static inline int pb_find_interval(const float *cdf, int size, float u) {
-  int first = 0, len = size;
-  while (len > 0) {
-    int half = len >> 1, middle = first + half;
-    if (cdf[middle] <= u) { first = middle + 1; len -= half + 1; }
-    else len = half;
-  }
-  first -= 1;
-  return first < 0 ? 0 : first > size - 2 ? size - 2 : first;
-}
-static inline float pb1d_sample(const pb1d *d, float u, float *pdf, int *off) {
-  int o = pb_find_interval(d->cdf, d->n + 1, u);
-  float du = u - d->cdf[o];
-  if (off) *off = o;
-  if (d->cdf[o + 1] - d->cdf[o] > 0) du /= d->cdf[o + 1] - d->cdf[o];
-  if (pdf) *pdf = d->func_int > 0 ? d->func[o] / d->func_int : 0;
-  return (o + du) / d->n;
-}
-static void pb2d_init(pb2d *d, const float *f, int nu, int nv) {
-  float *mf = (float *)malloc(nv * sizeof(float));
-  int v;
-  d->nu = nu; d->nv = nv;
-  d->cond = (pb1d *)malloc(nv * sizeof(pb1d));
-  for (v = 0; v < nv; ++v) { pb1d_init(&d->cond[v], f + (size_t)v * nu, nu); mf[v] = d->cond[v].func_int; }
-  pb1d_init(&d->marg, mf, nv);
-  free(mf);
-}
-static void pb2d_free(pb2d *d) {
-  int v;
-  for (v = 0; v < d->nv; ++v) pb1d_free(&d->cond[v]);
-  free(d->cond);
-  pb1d_free(&d->marg);
-}
-static size_t pb2d_bytes(const pb2d *d) {
-  return (size_t)d->nv * (sizeof(pb1d) + (2 * (size_t)d->nu + 1) * sizeof(float)) + (2 * (size_t)d->nv + 1) * sizeof(float);
-}
-static inline void pb2d_sample(const pb2d *d, float u0, float u1, float *x, float *y, float *pdf) {
-  float p0, p1;
-  int v;
-  *y = pb1d_sample(&d->marg, u1, &p1, &v);
-  *x = pb1d_sample(&d->cond[v], u0, &p0, NULL);
-  *pdf = p0 * p1;
-}
-static inline float pb2d_pdf(const pb2d *d, float u, float v) {
-  int iu = (int)(u * d->nu), iv = (int)(v * d->nv);
-  iu = iu < 0 ? 0 : iu > d->nu - 1 ? d->nu - 1 : iu;
-  iv = iv < 0 ? 0 : iv > d->nv - 1 ? d->nv - 1 : iv;
-  return d->cond[iv].func[iu] / d->marg.func_int;
-}
-/* positive bins with a zero CDF step (never sampled), and the share of the integral they hold */
-static void pb2d_unreachable(const pb2d *d, double *count, double *mass_share) {
-  double c = 0, m = 0, tot = 0;
-  int u, v;
-  for (v = 0; v < d->nv; ++v) {
-    const pb1d *r = &d->cond[v];
-    int row_dead = d->marg.func[v] > 0 && d->marg.cdf[v + 1] == d->marg.cdf[v];
-    for (u = 0; u < d->nu; ++u) {
-      tot += r->func[u];
-      if (r->func[u] > 0 && (row_dead || r->cdf[u + 1] == r->cdf[u])) { c += 1; m += r->func[u]; }
-    }
-  }
-  *count = c;
-  *mass_share = tot > 0 ? m / tot : 0;
-}
-
+/* ---- pbrt-v3 Distribution1D / Distribution2D: the course's plain port (examples/pbrtv3/sampling.h) ---- */
 /* ---- operations ---- */
 enum { NP = 1 << 20 };
 static float *g_u;
@@ -167,7 +87,7 @@ enum { M_PBRT, M_CDF, M_GUIDE0, M_GUIDE2, M_GUIDE4, M_ALIAS, M_COUNT };
 static const char *method_name[M_COUNT] = {"pbrt-v3", "CDF", "guide s=0", "guide s=2", "guide s=4", "alias"};
 
 typedef struct {
-  pb2d pb;
+  pbrt_Distribution2D pb;
   el_distribution2d d;
   el_distribution2d_fast fast;
   int method;
@@ -179,7 +99,7 @@ static int build(ctx *c, int method, const float *f, int nu, int nv) {
   c->method = method;
   memset(&fo, 0, sizeof fo);
   switch (method) {
-  case M_PBRT: pb2d_init(&c->pb, f, nu, nv); return 0;
+  case M_PBRT: return pbrt_Distribution2D_init(&c->pb, f, nu, nv) != 0;
   case M_CDF: return el_distribution2d_init(&c->d, f, nu, nv, NULL) != EL_SUCCESS;
   case M_GUIDE0: fo.guide_shrink_log2 = -1; break; /* negative: as many cells as the next power of two */
   case M_GUIDE2: fo.guide_shrink_log2 = 2; break;
@@ -189,12 +109,12 @@ static int build(ctx *c, int method, const float *f, int nu, int nv) {
   return el_distribution2d_fast_init_ex(&c->fast, &c->d, &fo) != EL_SUCCESS;
 }
 static void unbuild(ctx *c) {
-  if (c->method == M_PBRT) pb2d_free(&c->pb);
+  if (c->method == M_PBRT) pbrt_Distribution2D_free(&c->pb);
   else if (c->method == M_CDF) el_distribution2d_free(&c->d);
   else el_distribution2d_fast_free(&c->fast);
 }
 static size_t bytes(const ctx *c) {
-  if (c->method == M_PBRT) return pb2d_bytes(&c->pb);
+  if (c->method == M_PBRT) return pbrt_Distribution2D_bytes(&c->pb);
   if (c->method == M_CDF) return el_distribution2d_bytes(&c->d);
   return el_distribution2d_bytes(&c->d) + el_distribution2d_fast_bytes(&c->fast);
 }
@@ -206,8 +126,9 @@ static double run_samples(const ctx *c, long n) {
   if (c->method == M_PBRT)
     for (k = 0; k < n; ++k) {
       const float *u = g_u + 2 * (k & (NP - 1));
-      pb2d_sample(&c->pb, u[0], u[1], &x, &y, &p);
-      acc += x + y + p;
+      float uv[2];
+      pbrt_Distribution2D_SampleContinuous(&c->pb, u, uv, &p);
+      acc += uv[0] + uv[1] + p;
     }
   else if (c->method == M_CDF)
     for (k = 0; k < n; ++k) {
@@ -240,7 +161,7 @@ static double run_pdfs(const ctx *c, long n) {
   if (c->method == M_PBRT)
     for (k = 0; k < n; ++k) {
       const float *u = g_u + 2 * (k & (NP - 1));
-      acc += pb2d_pdf(&c->pb, u[0], u[1]);
+      acc += pbrt_Distribution2D_Pdf(&c->pb, u);
     }
   else
     for (k = 0; k < n; ++k) {
@@ -395,7 +316,7 @@ int main(int argc, char **argv) {
         if (rep < 2 && m != M_CDF) unbuild(&c);
       }
       if (m == M_CDF) build_ms = cdf_ms;
-      if (m == M_PBRT) pb2d_unreachable(&c.pb, &unreach, &share);
+      if (m == M_PBRT) pbrt_Distribution2D_unreachable(&c.pb, &unreach, &share);
       sink += run_samples(&c, 100000); /* warm up */
       for (rep = 0; rep < 3; ++rep) {
         double t0 = now();

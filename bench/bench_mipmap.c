@@ -9,25 +9,28 @@
  *   - each filter's error against a supersampled reference footprint (1024 stratified samples of
  *     pbrt's truncated Gaussian exp(-2 r^2) - exp(-2) over the ellipse spanned by the two
  *     differentials, each a point lookup of level 0), on a texture with detail at every scale;
- *   - the largest difference between our levels / lookups and a literal C port of pbrt-v3's MIPMap
- *     (pbrt_* functions below: BlockedArray storage, Texel() with Mod/Clamp, triangle(), both
- *     Lookup()s, EWA(), transcribed line by line from src/core/mipmap.h). That port is how "equal to
- *     pbrt-v3 to float precision" is measured: same inputs, compare outputs.
+ *   - the largest difference between our levels / lookups and the course's literal C port of
+ *     pbrt-v3's MIPMap (examples/pbrtv3/mipmap.h: BlockedArray storage, Texel() with Mod/Clamp,
+ *     triangle(), both Lookup()s, EWA(), transcribed line by line from src/core/mipmap.h). That port is
+ *     how "equal to pbrt-v3 to float precision" is measured: same inputs, compare outputs
+ *     (tests/test_tutorial_mipmap.c checks the same claims).
  *
  * Instruction counts (stable on a noisy machine), as DEVELOPERS.md describes:
  *     valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bin/bench_mipmap --callgrind OP N
  * prints nothing but a checksum; Ir(N) - Ir(0), divided by N, is the cost of one OP. OPs:
- *     build2048 build2000 point bilinear trilinear ewa8 ewa64
- *     pbrt_build2048 pbrt_build2000 pbrt_trilinear pbrt_ewa8     (the literal pbrt-v3 port)
+ *     build2048 build2000 build400 point bilinear trilinear ewa8 ewa64
+ *     pbrt_build2048 pbrt_build2000 pbrt_build400 pbrt_trilinear pbrt_ewa8     (the literal pbrt-v3 port)
+ * (build400: the course's 400x235 test image of chapter 1, resampled to 512x256.)
  * `bench_mipmap --instructions` runs those valgrind pairs itself (when valgrind is on the PATH) and
  * prints the table. Builds count init + el_mipmap_build_levels (every level), like pbrt's constructor.
  * Lookups use the same random inputs as the timing table. Last measured (gcc 12 -O3, x86-64): point 170,
- * bilinear 166, trilinear 225, ewa8 1,462, ewa64 1,632 instructions per lookup; the pbrt-v3 port 913
- * (trilinear) and 3,981 (ewa8); builds 26.7 M and 171.8 M against the port's 302.4 M and 785.1 M.
+ * bilinear 166, trilinear 225, ewa8 1,462, ewa64 1,632 instructions per lookup; the pbrt-v3 port 579
+ * (trilinear) and 2,928 (ewa8); builds 26.7 M and 171.8 M against the port's 91.8 M and 545.7 M.
  */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, popen */
 #define EL_IMPLEMENTATION
 #include "mipmap.h"
+#include "picture.h" /* el_test_image: the course's 400x235 test image (examples/common) */
 
 #include <math.h>
 #include <stdio.h>
@@ -35,299 +38,10 @@
 #include <string.h>
 #include <time.h>
 
-/* ---------------------------------------------------------------------------------------------
- * A literal port of pbrt-v3's MIPMap<RGBSpectrum> (src/core/mipmap.h at the trilinear fix, PR #275),
- * for comparison only. Names follow pbrt.
- * --------------------------------------------------------------------------------------------- */
-typedef struct pbrt_rgb {
-  float c[3];
-} pbrt_rgb;
-typedef struct pbrt_mipmap {
-  int doTrilinear;
-  float maxAnisotropy;
-  int wrapMode; /* 0 Repeat, 1 Black, 2 Clamp */
-  int resolution[2];
-  int nLevels;
-  el_blockedarray pyramid[32];
-} pbrt_mipmap;
-static float pbrt_weightLut[128];
-
-static int pbrt_Mod(int a, int b) {
-  int result = a - (a / b) * b;
-  return (result < 0) ? result + b : result;
-}
-static int pbrt_Clamp(int v, int lo, int hi) { return v < lo ? lo : (v > hi ? hi : v); }
-static float pbrt_Log2(float x) { return logf(x) * 1.442695040888963387004650940071f; }
-static int pbrt_IsPowerOf2(int v) { return v && !(v & (v - 1)); }
-static int pbrt_RoundUpPow2(int v) {
-  v--;
-  v |= v >> 1;
-  v |= v >> 2;
-  v |= v >> 4;
-  v |= v >> 8;
-  v |= v >> 16;
-  return v + 1;
-}
-static int pbrt_Log2Int(int v) {
-  int r = 0;
-  while (v >>= 1) ++r;
-  return r;
-}
-static float pbrt_Lanczos(float x, float tau) {
-  float s, lanczos;
-  x = fabsf(x);
-  if (x < 1e-5f) return 1;
-  if (x > 1.f) return 0;
-  x *= 3.14159265358979323846f;
-  s = sinf(x * tau) / (x * tau);
-  lanczos = sinf(x) / x;
-  return s * lanczos;
-}
-typedef struct pbrt_ResampleWeight {
-  int firstTexel;
-  float weight[4];
-} pbrt_ResampleWeight;
-static pbrt_ResampleWeight *pbrt_resampleWeights(int oldRes, int newRes) {
-  pbrt_ResampleWeight *wt = (pbrt_ResampleWeight *)malloc(sizeof(pbrt_ResampleWeight) * (size_t)newRes);
-  float filterwidth = 2.f;
-  int i, j;
-  for (i = 0; i < newRes; ++i) {
-    float center = (i + .5f) * oldRes / newRes, invSumWts;
-    wt[i].firstTexel = (int)floorf((center - filterwidth) + 0.5f);
-    for (j = 0; j < 4; ++j) {
-      float pos = wt[i].firstTexel + j + .5f;
-      wt[i].weight[j] = pbrt_Lanczos((pos - center) / filterwidth, 2.f);
-    }
-    invSumWts = 1 / (wt[i].weight[0] + wt[i].weight[1] + wt[i].weight[2] + wt[i].weight[3]);
-    for (j = 0; j < 4; ++j) wt[i].weight[j] *= invSumWts;
-  }
-  return wt;
-}
-static pbrt_rgb pbrt_Texel(const pbrt_mipmap *m, int level, int s, int t) {
-  const el_blockedarray *l = &m->pyramid[level];
-  pbrt_rgb r;
-  const float *p;
-  switch (m->wrapMode) {
-  case 0:
-    s = pbrt_Mod(s, l->width);
-    t = pbrt_Mod(t, l->height);
-    break;
-  case 2:
-    s = pbrt_Clamp(s, 0, l->width - 1);
-    t = pbrt_Clamp(t, 0, l->height - 1);
-    break;
-  case 1:
-    if (s < 0 || s >= l->width || t < 0 || t >= l->height) {
-      r.c[0] = r.c[1] = r.c[2] = 0.f;
-      return r;
-    }
-    break;
-  }
-  p = el_blockedarray_at(l, s, t);
-  r.c[0] = p[0];
-  r.c[1] = p[1];
-  r.c[2] = p[2];
-  return r;
-}
-static void pbrt_init(pbrt_mipmap *m, int w, int h, const float *img, int doTri, float maxAniso, int wrap) {
-  float *resampledImage = NULL;
-  int i, s, t, j, c;
-  memset(m, 0, sizeof *m);
-  m->doTrilinear = doTri;
-  m->maxAnisotropy = maxAniso;
-  m->wrapMode = wrap;
-  m->resolution[0] = w;
-  m->resolution[1] = h;
-  if (!pbrt_IsPowerOf2(w) || !pbrt_IsPowerOf2(h)) {
-    int resPow2[2];
-    pbrt_ResampleWeight *sWeights, *tWeights;
-    float *workData;
-    resPow2[0] = pbrt_RoundUpPow2(w);
-    resPow2[1] = pbrt_RoundUpPow2(h);
-    sWeights = pbrt_resampleWeights(w, resPow2[0]);
-    resampledImage = (float *)malloc(sizeof(float) * 3 * (size_t)resPow2[0] * (size_t)resPow2[1]);
-    for (t = 0; t < h; ++t)
-      for (s = 0; s < resPow2[0]; ++s) {
-        float *o = resampledImage + 3 * ((size_t)t * resPow2[0] + s);
-        o[0] = o[1] = o[2] = 0.f;
-        for (j = 0; j < 4; ++j) {
-          int origS = sWeights[s].firstTexel + j;
-          if (wrap == 0) origS = pbrt_Mod(origS, w);
-          else if (wrap == 2) origS = pbrt_Clamp(origS, 0, w - 1);
-          if (origS >= 0 && origS < w)
-            for (c = 0; c < 3; ++c) o[c] += sWeights[s].weight[j] * img[3 * ((size_t)t * w + origS) + c];
-        }
-      }
-    tWeights = pbrt_resampleWeights(h, resPow2[1]);
-    workData = (float *)malloc(sizeof(float) * 3 * (size_t)resPow2[1]);
-    for (s = 0; s < resPow2[0]; ++s) {
-      for (t = 0; t < resPow2[1]; ++t) {
-        float *o = workData + 3 * t;
-        o[0] = o[1] = o[2] = 0.f;
-        for (j = 0; j < 4; ++j) {
-          int offset = tWeights[t].firstTexel + j;
-          if (wrap == 0) offset = pbrt_Mod(offset, h);
-          else if (wrap == 2) offset = pbrt_Clamp(offset, 0, h - 1);
-          if (offset >= 0 && offset < h)
-            for (c = 0; c < 3; ++c)
-              o[c] += tWeights[t].weight[j] * resampledImage[3 * ((size_t)offset * resPow2[0] + s) + c];
-        }
-      }
-      for (t = 0; t < resPow2[1]; ++t)
-        for (c = 0; c < 3; ++c) {
-          float v = workData[3 * t + c];
-          resampledImage[3 * ((size_t)t * resPow2[0] + s) + c] = v < 0.f ? 0.f : v;
-        }
-    }
-    free(workData);
-    free(sWeights);
-    free(tWeights);
-    m->resolution[0] = resPow2[0];
-    m->resolution[1] = resPow2[1];
-  }
-  m->nLevels = 1 + pbrt_Log2Int(m->resolution[0] > m->resolution[1] ? m->resolution[0] : m->resolution[1]);
-  el_blockedarray_init(&m->pyramid[0], m->resolution[0], m->resolution[1], 3, 2,
-                       resampledImage ? resampledImage : img);
-  for (i = 1; i < m->nLevels; ++i) {
-    int sRes = m->pyramid[i - 1].width / 2, tRes = m->pyramid[i - 1].height / 2;
-    if (sRes < 1) sRes = 1;
-    if (tRes < 1) tRes = 1;
-    el_blockedarray_init(&m->pyramid[i], sRes, tRes, 3, 2, NULL);
-    for (t = 0; t < tRes; ++t)
-      for (s = 0; s < sRes; ++s) {
-        pbrt_rgb a = pbrt_Texel(m, i - 1, 2 * s, 2 * t), b = pbrt_Texel(m, i - 1, 2 * s + 1, 2 * t);
-        pbrt_rgb cc = pbrt_Texel(m, i - 1, 2 * s, 2 * t + 1), d = pbrt_Texel(m, i - 1, 2 * s + 1, 2 * t + 1);
-        float *o = el_blockedarray_at(&m->pyramid[i], s, t);
-        for (c = 0; c < 3; ++c) o[c] = .25f * (((a.c[c] + b.c[c]) + cc.c[c]) + d.c[c]);
-      }
-  }
-  if (pbrt_weightLut[0] == 0.) {
-    for (i = 0; i < 128; ++i) {
-      float alpha = 2, r2 = (float)i / (float)(128 - 1);
-      pbrt_weightLut[i] = expf(-alpha * r2) - expf(-alpha);
-    }
-  }
-  free(resampledImage);
-}
-static void pbrt_free(pbrt_mipmap *m) {
-  int i;
-  for (i = 0; i < m->nLevels; ++i) el_blockedarray_free(&m->pyramid[i]);
-}
-static pbrt_rgb pbrt_triangle(const pbrt_mipmap *m, int level, float st0, float st1) {
-  float s, t, ds, dt;
-  int s0, t0, c;
-  pbrt_rgb a, b, cc, d, r;
-  level = pbrt_Clamp(level, 0, m->nLevels - 1);
-  s = st0 * m->pyramid[level].width - 0.5f;
-  t = st1 * m->pyramid[level].height - 0.5f;
-  s0 = (int)floorf(s);
-  t0 = (int)floorf(t);
-  ds = s - s0;
-  dt = t - t0;
-  a = pbrt_Texel(m, level, s0, t0);
-  b = pbrt_Texel(m, level, s0, t0 + 1);
-  cc = pbrt_Texel(m, level, s0 + 1, t0);
-  d = pbrt_Texel(m, level, s0 + 1, t0 + 1);
-  for (c = 0; c < 3; ++c)
-    r.c[c] = (1 - ds) * (1 - dt) * a.c[c] + (1 - ds) * dt * b.c[c] + ds * (1 - dt) * cc.c[c] + ds * dt * d.c[c];
-  return r;
-}
-static pbrt_rgb pbrt_Lookup_width(const pbrt_mipmap *m, float s, float t, float width) {
-  float level = m->nLevels - 1 + pbrt_Log2(width > 1e-8f ? width : 1e-8f);
-  if (level < 0) return pbrt_triangle(m, 0, s, t);
-  else if (level >= m->nLevels - 1) return pbrt_Texel(m, m->nLevels - 1, 0, 0);
-  else {
-    int iLevel = (int)floorf(level), c;
-    float delta = level - iLevel;
-    pbrt_rgb a = pbrt_triangle(m, iLevel, s, t), b = pbrt_triangle(m, iLevel + 1, s, t), r;
-    for (c = 0; c < 3; ++c) r.c[c] = (1 - delta) * a.c[c] + delta * b.c[c];
-    return r;
-  }
-}
-static pbrt_rgb pbrt_EWA(const pbrt_mipmap *m, int level, float st0, float st1, float d00, float d01,
-                         float d10, float d11) {
-  float A, B, C, invF, det, invDet, uSqrt, vSqrt, sumWts = 0;
-  int s0, s1, t0, t1, it, is, c;
-  pbrt_rgb sum, r;
-  if (level >= m->nLevels) return pbrt_Texel(m, m->nLevels - 1, 0, 0);
-  st0 = st0 * m->pyramid[level].width - 0.5f;
-  st1 = st1 * m->pyramid[level].height - 0.5f;
-  d00 *= m->pyramid[level].width;
-  d01 *= m->pyramid[level].height;
-  d10 *= m->pyramid[level].width;
-  d11 *= m->pyramid[level].height;
-  A = d01 * d01 + d11 * d11 + 1;
-  B = -2 * (d00 * d01 + d10 * d11);
-  C = d00 * d00 + d10 * d10 + 1;
-  invF = 1 / (A * C - B * B * 0.25f);
-  A *= invF;
-  B *= invF;
-  C *= invF;
-  det = -B * B + 4 * A * C;
-  invDet = 1 / det;
-  uSqrt = sqrtf(det * C);
-  vSqrt = sqrtf(A * det);
-  s0 = (int)ceilf(st0 - 2 * invDet * uSqrt);
-  s1 = (int)floorf(st0 + 2 * invDet * uSqrt);
-  t0 = (int)ceilf(st1 - 2 * invDet * vSqrt);
-  t1 = (int)floorf(st1 + 2 * invDet * vSqrt);
-  sum.c[0] = sum.c[1] = sum.c[2] = 0.f;
-  for (it = t0; it <= t1; ++it) {
-    float tt = it - st1;
-    for (is = s0; is <= s1; ++is) {
-      float ss = is - st0;
-      float r2 = A * ss * ss + B * ss * tt + C * tt * tt;
-      if (r2 < 1) {
-        int index = (int)(r2 * 128);
-        float weight;
-        pbrt_rgb tx;
-        if (index > 127) index = 127;
-        weight = pbrt_weightLut[index];
-        tx = pbrt_Texel(m, level, is, it);
-        for (c = 0; c < 3; ++c) sum.c[c] += tx.c[c] * weight;
-        sumWts += weight;
-      }
-    }
-  }
-  for (c = 0; c < 3; ++c) r.c[c] = sum.c[c] / sumWts;
-  return r;
-}
-static pbrt_rgb pbrt_Lookup_d(const pbrt_mipmap *m, float s, float t, float d00, float d01, float d10,
-                              float d11) {
-  float majorLength, minorLength, lod;
-  int ilod, c;
-  pbrt_rgb a, b, r;
-  if (m->doTrilinear) {
-    float width = fabsf(d00);
-    if (fabsf(d01) > width) width = fabsf(d01);
-    if (fabsf(d10) > width) width = fabsf(d10);
-    if (fabsf(d11) > width) width = fabsf(d11);
-    return pbrt_Lookup_width(m, s, t, width); /* pbrt-v3 since aaa552a "Fix trilinear filtering" (2 * width before) */
-  }
-  if (d00 * d00 + d01 * d01 < d10 * d10 + d11 * d11) {
-    float x = d00, y = d01;
-    d00 = d10;
-    d01 = d11;
-    d10 = x;
-    d11 = y;
-  }
-  majorLength = sqrtf(d00 * d00 + d01 * d01);
-  minorLength = sqrtf(d10 * d10 + d11 * d11);
-  if (minorLength * m->maxAnisotropy < majorLength && minorLength > 0) {
-    float scale = majorLength / (minorLength * m->maxAnisotropy);
-    d10 *= scale;
-    d11 *= scale;
-    minorLength *= scale;
-  }
-  if (minorLength == 0) return pbrt_triangle(m, 0, s, t);
-  lod = m->nLevels - (float)1 + pbrt_Log2(minorLength);
-  if (lod < 0) lod = 0;
-  ilod = (int)floorf(lod);
-  a = pbrt_EWA(m, ilod, s, t, d00, d01, d10, d11);
-  b = pbrt_EWA(m, ilod + 1, s, t, d00, d01, d10, d11);
-  for (c = 0; c < 3; ++c) r.c[c] = (1 - (lod - ilod)) * a.c[c] + (lod - ilod) * b.c[c];
-  return r;
-}
+/* The literal port of pbrt-v3's MIPMap<RGBSpectrum> (src/core/mipmap.h, with the trilinear fix of its
+ * commit aaa552a) is the course's, examples/pbrtv3/mipmap.h, shared with chapter 2's example and with
+ * tests/test_tutorial_mipmap.c (which checks it against mipmap.h). Names follow pbrt. */
+#include "../examples/pbrtv3/mipmap.h"
 
 /* ---------------------------------------------------------------------------------------------
  * Inputs
@@ -377,6 +91,11 @@ static query *make_queries(int n) {
   return q;
 }
 
+/* The port on a row-major RGB float image: pbrt's defaults (EWA, max anisotropy 8, Repeat). */
+static void pbrt_init(pbrt_MIPMap *pm, int w, int h, const float *img) {
+  pbrt_MIPMap_init(pm, pbrt_Point2i_make(w, h), (const pbrt_RGBSpectrum *)img, 0, 8.f, pbrt_ImageWrap_Repeat);
+}
+
 static double now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -384,7 +103,7 @@ static double now(void) {
 }
 
 enum { OP_POINT, OP_BILINEAR, OP_TRILINEAR, OP_EWA, OP_PBRT_TRILINEAR, OP_PBRT_EWA };
-static float run_op(int op, const el_mipmap *m, const pbrt_mipmap *pm, const query *q, int n) {
+static float run_op(int op, const el_mipmap *m, const pbrt_MIPMap *pm, const query *q, int n) {
   float acc = 0, o[4];
   int i;
   /* one tight loop for the operations whose instruction counts have targets */
@@ -410,12 +129,13 @@ static float run_op(int op, const el_mipmap *m, const pbrt_mipmap *pm, const que
     case OP_TRILINEAR: el_mipmap_lookup(m, k->s, k->t, k->width, o); break;
     case OP_EWA: el_mipmap_lookup_differentials(m, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t, o); break;
     case OP_PBRT_TRILINEAR: {
-      pbrt_rgb r = pbrt_Lookup_width(pm, k->s, k->t, k->width);
+      pbrt_RGBSpectrum r = pbrt_MIPMap_Lookup(pm, pbrt_Point2f_make(k->s, k->t), k->width);
       o[0] = r.c[0];
       break;
     }
     default: {
-      pbrt_rgb r = pbrt_Lookup_d(pm, k->s, k->t, k->d0s, k->d0t, k->d1s, k->d1t);
+      pbrt_RGBSpectrum r = pbrt_MIPMap_Lookup_dst(pm, pbrt_Point2f_make(k->s, k->t), pbrt_Vector2f_make(k->d0s, k->d0t),
+                                                  pbrt_Vector2f_make(k->d1s, k->d1t));
       o[0] = r.c[0];
     }
     }
@@ -463,9 +183,9 @@ static int build_ours(el_mipmap *m, const float *img, int w, int h, float aniso)
 
 #define CG_POOL 20000
 static int callgrind_mode(const char *op, int n) {
-  float *img2048 = NULL, *img2000 = NULL, acc = 0;
+  float *img2048 = NULL, *img2000 = NULL, *img400 = NULL, acc = 0;
   el_mipmap m;
-  pbrt_mipmap pm;
+  pbrt_MIPMap pm;
   query *q;
   int i, kind = -1, need_ours = 0, need_pbrt = 0;
   float aniso = 8;
@@ -473,6 +193,10 @@ static int callgrind_mode(const char *op, int n) {
   memset(&pm, 0, sizeof pm);
   if (!strcmp(op, "build2048") || !strcmp(op, "pbrt_build2048")) img2048 = make_image(2048, 1024);
   else if (!strcmp(op, "build2000") || !strcmp(op, "pbrt_build2000")) img2000 = make_image(2000, 1000);
+  else if (!strcmp(op, "build400") || !strcmp(op, "pbrt_build400")) {
+    img400 = (float *)malloc(sizeof(float) * 3 * 400 * 235);
+    el_test_image(img400, 400, 235);
+  }
   else if (!strcmp(op, "point")) { kind = OP_POINT; need_ours = 1; }
   else if (!strcmp(op, "bilinear")) { kind = OP_BILINEAR; need_ours = 1; }
   else if (!strcmp(op, "trilinear")) { kind = OP_TRILINEAR; need_ours = 1; }
@@ -484,14 +208,14 @@ static int callgrind_mode(const char *op, int n) {
     fprintf(stderr, "bench_mipmap: unknown operation '%s'\n", op);
     return 2;
   }
-  if (img2048 || img2000) {
-    int w = img2048 ? 2048 : 2000, h = img2048 ? 1024 : 1000;
-    const float *img = img2048 ? img2048 : img2000;
+  if (img2048 || img2000 || img400) {
+    int w = img2048 ? 2048 : (img2000 ? 2000 : 400), h = img2048 ? 1024 : (img2000 ? 1000 : 235);
+    const float *img = img2048 ? img2048 : (img2000 ? img2000 : img400);
     for (i = 0; i < n; ++i) {
       if (!strncmp(op, "pbrt_", 5)) {
-        pbrt_init(&pm, w, h, img, 0, 8, 0);
-        acc += el_blockedarray_at(&pm.pyramid[3], 1, 1)[0];
-        pbrt_free(&pm);
+        pbrt_init(&pm, w, h, img);
+        acc += pbrt_BlockedArray_at(pm.pyramid[3], 1, 1)->c[0];
+        pbrt_MIPMap_free(&pm);
       } else {
         if (!build_ours(&m, img, w, h, 8)) return 1;
         acc += el_mipmap_level_data(&m, 3)[3];
@@ -500,17 +224,18 @@ static int callgrind_mode(const char *op, int n) {
     }
     free(img2048);
     free(img2000);
+    free(img400);
     printf("checksum %g\n", acc);
     return 0;
   }
   img2048 = make_image(2048, 1024);
   q = make_queries(CG_POOL); /* the same inputs for every N, so that Ir(N) - Ir(0) is the lookups only */
   if (need_ours && !build_ours(&m, img2048, 2048, 1024, aniso)) return 1;
-  if (need_pbrt) pbrt_init(&pm, 2048, 1024, img2048, 0, 8, 0);
+  if (need_pbrt) pbrt_init(&pm, 2048, 1024, img2048);
   for (i = 0; i < n; i += CG_POOL) acc += run_op(kind, &m, &pm, q, n - i < CG_POOL ? n - i : CG_POOL);
   printf("checksum %g\n", acc);
   el_mipmap_free(&m);
-  if (need_pbrt) pbrt_free(&pm);
+  if (need_pbrt) pbrt_MIPMap_free(&pm);
   free(q);
   free(img2048);
   return 0;
@@ -541,11 +266,11 @@ static double instructions(const char *self, const char *op, int n) {
 }
 
 static int instructions_table(const char *self) {
-  static const char *ops[] = {"build2048", "build2000", "point", "bilinear", "trilinear", "ewa8", "ewa64",
-                              "pbrt_build2048", "pbrt_build2000", "pbrt_trilinear", "pbrt_ewa8"};
-  static const int ns[] = {2, 2, 20000, 20000, 20000, 20000, 20000, 1, 1, 20000, 20000};
-  static const char *target[] = {"<= 135 M", "<= 388 M", "", "", "<= 250", "<= 1,500", "", "(269 M)",
-                                 "(776 M)", "(~820)", "(~3,700)"};
+  static const char *ops[] = {"build2048", "build2000", "build400", "point", "bilinear", "trilinear", "ewa8", "ewa64",
+                              "pbrt_build2048", "pbrt_build2000", "pbrt_build400", "pbrt_trilinear", "pbrt_ewa8"};
+  static const int ns[] = {2, 2, 5, 20000, 20000, 20000, 20000, 20000, 1, 1, 5, 20000, 20000};
+  static const char *target[] = {"<= 135 M", "<= 388 M", "", "", "", "<= 250", "<= 1,500", "", "(269 M)",
+                                 "(776 M)", "", "(~820)", "(~3,700)"};
   int i;
   printf("\nInstructions per operation (valgrind --tool=callgrind, (Ir(N) - Ir(0)) / N):\n");
   printf("| operation | N | instructions | target (pbrt-v3 figure in parentheses) |\n|---|---|---|---|\n");
@@ -577,7 +302,7 @@ static float rel_diff(const float *a, const float *b, int n) {
 static void size_table(int w, int h, const query *q, int nq, const query *qe, int nqe) {
   float *img = make_image(w, h);
   el_mipmap m, m64;
-  pbrt_mipmap pm;
+  pbrt_MIPMap pm;
   double t0, t_init, t_all, t_pbrt;
   float maxd_level = 0, maxd_tri = 0, maxd_ewa = 0, o[4];
   int i, l;
@@ -595,27 +320,28 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
   printf("| + el_mipmap_build_levels (all %d levels) | %.1f ms | %zu |\n", m.levels, 1e3 * (t_init + t_all),
          el_mipmap_bytes(&m));
   t0 = now();
-  pbrt_init(&pm, w, h, img, 0, 8, 0);
+  pbrt_init(&pm, w, h, img);
   t_pbrt = now() - t0;
   printf("| pbrt-v3 port (all levels, BlockedArray) | %.1f ms | %zu |\n", 1e3 * t_pbrt,
-         (size_t)(4 * 3 * sizeof(float) * (size_t)pm.resolution[0] * pm.resolution[1] / 3));
+         (size_t)(4 * 3 * sizeof(float) * (size_t)pm.resolution.x * pm.resolution.y / 3));
   /* same results? */
   for (l = 0; l < m.levels; ++l) {
     int lw = m.level_width[l], lh = m.level_height[l], x, y;
     const float *d = el_mipmap_level_data(&m, l);
     for (y = 0; y < lh; ++y)
       for (x = 0; x < lw; ++x) {
-        float e = rel_diff(d + 3 * ((size_t)y * lw + x), el_blockedarray_at(&pm.pyramid[l], x, y), 3);
+        float e = rel_diff(d + 3 * ((size_t)y * lw + x), pbrt_BlockedArray_at(pm.pyramid[l], x, y)->c, 3);
         if (e > maxd_level) maxd_level = e;
       }
   }
   for (i = 0; i < nq; ++i) {
-    pbrt_rgb r = pbrt_Lookup_width(&pm, q[i].s, q[i].t, q[i].width);
+    pbrt_Point2f st = pbrt_Point2f_make(q[i].s, q[i].t);
+    pbrt_RGBSpectrum r = pbrt_MIPMap_Lookup(&pm, st, q[i].width);
     float e;
     el_mipmap_lookup(&m, q[i].s, q[i].t, q[i].width, o);
     e = rel_diff(o, r.c, 3);
     if (e > maxd_tri) maxd_tri = e;
-    r = pbrt_Lookup_d(&pm, q[i].s, q[i].t, q[i].d0s, q[i].d0t, q[i].d1s, q[i].d1t);
+    r = pbrt_MIPMap_Lookup_dst(&pm, st, pbrt_Vector2f_make(q[i].d0s, q[i].d0t), pbrt_Vector2f_make(q[i].d1s, q[i].d1t));
     el_mipmap_lookup_differentials(&m, q[i].s, q[i].t, q[i].d0s, q[i].d0t, q[i].d1s, q[i].d1t, o);
     e = rel_diff(o, r.c, 3);
     if (e > maxd_ewa) maxd_ewa = e;
@@ -682,7 +408,7 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
   }
   el_mipmap_free(&m);
   el_mipmap_free(&m64);
-  pbrt_free(&pm);
+  pbrt_MIPMap_free(&pm);
   free(img);
 }
 

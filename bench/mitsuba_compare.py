@@ -73,7 +73,7 @@ References are cached in --outdir (keyed by scene text and reference spp); delet
 Running everything from scratch takes about 15 CPU minutes (the two 8192-spp references).
 
 Measured here (2026-12-01, quiet 2-core machine, Mitsuba 3.9.1, --spp 4,16,64,256 --ref-spp 4096;
-tutorials/03-infinite-light-render.md has the table): background check relMSE 1.7e-4 (mirrored 2.0,
+tutorials/05-appendix-fast-paths.md, A3.11, has the table): background check relMSE 1.7e-4 (mirrored 2.0,
 upside down 5.5); the references agree to 1.8e-4 in the mean and 0.28% in mean absolute difference;
 at 64 spp Mitsuba 0.655-0.660 CPU s and relMSE 1.56e-3, ours 1.550-1.578 CPU s and relMSE 1.64e-3:
 our relMSE at equal CPU time is 2.5x Mitsuba's (2.5-2.7x from 16 to 256 spp; target: 0.5x); the gap

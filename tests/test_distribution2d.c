@@ -9,10 +9,12 @@
  *  - hand arithmetic for small distributions (pdf = f / integral, to within the documented 2 units of
  *    2^-24 per bin), integrals summed here in double;
  *  - chi-square goodness of fit (significance 0.01, Bonferroni-corrected over all chi-square tests);
- *  - a literal transcription of pbrt-v3's float CDF (Distribution1D's constructor) as the "before".
+ *  - pbrt-v3's float CDF as the "before": the course's plain port of Distribution1D
+ *    (examples/pbrtv3/sampling.h; tests/test_tutorial_distribution.c compares the two in full).
  */
 #define EL_DISTRIBUTION2D_IMPLEMENTATION
 #include "distribution2d.h"
+#include "../examples/pbrtv3/sampling.h"
 
 #include <float.h>
 #include <math.h>
@@ -342,19 +344,17 @@ static void test_bad_input(void) {
 /* ---- pbrt's counterexample ---- */
 static void test_pbrt_counterexample(void) {
   enum { N = 4096 };
-  static float f[N], cdf[N + 1];
+  static float f[N];
   int i, zero_steps = 0, unreached;
-  float func_int;
   el_distribution1d d;
+  pbrt_Distribution1D pbrt;
   for (i = 0; i < N; ++i) f[i] = 1e-2f;
   f[100] = 1e6f;
-  /* pbrt-v3 Distribution1D::Distribution1D, transcribed: <<Compute integral of step function at x_i>> */
-  cdf[0] = 0;
-  for (i = 1; i < N + 1; ++i) cdf[i] = cdf[i - 1] + f[i - 1] / N;
-  func_int = cdf[N];
-  for (i = 1; i < N + 1; ++i) cdf[i] = cdf[i] / func_int;
+  /* pbrt-v3's Distribution1D constructor (the course's port) */
+  check(pbrt_Distribution1D_init(&pbrt, f, N) == 0, "pbrt-v3's Distribution1D on the same row: init");
   for (i = 0; i < N; ++i)
-    if (f[i] > 0 && cdf[i + 1] == cdf[i]) ++zero_steps;
+    if (f[i] > 0 && pbrt.cdf[i + 1] == pbrt.cdf[i]) ++zero_steps;
+  pbrt_Distribution1D_free(&pbrt);
   checkf(zero_steps == 3995, "pbrt-v3's float CDF (one 1e6 among 4095 x 1e-2): %g positive bins with a zero CDF step (issue says %g)", zero_steps, 3995);
   check(el_distribution1d_init(&d, f, N, NULL) == EL_SUCCESS, "ours on the same row: init");
   enumerate_1d(&d, f, "pbrt counterexample", &unreached);

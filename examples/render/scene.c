@@ -82,7 +82,7 @@ static int elr__build_object(elr_scene *s, RTCDevice dev, int oi, char *err, siz
 int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   RTCDevice dev;
   RTCScene sc;
-  int i, nworld = 0;
+  int i;
   double t0 = elr_now();
   elr__embree_bytes = 0;
   dev = rtcNewDevice("verbose=0");
@@ -106,7 +106,6 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     if (id == RTC_INVALID_GEOMETRY_ID) return -1;
     s->geom_kind[id] = 0; s->geom_index[id] = i;
   }
-  for (i = 0; i < s->nsph; i++) nworld += s->sph[i].object < 0;
   /* Spheres are the user geometry above (pbrt-v3's Sphere in object space, in double precision: any
    * affine transform, so a non-uniform Scale gives an exact ellipsoid). With the environment variable
    * ELR_EMBREE_SPHERES set, spheres whose object-to-world transform is a similarity (rotation, uniform
