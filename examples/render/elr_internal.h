@@ -203,6 +203,7 @@ typedef struct elr_scene_desc {
   int integrator_path, maxdepth, light_sampling;
   float rrthreshold;
   int direct_one;     /* directlighting: pbrt-v3's "strategy" "one" (else "all") */
+  int split_auto;     /* directlighting: envlight's "splitting" "auto" (1) or "off" (0): render.c's pilot */
   int light_strategy; /* path: pbrt-v3's "lightsamplestrategy" (ELR_LSTRAT_*) */
 } elr_scene_desc;
 
@@ -293,6 +294,24 @@ int elr_shape_prepare(const elr_scene *s, elr_light *l, int build_cdf);
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
+/* a wave of rays in structure-of-arrays form (Embree's RTCRayHitNp), traced by one call (scene.c; the
+ * wave loop render_wave.c). Shadow rays: tfar < 0 after elr_wave_occluded when something is in the way. */
+#define ELR_WAVE_RAYS 512 /* rays in a wave at most */
+#define ELR_WAVE_CHUNK 64 /* rays per rtcIntersect1M / rtcOccluded1M stream */
+enum { ELR_WAVE_API_SINGLE = 0, ELR_WAVE_API_PACKET16 = 1, ELR_WAVE_API_STREAM = 2, ELR_WAVE_API_SOA = 3 };
+#define ELR_WAVE_API_DEFAULT ELR_WAVE_API_PACKET16 /* the fastest measured (bench_render) */
+typedef struct elr_wave_rays {
+  int n;
+  float ox[ELR_WAVE_RAYS], oy[ELR_WAVE_RAYS], oz[ELR_WAVE_RAYS], tnear[ELR_WAVE_RAYS];
+  float dx[ELR_WAVE_RAYS], dy[ELR_WAVE_RAYS], dz[ELR_WAVE_RAYS], time[ELR_WAVE_RAYS], tfar[ELR_WAVE_RAYS];
+  unsigned mask[ELR_WAVE_RAYS], id[ELR_WAVE_RAYS], flags[ELR_WAVE_RAYS];
+  float ngx[ELR_WAVE_RAYS], ngy[ELR_WAVE_RAYS], ngz[ELR_WAVE_RAYS], u[ELR_WAVE_RAYS], v[ELR_WAVE_RAYS];
+  unsigned prim[ELR_WAVE_RAYS], geom[ELR_WAVE_RAYS], inst[ELR_WAVE_RAYS];
+} elr_wave_rays;
+void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax);
+void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
+void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
+int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h); /* 0: ray i left the scene */
 /* the origin of a ray leaving h in direction d: offset along the geometric normal to the side d goes
  * (pbrt-v3's OffsetRayOrigin, with a fixed relative epsilon instead of its error bounds) */
 static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
@@ -607,7 +626,12 @@ void elr_film_bounds(const elr_scene_desc *d, int b[4]);
 int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
 
 /* >> a render (render.c): what it decided, read by every thread */
-typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats; /* one thread's counts */
+#define ELR_SPLIT_LIGHTS 64      /* splitting applies to scenes of at most this many lights */
+#define ELR_SPLIT_MAX_GIVEN 1024 /* --split N: at most this */
+typedef struct elr_tstats { /* one thread's counts */
+  uint64_t camera, bounce, shadow, bsdfl, samples;
+  double t_embree; /* the wave loop: seconds inside its Embree calls */
+} elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
   elr_camera cam;
@@ -625,6 +649,8 @@ typedef struct elr_ctx {
   /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
+  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_BATCHED and ELR_LOOP_WAVE need batch_light) */
+  int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
@@ -677,7 +703,42 @@ elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, 
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+/* render_batched.c and render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
+ * hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first light-sampling
+ * draw there. */
+typedef struct elr_first {
+  int hit;
+  elr_hit *h;
+  elr_v3 wi, L;
+  float pdf;
+  /* the direct-lighting integrator's, at a hit: the texture footprint and BSDF, and (bs = 1) the BSDF
+   * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
+   * environment's pdf and radiance in its direction */
+  int bs, bray;
+  elr_tex_ctx tc;
+  elr_v3 dpdx, dpdy;
+  elr_bsdf b;
+  elr_v3 fb, wb, Lb;
+  float bpdf, bpdf_env;
+  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading (render_batched.c),
+   * else their answers, traced by the wave loop (1: occluded) */
+  int occ_l, occ_b;
+  /* the light's further samples (its "samples" count, or splitting) drawn ahead the same way: their light
+   * sample, BSDF sample and shadow rays' answers (the wave loop); the others, from nmore + 1 on, drawn in
+   * the shading */
+  const struct elr_first *more;
+  int nmore;
+} elr_first;
+/* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
+ * first draw after its camera sample) */
+elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
 /* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
 void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
+
+/* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
+typedef struct elr_wave elr_wave;
+elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile); /* NULL: out of memory */
+void elr_wave_free(elr_wave *W);
+void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1, int y1, el_film_tile *tile, elr_tstats *ts);
 
 #endif

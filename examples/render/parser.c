@@ -921,6 +921,12 @@ static void elr__integrator(elr__parser *P, const char *type) {
     if (!strcmp(st, "all")) d->direct_one = 0;
     else if (!strcmp(st, "one")) d->direct_one = 1;
     else elr__failf(P, elr__find(P, "strategy")->file, elr__find(P, "strategy")->line, "Integrator \"directlighting\": strategy must be \"all\" or \"one\"");
+    /* envlight's extension (default "off": bench_render --split measured no gain on its scenes): "auto" chooses the light and BSDF samples per camera sample from a pilot's
+     * measured variance and cost (render.c), "off" keeps each light's "samples" */
+    st = elr__pstring(P, "splitting", "off");
+    if (!strcmp(st, "auto")) d->split_auto = 1;
+    else if (!strcmp(st, "off")) d->split_auto = 0;
+    else elr__failf(P, elr__find(P, "splitting")->file, elr__find(P, "splitting")->line, "Integrator \"directlighting\": splitting must be \"auto\" or \"off\"");
   } else {
     const char *st;
     if (strcmp(type, "path") != 0) {

@@ -37,6 +37,24 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   else
     fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
             st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+  if (!st->nothing_emits) {
+    static const char *loops[3] = {"one sample at a time (the reference)", "a pixel's light samples together (render_batched.c)",
+                                   "waves of up to 256 camera samples (render_wave.c)"};
+    static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
+    fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
+    if (st->loop == 2) {
+      fprintf(f, ", Embree %s", st->wave_api >= 0 && st->wave_api < 4 ? apis[st->wave_api] : "?");
+      if (st->t_render > 0 && st->nthreads > 0)
+        fprintf(f, "; %.0f%% of the loop's time inside Embree", 100.0 * st->t_embree_loop / (st->t_render * st->nthreads));
+    }
+    fprintf(f, "\n");
+    if (st->split_auto)
+      fprintf(f, "  splitting          %d light and BSDF sample pair%s per camera sample, chosen by a pilot (%.3f s): relative "
+              "variance %.3g / %.3g and CPU %.3f / %.3f s at 1 / 4 pairs; predicted error x time %.2fx better than 1 pair\n",
+              st->split, st->split == 1 ? "" : "s", st->t_split_pilot, st->split_var[0], st->split_var[1], st->split_cpu[0], st->split_cpu[1],
+              st->split_gain);
+    else if (st->split > 1) fprintf(f, "  splitting          %d light and BSDF sample pairs per camera sample (given)\n", st->split);
+  }
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
           (double)st->bytes_distribution / 1024.0);
   fprintf(f, "  lights             %d, %d emitting (%d area); next-event estimation: %s; light distribution %s", st->lights,
