@@ -30,14 +30,22 @@
  * better read from instruction counts (--callgrind samples N --sampler S, below): wall times move with
  * the machine's load. examples/render/README.md has the measured tables.
  *
- * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--packets] [--ref-spp N] [--threads N]
+ * Part 1b (also --loops alone): the per-tile loops (one sample at a time, render_batched.c, the wave
+ * loop with each of its four Embree call kinds) for the direct-lighting (16 spp) and path (4 spp)
+ * integrators, zsobol (an order-free sampler, so every loop gives the same image): time, speed-up,
+ * rays per second, Embree's share estimated from raw rates measured on rays of each kind through the
+ * same call, and for the wave loop measured (its Embree calls timed). --split (alone): splitting's
+ * variance across seeds x CPU time for 1, 2, 4 pairs and auto on bench_city and bench_studio.
+ *
+ * Run:  build/bin/bench_render [--quick] [--full] [--rays-only] [--packets] [--loops] [--split] [--ref-spp N] [--threads N]
  *       --rays-only: part 1 alone (a few seconds). --packets: what Embree's packet and stream calls
  *       would gain on the camera rays (see packet_rates), alone. The default run renders about 390 M camera samples:
  *       6 minutes measured on the shared 2-core development machine (load average about 4); --full
  *       (465 M) took 12 minutes there at load average 6.
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
- * after the setup; OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
+ * after the setup (--integrator path: the path tracer at 4 spp; --loop one|batched|wave and --wave-api
+ * single|packet16|stream|soa choose the loop); OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
  * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
  * rounded up to whole rows of 320) or samples1 (the same with light samples drawn one at a time:
  * render_options.no_batch); --sampler S renders those samples with sampler S (default stratified).
@@ -71,7 +79,13 @@
  * camera sample batched, 4351 -> 4379 one at a time; the same images (examples/render/README.md).
  * Measured 2026-12-02, issue 16's format (instances, glass, metal, uber, substrate, Loop subdivision):
  * 4317 -> 4334 instructions per camera sample batched (main's binary and this one, N = 102400); the
- * same images for scenes that use none of it. */
+ * same images for scenes that use none of it.
+ * Measured 2026-12-02, the wave loop (render_wave.c; zsobol, N = 25600, instructions per camera sample,
+ * Embree inclusive of the sphere callbacks): direct lighting one at a time 5379 (Embree 1757), wave
+ * with packets of 16 4532 (Embree 643); path one at a time 7234 (2274), wave 6389 (979). --loops, best
+ * of 5 interleaved rounds at load average 6-9: direct 2.343 -> 1.432 s (1.64x; batched 1.48x), path
+ * 0.831 -> 0.439 s (1.89x); Embree's calls 11% and 14% of the wave loop's time (timed). --split on
+ * bench_city: 2 and 4 pairs cost 1.25-2.34x more error x time than one; auto keeps one. */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
@@ -190,7 +204,7 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   elr_light *env = scene_env(s);
   int i, k = 0;
   uint32_t st = 12345;
-  elr_infinite_prepare(env, -1, -1);
+  elr_infinite_prepare(env, -1, -1, 0, 1); /* the map alone: these shadow rays use el_envlight_sample_li */
   for (i = 0; i < n && k < max; i++) {
     elr_hit h;
     int tries;
@@ -213,14 +227,57 @@ static int shadow_rays(elr_scene *s, const bray *cam, int n, bray *out, int max)
   return k;
 }
 
+/* bounce rays: from the camera rays' hit points in cosine-distributed directions about the normal (on
+ * the side the camera ray came from), as a diffuse bounce leaves */
+static int bounce_rays(elr_scene *s, const bray *cam, int n, bray *out, int max) {
+  int i, k = 0;
+  uint32_t st = 777;
+  for (i = 0; i < n && k < max; i++) {
+    elr_hit h;
+    elr_v3 nn, t1, t2, d;
+    float u1, u2, r, ph;
+    if (!elr_intersect(s, cam[i].o, cam[i].d, INFINITY, &h)) continue;
+    nn = elr_dot(cam[i].d, h.ng) < 0 ? h.ng : elr_mul(h.ng, -1.f);
+    elr_onb(nn, &t1, &t2);
+    st = st * 1664525u + 1013904223u; u1 = (st >> 8) * 0x1p-24f;
+    st = st * 1664525u + 1013904223u; u2 = (st >> 8) * 0x1p-24f;
+    r = sqrtf(u1); ph = 6.2831853f * u2;
+    d = elr_add(elr_add(elr_mul(t1, r * cosf(ph)), elr_mul(t2, r * sinf(ph))), elr_mul(nn, sqrtf(fmaxf(0.f, 1.f - u1))));
+    out[k].o = elr_add(h.p, elr_mul(nn, h.eps)); out[k].d = d;
+    k++;
+  }
+  return k;
+}
+
+/* rays per second of the wave functions (scene.c) with Embree call api, in waves of 256 rays (camera rays
+ * in the order a tile's wave takes them: pixel rows of 16) */
+static double wave_rate(elr_scene *s, const bray *r, int n, int api, int occluded, int coherent) {
+  static elr_wave_rays w;
+  double t0 = elr_now(), cnt = 0;
+  volatile float sink = 0;
+  int pass, i, k;
+  for (pass = 0; elr_now() - t0 < 0.3 || pass < 2; pass++) {
+    for (i = 0; i < n; i += 256) {
+      w.n = 0;
+      for (k = i; k < n && k < i + 256; k++) elr_wave_add(&w, r[k].o, r[k].d, INFINITY);
+      if (occluded) elr_wave_occluded(s, &w, api, coherent); else elr_wave_intersect(s, &w, api, coherent);
+      sink += w.tfar[0];
+    }
+    cnt += n;
+  }
+  (void)sink;
+  return cnt / (elr_now() - t0);
+}
+
 static int g_no_batch; /* render_once: elr_render_options.no_batch */
 static int g_randomization = -1; /* render_once: elr_render_options.randomization */
+static int g_loop = -1, g_wave_api = -1; /* render_once: elr_render_options.loop, wave_api */
 static int render_once(elr_scene *s, int spp, int sampler, int ls, int comp, int imp, int threads, uint64_t seed,
                        elr_image *img, elr_stats *st) {
   elr_render_options o;
   char err[512];
   elr_render_options_default(&o);
-  o.no_batch = g_no_batch; o.randomization = g_randomization;
+  o.no_batch = g_no_batch; o.randomization = g_randomization; o.loop = g_loop; o.wave_api = g_wave_api;
   o.spp = spp; o.sampler = sampler; o.light_sampling = ls; o.compensated = comp; o.importance = imp; o.nthreads = threads;
   o.seed = seed;
   o.quiet = 1;
@@ -288,10 +345,139 @@ static void sampler_table(int ref_spp, int threads, int quick, const char *only_
   }
 }
 
+/* --loops (and part 1): the per-tile loops (one sample at a time, render_batched.c, render_wave.c with each
+ * of its Embree calls) on bench_city, direct lighting (16 spp) and path (maxdepth 5, 4 spp), one thread,
+ * rounds interleaved, the best of each kept. Per loop: its rays per second; Embree's share of its time
+ * ESTIMATED from the raw rates (rtcIntersect1 for camera and bounce rays, rtcOccluded1 for shadow rays,
+ * measured here on rays of each kind) as the time Embree alone would take for the loop's rays over the
+ * loop's time; for the wave loop also MEASURED (its Embree calls timed: elr_stats.t_embree_loop). */
+static void loop_table(elr_scene *s, int rounds, int sampler) {
+  static const char *names[6] = {"one at a time", "batched", "wave, rtcIntersect1", "wave, packets of 16", "wave, 1M streams",
+                                 "wave, Np streams"};
+  static const int loops[6] = {ELR_LOOP_ONE, ELR_LOOP_BATCHED, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE};
+  static const int apis[6] = {-1, -1, ELR_WAVE_API_SINGLE, ELR_WAVE_API_PACKET16, ELR_WAVE_API_STREAM, ELR_WAVE_API_SOA};
+  int w = s->d.xres, h = s->d.yres, nsh, nb, ig, round, k, a;
+  bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
+  bray *bo = (bray *)malloc(sizeof(bray) * (size_t)w * h), *blk = (bray *)malloc(sizeof(bray) * (size_t)w * h);
+  double rate[3][4]; /* camera, shadow, bounce x the four APIs */
+  if (!cam || !sh || !bo || !blk) { free(cam); free(sh); free(bo); free(blk); return; }
+  camera_rays(s, cam);
+  { /* the camera rays in the wave loop's order: 16 x 16 tiles, rows of 16 pixels */
+    int n = 0, tx, ty, x, y;
+    for (ty = 0; ty < h; ty += 16)
+      for (tx = 0; tx < w; tx += 16)
+        for (y = ty; y < ty + 16 && y < h; y++)
+          for (x = tx; x < tx + 16 && x < w; x++) blk[n++] = cam[y * w + x];
+  }
+  nsh = shadow_rays(s, cam, w * h, sh, w * h);
+  nb = bounce_rays(s, cam, w * h, bo, w * h);
+  for (a = 0; a < 4; a++) { rate[0][a] = rate[1][a] = rate[2][a] = 0; }
+  for (round = 0; round < 3; round++)
+    for (a = 0; a < 4; a++) {
+      double r0 = wave_rate(s, blk, w * h, a, 0, 1), r1 = wave_rate(s, sh, nsh, a, 1, 0), r2 = wave_rate(s, bo, nb, a, 0, 0);
+      if (r0 > rate[0][a]) rate[0][a] = r0;
+      if (r1 > rate[1][a]) rate[1][a] = r1;
+      if (r2 > rate[2][a]) rate[2][a] = r2;
+    }
+  printf("Embree's raw rates through the wave functions (waves of 256 rays, arrays prepared beforehand; 1 thread, best of 3), M rays/s:\n");
+  printf("  %-22s %10s %10s %10s %10s\n", "", "1 by 1", "packet16", "1M stream", "Np stream");
+  printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "camera (intersect)", rate[0][0] * 1e-6, rate[0][1] * 1e-6, rate[0][2] * 1e-6, rate[0][3] * 1e-6);
+  printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "shadow (occluded)", rate[1][0] * 1e-6, rate[1][1] * 1e-6, rate[1][2] * 1e-6, rate[1][3] * 1e-6);
+  printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "bounce (intersect)", rate[2][0] * 1e-6, rate[2][1] * 1e-6, rate[2][2] * 1e-6, rate[2][3] * 1e-6);
+  for (ig = 0; ig < 2; ig++) {
+    double best[6], emb[6], ncam = 0, nbo = 0, nshr = 0;
+    int spp = ig ? 4 : 16, same[6];
+    elr_image ref;
+    memset(&ref, 0, sizeof ref);
+    s->d.integrator_path = ig;
+    for (k = 0; k < 6; k++) { best[k] = 1e30; emb[k] = 0; same[k] = 1; }
+    for (round = 0; round < rounds; round++)
+      for (k = 0; k < 6; k++) {
+        elr_image img;
+        elr_stats st;
+        g_loop = loops[k]; g_wave_api = apis[k];
+        if (render_once(s, spp, sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) != 0) continue;
+        g_loop = g_wave_api = -1;
+        if (st.t_render < best[k]) { best[k] = st.t_render; emb[k] = st.t_embree_loop; }
+        if (k == 0) { ncam = (double)st.camera_rays; nbo = (double)st.bounce_rays; nshr = (double)st.shadow_rays + st.bsdf_light_rays; }
+        if (k == 0 && !ref.rgb) ref = img;
+        else {
+          same[k] &= ref.rgb && memcmp(ref.rgb, img.rgb, sizeof(float) * 3 * (size_t)img.width * img.height) == 0;
+          elr_image_free(&img);
+        }
+      }
+    printf("\n%s loop on bench_city, %d spp %s + MIS, 1 thread, best of %d interleaved rounds:\n", ig ? "path (maxdepth 5)" : "direct-lighting", spp,
+           elr_sampler_kind_name(sampler), rounds);
+    printf("  %.0f camera + %.0f bounce + %.0f shadow rays; Embree alone at the raw 1-by-1 rates: %.3f s\n", ncam, nbo, nshr,
+           ncam / rate[0][0] + nbo / rate[2][0] + nshr / rate[1][0]);
+    printf("  %-22s %8s %8s %10s %13s %13s %9s\n", "loop", "time s", "speed-up", "M rays/s", "Embree est.", "Embree meas.", "image");
+    for (k = 0; k < 6; k++) {
+      int a2 = apis[k] < 0 ? 0 : apis[k];
+      double raw = ncam / rate[0][a2] + nbo / rate[2][a2] + nshr / rate[1][a2];
+      if (best[k] >= 1e30) continue;
+      printf("  %-22s %8.3f %7.2fx %10.2f %12.0f%% ", names[k], best[k], best[0] / best[k], (ncam + nbo + nshr) / best[k] * 1e-6,
+             100.0 * raw / best[k]);
+      if (loops[k] == ELR_LOOP_WAVE) printf("%12.0f%% ", 100.0 * emb[k] / best[k]); else printf("%13s ", "-");
+      printf("%9s\n", k == 0 ? "reference" : same[k] ? "same" : "DIFFERENT");
+    }
+    elr_image_free(&ref);
+  }
+  printf("  (Embree est.: at the raw rates of the loop's own Embree call; wave loops: that call's rate from the table above)\n");
+  s->d.integrator_path = 0;
+  free(cam); free(sh); free(bo); free(blk);
+}
+
+/* --split: error x time of splitting (direct lighting) on the sun map (bench_city) and the smooth studio
+ * map (bench_studio) at 16 and 64 spp: for 1 pair (off), 2, 4 and auto, the variance across seeds
+ * (relMSE between two renders of other seeds, halved: no reference needed) and the CPU time (wall x
+ * threads, the pilot included for auto), their product relative to off's. Rounds interleaved. */
+static void split_table(int threads, int rounds) {
+  static const char *scenes[2] = {"bench_city", "bench_studio"};
+  static const int splits[4] = {ELR_SPLIT_OFF, 2, 4, ELR_SPLIT_AUTO};
+  static const char *names[4] = {"off (1 pair)", "2 pairs", "4 pairs", "auto"};
+  int sc, c, k, r;
+  printf("splitting: variance across seeds x CPU time, direct lighting, the scene's sampler, %s threads, %d interleaved rounds\n",
+         threads > 0 ? "the given" : "all", rounds);
+  for (sc = 0; sc < 2; sc++) {
+    char path[1024], err[1024];
+    elr_scene *s = NULL;
+    snprintf(path, sizeof path, "%s/scenes/%s.pbrt", EL_SOURCE_DIR, scenes[sc]);
+    if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return; }
+    s->d.integrator_path = 0;
+    for (c = 0; c < 2; c++) {
+      int spp = c ? 64 : 16, chosen[4] = {0, 0, 0, 0};
+      double var[4] = {0, 0, 0, 0}, cpu[4] = {0, 0, 0, 0};
+      for (r = 0; r < rounds; r++)
+        for (k = 0; k < 4; k++) {
+          elr_render_options o;
+          elr_image a, b;
+          elr_stats sa, sb;
+          elr_render_options_default(&o);
+          o.spp = spp; o.nthreads = threads; o.quiet = 1; o.split = splits[k];
+          o.seed = 100 + 2 * r;
+          if (elr_render(s, &o, &a, &sa, err, sizeof err) != 0) continue;
+          o.seed = 101 + 2 * r;
+          if (elr_render(s, &o, &b, &sb, err, sizeof err) != 0) { elr_image_free(&a); continue; }
+          var[k] += relmse(a.rgb, b.rgb, (size_t)a.width * a.height * 3) / 2.0;
+          cpu[k] += ((sa.t_render + sa.t_split_pilot) * sa.nthreads + (sb.t_render + sb.t_split_pilot) * sb.nthreads) / 2.0;
+          chosen[k] = sa.split;
+          elr_image_free(&a); elr_image_free(&b);
+        }
+      printf("%s, %d spp:\n  %-14s %6s %12s %10s %12s %10s\n", scenes[sc], spp, "splitting", "pairs", "variance", "CPU s", "var x CPU", "vs off");
+      for (k = 0; k < 4; k++) {
+        double e = var[k] / rounds * cpu[k] / rounds, e0 = var[0] / rounds * cpu[0] / rounds;
+        printf("  %-14s %6d %12.4g %10.3f %12.4g %9.2fx\n", names[k], chosen[k], var[k] / rounds, cpu[k] / rounds, e, e0 > 0 ? e / e0 : 0.0);
+      }
+    }
+    elr_scene_free(s);
+  }
+}
+
 int main(int argc, char **argv) {
   char path[1024], err[1024];
   elr_scene *s = NULL;
-  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0;
+  int i, quick = 0, ref_spp = 1024, threads = 0, cg_n = -1, w, h, rays_only = 0, full = 0, packets = 0, samplers = 0, loops_only = 0, split_only = 0;
+  int cg_path = 0; /* --callgrind ... --integrator path */
   int cg_sampler = ELR_SAMPLER_STRATIFIED; /* --sampler: the callgrind loop's */
   const char *only_scene = NULL;           /* --samplers --scene bench_city|bench_studio */
   int only_integrator = -1;                /* --samplers --integrator directlighting|path */
@@ -302,8 +488,16 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--full")) full = 1;
     else if (!strcmp(argv[i], "--packets")) packets = 1;
     else if (!strcmp(argv[i], "--samplers")) samplers = 1;
+    else if (!strcmp(argv[i], "--loops")) loops_only = 1;
+    else if (!strcmp(argv[i], "--split")) split_only = 1;
+    else if (!strcmp(argv[i], "--loop") && i + 1 < argc) {
+      i++; g_loop = !strcmp(argv[i], "one") ? ELR_LOOP_ONE : !strcmp(argv[i], "batched") ? ELR_LOOP_BATCHED : ELR_LOOP_WAVE;
+    }
+    else if (!strcmp(argv[i], "--wave-api") && i + 1 < argc) {
+      i++; g_wave_api = !strcmp(argv[i], "single") ? 0 : !strcmp(argv[i], "packet16") ? 1 : !strcmp(argv[i], "stream") ? 2 : 3;
+    }
     else if (!strcmp(argv[i], "--scene") && i + 1 < argc) only_scene = argv[++i];
-    else if (!strcmp(argv[i], "--integrator") && i + 1 < argc) { i++; only_integrator = !strcmp(argv[i], "path") ? 1 : 0; }
+    else if (!strcmp(argv[i], "--integrator") && i + 1 < argc) { i++; only_integrator = cg_path = !strcmp(argv[i], "path") ? 1 : 0; }
     else if (!strcmp(argv[i], "--sampler") && i + 1 < argc) {
       cg_sampler = elr_sampler_kind_from_name(argv[++i]);
       if (cg_sampler <= 0) { fprintf(stderr, "bench_render: unknown sampler \"%s\"\n", argv[i]); return 1; }
@@ -311,16 +505,18 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--callgrind intersect|occluded|samples|samples1 N [--sampler S]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|batched|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
   if (samplers) { sampler_table(ref_spp, threads, quick, only_scene, only_integrator); return 0; }
+  if (split_only) { split_table(threads, quick ? 1 : 3); return 0; }
   snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
   if (packets) setenv("ELR_EMBREE_SPHERES", "1", 1);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
   w = s->d.xres; h = s->d.yres;
   if (packets) { packet_rates(s); elr_scene_free(s); return 0; }
+  if (loops_only) { loop_table(s, quick ? 2 : 5, ELR_SAMPLER_ZSOBOL); elr_scene_free(s); return 0; }
 
   if (cg_op) {
     bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
@@ -337,13 +533,14 @@ int main(int argc, char **argv) {
       if (cg_n > 0) {
         elr_image img;
         elr_stats st;
-        int rows = (cg_n / 16 + w - 1) / w;
+        int rows = (cg_n / (cg_path ? 4 : 16) + w - 1) / w;
         if (rows > h) rows = h;
         /* the middle rows: sphere, plane and sky, like the whole image */
         /* half a pixel inside each bound: the film's ceil(res * fraction) gives the bound back whatever the
          * float rounding (117 / 240 * 240 rounds up to 118) */
         s->d.crop[2] = ((float)((h - rows) / 2) - 0.5f) / (float)h; s->d.crop[3] = ((float)((h - rows) / 2 + rows) - 0.5f) / (float)h;
-        if (render_once(s, 16, cg_sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
+        s->d.integrator_path = cg_path;
+        if (render_once(s, cg_path ? 4 : 16, cg_sampler, ELR_LS_MIS, -1, -1, 1, 1, &img, &st) == 0) {
           printf("%llu camera samples, %llu shadow rays, %llu BSDF-sampled light rays\n", (unsigned long long)st.samples,
                  (unsigned long long)st.shadow_rays, (unsigned long long)st.bsdf_light_rays);
           elr_image_free(&img);
@@ -427,6 +624,8 @@ int main(int argc, char **argv) {
     }
     (void)sink;
     free(cam); free(sh);
+    printf("\n");
+    loop_table(s, 3, ELR_SAMPLER_ZSOBOL);
   }
   /* >> part 2: relative MSE against time */
   if (!rays_only) {

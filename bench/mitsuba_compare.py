@@ -1,7 +1,43 @@
 #!/usr/bin/env python3
 """mitsuba_compare.py: our renderer against Mitsuba 3 on the same environment-lit scene.
 
-What it measures
+The default run (variance mode; issues 13 and 14)
+  Both renderers render scenes/bench_city.pbrt (the sun map: city.hdr, a 3e4 sun) and
+  scenes/bench_studio.pbrt (the smooth map: studio.hdr), each with the directlighting and the path
+  integrator (maxdepth 5; Mitsuba's 'direct' and 'path', max_depth 6 as it counts segments), at 16,
+  64 and 256 spp, each configuration with --seeds seeds (default 3). Error is the RELATIVE VARIANCE
+  ACROSS SEEDS: the mean over pixels and channels of the variance of the seeds' images over
+  (mean^2 + 1e-2); no reference image, so the two renderers' half-texel conventions do not count (the
+  means are compared separately: "bias check"). Configurations:
+    Mitsuba (llvm_ad_rgb, else scalar_rgb): independent 1/1, multijitter 1/1, 2/2, 4/4, stratified
+      1/1 (and 2/2, 4/4 unless --no-stratified-splitting); n/n = emitter_samples / bsdf_samples of
+      'direct' (path: 1/1 only);
+    ours: random 1/1, --our-sampler (default zsobol; 02sequence is the renderer's default) 1/1 and 2/2
+      (the light's "integer samples", pbrt-v3's nsamples), and with --map-too the map alone
+      (--env-sampling map, pbrt-v3's light sampling) against product sampling (the default).
+  Runs are interleaved: every configuration once per seed round, so the machine's load falls on all.
+  CPU seconds: ours, the render loop's (render --stats: "render ... (CPU x s)", all threads); Mitsuba,
+  the process CPU time of mi.render() and reading the image back (which forces the JIT's evaluation),
+  after one warm-up render per configuration (compilation). Fixed costs are printed apart: ours,
+  parsing with the map load, Embree's build and the sampling tables (from --stats); Mitsuba,
+  load_dict (map, its distribution, BVH) and the first render with its JIT compilation.
+  Tables: (a) issue 13's equal-spp ratio, ours / Mitsuba with matched samplers (our random against
+  independent, our low-discrepancy sampler against multijitter), one light + one BSDF sample
+  (target <= 0.5); (b) issue 14's equal-time ratio: cost = relative variance x CPU s of our best
+  configuration over Mitsuba's best at each spp (target <= 0.5).
+    python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--our-sampler 02sequence]
+                                     [--map-too] [--no-stratified-splitting] [--threads 2]
+  --quick: 160x120, 16 and 64 spp, 2 seeds, fewer configurations (about 2 CPU minutes).
+  --sampler-variance: our seven samplers alone (directlighting, both maps), the table of the render
+  README's "Samplers" section.
+  Mitsuba is installed from PyPI (pip install mitsuba numpy) when it is missing; its llvm variants
+  need libLLVM (Debian: apt-get install libllvm19), else scalar_rgb is used.
+  Measured (2026-12-02, --var-res 160 120 --seeds 2 --our-sampler 02sequence --map-too
+  --no-stratified-splitting, 17 minutes on the shared 2-core machine): examples/render/README.md,
+  "Against Mitsuba 3": (a) 0.50-0.52 / 0.59-0.87 on the sun map (random / low discrepancy; direct /
+  path), 0.17-0.24 on the smooth map; (b) 1.2-1.96 on the sun map, 0.38-0.54 on the smooth map.
+
+The older measure (--reference; issue 5)
   Accuracy against time for direct lighting of a diffuse sphere on a plane under the city map
   (data/envmaps/city.hdr: a 3e4 sun, so nearly all the light comes from a few texels), 320x240:
   - Mitsuba 3 (variant llvm_ad_rgb: a vectorised LLVM JIT renderer), integrator 'direct' (one
@@ -573,6 +609,273 @@ def sampler_mode(args, mr, scene_path, tag, spps, workdir):
     print(fmt_table(rows, header))
 
 
+# --------------------------------------------------------------------------------------------------
+# Variance mode (the default): relative variance across seeds, equal spp and equal CPU time
+# --------------------------------------------------------------------------------------------------
+VAR_SCENES = [("sun", "bench_city.pbrt"), ("smooth", "bench_studio.pbrt")]
+
+
+def scene_variant(path, res=None, integrator="direct", nsamples=1, maxdepth=5):
+    """The scene file's text with its map path made absolute, the resolution replaced (res = (w, h)),
+    the Integrator replaced (directlighting or path with maxdepth), and the infinite light's
+    "integer samples" (pbrt-v3's nsamples: light + BSDF sample pairs per camera sample)."""
+    with open(path) as f:
+        text = f.read()
+    base = os.path.dirname(os.path.abspath(path))
+    text = re.sub(r'("string mapname"\s*\[?\s*")([^"]*)"',
+                  lambda m: m.group(1) + (m.group(2) if os.path.isabs(m.group(2)) else os.path.join(base, m.group(2))) + '"',
+                  text)
+    if res:
+        text = re.sub(r'"integer xresolution"\s*\[?\s*\d+\s*\]?', '"integer xresolution" [ %d ]' % res[0], text)
+        text = re.sub(r'"integer yresolution"\s*\[?\s*\d+\s*\]?', '"integer yresolution" [ %d ]' % res[1], text)
+    integ = ('Integrator "directlighting" "integer maxdepth" [ %d ]' % maxdepth if integrator == "direct"
+             else 'Integrator "path" "integer maxdepth" [ %d ]' % maxdepth)
+    text = re.sub(r'^Integrator.*$', integ, text, flags=re.M)
+    if nsamples != 1:
+        text = re.sub(r'(LightSource "infinite")', r'\1 "integer samples" [ %d ]' % nsamples, text)
+    return text
+
+
+def relvar(imgs):
+    """mean over pixels and channels of the variance across seeds over (mean^2 + 1e-2)"""
+    import numpy as np
+    a = np.stack(imgs)
+    m = a.mean(axis=0)
+    v = a.var(axis=0, ddof=1)
+    return float(np.mean(v / (m * m + 1e-2)))
+
+
+class OursRunner:
+    def __init__(self, args, workdir):
+        self.args, self.workdir = args, workdir
+        self.fixed = {}
+
+    def render(self, scene_file, spp, seed, sampler, env_sampling=None):
+        """(image, CPU s of the render loop, CPU s of the whole process); the fixed costs from --stats"""
+        out = os.path.join(self.workdir, "o.exr")
+        cmd = [self.args.render, scene_file, "--spp", str(spp), "--nthreads", str(self.args.threads),
+               "--quiet", "--stats", "--seed", str(seed), "--outfile", out, "--sampler", sampler]
+        if env_sampling:
+            cmd += ["--env-sampling", env_sampling]
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        if p.returncode != 0:
+            die("%s failed (%d): %s" % (" ".join(cmd), p.returncode, p.stderr.strip()))
+        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+        txt = p.stdout + p.stderr
+
+        def num(rx):
+            m = re.search(rx, txt)
+            return float(m.group(1)) if m else 0.0
+        # single-threaded setup: parsing with the map load, Embree's build, the sampling tables
+        fx = {"parse (map load)": num(r"parse\s+([0-9.]+) s"), "embree build": num(r"embree build\s+([0-9.]+) s"),
+              "sampling tables": num(r"env distribution\s+\S+\s+([0-9.]+) s")}
+        self.fixed.setdefault(scene_file, fx)
+        loop_cpu = num(r"render\s+[0-9.]+ s\s+\(CPU ([0-9.]+) s\)")  # the render loop's CPU seconds, all threads
+        return read_image(out), loop_cpu if loop_cpu > 0 else cpu - sum(fx.values()), cpu
+
+
+class MiVarRunner:
+    def __init__(self, threads, workdir, variant):
+        import drjit as dr
+        import mitsuba as mi
+        mi.set_variant(variant)
+        dr.set_thread_count(threads)
+        self.mi, self.dr, self.workdir, self.variant = mi, dr, workdir, variant
+        self.scenes, self.load_s, self.compile_s = {}, {}, {}
+
+    def scene(self, sc_key, sc, integ, ns, sampler, maxdepth):
+        key = (sc_key, integ, ns, sampler)
+        if key not in self.scenes:
+            d = mitsuba_scene_dict(self.mi, sc, 16, self.workdir, True, sampler)
+            if integ == "direct":
+                d["integrator"] = {"type": "direct", "emitter_samples": ns, "bsdf_samples": ns}
+            else:  # pbrt's maxdepth counts bounces; Mitsuba's max_depth counts path segments
+                d["integrator"] = {"type": "path", "max_depth": maxdepth + 1, "rr_depth": 4}
+            t0 = time.perf_counter()
+            self.scenes[key] = self.mi.load_dict(d)
+            self.load_s.setdefault(sc_key, time.perf_counter() - t0)
+        return self.scenes[key]
+
+    def render(self, scene, spp, seed):
+        import numpy as np
+        r0 = resource.getrusage(resource.RUSAGE_SELF)
+        img = self.mi.render(scene, spp=spp, seed=seed)
+        arr = np.array(img, dtype=np.float64)  # forces the lazy JIT evaluation
+        r1 = resource.getrusage(resource.RUSAGE_SELF)
+        return arr, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+
+    def drop(self, sc_key):
+        for k in [k for k in self.scenes if k[0] == sc_key]:
+            del self.scenes[k]
+        import gc
+        gc.collect()
+
+
+def variance_mode(args):
+    """Issue 13's equal-spp ratio and issue 14's equal-time cost, from the variance across seeds."""
+    import numpy as np
+    quick = args.quick
+    res = (160, 120) if quick else (tuple(args.var_res) if args.var_res else None)
+    spps = [16, 64] if quick else [16, 64, 256]
+    seeds = 2 if quick else args.seeds
+    ld = args.our_sampler
+    integs = ["direct", "path"]
+    workdir = tempfile.mkdtemp(prefix="el_mitsuba_var_")
+    variant = "llvm_ad_rgb"
+    try:
+        import mitsuba as mi
+        if variant not in mi.variants():
+            variant = "scalar_rgb"
+        mi.set_variant(variant)
+    except Exception:  # llvm not loadable
+        variant = "scalar_rgb"
+    mr = MiVarRunner(args.threads, workdir, variant)
+    ours = OursRunner(args, workdir)
+    # the configurations: (side, name, integrator filter, sampler, light/BSDF pairs)
+    cfgs = [("mitsuba", "independent 1/1", None, "independent", 1),
+            ("mitsuba", "multijitter 1/1", None, "multijitter", 1),
+            ("mitsuba", "multijitter 2/2", "direct", "multijitter", 2),
+            ("mitsuba", "stratified 1/1", None, "stratified", 1),
+            ("ours", "random 1/1", None, "random", 1),
+            ("ours", "%s 1/1" % ld, None, ld, 1),
+            ("ours", "%s 2/2" % ld, "direct", ld, 2)]
+    if not quick:
+        cfgs += [("mitsuba", "multijitter 4/4", "direct", "multijitter", 4)]
+        if not args.no_stratified_splitting:
+            cfgs += [("mitsuba", "stratified 2/2", "direct", "stratified", 2),
+                     ("mitsuba", "stratified 4/4", "direct", "stratified", 4)]
+    if args.map_too:
+        cfgs += [("ours", "%s 1/1, map alone" % ld, None, ld, 1)]
+    print("variance mode: %s x %s, spp %s, %d seeds per configuration, %d threads; Mitsuba %s %s"
+          % ("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
+             ",".join(map(str, spps)), seeds, args.threads, mi.__version__, variant))
+    results = {}  # (scene, integ, spp, side, name) -> (relvar, median CPU s, mean image)
+    for sc_key, fname in VAR_SCENES:
+        path = os.path.join(ROOT, "scenes", fname)
+        for integ in integs:
+            files = {}
+            for ns in (1, 2, 4):
+                files[ns] = os.path.join(workdir, "%s_%s_%d.pbrt" % (sc_key, integ, ns))
+                with open(files[ns], "w") as f:
+                    f.write(scene_variant(path, res, integ, ns))
+            sc = parse_pbrt(files[1], scene_variant(path, res, integ, 1))
+            mine = [c for c in cfgs if c[2] in (None, integ)]
+            for spp in spps:
+                imgs, cpus = {}, {}
+                for c in mine:  # Mitsuba's warm-up render (JIT compilation, timed apart; once per configuration)
+                    if c[0] == "mitsuba" and spp == spps[0]:
+                        t0 = time.perf_counter()
+                        mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], 5), spp, 999)
+                        mr.compile_s.setdefault((sc_key, integ, c[1]), time.perf_counter() - t0)
+                for r in range(seeds):  # interleaved: every configuration once per round
+                    for c in mine:
+                        if c[0] == "mitsuba":
+                            img, cpu = mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], 5), spp, r + 1)
+                        else:
+                            env = "map" if "map alone" in c[1] else None
+                            img, cpu, _ = ours.render(files[c[4]], spp, r + 1, c[3], env)
+                        imgs.setdefault(c[1], []).append(img)
+                        cpus.setdefault(c[1], []).append(cpu)
+                for c in mine:
+                    results[(sc_key, integ, spp, c[0], c[1])] = (relvar(imgs[c[1]]), statistics.median(cpus[c[1]]),
+                                                              np.mean(imgs[c[1]], axis=0))
+                for c in mine:
+                    v = results[(sc_key, integ, spp, c[0], c[1])]
+                    print("  %s %s %d %s %s: relvar %.3g, CPU %.3f s" % (sc_key, integ, spp, c[0], c[1], v[0], v[1]))
+                sys.stdout.flush()
+        mr.drop(sc_key)
+    print()
+    # ---- the tables ----
+    rows = []
+    for (sc_key, integ, spp, side, name), (v, c, _) in sorted(results.items()):
+        rows.append([sc_key, integ, spp, side, name, "%.3g" % v, "%.3f" % c, "%.3g" % (v * c)])
+    print("\nrelative variance across %d seeds (mean over pixels of var / (mean^2 + 1e-2)), CPU s of the render "
+          "(median), cost = relvar x CPU s:" % seeds)
+    print(fmt_table(rows, ["map", "integrator", "spp", "renderer", "configuration", "rel. variance", "CPU s", "cost"]))
+    print("\n(a) equal spp, matched samplers, one light + one BSDF sample: relvar ours / relvar Mitsuba "
+          "(issue 13's target <= 0.5)")
+    rows = []
+    for sc_key, _ in VAR_SCENES:
+        for integ in integs:
+            for spp in spps:
+                g = lambda side, name: results.get((sc_key, integ, spp, side, name), (float("nan"),))[0]
+                rows.append([sc_key, integ, spp, "%.2f" % (g("ours", "random 1/1") / g("mitsuba", "independent 1/1")),
+                             "%.2f" % (g("ours", "%s 1/1" % ld) / g("mitsuba", "multijitter 1/1"))])
+    print(fmt_table(rows, ["map", "integrator", "spp", "random / independent", "%s / multijitter" % ld]))
+    print("\n(b) equal time: cost (relvar x CPU s) of our best configuration over Mitsuba's best "
+          "(issue 14's target <= 0.5)")
+    rows = []
+    for sc_key, _ in VAR_SCENES:
+        for integ in integs:
+            for spp in spps:
+                m = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "mitsuba")]
+                o = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "ours")
+                     and "map alone" not in k[4]]
+                if not m or not o:
+                    continue
+                bm, bo = min(m), min(o)
+                rows.append([sc_key, integ, spp, "%.3g (%s)" % bo, "%.3g (%s)" % bm, "%.2f" % (bo[0] / bm[0])])
+    print(fmt_table(rows, ["map", "integrator", "spp", "ours best", "Mitsuba best", "ratio"]))
+    print("\nbias check: relative difference of the image means, ours (%s 1/1) against Mitsuba (multijitter 1/1), "
+          "at %d spp:" % (ld, spps[-1]))
+    for sc_key, _ in VAR_SCENES:
+        for integ in integs:
+            a = results.get((sc_key, integ, spps[-1], "ours", "%s 1/1" % ld))
+            b = results.get((sc_key, integ, spps[-1], "mitsuba", "multijitter 1/1"))
+            if a and b:
+                print("  %s %s: %+.4f" % (sc_key, integ, (a[2].mean() - b[2].mean()) / b[2].mean()))
+    print("\nfixed costs (not in the CPU seconds above):")
+    for f, fx in sorted(ours.fixed.items()):
+        if f.endswith("_1.pbrt"):
+            print("  ours %-22s %s" % (os.path.basename(f), ", ".join("%s %.3f s" % kv for kv in fx.items())))
+    for k, t in mr.load_s.items():
+        print("  Mitsuba %-8s load_dict (map load, its distribution, BVH) %.3f s" % (k, t))
+    for k, t in sorted(mr.compile_s.items()):
+        print("  Mitsuba %-8s %-6s %-16s first render (JIT compilation included) %.2f s" % (k[0], k[1], k[2], t))
+    shutil.rmtree(workdir, ignore_errors=True)
+
+
+def sampler_variance_mode(args):
+    """issue 14's sampler choice: our samplers' relative variance across seeds (direct lighting, MIS,
+    one light + one BSDF sample) on the sun and the smooth map"""
+    samplers = args.samplers.split(",") if args.samplers else \
+        ["random", "stratified", "halton", "sobol", "02sequence", "zsobol", "paddedsobol"]
+    quick = args.quick
+    res = (160, 120) if quick else (tuple(args.var_res) if args.var_res else (320, 240))
+    spps = [16, 64] if quick else [16, 64, 256]
+    seeds = 2 if quick else args.seeds
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")  # (read_image's Bitmap)
+    workdir = tempfile.mkdtemp(prefix="el_samplers_var_")
+    ours = OursRunner(args, workdir)
+    print("our samplers: relative variance across %d seeds, directlighting (MIS, 1 light + 1 BSDF sample), "
+          "%dx%d, %d threads" % (seeds, res[0], res[1], args.threads))
+    rows = []
+    for sc_key, fname in VAR_SCENES:
+        f = os.path.join(workdir, "%s.pbrt" % sc_key)
+        with open(f, "w") as fh:
+            fh.write(scene_variant(os.path.join(ROOT, "scenes", fname), res, "direct", 1))
+        for spp in spps:
+            imgs, cpus = {}, {}
+            for r in range(seeds):
+                for s in samplers:
+                    img, cpu, _ = ours.render(f, spp, r + 1, s)
+                    imgs.setdefault(s, []).append(img)
+                    cpus.setdefault(s, []).append(cpu)
+            base = relvar(imgs["random"]) if "random" in imgs else float("nan")
+            for s in samplers:
+                v = relvar(imgs[s])
+                rows.append([sc_key, spp, s, "%.3g" % v, "%.3f" % (v / base), "%.3f" % statistics.median(cpus[s]),
+                             "%.3g" % (v * statistics.median(cpus[s]))])
+                print("  %s %d %s %.3g (%.3f of random)" % (sc_key, spp, s, v, v / base))
+            sys.stdout.flush()
+    print()
+    print(fmt_table(rows, ["map", "spp", "sampler", "rel. variance", "vs random", "CPU s", "cost"]))
+    shutil.rmtree(workdir, ignore_errors=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scene", default=os.path.join(ROOT, "scenes", "bench_city.pbrt"))
@@ -589,12 +892,38 @@ def main():
     ap.add_argument("--mitsuba-samplers", default="stratified,multijitter",
                     help="comma-separated Mitsuba 3 samplers for --samplers mode (independent, stratified, "
                          "multijitter, orthogonal, ldsampler)")
+    ap.add_argument("--reference", action="store_true",
+                    help="the older measure: relMSE against each renderer's own high-spp reference")
+    ap.add_argument("--sampler-variance", action="store_true",
+                    help="our samplers only: relative variance across seeds on the sun and the smooth map")
+    ap.add_argument("--quick", action="store_true", help="160x120, 16 and 64 spp, 2 seeds, fewer configurations")
+    ap.add_argument("--seeds", type=int, default=3, help="seeds per configuration in the variance modes")
+    ap.add_argument("--our-sampler", default="zsobol", help="our low-discrepancy sampler in the variance mode")
+    ap.add_argument("--map-too", action="store_true", help="variance mode: also ours with the map alone (no product)")
+    ap.add_argument("--var-res", type=int, nargs=2, default=None,
+                    help="resolution of the variance modes (default: the scene's, 320x240; --sampler-variance 320x240)")
+    ap.add_argument("--no-stratified-splitting", action="store_true",
+                    help="variance mode: leave out Mitsuba's stratified 2/2 and 4/4 (its multijitter is the stronger)")
     args = ap.parse_args()
     try:
         import numpy as np
         import mitsuba  # noqa: F401
-    except ImportError as e:
-        die("%s\n  install: pip install mitsuba numpy; apt-get install libllvm19" % e)
+    except ImportError:
+        if args.sampler_variance:
+            import numpy as np  # noqa: F401 (our side alone: numpy, and Mitsuba's Bitmap for EXR reading)
+        print("installing Mitsuba 3 from PyPI: pip install mitsuba numpy")
+        subprocess.run([sys.executable, "-m", "pip", "install", "mitsuba", "numpy"], check=False)
+        try:
+            import numpy as np  # noqa: F811
+            import mitsuba  # noqa: F401,F811
+        except ImportError as e:
+            die("%s\n  install: pip install mitsuba numpy; apt-get install libllvm19" % e)
+    if args.sampler_variance:
+        sampler_variance_mode(args)
+        return
+    if not args.reference and not args.samplers:
+        variance_mode(args)
+        return
 
     spps = [int(s) for s in args.spp.split(",")]
     os.makedirs(args.outdir, exist_ok=True)

@@ -164,7 +164,7 @@ def make_scene(base, path, res, material=None, light_samples=None):
     return path
 
 
-RENDER_CPU = re.compile(r"\n  render +[0-9.]+ s \(([0-9.]+) s CPU")
+RENDER_CPU = re.compile(r"\n  render +[0-9.]+ s +\(CPU ([0-9.]+) s\)")
 
 
 def render(build, scene, tmp, spp, seed, args=(), nthreads=1):

@@ -59,9 +59,16 @@ enum { ELR_SAMPLER_DEFAULT = 0, ELR_SAMPLER_RANDOM = 1, ELR_SAMPLER_STRATIFIED =
 const char *elr_sampler_kind_name(int kind);
 int elr_sampler_kind_from_name(const char *name);
 /* the sampler of a scene without a Sampler directive (a scene's named sampler is always used) */
-#define ELR_DEFAULT_SAMPLER ELR_SAMPLER_HALTON
+/* pbrt-v3's default is halton; 02sequence has 0.38-0.74x its relative variance across seeds on the light
+ * sampling of bench_city and bench_studio at 16, 64 and 256 spp for the same CPU time (render README,
+ * "Samplers") */
+#define ELR_DEFAULT_SAMPLER ELR_SAMPLER_ZEROTWO
 #define ELR_DEFAULT_SPP 16
 
+/* the per-tile loops: one sample at a time (the reference), a pixel's light samples drawn together
+ * (render_batched.c), waves of samples (render_wave.c) */
+enum { ELR_LOOP_ONE = 0, ELR_LOOP_BATCHED = 1, ELR_LOOP_WAVE = 2 };
+enum { ELR_SPLIT_OFF = 0, ELR_SPLIT_AUTO = 1 };
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
   int nthreads;       /* 0: all cores */
@@ -73,9 +80,17 @@ typedef struct elr_render_options {
   int sampler;        /* ELR_SAMPLER_DEFAULT: the scene's */
   int randomization;  /* -1: the sampler's (the scene's "randomization", or pbrt's default); else sobol, zsobol and
                          paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
+  int env_sampling;   /* -1: the infinite lights' "sampling"; 1 product sampling (map x cosine), 0 the map alone */
   int tile_size;      /* 0: 16 */
   int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
                          1: one at a time inside each sample's shading; the same image either way */
+  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the batched and wave loops only where
+                         render.c can use them: the environment the only light that emits, and sampled) */
+  int split;          /* -1: the scene's ("splitting", default auto); ELR_SPLIT_OFF: each light's "samples";
+                         ELR_SPLIT_AUTO: chosen by a pilot (render.c); N >= 2: N light and BSDF sample pairs per
+                         camera sample (direct lighting, strategy "all", where the scene leaves "samples" at 1) */
+  int wave_api;       /* -1: the wave loop's default; else how it traces (ELR_WAVE_API_* of elr_internal.h:
+                         0 rtcIntersect1, 1 packets of 16, 2 rtcIntersect1M streams, 3 rtcIntersectNp) */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
 
@@ -90,15 +105,24 @@ typedef struct elr_light_stats {
   int tables_built;     /* environment: its sampling tables; area light on a mesh: its area CDF */
   size_t bytes;         /* those tables */
   double seconds;       /* and their build time */
+  int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
+  int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
+  int env_importance;   /* environment: the map's importance mode (EL_ENVLIGHT_IMPORTANCE_*) */
 } elr_light_stats;
 
 typedef struct elr_stats {
   double t_parse, t_images, t_embree, t_distribution, t_render, t_total;
-  double t_render_cpu;  /* the render loop's CPU time, all threads (bench/report.py times renders by it) */
+  double t_render_cpu; /* CPU seconds of the render loop (all threads) */
   size_t bytes_embree, bytes_textures, bytes_film, bytes_distribution, bytes_splats, bytes_mip;
   uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
+  int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */
+  double t_embree_loop;      /* the wave loop: seconds inside Embree, summed over the threads (0 for the other loops) */
+  int split, split_auto;     /* light and BSDF sample pairs per camera sample given by splitting (1: none); chosen by the pilot */
+  double t_split_pilot;      /* the pilot's wall time (in t_total, not in t_render) */
+  double split_var[2], split_cpu[2], split_gain; /* the pilot's relative variance and CPU seconds at n = 1 and 4; the
+                                                    predicted error x time of n = 1 over that of the n chosen */
   int nthreads, spp, width, height, maxdepth, integrator_path, sampler;
   int sampler_randomization; /* sobol, zsobol, paddedsobol: 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   uint64_t rejected_samples;
@@ -123,7 +147,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
 void elr_stats_print(const elr_stats *st, void *file /* FILE* */);
 
 double elr_now(void); /* seconds, monotonic */
-double elr_cpu_now(void); /* the process's CPU time in seconds (all threads) */
+double elr_cpu_now(void); /* CPU seconds of the process */
 
 #ifdef __cplusplus
 }

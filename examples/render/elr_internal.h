@@ -150,6 +150,9 @@ typedef struct elr_object {
 } elr_object;
 typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ } elr_instance;
 
+/* how an infinite light is sampled at a vertex whose lobes all reflect: the product of the map and the
+ * clamped cosine (el_envlight_sample_li_cos), or the map alone (el_envlight_sample_li, pbrt-v3's) */
+enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
@@ -177,6 +180,8 @@ typedef struct elr_light {
   el_envlight *env_alt;    /* another density the render options asked for, or NULL */
   int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
   int alt_compensated, alt_importance;
+  int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
+  int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
 } elr_light;
 
@@ -198,6 +203,7 @@ typedef struct elr_scene_desc {
   int integrator_path, maxdepth, light_sampling;
   float rrthreshold;
   int direct_one;     /* directlighting: pbrt-v3's "strategy" "one" (else "all") */
+  int split_auto;     /* directlighting: envlight's "splitting" "auto" (1) or "off" (0): render.c's pilot */
   int light_strategy; /* path: pbrt-v3's "lightsamplestrategy" (ELR_LSTRAT_*) */
 } elr_scene_desc;
 
@@ -288,6 +294,24 @@ int elr_shape_prepare(const elr_scene *s, elr_light *l, int build_cdf);
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h);
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax);
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom); /* no shading */
+/* a wave of rays in structure-of-arrays form (Embree's RTCRayHitNp), traced by one call (scene.c; the
+ * wave loop render_wave.c). Shadow rays: tfar < 0 after elr_wave_occluded when something is in the way. */
+#define ELR_WAVE_RAYS 512 /* rays in a wave at most */
+#define ELR_WAVE_CHUNK 64 /* rays per rtcIntersect1M / rtcOccluded1M stream */
+enum { ELR_WAVE_API_SINGLE = 0, ELR_WAVE_API_PACKET16 = 1, ELR_WAVE_API_STREAM = 2, ELR_WAVE_API_SOA = 3 };
+#define ELR_WAVE_API_DEFAULT ELR_WAVE_API_PACKET16 /* the fastest measured (bench_render) */
+typedef struct elr_wave_rays {
+  int n;
+  float ox[ELR_WAVE_RAYS], oy[ELR_WAVE_RAYS], oz[ELR_WAVE_RAYS], tnear[ELR_WAVE_RAYS];
+  float dx[ELR_WAVE_RAYS], dy[ELR_WAVE_RAYS], dz[ELR_WAVE_RAYS], time[ELR_WAVE_RAYS], tfar[ELR_WAVE_RAYS];
+  unsigned mask[ELR_WAVE_RAYS], id[ELR_WAVE_RAYS], flags[ELR_WAVE_RAYS];
+  float ngx[ELR_WAVE_RAYS], ngy[ELR_WAVE_RAYS], ngz[ELR_WAVE_RAYS], u[ELR_WAVE_RAYS], v[ELR_WAVE_RAYS];
+  unsigned prim[ELR_WAVE_RAYS], geom[ELR_WAVE_RAYS], inst[ELR_WAVE_RAYS];
+} elr_wave_rays;
+void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax);
+void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
+void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
+int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h); /* 0: ray i left the scene */
 /* the origin of a ray leaving h in direction d: offset along the geometric normal to the side d goes
  * (pbrt-v3's OffsetRayOrigin, with a fixed relative epsilon instead of its error bounds) */
 static inline elr_v3 elr_spawn_origin(const elr_hit *h, elr_v3 d) {
@@ -339,6 +363,21 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 
 /* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
  * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
 elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);
+/* The normal whose clamped cosine product sampling of the environment weights at this vertex (seen
+ * from wo): the GEOMETRIC normal ng turned to wo's side. Every reflection lobe's f is 0 unless wi is on
+ * wo's side of ng (pbrt-v3's BSDF::f tests reflect = (wi.ng)(wo.ng) > 0; Lambertian then reflects even
+ * below the shading hemisphere), so max(0, n.wi) > 0 wherever f |wi.ns| > 0 and light sampling alone
+ * stays unbiased; with the shading normal it would miss that sliver of smooth-shaded meshes (ns = ng on
+ * spheres, disks and flat triangles). Returns 0 (sample the map alone) when a non-specular lobe
+ * transmits (rough glass): its light comes from both sides. Light sample and BSDF sample's MIS weight
+ * use the same normal, and the path tracer keeps it for its continuation ray (elr_path_state.prev_n). */
+static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
+  int i;
+  for (i = 0; i < b->nlobes; i++)
+    if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
+  *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
+  return 1;
+}
 /* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
 void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
 elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type);
@@ -366,13 +405,15 @@ typedef struct elr_light_sample {
 } elr_light_sample;
 static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
 static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
-void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls);
-float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi);
+/* n: the vertex's product-sampling normal (elr_bsdf_cos_normal), or NULL where the BSDF transmits; an
+ * infinite light with product = 1 then samples the map times max(0, n.wi), and pdf_li is that density */
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls);
+float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
 int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
                       size_t errlen);
-int elr_infinite_prepare(elr_light *l, int compensated, int importance);
+int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map);
 void elr_light_prefetch(const elr_light *l, elr_v3 wi);
 void elr_light_free(elr_light *l);
 /* area lights: pbrt-v3's DiffuseAreaLight::L (the radiance leaving a point of normal n towards w) */
@@ -585,7 +626,12 @@ void elr_film_bounds(const elr_scene_desc *d, int b[4]);
 int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err, size_t errlen);
 
 /* >> a render (render.c): what it decided, read by every thread */
-typedef struct elr_tstats { uint64_t camera, bounce, shadow, bsdfl, samples; } elr_tstats; /* one thread's counts */
+#define ELR_SPLIT_LIGHTS 64      /* splitting applies to scenes of at most this many lights */
+#define ELR_SPLIT_MAX_GIVEN 1024 /* --split N: at most this */
+typedef struct elr_tstats { /* one thread's counts */
+  uint64_t camera, bounce, shadow, bsdfl, samples;
+  double t_embree; /* the wave loop: seconds inside its Embree calls */
+} elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
   elr_camera cam;
@@ -603,6 +649,8 @@ typedef struct elr_ctx {
   /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
+  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_BATCHED and ELR_LOOP_WAVE need batch_light) */
+  int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
@@ -625,11 +673,13 @@ typedef struct elr_path_state {
   elr_v3 L, beta;
   int specular;
   float prev_pdf;
+  int prev_has_n;  /* the last vertex's product-sampling normal (elr_bsdf_cos_normal) exists: prev_n */
+  elr_v3 prev_n;
   float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
-  p->eta_scale = 1.f;
+  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f;
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
@@ -653,7 +703,42 @@ elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, 
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+/* render_batched.c and render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
+ * hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first light-sampling
+ * draw there. */
+typedef struct elr_first {
+  int hit;
+  elr_hit *h;
+  elr_v3 wi, L;
+  float pdf;
+  /* the direct-lighting integrator's, at a hit: the texture footprint and BSDF, and (bs = 1) the BSDF
+   * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
+   * environment's pdf and radiance in its direction */
+  int bs, bray;
+  elr_tex_ctx tc;
+  elr_v3 dpdx, dpdy;
+  elr_bsdf b;
+  elr_v3 fb, wb, Lb;
+  float bpdf, bpdf_env;
+  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading (render_batched.c),
+   * else their answers, traced by the wave loop (1: occluded) */
+  int occ_l, occ_b;
+  /* the light's further samples (its "samples" count, or splitting) drawn ahead the same way: their light
+   * sample, BSDF sample and shadow rays' answers (the wave loop); the others, from nmore + 1 on, drawn in
+   * the shading */
+  const struct elr_first *more;
+  int nmore;
+} elr_first;
+/* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
+ * first draw after its camera sample) */
+elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
 /* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
 void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
+
+/* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
+typedef struct elr_wave elr_wave;
+elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile); /* NULL: out of memory */
+void elr_wave_free(elr_wave *W);
+void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1, int y1, el_film_tile *tile, elr_tstats *ts);
 
 #endif

@@ -39,10 +39,14 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
                          const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld) {
   const elr_scene *s = C->s;
   int delta = elr_light_is_delta(l);
+  /* the normal of the environment's product sampling at this vertex (NULL: the BSDF transmits); the
+   * BSDF sample's MIS weight below uses the same one, so both pdfs are the same density */
+  elr_v3 nc;
+  const elr_v3 *n = elr_bsdf_cos_normal(b, wo, &nc) ? &nc : NULL;
   /* <<Sample light source with multiple importance sampling>> */
   if (delta || C->ls != ELR_LS_BSDF) {
     elr_light_sample ls;
-    elr_light_sample_li(l, s, h->p, ul, &ls);
+    elr_light_sample_li(l, s, h->p, n, ul, &ls);
     if (ls.pdf > 0.f) {
       /* <<Compute BSDF value for light sample>> */
       elr_v3 f = elr_mul(elr_bsdf_f(b, wo, ls.wi), fabsf(elr_dot(ls.wi, b->ns)));
@@ -86,7 +90,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
        * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
       if (!elr_occluded(s, elr_spawn_origin(h, wi), wi, INFINITY)) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li(l, h, wi));
+        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li(l, n, wi));
         /* <<Add light contribution from material sampling>> */
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, elr_light_le(l, wi)), w / pdf));
       }

@@ -6,7 +6,9 @@
  * partner of the light sample: the environment it sees when it leaves the scene, and the area light it
  * hits, are weighted by the power heuristic of the previous vertex's BSDF pdf against the probability
  * of that light's choice times its Pdf_Li from that vertex (pbrt-v4's arrangement: one fewer ray per
- * vertex than pbrt-v3's EstimateDirect, the same expectation). Camera rays and specular bounces see
+ * vertex than pbrt-v3's EstimateDirect, the same expectation). For the environment that Pdf_Li is the
+ * density the previous vertex's light sample had: with product sampling, pdf_li_cos with that vertex's
+ * normal (elr_bsdf_cos_normal: its geometric normal on wo's side), kept in prev_n. Camera rays and specular bounces see
  * emitters unweighted. pbrt-v3's Russian roulette: after 3 bounces, when the throughput's largest
  * component is below rrthreshold. Later rays carry no differentials (pbrt-v3 spawns them without), so
  * their textures are point sampled. Refraction (glass, uber's Kt) scales the radiance by (etaI / etaT)^2
@@ -20,8 +22,9 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   const elr_scene *s = C->s;
   elr_v3 L = p->L, beta = p->beta;
   elr_ray r = p->ray;
-  int depth, specular = p->specular;
+  int depth, specular = p->specular, prev_has_n = p->prev_has_n;
   float prev_pdf = p->prev_pdf, eta_scale = p->eta_scale;
+  elr_v3 prev_n = p->prev_n;
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;
@@ -39,7 +42,8 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
         if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l)) continue;
         if (depth > 0 && !specular && C->light_sampling) {
           if (C->ls == ELR_LS_LIGHT) continue;
-          if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * elr_light_pdf_li(l, NULL, r.d));
+          if (C->ls == ELR_LS_MIS) /* the light's density as the previous vertex's light sample had it: its normal */
+            w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * elr_light_pdf_li(l, prev_has_n ? &prev_n : NULL, r.d));
         }
         L = elr_add(L, elr_mul(elr_vmul(beta, elr_light_le(l, r.d)), w));
       }
@@ -74,6 +78,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
     if (elr_isblack(f) || pdf == 0.f) break;
     beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
     specular = spec; prev_pdf = pdf;
+    prev_has_n = elr_bsdf_cos_normal(&b, wo, &prev_n); /* the normal this vertex's light sample used */
     if (spec == 2) eta_scale = elr_eta_scale(eta_scale, &b, wo); /* a specular transmission */
     /* the last vertex's continuation only matters for the emitters' BSDF-sampled part */
     if (depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;

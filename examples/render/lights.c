@@ -3,8 +3,10 @@
  *
  * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample) and
  * lights/point.cpp (PointLight), lights/distant.cpp (DistantLight), lights/infinite.cpp
- * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li,
- * el_envlight_pdf_li, el_envlight_le), lights/diffuse.cpp (DiffuseAreaLight). Point and distant
+ * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li_cos and
+ * el_envlight_pdf_li_cos, the product of the map and the clamped cosine of the shading point's normal,
+ * where the BSDF only reflects; el_envlight_sample_li and el_envlight_pdf_li, the map alone, pbrt-v3's,
+ * elsewhere or with "string sampling" "map"; el_envlight_le), lights/diffuse.cpp (DiffuseAreaLight). Point and distant
  * lights are delta lights: light sampling only, pdf 1, never hit by a ray. The environment is
  * sampled, and seen by rays that leave the scene. An area light is sampled through its shape's
  * Shape::Sample (shapes.c), and seen by rays that hit its shape (elr_hit.light; interaction.c's
@@ -16,7 +18,7 @@
 #include <string.h>
 
 /* pbrt-v3's Sample_Li: a point on the light seen from the shading point p, drawn with u. */
-void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const float u[2], elr_light_sample *ls) {
+void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls) {
   ls->at_point = 0;
   ls->dist = INFINITY;
   switch (l->kind) {
@@ -48,22 +50,35 @@ void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const
     return;
   }
   default: { /* InfiniteAreaLight::Sample_Li: the radiance comes with the sample (the map at the sampled
-              * (u, v), no second direction-to-(u, v) mapping) */
+              * (u, v), no second direction-to-(u, v) mapping). With a normal: a density close to
+              * L(wi) max(0, n.wi), so no sample is wasted below the surface (envlight.h's NOTES ON
+              * PRODUCT SAMPLING); pbrt-v3 samples the map alone. */
     float wi[3], L[3];
-    el_envlight_sample_li(l->env_sample, u, wi, L, &ls->pdf);
+    if (n && l->product) {
+      float nn[3];
+      elr_to3(*n, nn);
+      el_envlight_sample_li_cos(l->env_sample, nn, u, wi, L, &ls->pdf);
+    } else {
+      el_envlight_sample_li(l->env_sample, u, wi, L, &ls->pdf);
+    }
     ls->wi = elr_from3(wi); ls->L = elr_from3(L);
     return;
   }
   }
 }
 
-/* pbrt-v3's Pdf_Li: the solid-angle density with which elr_light_sample_li from ref would choose wi
- * (0 for delta lights, which no direction can hit; an area light's is elr_area_light_pdf). */
-float elr_light_pdf_li(const elr_light *l, const elr_hit *ref, elr_v3 wi) {
+/* pbrt-v3's Pdf_Li: the solid-angle density with which elr_light_sample_li with the same normal n
+ * (NULL: none) would choose wi (0 for delta lights, which no direction can hit; an area light's is
+ * elr_area_light_pdf, from the hit). */
+float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi) {
   float d[3];
-  (void)ref; /* an area light will need it: its density in solid angle depends on the distance */
   if (l->kind != ELR_LIGHT_INFINITE) return 0.f;
   elr_to3(wi, d);
+  if (n && l->product) {
+    float nn[3];
+    elr_to3(*n, nn);
+    return el_envlight_pdf_li_cos(l->env_sample, nn, d);
+  }
   return el_envlight_pdf_li(l->env_sample, d);
 }
 
@@ -127,8 +142,10 @@ int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_s
 
 /* >> infinite light (pbrt-v3 lights/infinite.cpp: envlight.h's el_envlight) */
 static int elr__importance(int importance) { /* envlight's map names; anything else: its default */
-  return importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 || importance == EL_ENVLIGHT_IMPORTANCE_TEXEL ? importance
-                                                                                                     : EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
+  return importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 || importance == EL_ENVLIGHT_IMPORTANCE_TEXEL ||
+                 importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR
+             ? importance
+             : EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
 }
 
 /* The environment of LightSource "infinite": rgb (w x h linear floats, top row first: theta = 0; NULL
@@ -175,8 +192,11 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
 /* Builds the sampling distribution now (before the render threads start). compensated and importance:
  * -1 for the scene's, else a density the render asks for instead (elr_render_options), made on the
  * first request as a second el_envlight of the same image (env_alt), which sample_li and pdf_li then
- * use (le always reads env). Returns -1 when the distribution cannot be built. */
-int elr_infinite_prepare(elr_light *l, int compensated, int importance) {
+ * use (le always reads env). product: -1 the light's "sampling", else 1 product sampling, 0 the map
+ * alone; with product sampling the product tables are built (el_envlight_prepare_product), and the
+ * map's own tables only when need_map (some surface transmits through a non-specular lobe: its vertices
+ * sample the map alone). Returns -1 when the distribution cannot be built. */
+int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map) {
   if (compensated < 0) compensated = l->compensated;
   if (importance < 0) importance = l->importance;
   l->env_sample = l->env;
@@ -203,6 +223,9 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance) {
     }
     l->env_sample = l->env_alt;
   }
+  l->product = product < 0 ? l->sampling == ELR_ENVLS_PRODUCT : product;
+  if (l->product && el_envlight_prepare_product(l->env_sample, NULL) != EL_SUCCESS) return -1;
+  if (l->product && !need_map) return 0;
   return el_envlight_prepare_sampling(l->env_sample) == EL_SUCCESS ? 0 : -1;
 }
 
@@ -254,7 +277,7 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
   __builtin_prefetch(p->texels + ((size_t)y * (size_t)w + (size_t)x) * 3 + 5);
   __builtin_prefetch(p->texels + ((size_t)y1 * (size_t)w + (size_t)x) * 3);
   __builtin_prefetch(p->texels + ((size_t)y1 * (size_t)w + (size_t)x) * 3 + 5);
-  if (e->pdf_table && e->dist.nu > 0 && e->dist.nv > 0) {
+  if (!l->product && e->pdf_table && e->dist.nu > 0 && e->dist.nv > 0) { /* (product sampling reads other tables) */
     int iu = (int)(u * (float)e->dist.nu), iv = (int)(v * (float)e->dist.nv);
     if (iu > e->dist.nu - 1) iu = e->dist.nu - 1;
     if (iv > e->dist.nv - 1) iv = e->dist.nv - 1;

@@ -10,8 +10,10 @@
  * (nothing is written then).
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
+ * --env-sampling product|map (the environment sampled by the map x the surface's cosine, or the map alone),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
- * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels). */
+ * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
+ * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -74,11 +76,15 @@ int main(int argc, char **argv) {
     } else if (!strcmp(a, "--compensated") && i + 1 < argc) {
       if (parse_int(argv[++i], 0, 1, &v)) { fprintf(stderr, "render: --compensated 0|1\n"); return 1; }
       o.compensated = (int)v;
+    } else if (!strcmp(a, "--env-sampling") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "product")) o.env_sampling = 1; else if (!strcmp(m, "map")) o.env_sampling = 0;
+      else { fprintf(stderr, "render: --env-sampling product|map\n"); return 1; }
     } else if (!strcmp(a, "--importance") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "cellaverage")) o.importance = 0; else if (!strcmp(m, "pbrt-v3")) o.importance = 1;
-      else if (!strcmp(m, "texel")) o.importance = 2;
-      else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel\n"); return 1; }
+      else if (!strcmp(m, "texel")) o.importance = 2; else if (!strcmp(m, "bilinear")) o.importance = 3;
+      else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel|bilinear\n"); return 1; }
     } else if (!strcmp(a, "--sampler") && i + 1 < argc) {
       int k = elr_sampler_kind_from_name(argv[++i]);
       if (k <= 0) { fprintf(stderr, "render: --sampler %s\n", SAMPLERS); return 1; }
@@ -88,6 +94,20 @@ int main(int argc, char **argv) {
       if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
       else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
       else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
+    } else if (!strcmp(a, "--loop") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "one")) o.loop = 0; else if (!strcmp(m, "batched")) o.loop = 1; else if (!strcmp(m, "wave")) o.loop = 2;
+      else { fprintf(stderr, "render: --loop one|batched|wave\n"); return 1; }
+    } else if (!strcmp(a, "--split") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "off")) o.split = 0; else if (!strcmp(m, "auto")) o.split = 1;
+      else if (!parse_int(m, 2, 1024, &v)) o.split = (int)v;
+      else { fprintf(stderr, "render: --split off|auto|N (N in [2, 1024])\n"); return 1; }
+    } else if (!strcmp(a, "--wave-api") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "single")) o.wave_api = 0; else if (!strcmp(m, "packet16")) o.wave_api = 1;
+      else if (!strcmp(m, "stream")) o.wave_api = 2; else if (!strcmp(m, "soa")) o.wave_api = 3;
+      else { fprintf(stderr, "render: --wave-api single|packet16|stream|soa\n"); return 1; }
     } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(); return 0; }
     else if (a[0] == '-' && a[1] == '-') { fprintf(stderr, "render: unknown or incomplete option \"%s\"\n", a); usage(); return 1; }
     else if (!scene) scene = a;

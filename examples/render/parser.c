@@ -921,6 +921,12 @@ static void elr__integrator(elr__parser *P, const char *type) {
     if (!strcmp(st, "all")) d->direct_one = 0;
     else if (!strcmp(st, "one")) d->direct_one = 1;
     else elr__failf(P, elr__find(P, "strategy")->file, elr__find(P, "strategy")->line, "Integrator \"directlighting\": strategy must be \"all\" or \"one\"");
+    /* envlight's extension (default "off": bench_render --split measured no gain on its scenes): "auto" chooses the light and BSDF samples per camera sample from a pilot's
+     * measured variance and cost (render.c), "off" keeps each light's "samples" */
+    st = elr__pstring(P, "splitting", "off");
+    if (!strcmp(st, "auto")) d->split_auto = 1;
+    else if (!strcmp(st, "off")) d->split_auto = 0;
+    else elr__failf(P, elr__find(P, "splitting")->file, elr__find(P, "splitting")->line, "Integrator \"directlighting\": splitting must be \"auto\" or \"off\"");
   } else {
     const char *st;
     if (strcmp(type, "path") != 0) {
@@ -993,7 +999,17 @@ static void elr__light(elr__parser *P, const char *type) {
       if (!strcmp(im, "cellaverage")) l->importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
       else if (!strcmp(im, "pbrt-v3")) l->importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
       else if (!strcmp(im, "texel")) l->importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
-      else elr__failf(P, elr__find(P, "importance")->file, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\" or \"texel\"");
+      else if (!strcmp(im, "bilinear")) l->importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+      else elr__failf(P, elr__find(P, "importance")->file, elr__find(P, "importance")->line, "LightSource \"infinite\": importance must be \"cellaverage\", \"pbrt-v3\", \"texel\" or \"bilinear\"");
+    }
+    {
+      /* envlight's extension: how a surface that only reflects samples the light. "product" (the
+       * default): the map times the clamped cosine of the surface's normal (el_envlight_sample_li_cos),
+       * no sample below the horizon; "map": the map alone (pbrt-v3's, with the importance map above) */
+      const char *ls = elr__pstring(P, "sampling", "product");
+      if (!strcmp(ls, "product")) l->sampling = ELR_ENVLS_PRODUCT;
+      else if (!strcmp(ls, "map")) l->sampling = ELR_ENVLS_MAP;
+      else elr__failf(P, elr__find(P, "sampling")->file, elr__find(P, "sampling")->line, "LightSource \"infinite\": sampling must be \"product\" or \"map\"");
     }
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
@@ -1946,7 +1962,10 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
   snprintf(s->d.filename, sizeof s->d.filename, "pbrt.exr");
   s->d.filter.type = ELR_PF_BOX; s->d.filter.xw = s->d.filter.yw = 0.5f;
   /* the sampler of a scene without a Sampler directive (el_render.h; pbrt-v3's is halton, 16 spp) */
-  s->d.sampler = ELR_DEFAULT_SAMPLER; s->d.spp = ELR_DEFAULT_SPP; s->d.dims = 4; s->d.jitter = 1;
+  /* a scene without a Sampler: 02sequence with 16 dimensions (pbrt-v3's 4 cover the camera and one light
+   * and BSDF pair; past them its draws are random: 16 gave directlighting with 2 pairs 1.3x and path 1.09x
+   * less variance at 16 spp on bench_city) */
+  s->d.sampler = ELR_DEFAULT_SAMPLER; s->d.spp = ELR_DEFAULT_SPP; s->d.dims = ELR_DEFAULT_SAMPLER == ELR_SAMPLER_ZEROTWO ? 16 : 4; s->d.jitter = 1;
   s->d.randomize = ELR_DEFAULT_SAMPLER == ELR_SAMPLER_ZSOBOL || ELR_DEFAULT_SAMPLER == ELR_SAMPLER_PADDEDSOBOL ? ELR_RANDOMIZE_FAST_OWEN : ELR_RANDOMIZE_NONE;
   s->d.integrator_path = 1; s->d.maxdepth = 5; s->d.rrthreshold = 1.f;
   s->d.light_sampling = ELR_LS_MIS;

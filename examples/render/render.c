@@ -8,13 +8,17 @@
  * sampled; the light distribution (lightdistrib.c) only when there is a choice to make; whether a pixel's environment samples are drawn together (render_batched.c) or each in its own
  * sample's shading (the reference: integrator_direct.c, integrator_path.c). Threads take tiles in
  * turn; each tile has its own film tile and the tiles are merged in tile order, whatever order they
- * finish in, so the image is the same for any thread count. A wave loop (packets of camera, shadow and
- * bounce rays) would be another per-tile loop here, chosen the way batching is. */
+ * finish in, so the image is the same for any thread count. The per-tile loop (elr_ctx.loop): one
+ * sample at a time (the reference, below), a pixel's light samples together (render_batched.c) or
+ * waves of camera samples (render_wave.c, the default where the environment is the only light that
+ * emits). For directlighting, splitting (elr__split_choose) may give each camera sample several light
+ * and BSDF sample pairs, chosen by a pilot from measured variance and cost. */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 /* >> tiles and threads */
@@ -23,11 +27,14 @@ typedef struct elr_job {
   el_film *film;
   const elr_render_options *o;
   int bx0, by0, bx1, by1, tile, ntx, nty, ntiles;
+  int stride;               /* render tiles 0, stride, 2 stride, ... (the splitting pilot); 1: all */
+  uint64_t seed;            /* the samplers' seed */
+  int quiet;                /* no progress bar */
   pthread_mutex_t mu;
   int next_tile, next_merge, done;
   el_film_tile **ready; /* finished tiles waiting for their turn to merge */
   elr_tstats total;
-  double t0, last_print;
+  double t0, last_print, cpu0;
   int failed;
   const elr_sampler_tables *T; /* the sampler's tables, shared by the threads */
 } elr_job;
@@ -36,7 +43,7 @@ static void elr__progress(elr_job *J, int final) {
   double now = elr_now(), el = now - J->t0, frac = (double)J->done / (double)J->ntiles, rem;
   int i, w = 40, fill = (int)(frac * w);
   char bar[64];
-  if (J->o->quiet) return;
+  if (J->quiet) return;
   if (!final && now - J->last_print < 0.1) return;
   J->last_print = now;
   for (i = 0; i < w; i++) bar[i] = i < fill ? '=' : (i == fill ? '>' : ' ');
@@ -59,8 +66,11 @@ static void *elr__worker(void *arg) {
   elr_ctx *C = J->C;
   elr_sampler S;
   elr_tstats ts;
+  elr_wave *W = NULL;
   memset(&ts, 0, sizeof ts);
-  if (elr_sampler_init(&S, &C->sampler, J->o->seed, J->T) != 0) {
+  if (elr_sampler_init(&S, &C->sampler, J->seed, J->T) != 0 ||
+      (C->loop == ELR_LOOP_WAVE && !(W = elr_wave_new(C, J->T, J->seed, J->tile)))) {
+    elr_sampler_free(&S);
     pthread_mutex_lock(&J->mu); J->failed = 1; pthread_mutex_unlock(&J->mu);
     return NULL;
   }
@@ -71,6 +81,10 @@ static void *elr__worker(void *arg) {
     t = J->failed ? J->ntiles : J->next_tile++;
     pthread_mutex_unlock(&J->mu);
     if (t >= J->ntiles) break;
+    if (J->stride > 1 && t % J->stride != 0) { /* a tile the pilot leaves out: an empty tile in its place */
+      pthread_mutex_lock(&J->mu); J->ready[t] = NULL; J->done++; pthread_mutex_unlock(&J->mu);
+      continue;
+    }
     tx = t % J->ntx; ty = t / J->ntx;
     x0 = J->bx0 + tx * J->tile; y0 = J->by0 + ty * J->tile;
     x1 = x0 + J->tile < J->bx1 ? x0 + J->tile : J->bx1;
@@ -83,10 +97,11 @@ static void *elr__worker(void *arg) {
       break;
     }
     /* <<Loop over pixels in tile to render them>> */
-    for (y = y0; y < y1; y++)
+    if (W) elr_wave_render_tile(C, W, x0, y0, x1, y1, tile, &ts); /* render_wave.c */
+    else for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr_sampler_start_pixel(&S, x, y);
-        if (C->batch_light) { elr_pixel_batched(C, &S, x, y, tile, &ts); continue; } /* render_batched.c */
+        if (C->loop == ELR_LOOP_BATCHED) { elr_pixel_batched(C, &S, x, y, tile, &ts); continue; } /* render_batched.c */
         /* <<Loop over pixel samples>> */
         for (k = 0; k < C->spp; k++) {
           float fx, fy, rgb[3];
@@ -110,8 +125,8 @@ static void *elr__worker(void *arg) {
     /* <<Merge image tile into Film>>, in tile order whatever order threads finish them: the same sums
      * for any thread count */
     J->ready[t] = tile;
-    while (J->next_merge < J->ntiles && J->ready[J->next_merge]) {
-      elr__merge(J->film, J->ready[J->next_merge]);
+    while (J->next_merge < J->ntiles && (J->ready[J->next_merge] || (J->stride > 1 && J->next_merge % J->stride != 0))) {
+      if (J->ready[J->next_merge]) elr__merge(J->film, J->ready[J->next_merge]);
       J->ready[J->next_merge] = NULL;
       J->next_merge++;
     }
@@ -121,15 +136,17 @@ static void *elr__worker(void *arg) {
   }
   pthread_mutex_lock(&J->mu);
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
-  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples;
+  J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples; J->total.t_embree += ts.t_embree;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
+  elr_wave_free(W);
   return NULL;
 }
 
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
-  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1;
+  o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
+  o->loop = -1; o->wave_api = -1; o->split = -1;
 }
 
 /* >> what the scene calls for */
@@ -158,6 +175,16 @@ static int elr__may_be_nonspecular(const elr_scene *s, const elr_material *m) {
     return !(u->kind == ELR_TEX_CONST && u->value.x == 0.f && v->kind == ELR_TEX_CONST && v->value.x == 0.f);
   }
   return 1;
+}
+/* whether material m may have a non-specular transmission lobe (rough glass): its vertices sample the
+ * environment's map alone (elr_bsdf_cos_normal), so the map's tables are needed with product sampling */
+static int elr__may_transmit_rough(const elr_scene *s, const elr_material *m) { return m->kind == ELR_MAT_GLASS && elr__may_be_nonspecular(s, m); }
+static int elr__mat_transmits_rough(const elr_scene *s) {
+  int i;
+  for (i = 0; i < s->nmesh; i++) if (elr__may_transmit_rough(s, &s->mat[s->mesh[i].material])) return 1;
+  for (i = 0; i < s->nsph; i++) if (elr__may_transmit_rough(s, &s->mat[s->sph[i].material])) return 1;
+  for (i = 0; i < s->ndisk; i++) if (elr__may_transmit_rough(s, &s->mat[s->disk[i].material])) return 1;
+  return 0;
 }
 static int elr__mat_nonspecular(const elr_scene *s) {
   int i;
@@ -206,19 +233,39 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     elr_light *l = &s->light[i];
     if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->ls != ELR_LS_BSDF) {
       double t0 = elr_now();
-      if (elr_infinite_prepare(l, o->compensated, o->importance) != 0) { snprintf(err, errlen, "environment: cannot build the sampling distribution"); return -1; }
-      if (st) { st->t_distribution += elr_now() - t0; st->bytes_distribution += el_envlight_sampling_bytes(l->env_sample); }
+      if (elr_infinite_prepare(l, o->compensated, o->importance, o->env_sampling, elr__mat_transmits_rough(s)) != 0) {
+        snprintf(err, errlen, "environment: cannot build the sampling distribution");
+        return -1;
+      }
+      if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
     }
   }
   /* a pixel's light samples drawn together when the only emitting light is a sampled environment */
   /* (with a pixel sampler, only when its dimensions cover the three 2D draws made ahead: draws past
    * them come from the pixel's one random stream, whose order batching would change) */
+  /* (with product sampling only the wave loop draws them, one at a time: below) */
   if (*env_sampled && !o->no_batch && elr_sampler_order_free(&C->sampler)) {
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
   }
+  /* the per-tile loop: the batched and wave loops need batch_light; the default is the wave loop
+   * (bench_render --loops measures them), except for the path tracer with a pixel sampler (stratified,
+   * 02sequence), whose draws past its dimensions come from the pixel's one stream: the wave loop would
+   * take them in another order (other numbers of the same distribution), the batched loop keeps the
+   * reference's image */
+  C->loop = ELR_LOOP_ONE;
+  if (C->batch_light) {
+    int pixel_sampler = C->sampler.kind == ELR_SAMPLER_STRATIFIED || C->sampler.kind == ELR_SAMPLER_ZEROTWO;
+    C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_BATCHED || o->loop == ELR_LOOP_WAVE ? o->loop
+              : C->path && pixel_sampler                                                       ? ELR_LOOP_BATCHED
+                                                                                              : ELR_LOOP_WAVE;
+    /* product sampling has no n-at-once form (el_envlight_sample_li_cos takes each sample's normal):
+     * the wave loop draws them one after another; the batched loop, made for sample_li_n, is not used */
+    if (C->batch_light->product && C->loop == ELR_LOOP_BATCHED) C->loop = ELR_LOOP_ONE;
+  }
+  C->wave_api = o->wave_api >= ELR_WAVE_API_SINGLE && o->wave_api <= ELR_WAVE_API_SOA ? o->wave_api : ELR_WAVE_API_DEFAULT;
   return 0;
 }
 
@@ -232,7 +279,8 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->camera_rays = T->camera; st->bounce_rays = T->bounce; st->shadow_rays = T->shadow;
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
-  st->light_samples_batched = C->batch_light != NULL;
+  st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product;
+  st->loop = C->loop; st->wave_api = C->wave_api; st->t_embree_loop = T->t_embree;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
   st->sampler_randomization = C->sampler.randomize;
@@ -250,7 +298,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     if (s->light[i].kind == ELR_LIGHT_INFINITE) {
       const el_envlight *e = s->light[i].env;
       st->bytes_textures += sizeof(float) * 3 * (size_t)e->width * (size_t)e->height;
-      if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample);
+      if (env_sampled) st->bytes_distribution = el_envlight_sampling_bytes(s->light[i].env_sample) + el_envlight_product_bytes(s->light[i].env_sample);
     }
   /* the lights: what was built for which */
   st->lights = s->nlight;
@@ -271,7 +319,9 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     ls->kind = l->kind; ls->emits = elr_light_emits(l); ls->nsamples = l->nsamples;
     ls->pick = C->ld.pick ? C->ld.pick[i] : (ls->emits && C->light_sampling ? 1.f : 0.f);
     if (l->kind == ELR_LIGHT_INFINITE && env_sampled && ls->emits && C->ls != ELR_LS_BSDF && C->light_sampling) {
-      ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample);
+      ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample) + el_envlight_product_bytes(l->env_sample);
+      ls->env_product = l->product; ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
+      ls->env_importance = l->env_sample->importance;
     }
     if (l->kind == ELR_LIGHT_AREA) {
       ls->shape_kind = l->shape_kind; ls->shape = l->shape; ls->twosided = l->twosided; ls->area = l->area;
@@ -284,16 +334,170 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   }
 }
 
+/* Renders the tiles (every stride-th: the splitting pilot) into film on nthreads threads with the
+ * samplers' seed; J holds the counts afterwards. -1 with err on failure. */
+static int elr__run(const elr_ctx *C, const elr_render_options *o, el_film *film, const elr_sampler_tables *T, int nthreads, int stride,
+             uint64_t seed, int quiet, elr_job *J, char *err, size_t errlen) {
+  pthread_t *th = NULL;
+  int i, rc = -1;
+  memset(J, 0, sizeof *J);
+  J->seed = seed; J->quiet = quiet;
+  J->C = (elr_ctx *)C; J->film = film; J->o = o; J->T = T; J->stride = stride;
+  {
+    int b[4];
+    el_film_sample_bounds(film, b);
+    J->bx0 = b[0]; J->by0 = b[1]; J->bx1 = b[2]; J->by1 = b[3];
+  }
+  /* <<Compute number of tiles, nTiles, to use for parallel rendering>> */
+  J->tile = o->tile_size > 0 ? o->tile_size : 16;
+  J->ntx = (J->bx1 - J->bx0 + J->tile - 1) / J->tile; J->nty = (J->by1 - J->by0 + J->tile - 1) / J->tile;
+  J->ntiles = J->ntx * J->nty;
+  J->ready = (el_film_tile **)calloc((size_t)J->ntiles, sizeof(el_film_tile *));
+  th = (pthread_t *)calloc((size_t)nthreads, sizeof(pthread_t));
+  if (!J->ready || !th) { snprintf(err, errlen, "out of memory"); goto fail; }
+  pthread_mutex_init(&J->mu, NULL);
+  J->t0 = elr_now(); J->last_print = 0;
+  J->cpu0 = elr_cpu_now();
+  { /* <<Render image tiles in parallel>> */
+    int started = 0;
+    for (i = 0; i < nthreads; i++) {
+      if (pthread_create(&th[i], NULL, elr__worker, J) != 0) break;
+      started++;
+    }
+    if (started == 0) elr__worker(J);
+    for (i = 0; i < started; i++) pthread_join(th[i], NULL);
+  }
+  pthread_mutex_destroy(&J->mu);
+  if (J->failed || J->next_merge != J->ntiles) {
+    for (i = 0; i < J->ntiles; i++) if (J->ready[i]) elr__merge(film, J->ready[i]);
+    snprintf(err, errlen, "rendering failed (out of memory for a film tile or sampler)");
+    goto fail;
+  }
+  rc = 0;
+fail:
+  free(th);
+  free(J->ready); J->ready = NULL;
+  return rc;
+}
+
+/* >> splitting (the direct-lighting integrator, strategy "all"): how many light and BSDF sample pairs
+ * each camera sample takes at its first vertex, in the spirit of Rath et al. 2022, "EARS:
+ * efficiency-aware Russian roulette and splitting". With n pairs the variance of a camera sample's
+ * estimate is about A + B / n (A: the camera part, pixel footprint and visible surface; B: one light
+ * and BSDF pair's) and its cost C + D n, so their product, error x time at any sample count, is least
+ * at n = sqrt(B C / (A D)). A pilot measures the two: every stride-th tile rendered twice (other
+ * seeds) with n = 1 and with n = ELR_SPLIT_PILOT_N; the variance from the two renders' difference
+ * (relative, as bench_render's relMSE), the cost as the process's CPU time. The n kept is the integer
+ * in [1, ELR_SPLIT_MAX] that minimises the fitted product, when it predicts at least 5% less than
+ * n = 1 (else 1). Every n gives an unbiased image (pbrt-v3's UniformSampleAllLights averages a light's
+ * samples), and the pilot's seeds are not the render's, so the choice does not bias it either. Used
+ * only where the scene leaves every light's "samples" at 1 (a scene's counts are honoured), and
+ * switched off by the Integrator's "splitting" "off" or --split off. */
+#define ELR_SPLIT_PILOT_N 4
+#define ELR_SPLIT_MAX 16
+static double elr__cpu_now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+static void elr__split_set(elr_scene *s, int n, int saved[ELR_SPLIT_LIGHTS]) {
+  int i;
+  for (i = 0; i < s->nlight && i < ELR_SPLIT_LIGHTS; i++) {
+    if (saved[i] < 0) saved[i] = s->light[i].nsamples;
+    s->light[i].nsamples = n;
+  }
+}
+static void elr__split_restore(elr_scene *s, int saved[ELR_SPLIT_LIGHTS]) {
+  int i;
+  for (i = 0; i < s->nlight && i < ELR_SPLIT_LIGHTS; i++)
+    if (saved[i] >= 0) { s->light[i].nsamples = saved[i]; saved[i] = -1; }
+}
+static int elr__split_choose(elr_ctx *C, const elr_render_options *o, elr_scene *s, const int fb[4], const elr_sampler_tables *T,
+                             int nthreads, elr_stats *st, int saved[ELR_SPLIT_LIGHTS], char *err, size_t errlen) {
+  int i, mode = o->split >= 0 ? o->split : (s->d.split_auto ? ELR_SPLIT_AUTO : ELR_SPLIT_OFF), rep, k, ntiles, stride, n;
+  int ns[2] = {1, ELR_SPLIT_PILOT_N};
+  float *img[2][2] = {{NULL, NULL}, {NULL, NULL}};
+  double var[2] = {0, 0}, cpu[2] = {0, 0}, t0 = elr_now(), A, B, Ct, D, best, base;
+  size_t npx = (size_t)(fb[2] - fb[0]) * (size_t)(fb[3] - fb[1]) * 3;
+  if (st) st->split = 1;
+  if (C->path || C->direct_one || !C->light_sampling || mode == ELR_SPLIT_OFF || s->nlight > ELR_SPLIT_LIGHTS) return 0;
+  for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].nsamples != 1) return 0; /* the scene's counts */
+  if (mode >= 2) { /* a given n */
+    elr__split_set(s, mode > ELR_SPLIT_MAX_GIVEN ? ELR_SPLIT_MAX_GIVEN : mode, saved);
+    if (st) st->split = s->light[0].nsamples;
+    return 0;
+  }
+  /* the pilot: about 5 tiles, each render of them twice with n = 1 and n = ELR_SPLIT_PILOT_N, interleaved */
+  {
+    int tile = o->tile_size > 0 ? o->tile_size : 16;
+    ntiles = ((fb[2] - fb[0] + tile - 1) / tile) * ((fb[3] - fb[1] + tile - 1) / tile);
+    stride = ntiles / 5 > 1 ? ntiles / 5 : 1;
+  }
+  for (rep = 0; rep < 2; rep++)
+    for (k = 0; k < 2; k++) {
+      el_film f;
+      elr_job J;
+      double c0;
+      memset(&f, 0, sizeof f);
+      img[rep][k] = (float *)malloc(sizeof(float) * npx);
+      if (!img[rep][k] || elr_film_init(&f, &s->d, fb, err, errlen) != 0) { snprintf(err, errlen, "out of memory for the splitting pilot"); goto fail; }
+      elr__split_set(s, ns[k], saved);
+      c0 = elr__cpu_now();
+      if (elr__run(C, o, &f, T, nthreads, stride, o->seed ^ (0x9b1a7e5ULL + (uint64_t)rep * 0x51ed27ULL), 1, &J, err, errlen) != 0) {
+        el_film_free(&f); goto fail;
+      }
+      cpu[k] += elr__cpu_now() - c0;
+      el_film_get_rgb(&f, 1.f, img[rep][k]);
+      el_film_free(&f);
+    }
+  elr__split_restore(s, saved);
+  for (k = 0; k < 2; k++) {
+    size_t j;
+    for (j = 0; j < npx; j++) {
+      double a = img[0][k][j], b = img[1][k][j], m = 0.5 * (a + b);
+      var[k] += (a - b) * (a - b) / (m * m + 1e-2);
+    }
+  }
+  /* the model: var(n) = A + B / n, cost(n) = Ct + D n, through the two pilots */
+  B = (var[0] - var[1]) * (double)ns[1] / (double)(ns[1] - ns[0]);
+  A = var[0] - B;
+  D = (cpu[1] - cpu[0]) / (double)(ns[1] - ns[0]);
+  Ct = cpu[0] - D;
+  if (A < 1e-3 * var[0]) A = 1e-3 * var[0];      /* (noise: keep the product finite) */
+  if (D < 1e-3 * cpu[0]) D = 1e-3 * cpu[0];
+  if (Ct < 1e-3 * cpu[0]) Ct = 1e-3 * cpu[0];
+  base = (A + B) * (Ct + D);
+  n = 1; best = base;
+  if (B > 0)
+    for (k = 2; k <= ELR_SPLIT_MAX; k++) {
+      double e = (A + B / k) * (Ct + D * k);
+      if (e < best) { best = e; n = k; }
+    }
+  if (best > 0.95 * base) n = 1;
+  if (n > 1) elr__split_set(s, n, saved);
+  if (st) {
+    st->split = n; st->split_auto = 1; st->t_split_pilot = elr_now() - t0;
+    st->split_var[0] = var[0]; st->split_var[1] = var[1]; st->split_cpu[0] = cpu[0]; st->split_cpu[1] = cpu[1];
+    st->split_gain = best > 0 ? base / best : 1.0;
+  }
+  for (rep = 0; rep < 2; rep++) for (k = 0; k < 2; k++) free(img[rep][k]);
+  return 0;
+fail:
+  elr__split_restore(s, saved);
+  for (rep = 0; rep < 2; rep++) for (k = 0; k < 2; k++) free(img[rep][k]);
+  return -1;
+}
+
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
   elr_ctx C;
   elr_job J;
-  double cpu0;
   elr_sampler_tables T;
   el_film film;
-  pthread_t *th = NULL;
+  int split_saved[ELR_SPLIT_LIGHTS];
   int i, nthreads, x0, y0, x1, y1, rc = -1, env_sampled = 0, emits = 0, fb[4];
   double t_start = elr_now();
   memset(&C, 0, sizeof C); memset(&J, 0, sizeof J); memset(&T, 0, sizeof T); memset(&film, 0, sizeof film);
+  for (i = 0; i < ELR_SPLIT_LIGHTS; i++) split_saved[i] = -1;
   memset(out, 0, sizeof *out);
   if (st) memset(st, 0, sizeof *st);
   C.s = s;
@@ -333,37 +537,9 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 1024) nthreads = 1024;
-  J.C = &C; J.film = &film; J.o = o; J.T = &T;
-  {
-    int b[4];
-    el_film_sample_bounds(&film, b);
-    J.bx0 = b[0]; J.by0 = b[1]; J.bx1 = b[2]; J.by1 = b[3];
-  }
-  /* <<Compute number of tiles, nTiles, to use for parallel rendering>> */
-  J.tile = o->tile_size > 0 ? o->tile_size : 16;
-  J.ntx = (J.bx1 - J.bx0 + J.tile - 1) / J.tile; J.nty = (J.by1 - J.by0 + J.tile - 1) / J.tile;
-  J.ntiles = J.ntx * J.nty;
-  J.ready = (el_film_tile **)calloc((size_t)J.ntiles, sizeof(el_film_tile *));
-  th = (pthread_t *)calloc((size_t)nthreads, sizeof(pthread_t));
-  if (!J.ready || !th) { snprintf(err, errlen, "out of memory"); goto done; }
-  pthread_mutex_init(&J.mu, NULL);
-  J.t0 = elr_now(); J.last_print = 0;
-  cpu0 = elr_cpu_now();
-  { /* <<Render image tiles in parallel>> */
-    int started = 0;
-    for (i = 0; i < nthreads; i++) {
-      if (pthread_create(&th[i], NULL, elr__worker, &J) != 0) break;
-      started++;
-    }
-    if (started == 0) elr__worker(&J);
-    for (i = 0; i < started; i++) pthread_join(th[i], NULL);
-  }
-  pthread_mutex_destroy(&J.mu);
-  if (J.failed || J.next_merge != J.ntiles) {
-    for (i = 0; i < J.ntiles; i++) if (J.ready[i]) elr__merge(&film, J.ready[i]);
-    snprintf(err, errlen, "rendering failed (out of memory for a film tile or sampler)");
-    goto done;
-  }
+  /* splitting: the light and BSDF samples per camera sample, chosen by a pilot */
+  if (elr__split_choose(&C, o, s, fb, &T, nthreads, st, split_saved, err, errlen) != 0) goto done;
+  if (elr__run(&C, o, &film, &T, nthreads, 1, o->seed, o->quiet, &J, err, errlen) != 0) goto done;
   elr__progress(&J, 1);
   out->width = x1 - x0; out->height = y1 - y0;
   out->rgb = (float *)malloc(sizeof(float) * 3 * (size_t)out->width * (size_t)out->height);
@@ -371,13 +547,14 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   el_film_get_rgb(&film, 1.f, out->rgb);
   if (st) {
     st->t_render = elr_now() - J.t0;
-    st->t_render_cpu = elr_cpu_now() - cpu0;
+    st->t_render_cpu = elr_cpu_now() - J.cpu0;
     elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
   }
   rc = 0;
 done:
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
-  free(J.ready); free(th); elr_sampler_tables_free(&T);
+  free(J.ready); elr_sampler_tables_free(&T);
+  elr__split_restore(s, split_saved);
   elr_light_distrib_free(&C.ld);
   el_film_free(&film);
   if (rc != 0) { free(out->rgb); out->rgb = NULL; out->width = out->height = 0; }

@@ -2,7 +2,10 @@
  *
  * The same computation as the one-sample-at-a-time loop of render.c with integrator_direct.c and
  * integrator_path.c, in another order, for the scenes where the environment is the only light that
- * emits and is sampled (elr_render decides: elr_ctx.batch_light). One environment light sample on its
+ * emits and is sampled, by its map alone (elr_render decides: elr_ctx.batch_light; product sampling,
+ * el_envlight_sample_li_cos, has no n-at-once form and needs each vertex's normal, which the path
+ * tracer's first vertex knows only after this file's first phase, so it runs in the wave loop,
+ * render_wave.c, or one sample at a time). One environment light sample on its
  * own is a chain of dependent cache misses (guide entry, CDF row, texels) that the shading between
  * two samples cannot hide; el_envlight_sample_li_n overlaps the misses of many. So for up to 32 camera
  * samples of a pixel at a time:
@@ -18,28 +21,11 @@
  * the first-vertex shading below is the reference's with its sums in the same order, so the image is
  * bit for bit the one-at-a-time image (test_render_pipeline compares them for every sampler and both
  * integrators). A change to EstimateDirect or to either integrator's first vertex must be made here
- * too; the wave loop (issue 14: packets of camera, shadow and bounce rays) replaces this file. */
+ * too; the wave loop (render_wave.c) computes the same first vertex for a whole wave of samples and is
+ * the default where both apply, except for the path tracer with a pixel sampler (render.c). */
 #include "elr_internal.h"
 
 #define ELR_BATCH 32
-
-/* A camera sample's first vertex, computed ahead: the camera ray's hit (hit = 0: it left the scene)
- * and, at a hit, the environment sample for the first light-sampling draw there. */
-typedef struct elr_first {
-  int hit;
-  elr_hit *h;
-  elr_v3 wi, L;
-  float pdf;
-  /* the direct-lighting integrator's, at a hit: the texture footprint and BSDF, and (bs = 1) the BSDF
-   * sample of the first draw of light sampling; when it will trace a BSDF ray (bray = 1), the
-   * environment's pdf and radiance in its direction */
-  int bs, bray;
-  elr_tex_ctx tc;
-  elr_v3 dpdx, dpdy;
-  elr_bsdf b;
-  elr_v3 fb, wb, Lb;
-  float bpdf, bpdf_env;
-} elr_first;
 
 /* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
  * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
@@ -52,7 +38,7 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
     if (!elr_isblack(fl)) {
       ts->shadow++;
-      if (!elr_occluded(s, elr_spawn_origin(h, f->wi), f->wi, INFINITY)) {
+      if (!(f->occ_l >= 0 ? f->occ_l : elr_occluded(s, elr_spawn_origin(h, f->wi), f->wi, INFINITY))) {
         float w = 1.f;
         if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(f->pdf, elr_bsdf_pdf(b, wo, f->wi));
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(fl, f->L), w / f->pdf));
@@ -63,7 +49,7 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
   if (sample_bsdf && f->bray) {
     elr_v3 fb = elr_mul(f->fb, fabsf(elr_dot(f->wb, b->ns)));
     ts->bsdfl++;
-    if (!elr_occluded(s, elr_spawn_origin(h, f->wb), f->wb, INFINITY)) {
+    if (!(f->occ_b >= 0 ? f->occ_b : elr_occluded(s, elr_spawn_origin(h, f->wb), f->wb, INFINITY))) {
       float w = C->ls == ELR_LS_MIS ? elr_power_heuristic(f->bpdf, f->bpdf_env) : 1.f;
       *Ld = elr_add(*Ld, elr_mul(elr_vmul(fb, f->Lb), w / f->bpdf));
     }
@@ -81,7 +67,15 @@ static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const e
   elr_sampler_skip2d(S);                                  /* the light draw, made ahead */
   if (f->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us); /* the BSDF draw (made ahead with its sample) */
   elr__estimate_direct_ahead(C, h, b, wo, f, sample_bsdf, ts, &Ld);
-  for (k = 1; k < n; k++) { /* the light's further samples, as the reference draws them */
+  for (k = 1; k < n; k++) { /* the light's further samples: drawn ahead too (the wave loop's splitting), or as the
+                              * reference draws them */
+    if (k - 1 < f->nmore) {
+      const elr_first *q = &f->more[k - 1];
+      elr_sampler_skip2d(S);
+      if (q->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us);
+      elr__estimate_direct_ahead(C, h, b, wo, q, sample_bsdf, ts, &Ld);
+      continue;
+    }
     elr_sampler_get2d(S, ul);
     elr_sampler_get2d(S, us);
     elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
@@ -89,8 +83,9 @@ static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const e
   return elr_add(L, elr_mul(Ld, 1.f / (float)n));
 }
 
-/* elr_direct_li's first iteration with the vertex computed ahead, then the reference from the second */
-static elr_v3 elr__direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts) {
+/* elr_direct_li's first iteration with the vertex computed ahead, then the reference from the second
+ * (also the wave loop's, render_wave.c, with the shadow rays' answers in f) */
+elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts) {
   elr_path_state p;
   elr_v3 wo;
   elr_path_begin(&p, r);
@@ -133,6 +128,7 @@ static elr_v3 elr__path_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r
   if (elr_isblack(fs) || pdf == 0.f) return p.L;
   p.beta = elr_mul(elr_vmul(p.beta, fs), fabsf(elr_dot(wi, b.ns)) / pdf);
   p.specular = spec; p.prev_pdf = pdf;
+  p.prev_has_n = elr_bsdf_cos_normal(&b, wo, &p.prev_n); /* (as elr_path_li; batching runs with map sampling) */
   if (spec == 2) p.eta_scale = elr_eta_scale(p.eta_scale, &b, wo);
   if (1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) return p.L;
   p.ray.o = elr_spawn_origin(f->h, wi); p.ray.d = wi; p.ray.has_diff = 0;
@@ -164,6 +160,8 @@ void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_t
       f[k].h = &h[k];
       f[k].hit = elr_intersect(C->s, r[k].o, r[k].d, INFINITY, &h[k]);
       f[k].bs = f[k].bray = 0;
+      f[k].occ_l = f[k].occ_b = -1; /* the shadow rays traced in the shading */
+      f[k].more = NULL; f[k].nmore = 0;
       idx[k] = -1;
       if (!f[k].hit) continue;
       elr_sampler_get2d(S, &u[2 * n]); /* the first light draw at the hit */
@@ -207,7 +205,7 @@ void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_t
         f[k].pdf = pdf[j];
       }
       elr_sampler_restore(S, &pos[k]); /* the sampler back at sample k, after its film draw */
-      L = C->path ? elr__path_first(C, S, &r[k], &f[k], ts) : elr__direct_first(C, S, &r[k], &f[k], ts);
+      L = C->path ? elr__path_first(C, S, &r[k], &f[k], ts) : elr_direct_first(C, S, &r[k], &f[k], ts);
       elr_to3(L, rgb);
       el_film_tile_add_sample(tile, fx[k], fy[k], rgb, 1.f);
       ts->samples++;

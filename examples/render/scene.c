@@ -286,9 +286,29 @@ static ELR_NOINLINE void elr__instance_hit(const elr_scene *s, int ii, unsigned 
   if (elr_dot(h->ns, h->ng) < 0.f) h->ns = elr_mul(h->ns, -1.f);
 }
 
+/* The hit record of ray o + t d from Embree's answer (geometry, instance, primitive, barycentrics, t):
+ * each shape's hit record (shapes.c), in world space also for an instance's shape. */
+static void elr__hit_record(const elr_scene *s, elr_v3 o, elr_v3 d, unsigned geom, unsigned inst, unsigned prim, float u, float v, float t,
+                            elr_hit *h) {
+  float pmax;
+  h->t = t;
+  h->prim = prim;
+  h->has_uv = 0;
+  h->inst = -1;
+  if (inst != RTC_INVALID_GEOMETRY_ID)
+    elr__instance_hit(s, s->geom_index[inst], geom, prim, u, v, o, d, h);
+  else if (geom == s->sphere_geom || geom == s->builtin_geom)
+    elr_sphere_hit(s, geom == s->sphere_geom ? s->sph_user[prim] : s->sph_builtin[prim], o, d, h);
+  else if (geom == s->disk_geom)
+    elr_disk_hit(s, (int)prim, o, d, h);
+  else
+    elr_triangle_hit(s, s->geom_index[geom], prim, u, v, h);
+  pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
+  h->eps = 2e-5f * (1.f + pmax);
+}
+
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h) {
   struct RTCRayHit rh;
-  float pmax;
   elr__rayhit_init(&rh, o, d, tmax);
 #if RTC_VERSION_MAJOR >= 4
   rtcIntersect1((RTCScene)s->rtscene, &rh, NULL);
@@ -300,20 +320,154 @@ int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h
   }
 #endif
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
-  h->t = rh.ray.tfar;
-  h->prim = rh.hit.primID;
-  h->has_uv = 0;
-  h->inst = -1;
-  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID)
-    elr__instance_hit(s, s->geom_index[rh.hit.instID[0]], rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, o, d, h);
-  else if (rh.hit.geomID == s->sphere_geom || rh.hit.geomID == s->builtin_geom)
-    elr_sphere_hit(s, rh.hit.geomID == s->sphere_geom ? s->sph_user[rh.hit.primID] : s->sph_builtin[rh.hit.primID], o, d, h);
-  else if (rh.hit.geomID == s->disk_geom)
-    elr_disk_hit(s, (int)rh.hit.primID, o, d, h);
-  else
-    elr_triangle_hit(s, s->geom_index[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, h);
-  pmax = fabsf(h->p.x); if (fabsf(h->p.y) > pmax) pmax = fabsf(h->p.y); if (fabsf(h->p.z) > pmax) pmax = fabsf(h->p.z);
-  h->eps = 2e-5f * (1.f + pmax);
+  elr__hit_record(s, o, d, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, h);
+  return 1;
+}
+
+/* >> a wave of rays (render_wave.c): one Embree call for many rays. ELR_WAVE_API_SINGLE traces them one
+ * by one (rtcIntersect1, rtcOccluded1), PACKET16 in packets of 16 (rtcIntersect16, rtcOccluded16; the
+ * last one masked), STREAM as one stream of rays (rtcIntersect1M, rtcOccluded1M), SOA as one stream in
+ * the wave's own arrays (rtcIntersectNp, rtcOccludedNp). coherent: the rays start near each other and
+ * point alike (camera rays), which lets Embree's streams trace them as packets. */
+#if RTC_VERSION_MAJOR < 4
+static void elr__wave_context(struct RTCIntersectContext *ctx, int coherent) {
+  rtcInitIntersectContext(ctx);
+  ctx->flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+}
+static void elr__wave_np(elr_wave_rays *w, struct RTCRayHitNp *np) {
+  np->ray.org_x = w->ox; np->ray.org_y = w->oy; np->ray.org_z = w->oz; np->ray.tnear = w->tnear;
+  np->ray.dir_x = w->dx; np->ray.dir_y = w->dy; np->ray.dir_z = w->dz; np->ray.time = w->time;
+  np->ray.tfar = w->tfar; np->ray.mask = w->mask; np->ray.id = w->id; np->ray.flags = w->flags;
+  np->hit.Ng_x = w->ngx; np->hit.Ng_y = w->ngy; np->hit.Ng_z = w->ngz; np->hit.u = w->u; np->hit.v = w->v;
+  np->hit.primID = w->prim; np->hit.geomID = w->geom; np->hit.instID[0] = w->inst;
+}
+#endif
+
+void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax) {
+  int i = w->n++;
+  w->ox[i] = o.x; w->oy[i] = o.y; w->oz[i] = o.z; w->tnear[i] = 0.f;
+  w->dx[i] = d.x; w->dy[i] = d.y; w->dz[i] = d.z; w->time[i] = 0.f;
+  w->tfar[i] = tmax; w->mask[i] = ~0u; w->id[i] = (unsigned)i; w->flags[i] = 0;
+  w->geom[i] = RTC_INVALID_GEOMETRY_ID; w->inst[i] = RTC_INVALID_GEOMETRY_ID;
+}
+
+void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coherent) {
+  RTCScene sc = (RTCScene)s->rtscene;
+  int i, k;
+#if RTC_VERSION_MAJOR < 4
+  struct RTCIntersectContext ctx;
+  elr__wave_context(&ctx, coherent);
+#endif
+  if (api == ELR_WAVE_API_SOA) {
+#if RTC_VERSION_MAJOR < 4
+    struct RTCRayHitNp np;
+    elr__wave_np(w, &np);
+    rtcIntersectNp(sc, &ctx, &np, (unsigned)w->n);
+    return;
+#else
+    api = ELR_WAVE_API_STREAM;
+#endif
+  }
+  if (api == ELR_WAVE_API_PACKET16) {
+    for (i = 0; i < w->n; i += 16) {
+      RTC_ALIGN(64) struct RTCRayHit16 rh; /* Embree wants the packet and its mask 64-byte aligned */
+      RTC_ALIGN(64) int valid[16];
+      for (k = 0; k < 16; k++) {
+        int j = i + k < w->n ? i + k : i; /* the last packet's unused lanes: a copy of its first ray, masked */
+        valid[k] = i + k < w->n ? -1 : 0;
+        rh.ray.org_x[k] = w->ox[j]; rh.ray.org_y[k] = w->oy[j]; rh.ray.org_z[k] = w->oz[j]; rh.ray.tnear[k] = 0.f;
+        rh.ray.dir_x[k] = w->dx[j]; rh.ray.dir_y[k] = w->dy[j]; rh.ray.dir_z[k] = w->dz[j]; rh.ray.time[k] = 0.f;
+        rh.ray.tfar[k] = w->tfar[j]; rh.ray.mask[k] = ~0u; rh.ray.id[k] = (unsigned)k; rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID; rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+#if RTC_VERSION_MAJOR >= 4
+      rtcIntersect16(valid, sc, &rh, NULL);
+#else
+      rtcIntersect16(valid, sc, &ctx, &rh);
+#endif
+      for (k = 0; k < 16 && i + k < w->n; k++) {
+        w->tfar[i + k] = rh.ray.tfar[k]; w->geom[i + k] = rh.hit.geomID[k]; w->inst[i + k] = rh.hit.instID[0][k];
+        w->prim[i + k] = rh.hit.primID[k]; w->u[i + k] = rh.hit.u[k]; w->v[i + k] = rh.hit.v[k];
+      }
+    }
+    return;
+  }
+  for (i = 0; i < w->n; i += ELR_WAVE_CHUNK) { /* one by one, or streams of up to ELR_WAVE_CHUNK rays */
+    struct RTCRayHit rh[ELR_WAVE_CHUNK];
+    int m = w->n - i < ELR_WAVE_CHUNK ? w->n - i : ELR_WAVE_CHUNK;
+    for (k = 0; k < m; k++) elr__rayhit_init(&rh[k], elr_v(w->ox[i + k], w->oy[i + k], w->oz[i + k]), elr_v(w->dx[i + k], w->dy[i + k], w->dz[i + k]), w->tfar[i + k]);
+#if RTC_VERSION_MAJOR >= 4
+    for (k = 0; k < m; k++) rtcIntersect1(sc, &rh[k], NULL);
+#else
+    if (api == ELR_WAVE_API_STREAM) rtcIntersect1M(sc, &ctx, rh, (unsigned)m, sizeof(struct RTCRayHit));
+    else for (k = 0; k < m; k++) rtcIntersect1(sc, &ctx, &rh[k]);
+#endif
+    for (k = 0; k < m; k++) {
+      w->tfar[i + k] = rh[k].ray.tfar; w->geom[i + k] = rh[k].hit.geomID; w->inst[i + k] = rh[k].hit.instID[0];
+      w->prim[i + k] = rh[k].hit.primID; w->u[i + k] = rh[k].hit.u; w->v[i + k] = rh[k].hit.v;
+    }
+  }
+}
+
+void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int coherent) {
+  RTCScene sc = (RTCScene)s->rtscene;
+  int i, k;
+#if RTC_VERSION_MAJOR < 4
+  struct RTCIntersectContext ctx;
+  elr__wave_context(&ctx, coherent);
+#endif
+  if (api == ELR_WAVE_API_SOA) {
+#if RTC_VERSION_MAJOR < 4
+    struct RTCRayHitNp np;
+    elr__wave_np(w, &np);
+    rtcOccludedNp(sc, &ctx, &np.ray, (unsigned)w->n);
+    return;
+#else
+    api = ELR_WAVE_API_STREAM;
+#endif
+  }
+  if (api == ELR_WAVE_API_PACKET16) {
+    for (i = 0; i < w->n; i += 16) {
+      RTC_ALIGN(64) struct RTCRay16 r;
+      RTC_ALIGN(64) int valid[16];
+      for (k = 0; k < 16; k++) {
+        int j = i + k < w->n ? i + k : i;
+        valid[k] = i + k < w->n ? -1 : 0;
+        r.org_x[k] = w->ox[j]; r.org_y[k] = w->oy[j]; r.org_z[k] = w->oz[j]; r.tnear[k] = 0.f;
+        r.dir_x[k] = w->dx[j]; r.dir_y[k] = w->dy[j]; r.dir_z[k] = w->dz[j]; r.time[k] = 0.f;
+        r.tfar[k] = w->tfar[j]; r.mask[k] = ~0u; r.id[k] = (unsigned)k; r.flags[k] = 0;
+      }
+#if RTC_VERSION_MAJOR >= 4
+      rtcOccluded16(valid, sc, &r, NULL);
+#else
+      rtcOccluded16(valid, sc, &ctx, &r);
+#endif
+      for (k = 0; k < 16 && i + k < w->n; k++) w->tfar[i + k] = r.tfar[k];
+    }
+    return;
+  }
+  for (i = 0; i < w->n; i += ELR_WAVE_CHUNK) {
+    struct RTCRay r[ELR_WAVE_CHUNK];
+    int m = w->n - i < ELR_WAVE_CHUNK ? w->n - i : ELR_WAVE_CHUNK;
+    for (k = 0; k < m; k++) {
+      r[k].org_x = w->ox[i + k]; r[k].org_y = w->oy[i + k]; r[k].org_z = w->oz[i + k]; r[k].tnear = 0.f;
+      r[k].dir_x = w->dx[i + k]; r[k].dir_y = w->dy[i + k]; r[k].dir_z = w->dz[i + k]; r[k].time = 0.f;
+      r[k].tfar = w->tfar[i + k]; r[k].mask = ~0u; r[k].id = 0; r[k].flags = 0;
+    }
+#if RTC_VERSION_MAJOR >= 4
+    for (k = 0; k < m; k++) rtcOccluded1(sc, &r[k], NULL);
+#else
+    if (api == ELR_WAVE_API_STREAM) rtcOccluded1M(sc, &ctx, r, (unsigned)m, sizeof(struct RTCRay));
+    else for (k = 0; k < m; k++) rtcOccluded1(sc, &ctx, &r[k]);
+#endif
+    for (k = 0; k < m; k++) w->tfar[i + k] = r[k].tfar;
+  }
+}
+
+int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h) {
+  if (w->geom[i] == RTC_INVALID_GEOMETRY_ID) return 0;
+  elr__hit_record(s, elr_v(w->ox[i], w->oy[i], w->oz[i]), elr_v(w->dx[i], w->dy[i], w->dz[i]), w->geom[i], w->inst[i], w->prim[i], w->u[i],
+                  w->v[i], w->tfar[i], h);
   return 1;
 }
 

@@ -72,30 +72,43 @@ static double elr__sph_hit(const elr_sphere *sp, float ox, float oy, float oz, f
   return -1;
 }
 
-/* one ray at a time (the renderer calls rtcIntersect1 / rtcOccluded1) */
+/* Embree's callbacks take N rays at once (N = 1 for rtcIntersect1, 4 to 16 for the packets and streams
+ * of render_wave.c), in its RTCRayN / RTCHitN layout: component k of ray i at ((float *)ray)[k * N + i]
+ * (org_x 0 .. dir_z 6, tnear 3, tfar 8; the hit after 12 N floats: u 3, v 4, primID 5, geomID 6,
+ * instID 7). valid[i] is -1 for the rays to answer. */
+#define ELR__RN(r, k, N, i) (((float *)(r))[(size_t)(k) * (N) + (i)])
+#define ELR__HN(r, k, N, i) (((unsigned *)(r))[(size_t)(12 + (k)) * (N) + (i)])
 void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a) {
   const elr_sphere_set *set = (const elr_sphere_set *)a->geometryUserPtr;
-  struct RTCRayHit *rh = (struct RTCRayHit *)a->rayhit;
   const elr_sphere *sp = &set->sph[set->idx[a->primID]];
-  double t;
-  if (!a->valid[0]) return;
-  t = elr__sph_hit(sp, rh->ray.org_x, rh->ray.org_y, rh->ray.org_z, rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z,
-                   rh->ray.tnear, rh->ray.tfar);
-  if (t < 0) return;
-  rh->ray.tfar = (float)t;
-  rh->hit.u = rh->hit.v = 0.f;
-  rh->hit.Ng_x = 0; rh->hit.Ng_y = 0; rh->hit.Ng_z = 1; /* computed in elr_sphere_hit */
-  rh->hit.primID = a->primID;
-  rh->hit.geomID = a->geomID;
-  rh->hit.instID[0] = a->context->instID[0]; /* the instance whose prototype holds the sphere, or none */
+  void *rh = a->rayhit;
+  unsigned N = a->N, i;
+  for (i = 0; i < N; i++) {
+    double t;
+    if (a->valid[i] != -1) continue;
+    t = elr__sph_hit(sp, ELR__RN(rh, 0, N, i), ELR__RN(rh, 1, N, i), ELR__RN(rh, 2, N, i), ELR__RN(rh, 4, N, i), ELR__RN(rh, 5, N, i),
+                     ELR__RN(rh, 6, N, i), ELR__RN(rh, 3, N, i), ELR__RN(rh, 8, N, i));
+    if (t < 0) continue;
+    ELR__RN(rh, 8, N, i) = (float)t;
+    ELR__RN(rh, 12 + 3, N, i) = ELR__RN(rh, 12 + 4, N, i) = 0.f;
+    /* the normal is computed in elr_sphere_hit */
+    ELR__RN(rh, 12 + 0, N, i) = 0.f; ELR__RN(rh, 12 + 1, N, i) = 0.f; ELR__RN(rh, 12 + 2, N, i) = 1.f;
+    ELR__HN(rh, 5, N, i) = a->primID;
+    ELR__HN(rh, 6, N, i) = a->geomID;
+    ELR__HN(rh, 7, N, i) = a->context->instID[0]; /* the instance whose prototype holds the sphere, or none */
+  }
 }
 void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a) {
   const elr_sphere_set *set = (const elr_sphere_set *)a->geometryUserPtr;
-  struct RTCRay *ray = (struct RTCRay *)a->ray;
   const elr_sphere *sp = &set->sph[set->idx[a->primID]];
-  if (!a->valid[0]) return;
-  if (elr__sph_hit(sp, ray->org_x, ray->org_y, ray->org_z, ray->dir_x, ray->dir_y, ray->dir_z, ray->tnear, ray->tfar) >= 0)
-    ray->tfar = -INFINITY;
+  void *r = a->ray;
+  unsigned N = a->N, i;
+  for (i = 0; i < N; i++) {
+    if (a->valid[i] != -1) continue;
+    if (elr__sph_hit(sp, ELR__RN(r, 0, N, i), ELR__RN(r, 1, N, i), ELR__RN(r, 2, N, i), ELR__RN(r, 4, N, i), ELR__RN(r, 5, N, i),
+                     ELR__RN(r, 6, N, i), ELR__RN(r, 3, N, i), ELR__RN(r, 8, N, i)) >= 0)
+      ELR__RN(r, 8, N, i) = -INFINITY;
+  }
 }
 
 /* The hit record of a ray o + t d (t in h->t) on sphere si: <<Refine sphere intersection point>>
@@ -171,26 +184,33 @@ static double elr__disk_hit(const elr_disk *dk, float ox, float oy, float oz, fl
 }
 void elr_disk_intersect(const struct RTCIntersectFunctionNArguments *a) {
   const elr_scene *s = (const elr_scene *)a->geometryUserPtr;
-  struct RTCRayHit *rh = (struct RTCRayHit *)a->rayhit;
-  double t, po[3];
-  if (!a->valid[0]) return;
-  t = elr__disk_hit(&s->disk[a->primID], rh->ray.org_x, rh->ray.org_y, rh->ray.org_z, rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z,
-                    rh->ray.tnear, rh->ray.tfar, po);
-  if (t < 0) return;
-  rh->ray.tfar = (float)t;
-  rh->hit.u = rh->hit.v = 0.f;
-  rh->hit.Ng_x = 0; rh->hit.Ng_y = 0; rh->hit.Ng_z = 1; /* computed in elr_disk_hit */
-  rh->hit.primID = a->primID;
-  rh->hit.geomID = a->geomID;
-  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  void *rh = a->rayhit;
+  unsigned N = a->N, i;
+  for (i = 0; i < N; i++) {
+    double t, po[3];
+    if (a->valid[i] != -1) continue;
+    t = elr__disk_hit(&s->disk[a->primID], ELR__RN(rh, 0, N, i), ELR__RN(rh, 1, N, i), ELR__RN(rh, 2, N, i), ELR__RN(rh, 4, N, i),
+                      ELR__RN(rh, 5, N, i), ELR__RN(rh, 6, N, i), ELR__RN(rh, 3, N, i), ELR__RN(rh, 8, N, i), po);
+    if (t < 0) continue;
+    ELR__RN(rh, 8, N, i) = (float)t;
+    ELR__RN(rh, 12 + 3, N, i) = ELR__RN(rh, 12 + 4, N, i) = 0.f;
+    ELR__RN(rh, 12 + 0, N, i) = 0.f; ELR__RN(rh, 12 + 1, N, i) = 0.f; ELR__RN(rh, 12 + 2, N, i) = 1.f; /* computed in elr_disk_hit */
+    ELR__HN(rh, 5, N, i) = a->primID;
+    ELR__HN(rh, 6, N, i) = a->geomID;
+    ELR__HN(rh, 7, N, i) = RTC_INVALID_GEOMETRY_ID;
+  }
 }
 void elr_disk_occluded(const struct RTCOccludedFunctionNArguments *a) {
   const elr_scene *s = (const elr_scene *)a->geometryUserPtr;
-  struct RTCRay *ray = (struct RTCRay *)a->ray;
-  double po[3];
-  if (!a->valid[0]) return;
-  if (elr__disk_hit(&s->disk[a->primID], ray->org_x, ray->org_y, ray->org_z, ray->dir_x, ray->dir_y, ray->dir_z, ray->tnear, ray->tfar, po) >= 0)
-    ray->tfar = -INFINITY;
+  void *r = a->ray;
+  unsigned N = a->N, i;
+  for (i = 0; i < N; i++) {
+    double po[3];
+    if (a->valid[i] != -1) continue;
+    if (elr__disk_hit(&s->disk[a->primID], ELR__RN(r, 0, N, i), ELR__RN(r, 1, N, i), ELR__RN(r, 2, N, i), ELR__RN(r, 4, N, i),
+                      ELR__RN(r, 5, N, i), ELR__RN(r, 6, N, i), ELR__RN(r, 3, N, i), ELR__RN(r, 8, N, i), po) >= 0)
+      ELR__RN(r, 8, N, i) = -INFINITY;
+  }
 }
 
 /* The hit record of a ray o + t d (t in h->t) on disk di: the point on the plane z = height in object

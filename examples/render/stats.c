@@ -11,6 +11,7 @@ double elr_now(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* CPU seconds of the whole process (every thread) */
 double elr_cpu_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
@@ -36,6 +37,24 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   else
     fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
             st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+  if (!st->nothing_emits) {
+    static const char *loops[3] = {"one sample at a time (the reference)", "a pixel's light samples together (render_batched.c)",
+                                   "waves of up to 256 camera samples (render_wave.c)"};
+    static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
+    fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
+    if (st->loop == 2) {
+      fprintf(f, ", Embree %s", st->wave_api >= 0 && st->wave_api < 4 ? apis[st->wave_api] : "?");
+      if (st->t_render > 0 && st->nthreads > 0)
+        fprintf(f, "; %.0f%% of the loop's time inside Embree", 100.0 * st->t_embree_loop / (st->t_render * st->nthreads));
+    }
+    fprintf(f, "\n");
+    if (st->split_auto)
+      fprintf(f, "  splitting          %d light and BSDF sample pair%s per camera sample, chosen by a pilot (%.3f s): relative "
+              "variance %.3g / %.3g and CPU %.3f / %.3f s at 1 / 4 pairs; predicted error x time %.2fx better than 1 pair\n",
+              st->split, st->split == 1 ? "" : "s", st->t_split_pilot, st->split_var[0], st->split_var[1], st->split_cpu[0], st->split_cpu[1],
+              st->split_gain);
+    else if (st->split > 1) fprintf(f, "  splitting          %d light and BSDF sample pairs per camera sample (given)\n", st->split);
+  }
   fprintf(f, "  env distribution   %s  %8.3f s  %10.1f KiB\n", st->distribution_built ? "built" : "not built", st->t_distribution,
           (double)st->bytes_distribution / 1024.0);
   fprintf(f, "  lights             %d, %d emitting (%d area); next-event estimation: %s; light distribution %s", st->lights,
@@ -56,6 +75,13 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       if (!l->emits) { fprintf(f, ": emits nothing\n"); continue; }
       if (l->pick > 0.f) fprintf(f, "; chosen with p = %.4g", l->pick);
       if (l->power > 0.0) fprintf(f, ", power %.4g", l->power);
+      if (l->kind == 0 && l->tables_built) {
+        static const char *im[4] = {"cellaverage", "pbrt-v3", "texel", "bilinear"};
+        if (l->env_product)
+          fprintf(f, "; sampled by product sampling (map x cosine: el_envlight_sample_li_cos)%s",
+                  l->env_map_built ? ", the map alone where a rough lobe transmits" : "");
+        else fprintf(f, "; sampled by the map alone (el_envlight_sample_li, importance %s)", im[l->env_importance & 3]);
+      }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
       if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");
       if (l->tables_built) fprintf(f, " (%.1f KiB)", (double)l->bytes / 1024.0);
@@ -65,7 +91,7 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
           st->splats_allocated ? "allocated" : "not allocated (nothing splats)");
-  fprintf(f, "  render             %8.3f s (%.4f s CPU, all threads)\n", st->t_render, st->t_render_cpu);
+  fprintf(f, "  render             %8.3f s  (CPU %.3f s)\n", st->t_render, st->t_render_cpu);
   fprintf(f, "  rays               %llu camera, %llu bounce, %llu shadow (light samples), %llu BSDF-sampled light; %llu total\n",
           (unsigned long long)st->camera_rays, (unsigned long long)st->bounce_rays, (unsigned long long)st->shadow_rays,
           (unsigned long long)st->bsdf_light_rays, (unsigned long long)rays);

@@ -415,6 +415,7 @@ static void renders(void) {
         elr_stats sa, sb;
         elr_render_options_default(&o);
         o.nthreads = 2; o.seed = 3; o.quiet = 1;
+        o.env_sampling = 0; /* (batching draws the map's own samples) */
         if (elr_render(s, &o, &a, &sa, err, sizeof err) == 0) {
           o.no_batch = 1;
           if (elr_render(s, &o, &b, &sb, err, sizeof err) == 0) {
@@ -423,6 +424,15 @@ static void renders(void) {
                      "%s: glass, metal, uber, rough glass, substrate: the batched image is the one-at-a-time image, bit for bit", integ[q]);
             elr_image_free(&b);
           }
+          elr_image_free(&a);
+        }
+        /* with product sampling (the default) rough glass's vertices sample the map alone: its tables
+         * are built too (and not for a scene without rough transmission: test_render_strategies) */
+        elr_render_options_default(&o);
+        o.nthreads = 2; o.seed = 3; o.quiet = 1; o.spp = 1;
+        if (elr_render(s, &o, &a, &sa, err, sizeof err) == 0) {
+          rt_check(sa.light[0].env_product && sa.light[0].env_map_built && !sa.light_samples_batched,
+                   "%s: product sampling with rough glass: the map's own tables built as well, one sample at a time", integ[q]);
           elr_image_free(&a);
         }
       }

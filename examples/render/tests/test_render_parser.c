@@ -26,7 +26,9 @@ static void defaults(void) {
   rt_check(s->d.xres == 1280 && s->d.yres == 720, "defaults: Film 1280 x 720 (pbrt-v3)");
   rt_check(!strcmp(s->d.filename, "pbrt.exr"), "defaults: filename pbrt.exr");
   rt_check(s->d.fov == 90.f, "defaults: fov 90");
-  rt_check(s->d.sampler == ELR_SAMPLER_HALTON && s->d.spp == 16, "defaults: halton, 16 pixel samples");
+  rt_check(s->d.sampler == ELR_SAMPLER_ZEROTWO && s->d.spp == 16 && s->d.dims == 16,
+           "defaults: 02sequence (the best measured; pbrt-v3's is halton), 16 pixel samples, 16 dimensions (%d, %d, %d)", s->d.sampler,
+           s->d.spp, s->d.dims);
   rt_check(s->d.integrator_path == 1 && s->d.maxdepth == 5, "defaults: path, maxdepth 5");
   rt_check(s->d.filter.type == ELR_PF_BOX && s->d.filter.xw == 0.5f, "defaults: box filter, radius 0.5");
   rt_check(s->nmat == 1 && s->mat[0].kind == ELR_MAT_MATTE && s->tex[s->mat[0].kd].value.x == 0.5f, "defaults: matte Kd 0.5");
@@ -435,6 +437,17 @@ static void errors(void) {
   }
   expect_error("aniso.pbrt", W("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"one.pfm\" \"float maxanisotropy\" 1e6\n"),
                "aniso.pbrt:3:", "\"maxanisotropy\" = 1e+06 is out of range [1, 1024]");
+  expect_error("envsampling.pbrt", W("LightSource \"infinite\" \"string sampling\" \"cosine\"\n"), "envsampling.pbrt:3:",
+               "sampling must be \"product\" or \"map\"");
+  { /* the infinite light's "sampling": product by default, "map" for pbrt-v3's (the map alone) */
+    char err[512];
+    elr_scene *a = rt_load("envs1.pbrt", W("LightSource \"infinite\"\n"), err, sizeof err);
+    elr_scene *b = rt_load("envs2.pbrt", W("LightSource \"infinite\" \"string sampling\" \"map\"\n"), err, sizeof err);
+    rt_check(a && b && a->nlight == 1 && b->nlight == 1 && a->light[0].sampling == ELR_ENVLS_PRODUCT && b->light[0].sampling == ELR_ENVLS_MAP,
+             "LightSource \"infinite\": \"string sampling\" product by default, \"map\" read");
+    elr_scene_free(a);
+    elr_scene_free(b);
+  }
   expect_error("envneg.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1 -1 1 ]\n"), "envneg.pbrt:3:", "L times scale (1 -1 1) must be finite and not negative");
   expect_error("envinf.pbrt", W("LightSource \"infinite\" \"rgb L\" [ 1e38 1 1 ] \"rgb scale\" [ 10 1 1 ]\n"), "envinf.pbrt:3:", "must be finite");
   expect_error("crop.pbrt", "Film \"image\" \"integer xresolution\" 8 \"float cropwindow\" [ 0.51 0.55 0 1 ]\nWorldBegin\nWorldEnd\n",
@@ -640,13 +653,14 @@ static void cli(void) {
                  strstr(log, "env distribution") && !strstr(log, "warning"),
              "progress bar (elapsed, remaining), --stats, closing line with samples/s and rays/s; no warning");
   }
-  /* samples the film rejects (here light-sampled radiance overflowing a float: 3e38 x 4 cos) are said,
+  /* samples the film rejects (here light-sampled radiance overflowing a float: 3e38 x 4 cos, from the
+   * map alone's uniform sphere; product sampling's cosine sampling would give 3e38 exactly) are said,
    * even with --quiet: the image lacks them */
   rt_write("hot.pbrt", "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\n"
                        "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 6\nSampler \"random\" \"integer pixelsamples\" 2\n"
                        "Integrator \"directlighting\"\nWorldBegin\nLightSource \"infinite\" \"rgb L\" [ 3e38 3e38 3e38 ]\n"
                        "Material \"matte\" \"rgb Kd\" [ 1 1 1 ]\nShape \"sphere\"\nWorldEnd\n");
-  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --light-sampling light --quiet 2>'%s'", bin, rt_path("hot.pbrt"), rt_path("hot.pfm"),
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --light-sampling light --env-sampling map --quiet 2>'%s'", bin, rt_path("hot.pbrt"), rt_path("hot.pfm"),
            rt_path("hot.txt"));
   r = system(cmd);
   {

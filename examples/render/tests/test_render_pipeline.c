@@ -153,7 +153,8 @@ int main(void) {
    * vertex's light sample), sample counts that are not a multiple of the batch of 32, an environment
    * with several samples per vertex (the batched first sample, then the others one at a time), and the
    * cases that turn batching off (a second emitting light; stratified strata or 02sequence dimensions
-   * that cover fewer draws). */
+   * that cover fewer draws). Batching draws the map's own samples (product sampling has no n-at-once
+   * form): the environment is sampled by the map alone here. */
   {
     static const char *cases[][3] = { /* sampler and integrator, batched?, the environment's parameters */
       {"Sampler \"stratified\" \"integer xsamples\" 6 \"integer ysamples\" 7\nIntegrator \"directlighting\"\n", "1", ""},
@@ -201,6 +202,7 @@ int main(void) {
       for (lsmode = 0; lsmode < (c == 0 ? 2 : 1); lsmode++) {
         elr_render_options_default(&o);
         o.nthreads = 2; o.seed = 5; o.quiet = 1;
+        o.env_sampling = 0; /* batching draws the map's own samples (el_envlight_sample_li_n) */
         if (lsmode) o.light_sampling = ELR_LS_LIGHT;
         if (elr_render(s, &o, &a, &sa, err, sizeof err) == 0) {
           o.no_batch = 1;

@@ -1,0 +1,415 @@
+/* render_wave.c: the wave loop. A tile's camera samples go through the integrator a wave at a time,
+ * each stage for the whole wave before the next: the wave's rays in one Embree call (packets of 16 or
+ * streams: scene.c's elr_wave_intersect / elr_wave_occluded), its environment light samples in one
+ * el_envlight_sample_li_n call, its environment lookups in one pass, so that their cache misses overlap.
+ * With product sampling (the default, el_envlight_sample_li_cos: a normal per sample, no n-at-once
+ * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
+ *
+ * The same computation as the one-sample-at-a-time loop of render.c (integrator_direct.c,
+ * integrator_path.c), in another order, for the scenes that render_batched.c takes too: the
+ * environment is the only light that emits, and it is sampled (elr_render decides: elr_ctx.batch_light,
+ * elr_ctx.loop). A wave is up to ELR_WAVE camera samples of consecutive pixels of the tile (each pixel's
+ * samples together, one sampler per pixel: the sampler gives every (pixel, sample, dimension) its
+ * number whichever order they are asked in).
+ *
+ * Direct lighting: the first vertex as render_batched.c computes it ahead (elr_first), with the
+ *   wave's camera rays, light samples and shadow rays (light and BSDF sampled) each in one call; then
+ *   elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
+ *   vertex (specular reflection and transmission, a light's further "samples").
+ * Path: every vertex is a wave. For the paths still alive: their rays in one call; at each hit the
+ *   BSDF, the light-sample and BSDF draws; the light samples in one el_envlight_sample_li_n call and
+ *   the escaped rays' environment (pdf and radiance) in one pass; the shadow rays in one call; then
+ *   each path's radiance, throughput and Russian roulette as elr_path_li computes them.
+ * Each sample's sums are made in the reference's order, and the film takes the samples in the
+ * reference's order, so the image is bit for bit the one-at-a-time image where the sampler gives the
+ * same numbers in any order: every sampler for the direct-lighting first vertex (render.c asks for
+ * elr_sampler_order_free); for the path tracer's later vertices, the pixel samplers (stratified,
+ * 02sequence) draw past their dimensions from the pixel's one stream, which the wave reaches in another
+ * order: other numbers of the same distribution (test_render_wave checks both). A change to
+ * EstimateDirect or to elr_path_li must be made here too (test_render_wave fails until it is). */
+#include "elr_internal.h"
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef ELR_WAVE
+#define ELR_WAVE 256 /* camera samples in a wave at most */
+#endif
+
+/* the wave's Embree calls, timed (a few calls per wave: the clock costs nothing next to them) */
+static void elr__intersect(const elr_ctx *C, elr_wave_rays *w, int coherent, elr_tstats *ts) {
+  double t0 = elr_now();
+  elr_wave_intersect(C->s, w, C->wave_api, coherent);
+  ts->t_embree += elr_now() - t0;
+}
+static void elr__occluded(const elr_ctx *C, elr_wave_rays *w, elr_tstats *ts) {
+  double t0 = elr_now();
+  elr_wave_occluded(C->s, w, C->wave_api, 0);
+  ts->t_embree += elr_now() - t0;
+}
+
+struct elr_wave {
+  elr_sampler *S; /* one per pixel of a wave */
+  int nS, npix;   /* samplers made, pixels per wave */
+  /* per camera sample of the wave */
+  int pix[ELR_WAVE];
+  float fx[ELR_WAVE], fy[ELR_WAVE];
+  elr_sampler_pos pos[ELR_WAVE];
+  elr_ray cam[ELR_WAVE];
+  elr_hit h[ELR_WAVE];
+  elr_first f[ELR_WAVE]; /* direct lighting */
+  int npair, cap;        /* the light sample pairs drawn ahead per camera sample; camera samples per wave (ELR_WAVE / npair) */
+  elr_first more[ELR_WAVE]; /* the further pairs of each camera sample (elr_first.more) */
+  elr_first *pair[ELR_WAVE];
+  int pair_of[ELR_WAVE];
+  /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
+  elr_path_state p[ELR_WAVE];
+  int alive[ELR_WAVE], ray[ELR_WAVE], light[ELR_WAVE], shadow[ELR_WAVE], escaped[ELR_WAVE], bshadow[ELR_WAVE];
+  elr_bsdf b[ELR_WAVE];
+  elr_v3 fs[ELR_WAVE], wnext[ELR_WAVE], contrib[ELR_WAVE];
+  float pdfs[ELR_WAVE];
+  int spec[ELR_WAVE];
+  /* the environment sampled (u in, directions, radiance, pdf out) and looked up */
+  float u[2 * ELR_WAVE], wi[3 * ELR_WAVE], Le[3 * ELR_WAVE], pdf[ELR_WAVE];
+  elr_v3 normal[ELR_WAVE]; /* product sampling: each light sample's normal (elr_bsdf_cos_normal), */
+  int has_n[ELR_WAVE];     /* or 0: the map alone */
+  elr_wave_rays rays, shadows;
+};
+
+elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile) {
+  elr_wave *W = (elr_wave *)calloc(1, sizeof *W);
+  int i, npix;
+  if (!W) return NULL;
+  /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
+  W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
+  if (W->npair > ELR_WAVE) W->npair = ELR_WAVE;
+  W->cap = ELR_WAVE / W->npair;
+  npix = C->spp >= W->cap ? 1 : W->cap / C->spp;
+  if (npix > tile * tile) npix = tile * tile;
+  W->S = (elr_sampler *)calloc((size_t)npix, sizeof(elr_sampler));
+  if (!W->S) { free(W); return NULL; }
+  for (i = 0; i < npix; i++) {
+    if (elr_sampler_init(&W->S[i], &C->sampler, seed, T) != 0) { elr_wave_free(W); return NULL; }
+    W->nS++;
+  }
+  W->npix = npix;
+  return W;
+}
+
+void elr_wave_free(elr_wave *W) {
+  int i;
+  if (!W) return;
+  for (i = 0; i < W->nS; i++) elr_sampler_free(&W->S[i]);
+  free(W->S);
+  free(W);
+}
+
+/* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
+ * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
+ * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does) */
+static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, float *wi, float *Le,
+                             float *pdf) {
+  int i;
+  if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
+  for (i = 0; i < n; i++) {
+    if (has_n[i]) {
+      float nn[3];
+      elr_to3(normal[i], nn);
+      el_envlight_sample_li_cos(l->env_sample, nn, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
+    } else {
+      el_envlight_sample_li(l->env_sample, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
+    }
+  }
+}
+
+/* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
+ * in W->rays, traced): render_batched.c's phases 1 and 2 for the whole wave, for each of the light's
+ * W->npair sample pairs (its "samples" count, or splitting's), then all their shadow rays */
+static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
+  const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
+  int j, k, n = 0, np = 0, nm = 0;
+  W->shadows.n = 0;
+  for (j = 0; j < m; j++) {
+    elr_first *q = &W->f[j];
+    elr_sampler *S = &W->S[W->pix[j]];
+    elr_v3 wo = elr_mul(W->cam[j].d, -1.f);
+    q->h = &W->h[j];
+    q->bs = q->bray = 0;
+    q->occ_l = q->occ_b = -1;
+    q->pdf = 0.f;
+    q->more = NULL; q->nmore = 0;
+    q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
+    if (!q->hit) continue;
+    elr_sampler_restore(S, &W->pos[j]);
+    elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
+    elr_bsdf_init(C->s, &W->h[j], &q->tc, &q->b);
+    if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
+    q->more = &W->more[nm]; q->nmore = W->npair - 1; nm += W->npair - 1;
+    for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
+      elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
+      float us[2];
+      p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f;
+      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1;
+      elr_sampler_get2d(S, &W->u[2 * n]);
+      elr_sampler_get2d(S, us);
+      if (C->ls != ELR_LS_BSDF) {
+        W->has_n[n] = elr_bsdf_cos_normal(&q->b, wo, &W->normal[n]);
+        W->light[np] = n++;
+      }
+      if (C->ls != ELR_LS_LIGHT) {
+        int spec;
+        p->fb = elr_bsdf_sample(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
+        p->bs = 1;
+        p->bray = !spec && p->bpdf > 0.f && !elr_isblack(p->fb); /* elr_estimate_direct's BSDF ray */
+      }
+      np++;
+    }
+  }
+  /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the BSDF
+   * samples' directions, then the light samples */
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k];
+    float d[3], L3[3];
+    if (!p->bray) continue;
+    elr_to3(p->wb, d);
+    if (C->batch_light->product) {
+      elr_v3 nc;
+      int has = elr_bsdf_cos_normal(&W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      p->bpdf_env = elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
+    } else {
+      p->bpdf_env = el_envlight_pdf_li(env_sample, d);
+    }
+    el_envlight_le(env, d, L3);
+    p->Lb = elr_from3(L3);
+  }
+  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->wi, W->Le, W->pdf);
+  /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
+   * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k], *q = &W->f[W->pair_of[k]];
+    int i = W->light[k];
+    W->shadow[k] = W->bshadow[k] = -1;
+    if (i >= 0) {
+      elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
+      p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
+      if (p->pdf > 0.f && !elr_isblack(elr_mul(elr_bsdf_f(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
+        W->shadow[k] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi), p->wi, INFINITY);
+      }
+    }
+    if (p->bray) {
+      W->bshadow[k] = W->shadows.n;
+      elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wb), p->wb, INFINITY);
+    }
+  }
+  elr__occluded(C, &W->shadows, ts);
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k];
+    p->occ_l = W->shadow[k] >= 0 ? W->shadows.tfar[W->shadow[k]] < 0.f : 0;
+    p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
+  }
+}
+
+/* the path tracer (elr_path_li) for the m camera samples of the wave, every vertex a wave; their camera
+ * rays in W->rays, traced */
+static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
+  const elr_scene *s = C->s;
+  const elr_light *l = C->batch_light;
+  const el_envlight *env = l->env, *env_sample = l->env_sample;
+  const float pick = C->ld.pick ? C->ld.pick[l - s->light] : 1.f; /* the one emitting light: 1 */
+  int j, depth, nalive = m;
+  for (j = 0; j < m; j++) { elr_path_begin(&W->p[j], &W->cam[j]); W->alive[j] = 1; W->ray[j] = j; }
+  for (depth = 0; nalive > 0; depth++) {
+    int n = 0, ne = 0;
+    if (depth > 0) { /* the rays of the paths alive, in one call */
+      W->rays.n = 0;
+      for (j = 0; j < m; j++) if (W->alive[j]) { W->ray[j] = W->rays.n; elr_wave_add(&W->rays, W->p[j].ray.o, W->p[j].ray.d, INFINITY); }
+      elr__intersect(C, &W->rays, 0, ts);
+    }
+    /* <<Intersect ray with scene and store intersection in isect>>, <<Possibly add emitted light at
+     * intersection>>, the BSDF, the draws of light sampling and of the BSDF sample */
+    for (j = 0; j < m; j++) {
+      elr_path_state *p = &W->p[j];
+      elr_hit *h = &W->h[j];
+      elr_bsdf *b = &W->b[j];
+      elr_sampler *S = &W->S[W->pix[j]];
+      elr_tex_ctx tc;
+      elr_v3 wo, dpdx, dpdy;
+      float u[2];
+      W->light[j] = W->escaped[j] = -1;
+      if (!W->alive[j]) continue;
+      if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
+        float d[3];
+        elr_to3(p->ray.d, d);
+        W->escaped[j] = ne;
+        memcpy(&W->wi[3 * ne], d, sizeof d);
+        ne++;
+        continue;
+      }
+      if (h->light >= 0) {
+        elr_v3 Le = elr_hit_le(s, h, elr_mul(p->ray.d, -1.f));
+        float w = 1.f;
+        if (p->depth > 0 && !p->specular && C->light_sampling) {
+          if (C->ls == ELR_LS_LIGHT) w = 0.f;
+          else if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(p->prev_pdf, C->ld.pick[h->light] * elr_area_light_pdf(s, &s->light[h->light], p->ray.o, h));
+        }
+        p->L = elr_add(p->L, elr_mul(elr_vmul(p->beta, Le), w));
+      }
+      /* <<Terminate path if maxDepth was reached>> */
+      if (p->depth >= C->maxdepth) { W->alive[j] = 0; nalive--; continue; }
+      /* <<Compute scattering functions and skip over medium boundaries>> */
+      if (p->depth == 0) elr_compute_differentials(s, &p->ray, h, &tc, &dpdx, &dpdy);
+      else {
+        memset(&tc, 0, sizeof tc);
+        if (s->mat_textured[h->material]) { elr_hit_uv(s, h); tc.u = h->u; tc.v = h->v; }
+      }
+      elr_bsdf_init(s, h, &tc, b);
+      wo = elr_mul(p->ray.d, -1.f);
+      elr_sampler_restore(S, &W->pos[j]);
+      if (C->light_sampling && (b->has_diffuse || b->has_glossy)) {
+        /* UniformSampleOneLight with the one light: its light draw, then the BSDF draw it makes and
+         * does not use (sample_bsdf = 0) */
+        float us[2];
+        elr_sampler_get2d(S, &W->u[2 * n]);
+        elr_sampler_get2d(S, us);
+        W->has_n[n] = elr_bsdf_cos_normal(b, wo, &W->normal[n]);
+        W->light[j] = n++;
+      }
+      /* <<Sample BSDF to get new path direction>> */
+      elr_sampler_get2d(S, u);
+      W->fs[j] = elr_bsdf_sample(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
+      elr_sampler_save(S, &W->pos[j]);
+    }
+    /* the light samples in one call; the escaped rays' environment in one pass */
+    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne);
+    for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
+      int e = W->escaped[j];
+      if (e < 0) continue;
+      if (l->product) W->pdf[e] = elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
+      else W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
+      el_envlight_le(env, &W->wi[3 * e], &W->Le[3 * e]);
+    }
+    /* escaped paths end; the light samples' BSDF values, MIS weights and shadow rays */
+    W->shadows.n = 0;
+    for (j = 0; j < m; j++) {
+      elr_path_state *p = &W->p[j];
+      int e = W->escaped[j], i = W->light[j];
+      W->shadow[j] = -1;
+      if (e >= 0) {
+        float w = 1.f;
+        int skip = 0;
+        if (p->depth > 0 && !p->specular && C->light_sampling) {
+          if (C->ls == ELR_LS_LIGHT) skip = 1;
+          else if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(p->prev_pdf, pick * W->pdf[e]);
+        }
+        if (!skip) p->L = elr_add(p->L, elr_mul(elr_vmul(p->beta, elr_from3(&W->Le[3 * e])), w));
+        W->alive[j] = 0; nalive--;
+        continue;
+      }
+      if (i >= 0) { /* elr_estimate_direct's light-sampled term (no BSDF-sampled term in the path tracer) */
+        const elr_bsdf *b = &W->b[j];
+        elr_v3 wo = elr_mul(p->ray.d, -1.f), wi = elr_from3(&W->wi[3 * (ne + i)]);
+        float lpdf = W->pdf[ne + i];
+        W->contrib[j] = elr_v(0, 0, 0);
+        if (C->ls != ELR_LS_BSDF && lpdf > 0.f) {
+          elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+          if (!elr_isblack(fl)) {
+            float w = 1.f;
+            ts->shadow++;
+            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, elr_bsdf_pdf(b, wo, wi));
+            W->contrib[j] = elr_mul(elr_vmul(fl, elr_from3(&W->Le[3 * (ne + i)])), w / lpdf);
+            W->shadow[j] = W->shadows.n;
+            elr_wave_add(&W->shadows, elr_spawn_origin(&W->h[j], wi), wi, INFINITY);
+          }
+        }
+      }
+    }
+    elr__occluded(C, &W->shadows, ts);
+    /* each path's direct light, then its next ray (<<Possibly terminate the path with Russian roulette>>) */
+    for (j = 0; j < m; j++) {
+      elr_path_state *p = &W->p[j];
+      const elr_bsdf *b = &W->b[j];
+      elr_v3 wo = elr_mul(p->ray.d, -1.f), wi = W->wnext[j], f = W->fs[j];
+      float pdf = W->pdfs[j];
+      int spec = W->spec[j];
+      if (!W->alive[j]) continue;
+      if (W->light[j] >= 0) {
+        elr_v3 Ld = elr_v(0, 0, 0);
+        if (W->shadow[j] >= 0 && !(W->shadows.tfar[W->shadow[j]] < 0.f)) Ld = elr_add(Ld, W->contrib[j]);
+        p->L = elr_add(p->L, elr_vmul(p->beta, elr_mul(Ld, 1.f / pick)));
+      }
+      if (elr_isblack(f) || pdf == 0.f) { W->alive[j] = 0; nalive--; continue; }
+      p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
+      p->specular = spec; p->prev_pdf = pdf;
+      p->prev_has_n = elr_bsdf_cos_normal(b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
+      if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
+        W->alive[j] = 0; nalive--; continue;
+      }
+      p->ray.o = elr_spawn_origin(&W->h[j], wi); p->ray.d = wi; p->ray.has_diff = 0;
+      ts->bounce++;
+      {
+        float mc = elr_maxc(p->beta) * p->eta_scale;
+        if (p->depth > 3 && mc < C->rr) {
+          elr_sampler *S = &W->S[W->pix[j]];
+          float q = fmaxf(0.05f, 1.f - mc);
+          elr_sampler_restore(S, &W->pos[j]);
+          if (elr_sampler_get1d(S) < q) { W->alive[j] = 0; nalive--; continue; }
+          elr_sampler_save(S, &W->pos[j]);
+          p->beta = elr_mul(p->beta, 1.f / (1.f - q));
+        }
+      }
+      p->depth++;
+    }
+  }
+}
+
+/* The camera samples of tile [x0, x1) x [y0, y1) into tile, a wave at a time: whole pixels while they
+ * fit (each with its own sampler), or, when a pixel has more than W->cap samples, W->cap of them
+ * (then a wave is one pixel and its sampler goes on in the next). */
+void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1, int y1, el_film_tile *tile, elr_tstats *ts) {
+  int w = x1 - x0, npx = w * (y1 - y0), p = 0, k0 = 0;
+  while (p < npx) {
+    int m = 0, j, np = 0;
+    while (p < npx && np < W->npix) {
+      int x = x0 + (p % w), y = y0 + (p / w), k, take = C->spp - k0;
+      elr_sampler *S = &W->S[np];
+      if (take > W->cap - m) {
+        if (m > 0) break;
+        take = W->cap;
+      }
+      if (k0 == 0) elr_sampler_start_pixel(S, x, y);
+      for (k = k0; k < k0 + take; k++, m++) {
+        /* <<Initialize CameraSample for current sample>>, <<Generate camera ray for current sample>> */
+        W->pix[m] = np;
+        elr_sampler_camera_sample(S, k, x, y, &W->fx[m], &W->fy[m]);
+        elr_sampler_save(S, &W->pos[m]);
+        elr_camera_ray(&C->cam, W->fx[m], W->fy[m], &W->cam[m]);
+        ts->camera++;
+      }
+      np++;
+      k0 += take;
+      if (k0 < C->spp) break; /* the pixel goes on in the next wave (npix is 1 then) */
+      k0 = 0; p++;
+    }
+    /* the camera rays in one call */
+    W->rays.n = 0;
+    for (j = 0; j < m; j++) elr_wave_add(&W->rays, W->cam[j].o, W->cam[j].d, INFINITY);
+    elr__intersect(C, &W->rays, 1, ts);
+    if (C->path) elr__path_wave(C, W, m, ts);
+    else elr__direct_wave(C, W, m, ts);
+    /* <<Add camera ray's contribution to image>>, in the reference's order */
+    for (j = 0; j < m; j++) {
+      float rgb[3];
+      elr_v3 L;
+      if (C->path) L = W->p[j].L;
+      else {
+        elr_sampler *S = &W->S[W->pix[j]];
+        elr_sampler_restore(S, &W->pos[j]); /* the sampler back at sample j, after its film draw */
+        L = elr_direct_first(C, S, &W->cam[j], &W->f[j], ts);
+      }
+      elr_to3(L, rgb);
+      el_film_tile_add_sample(tile, W->fx[j], W->fy[j], rgb, 1.f);
+      ts->samples++;
+    }
+  }
+}

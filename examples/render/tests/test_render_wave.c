@@ -1,0 +1,154 @@
+/* test_render_wave: the wave loop (render_wave.c) against the one-sample-at-a-time reference (render.c
+ * with integrator_direct.c and integrator_path.c).
+ *  1. Bit for bit, with the same ray counts, where the sampler gives the same numbers in any order:
+ *     direct lighting and path, each of the wave loop's four ways of calling Embree (rtcIntersect1,
+ *     packets of 16, rtcIntersect1M, rtcIntersectNp), samplers random / halton / zsobol / sobol /
+ *     stratified (direct lighting), a light's "samples" 3, strategy "one", light sampling only, BSDF
+ *     sampling only, a textured plane (ray differentials), a mirror and a glass sphere (specular
+ *     bounces), 1 spp (a wave of 256 pixels over several rows and tiles), 300 and 289 spp (a pixel in two
+ *     waves), an image whose tiles are not whole (20 x 18 pixels).
+ *  2. The same image for 1 and 3 threads.
+ *  3. The path tracer with the stratified sampler, forced into the wave loop: draws past the sampler's
+ *     dimensions come in another order, so the images differ; the mean of the per-pixel difference
+ *     (luminance) must be within 4 standard errors of 0 (the standard error from the pixels' own
+ *     spread: a false alarm has probability about 6e-5).
+ *  4. The render chose the wave loop (elr_stats.loop) where it should, and not where it should not (BSDF
+ *     sampling only samples no light: the cases of 1. with it run the reference loop). */
+#include "render_test_util.h"
+
+static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
+  static char buf[8192];
+  snprintf(buf, sizeof buf,
+           "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+           "Film \"image\" \"integer xresolution\" %d \"integer yresolution\" %d\n%s\n%s\n"
+           "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"env.pfm\" \"float scale\" 2%s\n"
+           "Texture \"chk\" \"spectrum\" \"checkerboard\" \"float uscale\" 8 \"float vscale\" 8\n"
+           "AttributeBegin\nMaterial \"plastic\" \"texture Kd\" \"chk\" \"float roughness\" 0.05\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\n"
+           "  \"float uv\" [ 0 0 1 0 1 1 0 1 ]\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0.3 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"mirror\"\nTranslate 0.7 0.5 0.3\nShape \"sphere\" \"float radius\" 0.4\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"glass\"\nTranslate 0.1 0.3 -1\nShape \"sphere\" \"float radius\" 0.3\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"metal\" \"float roughness\" 0.2\nTranslate -0.2 1.3 0.8\nShape \"sphere\" \"float radius\" 0.35\nAttributeEnd\n"
+           "WorldEnd\n",
+           w, h, sampler, integrator, lightparams);
+  return rt_load("wave.pbrt", buf, err, 512);
+}
+
+static int render(elr_scene *s, int loop, int api, int ls, int nthreads, int spp, elr_image *img, elr_stats *st, char *err) {
+  elr_render_options o;
+  elr_render_options_default(&o);
+  o.nthreads = nthreads; o.seed = 11; o.quiet = 1; o.loop = loop; o.wave_api = api; o.light_sampling = ls; o.spp = spp;
+  return elr_render(s, &o, img, st, err, 512);
+}
+
+int main(void) {
+  char err[512];
+  rt_mkdir("test_render_wave");
+  {
+    float env[3 * 32 * 16];
+    int i;
+    for (i = 0; i < 3 * 32 * 16; i++) env[i] = 0.2f + (float)((i * 7) % 11) * (i % 3 == 0 ? 3.f : 1.f);
+    el_image_write_pfm(rt_path("env.pfm"), env, 32, 16, 3, err, sizeof err);
+  }
+  /* 1. and 2. bit for bit */
+  {
+    static const struct { const char *sampler, *integrator, *light; int ls, spp, w, h; } cases[] = {
+      {"Sampler \"stratified\" \"integer xsamples\" 4 \"integer ysamples\" 4", "Integrator \"directlighting\"", "", -1, 0, 20, 18},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 16", "Integrator \"directlighting\"", " \"integer samples\" 3", -1, 0, 20, 18},
+      {"Sampler \"halton\" \"integer pixelsamples\" 7", "Integrator \"directlighting\" \"string strategy\" \"one\"", "", -1, 0, 20, 18},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "Integrator \"directlighting\"", "", ELR_LS_LIGHT, 0, 20, 18},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "Integrator \"directlighting\"", "", ELR_LS_BSDF, 0, 20, 18},
+      {"Sampler \"random\" \"integer pixelsamples\" 1", "Integrator \"directlighting\"", "", -1, 0, 40, 36},
+      {"Sampler \"halton\" \"integer pixelsamples\" 300", "Integrator \"directlighting\"", "", -1, 0, 6, 5},
+      {"Sampler \"stratified\" \"integer xsamples\" 17 \"integer ysamples\" 17", "Integrator \"directlighting\"", "", -1, 0, 6, 5},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "Integrator \"path\" \"integer maxdepth\" 6", "", -1, 0, 20, 18},
+      {"Sampler \"random\" \"integer pixelsamples\" 5", "Integrator \"path\" \"integer maxdepth\" 8", "", -1, 0, 20, 18},
+      {"Sampler \"halton\" \"integer pixelsamples\" 3", "Integrator \"path\" \"integer maxdepth\" 5", "", ELR_LS_LIGHT, 0, 20, 18},
+      {"Sampler \"sobol\" \"integer pixelsamples\" 4", "Integrator \"path\" \"integer maxdepth\" 5", "", ELR_LS_BSDF, 0, 20, 18},
+      {"Sampler \"random\" \"integer pixelsamples\" 1", "Integrator \"path\" \"integer maxdepth\" 5", "", -1, 0, 40, 36},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 512", "Integrator \"path\" \"integer maxdepth\" 3", "", -1, 0, 4, 3},
+      /* the cases above sample the product of the map and the cosine (the default); the map alone: */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 16", "Integrator \"directlighting\"", " \"integer samples\" 2 \"string sampling\" \"map\"", -1, 0, 20, 18},
+      {"Sampler \"random\" \"integer pixelsamples\" 5", "Integrator \"path\" \"integer maxdepth\" 8", " \"string sampling\" \"map\"", -1, 0, 20, 18},
+    };
+    int c, api;
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      elr_scene *s = load(cases[c].sampler, cases[c].integrator, cases[c].light, cases[c].w, cases[c].h, err);
+      elr_image ref;
+      elr_stats sr;
+      if (!s) { rt_check(0, "case %d: %s", c, err); continue; }
+      if (render(s, ELR_LOOP_ONE, -1, cases[c].ls, 2, cases[c].spp, &ref, &sr, err) != 0) { rt_check(0, "case %d: %s", c, err); elr_scene_free(s); continue; }
+      for (api = ELR_WAVE_API_SINGLE; api <= ELR_WAVE_API_SOA; api++) {
+        elr_image img;
+        elr_stats st;
+        int nthreads = api == ELR_WAVE_API_PACKET16 ? 3 : 1; /* the same image for any thread count */
+        if (render(s, ELR_LOOP_WAVE, api, cases[c].ls, nthreads, cases[c].spp, &img, &st, err) != 0) { rt_check(0, "case %d api %d: %s", c, api, err); continue; }
+        {
+          size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+          double m = 0;
+          for (k = 0; k < n; k++) { diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0; m += img.rgb[k]; }
+          rt_check(st.loop == (cases[c].ls == ELR_LS_BSDF ? ELR_LOOP_ONE : ELR_LOOP_WAVE) && sr.loop == ELR_LOOP_ONE && diff == 0 && m > 0 && st.shadow_rays == sr.shadow_rays &&
+                       st.bounce_rays == sr.bounce_rays && st.bsdf_light_rays == sr.bsdf_light_rays && st.camera_rays == sr.camera_rays,
+                   "case %d (%s, %s), wave api %d, %d thread%s: %zu of %zu values differ from the reference; rays camera %llu/%llu, "
+                   "bounce %llu/%llu, shadow %llu/%llu, bsdf %llu/%llu",
+                   c, cases[c].sampler, cases[c].integrator, api, nthreads, nthreads > 1 ? "s" : "", diff, n,
+                   (unsigned long long)st.camera_rays, (unsigned long long)sr.camera_rays, (unsigned long long)st.bounce_rays,
+                   (unsigned long long)sr.bounce_rays, (unsigned long long)st.shadow_rays, (unsigned long long)sr.shadow_rays,
+                   (unsigned long long)st.bsdf_light_rays, (unsigned long long)sr.bsdf_light_rays);
+          elr_image_free(&img);
+        }
+      }
+      elr_image_free(&ref);
+      elr_scene_free(s);
+    }
+  }
+  /* 3. the path tracer, stratified, forced into the wave loop: the same mean */
+  {
+    elr_scene *s = load("Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"path\" \"integer maxdepth\" 5", "",
+                        48, 40, err);
+    elr_image a, b;
+    elr_stats sa, sb;
+    if (s && render(s, ELR_LOOP_ONE, -1, -1, 2, 0, &a, &sa, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &b, &sb, err) == 0) {
+      int k, n = a.width * a.height, same = 1;
+      double sum = 0, sum2 = 0, mean, se, z;
+      for (k = 0; k < n; k++) {
+        double ya = 0.2126 * a.rgb[3 * k] + 0.7152 * a.rgb[3 * k + 1] + 0.0722 * a.rgb[3 * k + 2];
+        double yb = 0.2126 * b.rgb[3 * k] + 0.7152 * b.rgb[3 * k + 1] + 0.0722 * b.rgb[3 * k + 2];
+        sum += yb - ya; sum2 += (yb - ya) * (yb - ya);
+        if (ya != yb) same = 0;
+      }
+      mean = sum / n;
+      se = sqrt((sum2 / n - mean * mean) / (n - 1));
+      z = se > 0 ? mean / se : 0;
+      rt_check(!same && sb.loop == ELR_LOOP_WAVE && fabs(z) < 4.0,
+               "path + stratified in the wave loop: other numbers past the sampler's dimensions (images %s), the same mean: "
+               "mean difference %.3g, standard error %.3g, z = %.2f (|z| < 4)", same ? "EQUAL" : "differ", mean, se, z);
+      elr_image_free(&a); elr_image_free(&b);
+    } else rt_check(0, "stratified path scene: %s", err);
+    elr_scene_free(s);
+  }
+  /* 4. which loop runs by default */
+  {
+    static const struct { const char *sampler, *integrator; int loop; } cases[] = {
+      {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"directlighting\"", ELR_LOOP_WAVE},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "Integrator \"path\"", ELR_LOOP_WAVE},
+      /* a pixel sampler's path tracer: the batched loop for the map alone, the reference loop with product
+       * sampling (the batched loop needs sample_li_n) */
+      {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"path\"", ELR_LOOP_ONE},
+      {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"path\"", ELR_LOOP_BATCHED},
+    };
+    int c;
+    for (c = 0; c < 4; c++) {
+      elr_scene *s = load(cases[c].sampler, cases[c].integrator, c == 3 ? " \"string sampling\" \"map\"" : "", 8, 8, err);
+      elr_image img;
+      elr_stats st;
+      if (s && render(s, -1, -1, -1, 1, 0, &img, &st, err) == 0) {
+        rt_check(st.loop == cases[c].loop, "default loop for %s, %s: %d (expected %d)", cases[c].sampler, cases[c].integrator, st.loop, cases[c].loop);
+        elr_image_free(&img);
+      } else rt_check(0, "default loop case %d: %s", c, err);
+      elr_scene_free(s);
+    }
+  }
+  return rt_finish("test_render_wave");
+}
