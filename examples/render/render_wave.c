@@ -284,8 +284,11 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
     for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
       int e = W->escaped[j];
       if (e < 0) continue;
-      if (l->product) W->pdf[e] = elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
-      else W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
+      if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
+      else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) /* (only where the weight is
+        * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
+        W->pdf[e] = elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
+      else W->pdf[e] = 0.f;
       el_envlight_le(env, &W->wi[3 * e], &W->Le[3 * e]);
     }
     /* escaped paths end; the light samples' BSDF values, MIS weights and shadow rays */
