@@ -696,8 +696,8 @@ sample varies far more. %s on studio.
 
 - **Student's first renderer**: stratified (what pbrt-v3's scenes use): simple to write, and at %d spp
   %.1fx the best error on city, %.1fx on studio.
-- **Production renderer**: zsobol, paddedsobol or 02sequence (randomized (0,2)-sequences, pbrt-v4's
-  choices): within 15%% of the lowest error at %d spp on both maps here, and unbiased at any spp.
+- **Production renderer**: %s: within 15%% of the lowest error at %d spp on both maps here, and
+  randomized, so unbiased at any spp (zsobol and paddedsobol are pbrt-v4's).
 - **Real-time preview**: zsobol at low spp (pbrt-v4's default).
 
 ## Renderer: splitting
@@ -738,7 +738,7 @@ samples also antialias edges and textures, which splitting never does.
        pc["sobol"][-1][2] / pc[best(pc, -1)][-1][2], 100 * (max(costs) / min(costs) - 1),
        cross_text(ps, "random", "zsobol"),
        spps[-1], pc["stratified"][-1][2] / pc[best(pc, -1)][-1][2], ps["stratified"][-1][2] / ps[best(ps, -1)][-1][2],
-       spps[-1],
+       ", ".join(k for k in near_best(pc) if k in near_best(ps)), spps[-1],
        split_img, res[0], res[1], ", ".join(map(str, sp_spps)),
        table(["light samples", "CPU per spp"] + ["%d spp: relMSE" % s for s in sp_spps],
              [["%d" % k, "%.2f ms" % (1e3 * split_res[k][0][1] / split_res[k][0][0])] + ["%.3g" % e for s, t, e in split_res[k]]
