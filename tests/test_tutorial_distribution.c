@@ -30,23 +30,8 @@
 
 #define UNIT (1.0 / 16777216.0) /* 2^-24 */
 
-static int g_pass, g_fail;
-static void check(int ok, const char *what) {
-  if (ok) g_pass++;
-  else g_fail++;
-  printf("%s: %s\n", ok ? "PASS" : "FAIL", what);
-}
-static void checkf(int ok, const char *fmt, double a, double b) {
-  char buf[320];
-  snprintf(buf, sizeof buf, fmt, a, b);
-  check(ok, buf);
-}
-
-static unsigned g_rng = 2024u;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#define TUTORIAL_RNG_SEED 2024u
+#include "tutorial_check.h" /* check, checkf, frand */
 
 /* pbrt's CDF at x in [0, 1] (linear within each bin), in double */
 static double pbrt_cdf_at(const pbrt_Distribution1D *d, double x) {

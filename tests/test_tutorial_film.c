@@ -38,22 +38,8 @@
 
 #define UNIT (1.0 / 16777216.0)
 
-static int g_pass, g_fail;
-static void check(int ok, const char *what) {
-  if (ok) g_pass++;
-  else g_fail++;
-  printf("%s: %s\n", ok ? "PASS" : "FAIL", what);
-}
-static void checkf(int ok, const char *fmt, double a, double b) {
-  char buf[400];
-  snprintf(buf, sizeof buf, fmt, a, b);
-  check(ok, buf);
-}
-static unsigned g_rng = 4242u;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#define TUTORIAL_RNG_SEED 4242u
+#include "tutorial_check.h" /* check, checkf, frand */
 static unsigned irand(unsigned n) {
   g_rng = g_rng * 1664525u + 1013904223u;
   return (g_rng >> 8) % n;

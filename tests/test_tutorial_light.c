@@ -46,22 +46,8 @@
 #define UNIT (1.0 / 16777216.0) /* 2^-24 */
 #define PI_D 3.14159265358979323846
 
-static int g_pass, g_fail;
-static void check(int ok, const char *what) {
-  if (ok) g_pass++;
-  else g_fail++;
-  printf("%s: %s\n", ok ? "PASS" : "FAIL", what);
-}
-static void checkf(int ok, const char *fmt, double a, double b) {
-  char buf[400];
-  snprintf(buf, sizeof buf, fmt, a, b);
-  check(ok, buf);
-}
-static unsigned g_rng = 77u;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#define TUTORIAL_RNG_SEED 77u
+#include "tutorial_check.h" /* check, checkf, frand */
 
 static double lum_d(const float *rgb) { return 0.212671 * rgb[0] + 0.715160 * rgb[1] + 0.072169 * rgb[2]; }
 

@@ -50,22 +50,8 @@ static float elr__tr_pdf_wh(float alpha, elr_v3 wo, elr_v3 wh) {
   return elr__tr_d(alpha, wh) * elr__tr_g1(alpha, wo) * fabsf(elr_dot(wo, wh)) / fabsf(wo.z);
 }
 /* Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (exact; pbrt-v4's Sample_wm) */
-static elr_v3 elr__tr_sample_wh(float alpha, elr_v3 wo, float u0, float u1) {
-  int flip = wo.z < 0.f;
-  elr_v3 v = flip ? elr_mul(wo, -1.f) : wo, vh, t1, t2, nh, ne;
-  float lensq, r, phi, p1, p2, s;
-  vh = elr_norm(elr_v(alpha * v.x, alpha * v.y, v.z));
-  lensq = vh.x * vh.x + vh.y * vh.y;
-  t1 = lensq > 0.f ? elr_mul(elr_v(-vh.y, vh.x, 0.f), 1.f / sqrtf(lensq)) : elr_v(1.f, 0.f, 0.f);
-  t2 = elr_cross(vh, t1);
-  r = sqrtf(u0); phi = 2.f * ELR_PI * u1;
-  p1 = r * cosf(phi); p2 = r * sinf(phi);
-  s = 0.5f * (1.f + vh.z);
-  p2 = (1.f - s) * sqrtf(fmaxf(0.f, 1.f - p1 * p1)) + s * p2;
-  nh = elr_add(elr_add(elr_mul(t1, p1), elr_mul(t2, p2)), elr_mul(vh, sqrtf(fmaxf(0.f, 1.f - p1 * p1 - p2 * p2))));
-  ne = elr_norm(elr_v(alpha * nh.x, alpha * nh.y, fmaxf(1e-6f, nh.z)));
-  return flip ? elr_mul(ne, -1.f) : ne;
-}
+static elr_v3 elr__tr2_sample(float ax, float ay, elr_v3 wo, float u0, float u1);
+static elr_v3 elr__tr_sample_wh(float alpha, elr_v3 wo, float u0, float u1) { return elr__tr2_sample(alpha, alpha, wo, u0, u1); }
 /* pbrt-v3's FrDielectric */
 float elr_fr_dielectric(float cosi, float etai, float etat) {
   float sini, sint, cost, rpar, rperp;
