@@ -429,6 +429,26 @@ static uint32_t rng_u32(rng *r) {
 }
 static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
 
+typedef double (*estimator)(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u);
+/* the mean and variance of nsamp irradiance estimates est(s, l, n, ...) for the normal n, from the
+ * random stream of (s, k): the variance table and the --csv runs draw the same numbers */
+static void moments(estimator est, int s, int k, el_envlight *l, const double n[3], long nsamp, double *mean, double *var) {
+  double b1[3], b2[3], sum = 0, sum2 = 0;
+  long i;
+  rng r;
+  r.s = 0x853c49e6748fea9bULL + 7919u * (uint64_t)(s * 3 + k);
+  frame(n, b1, b2);
+  for (i = 0; i < nsamp; ++i) {
+    float u[4];
+    double f;
+    u[0] = rng_f(&r); u[1] = rng_f(&r); u[2] = rng_f(&r); u[3] = rng_f(&r);
+    f = est(s, l, n, b1, b2, u);
+    sum += f; sum2 += f * f;
+  }
+  *mean = sum / nsamp;
+  *var = fmax(0.0, sum2 / nsamp - *mean * *mean);
+}
+
 static void variance_table(const char *path, int nsamp) {
   el_image img;
   char err[512];
@@ -462,20 +482,8 @@ static void variance_table(const char *path, int nsamp) {
     if (!ok[s]) continue;
     t = now();
     for (k = 0; k < 3; ++k) {
-      double b1[3], b2[3], sum = 0, sum2 = 0, mean, var;
-      long i;
-      rng r;
-      r.s = 0x853c49e6748fea9bULL + 7919u * (uint64_t)(s * 3 + k);
-      frame(N3[k], b1, b2);
-      for (i = 0; i < nsamp; ++i) {
-        float u[4];
-        double f;
-        u[0] = rng_f(&r); u[1] = rng_f(&r); u[2] = rng_f(&r); u[3] = rng_f(&r);
-        f = estimate(s, &lights[s], N3[k], b1, b2, u);
-        sum += f; sum2 += f * f;
-      }
-      mean = sum / nsamp;
-      var = fmax(0.0, sum2 / nsamp - mean * mean);
+      double mean, var;
+      moments(estimate, s, k, &lights[s], N3[k], nsamp, &mean, &var);
       rv[k] = var / (E[k] * E[k]);
       bias[k] = fabs(mean - E[k]) / sqrt(var / nsamp + 1e-300);
       mean_rv += rv[k] / 3;
@@ -747,20 +755,9 @@ static void csv_variance(const char *path, const char *name, int nsamp, int reps
   for (s = 0; s < C_N; ++s) {
     double rv = 0, rb2 = 0;
     for (k = 0; k < 3; ++k) {
-      double b1[3], b2[3], sum = 0, sum2 = 0, mean;
-      long i;
-      rng g;
-      g.s = 0x853c49e6748fea9bULL + 7919u * (uint64_t)(s * 3 + k);
-      frame(N3[k], b1, b2);
-      for (i = 0; i < nsamp; ++i) {
-        float u[4];
-        double f;
-        u[0] = rng_f(&g); u[1] = rng_f(&g); u[2] = rng_f(&g); u[3] = rng_f(&g);
-        f = c_estimate(s, &lights[s], N3[k], b1, b2, u);
-        sum += f; sum2 += f * f;
-      }
-      mean = sum / nsamp;
-      rv += fmax(0.0, sum2 / nsamp - mean * mean) / (E[k] * E[k]) / 3;
+      double mean, var;
+      moments(c_estimate, s, k, &lights[s], N3[k], nsamp, &mean, &var);
+      rv += var / (E[k] * E[k]) / 3;
       rb2 += (mean - E[k]) * (mean - E[k]) / (E[k] * E[k]) / 3;
     }
     printf("envvar,%s,%s,%.6g,%.3f,%.6g\n", name, C_NAME[s], rv, median(t[s], reps), rb2);

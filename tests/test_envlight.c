@@ -604,6 +604,17 @@ static void quadrature(const image *im, int s, const double n[][3], int nn, doub
   free(lum); free(cu); free(su);
 }
 
+/* unit b1, b2 completing the unit normal n to a right-handed frame (for cosine-weighted samples) */
+static void frame_around(const double n[3], double b1[3], double b2[3]) {
+  double t[3] = {1, 0, 0}, d, len;
+  if (fabs(n[0]) > 0.9) { t[0] = 0; t[1] = 1; }
+  d = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+  b1[0] = t[0] - d * n[0]; b1[1] = t[1] - d * n[1]; b1[2] = t[2] - d * n[2];
+  len = sqrt(b1[0] * b1[0] + b1[1] * b1[1] + b1[2] * b1[2]);
+  b1[0] /= len; b1[1] /= len; b1[2] /= len;
+  b2[0] = n[1] * b1[2] - n[2] * b1[1]; b2[1] = n[2] * b1[0] - n[0] * b1[2]; b2[2] = n[0] * b1[1] - n[1] * b1[0];
+}
+
 /* MC estimate of E(n) for each normal (world normal = M * light normal) with sample_li; mis: one-sample
  * MIS between sample_li and cosine sampling (balance heuristic), needed with compensation. */
 static void irradiance_mc(el_envlight *l, const float m[9], int nsamp, int mis, uint64_t seed, double *mean, double *se) {
@@ -613,15 +624,7 @@ static void irradiance_mc(el_envlight *l, const float m[9], int nsamp, int mis, 
     rng r = rng_make(seed + (uint64_t)k);
     nl[0] = NORMALS[k][0]; nl[1] = NORMALS[k][1]; nl[2] = NORMALS[k][2];
     mat_mul(m, nl, nw);
-    { /* a frame around nw */
-      double t[3] = {1, 0, 0}, d, len;
-      if (fabs(nw[0]) > 0.9) { t[0] = 0; t[1] = 1; }
-      d = t[0] * nw[0] + t[1] * nw[1] + t[2] * nw[2];
-      b1[0] = t[0] - d * nw[0]; b1[1] = t[1] - d * nw[1]; b1[2] = t[2] - d * nw[2];
-      len = sqrt(b1[0] * b1[0] + b1[1] * b1[1] + b1[2] * b1[2]);
-      b1[0] /= len; b1[1] /= len; b1[2] /= len;
-      b2[0] = nw[1] * b1[2] - nw[2] * b1[1]; b2[1] = nw[2] * b1[0] - nw[0] * b1[2]; b2[2] = nw[0] * b1[1] - nw[1] * b1[0];
-    }
+    frame_around(nw, b1, b2);
     for (i = 0; i < nsamp; ++i) {
       float uu[2], wi[3], rgb[3], p;
       double f = 0;
@@ -1925,13 +1928,8 @@ static void test_product_unbiased(const el_image *studio, const el_image *city) 
         nl[0] = NORMALS[k][0]; nl[1] = NORMALS[k][1]; nl[2] = NORMALS[k][2];
         world_normal(m, nl, n);
         { /* a frame around n for the cosine samples */
-          double t[3] = {1, 0, 0}, d, len, nw[3] = {n[0], n[1], n[2]};
-          if (fabs(nw[0]) > 0.9) { t[0] = 0; t[1] = 1; }
-          d = t[0] * nw[0] + t[1] * nw[1] + t[2] * nw[2];
-          b1[0] = t[0] - d * nw[0]; b1[1] = t[1] - d * nw[1]; b1[2] = t[2] - d * nw[2];
-          len = sqrt(b1[0] * b1[0] + b1[1] * b1[1] + b1[2] * b1[2]);
-          b1[0] /= len; b1[1] /= len; b1[2] /= len;
-          b2[0] = nw[1] * b1[2] - nw[2] * b1[1]; b2[1] = nw[2] * b1[0] - nw[0] * b1[2]; b2[2] = nw[0] * b1[1] - nw[1] * b1[0];
+          double nw[3] = {n[0], n[1], n[2]};
+          frame_around(nw, b1, b2);
         }
         for (i = 0; i < nsamp; ++i) {
           float uu[2], wi[3], rgb[3], p;

@@ -46,27 +46,7 @@ static const header headers[] = {
 };
 #define NHEADERS ((int)(sizeof headers / sizeof headers[0]))
 
-static char *read_file(const char *name) {
-  char path[1024];
-  FILE *f;
-  long n;
-  char *s;
-  snprintf(path, sizeof path, "%s/%s", EL_SOURCE_DIR, name);
-  f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  s = (char *)malloc((size_t)n + 1);
-  if (!s || fread(s, 1, (size_t)n, f) != (size_t)n) {
-    fclose(f);
-    free(s);
-    return NULL;
-  }
-  s[n] = 0;
-  fclose(f);
-  return s;
-}
+#include "test_files.h" /* read_source */
 
 /* Comments and string literals become spaces (newlines kept). */
 static void strip(char *s) {
@@ -195,7 +175,7 @@ int main(void) {
   char msg[512];
   memset(&ns, 0, sizeof ns);
   for (h = 0; h < NHEADERS; ++h) {
-    char *s = read_file(headers[h].file), *impl;
+    char *s = read_source(headers[h].file), *impl;
     if (!s) {
       snprintf(msg, sizeof msg, "read %s/%s", EL_SOURCE_DIR, headers[h].file);
       check(0, msg);

@@ -17,32 +17,16 @@ static void check(int ok, const char *what, const char *name) {
   else { failures++; printf("FAIL %s: %s\n", name, what); }
 }
 
-static char *slurp(const char *rel) {
-  char path[1024];
-  FILE *f;
-  long n;
-  char *buf;
-  snprintf(path, sizeof path, "%s/%s", EL_SOURCE_DIR, rel);
-  f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  buf = (char *)malloc((size_t)n + 1);
-  if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) { free(buf); buf = NULL; }
-  if (buf) buf[n] = 0;
-  fclose(f);
-  return buf;
-}
+#include "test_files.h" /* read_source */
 
 int main(void) {
   static const char *const with_block[] = {"blockedarray.h", "distribution2d.h", "envlight.h", "film.h"};
   const char *begin = "/* >> shared declarations", *end_marker = "/* << shared declarations */\n";
-  char *ref = slurp("docs/shared_block.h"), *mip;
+  char *ref = read_source("docs/shared_block.h"), *mip;
   size_t i;
   if (!ref) { printf("FAIL cannot read docs/shared_block.h\n"); return 1; }
   for (i = 0; i < sizeof with_block / sizeof with_block[0]; i++) {
-    char *h = slurp(with_block[i]), *a, *b;
+    char *h = read_source(with_block[i]), *a, *b;
     if (!h) { check(0, "readable", with_block[i]); continue; }
     a = strstr(h, begin);
     b = a ? strstr(a, end_marker) : NULL;
@@ -54,7 +38,7 @@ int main(void) {
     }
     free(h);
   }
-  mip = slurp("mipmap.h");
+  mip = read_source("mipmap.h");
   check(mip && !strstr(mip, begin) && strstr(mip, "#include \"blockedarray.h\""),
         "takes the block from blockedarray.h, no copy of its own", "mipmap.h");
   free(mip);

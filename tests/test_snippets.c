@@ -59,24 +59,7 @@ static void check(int ok, const char *what) {
   printf("%s: %s\n", ok ? "PASS" : "FAIL", what);
 }
 
-static char *read_file(const char *path) {
-  FILE *f = fopen(path, "rb");
-  long n;
-  char *s;
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  s = (char *)malloc((size_t)n + 1);
-  if (!s || fread(s, 1, (size_t)n, f) != (size_t)n) {
-    fclose(f);
-    free(s);
-    return NULL;
-  }
-  s[n] = 0;
-  fclose(f);
-  return s;
-}
+#include "test_files.h" /* read_file */
 
 /* A growing string. */
 typedef struct str {

@@ -75,18 +75,7 @@ static int lines_from(lines *L, char *text) {
   }
   return 0;
 }
-static char *read_file(const char *path) {
-  FILE *f = fopen(path, "rb");
-  char *b;
-  long n;
-  if (!f) return NULL;
-  if (fseek(f, 0, SEEK_END) || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET)) { fclose(f); return NULL; }
-  b = (char *)malloc((size_t)n + 1);
-  if (b && fread(b, 1, (size_t)n, f) != (size_t)n) { free(b); b = NULL; }
-  if (b) b[n] = 0;
-  fclose(f);
-  return b;
-}
+#include "test_files.h" /* read_file */
 /* Trimmed copy of s into out (at most n - 1 characters). */
 static void trim(const char *s, char *out, size_t n) {
   const char *e;

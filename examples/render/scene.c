@@ -228,10 +228,13 @@ void elr_scene_release(elr_scene *s) {
   s->geom_kind = NULL; s->geom_index = NULL; s->sph_builtin = s->sph_user = NULL;
 }
 
+static void elr__ray_init(struct RTCRay *r, elr_v3 o, elr_v3 d, float tmax) {
+  r->org_x = o.x; r->org_y = o.y; r->org_z = o.z; r->tnear = 0.f;
+  r->dir_x = d.x; r->dir_y = d.y; r->dir_z = d.z; r->time = 0.f;
+  r->tfar = tmax; r->mask = ~0u; r->id = 0; r->flags = 0;
+}
 static void elr__rayhit_init(struct RTCRayHit *rh, elr_v3 o, elr_v3 d, float tmax) {
-  rh->ray.org_x = o.x; rh->ray.org_y = o.y; rh->ray.org_z = o.z; rh->ray.tnear = 0.f;
-  rh->ray.dir_x = d.x; rh->ray.dir_y = d.y; rh->ray.dir_z = d.z; rh->ray.time = 0.f;
-  rh->ray.tfar = tmax; rh->ray.mask = ~0u; rh->ray.id = 0; rh->ray.flags = 0;
+  elr__ray_init(&rh->ray, o, d, tmax);
   rh->hit.geomID = RTC_INVALID_GEOMETRY_ID; rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
@@ -252,9 +255,7 @@ void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigne
 
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax) {
   struct RTCRay r;
-  r.org_x = o.x; r.org_y = o.y; r.org_z = o.z; r.tnear = 0.f;
-  r.dir_x = d.x; r.dir_y = d.y; r.dir_z = d.z; r.time = 0.f;
-  r.tfar = tmax; r.mask = ~0u; r.id = 0; r.flags = 0;
+  elr__ray_init(&r, o, d, tmax);
 #if RTC_VERSION_MAJOR >= 4
   rtcOccluded1((RTCScene)s->rtscene, &r, NULL);
 #else
@@ -343,6 +344,19 @@ static void elr__wave_np(elr_wave_rays *w, struct RTCRayHitNp *np) {
 }
 #endif
 
+/* the packet of rays i .. i + 15 of the wave, and its mask: the last packet's unused lanes hold a copy
+ * of its first ray, masked off (Embree wants the packet and its mask 64-byte aligned) */
+static void elr__wave_ray16(const elr_wave_rays *w, int i, struct RTCRay16 *r, int valid[16]) {
+  int k;
+  for (k = 0; k < 16; k++) {
+    int j = i + k < w->n ? i + k : i;
+    valid[k] = i + k < w->n ? -1 : 0;
+    r->org_x[k] = w->ox[j]; r->org_y[k] = w->oy[j]; r->org_z[k] = w->oz[j]; r->tnear[k] = 0.f;
+    r->dir_x[k] = w->dx[j]; r->dir_y[k] = w->dy[j]; r->dir_z[k] = w->dz[j]; r->time[k] = 0.f;
+    r->tfar[k] = w->tfar[j]; r->mask[k] = ~0u; r->id[k] = (unsigned)k; r->flags[k] = 0;
+  }
+}
+
 void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax) {
   int i = w->n++;
   w->ox[i] = o.x; w->oy[i] = o.y; w->oz[i] = o.z; w->tnear[i] = 0.f;
@@ -370,16 +384,10 @@ void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coher
   }
   if (api == ELR_WAVE_API_PACKET16) {
     for (i = 0; i < w->n; i += 16) {
-      RTC_ALIGN(64) struct RTCRayHit16 rh; /* Embree wants the packet and its mask 64-byte aligned */
+      RTC_ALIGN(64) struct RTCRayHit16 rh;
       RTC_ALIGN(64) int valid[16];
-      for (k = 0; k < 16; k++) {
-        int j = i + k < w->n ? i + k : i; /* the last packet's unused lanes: a copy of its first ray, masked */
-        valid[k] = i + k < w->n ? -1 : 0;
-        rh.ray.org_x[k] = w->ox[j]; rh.ray.org_y[k] = w->oy[j]; rh.ray.org_z[k] = w->oz[j]; rh.ray.tnear[k] = 0.f;
-        rh.ray.dir_x[k] = w->dx[j]; rh.ray.dir_y[k] = w->dy[j]; rh.ray.dir_z[k] = w->dz[j]; rh.ray.time[k] = 0.f;
-        rh.ray.tfar[k] = w->tfar[j]; rh.ray.mask[k] = ~0u; rh.ray.id[k] = (unsigned)k; rh.ray.flags[k] = 0;
-        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID; rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-      }
+      elr__wave_ray16(w, i, &rh.ray, valid);
+      for (k = 0; k < 16; k++) { rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID; rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID; }
 #if RTC_VERSION_MAJOR >= 4
       rtcIntersect16(valid, sc, &rh, NULL);
 #else
@@ -430,13 +438,7 @@ void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int cohere
     for (i = 0; i < w->n; i += 16) {
       RTC_ALIGN(64) struct RTCRay16 r;
       RTC_ALIGN(64) int valid[16];
-      for (k = 0; k < 16; k++) {
-        int j = i + k < w->n ? i + k : i;
-        valid[k] = i + k < w->n ? -1 : 0;
-        r.org_x[k] = w->ox[j]; r.org_y[k] = w->oy[j]; r.org_z[k] = w->oz[j]; r.tnear[k] = 0.f;
-        r.dir_x[k] = w->dx[j]; r.dir_y[k] = w->dy[j]; r.dir_z[k] = w->dz[j]; r.time[k] = 0.f;
-        r.tfar[k] = w->tfar[j]; r.mask[k] = ~0u; r.id[k] = (unsigned)k; r.flags[k] = 0;
-      }
+      elr__wave_ray16(w, i, &r, valid);
 #if RTC_VERSION_MAJOR >= 4
       rtcOccluded16(valid, sc, &r, NULL);
 #else
@@ -449,11 +451,7 @@ void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int cohere
   for (i = 0; i < w->n; i += ELR_WAVE_CHUNK) {
     struct RTCRay r[ELR_WAVE_CHUNK];
     int m = w->n - i < ELR_WAVE_CHUNK ? w->n - i : ELR_WAVE_CHUNK;
-    for (k = 0; k < m; k++) {
-      r[k].org_x = w->ox[i + k]; r[k].org_y = w->oy[i + k]; r[k].org_z = w->oz[i + k]; r[k].tnear = 0.f;
-      r[k].dir_x = w->dx[i + k]; r[k].dir_y = w->dy[i + k]; r[k].dir_z = w->dz[i + k]; r[k].time = 0.f;
-      r[k].tfar = w->tfar[i + k]; r[k].mask = ~0u; r[k].id = 0; r[k].flags = 0;
-    }
+    for (k = 0; k < m; k++) elr__ray_init(&r[k], elr_v(w->ox[i + k], w->oy[i + k], w->oz[i + k]), elr_v(w->dx[i + k], w->dy[i + k], w->dz[i + k]), w->tfar[i + k]);
 #if RTC_VERSION_MAJOR >= 4
     for (k = 0; k < m; k++) rtcOccluded1(sc, &r[k], NULL);
 #else
