@@ -1993,27 +1993,34 @@ static void test_product_hard(const el_image *city) {
   float *sunmap = map_sun();
   float wi[3], rgb[3], p, uu[2] = {0.3f, 0.6f}, dir[3] = {0.2f, -0.4f, 0.5f}, n[3] = {0, 0, 1};
   int k, ok;
-  { /* normals that are not unit: scaled ones give the unit normal's results; zero, NaN, Inf the warp alone */
-    float nu[3] = {0.2f, -0.7f, 0.4f}, ns[3], zero[3] = {0, 0, 0}, nan3[3] = {NAN, 0, 1}, inf3[3] = {INFINITY, 0, 0};
-    float scales[4] = {5.0f, 1e-30f, 1e30f, 1e-41f}, p0, pz, pn, pi, pw;
-    el_envlight lb;
-    make_light_imp(&l, sunmap, PW, PH, NULL, 0, 0);
-    make_light_imp(&lb, sunmap, PW, PH, NULL, 0, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
-    p0 = el_envlight_pdf_li_cos(&l, nu, dir);
-    ok = p0 > 0;
-    for (k = 0; k < 4; ++k) {
-      int c;
-      for (c = 0; c < 3; ++c) ns[c] = nu[c] * scales[k];
-      if (el_envlight_pdf_li_cos(&l, ns, dir) != p0) ok = 0;
+  { /* normals and directions that are not unit: scaled ones (2^-149 .. FLT_MAX) give the unit ones' results,
+     * under the identity and under a general rotation (whose sums of huge products would overflow if the
+     * vectors were not scaled in world space first); zero, NaN, Inf normals: no sample (pdf 0) */
+    float nu[3] = {0.5f, -0.75f, 0.25f}, ns[3], zero[3] = {0, 0, 0}, nan3[3] = {NAN, 0, 1}, inf3[3] = {INFINITY, 0, 0};
+    float scales[5] = {4.0f, 1e-30f, 1e30f, 1e-41f, 3.4e38f}, dscales[5] = {4.0f, 0x1p-100f, 0x1p100f, 0x1p126f, 0x1p-120f};
+    float p0, pz, pn, pi, ds[3], m[9];
+    int mi;
+    for (mi = 0; mi < 2; ++mi) {
+      if (mi == 0) identity(m); else some_rotation(m);
+      make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
+      p0 = el_envlight_pdf_li_cos(&l, nu, dir);
+      ok = p0 > 0;
+      for (k = 0; k < 5; ++k) {
+        int c;
+        for (c = 0; c < 3; ++c) { ns[c] = nu[c] * scales[k]; ds[c] = dir[c] * dscales[k]; }
+        if (el_envlight_pdf_li_cos(&l, ns, dir) != p0 || el_envlight_pdf_li_cos(&l, nu, ds) != p0) ok = 0;
+      }
+      check(ok, "pdf_li_cos (%s): a normal scaled by 4, 1e-30, 1e30, 1e-41 (subnormal), 3.4e38 and a direction by 4, 2^-100, "
+                "2^100, 2^126, 2^-120 give the unit ones' pdf", mi ? "general rotation" : "identity");
+      pz = el_envlight_pdf_li_cos(&l, zero, dir); pn = el_envlight_pdf_li_cos(&l, nan3, dir); pi = el_envlight_pdf_li_cos(&l, inf3, dir);
+      check(pz == 0 && pn == 0 && pi == 0, "zero, NaN and infinite normals: pdf_li_cos 0 (%.4g, %.4g, %.4g) (%s)", pz, pn, pi,
+            mi ? "general rotation" : "identity");
+      el_envlight_sample_li_cos(&l, nan3, uu, wi, rgb, &p);
+      check(p == 0 && wi[0] == wi[0] && wi[1] == wi[1] && wi[2] == wi[2] && rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0,
+            "sample_li_cos with a NaN normal: no sample (pdf 0, radiance 0, a finite direction)");
+      el_envlight_free(&l);
     }
-    check(ok, "pdf_li_cos: a normal scaled by 5, 1e-30, 1e30, 1e-41 (subnormal) gives the unit normal's pdf");
-    pz = el_envlight_pdf_li_cos(&l, zero, dir); pn = el_envlight_pdf_li_cos(&l, nan3, dir); pi = el_envlight_pdf_li_cos(&l, inf3, dir);
-    pw = el_envlight_pdf_li(&lb, dir);
-    check(pz > 0 && pz == pn && pz == pi && pz == pw,
-          "zero, NaN and infinite normals: the warp density without the cosine (%.4g, %.4g, %.4g; BILINEAR pdf_li %.4g)", pz, pn, pi, pw);
-    el_envlight_sample_li_cos(&l, nan3, uu, wi, rgb, &p);
-    check(p > 0 && p == el_envlight_pdf_li_cos(&l, zero, wi) && wi[0] == wi[0], "sample_li_cos with a NaN normal: a finite sample of the warp");
-    el_envlight_free(&lb);
+    make_light_imp(&l, sunmap, PW, PH, NULL, 0, 0);
   }
   { /* u at the ends, NaN; directions zero / NaN / huge */
     float us[5] = {0.0f, 0.99999994f, 1.0f, -3.0f, NAN}, z3[3] = {0, 0, 0}, nan3[3] = {NAN, 1, 0}, big[3];
