@@ -283,19 +283,20 @@ typedef struct el_envlight_product_options {
 
 /* Sample a direction wi (world, unit) for a surface of world normal n, with a density close to
  * L(wi) max(0, n.wi): *pdf is its solid-angle density, rgb (may be NULL) gets le(wi), bit for bit.
- * n need not be unit length; a zero, NaN or infinite n gives the warp's density without the cosine.
+ * n need not be unit length (only its direction counts; it must point to the side the light arrives
+ * from); a zero, NaN or infinite n gives no sample (pdf 0).
  * Directions fall below the surface only in cells that straddle its horizon (1.3-7.4% of the samples
  * on the CC0 maps, sample_li: 46-58%): n.wi <= 0 there, the sample contributes nothing. pdf 0: no sample
- * (a black map, or nothing emits above this surface); skip it. Cost: about 1200 instructions (1300
- * with rgb), the pdf included. Builds the warp and the normal tables on first use (21 MB for a
- * 2048x1024 map, 70 ms); thread-safe like sample_li's lazy build; the light's own sampling tables
- * (sample_li's) are not needed. */
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 960
+ * instructions (1090 with rgb), the pdf included. Builds its tables on first use (7.3 MB for a
+ * 1024x512 map, at most about 17 MB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
+ * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
- * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi gives 0.
- * About 420 instructions. Builds the tables on first use, as sample_li_cos. */
+ * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
+ * zero, NaN or infinite n, gives 0. About 380 instructions. Builds the tables on first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
  * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
@@ -346,8 +347,15 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    1e-4): B = cos(max(0, angle(c, cell) - r)). So B > 0 for every cell holding a direction above the
  *    surface of any normal of the bin: pdf_li_cos > 0 wherever le > 0 and n.w > 0 (compensation aside),
  *    and light sampling alone is unbiased (tested: a grid of directions x 12 normals, the poles and the
- *    seam among them, on hard maps; and against quadratures of the irradiance). A sample costs a table
- *    lookup, two searches over the cells and the warp; the pdf the same lookups.
+ *    seam among them, on hard maps; and against quadratures of the irradiance). Inside the cell (issue
+ *    20) a patch row is picked from the cell's integer CDF over its rows (each row's mass, every row
+ *    with mass at least one of 32768 units), a patch from that row's CDF over the cell column, then
+ *    (s, t) inside the patch from the bilinear itself (t from the linear marginal, s from the linear
+ *    conditional at t: two square roots), kept 2^-12 of a patch inside its edges (the round trip of a
+ *    general rotation must find the same patch). The density is P(cell | n) x the patch's integer
+ *    share x bil(s, t) / mean(corners): the warp's bilinear interpolant up to the units' rounding (the
+ *    same variance per sample as before, measured). A sample costs a table lookup, four small binary
+ *    searches, two linear inversions and the direction; the pdf an atan pair and the same tables.
  *    WHERE IT CANNOT STAY ABOVE THE SURFACE: in cells that straddle the horizon of the bin's normals
  *    (the cells' size plus the bins' radius): 1.3-7.4% of the samples on the CC0 maps (sample_li:
  *    46-58%); they come back with n.wi <= 0 and contribute nothing.
@@ -368,32 +376,50 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
- *    COST: sample_li_cos 1179-1205 instructions (+radiance 1310-1336; a general rotation +53), with a
- *    new random normal on every call; pdf_li_cos 419 (+30). 0.5-1.1 us per estimate with the radiance
- *    in table 4 (sample_li: 0.23-0.59). The sample includes its own pdf: it runs pdf_li_cos's
- *    code on the sampled direction (about 355 instructions) so that the two agree bit for bit.
- *    MEMORY: the warp (above) + the normal tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB:
- *    8.7 MB at 1024x512, 21 MB at 2048x1024. BUILD: the warp + 257 M instructions for the tables
- *    (fixed: 2.1 M bin-cell pairs), 45-65 ms at 1024x512, 70 ms at 2048x1024. el_envlight_product_options
- *    trade them: 32x16 cells and 16^2 bins need 0.3 MB of tables and a sixteenth of their build, for
- *    3x the variance.
+ *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random
+ *    normal per call, the loop's own 9 subtracted): sample_li_cos 959 instructions (1090 with the
+ *    radiance; before issue 20: 1179, 1310), pdf_li_cos 377 (419); sample_li 97 (261 with the radiance),
+ *    pdf_li 76. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <= 150 and
+ *    <= 1.5x pdf_li) are NOT met: the sample includes its own pdf (it runs pdf_li_cos's code on the
+ *    sampled direction, about 260 instructions, so that the two agree bit for bit), and the pdf needs
+ *    (u, v) to the bilinear's precision (two atan polynomials) plus the normal's bin. Time per estimate
+ *    (table 4, light sampling alone, loaded machine, old and new back to back): 707 -> 405 ns on city,
+ *    673 -> 379 on forest (sample_li: 160), so 1.7-1.8x less time-to-unit-variance (variance x time:
+ *    city 23.7 -> 13.6, sample_li 414). TRIED AND DROPPED for issue 20: the light's own piecewise-
+ *    constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340 instructions
+ *    estimated) has 2.4x the variance on city (0.080 against 0.033, bench_product "table 32^2 64x32":
+ *    20x on the normal facing up, where the sun's texel dominates and its density is flat while le is
+ *    bilinear); an SSE2 count in place of the binary searches: more instructions (1049), not fewer.
+ *    Not tried: a batched call for n normals, Conty and Lecocq's per-point 12x12 coarse level (its
+ *    variance at 16x8 cells, above, is 2x the tables'), a diamond-angle patch parametrisation whose pdf
+ *    needs no atan (the likely way to the targets).
+ *    MEMORY: the vertex grid (4 bytes per vertex), the patch CDFs (2 bytes per patch) and the normal
+ *    tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB: 7.3 MB at 1024x512 (8.7 before; the target 4 MB
+ *    is not met: the normal tables alone are 4.3 MB). Maps over 2048x1024 use a coarse grid of that size
+ *    (each coarse vertex the largest lum of the texels of its 3 x 3 coarse bins, so the density stays > 0
+ *    wherever le is): at most about 17 MB for any map (before: 1.09 GB at 16384x8192). BUILD: 300 M
+ *    instructions at 1024x512 (the normal tables 2.1 M bin-cell pairs: about 250 M), 29-53 ms on this
+ *    loaded machine (target 20 ms: not met). el_envlight_product_options trade them: 32x16 cells and 16^2
+ *    bins need 0.3 MB of tables and a sixteenth of their build, for 3x the variance.
  *
  * 3. EXACTNESS. pdf_li_cos(n, wi) of a sampled wi equals the returned pdf bit for bit, and rgb equals
  *    le(wi) bit for bit (signed-permutation matrices and general rotations alike: the sampler brings
- *    wi back to light space as pdf_li_cos does). For continuous u the warp is exact CDF inversion. For
- *    u on a 2^-24 lattice (24-bit samplers) the cell is picked with exactly its tabulated probability,
- *    but inside the cell the warp sees the lattice of the remaining fraction: each patch row's and
- *    patch's probability can differ from the stated one by one lattice point, 2^-24 of the total (the
- *    chi-square tests at 150,000 samples see nothing).
+ *    wi back to light space as pdf_li_cos does). For continuous u the cell, patch row and patch are
+ *    picked with exactly their integer shares and (s, t) by exact inversion of the bilinear, but for
+ *    the 2^-12 band at each patch edge (points there are moved onto it; the density differs by 2^-12 of
+ *    the patch's variation: no measurable bias). For u on a 2^-24 lattice the fractions inside a cell
+ *    see the lattice of the remaining fraction (the chi-square tests at 100,000 samples see nothing).
  *
- * 4. INPUTS. n need not be unit length; a zero, NaN or infinite n gives the warp's density without
- *    the cosine (its plain table). The constant light: cosine-weighted hemisphere sampling, exactly the
- *    product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an unusable n. A black map, or a
- *    normal whose hemisphere holds no mass: pdf 0 (skip the sample). Compensation (options.compensated):
- *    the warp's vertices become max(lum - mean, 0) x sin (the mean from the exact integral); use it
- *    with MIS only, as sample_li's. 1xN and Nx1 maps work (one patch column; two pole patch rows).
+ * 4. INPUTS. n and wi need not be unit length: huge and denormal vectors are scaled in world space
+ *    before any rotation (the result depends only on the direction, under any light matrix). A zero,
+ *    NaN or infinite n gives pdf 0 for a map (no sample). The constant light: cosine-weighted hemisphere
+ *    sampling, exactly the product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an
+ *    unusable n. A black map, or a normal whose hemisphere holds no mass: pdf 0 (skip the sample).
+ *    Compensation (options.compensated): the vertices become max(lum - mean, 0) x sin (the mean from
+ *    the exact integral); use it with MIS only, as sample_li's. 1xN and Nx1 maps work (one patch
+ *    column; two pole patch rows).
  *
- * 5. THREADS. The warp and the normal tables are built on first use by their own once-flags (the same
+ * 5. THREADS. The product tables are built on first use by their own once-flag (the same
  *    scheme as the sampling tables: atomics with GCC/Clang, else call el_envlight_prepare_product before
  *    sharing the light); the build writes through the const pointer, so never define an el_envlight
  *    object itself const. After that every query is read-only. The light's own sampling tables
