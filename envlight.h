@@ -242,7 +242,10 @@ EL_DEF el_result el_envlight_preprocess(el_envlight *l, const float center[3], f
 
 /* Radiance arriving along -dir (a ray leaving the scene along dir). Reads only: never builds tables. */
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]);
-/* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets le(wi). */
+/* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets the radiance:
+ * le(wi) bit for bit under a general rotation and in importance BILINEAR; with a signed-permutation
+ * matrix (identity, y-up, z-up) le at the sample's own (u, v), which differs from le(wi) only as a
+ * shift of at most 1e-4 texel would (le's atan rounds; NOTES 4). */
 EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
@@ -405,10 +408,17 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    u on a 2^-24 lattice (24-bit samplers) the cell is picked with exactly its tabulated probability,
  *    but inside the cell the warp sees the lattice of the remaining fraction: each patch row's and
  *    patch's probability can differ from the stated one by one lattice point, 2^-24 of the total (the
- *    chi-square tests at 150,000 samples see nothing).
+ *    chi-square tests at 150,000 samples see nothing). A sampled point is kept w 2^-21 (h 2^-21) of a
+ *    patch inside its patch, so that the pdf, which finds the patch again from wi, finds the same one;
+ *    where rounding still moves it out (near a pole under a general rotation) or the point sits on a
+ *    massless end of its patch (a u exactly on a CDF step, such as u = 0 from a Sobol' sampler), it
+ *    moves to the patch's centre: no sample of a cell with mass comes back with pdf 0 (issue 24; tested
+ *    with u at 0 and within 8 ulps of 1).
  *
  * 4. INPUTS. n need not be unit length; a zero, NaN or infinite n gives the warp's density without
- *    the cosine (its plain table). The constant light: cosine-weighted hemisphere sampling, exactly the
+ *    the cosine (its plain table). n and wi are rescaled in world space when their light-space squared
+ *    length leaves the normal floats (as pdf_li and le do), so the results depend only on their
+ *    directions, also for components near FLT_MAX or denormal under a general rotation. The constant light: cosine-weighted hemisphere sampling, exactly the
  *    product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an unusable n. A black map, or a
  *    normal whose hemisphere holds no mass: pdf 0 (skip the sample). Compensation (options.compensated):
  *    the warp's vertices become max(lum - mean, 0) x sin (the mean from the exact integral); use it
@@ -486,7 +496,15 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    that measured 126.6 instead of 93.5 instructions per sample. For a general rotation, rounding in
  *    the round trip world -> light can move a direction near a pole across a bin edge, so sample_li
  *    returns pdf_li(dir) itself: equal bit for bit (about 120 more instructions per sample: 218 instead
- *    of 93.5 with the guide sampler).
+ *    of 93.5 with the guide sampler). If that bin has no mass (a lit pole row next to dark bins: the
+ *    pdf would be 0, a lost sample), the sample moves to its own bin's centre. Its radiance is then
+ *    le(wi) itself, from the same light-space direction as the pdf (near a pole the sample's own (u, v)
+ *    can be a texel away from wi's: 0.915 against 0.586 in issue 24's campaign, radiance and pdf of
+ *    different points). With a signed permutation the radiance stays the lookup at the sample's own
+ *    (u, v): it differs from le(wi) as a shift of at most 1e-4 texel would (tests/test_envlight_edges.c,
+ *    city), far below what an MIS weight or an estimate can see, and le(wi) would cost 21% more per
+ *    sample with radiance (bench/bench_hdri.c: 478 against 576 ns, best of 5 interleaved rounds on a
+ *    loaded machine; 157 ns without radiance).
  * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
  *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
  *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by

@@ -5,7 +5,7 @@
  *      NaN / infinite texels as errors naming the texel; negative_texels, nonfinite_texels,
  *      most_negative and most_negative_index report what was replaced (also under ZERO, and for the
  *      constant light); Blender's DWAB city map (data/envmaps/dwab/city.exr) loads with the counts the
- *      test finds itself;
+ *      test finds itself, and the image reader's own counts (it keeps every value) agree;
  *   2. "the result depends only on the direction": under a general rotation (and the identity),
  *      pdf_li_cos(n, s wi), pdf_li_cos(s n, wi), pdf_li in importance BILINEAR and sample_li_cos(s n, u)
  *      for s = 2^-146 .. 2^127 (every power of two: exact scalings, denormals and near FLT_MAX) equal the
@@ -152,6 +152,13 @@ static void test_clamp_negative(void) {
           if (v < 0.0f) { any = 1; if (v < most) { most = v; at = (int)i; } }
         }
         count += (size_t)any;
+      }
+      {
+        size_t vals = 0;
+        for (i = 0; i < n * (size_t)im.channels; ++i) vals += im.pixels[i] < 0.0f;
+        check(im.negative_values == vals && im.nonfinite_values == 0 && im.most_negative == most,
+              "the image reader keeps the file's values and says so: %zu negative values (the test: %zu), the most negative %g",
+              im.negative_values, vals, (double)im.most_negative);
       }
       memset(&o, 0, sizeof o);
       r = el_envlight_init(&l, im.pixels, im.width, im.height, im.channels, &o);

@@ -828,6 +828,9 @@ static void elr__filter(elr__parser *P, const char *type) {
   if (f->type == ELR_PF_SINC) elr__check_range(P, "tau", f->tau, 1e-2, 1e3);
   f->xw = (float)elr__pfloat(P, "xwidth", defw);
   f->yw = (float)elr__pfloat(P, "ywidth", defw);
+  /* envlight's extension: negative filter weights (mitchell's and sinc's lobes) count as 0, so that few
+   * samples per pixel cannot overshoot (film.h's el_film_options.nonnegative_filter) */
+  f->nonneg = elr__pbool(P, "nonnegative", 0);
   elr__check_range(P, "xwidth", f->xw, 1e-3, 16);
   elr__check_range(P, "ywidth", f->yw, 1e-3, 16);
 }
