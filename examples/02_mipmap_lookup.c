@@ -33,6 +33,7 @@
  *   build/bin/02_mipmap_lookup [output-directory]   (default: out, created if missing)
  *   build/bin/02_mipmap_lookup tutorials/images     (the pictures in the tutorial)
  *   build/bin/02_mipmap_lookup --answers            (the numbers the exercises ask for; no pictures)
+ *   build/bin/02_mipmap_lookup --help               (this usage; exit 0)
  *
  * WHAT IT WRITES
  *   <dir>/02-seed-test.png (824 x 281), <dir>/02-trilinear-vs-ewa.png (1160 x 246),
@@ -292,6 +293,13 @@ int main(int argc, char **argv) {
   char text[80];
   int k, same, rep;
   float d;
+  if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || (argv[1][0] == '-' && strcmp(argv[1], "--answers")))) {
+    int help = !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h");
+    fprintf(help ? stdout : stderr,
+            "usage: 02_mipmap_lookup [output-directory]   (default: out, created if missing)\n"
+            "       02_mipmap_lookup --answers            (the numbers the exercises ask for; no pictures)\n");
+    return help ? 0 : 1;
+  }
   el_test_image(img, TW, TH); /* the course's 400x235 test image (linear RGB) */
   if (argc > 1 && !strcmp(argv[1], "--answers")) {
     answers(img);
