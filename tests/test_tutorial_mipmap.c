@@ -167,9 +167,9 @@ static void test_levels(const char *name, const float *img, int w, int h) {
         if (fabs(ml - m0) / m0 > worst_lib) worst_lib = fabs(ml - m0) / m0;
         free(lin);
       }
-      CHECKF(worst_port < 1e-5, "%s Black: the port's levels %d..%d hold 1/2, 1/4, ... of the mean (within %.1g)", name,
+      CHECKF(worst_port < 1e-5, "%s Black: the port's levels %d..%d hold 1/2, 1/4, ... of the mean (within 1e-05 relative; worst %.1g)", name,
              upto, nl - 1, worst_port);
-      CHECKF(worst_lib < 1e-5, "%s Black: the library's levels %d..%d keep the mean (within %.1g)", name, upto, nl - 1,
+      CHECKF(worst_lib < 1e-5, "%s Black: the library's levels %d..%d keep the mean (within 1e-05 relative; worst %.1g)", name, upto, nl - 1,
              worst_lib);
     }
     pair_free(&q);
