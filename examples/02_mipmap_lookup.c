@@ -5,8 +5,8 @@
  *
  * WHAT IT DEMONSTRATES
  *   1. The seed's test: it builds a 400x235 image, makes a MIPMap of it and draws it through
- *      Lookup(st, width), first with width 0, then 0.15: "还是能看出 with 变大以后图更模糊的" (the
- *      wider lookup is blurrier). Width 0 reads level 0 (512x256) bilinearly; width 0.15 reads level
+ *      Lookup(st, width), then changes the width to 0.15: "还是能看出 with 变大以后图更模糊的" (the
+ *      wider lookup is blurrier). Its text does not give the first width; we use 0. Width 0 reads level 0 (512x256) bilinearly; width 0.15 reads level
  *      9 + log2(0.15) = 6.26, a blend of the 8x4 and 4x2 levels.
  *   2. What the two filters are for: a ground plane tiled with the image, seen from one unit above
  *      it, so that the texture shrinks towards the horizon and each pixel's footprint on it becomes a

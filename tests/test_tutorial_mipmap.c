@@ -252,7 +252,8 @@ static void test_lookups(const char *name, const float *img, int w, int h) {
   }
 }
 
-/* The seed's test (chapter 2): the 400x235 image drawn through Lookup(st, width) at widths 0 and 0.15. */
+/* The seed's test (chapter 2): the 400x235 image drawn through Lookup(st, width) at width 0.15, and at
+ * width 0 (the course's choice for the first picture: the seed's text does not give its width). */
 static void test_seed(const float *img) {
   pair q;
   int x, y, bits0 = 1;
