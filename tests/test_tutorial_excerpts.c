@@ -433,7 +433,8 @@ static void self_test(void) {
     static char *q_noindent[] = {c0, n1, c2};
     static char *q_uncut[] = {c1, o2}; /* the head line left out without a `...` */
     static char *q_gap[] = {o0, o2, o3}; /* a line left out in the middle without a `...` */
-    static char *q_wrong[] = {c0, q_all2, c2};
+    static char *q_end[] = {o0, c1, q_all2}; /* the tail line left out without a `...` */
+    static char *q_mid2[] = {c0, q_all2, c2}; /* "  level 1": a middle line, cut on both sides */
     static char w2[] = "  loop time 0.39 s";
     static char *q_number[] = {c0, w2, c2};
     tlines o, q;
@@ -442,13 +443,14 @@ static void self_test(void) {
     rlines_of(ov, 4, 0, &o);
     rlines_of(q_all, 4, 0, &q); all_ok = output_block_found(&q, &o, &bad, &why); tlines_free(&q);
     rlines_of(q_mid, 3, 0, &q); all_ok = all_ok && output_block_found(&q, &o, &bad, &why); tlines_free(&q);
-    rlines_of(q_wrong, 3, 0, &q); all_ok = all_ok && output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_mid2, 3, 0, &q); all_ok = all_ok && output_block_found(&q, &o, &bad, &why); tlines_free(&q);
     report(all_ok, "(self-test)", 0, "a whole output and a part cut with `...` at both ends are found", NULL);
     rlines_of(q_noindent, 3, 0, &q); all_ok = !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
     rlines_of(q_uncut, 2, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
     rlines_of(q_gap, 3, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_end, 3, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
     rlines_of(q_number, 3, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
-    report(all_ok, "(self-test)", 0, "lost indentation, an unmarked cut at the start or in the middle and a wrong number are caught", NULL);
+    report(all_ok, "(self-test)", 0, "lost indentation, an unmarked cut at the start, in the middle or at the end, and a wrong number are caught", NULL);
     tlines_free(&o);
     (void)output_has_line;
   }
