@@ -146,8 +146,14 @@ typedef struct el_envlight_options {
   int bad_texels;          /* EL_ENVLIGHT_BAD_TEXELS_*; what became 0 is reported in the light's fields */
 } el_envlight_options;
 
+/* The light. PUBLIC (read, never write): width, height, bad_index and what init replaced by 0
+ * (negative_texels, nonfinite_texels, most_negative, most_negative_index). Every other field is PRIVATE:
+ * the implementation's state and tables, which may change in any version without notice; read the
+ * light through the functions below (el_envlight_le, el_envlight_bytes, ...) and change it only through
+ * el_envlight_init / el_envlight_preprocess / el_envlight_free. */
 typedef struct el_envlight {
-  int width, height;       /* the image; 0 x 0 for a constant light */
+  int width, height;       /* PUBLIC: the image; 0 x 0 for a constant light */
+  /* ---- private from here on (but bad_index and the counts, below) ---- */
   float *texels;           /* width*height*3, scaled, row 0 = theta 0 */
   float constant[3];       /* the radiance of a constant light (scaled) */
   float to_world[9];       /* row-major, orthonormal */
@@ -202,18 +208,18 @@ typedef struct el_envlight {
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
-  int bad_index;           /* after init: the index y*width+x of the first bad texel when init failed on one
+  int bad_index;           /* PUBLIC. After init: the index y*width+x of the first bad texel when init failed on one
                               (EL_ERROR_NAN, _INFINITE, _NEGATIVE), else -1. A failed init zeroes every
                               other field. */
-  /* after a successful init: the texels that bad_texels ZERO or CLAMP_NEGATIVE replaced by 0 (for a
-   * warning such as "8980 negative texels clamped to 0, the most negative -0.0039 at (x, y)"). A texel
-   * counts once however many of its channels were replaced; the constant light counts as one texel. */
+  /* PUBLIC. After a successful init: the texels that bad_texels ZERO or CLAMP_NEGATIVE replaced by 0
+   * (for a warning such as "299 negative texels clamped to 0, the most negative -0.0016 at (x, y)"). A
+   * texel counts once however many of its channels were replaced; the constant light counts as one. */
   size_t negative_texels;  /* texels with a finite negative channel */
   size_t nonfinite_texels; /* texels with a NaN or infinite channel or a scaled value that overflowed (ZERO) */
   float most_negative;     /* the most negative channel value as given (before the scale); 0 when none */
   int most_negative_index; /* its texel y*width+x; -1 when none */
-  /* product sampling and the bilinear warp (NOTES ON PRODUCT SAMPLING below the API): their own tables,
-   * built on first use with their own once-flags (the same scheme as state) */
+  /* ---- private again ---- product sampling and the bilinear warp (NOTES ON PRODUCT SAMPLING below the
+   * API): their own tables, built on first use with their own once-flags (the same scheme as state) */
   int warp_state, cos_state;        /* 0 not built, 1 being built, 2 ready, 3 failed */
   el_result warp_result, cos_result;
   struct el_envlight__warp *warp;   /* the warp's cells and CDFs, and the normal tables (private) */
