@@ -309,7 +309,7 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 960
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 970
  * instructions (1090 with rgb), the pdf included. Builds its tables on first use (7.3 MB for a
  * 1024x512 map, at most about 17 MB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
@@ -408,7 +408,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
  *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random
- *    normal per call, the loop's own 9 subtracted): sample_li_cos 959 instructions (1090 with the
+ *    normal per call, the loop's own 9 subtracted): sample_li_cos 966 instructions (1094 with the
  *    radiance; before issue 20: 1179, 1310), pdf_li_cos 377 (419); sample_li 97 (261 with the radiance),
  *    pdf_li 76. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <= 150 and
  *    <= 1.5x pdf_li) are NOT met: the sample includes its own pdf (it runs pdf_li_cos's code on the
@@ -420,7 +420,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340 instructions
  *    estimated) has 2.4x the variance on city (0.080 against 0.033, bench_product "table 32^2 64x32":
  *    20x on the normal facing up, where the sun's texel dominates and its density is flat while le is
- *    bilinear); an SSE2 count in place of the binary searches: more instructions (1049), not fewer.
+ *    bilinear); an SSE2 count in place of the binary searches: more instructions (1049 against 953), not fewer.
  *    Not tried: a batched call for n normals, Conty and Lecocq's per-point 12x12 coarse level (its
  *    variance at 16x8 cells, above, is 2x the tables'), a diamond-angle patch parametrisation whose pdf
  *    needs no atan (the likely way to the targets).
