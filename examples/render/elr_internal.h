@@ -153,6 +153,9 @@ typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ 
 /* how an infinite light is sampled at a vertex whose lobes all reflect: the product of the map and the
  * clamped cosine (el_envlight_sample_li_cos), or the map alone (el_envlight_sample_li, pbrt-v3's) */
 enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
+/* issue 20's per-lobe choice: with product sampling, a vertex whose glossy lobe has a Trowbridge-Reitz
+ * alpha below this samples the map alone (elr_bsdf_cos_normal; measured with bench/lobes.py) */
+#define ELR_ENV_LOBE_ALPHA 0.1f
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
@@ -219,6 +222,9 @@ struct elr_scene {
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
   int warnings;
+  /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
+   * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */
+  float env_lobe_alpha;
   char last_warning[512];
   int quiet;
   double t_parse, t_images, t_embree;
@@ -353,6 +359,7 @@ typedef struct elr_bsdf {
   int has_diffuse, has_glossy, has_specular, ncomp;
   int spec_r, spec_t, nlobes;
   float eta;
+  int env_map; /* a glossy lobe peaked enough that the environment's map alone samples this vertex (elr_bsdf_cos_normal) */
   elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
@@ -371,9 +378,13 @@ elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, in
  * stays unbiased; with the shading normal it would miss that sliver of smooth-shaded meshes (ns = ng on
  * spheres, disks and flat triangles). Returns 0 (sample the map alone) when a non-specular lobe
  * transmits (rough glass): its light comes from both sides. Light sample and BSDF sample's MIS weight
- * use the same normal, and the path tracer keeps it for its continuation ray (elr_path_state.prev_n). */
+ * use the same normal, and the path tracer keeps it for its continuation ray (elr_path_state.prev_n).
+ * Returns 0 too where a glossy lobe is peaked (b->env_map, set by elr_bsdf_init: its Trowbridge-Reitz
+ * alpha below the scene's env_lobe_alpha): there the product of the map and the cosine follows the
+ * lobe no better than the map does and costs more (issue 20, bench/lobes.py). */
 static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
   int i;
+  if (b->env_map) return 0; /* issue 20's per-lobe choice: a peaked glossy lobe (elr_bsdf_lobe_alpha) */
   for (i = 0; i < b->nlobes; i++)
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
@@ -383,6 +394,10 @@ static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
 void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
 elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type);
 float elr_roughness_to_alpha(float r);
+/* the Trowbridge-Reitz alpha of the BSDF's most peaked glossy reflection lobe (sqrt(ax ay) when
+ * anisotropic; INFINITY without a glossy lobe): what the per-lobe choice of the environment's sampling
+ * compares with the scene's env_lobe_alpha */
+float elr_bsdf_lobe_alpha(const elr_bsdf *b);
 /* pbrt-v3's FrDielectric (cos_i signed: below the surface, the indices swap) and FrConductor (etaI 1) */
 float elr_fr_dielectric(float cos_i, float eta_i, float eta_t);
 elr_v3 elr_fr_conductor(float cos_i, elr_v3 eta, elr_v3 k);
@@ -631,6 +646,7 @@ int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err
 #define ELR_SPLIT_MAX_GIVEN 1024 /* --split N: at most this */
 typedef struct elr_tstats { /* one thread's counts */
   uint64_t camera, bounce, shadow, bsdfl, samples;
+  uint64_t env_product, env_map; /* environment light samples drawn by product sampling, by the map alone */
   double t_embree; /* the wave loop: seconds inside its Embree calls */
 } elr_tstats;
 typedef struct elr_ctx {

@@ -46,6 +46,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   /* <<Sample light source with multiple importance sampling>> */
   if (delta || C->ls != ELR_LS_BSDF) {
     elr_light_sample ls;
+    if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; } /* (--stats) */
     elr_light_sample_li(l, s, h->p, n, ul, &ls);
     if (ls.pdf > 0.f) {
       /* <<Compute BSDF value for light sample>> */

@@ -100,7 +100,11 @@ static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *
 /* The BSDF of the hit's material at the shading point c (its textures evaluated there). */
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b) {
   const elr_material *m = &s->mat[h->material];
-  if (m->kind > ELR_MAT_PLASTIC) { elr__bsdf_list(s, m, h, c, b); return; }
+  if (m->kind > ELR_MAT_PLASTIC) {
+    elr__bsdf_list(s, m, h, c, b);
+    b->env_map = elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha; /* (elr_bsdf_cos_normal: issue 20's per-lobe choice) */
+    return;
+  }
   b->nlobes = 0; b->eta = 1.f;
   b->ns = h->ns; b->ng = h->ng;
   elr_onb(b->ns, &b->ss, &b->ts);
@@ -125,4 +129,5 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
   }
   b->ncomp = b->has_diffuse + b->has_glossy + b->has_specular;
   b->spec_r = b->has_specular; b->spec_t = 0;
+  b->env_map = elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha;
 }

@@ -431,6 +431,17 @@ void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta) {
   b->kd = b->ks = b->kr = elr_v(0, 0, 0);
   b->alpha = 1.f;
   b->eta = eta;
+  b->env_map = 0;
+}
+float elr_bsdf_lobe_alpha(const elr_bsdf *b) {
+  float a = INFINITY;
+  int i;
+  if (b->nlobes == 0) return b->has_glossy ? b->alpha : INFINITY;
+  for (i = 0; i < b->nlobes; i++) {
+    const elr_bxdf *x = &b->lobe[i];
+    if ((x->type == ELR_BXDF_MICROFACET_REFLECTION || x->type == ELR_BXDF_FRESNEL_BLEND) && sqrtf(x->ax * x->ay) < a) a = sqrtf(x->ax * x->ay);
+  }
+  return a;
 }
 elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type) {
   elr_bxdf *x;

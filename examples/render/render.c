@@ -137,6 +137,7 @@ static void *elr__worker(void *arg) {
   pthread_mutex_lock(&J->mu);
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
   J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples; J->total.t_embree += ts.t_embree;
+  J->total.env_product += ts.env_product; J->total.env_map += ts.env_map;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
   elr_wave_free(W);
@@ -146,6 +147,7 @@ static void *elr__worker(void *arg) {
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
   o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
+  o->env_lobe_alpha = -1.f;
   o->loop = -1; o->wave_api = -1; o->split = -1;
 }
 
@@ -186,6 +188,35 @@ static int elr__mat_transmits_rough(const elr_scene *s) {
   for (i = 0; i < s->ndisk; i++) if (elr__may_transmit_rough(s, &s->mat[s->disk[i].material])) return 1;
   return 0;
 }
+/* whether some shape's material may have a glossy reflection lobe (plastic, metal, uber, substrate)
+ * of alpha below a (elr_bsdf_lobe_alpha's sqrt(ax ay) is below a when either alpha is): issue 20's
+ * per-lobe choice samples the environment's map alone there */
+/* (a roughness texture that is not constant may go below the threshold anywhere) */
+static int elr__rough_below(const elr_scene *s, int t, int remap, float a) {
+  float r;
+  if (t < 0 || s->tex[t].kind != ELR_TEX_CONST) return 1;
+  r = s->tex[t].value.x;
+  r = remap ? elr_roughness_to_alpha(r) : r; /* (materials.c's alphas; their floors are below any useful threshold) */
+  return r < a;
+}
+static int elr__may_be_glossy(const elr_scene *s, const elr_material *m, float a) {
+  switch (m->kind) {
+  case ELR_MAT_PLASTIC: return elr__rough_below(s, m->rough, m->remap, a);
+  case ELR_MAT_METAL: case ELR_MAT_UBER: {
+    int u = m->urough >= 0 ? m->urough : m->rough, v = m->vrough >= 0 ? m->vrough : m->rough;
+    return elr__rough_below(s, u, m->remap, a) || elr__rough_below(s, v, m->remap, a);
+  }
+  case ELR_MAT_SUBSTRATE: return elr__rough_below(s, m->urough, m->remap, a) || elr__rough_below(s, m->vrough, m->remap, a);
+  default: return 0;
+  }
+}
+static int elr__mat_glossy(const elr_scene *s, float a) {
+  int i;
+  for (i = 0; i < s->nmesh; i++) if (elr__may_be_glossy(s, &s->mat[s->mesh[i].material], a)) return 1;
+  for (i = 0; i < s->nsph; i++) if (elr__may_be_glossy(s, &s->mat[s->sph[i].material], a)) return 1;
+  for (i = 0; i < s->ndisk; i++) if (elr__may_be_glossy(s, &s->mat[s->disk[i].material], a)) return 1;
+  return 0;
+}
 static int elr__mat_nonspecular(const elr_scene *s) {
   int i;
   /* a material with a non-specular lobe, used by some shape */
@@ -204,7 +235,9 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
                               size_t errlen) {
   elr_scene *s = C->s;
   int i;
+  float lobe_alpha = o->env_lobe_alpha < 0.f ? ELR_ENV_LOBE_ALPHA : o->env_lobe_alpha;
   *emits = 0;
+  s->env_lobe_alpha = 0.f; /* (set below where an environment is product-sampled) */
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) *emits = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C->has_env = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_AREA) C->has_area = 1;
@@ -233,10 +266,14 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     elr_light *l = &s->light[i];
     if (l->kind == ELR_LIGHT_INFINITE && elr_light_emits(l) && C->ls != ELR_LS_BSDF) {
       double t0 = elr_now();
-      if (elr_infinite_prepare(l, o->compensated, o->importance, o->env_sampling, elr__mat_transmits_rough(s)) != 0) {
+      /* (the map's own tables too where some vertex may choose the map alone: a rough transmission or,
+       * issue 20's per-lobe choice, a glossy lobe that may be below the threshold) */
+      int need_map = elr__mat_transmits_rough(s) || (lobe_alpha > 0.f && elr__mat_glossy(s, lobe_alpha));
+      if (elr_infinite_prepare(l, o->compensated, o->importance, o->env_sampling, need_map) != 0) {
         snprintf(err, errlen, "environment: cannot build the sampling distribution");
         return -1;
       }
+      if (l->product) s->env_lobe_alpha = lobe_alpha;
       if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
     }
@@ -277,6 +314,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->bytes_embree = s->bytes_embree; st->bytes_film = el_film_bytes(film);
   st->bytes_splats = film->splats ? (size_t)film->width * (size_t)film->height * 3 * sizeof(double) : 0; st->splats_allocated = st->bytes_splats > 0;
   st->camera_rays = T->camera; st->bounce_rays = T->bounce; st->shadow_rays = T->shadow;
+  st->env_product_samples = T->env_product; st->env_map_samples = T->env_map;
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
   st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product;
@@ -320,7 +358,8 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     ls->pick = C->ld.pick ? C->ld.pick[i] : (ls->emits && C->light_sampling ? 1.f : 0.f);
     if (l->kind == ELR_LIGHT_INFINITE && env_sampled && ls->emits && C->ls != ELR_LS_BSDF && C->light_sampling) {
       ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample) + el_envlight_product_bytes(l->env_sample);
-      ls->env_product = l->product; ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
+      ls->env_product = l->product; ls->env_lobe_alpha = l->product ? s->env_lobe_alpha : 0.f;
+      ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
       ls->env_importance = l->env_sample->importance;
     }
     if (l->kind == ELR_LIGHT_AREA) {

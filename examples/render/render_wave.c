@@ -153,6 +153,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
         W->has_n[n] = elr_bsdf_cos_normal(&q->b, wo, &W->normal[n]);
+        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[np] = n++;
       }
       if (C->ls != ELR_LS_LIGHT) {
@@ -272,6 +273,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_sampler_get2d(S, &W->u[2 * n]);
         elr_sampler_get2d(S, us);
         W->has_n[n] = elr_bsdf_cos_normal(b, wo, &W->normal[n]);
+        if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
       }
       /* <<Sample BSDF to get new path direction>> */

@@ -79,7 +79,7 @@ void elr_stats_print(const elr_stats *st, void *fp) {
         static const char *im[4] = {"cellaverage", "pbrt-v3", "texel", "bilinear"};
         if (l->env_product)
           fprintf(f, "; sampled by product sampling (map x cosine: el_envlight_sample_li_cos)%s",
-                  l->env_map_built ? ", the map alone where a rough lobe transmits" : "");
+                  l->env_map_built ? ", the map alone where a rough lobe transmits or a glossy lobe is peaked" : "");
         else fprintf(f, "; sampled by the map alone (el_envlight_sample_li, importance %s)", im[l->env_importance & 3]);
       }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
@@ -88,6 +88,13 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       fprintf(f, "\n");
     }
     if (st->lights > st->nlight_stats) fprintf(f, "    (%d more lights)\n", st->lights - st->nlight_stats);
+  }
+  if (st->env_product_samples + st->env_map_samples > 0) {
+    float a = 0.f;
+    int i;
+    for (i = 0; i < st->nlight_stats; i++) if (st->light[i].env_product) a = st->light[i].env_lobe_alpha;
+    fprintf(f, "  env strategies     %llu light samples by product sampling, %llu by the map alone (glossy lobes of alpha < %g, rough transmission)\n",
+            (unsigned long long)st->env_product_samples, (unsigned long long)st->env_map_samples, (double)a);
   }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
           st->splats_allocated ? "allocated" : "not allocated (nothing splats)");

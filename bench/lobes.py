@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""lobes.py: issue 20's "every lobe" measurement: the renderer's default environment sampling against
+the map alone (--env-sampling map, pbrt-v3's), per material and over the image.
+
+Scenes: scenes/lobes_city.pbrt and scenes/lobes_studio.pbrt (a near-specular metal, alpha 0.02; a glossy
+plastic, pbrt-v3 roughness 0.1 remapped, alpha 0.46; a rough plastic, roughness 0.5, alpha 1.13; on a
+diffuse plane; directlighting, stratified 4x4, one light + one BSDF sample). Regions: the whole image and
+one crop window per sphere (Film "cropwindow", written to a temporary copy of the scene: the crop's time
+is the time of its pixels alone; each crop is mostly its sphere, with some plane around it).
+Error: the RELATIVE VARIANCE ACROSS SEEDS, the mean over pixels and channels of the variance of the
+seeds' images over (mean^2 + 1e-2), as bench/mitsuba_compare.py. Time: the render loop's CPU seconds
+(render --stats, one thread), the mean over seeds. Time to unit variance (TTUV) = relvar x CPU s; the
+ratio printed is TTUV(map alone) / TTUV(default): above 1 the default wins.
+Runs are interleaved (every strategy once per seed, the order alternating), as the machine is shared.
+  python3 bench/lobes.py [--seeds 8] [--spp 16] [--render build/bin/render] [--maps city,studio]
+                         [--regions full,metal,glossy,rough] [--extra "--env-sampling product"]
+--extra: options added to the default's command line (e.g. to measure a variant against both).
+"""
+import argparse, os, re, struct, subprocess, sys, tempfile, array
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CROPS = {  # NDC crop windows (x0 x1 y0 y1) around each sphere of the lobes scenes
+    'full': None,
+    'metal': (0.14, 0.38, 0.12, 0.80),
+    'glossy': (0.38, 0.62, 0.12, 0.80),
+    'rough': (0.62, 0.86, 0.12, 0.80),
+}
+
+
+def read_pfm(path):
+    with open(path, 'rb') as f:
+        kind = f.readline().strip()
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = array.array('f')
+        data.frombytes(f.read())
+        if scale > 0: data.byteswap()
+    nc = 3 if kind == b'PF' else 1
+    assert len(data) == w * h * nc, path
+    return data
+
+
+def run(render, scene, seed, spp, extra):
+    out = tempfile.mktemp(suffix='.pfm', dir=TMP)
+    cmd = [render, scene, '--outfile', out, '--seed', str(seed), '--spp', str(spp), '--nthreads', '1', '--quiet',
+           '--stats'] + extra
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0: sys.exit('render failed: %s\n%s' % (' '.join(cmd), p.stderr))
+    m = re.search(r'render\s+[\d.]+ s\s+\(CPU ([\d.]+) s\)', p.stdout + p.stderr)
+    img = read_pfm(out)
+    os.unlink(out)
+    return img, float(m.group(1)), p.stdout + p.stderr
+
+
+def relvar(imgs):
+    n = len(imgs)
+    tot = 0.0
+    for i in range(len(imgs[0])):
+        vals = [im[i] for im in imgs]
+        m = sum(vals) / n
+        v = sum((x - m) ** 2 for x in vals) / (n - 1)
+        tot += v / (m * m + 1e-2)
+    return tot / len(imgs[0])
+
+
+def main():
+    global TMP
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--seeds', type=int, default=8)
+    ap.add_argument('--spp', type=int, default=16)
+    ap.add_argument('--render', default=os.path.join(ROOT, 'build', 'bin', 'render'))
+    ap.add_argument('--maps', default='city,studio')
+    ap.add_argument('--regions', default='full,metal,glossy,rough')
+    ap.add_argument('--extra', default='')
+    a = ap.parse_args()
+    TMP = tempfile.mkdtemp(prefix='lobes')
+    strategies = [('default', a.extra.split()), ('map', ['--env-sampling', 'map'])]
+    print('relvar across %d seeds, %d spp, CPU s of the render loop (1 thread; machine shared)' % (a.seeds, a.spp))
+    print('| map | region | default relvar | default CPU s | map relvar | map CPU s | TTUV map / default |')
+    print('|---|---|---|---|---|---|---|')
+    for mp in a.maps.split(','):
+        src = open(os.path.join(ROOT, 'scenes', 'lobes_%s.pbrt' % mp)).read()
+        src = src.replace('"../data/', '"%s/data/' % ROOT)
+        for reg in a.regions.split(','):
+            text = src
+            if CROPS[reg]:
+                text = text.replace('"string filename"', '"float cropwindow" [ %g %g %g %g ] "string filename"' % CROPS[reg])
+            scene = os.path.join(TMP, 'lobes_%s_%s.pbrt' % (mp, reg))
+            open(scene, 'w').write(text)
+            imgs = {k: [] for k, _ in strategies}
+            cpu = {k: [] for k, _ in strategies}
+            for s in range(a.seeds):
+                order = strategies if s % 2 == 0 else strategies[::-1]
+                for k, ex in order:
+                    img, t, _ = run(a.render, scene, s + 1, a.spp, ex)
+                    imgs[k].append(img)
+                    cpu[k].append(t)
+            r = {}
+            for k, _ in strategies:
+                v = relvar(imgs[k])
+                t = sum(cpu[k]) / len(cpu[k])
+                r[k] = (v, t, min(cpu[k]), max(cpu[k]))
+            ratio = (r['map'][0] * r['map'][1]) / (r['default'][0] * r['default'][1])
+            print('| %s | %s | %.4g | %.3f (%.3f-%.3f) | %.4g | %.3f (%.3f-%.3f) | %.2f |' %
+                  (mp, reg, r['default'][0], r['default'][1], r['default'][2], r['default'][3],
+                   r['map'][0], r['map'][1], r['map'][2], r['map'][3], ratio))
+            sys.stdout.flush()
+
+
+if __name__ == '__main__':
+    main()
