@@ -77,7 +77,11 @@ static elr_v3 elr__glossy_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   if (ci == 0.f || co == 0.f) return elr_v(0, 0, 0);
   if (wh.x == 0.f && wh.y == 0.f && wh.z == 0.f) return elr_v(0, 0, 0);
   wh = elr_norm(wh);
-  F = elr_fr_dielectric(elr_dot(wi, wh), 1.5f, 1.f); /* pbrt-v3 plastic: FresnelDielectric(1.5, 1) */
+  /* pbrt-v3 plastic: FresnelDielectric(1.5, 1), evaluated as MicrofacetReflection::f does: <<For the
+   * Fresnel call, make sure that wh is in the same hemisphere as the surface normal>>. Below the shading
+   * normal (a mesh whose normals point inwards: pbrt-v3's loopsubdiv, killeroo-simple.pbrt) the cosine is
+   * then negative and FrDielectric swaps the indices: no total internal reflection past 41.8 degrees. */
+  F = elr_fr_dielectric(elr_dot(wi, wh.z < 0.f ? elr_mul(wh, -1.f) : wh), 1.5f, 1.f);
   return elr_mul(b->ks, elr__tr_d(b->alpha, wh) * elr__tr_g(b->alpha, wo, wi) * F / (4.f * ci * co));
 }
 static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
