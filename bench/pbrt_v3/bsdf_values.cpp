@@ -42,6 +42,8 @@ static const char *kMaterials[] = {
     "Material \"glass\" \"float uroughness\" [ .15 ] \"float vroughness\" [ .3 ]",
     "Material \"glass\" \"float roughness\" [ .1 ] \"float index\" [ 1.33 ] \"bool remaproughness\" \"false\"",
     "Material \"matte\" \"rgb Kd\" [ .5 .25 .125 ]",
+    "Material \"matte\" \"rgb Kd\" [ .5 .25 .125 ] \"float sigma\" [ 20 ]",
+    "Material \"matte\" \"rgb Kd\" [ .7 .6 .5 ] \"float sigma\" [ 90 ]",
 };
 
 // a minimal reader of the parameter list above: "type name" value | [ values ]
