@@ -8,7 +8,8 @@
  *   - the fixed lobes of matte, mirror and plastic (LambertianReflection; MicrofacetReflection with
  *     isotropic Trowbridge-Reitz and plastic's FresnelDielectric(1.5, 1); SpecularReflection with
  *     FresnelNoOp), the renderer's first and fastest path, kept as it was;
- *   - a list of BxDFs (">> BxDFs" below) for glass, metal, uber and substrate: LambertianReflection,
+ *   - a list of BxDFs (">> BxDFs" below) for glass, metal, uber, substrate and matte of sigma > 0:
+ *     LambertianReflection, OrenNayar,
  *     SpecularReflection and SpecularTransmission, FresnelSpecular (smooth glass in the path tracer),
  *     MicrofacetReflection and MicrofacetTransmission with anisotropic Trowbridge-Reitz, FresnelBlend;
  *     Fresnel terms FresnelNoOp, FresnelDielectric, FresnelConductor.
