@@ -95,6 +95,29 @@ static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *
     break;
   }
   }
+  { /* BSDF::BSDF's frame: ss = Normalize(shading.dpdu), ts = Cross(ns, ss) (the shape's dp/du, made
+     * orthogonal to ns as pbrt-v3's shading geometry makes it). Only an anisotropic microfacet lobe can
+     * tell one frame around ns from another, so the hit's dp/du is computed for those alone (elr_hit_uv
+     * on a copy); the others keep elr_onb's frame. A dp/du along ns keeps it too. */
+    int k, aniso = 0;
+    for (k = 0; k < b->nlobes; k++) {
+      const elr_bxdf *l = &b->lobe[k];
+      if ((l->type == ELR_BXDF_MICROFACET_REFLECTION || l->type == ELR_BXDF_MICROFACET_TRANSMISSION || l->type == ELR_BXDF_FRESNEL_BLEND) && l->ax != l->ay)
+        aniso = 1;
+    }
+    if (aniso) {
+      elr_hit hu = *h;
+      elr_v3 d;
+      float d2;
+      elr_hit_uv(s, &hu);
+      d = elr_sub(hu.dpdu, elr_mul(b->ns, elr_dot(b->ns, hu.dpdu)));
+      d2 = elr_dot(d, d);
+      if (d2 > 1e-12f * elr_dot(hu.dpdu, hu.dpdu) && isfinite(d2)) {
+        b->ss = elr_mul(d, 1.f / sqrtf(d2));
+        b->ts = elr_cross(b->ns, b->ss);
+      }
+    }
+  }
 }
 
 /* The BSDF of the hit's material at the shading point c (its textures evaluated there). */
