@@ -44,6 +44,8 @@ static const char *kMaterials[] = {
     "Material \"matte\" \"rgb Kd\" [ .5 .25 .125 ]",
     "Material \"matte\" \"rgb Kd\" [ .5 .25 .125 ] \"float sigma\" [ 20 ]",
     "Material \"matte\" \"rgb Kd\" [ .7 .6 .5 ] \"float sigma\" [ 90 ]",
+    "Material \"matte\" \"rgb Kd\" [ .5 -.25 .125 ]",
+    "Material \"plastic\" \"rgb Kd\" [ -.2 .3 .4 ] \"rgb Ks\" [ .5 -.1 .2 ] \"float roughness\" [ .1 ]",
 };
 
 // a minimal reader of the parameter list above: "type name" value | [ values ]

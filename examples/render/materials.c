@@ -144,7 +144,7 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
     }
     b->has_diffuse = !elr_isblack(b->kd);
   } else if (m->kind == ELR_MAT_MIRROR) { /* MirrorMaterial::ComputeScatteringFunctions */
-    b->kr = elr_tex_eval(s, m->kr, c);
+    b->kr = elr__clamp0(elr_tex_eval(s, m->kr, c)); /* pbrt-v3: Kr->Evaluate(*si).Clamp() */
     b->has_specular = !elr_isblack(b->kr);
   } else { /* PlasticMaterial::ComputeScatteringFunctions */
     float r;
