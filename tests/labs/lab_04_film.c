@@ -24,7 +24,8 @@ static void part_add(void) {
       if (w1[i] != (i == 1 * XR + 2 ? 1.f : 0.f)) break;
     lab_check(i == XR * YR && c1[3 * (XR + 2)] == 1 && c1[3 * (XR + 2) + 2] == 3,
               "a box filter (radius 0.5), one sample L = (1, 2, 3) at pFilm = (2.5, 1.5), the centre of pixel (2, 1): pixel (%d, %d) has filterWeightSum %g "
-              "(should be %g) and contribSum.r %g: the sample reaches only pixel (2, 1), with weight 1",
+              "(should be %g) and contribSum.r %g: the sample reaches only pixel (2, 1), with weight 1 (pFilmDiscrete = pFilm - 0.5 puts pixel centres "
+              "at integers)",
               i < XR * YR ? i % XR : 2, i < XR * YR ? i / XR : 1, i < XR * YR ? w1[i] : w1[XR + 2], i < XR * YR && i == XR + 2 ? 1. : i < XR * YR ? 0. : 1.,
               c1[3 * (XR + 2)]);
   }
@@ -94,7 +95,7 @@ static void part_write(void) {
       lab_check(0, "WriteImage (%s): pixel (%d, %d) channel %d is %g, pbrt's %g: %s", k == 0 ? "plain" : k == 1 ? "with splats" : "scale 0.5", p % XR, p / XR,
                 i % 3, b[i], a[i],
                 b[i] == 0 && a[i] != 0                ? "yours is 0: TODO 2 not written yet?"
-                : b[i] < 0                            ? "clamp each normalised channel below at 0 (fmaxf(0.f, ...))"
+                : b[i] < 0 && a[i] >= 0               ? "clamp each normalised channel below at 0 (fmaxf(0.f, ...))"
                 : k == 1 && sp[3 * p] != 0            ? "add splatScale times the splat's RGB (pbrt_XYZToRGB of splatXYZ), after normalising"
                 : k == 2                              ? "multiply by film->scale last"
                 : ws[p] != 0 && lab_close(b[i], a[i] * ws[p], 1e-4) ? "did you divide by the filter weights' sum?"
