@@ -22,7 +22,7 @@ static void test_image(int w, int h, unsigned seed, float *rgb) {
 static void part_weights(void) {
   static const int cases[][2] = {{5, 8}, {3, 4}, {400, 512}, {235, 256}};
   int k;
-  lab_part("part 1, TODO 1: resampleWeights (chapter 1, section 4)");
+  lab_part("part 1, TODO 1: resampleWeights (chapter 1, \"Constructor step 1\")");
   for (k = 0; k < 4; ++k) {
     int oldRes = cases[k][0], newRes = cases[k][1], i, j, bad = 0;
     int *f0 = (int *)calloc((size_t)newRes, sizeof(int)), *f1 = (int *)calloc((size_t)newRes, sizeof(int));
@@ -96,7 +96,7 @@ static void part_weights(void) {
 static void part_levels(void) {
   static const int sizes[][2] = {{8, 4}, {16, 16}, {4, 1}, {1, 1}, {2, 8}};
   int k, wrap;
-  lab_part("part 2, TODO 2 and 3: the number of levels and the box filter (chapter 1, section 5)");
+  lab_part("part 2, TODO 2 and 3: the number of levels and the box filter (chapter 1, \"Constructor step 2\")");
   for (k = 0; k < 5; ++k)
     for (wrap = 0; wrap < 3; ++wrap) {
       int w = sizes[k][0], h = sizes[k][1], n0, n1, i, bad = 0;
@@ -157,7 +157,7 @@ static void part_lut(void) {
   float a[128], b[128], img[3] = {1, 1, 1};
   int i;
   void *m0 = ref_mip_new(1, 1, img, 0, 0, 8.f), *m1 = stu_mip_new(1, 1, img, 0, 0, 8.f);
-  lab_part("part 3, TODO 4: the EWA weight table (chapter 1, section 6)");
+  lab_part("part 3, TODO 4: the EWA weight table (chapter 1, \"Constructor step 3\")");
   ref_weightlut(a);
   stu_weightlut(b);
   /* by hand: exp(-2 * 0) - exp(-2) and exp(-2 * 1) - exp(-2) */

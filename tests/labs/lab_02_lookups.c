@@ -25,7 +25,7 @@ static int same3(const float *a, const float *b, double tol) {
 static void part_resample(void) {
   static const int sizes[][2] = {{5, 3}, {3, 6}, {6, 4}};
   int k, wrap, repeat_ok;
-  lab_part("part 1, TODO 1 and 2: resampling to powers of two (chapter 2, step 2)");
+  lab_part("part 1, TODO 1 and 2: resampling to powers of two (chapter 2, \"Step 2\")");
   for (k = 0; k < 3; ++k)
     for (wrap = 0, repeat_ok = 0; wrap < 3; ++wrap) {
       int w = sizes[k][0], h = sizes[k][1], w0, h0, w1, h1, i, neg = 0, zero = 1;
@@ -82,7 +82,7 @@ static void part_resample(void) {
 static void part_texel(void) {
   float img[3 * 4 * 2], a[3], b[3];
   int wrap, s, t;
-  lab_part("part 2, TODO 3: Texel and the wrap modes (chapter 2, step 2)");
+  lab_part("part 2, TODO 3: Texel and the wrap modes (chapter 2, \"Step 2\")");
   test_image(4, 2, 5, img);
   for (wrap = 0; wrap < 3; ++wrap) {
     void *m0 = ref_mip_new(4, 2, img, wrap, 0, 8.f), *m1 = stu_mip_new(4, 2, img, wrap, 0, 8.f);
@@ -114,7 +114,7 @@ static void part_triangle(void) {
   float img[3 * 8 * 4], a[3], b[3];
   void *m0, *m1;
   int k, level;
-  lab_part("part 3, TODO 4: triangle, bilinear on one level (chapter 2, step 3)");
+  lab_part("part 3, TODO 4: triangle, bilinear on one level (chapter 2, \"Step 3\")");
   test_image(8, 4, 9, img);
   m0 = ref_mip_new(8, 4, img, REPEAT, 0, 8.f);
   m1 = stu_mip_new(8, 4, img, REPEAT, 0, 8.f);
@@ -146,7 +146,7 @@ static void part_lookup(void) {
   float img[3 * 16 * 8], a[3], b[3], lo[3], hi[3];
   void *m0, *m1;
   int k;
-  lab_part("part 4, TODO 5: Lookup(st, width), trilinear (chapter 2, step 3)");
+  lab_part("part 4, TODO 5: Lookup(st, width), trilinear (chapter 2, \"Step 3\")");
   test_image(16, 8, 21, img);
   m0 = ref_mip_new(16, 8, img, REPEAT, 0, 8.f);
   m1 = stu_mip_new(16, 8, img, REPEAT, 0, 8.f);

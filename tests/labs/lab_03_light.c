@@ -14,7 +14,7 @@ static void part_d1(void) {
   float cdf[5], rf[7] = {0.3f, 4, 1, 0, 0.2f, 2.5f, 1}, c0[8], c1[8];
   void *d = stu_d1_new(f, 4), *r, *s;
   int i;
-  lab_part("part 1, TODO 1: Distribution1D's CDF (chapter 3, section 3)");
+  lab_part("part 1, TODO 1: Distribution1D's CDF (chapter 3, \"Step 2\")");
   /* by hand: steps 1, 2, 0, 5 of width 1/4: integral 2; running sums .25, .75, .75, 2 */
   lab_check(lab_close(stu_d1_funcint(d), 2, 1e-6), "f = {1, 2, 0, 5}: funcInt is %g, should be 2 (the integral: each step is 1/n = 1/4 wide)%s",
             stu_d1_funcint(d), lab_close(stu_d1_funcint(d), 8, 1e-6) ? ": divide func[i - 1] by n" : "");
@@ -44,7 +44,7 @@ static void part_d1_sample(void) {
   float rf[7] = {0.3f, 4, 1, 0, 0.2f, 2.5f, 1};
   void *r = ref_d1_new(rf, 7), *s = stu_d1_new(rf, 7);
   int k;
-  lab_part("part 2, TODO 2: Distribution1D::SampleContinuous (chapter 3, section 3)");
+  lab_part("part 2, TODO 2: Distribution1D::SampleContinuous (chapter 3, \"Step 2\")");
   for (k = 0; k <= 20; ++k) {
     float u = k == 20 ? 0.99999f : (float)k / 20.f, p0 = -1, p1 = -1, x0, x1;
     int o0 = -1, o1 = -1;
@@ -69,7 +69,7 @@ static float grid[5 * 3] = {1, 0.5f, 3, 0, 2, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 4, 0
 static void part_d2(void) {
   void *r = ref_d2_new(grid, 5, 3), *s = stu_d2_new(grid, 5, 3);
   int i, j;
-  lab_part("part 3, TODO 3 and 4: Distribution2D and its SampleContinuous (chapter 3, section 3)");
+  lab_part("part 3, TODO 3 and 4: Distribution2D and its SampleContinuous (chapter 3, \"Step 2\")");
   /* by hand: the integral of the 5x3 grid over [0,1]^2 is its mean */
   lab_check(lab_close(stu_d2_funcint(s), 12. / 15, 1e-5),
             "a 5x3 grid: the marginal's funcInt is %g, should be the grid's integral, %g: marginalFunc[v] is row v's funcInt", stu_d2_funcint(s),
@@ -97,7 +97,7 @@ static void part_d2(void) {
 static void part_d2_pdf(void) {
   void *r = ref_d2_new(grid, 5, 3), *s = stu_d2_new(grid, 5, 3);
   int i, j;
-  lab_part("part 4, TODO 5: Distribution2D::Pdf (chapter 3, section 3)");
+  lab_part("part 4, TODO 5: Distribution2D::Pdf (chapter 3, \"Step 2\")");
   for (i = 0; i <= 6; ++i)
     for (j = 0; j <= 4; ++j) {
       float p0 = i == 6 ? 1.f : (float)i / 6 + 0.01f, p1 = j == 4 ? 1.f : (float)j / 4 + 0.02f;
@@ -132,7 +132,7 @@ static void part_sample_li(void) {
   float map[3 * 16 * 8];
   void *r, *s;
   int i, j;
-  lab_part("part 5, TODO 6: InfiniteAreaLight::Sample_Li (chapter 3, section 5)");
+  lab_part("part 5, TODO 6: InfiniteAreaLight::Sample_Li (chapter 3, \"Step 3\")");
   light_map(map);
   r = ref_light_new(map, 16, 8);
   s = stu_light_new(map, 16, 8);
@@ -168,7 +168,7 @@ static void part_pdf_li(void) {
   void *r, *s;
   int i, j, n = 0, bad = 0;
   double integral = 0;
-  lab_part("part 6, TODO 7: InfiniteAreaLight::Pdf_Li (chapter 3, section 5)");
+  lab_part("part 6, TODO 7: InfiniteAreaLight::Pdf_Li (chapter 3, \"Step 3\")");
   light_map(map);
   r = ref_light_new(map, 16, 8);
   s = stu_light_new(map, 16, 8);

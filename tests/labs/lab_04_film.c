@@ -16,7 +16,7 @@ static void part_add(void) {
   float c0[3 * XR * YR], c1[3 * XR * YR], w0[XR * YR], w1[XR * YR];
   float pf[2 * 12], L[3 * 12], wt[12];
   int i, f;
-  lab_part("part 1, TODO 1: FilmTile::AddSample (chapter 4, section 1)");
+  lab_part("part 1, TODO 1: FilmTile::AddSample (chapter 4, \"The film again\")");
   { /* by hand: a box filter of radius 0.5 puts a sample at (2.5, 1.5) into pixel (2, 1) alone, weight 1 */
     float p[2] = {2.5f, 1.5f}, l[3] = {1, 2, 3}, one = 1;
     stu_add_samples(XR, YR, BOX, 0.5f, 1, p, l, &one, c1, w1);
@@ -65,7 +65,7 @@ static void part_add(void) {
 static void part_write(void) {
   float xyz[3 * XR * YR], ws[XR * YR], sp[3 * XR * YR], a[3 * XR * YR], b[3 * XR * YR];
   int i, k;
-  lab_part("part 2, TODO 2: Film::WriteImage (chapter 4, sections 1 and 2)");
+  lab_part("part 2, TODO 2: Film::WriteImage (chapter 4, \"The film again\" and \"splatXYZ\")");
   { /* by hand: XYZ of RGB (1, 0.5, 0.2) summed with weight 2 is RGB (0.5, 0.25, 0.1) */
     float one[3] = {0.412453f + 0.357580f * 0.5f + 0.180423f * 0.2f, 0.212671f + 0.715160f * 0.5f + 0.072169f * 0.2f,
                     0.019334f + 0.119193f * 0.5f + 0.950227f * 0.2f},
@@ -109,7 +109,7 @@ static void part_write(void) {
 static void part_gamma(void) {
   static const float v[] = {0, 0.001f, 0.0031308f, 0.004f, 0.18f, 0.5f, 1, 2};
   int i;
-  lab_part("part 3, TODO 3: GammaCorrect, the sRGB curve (chapter 4, section 3)");
+  lab_part("part 3, TODO 3: GammaCorrect, the sRGB curve (chapter 4, \"Gamma correction and TO_BYTE\")");
   /* by hand: 1.055 * 0.5^(1/2.4) - 0.055 */
   lab_check(lab_close(stu_gamma(0.5f), 0.735357, 1e-5), "GammaCorrect(0.5) is %g, should be 1.055 * 0.5^(1/2.4) - 0.055 = 0.735357", stu_gamma(0.5f));
   for (i = 0; i < 8; ++i)
@@ -121,7 +121,7 @@ static void part_byte(void) {
   static const float v[] = {0, 0.0005f, 0.01f, 0.18f, 0.5f, 0.9f, 1, 2, 40, -1};
   unsigned char a[30], b[30];
   int i;
-  lab_part("part 4, TODO 4: TO_BYTE, curve, round, clamp (chapter 4, section 3)");
+  lab_part("part 4, TODO 4: TO_BYTE, curve, round, clamp (chapter 4, \"Gamma correction and TO_BYTE\")");
   ref_bytes(v, 10, a);
   stu_bytes(v, 10, b);
   /* by hand (the chapter): mid-grey 0.18 is code 118 */

@@ -4,12 +4,12 @@
  *
  * What you write (search for "TODO"):
  *   TODO 1  pbrt_MIPMap_resampleWeights: the four Lanczos taps of every new texel, normalised
- *           (chapter 1, section 4; pbrt's <<Compute image resampling weights for ith texel>> and
+ *           (chapter 1, "Constructor step 1"; pbrt's <<Compute image resampling weights for ith texel>> and
  *           <<Normalize filter weights for texel resampling>>)
  *   TODO 2  in pbrt_MIPMap_init: the number of levels (<<Initialize levels of MIPMap from image>>)
- *   TODO 3  in pbrt_MIPMap_init: levels 1, 2, ... from the level before (section 5,
+ *   TODO 3  in pbrt_MIPMap_init: levels 1, 2, ... from the level before ("Constructor step 2",
  *           <<Initialize ith MIPMap level from (i-1)st level>>, the box filter)
- *   TODO 4  in pbrt_MIPMap_init: the EWA weight table (section 6)
+ *   TODO 4  in pbrt_MIPMap_init: the EWA weight table ("Constructor step 3")
  * Build and check: `sh scripts/lab.sh 1` (from the repository root). The test compares your MIP map
  * with pbrt's, compiled separately from examples/pbrtv3/mipmap.h, and says what differs.
  * Untouched, this file compiles and runs, and the test fails: every TODO returns zeros.

@@ -4,11 +4,11 @@
  * else is given and works (lab 1's weights and levels are filled in here).
  *
  * What you write (search for "TODO"):
- *   TODO 1  in pbrt_MIPMap_init: <<Apply sWeights to zoom in s direction>> (chapter 2, step 2)
- *   TODO 2  in pbrt_MIPMap_init: <<Resample image in t direction>>, then clamp (step 2)
- *   TODO 3  pbrt_MIPMap_Texel: the three wrap modes (step 2's Texel)
- *   TODO 4  pbrt_MIPMap_triangle: bilinear interpolation on one level (step 3)
- *   TODO 5  pbrt_MIPMap_Lookup: the trilinear lookup (step 3)
+ *   TODO 1  in pbrt_MIPMap_init: <<Apply sWeights to zoom in s direction>> (chapter 2, "Step 2")
+ *   TODO 2  in pbrt_MIPMap_init: <<Resample image in t direction>>, then clamp ("Step 2")
+ *   TODO 3  pbrt_MIPMap_Texel: the three wrap modes ("Step 2", Texel)
+ *   TODO 4  pbrt_MIPMap_triangle: bilinear interpolation on one level ("Step 3")
+ *   TODO 5  pbrt_MIPMap_Lookup: the trilinear lookup ("Step 3")
  *   TODO 6  (optional) pbrt_MIPMap_EWA and pbrt_MIPMap_Lookup_dst ("Trilinear against EWA")
  * Build and check: `sh scripts/lab.sh 2` (from the repository root). The test compares your MIP map
  * with pbrt's, compiled separately from examples/pbrtv3/mipmap.h, and says what differs. Do TODO 3

@@ -3,13 +3,13 @@
  * else is given and works.
  *
  * What you write (search for "TODO"; the lab is sampling.h and infinite.h in this directory):
- *   sampling.h  TODO 1  pbrt_Distribution1D_init: the CDF and funcInt (chapter 3, section 3)
+ *   sampling.h  TODO 1  pbrt_Distribution1D_init: the CDF and funcInt (chapter 3, "Step 2: Distribution1D and Distribution2D")
  *               TODO 2  pbrt_Distribution1D_SampleContinuous
  *               TODO 3  pbrt_Distribution2D_init: one Distribution1D per row, and the marginal
  *               TODO 4  pbrt_Distribution2D_SampleContinuous
  *               TODO 5  pbrt_Distribution2D_Pdf
- *   infinite.h  TODO 6  pbrt_InfiniteAreaLight_Sample_Li (section 5)
- *               TODO 7  pbrt_InfiniteAreaLight_Pdf_Li (section 5)
+ *   infinite.h  TODO 6  pbrt_InfiniteAreaLight_Sample_Li ("Step 3")
+ *               TODO 7  pbrt_InfiniteAreaLight_Pdf_Li ("Step 3")
  * Build and check: `sh scripts/lab.sh 3` (from the repository root). The test compares your
  * distributions and light with pbrt's, compiled separately from examples/pbrtv3/, and says what
  * differs. Untouched, these files compile and run, and the test fails: every TODO returns zeros.

@@ -4,10 +4,10 @@
  * MergeFilmTile) is given and works.
  *
  * What you write (search for "TODO"):
- *   TODO 1  pbrt_FilmTile_AddSample: a sample into the pixels its filter reaches (chapter 4, section 1)
- *   TODO 2  pbrt_Film_WriteImage: XYZ to RGB, divided by the weight sum, splats, scale (section 1, 2)
- *   TODO 3  pbrt_GammaCorrect: the sRGB curve (section 3)
- *   TODO 4  TO_BYTE: curve, round, clamp (section 3)
+ *   TODO 1  pbrt_FilmTile_AddSample: a sample into the pixels its filter reaches (chapter 4, "The film again")
+ *   TODO 2  pbrt_Film_WriteImage: XYZ to RGB, divided by the weight sum, splats, scale ("The film again", "splatXYZ")
+ *   TODO 3  pbrt_GammaCorrect: the sRGB curve ("Gamma correction and TO_BYTE")
+ *   TODO 4  TO_BYTE: curve, round, clamp (the same section)
  * Build and check: `sh scripts/lab.sh 4` (from the repository root). The test compares your film with
  * pbrt's, compiled separately from examples/pbrtv3/film.h, and says what differs.
  * Untouched, this file compiles and runs, and the test fails: every TODO returns zeros.
