@@ -5,26 +5,29 @@ the map alone (--env-sampling map, pbrt-v3's), per material and over the image.
 Scenes: scenes/lobes_city.pbrt and scenes/lobes_studio.pbrt (a near-specular metal, alpha 0.02; a glossy
 plastic, pbrt-v3 roughness 0.1 remapped, alpha 0.46; a rough plastic, roughness 0.5, alpha 1.13; on a
 diffuse plane; directlighting, stratified 4x4, one light + one BSDF sample). Regions: the whole image and
-one crop window per sphere (Film "cropwindow", written to a temporary copy of the scene: the crop's time
-is the time of its pixels alone; each crop is mostly its sphere, with some plane around it).
+one crop window per material (Film "cropwindow", written to a temporary copy of the scene: the crop's time
+is the time of its pixels alone): a square inside each sphere's disk, and the plane's strip in front of them.
 Error: the RELATIVE VARIANCE ACROSS SEEDS, the mean over pixels and channels of the variance of the
 seeds' images over (mean^2 + 1e-2), as bench/mitsuba_compare.py. Time: the render loop's CPU seconds
 (render --stats, one thread), the mean over seeds. Time to unit variance (TTUV) = relvar x CPU s; the
 ratio printed is TTUV(map alone) / TTUV(default): above 1 the default wins.
 Runs are interleaved (every strategy once per seed, the order alternating), as the machine is shared.
   python3 bench/lobes.py [--seeds 8] [--spp 16] [--render build/bin/render] [--maps city,studio]
-                         [--regions full,metal,glossy,rough] [--extra "--env-sampling product"]
---extra: options added to the default's command line (e.g. to measure a variant against both).
+                         [--regions full,metal,glossy,rough,plane] [--extra "--env-lobe-alpha 0"] [--metal-alpha 0.2]
+--extra: options added to the default's command line (e.g. render's --env-lobe-alpha and --env-light-alpha, the
+per-lobe thresholds); --metal-alpha, --glossy-alpha: the metal's and the glossy plastic's Trowbridge-Reitz alpha
+(sweeps for the thresholds).
 """
 import argparse, os, re, struct, subprocess, sys, tempfile, array
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-CROPS = {  # NDC crop windows (x0 x1 y0 y1) around each sphere of the lobes scenes
+CROPS = {  # NDC crop windows (x0 x1 y0 y1): squares inside each sphere's disk, the plane in front of them
     'full': None,
-    'metal': (0.14, 0.38, 0.12, 0.80),
-    'glossy': (0.38, 0.62, 0.12, 0.80),
-    'rough': (0.62, 0.86, 0.12, 0.80),
+    'metal': (0.19, 0.31, 0.27, 0.57),
+    'glossy': (0.44, 0.56, 0.27, 0.57),
+    'rough': (0.69, 0.81, 0.27, 0.57),
+    'plane': (0.0, 1.0, 0.85, 1.0),
 }
 
 
@@ -71,8 +74,10 @@ def main():
     ap.add_argument('--spp', type=int, default=16)
     ap.add_argument('--render', default=os.path.join(ROOT, 'build', 'bin', 'render'))
     ap.add_argument('--maps', default='city,studio')
-    ap.add_argument('--regions', default='full,metal,glossy,rough')
+    ap.add_argument('--regions', default='full,metal,glossy,rough,plane')
     ap.add_argument('--extra', default='')
+    ap.add_argument('--metal-alpha', type=float, default=None, help="the metal sphere's alpha instead of 0.02 (threshold sweeps)")
+    ap.add_argument('--glossy-alpha', type=float, default=None, help="the glossy plastic's alpha instead of 0.46")
     a = ap.parse_args()
     TMP = tempfile.mkdtemp(prefix='lobes')
     strategies = [('default', a.extra.split()), ('map', ['--env-sampling', 'map'])]
@@ -82,6 +87,10 @@ def main():
     for mp in a.maps.split(','):
         src = open(os.path.join(ROOT, 'scenes', 'lobes_%s.pbrt' % mp)).read()
         src = src.replace('"../data/', '"%s/data/' % ROOT)
+        if a.metal_alpha is not None:
+            src = src.replace('"float roughness" [ 0.02 ]', '"float roughness" [ %g ]' % a.metal_alpha)
+        if a.glossy_alpha is not None:
+            src = src.replace('"float roughness" [ 0.1 ]', '"float roughness" [ %g ] "bool remaproughness" "false"' % a.glossy_alpha)
         for reg in a.regions.split(','):
             text = src
             if CROPS[reg]:

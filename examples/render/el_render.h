@@ -93,6 +93,8 @@ typedef struct elr_render_options {
                          0 rtcIntersect1, 1 packets of 16, 2 rtcIntersect1M streams, 3 rtcIntersectNp) */
   float env_lobe_alpha; /* < 0: ELR_ENV_LOBE_ALPHA; else with product sampling, vertices whose glossy lobe has a
                            Trowbridge-Reitz alpha below it sample the environment's map alone (0: never; issue 20) */
+  float env_light_alpha; /* < 0: ELR_ENV_LIGHT_ALPHA; else with product sampling, directlighting vertices whose lobes
+                            are diffuse or of alpha >= it take the light sample alone (no BSDF sample; inf: never) */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
 
@@ -109,6 +111,7 @@ typedef struct elr_light_stats {
   double seconds;       /* and their build time */
   int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
   float env_lobe_alpha; /* environment, product sampling: vertices with a glossy lobe of alpha below it took the map */
+  float env_light_alpha; /* and directlighting vertices with no lobe narrower than it, the light sample alone */
   int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
   int env_importance;   /* environment: the map's importance mode (EL_ENVLIGHT_IMPORTANCE_*) */
 } elr_light_stats;
@@ -119,6 +122,7 @@ typedef struct elr_stats {
   size_t bytes_embree, bytes_textures, bytes_film, bytes_distribution, bytes_splats, bytes_mip;
   uint64_t camera_rays, bounce_rays, shadow_rays, bsdf_light_rays, samples;
   uint64_t env_product_samples, env_map_samples; /* environment light samples by product sampling, by the map alone */
+  uint64_t env_light_only_samples;               /* of the product ones: taken alone, without a BSDF sample */
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
   int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
   int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */

@@ -156,6 +156,9 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
 /* issue 20's per-lobe choice: with product sampling, a vertex whose glossy lobe has a Trowbridge-Reitz
  * alpha below this samples the map alone (elr_bsdf_cos_normal; measured with bench/lobes.py) */
 #define ELR_ENV_LOBE_ALPHA 0.1f
+/* and a vertex whose lobes are diffuse or glossy with alpha at least this is estimated, by directlighting,
+ * with the product light sample alone (no BSDF sample: elr_env_light_only) */
+#define ELR_ENV_LIGHT_ALPHA 0.3f
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
@@ -225,6 +228,9 @@ struct elr_scene {
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
    * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */
   float env_lobe_alpha;
+  /* and vertices whose glossy lobes (if any) all have alpha >= this take directlighting's product light
+   * sample alone, without the BSDF sample (elr_bsdf.env_light_only; INFINITY never) */
+  float env_light_alpha;
   char last_warning[512];
   int quiet;
   double t_parse, t_images, t_embree;
@@ -361,6 +367,8 @@ typedef struct elr_bsdf {
   int spec_r, spec_t, nlobes;
   float eta;
   int env_map; /* a glossy lobe peaked enough that the environment's map alone samples this vertex (elr_bsdf_cos_normal) */
+  int env_light_only; /* no lobe narrower than the scene's env_light_alpha: directlighting's product light sample
+                         alone estimates the environment here (elr_env_light_only) */
   elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
@@ -390,6 +398,17 @@ static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
   return 1;
+}
+/* Issue 20's per-lobe choice, second half: whether EstimateDirect at this vertex (BSDF b, product-sampling
+ * normal found: has_n) takes the environment's product light sample alone, with weight 1 and no BSDF
+ * sample. Where the lobes are diffuse or broad (b->env_light_only) the product of the map and the cosine
+ * is close to the integrand and the BSDF sample's ray and pdf_li_cos cost more than they reduce the
+ * variance (bench/lobes.py). Unbiased as light sampling alone is (the product density is positive
+ * wherever f |ns.wi| is). Only where the BSDF sample would be MIS's partner of this light sample alone
+ * (sample_bsdf: directlighting; the path tracer's continuation is its BSDF sample either way). Not
+ * with the compensated density (max(L - mean, 0): unbiased only together with the BSDF sample). */
+static inline int elr_env_light_only(int ls_mis, int sample_bsdf, const elr_light *l, int has_n, const elr_bsdf *b) {
+  return ls_mis && sample_bsdf && has_n && l->kind == ELR_LIGHT_INFINITE && l->product && b->env_light_only && !l->env_sample->compensated;
 }
 /* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
 void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
@@ -648,6 +667,7 @@ int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err
 typedef struct elr_tstats { /* one thread's counts */
   uint64_t camera, bounce, shadow, bsdfl, samples;
   uint64_t env_product, env_map; /* environment light samples drawn by product sampling, by the map alone */
+  uint64_t env_light_only;       /* of the product ones: without a BSDF sample (elr_env_light_only) */
   double t_embree; /* the wave loop: seconds inside its Embree calls */
 } elr_tstats;
 typedef struct elr_ctx {

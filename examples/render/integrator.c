@@ -43,10 +43,12 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
    * BSDF sample's MIS weight below uses the same one, so both pdfs are the same density */
   elr_v3 nc;
   const elr_v3 *n = elr_bsdf_cos_normal(b, wo, &nc) ? &nc : NULL;
+  /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
+  int lonly = elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b);
   /* <<Sample light source with multiple importance sampling>> */
   if (delta || C->ls != ELR_LS_BSDF) {
     elr_light_sample ls;
-    if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; } /* (--stats) */
+    if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
     elr_light_sample_li(l, s, h->p, n, ul, &ls);
     if (ls.pdf > 0.f) {
       /* <<Compute BSDF value for light sample>> */
@@ -56,14 +58,14 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
         if (elr_light_unoccluded(s, h, &ls)) {
           /* <<Add light's contribution to reflected radiance>> */
           float w = 1.f;
-          if (!delta && C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
+          if (!delta && C->ls == ELR_LS_MIS && !lonly) w = elr_power_heuristic(pick * ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
           *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls.L), w / ls.pdf));
         }
       }
     }
   }
   /* <<Sample BSDF with multiple importance sampling>> */
-  if (!delta && sample_bsdf && C->ls != ELR_LS_LIGHT) {
+  if (!delta && sample_bsdf && C->ls != ELR_LS_LIGHT && !lonly) {
     elr_v3 wi, f;
     float pdf;
     int spec;

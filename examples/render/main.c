@@ -12,7 +12,8 @@
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
  * --env-sampling product|map (the environment sampled by the map x the surface's cosine, or the map alone),
  * --env-lobe-alpha A (with product sampling, vertices with a glossy lobe of Trowbridge-Reitz alpha below A
- * sample the map alone; 0 never; default ELR_ENV_LOBE_ALPHA),
+ * sample the map alone; 0 never; default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
+ * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
  * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
@@ -88,6 +89,12 @@ int main(int argc, char **argv) {
       errno = 0; x = strtod(argv[++i], &e);
       if (errno || *e || e == argv[i] || !(x >= 0.0 && x <= 1e30)) { fprintf(stderr, "render: --env-lobe-alpha must be a number >= 0, got \"%s\"\n", argv[i]); return 1; }
       o.env_lobe_alpha = (float)x;
+    } else if (!strcmp(a, "--env-light-alpha") && i + 1 < argc) {
+      char *e;
+      double x;
+      errno = 0; x = strtod(argv[++i], &e);
+      if (errno || *e || e == argv[i] || !(x >= 0.0)) { fprintf(stderr, "render: --env-light-alpha must be a number >= 0 or inf, got \"%s\"\n", argv[i]); return 1; }
+      o.env_light_alpha = (float)x;
     } else if (!strcmp(a, "--importance") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "cellaverage")) o.importance = 0; else if (!strcmp(m, "pbrt-v3")) o.importance = 1;

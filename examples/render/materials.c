@@ -125,7 +125,9 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
   const elr_material *m = &s->mat[h->material];
   if (m->kind > ELR_MAT_PLASTIC) {
     elr__bsdf_list(s, m, h, c, b);
-    b->env_map = elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha; /* (elr_bsdf_cos_normal: issue 20's per-lobe choice) */
+    float a = elr_bsdf_lobe_alpha(b); /* (issue 20's per-lobe choice: elr_bsdf_cos_normal, elr_env_light_only) */
+    b->env_map = a < s->env_lobe_alpha;
+    b->env_light_only = a >= s->env_light_alpha && s->env_light_alpha < INFINITY; /* (INFINITY: never) */
     return;
   }
   b->nlobes = 0; b->eta = 1.f;
@@ -163,4 +165,5 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
   b->ncomp = b->has_diffuse + b->has_glossy + b->has_specular;
   b->spec_r = b->has_specular; b->spec_t = 0;
   b->env_map = elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha;
+  b->env_light_only = elr_bsdf_lobe_alpha(b) >= s->env_light_alpha && s->env_light_alpha < INFINITY;
 }

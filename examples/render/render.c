@@ -137,7 +137,7 @@ static void *elr__worker(void *arg) {
   pthread_mutex_lock(&J->mu);
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
   J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples; J->total.t_embree += ts.t_embree;
-  J->total.env_product += ts.env_product; J->total.env_map += ts.env_map;
+  J->total.env_product += ts.env_product; J->total.env_map += ts.env_map; J->total.env_light_only += ts.env_light_only;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
   elr_wave_free(W);
@@ -147,7 +147,7 @@ static void *elr__worker(void *arg) {
 void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
   o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
-  o->env_lobe_alpha = -1.f;
+  o->env_lobe_alpha = -1.f; o->env_light_alpha = -1.f;
   o->loop = -1; o->wave_api = -1; o->split = -1;
 }
 
@@ -236,8 +236,9 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
   elr_scene *s = C->s;
   int i;
   float lobe_alpha = o->env_lobe_alpha < 0.f ? ELR_ENV_LOBE_ALPHA : o->env_lobe_alpha;
+  float light_alpha = o->env_light_alpha < 0.f ? ELR_ENV_LIGHT_ALPHA : o->env_light_alpha;
   *emits = 0;
-  s->env_lobe_alpha = 0.f; /* (set below where an environment is product-sampled) */
+  s->env_lobe_alpha = 0.f; s->env_light_alpha = INFINITY; /* (set below where an environment is product-sampled) */
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) *emits = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C->has_env = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_AREA) C->has_area = 1;
@@ -273,7 +274,7 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
         snprintf(err, errlen, "environment: cannot build the sampling distribution");
         return -1;
       }
-      if (l->product) s->env_lobe_alpha = lobe_alpha;
+      if (l->product) { s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha; }
       if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
     }
@@ -314,7 +315,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->bytes_embree = s->bytes_embree; st->bytes_film = el_film_bytes(film);
   st->bytes_splats = film->splats ? (size_t)film->width * (size_t)film->height * 3 * sizeof(double) : 0; st->splats_allocated = st->bytes_splats > 0;
   st->camera_rays = T->camera; st->bounce_rays = T->bounce; st->shadow_rays = T->shadow;
-  st->env_product_samples = T->env_product; st->env_map_samples = T->env_map;
+  st->env_product_samples = T->env_product; st->env_map_samples = T->env_map; st->env_light_only_samples = T->env_light_only;
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
   st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product;
@@ -359,6 +360,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     if (l->kind == ELR_LIGHT_INFINITE && env_sampled && ls->emits && C->ls != ELR_LS_BSDF && C->light_sampling) {
       ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample) + el_envlight_product_bytes(l->env_sample);
       ls->env_product = l->product; ls->env_lobe_alpha = l->product ? s->env_lobe_alpha : 0.f;
+      ls->env_light_alpha = l->product ? s->env_light_alpha : INFINITY;
       ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
       ls->env_importance = l->env_sample->importance;
     }

@@ -33,6 +33,9 @@
 static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_first *f,
                                        int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
   const elr_scene *s = C->s;
+  elr_v3 nc;
+  /* issue 20: the product light sample alone where the lobes are diffuse or broad (as elr_estimate_direct) */
+  int lonly = C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_bsdf_cos_normal(b, wo, &nc), b);
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
@@ -40,7 +43,7 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
       ts->shadow++;
       if (!(f->occ_l >= 0 ? f->occ_l : elr_occluded(s, elr_spawn_origin(h, f->wi), f->wi, INFINITY))) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(f->pdf, elr_bsdf_pdf(b, wo, f->wi));
+        if (C->ls == ELR_LS_MIS && !lonly) w = elr_power_heuristic(f->pdf, elr_bsdf_pdf(b, wo, f->wi));
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(fl, f->L), w / f->pdf));
       }
     }

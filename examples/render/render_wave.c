@@ -147,16 +147,18 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
       float us[2];
+      int lonly = 0;
       p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f;
       W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
         W->has_n[n] = elr_bsdf_cos_normal(&q->b, wo, &W->normal[n]);
-        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
+        lonly = elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
+        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
         W->light[np] = n++;
       }
-      if (C->ls != ELR_LS_LIGHT) {
+      if (C->ls != ELR_LS_LIGHT && !lonly) {
         int spec;
         p->fb = elr_bsdf_sample(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
         p->bs = 1;
