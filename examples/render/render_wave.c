@@ -108,16 +108,23 @@ void elr_wave_free(elr_wave *W) {
  * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does) */
 static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, float *wi, float *Le,
                              float *pdf) {
-  int i;
+  int i, k, nm = 0, idx[ELR_WAVE];
+  float um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
   if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
   for (i = 0; i < n; i++) {
     if (has_n[i]) {
       float nn[3];
       elr_to3(normal[i], nn);
       el_envlight_sample_li_cos(l->env_sample, nn, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
-    } else {
-      el_envlight_sample_li(l->env_sample, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
+    } else { /* (gathered: the map's samples in one el_envlight_sample_li_n call below, as the map alone draws them) */
+      idx[nm] = i; um[2 * nm] = u[2 * i]; um[2 * nm + 1] = u[2 * i + 1]; nm++;
     }
+  }
+  if (nm == 0) return;
+  el_envlight_sample_li_n(l->env_sample, nm, um, wm, Lm, pm);
+  for (k = 0; k < nm; k++) {
+    i = idx[k];
+    memcpy(&wi[3 * i], &wm[3 * k], 3 * sizeof(float)); memcpy(&Le[3 * i], &Lm[3 * k], 3 * sizeof(float)); pdf[i] = pm[k];
   }
 }
 
