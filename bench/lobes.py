@@ -6,14 +6,15 @@ Scenes: scenes/lobes_city.pbrt and scenes/lobes_studio.pbrt (a near-specular met
 plastic, pbrt-v3 roughness 0.1 remapped, alpha 0.46; a rough plastic, roughness 0.5, alpha 1.13; on a
 diffuse plane; directlighting, stratified 4x4, one light + one BSDF sample). Regions: the whole image and
 one crop window per material (Film "cropwindow", written to a temporary copy of the scene: the crop's time
-is the time of its pixels alone): a square inside each sphere's disk, and the plane's strip in front of them.
+is the time of its pixels alone): a square inside each sphere's disk, the plane's strip in front of them, and
+the strip with the spheres' shadows (city's sun is behind them).
 Error: the RELATIVE VARIANCE ACROSS SEEDS, the mean over pixels and channels of the variance of the
 seeds' images over (mean^2 + 1e-2), as bench/mitsuba_compare.py. Time: the render loop's CPU seconds
 (render --stats, one thread), the mean over seeds. Time to unit variance (TTUV) = relvar x CPU s; the
 ratio printed is TTUV(map alone) / TTUV(default): above 1 the default wins.
 Runs are interleaved (every strategy once per seed, the order alternating), as the machine is shared.
   python3 bench/lobes.py [--seeds 8] [--spp 16] [--render build/bin/render] [--maps city,studio]
-                         [--regions full,metal,glossy,rough,plane] [--extra "--env-lobe-alpha 0"] [--metal-alpha 0.2]
+                         [--regions full,metal,glossy,rough,plane,shadows] [--extra "--env-lobe-alpha 0"] [--metal-alpha 0.2]
 --extra: options added to the default's command line (e.g. render's --env-lobe-alpha and --env-light-alpha, the
 per-lobe thresholds); --metal-alpha, --glossy-alpha: the metal's and the glossy plastic's Trowbridge-Reitz alpha
 (sweeps for the thresholds).
@@ -28,6 +29,7 @@ CROPS = {  # NDC crop windows (x0 x1 y0 y1): squares inside each sphere's disk, 
     'glossy': (0.44, 0.56, 0.27, 0.57),
     'rough': (0.69, 0.81, 0.27, 0.57),
     'plane': (0.0, 1.0, 0.85, 1.0),
+    'shadows': (0.0, 1.0, 0.71, 0.84),  # the plane in the spheres' shadows from city's sun (and below them)
 }
 
 
@@ -74,7 +76,7 @@ def main():
     ap.add_argument('--spp', type=int, default=16)
     ap.add_argument('--render', default=os.path.join(ROOT, 'build', 'bin', 'render'))
     ap.add_argument('--maps', default='city,studio')
-    ap.add_argument('--regions', default='full,metal,glossy,rough,plane')
+    ap.add_argument('--regions', default='full,metal,glossy,rough,plane,shadows')
     ap.add_argument('--extra', default='')
     ap.add_argument('--metal-alpha', type=float, default=None, help="the metal sphere's alpha instead of 0.02 (threshold sweeps)")
     ap.add_argument('--glossy-alpha', type=float, default=None, help="the glossy plastic's alpha instead of 0.46")
