@@ -398,6 +398,88 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    object itself const. After that every query is read-only. The light's own sampling tables
  *    (sample_li's) are not built by product sampling, nor the normal tables by importance BILINEAR. */
 
+/* >> declarations: portals (issue 23; NOTES ON PORTALS below) */
+
+/* At most this many portals per light. */
+#define EL_ENVLIGHT_PORTAL_MAX 16
+
+typedef struct el_envlight_portal_options {
+  int resolution;  /* rectified image texels per axis, 4..4096; 0: 256 */
+  int supersample; /* importance lookups per texel and axis, 1..16; 0: 3 */
+  int compensated; /* 1: density max(lum - mean, 0) (the mean over the portal's hemisphere): MIS only */
+} el_envlight_portal_options;
+
+/* One or more planar rectangular portals (windows) of a light, in world space, with pbrt-v4's vertex
+ * order and frame: x along p3 - p0, y along p1 - p0, z = x cross y points from the room to the outside
+ * (a shading point sees the portal when the portal lies on the +z side of it). */
+typedef struct el_envlight_portal {
+  int count, res;                           /* portals, rectified texels per axis */
+  double frame[EL_ENVLIGHT_PORTAL_MAX][12]; /* per portal: p0, x, y, z (unit) */
+  double size[EL_ENVLIGHT_PORTAL_MAX][2];   /* |p3 - p0|, |p1 - p0| */
+  uint64_t *sat;                            /* count x (res+1)^2 integer summed-area tables */
+  int compensated, fell_back;               /* fell_back: the compensated density was empty: plain one */
+  int bad_index;                            /* after a failed init: the portal at fault, else -1 */
+  char error[128];                          /* after a failed init: what is wrong, else "" */
+} el_envlight_portal;
+
+/* points: count x 4 vertices x 3 floats, world space (pbrt-v4's "point3 portal", ignoring the light's
+ * CTM). The light must outlive the portal and be the one passed to the queries. opt may be NULL. Errors:
+ * EL_ERROR_INVALID_ARGUMENT (count outside 1..EL_ENVLIGHT_PORTAL_MAX, options out of range, a degenerate
+ * or non-rectangular portal), EL_ERROR_NAN / EL_ERROR_INFINITE (a vertex), EL_ERROR_OUT_OF_MEMORY; then
+ * p->error names the problem ("portal 1: not planar: ...") and p->bad_index the portal. */
+EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envlight *light, const float *points,
+                                         int count, const el_envlight_portal_options *opt);
+EL_DEF void el_envlight_portal_free(el_envlight_portal *p);
+/* Sample a direction wi (world, unit) from point pos: through the portals pos sees, in proportion to
+ * the map's luminance there, with solid-angle density *pdf; rgb (may be NULL) gets le(wi). Returns 1
+ * when the portals were used, 0 when pos sees no portal (it lies behind every portal's plane or on it)
+ * and the map's own sample_li was used instead. */
+EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                        const float u[2], float wi[3], float rgb[3], float *pdf);
+/* The density with which sample_li picks wi at pos: 0 for a direction through no portal (when pos sees
+ * one), the map's pdf_li when it sees none. */
+EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                       const float wi[3]);
+/* 1 when pos sees a portal (the portal strategy applies there), else 0 (the map's sampling). */
+EL_DEF int el_envlight_portal_sees(const el_envlight_portal *p, const float pos[3]);
+/* Bytes of the portal's tables: 8 per rectified texel (the tables are all it keeps). */
+EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
+
+/* << declarations: portals */
+
+/* ----------------------------------------------------------------------------------------------------
+ * NOTES ON PORTALS (issue 23; Bitterli, Novak, Jarosz 2015, "Portal-masked environment map sampling";
+ * pbrt-v4's PortalImageInfiniteLight, src/pbrt/lights.{h,cpp}, WindowedPiecewiseConstant2D in
+ * src/pbrt/util/sampling.h)
+ *
+ * 1. THE RECTIFIED DOMAIN (pbrt-v4's): a direction w with local z > 0 in a portal's frame has angles
+ *    alpha = atan(w.x / w.z), beta = atan(w.y / w.z), and (a, b) = (alpha / pi + 1/2, beta / pi + 1/2) in
+ *    [0,1]^2; dw / d(a,b) = pi^2 (1 - w.x^2)(1 - w.y^2) / w.z. From any point in front of the portal,
+ *    the directions through it are the rectangle between the images of p0 and p2: a window.
+ * 2. THE DENSITY: the rectified image holds, per texel, the mean over supersample^2 points of
+ *    luminance(le(w)) x dw/d(a,b) (so a texel's mass is the luminance integrated over its solid angle;
+ *    le() carries the light's matrix and scale), quantised to integers (2^40 units over the largest
+ *    portal's image, every texel at least 1 unit without compensation, so that every direction through
+ *    a portal has pdf > 0 even where the supersampling missed a sun). The density at a point is that
+ *    image restricted to the windows, texels cut by a window's edge counted by their covered part: the
+ *    map's own radiance distribution through the portals, not a uniform solid angle.
+ * 3. THE SAMPLER (not pbrt-v4's bisection of a continuous double SAT, ~400 table reads): one INTEGER
+ *    summed-area table per portal (uint64, 8 bytes per texel, exact sums, no cancellation however small
+ *    the window or bright the sun elsewhere). The window's row masses have a closed-form prefix (4 table
+ *    reads per row boundary, two adjacent pairs), so the row is found by integer binary search over the
+ *    window's rows and the position in the row by linear inversion; then the column by a binary search
+ *    over the row's prefix (2 reads per step). pdf = q_texel R^2 / (window mass) / (dw/d(a,b)), the exact
+ *    density of those steps. Several portals: one is picked by the windows' masses with the same u.
+ *    No rectified RGB image: radiance is le() of the map. Costs: bench/bench_portal.c.
+ * 4. FALLBACK: a point on or behind every portal's plane (or seeing windows of zero mass) uses the map's
+ *    sample_li / pdf_li, so the strategy stays unbiased everywhere; sample_li returns which was used.
+ *    Directions through no portal have pdf 0 (as pbrt-v4): the caller's BSDF samples must find them.
+ * 5. COMPENSATION (pbrt-v4 has none for portals): max(lum - mean, 0), mean over the portal's whole
+ *    hemisphere of directions (solid-angle weighted): with MIS only (dim directions get pdf 0).
+ * 6. INPUTS: a NaN, infinite or zero u is clamped as sample_li's; a NaN or zero wi has pdf 0; a NaN pos
+ *    sees no portal. Queries are read-only and thread-safe (the fallback builds the light's tables lazily,
+ *    as sample_li does). */
+
 #ifdef __cplusplus
 }
 #endif
@@ -2795,6 +2877,412 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
   el_envlight__to_light(l, dir, d);
   return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
 }
+
+/* >> portals (issue 23; NOTES ON PORTALS below the declarations) */
+
+#define EL_ENVLIGHT__PORTAL_UNITS 1099511627776.0 /* 2^40: the quantised mass of the largest portal image */
+
+/* atan2(x, z) / pi for z > 0, in (-1/2, 1/2) (the rectified angle of a direction, in turns of pi). */
+static double el_envlight__portal_angle(double x, double z) {
+  double ax = fabs(x);
+  double a;
+  if (ax <= z) a = (double)el_envlight__atan01((float)(ax / z)) * (1.0 / EL_ENVLIGHT__PI);
+  else a = 0.5 - (double)el_envlight__atan01((float)(z / ax)) * (1.0 / EL_ENVLIGHT__PI);
+  return x < 0.0 ? -a : a;
+}
+
+/* A window: portal k's directions from a point, in texel coordinates [x0, x1] x [y0, y1] of [0, R]^2,
+ * with the integer prefix values the sampler and the pdf share. */
+typedef struct el_envlight__pwin {
+  double x0, x1, y0, y1;
+  int ia, ib;        /* floor of x0, x1 (<= R - 1) */
+  double fa, fb;     /* x0 - ia, x1 - ib */
+  double k0, mass;   /* K at y0 (the prefix of the rows below y0), the window's mass */
+} el_envlight__pwin;
+
+/* K(j): the mass of rows < j between columns x0 and x1 (4 table reads, two adjacent pairs). */
+static double el_envlight__portal_k(const uint64_t *S, int R, const el_envlight__pwin *w, int j) {
+  const uint64_t *row = S + (size_t)j * (size_t)(R + 1);
+  uint64_t a0 = row[w->ia], a1 = row[w->ia + 1], b0 = row[w->ib], b1 = row[w->ib + 1];
+  return (double)(int64_t)(b0 - a0) + w->fb * (double)(b1 - b0) - w->fa * (double)(a1 - a0);
+}
+/* K at a continuous row coordinate y in [0, R]. */
+static double el_envlight__portal_kc(const uint64_t *S, int R, const el_envlight__pwin *w, double y) {
+  int j = (int)y;
+  double k;
+  if (j > R - 1) j = R - 1;
+  k = el_envlight__portal_k(S, R, w, j);
+  return k + (y - (double)j) * (el_envlight__portal_k(S, R, w, j + 1) - k);
+}
+
+/* Portal k's window from pos: 0 when pos does not see it (on or behind its plane, or NaN). */
+static int el_envlight__portal_window(const el_envlight_portal *p, int k, const double pos[3], el_envlight__pwin *w) {
+  const double *f = p->frame[k];
+  double r[3], x0, y0, z, R = (double)p->res;
+  r[0] = f[0] - pos[0]; r[1] = f[1] - pos[1]; r[2] = f[2] - pos[2];
+  z = r[0] * f[9] + r[1] * f[10] + r[2] * f[11];
+  if (!(z > 1e-9 * (fabs(f[0]) + fabs(f[1]) + fabs(f[2]) + p->size[k][0] + p->size[k][1]))) return 0;
+  x0 = r[0] * f[3] + r[1] * f[4] + r[2] * f[5];
+  y0 = r[0] * f[6] + r[1] * f[7] + r[2] * f[8];
+  w->x0 = (el_envlight__portal_angle(x0, z) + 0.5) * R;
+  w->x1 = (el_envlight__portal_angle(x0 + p->size[k][0], z) + 0.5) * R;
+  w->y0 = (el_envlight__portal_angle(y0, z) + 0.5) * R;
+  w->y1 = (el_envlight__portal_angle(y0 + p->size[k][1], z) + 0.5) * R;
+  if (w->x0 < 0.0) w->x0 = 0.0;
+  if (w->x1 > R) w->x1 = R;
+  if (w->y0 < 0.0) w->y0 = 0.0;
+  if (w->y1 > R) w->y1 = R;
+  if (!(w->x1 > w->x0) || !(w->y1 > w->y0)) return 0;
+  w->ia = (int)w->x0; if (w->ia > p->res - 1) w->ia = p->res - 1;
+  w->ib = (int)w->x1; if (w->ib > p->res - 1) w->ib = p->res - 1;
+  w->fa = w->x0 - (double)w->ia;
+  w->fb = w->x1 - (double)w->ib;
+  return 1;
+}
+
+/* All windows from pos and their masses; returns the total mass (0: the fallback). */
+static double el_envlight__portal_windows(const el_envlight_portal *p, const float pos[3], el_envlight__pwin *w, int *seen) {
+  double P[3], total = 0.0;
+  int k;
+  size_t n = (size_t)(p->res + 1) * (size_t)(p->res + 1);
+  P[0] = pos[0]; P[1] = pos[1]; P[2] = pos[2];
+  for (k = 0; k < p->count; ++k) {
+    seen[k] = el_envlight__portal_window(p, k, P, &w[k]);
+    w[k].mass = 0.0;
+    if (seen[k]) {
+      const uint64_t *S = p->sat + n * (size_t)k;
+      w[k].k0 = el_envlight__portal_kc(S, p->res, &w[k], w[k].y0);
+      w[k].mass = el_envlight__portal_kc(S, p->res, &w[k], w[k].y1) - w[k].k0;
+      if (!(w[k].mass > 0.0)) { w[k].mass = 0.0; seen[k] = 0; }
+      total += w[k].mass;
+    }
+  }
+  return total;
+}
+
+/* Rectified (a - 1/2, b - 1/2) -> local unit direction; returns dw/d(a,b). */
+static double el_envlight__portal_dir(double ta, double tb, double d[3]) {
+  double sa = (double)el_envlight__sinpi((float)ta), ca = (double)el_envlight__cospi((float)ta);
+  double sb = (double)el_envlight__sinpi((float)tb), cb = (double)el_envlight__cospi((float)tb);
+  double v0 = sa * cb, v1 = ca * sb, v2 = ca * cb, n = sqrt(v0 * v0 + v1 * v1 + v2 * v2);
+  d[0] = v0 / n; d[1] = v1 / n; d[2] = v2 / n;
+  /* pi^2 (1 - wx^2)(1 - wy^2) / wz = pi^2 ca^2 cb^2 / n^4 * n / (ca cb) */
+  return EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * ca * cb / (n * n * n);
+}
+
+EL_DEF void el_envlight_portal_free(el_envlight_portal *p) {
+  if (!p) return;
+  EL_FREE(p->sat);
+  memset(p, 0, sizeof *p);
+  p->bad_index = -1;
+}
+
+static el_result el_envlight__portal_fail(el_envlight_portal *p, el_result r, int k, const char *msg) {
+  char buf[128];
+  size_t i;
+  const char *pre = "portal ";
+  size_t o = 0;
+  for (i = 0; pre[i] && o < sizeof buf - 1; ++i) buf[o++] = pre[i];
+  if (k >= 10 && o < sizeof buf - 1) buf[o++] = (char)('0' + k / 10);
+  if (o < sizeof buf - 1) buf[o++] = (char)('0' + k % 10);
+  if (o < sizeof buf - 1) buf[o++] = ':';
+  if (o < sizeof buf - 1) buf[o++] = ' ';
+  for (i = 0; msg[i] && o < sizeof buf - 1; ++i) buf[o++] = msg[i];
+  buf[o] = 0;
+  el_envlight_portal_free(p);
+  p->bad_index = k;
+  memcpy(p->error, buf, o + 1);
+  return r;
+}
+
+EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envlight *light, const float *points,
+                                         int count, const el_envlight_portal_options *opt) {
+  el_envlight_portal_options o;
+  int k, i, j, R, ss;
+  size_t n;
+  double *f = NULL, fmax = 0.0, unit;
+  if (!p) return EL_ERROR_INVALID_ARGUMENT;
+  memset(p, 0, sizeof *p);
+  p->bad_index = -1;
+  if (opt) o = *opt;
+  else memset(&o, 0, sizeof o);
+  if (!light || !points) {
+    memcpy(p->error, "NULL light or points", 21);
+    return EL_ERROR_INVALID_ARGUMENT;
+  }
+  if (count < 1 || count > EL_ENVLIGHT_PORTAL_MAX) {
+    memcpy(p->error, "portal count outside 1..16", 27);
+    return EL_ERROR_INVALID_ARGUMENT;
+  }
+  R = o.resolution ? o.resolution : 256;
+  ss = o.supersample ? o.supersample : 3;
+  if (R < 4 || R > 4096 || ss < 1 || ss > 16) {
+    memcpy(p->error, "resolution outside 4..4096 or supersample outside 1..16", 56);
+    return EL_ERROR_INVALID_ARGUMENT;
+  }
+  /* the frames (pbrt-v4: Frame::FromXY(p03, p01), with its 0.001 tolerances) */
+  for (k = 0; k < count; ++k) {
+    const float *v = points + 12 * k;
+    double e01[3], e03[3], e12[3], e32[3], l01 = 0, l03 = 0, l12 = 0, l32 = 0, d, scale = 0.0;
+    for (i = 0; i < 12; ++i) {
+      if (v[i] != v[i]) return el_envlight__portal_fail(p, EL_ERROR_NAN, k, "a vertex coordinate is NaN");
+      if (v[i] > FLT_MAX || v[i] < -FLT_MAX) return el_envlight__portal_fail(p, EL_ERROR_INFINITE, k, "a vertex coordinate is infinite");
+      if (fabs((double)v[i]) > scale) scale = fabs((double)v[i]);
+    }
+    for (i = 0; i < 3; ++i) {
+      e01[i] = (double)v[3 + i] - v[i]; e03[i] = (double)v[9 + i] - v[i];
+      e12[i] = (double)v[6 + i] - v[3 + i]; e32[i] = (double)v[6 + i] - v[9 + i];
+      l01 += e01[i] * e01[i]; l03 += e03[i] * e03[i]; l12 += e12[i] * e12[i]; l32 += e32[i] * e32[i];
+    }
+    l01 = sqrt(l01); l03 = sqrt(l03); l12 = sqrt(l12); l32 = sqrt(l32);
+    if (!(l01 > 1e-6 * scale) || !(l03 > 1e-6 * scale) || !(l12 > 1e-6 * scale) || !(l32 > 1e-6 * scale))
+      return el_envlight__portal_fail(p, EL_ERROR_INVALID_ARGUMENT, k, "degenerate: an edge has zero length (vertices coincide)");
+    for (i = 0; i < 3; ++i) { e01[i] /= l01; e03[i] /= l03; e12[i] /= l12; e32[i] /= l32; }
+#define EL_ENVLIGHT__DOT(a, b) ((a)[0] * (b)[0] + (a)[1] * (b)[1] + (a)[2] * (b)[2])
+    if (fabs(EL_ENVLIGHT__DOT(e01, e32) - 1.0) > 0.001 || fabs(EL_ENVLIGHT__DOT(e12, e03) - 1.0) > 0.001)
+      return el_envlight__portal_fail(p, EL_ERROR_INVALID_ARGUMENT, k,
+                                      "not a planar rectangle: opposite edges are not parallel (non-planar, or wrong vertex order)");
+    if (fabs(EL_ENVLIGHT__DOT(e01, e12)) > 0.001 || fabs(EL_ENVLIGHT__DOT(e12, e32)) > 0.001 ||
+        fabs(EL_ENVLIGHT__DOT(e32, e03)) > 0.001 || fabs(EL_ENVLIGHT__DOT(e03, e01)) > 0.001)
+      return el_envlight__portal_fail(p, EL_ERROR_INVALID_ARGUMENT, k, "not a rectangle: its sides are not perpendicular");
+    /* x = p03, y = p01 made exactly orthogonal, z = x cross y */
+    d = EL_ENVLIGHT__DOT(e01, e03);
+    for (i = 0; i < 3; ++i) e01[i] -= d * e03[i];
+    d = sqrt(EL_ENVLIGHT__DOT(e01, e01));
+    for (i = 0; i < 3; ++i) e01[i] /= d;
+#undef EL_ENVLIGHT__DOT
+    for (i = 0; i < 3; ++i) {
+      p->frame[k][i] = v[i];
+      p->frame[k][3 + i] = e03[i];
+      p->frame[k][6 + i] = e01[i];
+    }
+    p->frame[k][9] = e03[1] * e01[2] - e03[2] * e01[1];
+    p->frame[k][10] = e03[2] * e01[0] - e03[0] * e01[2];
+    p->frame[k][11] = e03[0] * e01[1] - e03[1] * e01[0];
+    p->size[k][0] = l03;
+    p->size[k][1] = l01;
+  }
+  p->count = count;
+  p->res = R;
+  p->compensated = o.compensated ? 1 : 0;
+  n = (size_t)(R + 1) * (size_t)(R + 1);
+  p->sat = (uint64_t *)EL_MALLOC(n * (size_t)count * sizeof(uint64_t));
+  f = (double *)EL_MALLOC((size_t)R * (size_t)R * (size_t)count * sizeof(double));
+  if (!p->sat || !f) {
+    EL_FREE(f);
+    return el_envlight__portal_fail(p, EL_ERROR_OUT_OF_MEMORY, 0, "out of memory for the tables");
+  }
+  /* the rectified images: mean of lum(le) dw/dab over ss x ss points per texel */
+  for (k = 0; k < count; ++k) {
+    const double *fr = p->frame[k];
+    double *fk = f + (size_t)R * (size_t)R * (size_t)k, sum_lj = 0.0, sum_j = 0.0, mean, s = 0.0;
+    double *lum = (double *)EL_MALLOC((size_t)R * (size_t)R * sizeof(double));
+    if (!lum) {
+      EL_FREE(f);
+      return el_envlight__portal_fail(p, EL_ERROR_OUT_OF_MEMORY, k, "out of memory for the tables");
+    }
+    for (j = 0; j < R; ++j)
+      for (i = 0; i < R; ++i) {
+        double aj = 0.0, al = 0.0;
+        int sy, sx;
+        for (sy = 0; sy < ss; ++sy)
+          for (sx = 0; sx < ss; ++sx) {
+            double ta = ((double)i + ((double)sx + 0.5) / (double)ss) / (double)R - 0.5;
+            double tb = ((double)j + ((double)sy + 0.5) / (double)ss) / (double)R - 0.5;
+            double d[3], J = el_envlight__portal_dir(ta, tb, d);
+            float wd[3], rgb[3];
+            int c;
+            for (c = 0; c < 3; ++c) wd[c] = (float)(d[0] * fr[3 + c] + d[1] * fr[6 + c] + d[2] * fr[9 + c]);
+            el_envlight_le(light, wd, rgb);
+            al += (double)el_envlight__luminance(rgb) * J;
+            aj += J;
+          }
+        fk[(size_t)j * (size_t)R + (size_t)i] = al / (double)(ss * ss);
+        lum[(size_t)j * (size_t)R + (size_t)i] = aj / (double)(ss * ss); /* dw/dab for the mean */
+        sum_lj += al; sum_j += aj;
+      }
+    if (p->compensated) {
+      mean = sum_j > 0.0 ? sum_lj / sum_j : 0.0; /* the solid-angle mean luminance */
+      for (i = 0; i < R * R; ++i) {
+        double c = fk[i] - mean * lum[i];
+        fk[i] = c > 0.0 ? c : 0.0;
+      }
+    }
+    EL_FREE(lum);
+    for (i = 0; i < R * R; ++i) s += fk[i];
+    if (s > fmax) fmax = s;
+  }
+  if (p->compensated && !(fmax > 0.0)) { /* nothing above the mean: the plain density, as the light does */
+    EL_FREE(f);
+    EL_FREE(p->sat);
+    {
+      el_envlight_portal_options o2 = o;
+      el_result r;
+      o2.compensated = 0;
+      r = el_envlight_portal_init(p, light, points, count, &o2);
+      if (r == EL_SUCCESS) p->fell_back = 1;
+      return r;
+    }
+  }
+  unit = fmax > 0.0 ? EL_ENVLIGHT__PORTAL_UNITS / fmax : 0.0;
+  if (!(unit < 1e300)) unit = 0.0; /* fmax denormal */
+  for (k = 0; k < count; ++k) {
+    const double *fk = f + (size_t)R * (size_t)R * (size_t)k;
+    uint64_t *S = p->sat + n * (size_t)k;
+    for (i = 0; i <= R; ++i) S[i] = 0;
+    for (j = 0; j < R; ++j) {
+      uint64_t run = 0;
+      S[(size_t)(j + 1) * (size_t)(R + 1)] = 0;
+      for (i = 0; i < R; ++i) {
+        double q = fk[(size_t)j * (size_t)R + (size_t)i] * unit;
+        uint64_t qi = (uint64_t)(q < 1099511627776.0 ? q : 1099511627776.0);
+        if (q > (double)qi) qi++;   /* ceil: every texel with mass > 0 gets a unit */
+        if (!p->compensated && qi == 0) qi = 1;
+        run += qi;
+        S[(size_t)(j + 1) * (size_t)(R + 1) + (size_t)i + 1] = S[(size_t)j * (size_t)(R + 1) + (size_t)i + 1] + run;
+      }
+    }
+  }
+  EL_FREE(f);
+  return EL_SUCCESS;
+}
+
+EL_DEF int el_envlight_portal_sees(const el_envlight_portal *p, const float pos[3]) {
+  el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
+  int seen[EL_ENVLIGHT_PORTAL_MAX];
+  if (!p || !p->sat || !pos) return 0;
+  return el_envlight__portal_windows(p, pos, w, seen) > 0.0;
+}
+
+EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p) {
+  if (!p || !p->sat) return 0;
+  return (size_t)(p->res + 1) * (size_t)(p->res + 1) * (size_t)p->count * sizeof(uint64_t);
+}
+
+EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                        const float u[2], float wi[3], float rgb[3], float *pdf) {
+  el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
+  int seen[EL_ENVLIGHT_PORTAL_MAX], k, lo, hi, R;
+  double total, t, y, x, kl, kh, q, d[3], J, pl, ph;
+  const uint64_t *S, *r0, *r1;
+  size_t n, stride;
+  float u0 = el_envlight__clamp_u(u[0]), u1 = el_envlight__clamp_u(u[1]);
+  total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
+  if (!(total > 0.0)) {
+    el_envlight_sample_li(light, u, wi, rgb, pdf);
+    return 0;
+  }
+  R = p->res;
+  n = (size_t)(R + 1) * (size_t)(R + 1);
+  stride = (size_t)(R + 1);
+  /* <<Pick a portal>> and the target in its rows' prefix, with u1 */
+  t = (double)u1 * total;
+  for (k = 0; k < p->count - 1; ++k) {
+    if (!seen[k]) continue;
+    if (t < w[k].mass) break;
+    t -= w[k].mass;
+  }
+  while (!seen[k]) --k; /* t rounded past the last seen portal */
+  if (t > w[k].mass) t = w[k].mass;
+  S = p->sat + n * (size_t)k;
+  t += w[k].k0;
+  /* <<Find the row>>: the largest j in the window's rows with K(j) <= t */
+  lo = (int)w[k].y0; if (lo > R - 1) lo = R - 1;
+  hi = (int)w[k].y1; if ((double)hi < w[k].y1) hi++; /* ceil */
+  if (hi > R) hi = R;
+  while (hi - lo > 1) {
+    int mid = (lo + hi) >> 1;
+    if (el_envlight__portal_k(S, R, &w[k], mid) <= t) lo = mid;
+    else hi = mid;
+  }
+  kl = el_envlight__portal_k(S, R, &w[k], lo);
+  kh = el_envlight__portal_k(S, R, &w[k], lo + 1);
+  y = kh > kl ? (double)lo + (t - kl) / (kh - kl) : (double)lo + 0.5;
+  if (y < w[k].y0) y = w[k].y0;
+  if (y > w[k].y1) y = w[k].y1;
+  if (y < (double)lo) y = (double)lo;
+  if (y > (double)lo + 0.9999999) y = (double)lo + 0.9999999;
+  /* <<Find the column>> in row lo: its prefix P(i) = S(i, lo + 1) - S(i, lo) */
+  r0 = S + (size_t)lo * stride;
+  r1 = r0 + stride;
+  pl = (double)(r1[w[k].ia] - r0[w[k].ia]);
+  ph = (double)(r1[w[k].ia + 1] - r0[w[k].ia + 1]);
+  t = pl + w[k].fa * (ph - pl);
+  pl = (double)(r1[w[k].ib] - r0[w[k].ib]);
+  ph = (double)(r1[w[k].ib + 1] - r0[w[k].ib + 1]);
+  t += (double)u0 * (pl + w[k].fb * (ph - pl) - t);
+  {
+    int a = w[k].ia, b = w[k].ib + 1;
+    while (b - a > 1) {
+      int mid = (a + b) >> 1;
+      if ((double)(r1[mid] - r0[mid]) <= t) a = mid;
+      else b = mid;
+    }
+    lo = a;
+  }
+  pl = (double)(r1[lo] - r0[lo]);
+  ph = (double)(r1[lo + 1] - r0[lo + 1]);
+  q = ph - pl;
+  x = q > 0.0 ? (double)lo + (t - pl) / q : (double)lo + 0.5;
+  if (x < w[k].x0) x = w[k].x0;
+  if (x > w[k].x1) x = w[k].x1;
+  if (x < (double)lo) x = (double)lo;
+  if (x > (double)lo + 0.9999999) x = (double)lo + 0.9999999;
+  /* <<Direction and pdf>> */
+  J = el_envlight__portal_dir(x / (double)R - 0.5, y / (double)R - 0.5, d);
+  {
+    const double *f = p->frame[k];
+    int c;
+    for (c = 0; c < 3; ++c) wi[c] = (float)(d[0] * f[3 + c] + d[1] * f[6 + c] + d[2] * f[9 + c]);
+  }
+  /* other portals' windows may hold wi too: the pdf is the mixture's */
+  if (p->count > 1) *pdf = el_envlight_portal_pdf_li(p, light, pos, wi);
+  else *pdf = (float)(q * (double)R * (double)R / (total * J));
+  if (rgb) el_envlight_le(light, wi, rgb);
+  return 1;
+}
+
+EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                       const float wi[3]) {
+  el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
+  int seen[EL_ENVLIGHT_PORTAL_MAX], k, R;
+  double total, acc = 0.0, D[3], len;
+  size_t n;
+  total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
+  if (!(total > 0.0)) return el_envlight_pdf_li(light, wi);
+  D[0] = wi[0]; D[1] = wi[1]; D[2] = wi[2];
+  len = sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2]);
+  if (!(len > 0.0) || len > 1e300) return 0.0f;
+  D[0] /= len; D[1] /= len; D[2] /= len;
+  R = p->res;
+  n = (size_t)(R + 1) * (size_t)(R + 1);
+  for (k = 0; k < p->count; ++k) {
+    const double *f = p->frame[k];
+    double lx, ly, lz, x, y, J;
+    int i, j;
+    const uint64_t *S;
+    if (!seen[k]) continue;
+    lz = D[0] * f[9] + D[1] * f[10] + D[2] * f[11];
+    if (!(lz > 0.0)) continue;
+    lx = D[0] * f[3] + D[1] * f[4] + D[2] * f[5];
+    ly = D[0] * f[6] + D[1] * f[7] + D[2] * f[8];
+    x = (el_envlight__portal_angle(lx, lz) + 0.5) * (double)R;
+    y = (el_envlight__portal_angle(ly, lz) + 0.5) * (double)R;
+    if (x < w[k].x0 || x > w[k].x1 || y < w[k].y0 || y > w[k].y1) continue;
+    i = (int)x; if (i > R - 1) i = R - 1;
+    j = (int)y; if (j > R - 1) j = R - 1;
+    S = p->sat + n * (size_t)k;
+    {
+      const uint64_t *r0 = S + (size_t)j * (size_t)(R + 1), *r1 = r0 + (R + 1);
+      double q = (double)((r1[i + 1] - r1[i]) - (r0[i + 1] - r0[i]));
+      J = EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * (ly * ly + lz * lz) * (lx * lx + lz * lz) / lz; /* (1-x^2)(1-y^2)/z */
+      if (J > 0.0) acc += q / J;
+    }
+  }
+  return (float)(acc * (double)R * (double)R / total);
+}
+
+/* << portals */
 
 #ifdef __cplusplus
 }
