@@ -183,6 +183,9 @@ typedef struct elr_light {
   int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
+  /* pbrt-v4's "point3 portal" (issue 23): envlight.h's portal sampler, or NULL; with it sample_li and
+   * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
+  el_envlight_portal *portal;
 } elr_light;
 
 typedef struct elr_scene_desc {
@@ -402,6 +405,7 @@ typedef struct elr_light_sample {
   elr_v3 p_light;
   float dist;
   int at_point;
+  int portal; /* an infinite light with portals: 1 sampled through them, 0 the map's fallback; else -1 */
 } elr_light_sample;
 static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
 static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
@@ -409,6 +413,12 @@ static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR
  * infinite light with product = 1 then samples the map times max(0, n.wi), and pdf_li is that density */
 void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls);
 float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi);
+/* the same at shading point p: with portals the density depends on it (elr_light_pdf_li then gives the
+ * map's own density: only the loops that never meet a portal light call it) */
+float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 wi);
+/* pbrt-v4's portals of an infinite light with a map: count rectangles of 4 world-space points (12 floats
+ * each, pbrt-v4's vertex order); -1 with err naming the problem */
+int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
 int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
@@ -630,6 +640,7 @@ int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err
 #define ELR_SPLIT_MAX_GIVEN 1024 /* --split N: at most this */
 typedef struct elr_tstats { /* one thread's counts */
   uint64_t camera, bounce, shadow, bsdfl, samples;
+  uint64_t portal_used, portal_fallback; /* light samples through portals, and behind them (the map's) */
   double t_embree; /* the wave loop: seconds inside its Embree calls */
 } elr_tstats;
 typedef struct elr_ctx {

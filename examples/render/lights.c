@@ -21,6 +21,7 @@
 void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls) {
   ls->at_point = 0;
   ls->dist = INFINITY;
+  ls->portal = -1;
   switch (l->kind) {
   case ELR_LIGHT_POINT: { /* PointLight::Sample_Li: I / r^2 from the light's position */
     elr_v3 dp = elr_sub(l->pos, p);
@@ -54,7 +55,11 @@ void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const
               * L(wi) max(0, n.wi), so no sample is wasted below the surface (envlight.h's NOTES ON
               * PRODUCT SAMPLING); pbrt-v3 samples the map alone. */
     float wi[3], L[3];
-    if (n && l->product) {
+    if (l->portal) { /* pbrt-v4's PortalImageInfiniteLight: through the windows p sees (envlight.h) */
+      float pp[3];
+      elr_to3(p, pp);
+      ls->portal = el_envlight_portal_sample_li(l->portal, l->env_sample, pp, u, wi, L, &ls->pdf);
+    } else if (n && l->product) {
       float nn[3];
       elr_to3(*n, nn);
       el_envlight_sample_li_cos(l->env_sample, nn, u, wi, L, &ls->pdf);
@@ -80,6 +85,14 @@ float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi) {
     return el_envlight_pdf_li_cos(l->env_sample, nn, d);
   }
   return el_envlight_pdf_li(l->env_sample, d);
+}
+
+float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 wi) {
+  float d[3], pp[3];
+  if (l->kind != ELR_LIGHT_INFINITE || !l->portal) return elr_light_pdf_li(l, n, wi);
+  elr_to3(wi, d);
+  elr_to3(p, pp);
+  return el_envlight_portal_pdf_li(l->portal, l->env_sample, pp, d);
 }
 
 /* pbrt-v3's Light::Le: the radiance a ray that leaves the scene in direction d receives from the light
@@ -288,7 +301,25 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
 #endif
 }
 
+int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen) {
+  el_result r;
+  el_envlight_portal *P;
+  if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
+  P = (el_envlight_portal *)calloc(1, sizeof *P);
+  if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
+  r = el_envlight_portal_init(P, l->env, pts, count, NULL);
+  if (r != EL_SUCCESS) {
+    snprintf(err, errlen, "\"point3 portal\": %s (%s)", P->error, el_result_string(r));
+    el_envlight_portal_free(P);
+    free(P);
+    return -1;
+  }
+  l->portal = P;
+  return 0;
+}
+
 void elr_light_free(elr_light *l) {
+  if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); l->portal = NULL; }
   free(l->tri_cdf);
   l->tri_cdf = NULL;
   if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }

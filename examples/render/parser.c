@@ -1050,6 +1050,25 @@ static void elr__light(elr__parser *P, const char *type) {
       if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
       s->t_images += elr_now() - t0;
     }
+    {
+      /* pbrt-v4's "point3 portal" [p0 p1 p2 p3]: a window the light shines through (world space, not
+       * the light's CTM, as pbrt-v4's cameraTransform.RenderFromWorld(p)); envlight also takes several
+       * rectangles, 4 points each */
+      elr__param *pp = elr__find(P, "portal");
+      if (pp) {
+        float pts[12 * EL_ENVLIGHT_PORTAL_MAX];
+        int np, k;
+        double t0 = elr_now();
+        pp = elr__findt(P, "portal", "point3", -12);
+        np = pp->n / 12;
+        if (np < 1 || np > EL_ENVLIGHT_PORTAL_MAX)
+          elr__failf(P, pp->file, pp->line, "LightSource \"infinite\": \"point3 portal\" takes 4 points per portal, 1 to %d portals; got %d values",
+                     EL_ENVLIGHT_PORTAL_MAX, pp->n);
+        for (k = 0; k < 12 * np; k++) pts[k] = (float)pp->num[k];
+        if (elr_infinite_set_portals(l, pts, np, e, sizeof e) != 0) elr__failf(P, pp->file, pp->line, "LightSource \"infinite\": %s", e);
+        s->t_images += elr_now() - t0;
+      }
+    }
   } else if (!strcmp(type, "point")) {
     elr_v3 I = elr__prgb(P, "I", elr_v(1, 1, 1));
     elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
