@@ -404,9 +404,13 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
 #define EL_ENVLIGHT_PORTAL_MAX 16
 
 typedef struct el_envlight_portal_options {
-  int resolution;  /* rectified image texels per axis, 4..4096; 0: 256 */
-  int supersample; /* importance lookups per texel and axis, 1..16; 0: 3 */
+  int resolution;  /* rectified image texels per axis, 4..4096; 0: the map's height within 64..2048 (a
+                      rectified texel about a map texel at the window's centre: a sun stays sharp) */
+  int supersample; /* importance lookups per texel and axis, 1..16; 0: 2 */
   int compensated; /* 1: density max(lum - mean, 0) (the mean over the portal's hemisphere): MIS only */
+  float map_share; /* 0..1: the share of samples drawn by the map's own sample_li where a portal is seen
+                      (a defensive mixture: a point outside the room that sees a portal's back still
+                      finds the sun). 0: pbrt-v4's pure portal density */
 } el_envlight_portal_options;
 
 /* One or more planar rectangular portals (windows) of a light, in world space, with pbrt-v4's vertex
@@ -418,6 +422,7 @@ typedef struct el_envlight_portal {
   double size[EL_ENVLIGHT_PORTAL_MAX][2];   /* |p3 - p0|, |p1 - p0| */
   uint64_t *sat;                            /* count x (res+1)^2 integer summed-area tables */
   int compensated, fell_back;               /* fell_back: the compensated density was empty: plain one */
+  float map_share;                          /* options.map_share */
   int bad_index;                            /* after a failed init: the portal at fault, else -1 */
   char error[128];                          /* after a failed init: what is wrong, else "" */
 } el_envlight_portal;
@@ -433,7 +438,9 @@ EL_DEF void el_envlight_portal_free(el_envlight_portal *p);
 /* Sample a direction wi (world, unit) from point pos: through the portals pos sees, in proportion to
  * the map's luminance there, with solid-angle density *pdf; rgb (may be NULL) gets le(wi). Returns 1
  * when the portals were used, 0 when pos sees no portal (it lies behind every portal's plane or on it)
- * and the map's own sample_li was used instead. */
+ * and the map's own sample_li was used instead. With options.map_share s > 0, where pos sees a portal
+ * a share s of the samples comes from the map's sample_li and the pdf is the mixture's,
+ * (1 - s) portal + s map (then directions outside the portals keep the map's share). */
 EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
                                         const float u[2], float wi[3], float rgb[3], float *pdf);
 /* The density with which sample_li picks wi at pos: 0 for a direction through no portal (when pos sees
@@ -3014,10 +3021,10 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
     memcpy(p->error, "portal count outside 1..16", 27);
     return EL_ERROR_INVALID_ARGUMENT;
   }
-  R = o.resolution ? o.resolution : 256;
-  ss = o.supersample ? o.supersample : 3;
-  if (R < 4 || R > 4096 || ss < 1 || ss > 16) {
-    memcpy(p->error, "resolution outside 4..4096 or supersample outside 1..16", 56);
+  R = o.resolution ? o.resolution : (light->height < 64 ? 64 : light->height > 2048 ? 2048 : light->height);
+  ss = o.supersample ? o.supersample : 2;
+  if (R < 4 || R > 4096 || ss < 1 || ss > 16 || !(o.map_share >= 0.0f && o.map_share <= 1.0f)) {
+    memcpy(p->error, "resolution outside 4..4096, supersample outside 1..16 or map_share outside 0..1", 80);
     return EL_ERROR_INVALID_ARGUMENT;
   }
   /* the frames (pbrt-v4: Frame::FromXY(p03, p01), with its 0.001 tolerances) */
@@ -3065,6 +3072,7 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
   p->count = count;
   p->res = R;
   p->compensated = o.compensated ? 1 : 0;
+  p->map_share = o.map_share;
   n = (size_t)(R + 1) * (size_t)(R + 1);
   p->sat = (uint64_t *)EL_MALLOC(n * (size_t)count * sizeof(uint64_t));
   f = (double *)EL_MALLOC((size_t)R * (size_t)R * (size_t)count * sizeof(double));
@@ -3159,11 +3167,50 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p) {
   return (size_t)(p->res + 1) * (size_t)(p->res + 1) * (size_t)p->count * sizeof(uint64_t);
 }
 
+/* The portals' density alone at unit world direction D, given the windows of the point (total > 0). */
+static double el_envlight__portal_density(const el_envlight_portal *p, const el_envlight__pwin *w, const int *seen, double total,
+                                          const double D[3]) {
+  double acc = 0.0;
+  int k, R = p->res;
+  size_t n = (size_t)(R + 1) * (size_t)(R + 1);
+  for (k = 0; k < p->count; ++k) {
+    const double *f = p->frame[k];
+    double lx, ly, lz, x, y, J, q;
+    int i, j;
+    const uint64_t *r0, *r1;
+    if (!seen[k]) continue;
+    lz = D[0] * f[9] + D[1] * f[10] + D[2] * f[11];
+    if (!(lz > 0.0)) continue;
+    lx = D[0] * f[3] + D[1] * f[4] + D[2] * f[5];
+    ly = D[0] * f[6] + D[1] * f[7] + D[2] * f[8];
+    x = (el_envlight__portal_angle(lx, lz) + 0.5) * (double)R;
+    y = (el_envlight__portal_angle(ly, lz) + 0.5) * (double)R;
+    if (x < w[k].x0 || x > w[k].x1 || y < w[k].y0 || y > w[k].y1) continue;
+    i = (int)x; if (i > R - 1) i = R - 1;
+    j = (int)y; if (j > R - 1) j = R - 1;
+    r0 = p->sat + n * (size_t)k + (size_t)j * (size_t)(R + 1);
+    r1 = r0 + (R + 1);
+    q = (double)((r1[i + 1] - r1[i]) - (r0[i + 1] - r0[i]));
+    J = EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * (ly * ly + lz * lz) * (lx * lx + lz * lz) / lz; /* (1-x^2)(1-y^2)/z */
+    if (J > 0.0) acc += q / J;
+  }
+  return acc * (double)R * (double)R / total;
+}
+/* a float direction, normalised in double; 0 for a zero, NaN or infinite one */
+static int el_envlight__portal_unit(const float wi[3], double D[3]) {
+  double len;
+  D[0] = wi[0]; D[1] = wi[1]; D[2] = wi[2];
+  len = sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2]);
+  if (!(len > 0.0) || len > 1e300) return 0;
+  D[0] /= len; D[1] /= len; D[2] /= len;
+  return 1;
+}
+
 EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
                                         const float u[2], float wi[3], float rgb[3], float *pdf) {
   el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
   int seen[EL_ENVLIGHT_PORTAL_MAX], k, lo, hi, R;
-  double total, t, y, x, kl, kh, q, d[3], J, pl, ph;
+  double total, t, y, x, kl, kh, q, d[3], J, pl, ph, share;
   const uint64_t *S, *r0, *r1;
   size_t n, stride;
   float u0 = el_envlight__clamp_u(u[0]), u1 = el_envlight__clamp_u(u[1]);
@@ -3171,6 +3218,19 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   if (!(total > 0.0)) {
     el_envlight_sample_li(light, u, wi, rgb, pdf);
     return 0;
+  }
+  share = (double)p->map_share;
+  if (share > 0.0) { /* <<Defensive mixture>>: u1 picks the map or the portals, then is stretched back */
+    double D[3];
+    if ((double)u1 < share) {
+      float um[2], pm;
+      um[0] = u0;
+      um[1] = el_envlight__clamp_u((float)((double)u1 / share));
+      el_envlight_sample_li(light, um, wi, rgb, &pm);
+      *pdf = el_envlight__portal_unit(wi, D) ? (float)(share * (double)pm + (1.0 - share) * el_envlight__portal_density(p, w, seen, total, D)) : 0.0f;
+      return 1;
+    }
+    u1 = el_envlight__clamp_u((float)(((double)u1 - share) / (1.0 - share)));
   }
   R = p->res;
   n = (size_t)(R + 1) * (size_t)(R + 1);
@@ -3235,9 +3295,14 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
     int c;
     for (c = 0; c < 3; ++c) wi[c] = (float)(d[0] * f[3 + c] + d[1] * f[6 + c] + d[2] * f[9 + c]);
   }
-  /* other portals' windows may hold wi too: the pdf is the mixture's */
-  if (p->count > 1) *pdf = el_envlight_portal_pdf_li(p, light, pos, wi);
-  else *pdf = (float)(q * (double)R * (double)R / (total * J));
+  {
+    double D[3], pp;
+    /* other portals' windows may hold wi too: the pdf is the mixture's */
+    if (p->count > 1) pp = el_envlight__portal_unit(wi, D) ? el_envlight__portal_density(p, w, seen, total, D) : 0.0;
+    else pp = q * (double)R * (double)R / (total * J);
+    if (share > 0.0) pp = (1.0 - share) * pp + share * (double)el_envlight_pdf_li(light, wi);
+    *pdf = (float)pp;
+  }
   if (rgb) el_envlight_le(light, wi, rgb);
   return 1;
 }
@@ -3245,41 +3310,14 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
 EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
                                        const float wi[3]) {
   el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
-  int seen[EL_ENVLIGHT_PORTAL_MAX], k, R;
-  double total, acc = 0.0, D[3], len;
-  size_t n;
+  int seen[EL_ENVLIGHT_PORTAL_MAX];
+  double total, D[3], pp;
   total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
   if (!(total > 0.0)) return el_envlight_pdf_li(light, wi);
-  D[0] = wi[0]; D[1] = wi[1]; D[2] = wi[2];
-  len = sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2]);
-  if (!(len > 0.0) || len > 1e300) return 0.0f;
-  D[0] /= len; D[1] /= len; D[2] /= len;
-  R = p->res;
-  n = (size_t)(R + 1) * (size_t)(R + 1);
-  for (k = 0; k < p->count; ++k) {
-    const double *f = p->frame[k];
-    double lx, ly, lz, x, y, J;
-    int i, j;
-    const uint64_t *S;
-    if (!seen[k]) continue;
-    lz = D[0] * f[9] + D[1] * f[10] + D[2] * f[11];
-    if (!(lz > 0.0)) continue;
-    lx = D[0] * f[3] + D[1] * f[4] + D[2] * f[5];
-    ly = D[0] * f[6] + D[1] * f[7] + D[2] * f[8];
-    x = (el_envlight__portal_angle(lx, lz) + 0.5) * (double)R;
-    y = (el_envlight__portal_angle(ly, lz) + 0.5) * (double)R;
-    if (x < w[k].x0 || x > w[k].x1 || y < w[k].y0 || y > w[k].y1) continue;
-    i = (int)x; if (i > R - 1) i = R - 1;
-    j = (int)y; if (j > R - 1) j = R - 1;
-    S = p->sat + n * (size_t)k;
-    {
-      const uint64_t *r0 = S + (size_t)j * (size_t)(R + 1), *r1 = r0 + (R + 1);
-      double q = (double)((r1[i + 1] - r1[i]) - (r0[i + 1] - r0[i]));
-      J = EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * (ly * ly + lz * lz) * (lx * lx + lz * lz) / lz; /* (1-x^2)(1-y^2)/z */
-      if (J > 0.0) acc += q / J;
-    }
-  }
-  return (float)(acc * (double)R * (double)R / total);
+  if (!el_envlight__portal_unit(wi, D)) return 0.0f;
+  pp = el_envlight__portal_density(p, w, seen, total, D);
+  if (p->map_share > 0.0f) pp = (1.0 - (double)p->map_share) * pp + (double)p->map_share * (double)el_envlight_pdf_li(light, wi);
+  return (float)pp;
 }
 
 /* << portals */

@@ -3,8 +3,10 @@
  * table, src/pbrt/util/sampling.h; ImageBounds / RenderFromImage, src/pbrt/lights.h) and against the
  * map's own sampling, for the irradiance at points on the floor of a room lit through one window.
  *
- *   bench_portal [MAP.hdr|-smooth] [N]   MAP default data/envmaps/city.hdr (a sun; the window is put
- *                                        so that it shines in); -smooth: a generated overcast sky
+ *   bench_portal [MAP.hdr|-smooth] [N] [R] [SS]   MAP default data/envmaps/city.hdr (a sun; the window
+ *                                        is put so that it shines in); -smooth: a generated overcast sky;
+ *                                        N samples per point and run (200000); R the rectified resolution
+ *                                        of both portal samplers (256); SS envlight's supersampling (3)
  *
  * Printed per strategy: ns per sample (sample + radiance + pdf; CPU time, best and worst of 5 runs
  * interleaved), the variance per sample of lum(L) cos / pdf (the mean over 4 floor points of the
@@ -215,7 +217,7 @@ int main(int argc, char **argv) {
   room rm;
   char err[256];
   const char *path = argc > 1 ? argv[1] : "data/envmaps/city.hdr";
-  int N = argc > 2 ? atoi(argv[2]) : 200000, R = 256, s, k, rep, i, w, h;
+  int N = argc > 2 ? atoi(argv[2]) : 200000, R = argc > 3 ? atoi(argv[3]) : 256, SS = argc > 4 ? atoi(argv[4]) : 3, s, k, rep, i, w, h;
   double sun[3] = {0.6, 0.5, 0.6}, best[NSTRAT], worst[NSTRAT], var[NSTRAT], bestv = 0;
   float *px;
   memset(&lo, 0, sizeof lo);
@@ -253,9 +255,10 @@ int main(int argc, char **argv) {
     double t0;
     memset(&po, 0, sizeof po);
     po.resolution = R;
+    po.supersample = SS;
     t0 = now();
     if (el_envlight_portal_init(&EP, &L, rm.portal, 1, &po) != EL_SUCCESS) { fprintf(stderr, "bench_portal: %s\n", EP.error); return 1; }
-    printf("build: envlight portal %.1f ms (%dx%d, supersample 3); ", 1e3 * (now() - t0), R, R);
+    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (now() - t0), R, R, SS);
     t0 = now();
     pbrt_init(&PP, &L, rm.portal, R);
     printf("pbrt-v4 port %.1f ms\n", 1e3 * (now() - t0));

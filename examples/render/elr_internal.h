@@ -20,6 +20,8 @@
 
 #ifndef ELR_PI
 #define ELR_PI 3.14159265358979323846f
+/* LightSource "infinite" "float portalmapshare" default (bench/bench_portal_render.c measures it) */
+#define ELR_PORTAL_MAP_SHARE 0.1
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
@@ -186,6 +188,7 @@ typedef struct elr_light {
   /* pbrt-v4's "point3 portal" (issue 23): envlight.h's portal sampler, or NULL; with it sample_li and
    * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
   el_envlight_portal *portal;
+  float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
 } elr_light;
 
 typedef struct elr_scene_desc {

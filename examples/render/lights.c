@@ -237,6 +237,7 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
     l->env_sample = l->env_alt;
   }
   l->product = product < 0 ? l->sampling == ELR_ENVLS_PRODUCT : product;
+  if (l->portal) l->product = 0; /* the portals sample every vertex; the map's own tables behind them */
   if (l->product && el_envlight_prepare_product(l->env_sample, NULL) != EL_SUCCESS) return -1;
   if (l->product && !need_map) return 0;
   return el_envlight_prepare_sampling(l->env_sample) == EL_SUCCESS ? 0 : -1;
@@ -307,7 +308,13 @@ int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *er
   if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
   P = (el_envlight_portal *)calloc(1, sizeof *P);
   if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
-  r = el_envlight_portal_init(P, l->env, pts, count, NULL);
+  {
+    el_envlight_portal_options po;
+    memset(&po, 0, sizeof po);
+    po.compensated = l->compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
+    po.map_share = l->portal_share;
+    r = el_envlight_portal_init(P, l->env, pts, count, &po);
+  }
   if (r != EL_SUCCESS) {
     snprintf(err, errlen, "\"point3 portal\": %s (%s)", P->error, el_result_string(r));
     el_envlight_portal_free(P);

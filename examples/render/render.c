@@ -328,7 +328,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
       ls->env_importance = l->env_sample->importance;
     }
     if (l->kind == ELR_LIGHT_INFINITE && l->portal) {
-      ls->env_portals = l->portal->count; ls->env_portal_bytes = el_envlight_portal_bytes(l->portal);
+      ls->env_portals = l->portal->count; ls->env_portal_bytes = el_envlight_portal_bytes(l->portal); ls->env_portal_share = l->portal->map_share;
       ls->env_portal_used = T->portal_used; ls->env_portal_fallback = T->portal_fallback; /* (the one emitting light with portals) */
     }
     if (l->kind == ELR_LIGHT_AREA) {
