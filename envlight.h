@@ -477,12 +477,26 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    window's rows and the position in the row by linear inversion; then the column by a binary search
  *    over the row's prefix (2 reads per step). pdf = q_texel R^2 / (window mass) / (dw/d(a,b)), the exact
  *    density of those steps. Several portals: one is picked by the windows' masses with the same u.
- *    No rectified RGB image: radiance is le() of the map. Costs: bench/bench_portal.c.
+ *    No rectified RGB image: radiance is le() of the map. COST (bench/bench_portal.c, 4 floor points
+ *    of a room, gcc -O3, a shared loaded 2-core machine): 267-313 ns per sample with the radiance and
+ *    the pdf, against 1280-1480 ns for a plain port of pbrt-v4's sampler (bisection over a double
+ *    SAT) at the same resolution: 4.7-4.9x less; at equal variance on a smooth sky (the same density:
+ *    relative variance 0.039 both; the map's sample_li: 50). MEMORY: 8 bytes per rectified texel
+ *    (pbrt-v4: 24); the default resolution is the map's height (city, 1024x512: 512^2, 2 MB per
+ *    portal, built in about 100 ms), because a sun must stay sharp: 256^2 left 2x the variance of
+ *    the irradiance and 2x of a rendered room's pixels. The renderer (bench/bench_portal_render.c):
+ *    time to unit variance 112x better on an overcast sky, 4.3x on city with its sun shining in
+ *    (path traced, depth 3: the rest is indirect light from the sunlit floor); direct light alone
+ *    (depth 1) 1600x and 11x.
  * 4. FALLBACK: a point on or behind every portal's plane (or seeing windows of zero mass) uses the map's
  *    sample_li / pdf_li, so the strategy stays unbiased everywhere; sample_li returns which was used.
  *    Directions through no portal have pdf 0 (as pbrt-v4): the caller's BSDF samples must find them.
  * 5. COMPENSATION (pbrt-v4 has none for portals): max(lum - mean, 0), mean over the portal's whole
  *    hemisphere of directions (solid-angle weighted): with MIS only (dim directions get pdf 0).
+ *    MAP SHARE (options.map_share): a point outside the room may stand in front of a portal's plane and
+ *    see its back; its sun is then sought only through the room. A share s of the samples from the
+ *    map's sample_li, pdf (1 - s) portal + s map, keeps such points well sampled (the renderer uses
+ *    0.1: a sphere outside a window read 1% dark at 8 seeds without it, -3.6 sd; with it 0.07 sd).
  * 6. INPUTS: a NaN, infinite or zero u is clamped as sample_li's; a NaN or zero wi has pdf 0; a NaN pos
  *    sees no portal. Queries are read-only and thread-safe (the fallback builds the light's tables lazily,
  *    as sample_li does). */

@@ -3,10 +3,16 @@
  * table, src/pbrt/util/sampling.h; ImageBounds / RenderFromImage, src/pbrt/lights.h) and against the
  * map's own sampling, for the irradiance at points on the floor of a room lit through one window.
  *
- *   bench_portal [MAP.hdr|-smooth] [N] [R] [SS]   MAP default data/envmaps/city.hdr (a sun; the window
+ *   bench_portal [MAP.hdr|-smooth|""] [N] [R] [SS]   MAP default data/envmaps/city.hdr (a sun; the window
  *                                        is put so that it shines in); -smooth: a generated overcast sky;
  *                                        N samples per point and run (200000); R the rectified resolution
- *                                        of both portal samplers (256); SS envlight's supersampling (3)
+ *                                        of both portal samplers (0: envlight's default, the map's
+ *                                        height); SS envlight's supersampling (0: its default, 2)
+ *
+ *   bench_portal --picture [OUT.png] [MAP]   where 2000 samples of one floor point land on the lat-long
+ *                                        map (light space), map sampling above and the portal below, the
+ *                                        window's outline in blue; samples through it yellow, blocked red;
+ *                                        default out/portal_samples.png (the folder created), city.hdr
  *
  * Printed per strategy: ns per sample (sample + radiance + pdf; CPU time, best and worst of 5 runs
  * interleaved), the variance per sample of lum(L) cos / pdf (the mean over 4 floor points of the
@@ -17,6 +23,8 @@
 #define EL_IMPLEMENTATION
 #include "../envlight.h"
 #include "../examples/common/image_io.h"
+#include "../examples/common/picture.h"
+#include <sys/stat.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -164,19 +172,25 @@ static int pbrt_sample(const pbrt_portal *P, const el_envlight *L, const float p
   return 1;
 }
 
-/* ---- the room: a window of 1.2 x 1.0 m; floor points 2-3 m from it ---- */
+/* ---- the room: a window of 1.2 x 1.0 m facing the sun's azimuth, 2 m from the floor points, as high as the
+ * sun's elevation asks for the sun to shine through it onto the middle of the floor (points 1 and 2 see the
+ * sun through the window, points 0 and 3 see the window without it) ---- */
 typedef struct room { float portal[12]; float pts[4][3]; float n[3]; double center[3], X[3], Y[3], Z[3], hx, hy; } room;
 static void make_room(room *r, const double sun[3]) {
-  /* world y up; the window faces the horizontal part of sun (into the sky), its centre 1.5 m up */
-  double h[3] = {sun[0], 0, sun[2]}, up[3] = {0, 1, 0}, X[3];
+  /* world y up; the window faces the horizontal part of sun (into the sky) */
+  double h[3] = {sun[0], 0, sun[2]}, up[3] = {0, 1, 0}, X[3], hl, lift;
   int i, k;
   if (h[0] * h[0] + h[2] * h[2] < 1e-6) { h[0] = 1; h[2] = 0; }
+  hl = sqrt(sun[0] * sun[0] + sun[2] * sun[2]);
+  lift = hl > 1e-3 ? 2.0 * sun[1] / hl : 1.5; /* the sun's height over 2 m of floor */
+  if (lift < 0.8) lift = 0.8;
+  if (lift > 4.0) lift = 4.0;
   norm3(h);
   /* frame: Z = h, Y = up (p0 -> p1), X = Y cross Z ... pbrt's Z = X cross Y, so X = Y cross Z */
   X[0] = up[1] * h[2] - up[2] * h[1]; X[1] = up[2] * h[0] - up[0] * h[2]; X[2] = up[0] * h[1] - up[1] * h[0];
   r->hx = 0.6; r->hy = 0.5;
   for (i = 0; i < 3; ++i) {
-    r->center[i] = 3.0 * h[i] + (i == 1 ? 1.5 : 0.0);
+    r->center[i] = 2.0 * h[i] + (i == 1 ? lift : 0.0);
     r->X[i] = X[i]; r->Y[i] = up[i]; r->Z[i] = h[i];
   }
   for (i = 0; i < 3; ++i) {
@@ -186,9 +200,9 @@ static void make_room(room *r, const double sun[3]) {
     r->portal[6 + i] = (float)(p0 + 2 * r->hy * up[i] + 2 * r->hx * X[i]);
     r->portal[9 + i] = (float)(p0 + 2 * r->hx * X[i]);
   }
-  for (k = 0; k < 4; ++k) { /* floor points: along the sun's patch and aside */
+  for (k = 0; k < 4; ++k) { /* floor points across the sun's patch and aside */
     double off = 0.8 * (k - 1.5);
-    for (i = 0; i < 3; ++i) r->pts[k][i] = (float)(-0.5 * h[i] + off * X[i]);
+    for (i = 0; i < 3; ++i) r->pts[k][i] = (float)(off * X[i]);
     r->pts[k][1] = 0;
   }
   r->n[0] = 0; r->n[1] = 1; r->n[2] = 0;
@@ -208,6 +222,115 @@ static int through(const room *r, const float pos[3], const float wi[3]) {
 #define NSTRAT 3
 static const char *names[NSTRAT] = {"map sample_li (no portal)", "pbrt-v4 port (bisection, double SAT)", "envlight portal (integer SAT)"};
 
+/* ---- the picture: where the samples of one floor point land, map sampling against the portal ---- */
+static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
+  double t = x / (1 + x);
+  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
+  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
+}
+static void dot(unsigned char *img, int W, int H, int x, int y, int r, unsigned char cr, unsigned char cg, unsigned char cb) {
+  int dx, dy;
+  for (dy = -r; dy <= r; ++dy)
+    for (dx = -r; dx <= r; ++dx) {
+      int xx = ((x + dx) % W + W) % W, yy = y + dy;
+      unsigned char *q;
+      if (yy < 0 || yy >= H) continue;
+      q = img + 3 * ((size_t)yy * (size_t)W + (size_t)xx);
+      q[0] = cr; q[1] = cg; q[2] = cb;
+    }
+}
+/* world direction -> pixel of the lat-long map (light space: the transpose of light_to_world) */
+static void to_pixel(const float m[9], const float w[3], int W, int H, int *x, int *y) {
+  float d[3], u, v;
+  d[0] = m[0] * w[0] + m[3] * w[1] + m[6] * w[2];
+  d[1] = m[1] * w[0] + m[4] * w[1] + m[7] * w[2];
+  d[2] = m[2] * w[0] + m[5] * w[1] + m[8] * w[2];
+  el_envlight_dir_to_uv(d, &u, &v);
+  *x = (int)(u * (float)W); *y = (int)(v * (float)H);
+}
+static void find_sun(const float *px, int w, int h, const float m[9], double sun[3]);
+static int picture(const char *out, const char *path) {
+  el_image img;
+  el_envlight L;
+  el_envlight_options lo;
+  el_envlight_portal EP;
+  room rm;
+  char err[512], label[160];
+  int W, H, panel, x, y, i, ns = 2000, k;
+  unsigned char *pix;
+  double sun[3];
+  const float *pos;
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  memset(&lo, 0, sizeof lo);
+  el_envlight_yup_matrix(lo.light_to_world);
+  if (el_envlight_init(&L, img.pixels, img.width, img.height, 3, &lo) != EL_SUCCESS) { fprintf(stderr, "%s: init failed\n", path); return 1; }
+  find_sun(img.pixels, img.width, img.height, lo.light_to_world, sun);
+  make_room(&rm, sun);
+  pos = rm.pts[1];
+  if (el_envlight_portal_init(&EP, &L, rm.portal, 1, NULL) != EL_SUCCESS) { fprintf(stderr, "%s\n", EP.error); return 1; }
+  W = img.width; H = img.height;
+  pix = (unsigned char *)calloc((size_t)W * 2 * (size_t)H * 3, 1);
+  for (panel = 0; panel < 2; ++panel) {
+    unsigned char *im = pix + (size_t)panel * (size_t)W * (size_t)H * 3;
+    int nthrough = 0;
+    g_rng = 88172645463325252ULL;
+    for (y = 0; y < H; ++y) /* the map, one stop darker */
+      for (x = 0; x < W; ++x) {
+        const float *t = img.pixels + 3 * ((size_t)y * (size_t)W + (size_t)x);
+        unsigned char *q = im + 3 * ((size_t)y * (size_t)W + (size_t)x);
+        q[0] = to8(0.5 * t[0]); q[1] = to8(0.5 * t[1]); q[2] = to8(0.5 * t[2]);
+      }
+    for (k = 0; k < 4; ++k) /* the window's outline seen from the point */
+      for (i = 0; i <= 400; ++i) {
+        const float *a = rm.portal + 3 * k, *b = rm.portal + 3 * ((k + 1) % 4);
+        float w[3];
+        int c;
+        for (c = 0; c < 3; ++c) w[c] = a[c] + (b[c] - a[c]) * (float)i / 400.0f - pos[c];
+        to_pixel(lo.light_to_world, w, W, H, &x, &y);
+        dot(im, W, H, x, y, 0, 80, 220, 255);
+      }
+    for (i = 0; i < ns; ++i) {
+      float u[2], wi[3], rgb[3], pdf;
+      int ok;
+      u[0] = frand(); u[1] = frand();
+      if (panel == 0) el_envlight_sample_li(&L, u, wi, rgb, &pdf);
+      else el_envlight_portal_sample_li(&EP, &L, pos, u, wi, rgb, &pdf);
+      if (!(pdf > 0)) continue;
+      ok = through(&rm, pos, wi);
+      nthrough += ok;
+      to_pixel(lo.light_to_world, wi, W, H, &x, &y);
+      if (ok) dot(im, W, H, x, y, 1, 255, 230, 40);
+      else dot(im, W, H, x, y, 1, 255, 40, 40);
+    }
+    snprintf(label, sizeof label, "%s: %d OF %d SAMPLES THROUGH THE WINDOW (YELLOW)", panel == 0 ? "MAP (SAMPLE LI)" : "PORTAL (PORTAL SAMPLE LI)",
+             nthrough, ns);
+    el_draw_label(im, W, H, 8, 8, label);
+    el_draw_label(im, W, H, 8, 34, "THE WINDOW SEEN FROM A POINT ON THE FLOOR: BLUE");
+    printf("%s: %d of %d samples through the window\n", panel == 0 ? "el_envlight_sample_li" : "el_envlight_portal_sample_li", nthrough, ns);
+  }
+  {
+    char dir[512];
+    const char *slash = strrchr(out, '/');
+    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
+  }
+  if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  printf("wrote %s\n", out);
+  free(pix);
+  el_envlight_portal_free(&EP);
+  el_envlight_free(&L);
+  el_image_free(&img);
+  return 0;
+}
+/* the sun: the brightest texel, in world space */
+static void find_sun(const float *px, int w, int h, const float m[9], double sun[3]) {
+  int bi = 0, i;
+  double bl = -1;
+  float dl[3];
+  for (i = 0; i < w * h; ++i) if (lum(px + 3 * i) > bl) { bl = lum(px + 3 * i); bi = i; }
+  el_envlight_uv_to_dir((float)(((bi % w) + 0.5) / w), (float)(((bi / w) + 0.5) / h), dl);
+  for (i = 0; i < 3; ++i) sun[i] = m[3 * i] * dl[0] + m[3 * i + 1] * dl[1] + m[3 * i + 2] * dl[2];
+}
+
 int main(int argc, char **argv) {
   el_image img;
   el_envlight L;
@@ -216,10 +339,12 @@ int main(int argc, char **argv) {
   pbrt_portal PP;
   room rm;
   char err[256];
-  const char *path = argc > 1 ? argv[1] : "data/envmaps/city.hdr";
-  int N = argc > 2 ? atoi(argv[2]) : 200000, R = argc > 3 ? atoi(argv[3]) : 256, SS = argc > 4 ? atoi(argv[4]) : 3, s, k, rep, i, w, h;
+  const char *path = argc > 1 && argv[1][0] ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
+  int N = argc > 2 ? atoi(argv[2]) : 200000, R = argc > 3 ? atoi(argv[3]) : 0, SS = argc > 4 ? atoi(argv[4]) : 0, s, k, rep, i, w, h;
   double sun[3] = {0.6, 0.5, 0.6}, best[NSTRAT], worst[NSTRAT], var[NSTRAT], bestv = 0;
   float *px;
+  if (argc > 1 && !strcmp(argv[1], "--picture"))
+    return picture(argc > 2 ? argv[2] : "out/portal_samples.png", argc > 3 ? argv[3] : EL_SOURCE_DIR "/data/envmaps/city.hdr");
   memset(&lo, 0, sizeof lo);
   el_envlight_yup_matrix(lo.light_to_world);
   if (strcmp(path, "-smooth") == 0) { /* an overcast sky: CIE-like, 2:1 zenith to horizon, dark ground */
@@ -230,23 +355,15 @@ int main(int argc, char **argv) {
       px[3 * i] = (float)v; px[3 * i + 1] = (float)v; px[3 * i + 2] = (float)(1.1 * v);
     }
   } else {
-    if (el_image_load(path, &img, err, sizeof err) != 0 && (snprintf(err, sizeof err, "../%s", path), el_image_load(err, &img, err, sizeof err) != 0)) {
+    if (el_image_load(path, &img, err, sizeof err) != 0) {
       fprintf(stderr, "bench_portal: %s\n", err);
       return 1;
     }
     w = img.width; h = img.height; px = img.pixels;
   }
   if (el_envlight_init(&L, px, w, h, 3, &lo) != EL_SUCCESS) { fprintf(stderr, "bench_portal: bad map\n"); return 1; }
-  if (strcmp(path, "-smooth") != 0) { /* the sun: the brightest texel, in world space */
-    int bi = 0;
-    double bl = -1, u, v, d[3];
-    float dl[3], dw[3];
-    for (i = 0; i < w * h; ++i) if (lum(px + 3 * i) > bl) { bl = lum(px + 3 * i); bi = i; }
-    u = ((bi % w) + 0.5) / w; v = ((bi / w) + 0.5) / h;
-    el_envlight_uv_to_dir((float)u, (float)v, dl);
-    for (i = 0; i < 3; ++i) dw[i] = lo.light_to_world[3 * i] * dl[0] + lo.light_to_world[3 * i + 1] * dl[1] + lo.light_to_world[3 * i + 2] * dl[2];
-    for (i = 0; i < 3; ++i) d[i] = dw[i];
-    memcpy(sun, d, sizeof d);
+  if (strcmp(path, "-smooth") != 0) {
+    find_sun(px, w, h, lo.light_to_world, sun);
     printf("sun direction (world, y up): %.3f %.3f %.3f\n", sun[0], sun[1], sun[2]);
   }
   make_room(&rm, sun);
@@ -258,7 +375,8 @@ int main(int argc, char **argv) {
     po.supersample = SS;
     t0 = now();
     if (el_envlight_portal_init(&EP, &L, rm.portal, 1, &po) != EL_SUCCESS) { fprintf(stderr, "bench_portal: %s\n", EP.error); return 1; }
-    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (now() - t0), R, R, SS);
+    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (now() - t0), EP.res, EP.res, SS ? SS : 2);
+    R = EP.res;
     t0 = now();
     pbrt_init(&PP, &L, rm.portal, R);
     printf("pbrt-v4 port %.1f ms\n", 1e3 * (now() - t0));
