@@ -428,7 +428,8 @@ typedef struct el_envlight_portal {
 } el_envlight_portal;
 
 /* points: count x 4 vertices x 3 floats, world space (pbrt-v4's "point3 portal", ignoring the light's
- * CTM). The light must outlive the portal and be the one passed to the queries. opt may be NULL. Errors:
+ * CTM). The tables are built from light's le() (its matrix and scale); pass the same light to the
+ * queries (the portal keeps no pointer to it). opt may be NULL. Errors:
  * EL_ERROR_INVALID_ARGUMENT (count outside 1..EL_ENVLIGHT_PORTAL_MAX, options out of range, a degenerate
  * or non-rectangular portal), EL_ERROR_NAN / EL_ERROR_INFINITE (a vertex), EL_ERROR_OUT_OF_MEMORY; then
  * p->error names the problem ("portal 1: not planar: ...") and p->bad_index the portal. */

@@ -421,6 +421,9 @@ int main(int argc, char **argv) {
   printf("cost ratio pbrt-v4 port / envlight: %.2f (best times), %.2f-%.2f (ranges); variance ratio %.3f\n", best[1] / best[2],
          worst[1] / best[2] < best[1] / worst[2] ? worst[1] / best[2] : best[1] / worst[2], worst[1] / best[2] > best[1] / worst[2] ? worst[1] / best[2] : best[1] / worst[2], var[1] / var[2]);
   printf("(CPU time on a shared, loaded machine: compare ratios; 4 floor points x %d samples per run)\n", N);
+  printf("(the port's density point-samples the map at rectified texel centres, pbrt-v4's image resampling; with le() as the\n"
+         " radiance here a sun between centres costs it variance, which pbrt-v4 itself, reading its rectified image, turns into\n"
+         " resampling error instead: compare the variances on -smooth, the costs on both)\n");
   el_envlight_portal_free(&EP);
   el_envlight_free(&L);
   return 0;
