@@ -145,7 +145,7 @@ static void build_row(const float *px, int w, int h, const char *name, int cap, 
   el_envlight l;
   el_envlight_options o;
   el_result r;
-  double img = (double)w * h * 12.0, rss0, t0, c0, t1, t2, t3, c3, hwm1, hwm2;
+  double img = (double)w * h * 12.0, rss0, t0, c0, t1, c1, t2, c2, t3, c3, hwm1, hwm2;
   int hwm_ok;
   memset(&o, 0, sizeof o);
   o.importance_cap = cap;
@@ -155,23 +155,24 @@ static void build_row(const float *px, int w, int h, const char *name, int cap, 
   t0 = wall(); c0 = cpu();
   r = el_envlight_init(&l, px, w, h, 3, &o);
   if (r != EL_SUCCESS) { printf("init failed: %s\n", el_result_string(r)); return; }
-  t1 = wall();
+  t1 = wall(); c1 = cpu();
   r = el_envlight_prepare_sampling(&l);
-  t2 = wall();
+  t2 = wall(); c2 = cpu();
   hwm1 = proc_kb("VmHWM:");
   if (r == EL_SUCCESS) r = el_envlight_prepare_product(&l, NULL);
   t3 = wall(); c3 = cpu();
   hwm2 = proc_kb("VmHWM:");
   if (r != EL_SUCCESS) printf("tables failed: %s\n", el_result_string(r));
   if (g_csv)
-    printf("bigmap_build,%s,%d,%d,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.3f,%.1f,%.3f,%d,%d\n", name, w, h, img / 1048576.0,
-           1e3 * (t1 - t0), 1e3 * (t2 - t1), 1e3 * (t3 - t2), 1e3 * (c3 - c0), 1e3 * (t3 - t0),
+    printf("bigmap_build,%s,%d,%d,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.3f,%.1f,%.3f,%d,%d\n", name, w, h, img / 1048576.0,
+           1e3 * (t1 - t0), 1e3 * (t2 - t1), 1e3 * (t3 - t2), 1e3 * (c1 - c0), 1e3 * (c2 - c1), 1e3 * (c3 - c2),
            hwm_ok ? (hwm1 - rss0) / 1048576.0 : -1.0, hwm_ok ? (hwm2 - rss0) / 1048576.0 : -1.0,
            hwm_ok ? (hwm1 - rss0) / img : -1.0, (double)el_envlight_sampling_bytes(&l) / 1048576.0,
            hwm_ok ? (hwm2 - rss0) / img : -1.0, l.imp_w, l.imp_h);
   else
-    printf("%5dx%-5d %-22s %9.0f %8.0f %8.0f %8.0f | %8.0f %8.0f | %9.0f %6.3f | %9.0f %6.3f  %dx%d\n", w, h, name,
-           1e3 * (t1 - t0), 1e3 * (t2 - t1), 1e3 * (t2 - t0), 1e3 * (t3 - t2), 1e3 * (t3 - t0), 1e3 * (c3 - c0),
+    printf("%5dx%-5d %-22s %6.0f %6.0f %6.0f | %6.0f %6.0f %6.0f | %7.0f %7.0f | %7.0f %6.3f | %7.0f %6.3f  %dx%d\n", w, h, name,
+           1e3 * (t1 - t0), 1e3 * (t2 - t1), 1e3 * (t3 - t2), 1e3 * (c1 - c0), 1e3 * (c2 - c1), 1e3 * (c3 - c2),
+           1e3 * (t2 - t0), 1e3 * (c2 - c0),
            hwm_ok ? (hwm1 - rss0) / 1048576.0 : -1.0, hwm_ok ? (hwm1 - rss0) / img : -1.0,
            hwm_ok ? (hwm2 - rss0) / 1048576.0 : -1.0, hwm_ok ? (hwm2 - rss0) / img : -1.0, l.imp_w, l.imp_h);
   fflush(stdout);
@@ -276,17 +277,18 @@ int main(int argc, char **argv) {
   if (maxw < 1024) maxw = 1024;
   nvar = quick ? 1 << 18 : 1 << 22;
   if (!g_csv) {
-    printf("Table 1: build cost (wall ms; CPU = user + system ms; peak = VmHWM above the caller's image, MB and x image bytes)\n");
-    printf("%-11s %-22s %9s %8s %8s %8s | %8s %8s | %9s %6s | %9s %6s  %s\n", "map", "configuration", "init", "sampling",
-           "init+smp", "product", "all", "all CPU", "peak smp", "ximg", "peak all", "ximg", "importance");
+    printf("Table 1: build cost: wall ms and CPU ms (user + system) of init, the sampling tables (smp) and the product tables (prd);\n"
+           "peak = VmHWM above the caller's image after the sampling tables and after the product tables, MB and x the image's bytes\n");
+    printf("%-11s %-22s %6s %6s %6s | %6s %6s %6s | %7s %7s | %7s %6s | %7s %6s  %s\n", "map", "configuration", "init", "smp", "prd",
+           "cpu in", "cpu sm", "cpu pr", "in+smp", "cpu i+s", "peak is", "ximg", "peak al", "ximg", "importance");
   }
   for (w = 1024; w <= maxw; w *= 2) {
     int h = w / 2;
     px = make_map(w, h);
     if (!px) { printf("%dx%d: out of memory\n", w, h); break; }
-    build_row(px, w, h, "copy, no cap (before)", -1, 0);
-    build_row(px, w, h, "copy, cap (default)", 0, 0);
-    build_row(px, w, h, "no_copy, cap", 0, 1);
+    build_row(px, w, h, "copy nocap (before)", -1, 0);
+    build_row(px, w, h, "copy cap (default)", 0, 0);
+    build_row(px, w, h, "no_copy cap", 0, 1);
     if (w == maxw) {
       if (!g_csv) {
         printf("\nTable 2: the cap's variance on the %dx%d sun map (0.5 degree sun), %d samples of sample_li (no_copy)\n", w, h, nvar);

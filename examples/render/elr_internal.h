@@ -183,6 +183,7 @@ typedef struct elr_light {
   int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
+  int mapping;             /* infinite: EL_ENVLIGHT_MAPPING_* (pbrt-v4's "filename" with a square image: equal-area) */
 } elr_light;
 
 typedef struct elr_scene_desc {

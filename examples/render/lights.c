@@ -162,6 +162,8 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
   o.compensated = l->compensated;
   o.importance = elr__importance(l->importance);
   o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
+  o.mapping = l->mapping; /* pbrt-v4's equal-area maps: box cell averages, pbrt-v4's own density */
+  if (o.mapping != EL_ENVLIGHT_MAPPING_LATLONG) o.importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
   if (rgb) {
     o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
     if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
@@ -216,6 +218,8 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
       o.compensated = compensated;
       o.importance = elr__importance(importance);
       o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
+      o.mapping = l->env->mapping;
+      if (o.mapping != EL_ENVLIGHT_MAPPING_LATLONG) o.importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
       if (l->env->width > 0) r = el_envlight_init(a, l->env->texels, l->env->width, l->env->height, 3, &o);
       else r = el_envlight_init_constant(a, l->env->constant, &o);
       if (r != EL_SUCCESS) { el_envlight_free(a); free(a); return -1; }
