@@ -269,7 +269,7 @@ EL_DEF void el_envlight_pdf_le(const el_envlight *l, const float ray_dir[3], flo
 EL_DEF void el_envlight_power(const el_envlight *l, float rgb[3]);
 /* integral(le) d omega over the sphere, per channel (exact for the bilinear reconstruction). */
 EL_DEF void el_envlight_integral(const el_envlight *l, float rgb[3]);
-/* Bytes in use: the struct, the texels and the sampling tables (if built). */
+/* Bytes in use: the struct, the texels (not the caller's, with options.no_copy) and the tables built. */
 EL_DEF size_t el_envlight_bytes(const el_envlight *l);
 /* Bytes of the sampling tables alone (0 until built). */
 EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l);
@@ -542,6 +542,54 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
  * light sampling alone NO LONGER covers the dim parts of the map: use it only with MIS against BSDF
  * sampling. A map where nothing exceeds the mean (a constant one) falls back to the plain density.
+ *
+ * BIG MAPS (issue 24; bench/bench_bigmaps.c, numbers in docs/accuracy-vs-time.md). A 16384x8192 map is a
+ * 1.5 GB float image. Before: init copied it (1.5 GB more, page-faulted in) and the sampling tables were
+ * built at its resolution (1.15 GB; with the product tables 2.4x the image at peak, 9-18 s CPU). Now:
+ *   - THE CAP. When importance_width is 0 the importance map is at most importance_cap x importance_cap/2
+ *     bins (EL_ENVLIGHT_IMPORTANCE_CAP = 4096 by default; -1: none), each the EXACT mean of le()'s bilinear
+ *     reconstruction over the bin (the CELL_AVERAGE weights for any ratio, bins need not divide the image),
+ *     times sin(theta). The pdf is exact for the piecewise-constant density actually sampled (pdf_li and
+ *     sample_li agree as in point 4); radiance is still read from the full image. A capped PBRT_V3 map
+ *     takes cell averages (its point lookups at fewer bins could miss a small sun: pdf 0 where le > 0);
+ *     TEXEL is never capped. The cost, measured on a 16384x8192 map with a 0.5-degree sun (radiance 1e5,
+ *     half the map's power), relative variance per sample of sample_li's estimates (full resolution /
+ *     cap 8192 / 4096 / 2048 / 1024): the luminance integral 0.026 / 0.072 / 0.19 / 0.43 / 1.08, the
+ *     irradiance of a surface facing the sun 0.37 / 0.45 / 0.69 / 1.16 / 2.45; tables 1155 / 289 / 73 / 18 /
+ *     4.7 MB. A bin wider than the sun's edge mixes sun and sky: that is the whole cost. 4096 keeps the
+ *     tables within 0.05x of a 16k image and 0.19x of an 8k one, at 1.9x the irradiance variance of full
+ *     resolution on that map (2048: 3.1x); maps up to 4096x2048, and pbrt-v3's 2x map of a 2048x1024 image,
+ *     are untouched. Ask for the full resolution with importance_cap = -1 when the memory is there.
+ *     Product sampling's tables may use the same cap: the resolved size is (imp_w, imp_h), and the
+ *     exact bin means at any size come from one streaming pass (el_envlight__cell_average).
+ *   - NO COPY. options.no_copy = 1 keeps a pointer to the caller's pixels (3 channels, no scale: fold a
+ *     scale into the pixels first). init then only reads them once (validation and the integral: 0.4 s
+ *     CPU for 16k instead of 1.6 s with the copy's page faults) and el_envlight_bytes leaves them out.
+ *     LIFETIME: the pixels must stay allocated and unchanged until el_envlight_free (the light reads them
+ *     on every le and sample_li, and its tables describe them); el_envlight_free does not free them. A
+ *     texel that BAD_TEXELS_ZERO must zero makes init copy after all (light.borrowed then says 0); with
+ *     BAD_TEXELS_ERROR the bad texel is named without a copy.
+ *   - Half floats would halve a copy (0.5x the image), still above the 0.25x budget that no_copy meets
+ *     with 0.05x: not done.
+ *   - The tables of a capped map are small and filled in one pass each (no calloc-then-touch of arrays
+ *     of the image's size); the build reads the image once, row by row, through a ring of u-filtered rows.
+ *
+ * EQUAL-AREA MAPS (options.mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA: pbrt-v4's ImageInfiniteLight,
+ * Clarberg 2008's octahedral equal-area square). A square N x N image; light space as pbrt-v4's
+ * EqualAreaSquareToSphere: the square's centre is +z, its corners -z, (1, 1/2) is +x, (1/2, 1) is +y
+ * (el_envlight_square_to_dir / el_envlight_dir_to_square; the light_to_world matrix applies as for
+ * lat-long maps). le is the nearest texel (pbrt-v4's LookupNearest), so each texel is exactly a patch of
+ * solid angle 4 pi / N^2 with constant radiance: the importance map is the texels' luminance (box means
+ * of it under the cap, which is importance_cap / 2 per axis), with no sin(theta), and pdf = mapPdf /
+ * (4 pi). The integral is exact. sample_li returns pdf_li(wi) and le(wi) themselves (bit for bit; the
+ * mapping's round trip, about 2e-7 in (u, v), stays inside the 2^-21 margin: every sampled point's pdf is
+ * its bin's, tests/test_envlight_bigmaps.c). Costs (bench_bigmaps table 3, 2896^2 against 4096x2048
+ * lat-long): sample_li 1.3-1.4x, pdf_li 1.2-2.9x, le 0.6-2.6x the lat-long times (no inline fast paths),
+ * tables 0.8x. Native rather than converted on load: a conversion to lat-long resamples (blurs) the
+ * map and its pdf would no longer describe pbrt-v4's image. Not supported (EL_ERROR_INVALID_ARGUMENT):
+ * importance PBRT_V3 and BILINEAR, a non-square image. Product sampling has no equal-area tables:
+ * sample_li_cos and pdf_li_cos are sample_li and pdf_li there (unbiased, no cosine factor), and
+ * prepare_product builds sample_li's tables.
  * ==================================================================================================== */
 
 /* ====================================================================================================

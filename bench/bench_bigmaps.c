@@ -2,8 +2,8 @@
  * the sampling tables and the product tables from 1024x512 to 16384x8192, and the variance the default
  * cap of the importance map costs on a map whose 0.5-degree sun needs resolution.
  *
- *   bench_bigmaps                 tables 1-3, maps up to 16384x8192 (needs about 6 GB of memory, 1-2 min)
- *   bench_bigmaps --quick         up to 4096x2048, fewer samples (seconds)
+ *   bench_bigmaps                 tables 1-3, maps up to 16384x8192 (needs about 6 GB of memory, 1-3 min)
+ *   bench_bigmaps --quick         up to 2048x1024, fewer samples (a second)
  *   bench_bigmaps --max W         maps up to W x W/2
  *   bench_bigmaps --csv [--quick] the rows as CSV (kind,option,...) for bench/report.py
  *
@@ -20,11 +20,12 @@
  *  2. The cap's cost in variance, on the largest map: per cap (512 .. no cap) the relative variance per
  *     sample of sample_li's estimate of the map's luminance integral (lum(le) / pdf) and of the irradiance
  *     of a surface facing up and one facing the sun, its bias in standard errors against the exact
- *     integral, the sampling tables' build time and bytes.
- *  3. Equal-area maps (pbrt-v4) against the lat-long map of the same texel count: ns per sample_li,
+ *     integral, the sampling tables' build time (CPU) and bytes.
+ *  3. Equal-area maps (pbrt-v4) against the lat-long map of the same texel count: CPU ns per sample_li,
  *     pdf_li and le, and the tables' build time (native equal-area sampling vs. converting on load).
  *
- * Timings are wall time on a machine shared with other jobs: run it twice, read ranges.
+ * Wall times on a machine shared with other jobs are noisy: tables 2 and 3 and the CPU columns use this
+ * process's CPU time (user + system); run it twice, read ranges.
  */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
 #define EL_IMPLEMENTATION
@@ -191,9 +192,9 @@ static void variance_row(const float *px, int w, int h, int cap, int n) {
   o.no_copy = 1;
   if (el_envlight_init(&l, px, w, h, 3, &o) != EL_SUCCESS) { printf("init failed\n"); return; }
   sun_dir(s);
-  t0 = wall();
+  t0 = cpu();
   el_envlight_prepare_sampling(&l);
-  tb = wall() - t0;
+  tb = cpu() - t0;
   el_envlight_integral(&l, integral);
   exact = 0.212671 * integral[0] + 0.715160 * integral[1] + 0.072169 * integral[2];
   for (i = 0; i < n; ++i) {
@@ -231,30 +232,30 @@ static void speed_row(const char *name, const float *px, int w, int h, int mappi
   memset(&o, 0, sizeof o);
   o.mapping = mapping;
   if (el_envlight_init(&l, px, w, h, 3, &o) != EL_SUCCESS) { printf("init failed\n"); return; }
-  t0 = wall(); el_envlight_prepare_sampling(&l); tb = wall() - t0;
-  t0 = wall();
+  t0 = cpu(); el_envlight_prepare_sampling(&l); tb = cpu() - t0;
+  t0 = cpu();
   for (i = 0; i < n; ++i) {
     float u[2], wi[3], rgb[3], pdf;
     u[0] = rnd(2u * (uint32_t)i); u[1] = rnd(2u * (uint32_t)i + 1u);
     el_envlight_sample_li(&l, u, wi, rgb, &pdf);
     acc += pdf + rgb[0];
   }
-  ts = (wall() - t0) / n;
-  t0 = wall();
+  ts = (cpu() - t0) / n;
+  t0 = cpu();
   for (i = 0; i < n; ++i) {
     float d[3];
     d[0] = rnd(3u * (uint32_t)i) - 0.5f; d[1] = rnd(3u * (uint32_t)i + 1u) - 0.5f; d[2] = rnd(3u * (uint32_t)i + 2u) - 0.5f;
     acc += el_envlight_pdf_li(&l, d);
   }
-  tp = (wall() - t0) / n;
-  t0 = wall();
+  tp = (cpu() - t0) / n;
+  t0 = cpu();
   for (i = 0; i < n; ++i) {
     float d[3], rgb[3];
     d[0] = rnd(3u * (uint32_t)i) - 0.5f; d[1] = rnd(3u * (uint32_t)i + 1u) - 0.5f; d[2] = rnd(3u * (uint32_t)i + 2u) - 0.5f;
     el_envlight_le(&l, d, rgb);
     acc += rgb[1];
   }
-  tl = (wall() - t0) / n;
+  tl = (cpu() - t0) / n;
   if (g_csv) printf("bigmap_mapping,%s,%d,%d,%.1f,%.1f,%.1f,%.2f\n", name, w, h, 1e9 * ts, 1e9 * tp, 1e9 * tl, 1e3 * tb);
   else printf("%-24s %5dx%-5d %9.1f %9.1f %9.1f %9.2f   (%g)\n", name, w, h, 1e9 * ts, 1e9 * tp, 1e9 * tl, 1e3 * tb, acc > 0.0 ? 0.0 : 1.0);
   el_envlight_free(&l);
@@ -273,9 +274,13 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[a], "--max") && a + 1 < argc) maxw = atoi(argv[++a]);
     else { fprintf(stderr, "usage: bench_bigmaps [--quick] [--csv] [--max W]\n"); return 2; }
   }
-  if (quick && maxw > 4096) maxw = 4096;
+  if (quick && maxw > 2048) maxw = 2048;
   if (maxw < 1024) maxw = 1024;
-  nvar = quick ? 1 << 18 : 1 << 22;
+  nvar = quick ? 1 << 16 : 1 << 22;
+  if (g_csv) /* the header row (report.py skips it); then kind,option,... rows */
+    printf("kind,option,w,h,...: bigmap_build,config,w,h,image MB,wall init,wall smp,wall prd,cpu init,cpu smp,cpu prd,peak smp MB,peak all "
+           "MB,peak smp/image,tables MB,peak all/image,imp_w,imp_h | bigmap_cap,cap,w,h,imp_w,imp_h,relvar lum,relvar E up,relvar E sun,"
+           "bias/se,build ms,tables MB | bigmap_mapping,name,w,h,ns sample_li,ns pdf_li,ns le,tables ms\n");
   if (!g_csv) {
     printf("Table 1: build cost: wall ms and CPU ms (user + system) of init, the sampling tables (smp) and the product tables (prd);\n"
            "peak = VmHWM above the caller's image after the sampling tables and after the product tables, MB and x the image's bytes\n");
@@ -307,7 +312,7 @@ int main(int argc, char **argv) {
     printf("%-24s %-11s %9s %9s %9s %9s\n", "mapping", "map", "sample_li", "pdf_li", "le", "tables");
   }
   {
-    int n = quick ? 1024 : 2048, m = (int)(n * 1.41421356); /* m^2 = 2 n^2 texels */
+    int n = quick ? 512 : 2048, m = (int)(n * 1.41421356); /* m^2 = 2 n^2 texels */
     px = make_map(2 * n, n);
     if (px) { speed_row("lat-long", px, 2 * n, n, EL_ENVLIGHT_MAPPING_LATLONG); free(px); }
     px = make_map_square(m);
