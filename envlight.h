@@ -158,8 +158,13 @@ typedef struct el_envlight_options {
   int mapping;             /* EL_ENVLIGHT_MAPPING_* */
 } el_envlight_options;
 
+/* The light. PUBLIC (read, never write): width, height and bad_index. Every other field is PRIVATE:
+ * the implementation's state and tables, which may change in any version without notice; read the
+ * light through the functions below (el_envlight_le, el_envlight_bytes, ...) and change it only through
+ * el_envlight_init / el_envlight_preprocess / el_envlight_free. */
 typedef struct el_envlight {
-  int width, height;       /* the image; 0 x 0 for a constant light */
+  int width, height;       /* PUBLIC: the image; 0 x 0 for a constant light */
+  /* ---- private from here on (but bad_index, below) ---- */
   float *texels;           /* width*height*3, scaled, row 0 = theta 0 */
   float constant[3];       /* the radiance of a constant light (scaled) */
   float to_world[9];       /* row-major, orthonormal */
@@ -214,11 +219,11 @@ typedef struct el_envlight {
                               direction and pdf are final unless the radiance is wanted */
   float v_angle, u_angle;  /* pi / nv, 2 pi / nu */
   float u_margin_hi, v_margin_hi; /* 1 - u_margin, 1 - v_margin */
-  int bad_index;           /* after init: the index y*width+x of the first bad texel when init failed on one
+  int bad_index;           /* PUBLIC. After init: the index y*width+x of the first bad texel when init failed on one
                               (EL_ERROR_NAN, _INFINITE, _NEGATIVE), else -1. A failed init zeroes every
                               other field. */
-  /* product sampling and the bilinear warp (NOTES ON PRODUCT SAMPLING below the API): their own tables,
-   * built on first use with their own once-flags (the same scheme as state) */
+  /* ---- private again ---- product sampling and the bilinear warp (NOTES ON PRODUCT SAMPLING below the
+   * API): their own tables, built on first use with their own once-flags (the same scheme as state) */
   int warp_state, cos_state;        /* 0 not built, 1 being built, 2 ready, 3 failed */
   el_result warp_result, cos_result;
   struct el_envlight__warp *warp;   /* the warp's cells and CDFs, and the normal tables (private) */

@@ -15,6 +15,8 @@
  *     fo.width = 640; fo.height = 480;
  *     fo.filter.type = EL_FILM_FILTER_GAUSSIAN;  // pbrt's "gaussian": radius 2, alpha 2
  *     if (el_film_init(&film, &fo) != EL_SUCCESS) return 1;
+ *     int b[4];                                    // the pixels to sample: [b[0],b[2]) x [b[1],b[3]),
+ *     el_film_sample_bounds(&film, b);             // the image grown by the filter's radius
  *     el_film_add_sample(&film, px, py, L, 1.0f);  // raster position, radiance, ray weight
  *     el_film_get_rgb(&film, 1.0f, rgb);           // linear RGB, row 0 at the top
  *     el_film_to_srgb8(rgb, film.width, film.height, NULL, srgb8);  // clamp, exact sRGB (pbrt's TO_BYTE)

@@ -23,6 +23,7 @@
  *   build/bin/01_mipmap_pyramid [output-directory]   (default: out, created if missing)
  *   build/bin/01_mipmap_pyramid tutorials/images     (the picture in the tutorial)
  *   build/bin/01_mipmap_pyramid --answers            (the numbers the exercises ask for; no picture)
+ *   build/bin/01_mipmap_pyramid --help               (this usage; exit 0)
  *
  * WHAT IT WRITES
  *   <dir>/01-pyramid.png (936 x 568): the input and every level, each labelled with its size (levels 2
@@ -168,6 +169,13 @@ int main(int argc, char **argv) {
   el_mipmap_options o;
   double t_port = 1e30, t_lib = 1e30, t;
   int l, rep, same = 1, top;
+  if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || (argv[1][0] == '-' && strcmp(argv[1], "--answers")))) {
+    int help = !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h");
+    fprintf(help ? stdout : stderr,
+            "usage: 01_mipmap_pyramid [output-directory]   (default: out, created if missing)\n"
+            "       01_mipmap_pyramid --answers            (the numbers the exercises ask for; no picture)\n");
+    return help ? 0 : 1;
+  }
   el_test_image(img, W, H); /* the course's 400x235 test image (linear RGB) */
   if (argc > 1 && !strcmp(argv[1], "--answers")) {
     answers(img);

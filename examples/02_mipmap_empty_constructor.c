@@ -19,7 +19,7 @@
  *   constructor's member initialisers) and src/core/memory.h (BlockedArray).
  *
  * HOW TO RUN IT
- *   build/bin/02_mipmap_empty_constructor
+ *   build/bin/02_mipmap_empty_constructor          (no arguments; --help prints the usage)
  *
  * WHAT IT WRITES
  *   Nothing but two lines on stdout: what the constructor stored.
@@ -28,6 +28,7 @@
 #include "pbrtv3/mipmap.h"
 
 #include <stdio.h>
+#include <string.h>
 
 /* MIPMap(resolution, img, doTrilinear, maxAnisotropy, wrapMode) with its body cleared: only the
  * member initialisers stay, ": doTrilinear(doTrilinear), maxAnisotropy(maxAnisotropy),
@@ -43,7 +44,12 @@ static void pbrt_MIPMap_init(pbrt_MIPMap *mip, pbrt_Point2i res, const pbrt_RGBS
   mip->nLevels = 0;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
+  if (argc > 1) { /* it takes no arguments: --help (or -h) prints this, anything else is an error */
+    int help = !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h");
+    fprintf(help ? stdout : stderr, "usage: 02_mipmap_empty_constructor   (no arguments; prints two lines)\n");
+    return help ? 0 : 1;
+  }
   /* the seed's test: float * mpdata = nullptr; MIPMap<float > mp(Point2i(100,100), mpdata, true);
    * C has no default arguments: maxAnisotropy 8 and Repeat are pbrt's defaults, written out */
   const pbrt_RGBSpectrum *mpdata = NULL;

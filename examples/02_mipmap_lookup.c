@@ -5,8 +5,8 @@
  *
  * WHAT IT DEMONSTRATES
  *   1. The seed's test: it builds a 400x235 image, makes a MIPMap of it and draws it through
- *      Lookup(st, width), first with width 0, then 0.15: "还是能看出 with 变大以后图更模糊的" (the
- *      wider lookup is blurrier). Width 0 reads level 0 (512x256) bilinearly; width 0.15 reads level
+ *      Lookup(st, width), then changes the width to 0.15: "还是能看出 with 变大以后图更模糊的" (the
+ *      wider lookup is blurrier). Its text does not give the first width; we use 0. Width 0 reads level 0 (512x256) bilinearly; width 0.15 reads level
  *      9 + log2(0.15) = 6.26, a blend of the 8x4 and 4x2 levels.
  *   2. What the two filters are for: a ground plane tiled with the image, seen from one unit above
  *      it, so that the texture shrinks towards the horizon and each pixel's footprint on it becomes a
@@ -33,6 +33,7 @@
  *   build/bin/02_mipmap_lookup [output-directory]   (default: out, created if missing)
  *   build/bin/02_mipmap_lookup tutorials/images     (the pictures in the tutorial)
  *   build/bin/02_mipmap_lookup --answers            (the numbers the exercises ask for; no pictures)
+ *   build/bin/02_mipmap_lookup --help               (this usage; exit 0)
  *
  * WHAT IT WRITES
  *   <dir>/02-seed-test.png (824 x 281), <dir>/02-trilinear-vs-ewa.png (1160 x 246),
@@ -292,6 +293,13 @@ int main(int argc, char **argv) {
   char text[80];
   int k, same, rep;
   float d;
+  if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || (argv[1][0] == '-' && strcmp(argv[1], "--answers")))) {
+    int help = !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h");
+    fprintf(help ? stdout : stderr,
+            "usage: 02_mipmap_lookup [output-directory]   (default: out, created if missing)\n"
+            "       02_mipmap_lookup --answers            (the numbers the exercises ask for; no pictures)\n");
+    return help ? 0 : 1;
+  }
   el_test_image(img, TW, TH); /* the course's 400x235 test image (linear RGB) */
   if (argc > 1 && !strcmp(argv[1], "--answers")) {
     answers(img);

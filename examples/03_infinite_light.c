@@ -29,6 +29,7 @@
  *     --quick     steps 1, 2, 3 and 5's numbers; no pictures, no rendering (a few seconds)
  *     --answers   the numbers the chapter's exercises ask for
  *     --out DIR   where the pictures go (default out/; the course's copies are in tutorials/images)
+ *     --help      the usage (exit 0)
  *     envmap      default data/envmaps/city.hdr; a power-of-two map (the port keeps MIP level 0 only)
  *
  * WHAT IT WRITES
@@ -608,8 +609,14 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--out") && i + 1 < argc) dir = argv[++i];
     else if (argv[i][0] != '-') map = argv[i];
     else {
-      fprintf(stderr, "usage: %s [--quick | --answers] [--out DIR] [envmap]\n", argv[0]);
-      return 1;
+      int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
+      fprintf(help ? stdout : stderr, "usage: 03_infinite_light [--quick | --answers] [--out DIR] [envmap]\n"
+              "  (nothing)   every step, with the pictures\n"
+              "  --quick     steps 1, 2, 3 and 5's numbers; no pictures, no rendering\n"
+              "  --answers   the numbers the chapter's exercises ask for\n"
+              "  --out DIR   where the pictures go (default out/)\n"
+              "  envmap      default data/envmaps/city.hdr; a power-of-two map (the port keeps MIP level 0 only)\n");
+      return help ? 0 : 1;
     }
   }
   name = strrchr(map, '/') ? strrchr(map, '/') + 1 : map;

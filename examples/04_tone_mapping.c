@@ -27,6 +27,7 @@
  *     --quick     step 1's numbers only (a few seconds)
  *     --answers   the numbers the chapter's exercises ask for
  *     --out DIR   where the pictures go (default out/; the course's copies are in tutorials/images)
+ *     --help      the usage (exit 0)
  *
  * WHAT IT WRITES
  *   DIR/04-filters.png, DIR/04-seed-comparison.png, DIR/04-tone-curves.png; each step's numbers.
@@ -290,8 +291,13 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--answers")) want_answers = 1;
     else if (!strcmp(argv[i], "--out") && i + 1 < argc) dir = argv[++i];
     else {
-      fprintf(stderr, "usage: %s [--quick | --answers] [--out DIR]\n", argv[0]);
-      return 1;
+      int help = !strcmp(argv[i], "--help") || !strcmp(argv[i], "-h");
+      fprintf(help ? stdout : stderr, "usage: 04_tone_mapping [--quick | --answers] [--out DIR]\n"
+              "  (nothing)   every step, with the pictures\n"
+              "  --quick     step 1's numbers only\n"
+              "  --answers   the numbers the chapter's exercises ask for\n"
+              "  --out DIR   where the pictures go (default out/)\n");
+      return help ? 0 : 1;
     }
   }
   if (want_answers) {

@@ -10,8 +10,13 @@
  *    elides any number of lines of PATH: the parts around it must occur in that order.
  *  - Output: the line `<!-- output: PROGRAM ARGS -->`, then a fenced block. PROGRAM is run from the
  *    build's bin directory (build/bin/PROGRAM ARGS; the working directory is the build directory), and
- *    each non-blank line of the block, trimmed, must be a trimmed line of what it prints on stdout
- *    (`...` lines are skipped). The same command is run once however many blocks quote it. Keep such
+ *    the block must be what it prints on stdout, exactly, indentation included (only white space at
+ *    the ends of lines, blank lines, and the fence's own indentation inside a list item are ignored).
+ *    A quote that leaves lines out says so: a line that is only `...` stands for one or more lines the
+ *    program prints there (at the start: lines before the first one quoted; at the end: lines after
+ *    the last). So the parts between `...` lines are runs of consecutive output lines, in order, and a
+ *    block that does not start (end) with `...` starts (ends) where the output does. The same command
+ *    is run once however many blocks quote it. Keep such
  *    commands to a few seconds: they run in every build of the suite, the sanitizer build included.
  *    A program that the build did not make (a benchmark in a build without benchmarks) is reported and
  *    skipped only when EL_HAVE_BENCH is 0 and its name starts with bench_; otherwise it is a failure.
@@ -198,6 +203,90 @@ static int output_has_line(const char *out, const char *want) {
   return 0;
 }
 
+/* Copy of s without white space at its end (indentation kept) into out (at most n - 1 characters). */
+static void rtrim(const char *s, char *out, size_t n) {
+  const char *e = s + strlen(s);
+  size_t k;
+  while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) e--;
+  k = (size_t)(e - s) < n - 1 ? (size_t)(e - s) : n - 1;
+  memmove(out, s, k);
+  out[k] = 0;
+}
+/* The non-blank lines of text, right-trimmed, each with `strip` leading spaces removed where present. */
+static int rlines_of(char *const *v, int count, int strip, tlines *T) {
+  int i;
+  char t[4096];
+  T->n = 0;
+  T->v = (char **)malloc(sizeof(char *) * (size_t)(count + 1));
+  if (!T->v) return -1;
+  for (i = 0; i < count; i++) {
+    const char *s = v[i];
+    int k;
+    for (k = 0; k < strip && s[0] == ' '; k++) s++;
+    rtrim(s, t, sizeof t);
+    if (!t[0]) continue;
+    T->v[T->n] = strdup(t);
+    if (!T->v[T->n]) return -1;
+    T->n++;
+  }
+  return 0;
+}
+/* Is the quoted block (q, right-trimmed, with `...` cut lines) what the program printed (o)? Each part
+ * between cut lines is a run of consecutive output lines, in order; without a cut at the start (end)
+ * the block starts (ends) with the output. Runs are placed as early as they fit (the last one against
+ * the end when nothing may follow it). On failure *bad is the index of the first quoted line of the part
+ * that was not found, and *why says what went wrong. */
+static int output_block_found(const tlines *q, const tlines *o, int *bad, const char **why) {
+  int i = 0, pos = 0, first = 1;
+  *bad = 0; *why = "";
+  while (i < q->n) {
+    int j, len, start, found = -1, cut_before, cut_after;
+    char t[4096];
+    trim(q->v[i], t, sizeof t);
+    if (is_elision(t)) { i++; first = 0; continue; }
+    for (j = i; j < q->n; j++) { trim(q->v[j], t, sizeof t); if (is_elision(t)) break; }
+    len = j - i;
+    cut_before = !first;
+    cut_after = j < q->n;
+    if (!cut_before) { /* must start at the first output line (pos is 0) */
+      int k;
+      for (k = 0; k < len && pos + k < o->n && !strcmp(q->v[i + k], o->v[pos + k]); k++) {}
+      if (k == len) found = pos;
+    } else if (!cut_after) { /* the last part: must end at the last output line */
+      start = o->n - len;
+      if (start >= pos + 1) {
+        int k;
+        for (k = 0; k < len && !strcmp(q->v[i + k], o->v[start + k]); k++) {}
+        if (k == len) found = start;
+      }
+    } else {
+      for (start = pos + 1; start + len <= o->n && found < 0; start++) {
+        int k;
+        for (k = 0; k < len && !strcmp(q->v[i + k], o->v[start + k]); k++) {}
+        if (k == len) found = start;
+      }
+    }
+    if (found < 0) {
+      *bad = i;
+      *why = !cut_before ? "is not how the output starts (mark a cut with a `...` line)"
+             : !cut_after ? "is not how the output ends (mark a cut with a `...` line)"
+                          : "is not a run of consecutive output lines after the previous part (exact, indentation included)";
+      return 0;
+    }
+    pos = found + len;
+    first = 0;
+    i = j;
+    if (!cut_after && pos != o->n) { *bad = i - len; *why = "is followed by more output (mark a cut with a `...` line)"; return 0; }
+  }
+  /* a block that ends with `...` needs at least one line there */
+  if (q->n > 0) {
+    char t[4096];
+    trim(q->v[q->n - 1], t, sizeof t);
+    if (is_elision(t) && pos >= o->n) { *bad = q->n - 1; *why = "the cut at the end stands for no line"; return 0; }
+  }
+  return 1;
+}
+
 /* ---- one tutorial ---------------------------------------------------------------------------- */
 static int file_exists(const char *path) { struct stat st; return stat(path, &st) == 0; }
 
@@ -285,12 +374,29 @@ static int check_text(const char *file, const char *dir, char *text) {
           else report(0, file, i + 1, "output: program not built", arg);
         } else {
           report(status == 0, file, i + 1, "output: program exits with 0", arg);
-          for (k = b0; k < b1; k++) {
-            char w[4096], msg[2048 + 4096 + 16];
-            trim(L.v[k], w, sizeof w);
-            if (!w[0] || is_elision(w)) continue;
-            snprintf(msg, sizeof msg, "%s prints \"%s\"", arg, w);
-            report(output_has_line(out, w), file, k + 1, "output", msg);
+          {
+            /* the fence's own indentation (a block inside a list item) is not part of the quote */
+            int strip = 0, bad = 0, ok;
+            const char *why = "";
+            char *copy = strdup(out), msg[2048 + 4096 + 256];
+            lines O;
+            tlines tq, to;
+            while (L.v[b0 - 1][strip] == ' ') strip++;
+            (void)k;
+            if (!copy || lines_from(&O, copy)) { report(0, file, i + 1, "out of memory", NULL); }
+            else {
+              rlines_of(L.v + b0, b1 - b0, strip, &tq);
+              rlines_of(O.v, O.n, 0, &to);
+              ok = tq.n > 0 && output_block_found(&tq, &to, &bad, &why);
+              if (!ok && tq.n > 0) {
+                int at = b0, seen = -1; /* the markdown line of quoted line `bad` */
+                for (at = b0; at < b1; at++) { char w[4096]; rtrim(L.v[at], w, sizeof w); if (w[0] && ++seen == bad) break; }
+                snprintf(msg, sizeof msg, "%s: \"%s\" %s", arg, tq.v[bad], why);
+                report(0, file, at + 1, "output", msg);
+              } else report(ok, file, i + 1, "output", arg);
+              tlines_free(&tq); tlines_free(&to);
+              lines_free(&O);
+            }
           }
         }
       }
@@ -316,9 +422,37 @@ static void self_test(void) {
   /* one good excerpt, one bad excerpt, one missing picture: exactly two failures */
   report(failed == 2, "(self-test)", 0, "a wrong excerpt and a missing picture are caught, a right excerpt passes", NULL);
   {
-    const char *out = "a\n  loop time 0.38 s  \nb";
-    report(output_has_line(out, "loop time 0.38 s") && !output_has_line(out, "loop time 0.39 s"), "(self-test)", 0,
-           "output lines are matched trimmed and exactly", NULL);
+    /* quoted output: exact lines, indentation kept, cuts marked with `...` */
+    static char o0[] = "head", o1[] = "  loop time 0.38 s  ", o2[] = "  level 1", o3[] = "tail";
+    static char *ov[] = {o0, o1, o2, o3};
+    static char q_all0[] = "head", q_all1[] = "  loop time 0.38 s", q_all2[] = "  level 1", q_all3[] = "tail";
+    static char *q_all[] = {q_all0, q_all1, q_all2, q_all3};
+    static char c0[] = "...", c1[] = "  loop time 0.38 s", c2[] = "...";
+    static char *q_mid[] = {c0, c1, c2};
+    static char n1[] = "loop time 0.38 s"; /* indentation lost */
+    static char *q_noindent[] = {c0, n1, c2};
+    static char *q_uncut[] = {c1, o2}; /* the head line left out without a `...` */
+    static char *q_gap[] = {o0, o2, o3}; /* a line left out in the middle without a `...` */
+    static char *q_end[] = {o0, c1, q_all2}; /* the tail line left out without a `...` */
+    static char *q_mid2[] = {c0, q_all2, c2}; /* "  level 1": a middle line, cut on both sides */
+    static char w2[] = "  loop time 0.39 s";
+    static char *q_number[] = {c0, w2, c2};
+    tlines o, q;
+    int bad, all_ok;
+    const char *why;
+    rlines_of(ov, 4, 0, &o);
+    rlines_of(q_all, 4, 0, &q); all_ok = output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_mid, 3, 0, &q); all_ok = all_ok && output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_mid2, 3, 0, &q); all_ok = all_ok && output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    report(all_ok, "(self-test)", 0, "a whole output and a part cut with `...` at both ends are found", NULL);
+    rlines_of(q_noindent, 3, 0, &q); all_ok = !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_uncut, 2, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_gap, 3, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_end, 3, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    rlines_of(q_number, 3, 0, &q); all_ok = all_ok && !output_block_found(&q, &o, &bad, &why); tlines_free(&q);
+    report(all_ok, "(self-test)", 0, "lost indentation, an unmarked cut at the start, in the middle or at the end, and a wrong number are caught", NULL);
+    tlines_free(&o);
+    (void)output_has_line;
   }
 }
 
