@@ -1406,6 +1406,25 @@ static el_result el_envlight__box_weights(int n, int nb, int **start, int **idx,
   return EL_SUCCESS;
 }
 
+/* lum[x] = the luminance of texel x of a row of w RGB texels: the products and sums of
+ * el_envlight__luminance, 4 texels at a time with SSE2 (the same bits) */
+static void el_envlight__lum_row(const float *t, float *lum, int w) {
+  int x = 0;
+#if EL_ENVLIGHT__SSE
+  const __m128 wr = _mm_set1_ps(0.212671f), wg = _mm_set1_ps(0.715160f), wb = _mm_set1_ps(0.072169f);
+  for (; x + 4 <= w; x += 4) { /* r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3 -> R, G, B (as cell_average_same) */
+    __m128 p0 = _mm_loadu_ps(t + 3 * x), p1 = _mm_loadu_ps(t + 3 * x + 4), p2 = _mm_loadu_ps(t + 3 * x + 8);
+    __m128 yy = _mm_shuffle_ps(p1, p2, _MM_SHUFFLE(2, 1, 3, 2));
+    __m128 zz = _mm_shuffle_ps(p0, p1, _MM_SHUFFLE(1, 0, 2, 1));
+    __m128 rr = _mm_shuffle_ps(p0, yy, _MM_SHUFFLE(2, 0, 3, 0));
+    __m128 gg = _mm_shuffle_ps(zz, yy, _MM_SHUFFLE(3, 1, 2, 0));
+    __m128 bb = _mm_shuffle_ps(zz, p2, _MM_SHUFFLE(3, 0, 3, 1));
+    _mm_storeu_ps(lum + x, _mm_add_ps(_mm_add_ps(_mm_mul_ps(wr, rr), _mm_mul_ps(wg, gg)), _mm_mul_ps(wb, bb)));
+  }
+#endif
+  for (; x < w; ++x) lum[x] = el_envlight__luminance(t + 3 * x);
+}
+
 /* box: the equal-area map's nearest reconstruction (box weights) instead of le()'s bilinear one. */
 static el_result el_envlight__cell_average(const el_envlight *l, float *f, int nu, int nv, int box) {
   int w = l->width, h = l->height;
@@ -1429,10 +1448,10 @@ static el_result el_envlight__cell_average(const el_envlight *l, float *f, int n
     for (e = vs[j]; e < vs[j + 1]; ++e) if (vi[e] > hi) hi = vi[e];
     /* <<u-filter the rows this bin row needs that are not cached yet>> */
     while (cached_hi < hi) {
-      int y = ++cached_hi, x;
+      int y = ++cached_hi;
       const float *src = l->texels + (size_t)y * (size_t)w * 3;
       float *dst = cache + (size_t)(y % span) * (size_t)nu;
-      for (x = 0; x < w; ++x) lum[x] = el_envlight__luminance(src + 3 * x);
+      el_envlight__lum_row(src, lum, w);
       for (i = 0; i < nu; ++i) {
         float s = 0.0f;
         int q;

@@ -490,7 +490,8 @@ sun map.
 Generated city-like maps (bench_envlight's make_map: sky gradient, texture noise, a 3e4 sun), width
 512 to 8192 (to 1024 in --quick), the whole `el_envlight_init` + `el_envlight_prepare_sampling` (or
 `el_envlight_prepare_product`), CPU time, median of 3 repeats (1 above 2048), and `el_envlight_bytes`.
-PBRT_V3 at 8192 would need 16384x8192 bins and is left out.
+PBRT_V3 at 8192 is left out; at 8192 the default cap gives CELL_AVERAGE a 4096x2048
+importance map (the section [big maps](#big-environment-maps) prices the cap).
 
 %s
 """ % (imgs["city"], imgs["studio"], nsamp,
