@@ -1175,7 +1175,8 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
           r = el_envlight__check_value(pixels[((size_t)y * (size_t)width + (size_t)x) * 3 + (size_t)c]);
           if (r != EL_SUCCESS) return el_envlight__fail(l, r, y * width + x);
         }
-    l->integral[0] = l->integral[1] = l->integral[2] = 0.0; /* a texel to zero: copy after all */
+    l->integral[0] = l->integral[1] = l->integral[2] = 0.0; /* a texel to zero (or a -0, which the row test
+                                                               cannot tell from a negative): copy after all */
   }
   l->texels = (float *)EL_MALLOC(n * 3 * sizeof(float));
   if (!l->texels) return el_envlight__fail(l, EL_ERROR_OUT_OF_MEMORY, -1);

@@ -184,6 +184,7 @@ typedef struct elr_light {
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
   int mapping;             /* infinite: EL_ENVLIGHT_MAPPING_* (pbrt-v4's "filename" with a square image: equal-area) */
+  float *env_pixels;       /* infinite: the image env reads in place (options.no_copy), freed with the light */
 } elr_light;
 
 typedef struct elr_scene_desc {

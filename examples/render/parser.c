@@ -1057,7 +1057,8 @@ static void elr__light(elr__parser *P, const char *type) {
     {
       double t0 = elr_now();
       int r = elr_infinite_init(l, rgb, w, h, scale3, m3, e, sizeof e);
-      free(rgb);
+      if (r == 0 && rgb && l->env && l->env->borrowed) l->env_pixels = rgb; /* read in place: freed with the light */
+      else free(rgb);
       if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
       s->t_images += elr_now() - t0;
     }
