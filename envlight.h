@@ -1156,27 +1156,33 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
     }
   }
   if (opt->no_copy) { /* <<keep the caller's texels>>: validate and integrate them in one read */
+    int copy = 0;
     if (channels != 3 || scale[0] != 1.0f || scale[1] != 1.0f || scale[2] != 1.0f) return el_envlight__fail(l, EL_ERROR_INVALID_ARGUMENT, -1);
-    for (y = 0; y < height; ++y) {
+    for (y = 0; y < height && !copy; ++y) {
       double row[3], wgt = el_envlight__row_wgt(l, y, width, height);
       const float *src = pixels + (size_t)y * (size_t)width * 3;
-      if (!el_envlight__row3_check(src, width, row)) break;
+      if (!el_envlight__row3_check(src, width, row)) { /* texel by texel, as the copy's careful path: a -0 passes */
+        row[0] = row[1] = row[2] = 0.0;
+        for (x = 0; x < width && !copy; ++x)
+          for (c = 0; c < 3; ++c) {
+            r = el_envlight__check_value(src[3 * x + c]);
+            if (r != EL_SUCCESS) { /* name it without a copy, or zero it in a copy */
+              if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, r, y * width + x);
+              copy = 1;
+              break;
+            }
+            row[c] += src[3 * x + c];
+          }
+      }
       for (c = 0; c < 3; ++c) l->integral[c] += row[c] * wgt;
     }
-    if (y == height) {
+    if (!copy) {
       memcpy(&l->texels, &pixels, sizeof l->texels); /* the caller's: never written (l->borrowed) */
       l->borrowed = 1;
       l->width = width; l->height = height;
       return EL_SUCCESS;
     }
-    if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) /* name the texel without a copy */
-      for (x = 0; x < width; ++x)
-        for (c = 0; c < 3; ++c) {
-          r = el_envlight__check_value(pixels[((size_t)y * (size_t)width + (size_t)x) * 3 + (size_t)c]);
-          if (r != EL_SUCCESS) return el_envlight__fail(l, r, y * width + x);
-        }
-    l->integral[0] = l->integral[1] = l->integral[2] = 0.0; /* a texel to zero (or a -0, which the row test
-                                                               cannot tell from a negative): copy after all */
+    l->integral[0] = l->integral[1] = l->integral[2] = 0.0; /* a texel to zero: copy after all */
   }
   l->texels = (float *)EL_MALLOC(n * 3 * sizeof(float));
   if (!l->texels) return el_envlight__fail(l, EL_ERROR_OUT_OF_MEMORY, -1);

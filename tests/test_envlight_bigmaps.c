@@ -349,6 +349,13 @@ static void test_no_copy(void) {
   o.scale[1] = 1.0f;
   check(el_envlight_init(&b, px, w, h, 3, &o) == EL_SUCCESS && b.borrowed, "no_copy: scale (1, 1, 1) is accepted");
   el_envlight_free(&b);
+  px[3 * (5 * w + 7)] = -0.0f; /* valid (the fast row test flags its sign bit; the texel-by-texel check passes it) */
+  el_envlight_init(&a, px, w, h, 3, NULL);
+  r = el_envlight_init(&b, px, w, h, 3, &o);
+  check(r == EL_SUCCESS && b.borrowed && b.texels == px && !memcmp(a.integral, b.integral, sizeof a.integral),
+        "no_copy: a -0 texel is read in place, with the copying light's integral bit for bit");
+  el_envlight_free(&b);
+  el_envlight_free(&a);
   free(keep);
   free(px);
 }
