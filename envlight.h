@@ -589,8 +589,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  * (4 pi). The integral is exact. sample_li returns pdf_li(wi) and le(wi) themselves (bit for bit; the
  * mapping's round trip, about 2e-7 in (u, v), stays inside the 2^-21 margin: every sampled point's pdf is
  * its bin's, tests/test_envlight_bigmaps.c). Costs (bench_bigmaps table 3, 2896^2 against 4096x2048
- * lat-long): sample_li 1.3-1.4x, pdf_li 1.2-2.9x, le 0.6-2.6x the lat-long times (no inline fast paths),
- * tables 0.8x. Native rather than converted on load: a conversion to lat-long resamples (blurs) the
+ * lat-long, two runs): sample_li 1.2-1.3x, pdf_li 1.3-1.5x the lat-long times (no inline fast paths),
+ * le 0.7x (a nearest lookup), tables 0.8x. Native rather than converted on load: a conversion to lat-long resamples (blurs) the
  * map and its pdf would no longer describe pbrt-v4's image. Not supported (EL_ERROR_INVALID_ARGUMENT):
  * importance PBRT_V3 and BILINEAR, a non-square image. Product sampling has no equal-area tables:
  * sample_li_cos and pdf_li_cos are sample_li and pdf_li there (unbiased, no cosine factor), and
