@@ -340,6 +340,11 @@ static void test_no_copy(void) {
             !memcmp(keep, px, sizeof(float) * (size_t)w * h * 3),
         "no_copy + BAD_TEXELS_ZERO: init copies to zero the texel; the caller's pixels are unchanged");
   el_envlight_free(&b);
+  o.bad_texels = EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE;
+  r = el_envlight_init(&b, px, w, h, 3, &o);
+  check(r == EL_SUCCESS && !b.borrowed && b.negative_texels == 1 && b.most_negative == -0.004f && !memcmp(keep, px, sizeof(float) * (size_t)w * h * 3),
+        "no_copy + BAD_TEXELS_CLAMP_NEGATIVE: init copies to clamp the texel and counts it (%zu)", b.negative_texels);
+  el_envlight_free(&b);
   o.bad_texels = 0;
   px[3 * (77 * w + 12) + 1] = 0.5f;
   check(el_envlight_init(&b, px, w, h, 4, &o) == EL_ERROR_INVALID_ARGUMENT, "no_copy: 4 channels are refused");
