@@ -594,7 +594,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *
  * BIG MAPS (issue 24; bench/bench_bigmaps.c, numbers in docs/accuracy-vs-time.md). A 16384x8192 map is a
  * 1.5 GB float image. Before: init copied it (1.5 GB more, page-faulted in) and the sampling tables were
- * built at its resolution (1.15 GB; with the product tables 2.4x the image at peak, 9-18 s CPU). Now:
+ * built at its resolution (1.15 GB; with the product tables 2.4x the image at peak, 5-18 s CPU). Now:
  *   - THE CAP. When importance_width is 0 the importance map is at most importance_cap x importance_cap/2
  *     bins (EL_ENVLIGHT_IMPORTANCE_CAP = 4096 by default; -1: none), each the EXACT mean of le()'s bilinear
  *     reconstruction over the bin (the CELL_AVERAGE weights for any ratio, bins need not divide the image),
@@ -612,8 +612,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *     Product sampling's tables may use the same cap: the resolved size is (imp_w, imp_h), and the
  *     exact bin means at any size come from one streaming pass (el_envlight__cell_average).
  *   - NO COPY. options.no_copy = 1 keeps a pointer to the caller's pixels (3 channels, no scale: fold a
- *     scale into the pixels first). init then only reads them once (validation and the integral: 0.4 s
- *     CPU for 16k instead of 1.6 s with the copy's page faults) and el_envlight_bytes leaves them out.
+ *     scale into the pixels first). init then only reads them once (validation and the integral: 0.26-0.34 s
+ *     CPU for 16k instead of 0.8-1.1 s with the copy's page faults; with the capped sampling tables
+ *     0.7-1.0 s CPU and 72 MB, 0.047x the image) and el_envlight_bytes leaves them out.
  *     LIFETIME: the pixels must stay allocated and unchanged until el_envlight_free (the light reads them
  *     on every le and sample_li, and its tables describe them); el_envlight_free does not free them. A
  *     texel that BAD_TEXELS_ZERO or CLAMP_NEGATIVE must replace makes init copy after all (light.borrowed
