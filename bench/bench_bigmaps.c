@@ -5,6 +5,7 @@
  *   bench_bigmaps                 tables 1-3, maps up to 16384x8192 (needs about 6 GB of memory, 1-3 min)
  *   bench_bigmaps --quick         up to 2048x1024, fewer samples (a second)
  *   bench_bigmaps --max W         maps up to W x W/2
+ *   bench_bigmaps --build-only    table 1 only
  *   bench_bigmaps --csv [--quick] the rows as CSV (kind,option,...) for bench/report.py
  *
  * The map is generated in code: a sky gradient with texel noise, a dark ground, and a sun of angular
@@ -262,7 +263,7 @@ static void speed_row(const char *name, const float *px, int w, int h, int mappi
 }
 
 int main(int argc, char **argv) {
-  int quick = 0, maxw = 16384, a, w, nvar;
+  int quick = 0, maxw = 16384, a, w, nvar, build_only = 0;
   float *px;
 #ifdef __GLIBC__
   mallopt(M_MMAP_THRESHOLD, 1 << 16);
@@ -272,7 +273,8 @@ int main(int argc, char **argv) {
     if (!strcmp(argv[a], "--quick")) quick = 1;
     else if (!strcmp(argv[a], "--csv")) g_csv = 1;
     else if (!strcmp(argv[a], "--max") && a + 1 < argc) maxw = atoi(argv[++a]);
-    else { fprintf(stderr, "usage: bench_bigmaps [--quick] [--csv] [--max W]\n"); return 2; }
+    else if (!strcmp(argv[a], "--build-only")) build_only = 1;
+    else { fprintf(stderr, "usage: bench_bigmaps [--quick] [--csv] [--max W] [--build-only]\n"); return 2; }
   }
   if (quick && maxw > 2048) maxw = 2048;
   if (maxw < 1024) maxw = 1024;
@@ -294,7 +296,7 @@ int main(int argc, char **argv) {
     build_row(px, w, h, "copy nocap (before)", -1, 0);
     build_row(px, w, h, "copy cap (default)", 0, 0);
     build_row(px, w, h, "no_copy cap", 0, 1);
-    if (w == maxw) {
+    if (w == maxw && !build_only) {
       if (!g_csv) {
         printf("\nTable 2: the cap's variance on the %dx%d sun map (0.5 degree sun), %d samples of sample_li (no_copy)\n", w, h, nvar);
         printf("%-6s %-11s %10s %10s %10s %8s %9s %9s\n", "cap", "importance", "relvar lum", "E up", "E sun", "bias/se", "build ms", "tables MB");
@@ -307,6 +309,7 @@ int main(int argc, char **argv) {
     }
     free(px);
   }
+  if (build_only) return 0;
   if (!g_csv) {
     printf("\nTable 3: equal-area (pbrt-v4) against lat-long maps of the same texel count (ns per call; tables ms)\n");
     printf("%-24s %-11s %9s %9s %9s %9s\n", "mapping", "map", "sample_li", "pdf_li", "le", "tables");
