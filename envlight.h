@@ -635,7 +635,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *   - NO COPY. options.no_copy = 1 keeps a pointer to the caller's pixels (3 channels, no scale: fold a
  *     scale into the pixels first). init then only reads them once (validation and the integral: 0.26-0.34 s
  *     CPU for 16k instead of 0.8-1.1 s with the copy's page faults; with the capped sampling tables
- *     0.7-1.0 s CPU and 72 MB, 0.047x the image) and el_envlight_bytes leaves them out.
+ *     0.7-1.0 s CPU and 72 MB, 0.047x the image; with issue 20's product tables too, 1.4-1.5 s CPU and 93 MB,
+ *     0.061x) and el_envlight_bytes leaves them out.
  *     LIFETIME: the pixels must stay allocated and unchanged until el_envlight_free (the light reads them
  *     on every le and sample_li, and its tables describe them); el_envlight_free does not free them. A
  *     texel that BAD_TEXELS_ZERO or CLAMP_NEGATIVE must replace makes init copy after all (light.borrowed
