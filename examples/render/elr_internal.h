@@ -185,6 +185,8 @@ typedef struct elr_light {
   int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
+  int mapping;             /* infinite: EL_ENVLIGHT_MAPPING_* (pbrt-v4's "filename" with a square image: equal-area) */
+  float *env_pixels;       /* infinite: the image env reads in place (options.no_copy), freed with the light */
   int bad_texels;          /* the scene's "badtexels": EL_ENVLIGHT_BAD_TEXELS_* (CLAMP_NEGATIVE by default) */
   /* pbrt-v4's "point3 portal" (issue 23): envlight.h's portal sampler, or NULL; with it sample_li and
    * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */

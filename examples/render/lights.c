@@ -175,9 +175,13 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
   o.compensated = l->compensated;
   o.importance = elr__importance(l->importance);
   o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
+  o.mapping = l->mapping; /* pbrt-v4's equal-area maps: box cell averages, pbrt-v4's own density */
+  if (o.mapping != EL_ENVLIGHT_MAPPING_LATLONG) o.importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
   o.bad_texels = l->bad_texels; /* the caller reports what became 0 (l->env's negative_texels ...) */
   if (rgb) {
     o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
+    /* an unscaled map is read in place (the parser keeps rgb in l->env_pixels when env->borrowed) */
+    o.no_copy = scale[0] == 1.f && scale[1] == 1.f && scale[2] == 1.f;
     if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
       /* all zero means (1,1,1) to envlight: a black light instead */
       float z[3] = {0.f, 0.f, 0.f};
@@ -241,6 +245,9 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
       o.compensated = compensated;
       o.importance = elr__importance(importance);
       o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
+      o.mapping = l->env->mapping;
+      o.no_copy = 1; /* env's texels (checked, scaled), which live as long as env_alt */
+      if (o.mapping != EL_ENVLIGHT_MAPPING_LATLONG) o.importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
       if (l->env->width > 0) r = el_envlight_init(a, l->env->texels, l->env->width, l->env->height, 3, &o);
       else r = el_envlight_init_constant(a, l->env->constant, &o);
       if (r != EL_SUCCESS) { el_envlight_free(a); free(a); return -1; }
@@ -281,7 +288,7 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
   int x, y, y1, w, h;
   if (l->kind != ELR_LIGHT_INFINITE) return;
   e = l->env_sample; p = l->env; m = p->to_world; w = p->width; h = p->height;
-  if (w <= 0 || !p->texels) return;
+  if (w <= 0 || !p->texels || p->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return;
   d[0] = m[0] * wi.x + m[3] * wi.y + m[6] * wi.z; /* light space: the transpose of the rotation */
   d[1] = m[1] * wi.x + m[4] * wi.y + m[7] * wi.z;
   d[2] = m[2] * wi.x + m[5] * wi.y + m[8] * wi.z;
@@ -343,5 +350,7 @@ void elr_light_free(elr_light *l) {
   l->tri_cdf = NULL;
   if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }
   if (l->env) { el_envlight_free(l->env); free(l->env); }
+  free(l->env_pixels); /* after the lights that read it */
+  l->env_pixels = NULL;
   l->env = l->env_alt = l->env_sample = NULL;
 }
