@@ -101,7 +101,8 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
   { int k; for (k = 0; k < 72; k++) S->dhash[k] = elr_dim_hash(k, S->sseed); }
   if (S->kind == ELR_SAMPLER_ZSOBOL && S->spp <= ELR_ZSOBOL_FAST_SPP && !getenv("ELR_ZSOBOL_REFERENCE")) {
     S->zlow = (uint8_t *)malloc((size_t)64 * (size_t)S->spp); /* the fast path's tables (sampler_zsobol.c) */
-    if (!S->zlow) { elr_sampler_free(S); return -1; }
+    S->zpt = (float *)malloc(sizeof(float) * 3 * 64 * (size_t)S->spp);
+    if (!S->zlow || !S->zpt) { elr_sampler_free(S); return -1; }
   }
   if (S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) {
     S->s1d = (float *)malloc(sizeof(float) * (size_t)S->spp * (size_t)(S->dims + 1));
@@ -115,8 +116,8 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
   return 0;
 }
 void elr_sampler_free(elr_sampler *S) {
-  free(S->s1d); free(S->s2d); free(S->bits); free(S->zlow);
-  S->s1d = S->s2d = NULL; S->bits = NULL; S->zlow = NULL;
+  free(S->s1d); free(S->s2d); free(S->bits); free(S->zlow); free(S->zpt);
+  S->s1d = S->s2d = NULL; S->bits = NULL; S->zlow = NULL; S->zpt = NULL;
 }
 
 /* a Morton code of (x, y): x in the even bits, y in the odd */
