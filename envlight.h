@@ -121,6 +121,10 @@ extern "C" {
 /* What init does with NaN, infinite or negative texels. */
 #define EL_ENVLIGHT_BAD_TEXELS_ERROR 0 /* default: an error naming the texel (el_envlight.bad_index) */
 #define EL_ENVLIGHT_BAD_TEXELS_ZERO 1  /* they become 0 */
+#define EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE 2 /* finite negatives become 0; NaN and infinite texels stay
+                                                  errors. For lossy files: DWAA/DWAB-compressed EXRs (e.g. the
+                                                  HDRIs Blender ships) ring to small negatives, -0.0039 at worst
+                                                  on those maps; el_envlight.negative_texels counts them */
 
 /* The largest importance-map resolution per axis (the 2^-21 in-bin margin must stay far below a bin). */
 #define EL_ENVLIGHT_MAX_IMPORTANCE 65536
@@ -139,16 +143,17 @@ typedef struct el_envlight_options {
   int importance_width;    /* bins of the importance map; 0, 0: the image's resolution (PBRT_V3: twice */
   int importance_height;   /*  it), each capped at EL_ENVLIGHT_MAX_IMPORTANCE. TEXEL ignores these. */
   int sampler;             /* EL_ENVLIGHT_SAMPLER_* */
-  int bad_texels;          /* EL_ENVLIGHT_BAD_TEXELS_* */
+  int bad_texels;          /* EL_ENVLIGHT_BAD_TEXELS_*; what became 0 is reported in the light's fields */
 } el_envlight_options;
 
-/* The light. PUBLIC (read, never write): width, height and bad_index. Every other field is PRIVATE:
+/* The light. PUBLIC (read, never write): width, height, bad_index and what init replaced by 0
+ * (negative_texels, nonfinite_texels, most_negative, most_negative_index). Every other field is PRIVATE:
  * the implementation's state and tables, which may change in any version without notice; read the
  * light through the functions below (el_envlight_le, el_envlight_bytes, ...) and change it only through
  * el_envlight_init / el_envlight_preprocess / el_envlight_free. */
 typedef struct el_envlight {
   int width, height;       /* PUBLIC: the image; 0 x 0 for a constant light */
-  /* ---- private from here on (but bad_index, below) ---- */
+  /* ---- private from here on (but bad_index and the counts, below) ---- */
   float *texels;           /* width*height*3, scaled, row 0 = theta 0 */
   float constant[3];       /* the radiance of a constant light (scaled) */
   float to_world[9];       /* row-major, orthonormal */
@@ -206,6 +211,13 @@ typedef struct el_envlight {
   int bad_index;           /* PUBLIC. After init: the index y*width+x of the first bad texel when init failed on one
                               (EL_ERROR_NAN, _INFINITE, _NEGATIVE), else -1. A failed init zeroes every
                               other field. */
+  /* PUBLIC. After a successful init: the texels that bad_texels ZERO or CLAMP_NEGATIVE replaced by 0
+   * (for a warning such as "299 negative texels clamped to 0, the most negative -0.0016 at (x, y)"). A
+   * texel counts once however many of its channels were replaced; the constant light counts as one. */
+  size_t negative_texels;  /* texels with a finite negative channel */
+  size_t nonfinite_texels; /* texels with a NaN or infinite channel or a scaled value that overflowed (ZERO) */
+  float most_negative;     /* the most negative channel value as given (before the scale); 0 when none */
+  int most_negative_index; /* its texel y*width+x; -1 when none */
   /* ---- private again ---- product sampling and the bilinear warp (NOTES ON PRODUCT SAMPLING below the
    * API): their own tables, built on first use with their own once-flags (the same scheme as state) */
   int warp_state, cos_state;        /* 0 not built, 1 being built, 2 ready, 3 failed */
@@ -236,7 +248,10 @@ EL_DEF el_result el_envlight_preprocess(el_envlight *l, const float center[3], f
 
 /* Radiance arriving along -dir (a ray leaving the scene along dir). Reads only: never builds tables. */
 EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3]);
-/* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets le(wi). */
+/* Sample a direction wi (world, unit) with solid-angle density *pdf; rgb (may be NULL) gets the radiance:
+ * le(wi) bit for bit under a general rotation and in importance BILINEAR; with a signed-permutation
+ * matrix (identity, y-up, z-up) le at the sample's own (u, v), which differs from le(wi) only as a
+ * shift of at most 1e-4 texel would (le's atan rounds; NOTES 4). */
 EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
@@ -288,8 +303,10 @@ typedef struct el_envlight_product_options {
 /* Sample a direction wi (world, unit) for a surface of world normal n, with a density close to
  * L(wi) max(0, n.wi): *pdf is its solid-angle density, rgb (may be NULL) gets le(wi), bit for bit.
  * n need not be unit length; a zero, NaN or infinite n gives the warp's density without the cosine.
- * Directions fall below the surface only in cells that straddle its horizon (1.3-7.4% of the samples
- * on the CC0 maps, sample_li: 46-58%): n.wi <= 0 there, the sample contributes nothing. pdf 0: no sample
+ * Directions fall below the surface only in cells that straddle its horizon: n.wi <= 0 there, the sample
+ * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
+ * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
+ * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
  * (a black map, or nothing emits above this surface); skip it. Cost: about 1200 instructions (1300
  * with rgb), the pdf included. Builds the warp and the normal tables on first use (21 MB for a
  * 2048x1024 map, 70 ms); thread-safe like sample_li's lazy build; the light's own sampling tables
@@ -353,8 +370,17 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    seam among them, on hard maps; and against quadratures of the irradiance). A sample costs a table
  *    lookup, two searches over the cells and the warp; the pdf the same lookups.
  *    WHERE IT CANNOT STAY ABOVE THE SURFACE: in cells that straddle the horizon of the bin's normals
- *    (the cells' size plus the bins' radius): 1.3-7.4% of the samples on the CC0 maps (sample_li:
- *    46-58%); they come back with n.wi <= 0 and contribute nothing.
+ *    (the cells' size plus the bins' radius); such samples come back with n.wi <= 0 and contribute
+ *    nothing. Their share is the share of the bound's mass in those cells, so it depends on how bright
+ *    the map is just below the horizon, not on a fixed fraction (bench/bench_hdri.c, 65,536 samples,
+ *    light space = world): on the five CC0 maps 0.1-4.1% for normals up, +x, -y, towards and away from
+ *    the brightest texel, but 39% (night) and 17% (studio) facing down and 18.5% on city for n = (0.6,
+ *    -0.8, 0); averaged over bench_envlight's six orientations 1.2-7.5% per map (sample_li: 46-58%). A
+ *    sun one to four texel rows below the horizon (a 2x2-texel sun of 1e4 on a 0.01 sky, 512x256) sends
+ *    89-95% of the samples below it (an independent campaign measured 99.8% for its sun, and 50.8% on
+ *    a sunrise map for n = (0.6, -0.8, 0)); 16 rows below, 24%; 64 rows, 1%. The estimate stays
+ *    unbiased (the pdf is exact); only the share of useful samples drops, and with it the efficiency
+ *    of that pixel. Finer cells or normal bins (el_envlight_product_options) narrow the straddling band.
  *    VARIANCE (table 4, diffuse surface, 6 orientations: up, down, two sideways, facing the brightest
  *    texel and away; geometric mean of the relative variance per sample, 200,000 samples): light
  *    sampling alone 0.034 (city) - 0.062 (night) against 2.0-2.7 for sample_li: 42-77x less, 22-36x the
@@ -376,6 +402,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    new random normal on every call; pdf_li_cos 419 (+30). 0.5-1.1 us per estimate with the radiance
  *    in table 4 (sample_li: 0.23-0.59). The sample includes its own pdf: it runs pdf_li_cos's
  *    code on the sampled direction (about 355 instructions) so that the two agree bit for bit.
+ *    Issue 24's fixes add 74 instructions per sample (keeping the point in its patch and checking it:
+ *    bench_envlight --callgrind sample_cos_rgb, 1366 -> 1440 with the loop) and 20 per pdf_li_cos under
+ *    a general rotation (the world-space rescale test: pdf_cos_rotated 458 -> 478).
  *    MEMORY: the warp (above) + the normal tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB:
  *    8.7 MB at 1024x512, 21 MB at 2048x1024. BUILD: the warp + 257 M instructions for the tables
  *    (fixed: 2.1 M bin-cell pairs), 45-65 ms at 1024x512, 70 ms at 2048x1024. el_envlight_product_options
@@ -388,10 +417,17 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    u on a 2^-24 lattice (24-bit samplers) the cell is picked with exactly its tabulated probability,
  *    but inside the cell the warp sees the lattice of the remaining fraction: each patch row's and
  *    patch's probability can differ from the stated one by one lattice point, 2^-24 of the total (the
- *    chi-square tests at 150,000 samples see nothing).
+ *    chi-square tests at 150,000 samples see nothing). A sampled point is kept w 2^-21 (h 2^-21) of a
+ *    patch inside its patch, so that the pdf, which finds the patch again from wi, finds the same one;
+ *    where rounding still moves it out (near a pole under a general rotation) or the point sits on a
+ *    massless end of its patch (a u exactly on a CDF step, such as u = 0 from a Sobol' sampler), it
+ *    moves to the patch's centre: no sample of a cell with mass comes back with pdf 0 (issue 24; tested
+ *    with u at 0 and within 8 ulps of 1).
  *
  * 4. INPUTS. n need not be unit length; a zero, NaN or infinite n gives the warp's density without
- *    the cosine (its plain table). The constant light: cosine-weighted hemisphere sampling, exactly the
+ *    the cosine (its plain table). n and wi are rescaled in world space when their light-space squared
+ *    length leaves the normal floats (as pdf_li and le do), so the results depend only on their
+ *    directions, also for components near FLT_MAX or denormal under a general rotation. The constant light: cosine-weighted hemisphere sampling, exactly the
  *    product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an unusable n. A black map, or a
  *    normal whose hemisphere holds no mass: pdf 0 (skip the sample). Compensation (options.compensated):
  *    the warp's vertices become max(lum - mean, 0) x sin (the mean from the exact integral); use it
@@ -469,7 +505,15 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    that measured 126.6 instead of 93.5 instructions per sample. For a general rotation, rounding in
  *    the round trip world -> light can move a direction near a pole across a bin edge, so sample_li
  *    returns pdf_li(dir) itself: equal bit for bit (about 120 more instructions per sample: 218 instead
- *    of 93.5 with the guide sampler).
+ *    of 93.5 with the guide sampler). If that bin has no mass (a lit pole row next to dark bins: the
+ *    pdf would be 0, a lost sample), the sample moves to its own bin's centre. Its radiance is then
+ *    le(wi) itself, from the same light-space direction as the pdf (near a pole the sample's own (u, v)
+ *    can be a texel away from wi's: 0.915 against 0.586 in issue 24's campaign, radiance and pdf of
+ *    different points). With a signed permutation the radiance stays the lookup at the sample's own
+ *    (u, v): it differs from le(wi) as a shift of at most 1e-4 texel would (tests/test_envlight_edges.c,
+ *    city), far below what an MIS weight or an estimate can see, and le(wi) would cost 21% more per
+ *    sample with radiance (bench/bench_hdri.c: 478 against 576 ns, best of 5 interleaved rounds on a
+ *    loaded machine; 157 ns without radiance).
  * 5. No libm trigonometry on the hot paths. sample_li finds the BIN and the fractions within it (no
  *    float point placement), then builds the direction from per-row tables (sin, cos of the bin's
  *    pole-side edge) and per-column tables (cos, sin of phi_i already multiplied into light_to_world) by
@@ -698,6 +742,17 @@ static EL_ENVLIGHT__NOINLINE int el_envlight__to_light_rescaled(const el_envligh
   el_envlight__to_light(l, s, d);
   return 1;
 }
+/* A world vector (direction or normal) to light space so that the result depends only on its direction,
+ * as le and pdf_li do it: when the light-space squared length is not a normal float (components near
+ * FLT_MAX overflow in a general rotation's sums, denormal ones lose their bits in its products) the world
+ * vector is rescaled first. Returns 0 for a zero, NaN or infinite vector. */
+static int el_envlight__to_light_dir(const el_envlight *l, const float w[3], float d[3]) {
+  float len2;
+  el_envlight__to_light(l, w, d);
+  len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  if (len2 >= FLT_MIN && len2 <= FLT_MAX) return 1;
+  return el_envlight__to_light_rescaled(l, w, d);
+}
 
 /* The four texels of the bilinear lookup at (u, v) in [0,1]^2, Repeat in u, Clamp in v (pbrt's s*w - 0.5
  * convention), and the weights of the second column and row. */
@@ -826,7 +881,7 @@ static el_result el_envlight__common(el_envlight *l, const el_envlight_options *
   int c;
   el_result r;
   if (opt->importance < 0 || opt->importance > EL_ENVLIGHT_IMPORTANCE_BILINEAR || opt->sampler < 0 || opt->sampler > 2 ||
-      opt->bad_texels < 0 || opt->bad_texels > 1 || opt->importance_width < 0 || opt->importance_height < 0 ||
+      opt->bad_texels < 0 || opt->bad_texels > EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE || opt->importance_width < 0 || opt->importance_height < 0 ||
       opt->importance_width > EL_ENVLIGHT_MAX_IMPORTANCE || opt->importance_height > EL_ENVLIGHT_MAX_IMPORTANCE)
     return EL_ERROR_INVALID_ARGUMENT;
   if ((opt->importance_width == 0) != (opt->importance_height == 0)) return EL_ERROR_INVALID_ARGUMENT;
@@ -1006,6 +1061,7 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   memset(l, 0, sizeof *l);
   l->bad_index = -1;
+  l->most_negative_index = -1;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
   if (!pixels || channels < 1 || channels > 4) return EL_ERROR_INVALID_ARGUMENT;
   if (width <= 0 || height <= 0) return width == 0 || height == 0 ? EL_ERROR_EMPTY : EL_ERROR_INVALID_ARGUMENT;
@@ -1042,6 +1098,7 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
       float in[3], out[3];
       uint32_t bits[3];
       const float *p;
+      int neg = 0, nonfinite = 0;
       i = (size_t)y * (size_t)width + (size_t)x;
       p = pixels + (size_t)channels * i;
       in[0] = p[0];
@@ -1064,17 +1121,25 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
         float v = in[c];
         r = el_envlight__check_value(v);
         if (r != EL_SUCCESS) {
-          if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
-          else return el_envlight__fail(l, r, (int)i);
+          if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO ||
+              (r == EL_ERROR_NEGATIVE && opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE)) {
+            if (r == EL_ERROR_NEGATIVE) {
+              neg = 1;
+              if (v < l->most_negative) { l->most_negative = v; l->most_negative_index = (int)i; }
+            } else nonfinite = 1;
+            v = 0.0f;
+          } else return el_envlight__fail(l, r, (int)i);
         }
         v *= scale[c];
         if (v > FLT_MAX) { /* scale * texel overflowed */
-          if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) v = 0.0f;
+          if (opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_ZERO) { v = 0.0f; nonfinite = 1; }
           else return el_envlight__fail(l, EL_ERROR_INFINITE, (int)i);
         }
         l->texels[3 * i + (size_t)c] = v;
         row[c] += v;
       }
+      l->negative_texels += (size_t)neg;
+      l->nonfinite_texels += (size_t)nonfinite;
     }
     for (c = 0; c < 3; ++c) l->integral[c] += row[c] * wgt;
   }
@@ -1089,6 +1154,7 @@ EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], c
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   memset(l, 0, sizeof *l);
   l->bad_index = -1;
+  l->most_negative_index = -1;
   if (!opt) { memset(&zero, 0, sizeof zero); opt = &zero; }
   if (!rgb) return EL_ERROR_INVALID_ARGUMENT;
   r = el_envlight__common(l, opt, scale);
@@ -1097,11 +1163,18 @@ EL_DEF el_result el_envlight_init_constant(el_envlight *l, const float rgb[3], c
     float v;
     r = el_envlight__check_value(rgb[c]);
     if (r != EL_SUCCESS) {
-      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, r, 0);
+      if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO &&
+          !(r == EL_ERROR_NEGATIVE && opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE))
+        return el_envlight__fail(l, r, 0);
+      if (r == EL_ERROR_NEGATIVE) {
+        l->negative_texels = 1;
+        if (rgb[c] < l->most_negative) { l->most_negative = rgb[c]; l->most_negative_index = 0; }
+      } else l->nonfinite_texels = 1;
       v = 0.0f;
     } else v = rgb[c] * scale[c];
     if (v > FLT_MAX) {
       if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) return el_envlight__fail(l, EL_ERROR_INFINITE, 0);
+      l->nonfinite_texels = 1;
       v = 0.0f;
     }
     l->constant[c] = v;
@@ -1666,6 +1739,7 @@ static float el_envlight__sample_light(const el_envlight *l, float u0, float u1,
 
 /* The rare parts of the table path: a zero pdf (an all-black map), a general rotation (the pdf is
  * recomputed from wi), the radiance. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf);
 static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
   float p = *pdf;
   if (!(p > 0.0f)) { wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f; }
@@ -1673,6 +1747,18 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_finish(const el_envligh
     float back[3];
     el_envlight__mul_transpose(l->to_world, wi, back);
     *pdf = p = el_envlight__pdf_light(l, back); /* bit-identical to pdf_li(wi) */
+    if (!(p > 0.0f) && (fu != 0.5f || fv != 0.5f)) {
+      /* rounding in the round trip moved a point near a pole (where phi is ill-conditioned) into a bin
+       * without mass: the bin's centre instead (issue 24) */
+      el_envlight__sample_table(l, iu, iv, 0.5f, 0.5f, wi, rgb, pdf);
+      return;
+    }
+    if (rgb) { /* le(wi) itself, from the direction the pdf was computed from (issue 24: near a pole the
+                * sample's own (u, v) can be a texel away from wi's) */
+      if (p > 0.0f) el_envlight__le_light(l, back, back[0] * back[0] + back[1] * back[1], rgb);
+      else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    }
+    return;
   }
   if (rgb) {
     if (p > 0.0f) el_envlight__lookup(l, ((float)iu + fu) * l->dist.u_width, ((float)iv + fv) * l->dist.v_width, rgb);
@@ -1778,6 +1864,20 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight 
     float back[3];
     el_envlight__mul_transpose(l->to_world, wi, back);
     p = el_envlight__pdf_light(l, back); /* bit-identical to pdf_li(wi) */
+    if (!(p > 0.0f)) { /* moved into a bin without mass near a pole: the bin's centre (as sample_li_finish) */
+      float cu = ((float)(int)(u * (float)l->dist.nu) + 0.5f) * l->dist.u_width;
+      float cv = ((float)(int)(v * (float)l->dist.nv) + 0.5f) * l->dist.v_width;
+      el_envlight__uvp_to_dir(cu, cv, cv < 0.5f ? cv : 1.0f - cv, d);
+      el_envlight__to_world(l, d, wi);
+      el_envlight__mul_transpose(l->to_world, wi, back);
+      p = el_envlight__pdf_light(l, back);
+    }
+    *pdf = p;
+    if (rgb) { /* le(wi), as sample_li_finish */
+      if (p > 0.0f) el_envlight__le_light(l, back, back[0] * back[0] + back[1] * back[1], rgb);
+      else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    }
+    return;
   }
   *pdf = p;
   if (rgb) {
@@ -2365,8 +2465,22 @@ static inline void el_envlight__cell_pick(const struct el_envlight__warp *W, con
   *f0 = (x0 - (float)row[*a]) / (float)(row[*a + 1] - row[*a]);
 }
 
-/* <<Warp inside cell (a, b)>>: (f0, f1) in [0,1]^2 -> a light-space unit direction. */
-static void el_envlight__warp_sample_cell(const struct el_envlight__warp *W, int a, int b, float f0, float f1, float d[3]) {
+/* The patch (column i, vertex row r) in which the pdf finds the point (u, v): le()'s texels, patch column
+ * i = floor(u w - 0.5) (Repeat), row floor(v h + 0.5); *X, *Y the scaled coordinates. */
+static inline void el_envlight__patch_at(const struct el_envlight__warp *W, float u, float v, int *i, int *r, float *X, float *Y) {
+  *X = u * (float)W->w - 0.5f;
+  if (*X < 0.0f) *X += (float)W->w;
+  *i = (int)*X;
+  if (*i > W->w - 1) *i = W->w - 1;
+  *Y = v * (float)W->h + 0.5f;
+  *r = (int)*Y;
+  if (*r > W->h) *r = W->h;
+}
+
+/* <<Warp inside cell (a, b)>>: (f0, f1) in [0,1]^2 -> a light-space unit direction; *pi, *pr get the
+ * patch (column, vertex row) it chose. centre = 1: the same patch, but the point at its centre (s = t =
+ * 1/2: el_envlight__warp_sample's fallback when rounding moved the point out of its patch). */
+static void el_envlight__warp_sample_cell(const struct el_envlight__warp *W, int a, int b, float f0, float f1, int centre, float d[3], int *pi, int *pr) {
   int h = W->h, ku = W->ku, n, r, lo, len, i;
   const uint32_t *mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
   const float *c0, *c1;
@@ -2399,6 +2513,17 @@ static void el_envlight__warp_sample_cell(const struct el_envlight__warp *W, int
   i = W->a0[a] + lo;
   el_envlight__patch_ends(W, r, i, lo, c0, c1, al, bl, &e0, &e1);
   s = e0 + e1 > 0.0 ? el_envlight__lin_inv(e0, e1, q) : q;
+  /* kept inside the patch by w 2^-21 (h 2^-21) of it, more than the rounding of u below and of the pdf's
+   * u w - 0.5 (a few w 2^-24), so that the pdf finds the point in this patch (issue 24: s = 1 rounded
+   * into the next patch, maybe of a cell without mass); monotone, so the warp stays monotone */
+  {
+    double ms = (double)W->w * (1.0 / 2097152.0), mt = (double)W->h * (1.0 / 2097152.0);
+    ms = ms < 0.25 ? ms : 0.25; mt = mt < 0.25 ? mt : 0.25;
+    s = s > ms ? (s < 1.0 - ms ? s : 1.0 - ms) : ms;
+    t = t > mt ? (t < 1.0 - mt ? t : 1.0 - mt) : mt;
+  }
+  if (centre) s = t = 0.5;
+  *pi = i; *pr = r;
   /* <<Compute direction>>: u from the patch's left texel centre, v and its distance to the nearer pole */
   u = ((float)i + 0.5f + (float)s) * W->inv_w;
   if (u >= 1.0f) u -= 1.0f;
@@ -2444,15 +2569,9 @@ static float el_envlight__warp_pdf_light(const struct el_envlight__warp *W, cons
   el_envlight__theta_vp(rr, dd[2], &v, &vp);
   if (uv) { uv[0] = u; uv[1] = v; }
   /* the patch and the fractions in it (le()'s texels: patch column i = floor(u w - 0.5), row floor(v h - 0.5) + 1) */
-  X = u * (float)w - 0.5f;
-  if (X < 0.0f) X += (float)w;
-  i = (int)X;
-  if (i > w - 1) i = w - 1;
+  el_envlight__patch_at(W, u, v, &i, &r, &X, &Y);
   s = (double)X - (double)i;
   s = s < 1.0 ? (s > 0.0 ? s : 0.0) : 1.0;
-  Y = v * (float)h + 0.5f;
-  r = (int)Y;
-  if (r > h) r = h;
   if (r == 0) t = (double)vp * 2.0 * h;
   else if (r == h) t = 1.0 - (double)vp * 2.0 * h;
   else t = (double)Y - (double)r;
@@ -2546,11 +2665,9 @@ static void el_envlight__oct_decode(double x, double y, double n[3]) {
 
 /* The cell table for world normal n: its octahedral bin's, or the plain one for a zero, NaN or infinite n. */
 static const uint16_t *el_envlight__cos_table(const el_envlight *l, const struct el_envlight__warp *W, const float n[3]) {
-  float nl[3], s, x, y;
+  float nl[3], x, y;
   int i, j, m = W->m;
-  el_envlight__to_light(l, n, nl);
-  s = fabsf(nl[0]) + fabsf(nl[1]) + fabsf(nl[2]);
-  if (!(s >= FLT_MIN && s <= FLT_MAX) && !el_envlight__rescale(nl)) return W->plain;
+  if (!el_envlight__to_light_dir(l, n, nl)) return W->plain; /* rescaled in world space first (issue 24) */
   el_envlight__oct_encode(nl, &x, &y);
   i = (int)(x * (float)m); j = (int)(y * (float)m);
   i = i < m - 1 ? (i > 0 ? i : 0) : m - 1;
@@ -2670,15 +2787,15 @@ static float el_envlight__cos_pdf_constant(const el_envlight *l, const float n[3
   if (!(l->constant[0] > 0.0f || l->constant[1] > 0.0f || l->constant[2] > 0.0f)) return 0.0f;
   nn[0] = n[0]; nn[1] = n[1]; nn[2] = n[2];
   ww[0] = wi[0]; ww[1] = wi[1]; ww[2] = wi[2];
+  lw = ww[0] * ww[0] + ww[1] * ww[1] + ww[2] * ww[2]; /* the direction first: an unusable one gives 0 */
+  if (!(lw >= FLT_MIN && lw <= FLT_MAX)) {
+    if (!el_envlight__rescale(ww)) return 0.0f;
+    lw = ww[0] * ww[0] + ww[1] * ww[1] + ww[2] * ww[2];
+  }
   ln = nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2];
   if (!(ln >= FLT_MIN && ln <= FLT_MAX)) {
     if (!el_envlight__rescale(nn)) return 0.0795774715f; /* 1 / 4 pi */
     ln = nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2];
-  }
-  lw = ww[0] * ww[0] + ww[1] * ww[1] + ww[2] * ww[2];
-  if (!(lw >= FLT_MIN && lw <= FLT_MAX)) {
-    if (!el_envlight__rescale(ww)) return 0.0f;
-    lw = ww[0] * ww[0] + ww[1] * ww[1] + ww[2] * ww[2];
   }
   c = (nn[0] * ww[0] + nn[1] * ww[1] + nn[2] * ww[2]) / (sqrtf(ln) * sqrtf(lw));
   return c > 0.0f ? c * 0.318309886f : 0.0f;
@@ -2709,20 +2826,29 @@ static void el_envlight__cos_sample_constant(const el_envlight *l, const float n
 
 /* sample_li_cos and sample_li in mode BILINEAR: the warp times cell table tab */
 static void el_envlight__warp_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], uv[2], f0, f1, p;
-  int a, b;
+  float d[3], uv[2], f0, f1, p, X, Y;
+  int a, b, i, r, pi, pr, k;
   if (W->all_zero || tab[W->kv] == 0) { /* nothing emits (above this surface, for a normal's table) */
     wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
     if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
     return;
   }
   el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
-  el_envlight__warp_sample_cell(W, a, b, f0, f1, d);
-  el_envlight__to_world(l, d, wi);
-  /* the pdf is the pdf function's at wi (so pdf_li_cos(wi) equals it bit for bit): from d itself for a
-   * signed permutation (the round trip is exact), else from wi brought back as pdf_li_cos does */
-  if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d);
-  p = el_envlight__warp_pdf_light(W, tab, d, uv);
+  /* the point, then its pdf: the pdf function's at wi (so pdf_li_cos(wi) equals it bit for bit), from d
+   * itself for a signed permutation (the round trip is exact), else from wi brought back as pdf_li_cos
+   * does. Rounding can move a point at the very edge of its patch (u0 within ulps of 1: (i + 0.5 + s) / w
+   * rounds up to the next patch) or near a pole under a rotation (phi is ill-conditioned there) into
+   * another patch, maybe of another cell without mass, and a u on a CDF step can land on a patch's
+   * massless end: then the sample is its patch's centre instead (a point of the same patch; a
+   * measure-zero set of u moves, issue 24). */
+  for (k = 0; k < 2; ++k) {
+    el_envlight__warp_sample_cell(W, a, b, f0, f1, k, d, &i, &r);
+    el_envlight__to_world(l, d, wi);
+    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d);
+    p = el_envlight__warp_pdf_light(W, tab, d, uv);
+    el_envlight__patch_at(W, uv[0], uv[1], &pi, &pr, &X, &Y);
+    if (pi == i && pr == r && p > 0.0f) break;
+  }
   *pdf = p;
   if (rgb) {
     if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb); /* le(wi): the same (u, v) */
@@ -2773,7 +2899,7 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   if (l->width == 0) return el_envlight__cos_pdf_constant(l, n, wi);
   W = el_envlight__cos_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
   if (!W || W->all_zero) return 0.0f;
-  el_envlight__to_light(l, wi, d);
+  if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f; /* rescaled in world space first (issue 24) */
   return el_envlight__warp_pdf_light(W, el_envlight__cos_table(l, W, n), d, NULL);
 }
 
@@ -2797,7 +2923,7 @@ static size_t el_envlight__warp_bytes(const el_envlight *l) { return l->warp ? l
 static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3];
   if (!l->warp || l->warp->all_zero) return 0.0f;
-  el_envlight__to_light(l, dir, d);
+  if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
   return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
 }
 

@@ -142,6 +142,9 @@ typedef struct el_film_options {
                             (pbrt-v4 "maxcomponentvalue"); 0 = off */
   float scale;           /* pbrt "scale": output multiplier; 0 = 1 */
   int xyz_round_trip;    /* 1: pass output through pbrt-v3's RGBToXYZ then XYZToRGB (matches pbrt) */
+  int nonnegative_filter; /* 1: a negative filter weight (the lobes of mitchell and sinc) counts as 0, so
+                             every pixel is a weighted mean of its samples and stays within their range;
+                             0 (pbrt): at low spp such filters overshoot without bound (NOTES) */
 } el_film_options;
 
 /* Counters. `samples` counts accepted add_sample calls; rejected ones are counted by reason (a sample
@@ -165,6 +168,7 @@ typedef struct el_film {
   el_film_filter filter;       /* resolved: no zero defaults left */
   float inv_radius[2];
   int exact_filter, xyz_round_trip;
+  int nonnegative_filter;      /* el_film_options.nonnegative_filter */
   float max_component, scale;
   float table[EL_FILM_TABLE_SIZE * EL_FILM_TABLE_SIZE]; /* pbrt's filterTable, row = y */
   double *pixels;              /* width*height*4: weighted r, g, b sums and the filter weight sum */
@@ -355,6 +359,16 @@ EL_DEF el_result el_film_to_srgb8(const float *rgb, int width, int height, const
  *    with (Point2i)p; fixed in pbrt-v3 commit 9adaee8). The splat buffer exists only after a splat.
  *  - A pixel with a zero filter-weight sum outputs 0 (plus its splats); every output value is finite,
  *    and NaN never reaches the 8-bit conversion (in pbrt, (uint8_t) of NaN is undefined behaviour).
+ *  - Filters with negative lobes (mitchell, and sinc = Lanczos most of all) divide by a weight sum that
+ *    can be near 0 or negative when few samples reach a pixel, exactly as pbrt-v3 does. At 1 spp with
+ *    samples in [0, 1] (tests/test_film.c, 64x64): Lanczos weight sums from -0.17 to 2.8 and pixels
+ *    from -138 to 132, Mitchell 0.24 to 2.2 and -0.09 to 1.37 (issue 24's campaign saw Lanczos sums
+ *    from -0.28 to 2.9 and pixels up to 7465); output is max(0, .), so the negative ones turn black. Such filters need many samples per pixel (their
+ *    weight sums then approach the filter's integral). Remedies: a filter without negative lobes
+ *    (box, triangle, gaussian), or el_film_options.nonnegative_filter = 1, which counts negative weights
+ *    as 0: every pixel is then a weighted mean of its samples, within their range (tests/test_film.c),
+ *    at the price of most of the sharpening the lobes were for. The renderer's PixelFilter takes it as
+ *    "bool nonnegative".
  *  - Tone mapping beyond pbrt's clamp: exposure in stops, the exponential 1 - exp(-k x) curve, Reinhard,
  *    Narkowicz's fitted ACES curve, and optional dithering of the 8-bit output.
  * ==================================================================================================== */
@@ -480,14 +494,16 @@ EL_DEF el_result el_film_init(el_film *f, const el_film_options *opt) {
   f->inv_radius[1] = 1.0f / f->filter.radius[1];
   f->exact_filter = opt->exact_filter != 0;
   f->xyz_round_trip = opt->xyz_round_trip != 0;
+  f->nonnegative_filter = opt->nonnegative_filter != 0;
   f->max_component = opt->max_component;
   f->scale = opt->scale == 0.0f ? 1.0f : opt->scale;
   /* <<Precompute filter weight table>> */
   for (y = 0; y < EL_FILM_TABLE_SIZE; y++)
-    for (x = 0; x < EL_FILM_TABLE_SIZE; x++)
-      f->table[y * EL_FILM_TABLE_SIZE + x] =
-          el_film_filter_eval(&f->filter, ((float)x + 0.5f) * f->filter.radius[0] / EL_FILM_TABLE_SIZE,
-                              ((float)y + 0.5f) * f->filter.radius[1] / EL_FILM_TABLE_SIZE);
+    for (x = 0; x < EL_FILM_TABLE_SIZE; x++) {
+      float w = el_film_filter_eval(&f->filter, ((float)x + 0.5f) * f->filter.radius[0] / EL_FILM_TABLE_SIZE,
+                                    ((float)y + 0.5f) * f->filter.radius[1] / EL_FILM_TABLE_SIZE);
+      f->table[y * EL_FILM_TABLE_SIZE + x] = f->nonnegative_filter && w < 0.0f ? 0.0f : w;
+    }
   n = (size_t)f->width * (size_t)f->height * 4;
   f->pixels = (double *)EL_MALLOC(n * sizeof(double));
   if (!f->pixels) { memset(f, 0, sizeof *f); return EL_ERROR_OUT_OF_MEMORY; }
@@ -688,9 +704,10 @@ static void el_film__add(const el_film *f, el_film_stats *s, double *buf, int bx
           p[0] += l0 * fw; p[1] += l1 * fw; p[2] += l2 * fw; p[3] += fw;
         }
       } else {
-        double fy = wy[y - y0];
+        double fy = wy[y - y0], lo = f->nonnegative_filter ? 0.0 : -DBL_MAX; /* the 2D weight clamped */
         for (i = 0; i < nx; i++, p += 4) {
           double fw = (double)wx[i] * fy;
+          fw = fw > lo ? fw : lo;
           p[0] += l0 * fw; p[1] += l1 * fw; p[2] += l2 * fw; p[3] += fw;
         }
       }

@@ -744,8 +744,65 @@ static void test_box_one_pixel(void) {
   el_film_free(&f1); el_film_free(&f2); el_film_free(&f3);
 }
 
+/* Negative-lobe filters at low spp (issue 24): with pbrt's normalisation a pixel is sum(w L) / sum(w), and
+ * with negative weights sum(w) can be near 0 or negative, so an image whose samples all lie in [0, 1]
+ * comes out far outside it (pbrt-v3 does the same; film.h's NOTES say so). nonnegative_filter = 1 (the
+ * remedy) must keep every pixel within [0, 1] and every weight sum positive, with the table and the
+ * exact filter. The default's overshoot is measured and printed (these are film.h's numbers). */
+static void lobe_run(int type, int exact, int nonneg, int spp, double *wmin, double *wmax, double *pmin, double *pmax) {
+  el_film f;
+  el_film_options o;
+  int W = 64, H = 64, x, y, k;
+  float *rgb = (float *)malloc(sizeof(float) * 3 * (size_t)W * (size_t)H);
+  *wmin = *wmax = *pmin = *pmax = 0.0;
+  memset(&o, 0, sizeof o);
+  o.width = W; o.height = H;
+  o.filter.type = (el_film_filter_type)type;
+  o.exact_filter = exact;
+  o.nonnegative_filter = nonneg;
+  if (el_film_init(&f, &o) != EL_SUCCESS || !rgb) { check(0, "film init"); free(rgb); return; }
+  g_rng = 777u;
+  for (y = 0; y < H; y++)
+    for (x = 0; x < W; x++)
+      for (k = 0; k < spp; k++) {
+        float L[3], v = frand();
+        L[0] = L[1] = L[2] = v;
+        el_film_add_sample(&f, (float)x + frand(), (float)y + frand(), L, 1.0f);
+      }
+  *wmin = 1e30; *wmax = -1e30; *pmin = 1e30; *pmax = -1e30;
+  for (k = 0; k < W * H; k++) { /* the filter-weight sums, and the pixel before pbrt's max(0, .) */
+    double ws = f.pixels[4 * k + 3], v = ws != 0.0 ? f.pixels[4 * k] / ws : 0.0;
+    if (ws < *wmin) *wmin = ws;
+    if (ws > *wmax) *wmax = ws;
+    if (v < *pmin) *pmin = v;
+    if (v > *pmax) *pmax = v;
+  }
+  el_film_get_rgb(&f, 0.0f, rgb);
+  for (k = 0; k < 3 * W * H; k++)
+    if (rgb[k] > *pmax) *pmax = rgb[k];
+  free(rgb);
+  el_film_free(&f);
+}
+static void test_negative_lobes(void) {
+  int exact, type;
+  char buf[320];
+  for (type = EL_FILM_FILTER_MITCHELL; type <= EL_FILM_FILTER_LANCZOS; type++)
+    for (exact = 0; exact < 2; exact++) {
+      double wmin, wmax, pmin, pmax, nwmin, nwmax, npmin, npmax;
+      lobe_run(type, exact, 0, 1, &wmin, &wmax, &pmin, &pmax);
+      lobe_run(type, exact, 1, 1, &nwmin, &nwmax, &npmin, &npmax);
+      snprintf(buf, sizeof buf, "%s (%s), 1 spp, samples in [0, 1]: pbrt's weight sums %.3g .. %.3g, pixels %.3g .. %.4g; "
+               "nonnegative_filter: weight sums %.3g .. %.3g, pixels %.3g .. %.3g (within [0, 1])", filter_name[type],
+               exact ? "exact" : "table", wmin, wmax, pmin, pmax, nwmin, nwmax, npmin, npmax);
+      check(nwmin > 0.0 && npmin >= 0.0 && npmax <= 1.0, buf);
+      if (type == EL_FILM_FILTER_LANCZOS)
+        check(pmax > 1.0 || pmin < 0.0, "... and without it, Lanczos at 1 spp leaves [0, 1] (pbrt-v3's behaviour, documented in film.h)");
+    }
+}
+
 int main(void) {
   test_filters();
+  test_negative_lobes();
   test_table_vs_exact();
   test_constant();
   test_hand_average();

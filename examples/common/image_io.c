@@ -8,6 +8,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -486,7 +487,26 @@ static size_t el_io__magic(FILE *f, unsigned char *m, size_t n) {
   return k;
 }
 
+static int el_io__load_any(const char *path, el_image *img, char *err, size_t errlen);
+/* Loads, then counts the values the reader keeps although a renderer cannot use them (its policy: it
+ * changes no value; the caller decides). */
 int el_image_load(const char *path, el_image *img, char *err, size_t errlen) {
+  size_t i, n;
+  int r = el_io__load_any(path, img, err, errlen);
+  if (r != 0) return r;
+  n = (size_t)img->width * (size_t)img->height * (size_t)img->channels;
+  for (i = 0; i < n; i++) {
+    float v = img->pixels[i];
+    if (v != v || v > FLT_MAX || v < -FLT_MAX) img->nonfinite_values++;
+    else if (v < 0.0f) {
+      img->negative_values++;
+      if (v < img->most_negative) img->most_negative = v;
+    }
+  }
+  return 0;
+}
+
+static int el_io__load_any(const char *path, el_image *img, char *err, size_t errlen) {
   const char *ext;
   FILE *f;
   if (!img) return el_io__fail(err, errlen, path, "no output image given");

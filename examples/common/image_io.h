@@ -25,9 +25,18 @@ typedef struct el_image {
   float *pixels;               /* row-major, top row first, width*height*channels floats */
   int is_8bit;                 /* 1 when the file held 8-bit values (PNG/JPEG/...): pixels are the raw
                                   code values / 255, not linearised; HDR formats give 0 (linear) */
+  /* The reader's policy for values a renderer cannot use: it changes none. Every value is the file's
+   * (lossy EXR compression, DWAA/DWAB, rings to small negatives: Blender's HDRIs hold 3 to 784 texels
+   * below 0, down to -0.0033; float files can hold NaN and infinities), and el_image_load counts them
+   * here so that the caller applies its own policy (envlight: el_envlight_options.bad_texels; the
+   * renderer: LightSource "infinite"'s "string badtexels"). */
+  size_t negative_values;      /* finite values < 0 (every channel kept counts) */
+  size_t nonfinite_values;     /* NaN or infinite values */
+  float most_negative;         /* the most negative finite value, 0 when there is none */
 } el_image;
 
 /* .hdr (Radiance RGBE), .exr (OpenEXR), .pfm, and 8-bit formats stb_image reads (.png .jpg .tga .bmp).
+ * Values are returned exactly as decoded (negative, NaN and infinite ones too; img's counts say how many).
  * HDR formats give 3 channels, 8-bit formats their own channel count. EXR: every compression, scanline
  * or tiled (level 0), half/float/uint; part 0 of a multi-part file; R, G, B of the default layer, else
  * of the first layer with all three ("diffuse.R"...), else Y as grey; alpha and other channels are

@@ -74,7 +74,7 @@ elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 /* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
-typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; } elr_filter_desc;
+typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; int nonneg; } elr_filter_desc; /* nonneg: "bool nonnegative" */
 
 enum { ELR_TEX_CONST = 0, ELR_TEX_CHECKER = 1, ELR_TEX_IMAGE = 2, ELR_TEX_SCALE = 3, ELR_TEX_MIX = 4 };
 typedef struct elr_texture {
@@ -183,6 +183,7 @@ typedef struct elr_light {
   int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
+  int bad_texels;          /* the scene's "badtexels": EL_ENVLIGHT_BAD_TEXELS_* (CLAMP_NEGATIVE by default) */
 } elr_light;
 
 typedef struct elr_scene_desc {

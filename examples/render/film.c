@@ -39,6 +39,7 @@ int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err
   default: o.filter.type = EL_FILM_FILTER_BOX; break;
   }
   o.filter.radius[0] = fd->xw; o.filter.radius[1] = fd->yw;
+  o.nonnegative_filter = fd->nonneg; /* "bool nonnegative": the negative lobes count as 0 */
   r = el_film_init(f, &o);
   if (r != EL_SUCCESS) { snprintf(err, errlen, "film: %s", el_result_string(r)); return -1; }
   if (f->x0 != x0 || f->y0 != y0 || f->x1 != x1 || f->y1 != y1) {

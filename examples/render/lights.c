@@ -162,6 +162,7 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
   o.compensated = l->compensated;
   o.importance = elr__importance(l->importance);
   o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
+  o.bad_texels = l->bad_texels; /* the caller reports what became 0 (l->env's negative_texels ...) */
   if (rgb) {
     o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
     if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
@@ -175,8 +176,19 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
     r = el_envlight_init_constant(l->env, scale, &o);
   }
   if (r != EL_SUCCESS) {
-    if (l->env->bad_index >= 0)
-      snprintf(err, errlen, "environment map texel (%d, %d) is NaN, infinite or negative", l->env->bad_index % (w > 0 ? w : 1), l->env->bad_index / (w > 0 ? w : 1));
+    if (l->env->bad_index >= 0) {
+      int bi = l->env->bad_index, x = bi % (w > 0 ? w : 1), y = bi / (w > 0 ? w : 1), c;
+      const float *t = rgb ? rgb + 3 * (size_t)bi : scale;
+      float v = t[0];
+      for (c = 0; c < 3; ++c) /* the bad channel: NaN, infinite or negative (or it overflows when scaled) */
+        if (t[c] != t[c] || !(t[c] >= 0.f && t[c] <= 3.4e38f)) { v = t[c]; break; }
+      if (r == EL_ERROR_NEGATIVE)
+        snprintf(err, errlen, "texel (%d, %d) is negative (%g; \"string badtexels\" \"clampnegative\" clamps negatives to 0)", x, y, (double)v);
+      else if (v != v || v > 3.4e38f || v < -3.4e38f)
+        snprintf(err, errlen, "texel (%d, %d) is %s (\"string badtexels\" \"zero\" makes such texels 0)", x, y, v != v ? "NaN" : "infinite");
+      else
+        snprintf(err, errlen, "texel (%d, %d) times the light's scale overflows", x, y);
+    }
     else if (r == EL_ERROR_NOT_ORTHONORMAL)
       snprintf(err, errlen, "the light's transformation must be a rotation (pbrt-v3 maps the environment with the CTM's rotation)");
     else

@@ -828,6 +828,9 @@ static void elr__filter(elr__parser *P, const char *type) {
   if (f->type == ELR_PF_SINC) elr__check_range(P, "tau", f->tau, 1e-2, 1e3);
   f->xw = (float)elr__pfloat(P, "xwidth", defw);
   f->yw = (float)elr__pfloat(P, "ywidth", defw);
+  /* envlight's extension: negative filter weights (mitchell's and sinc's lobes) count as 0, so that few
+   * samples per pixel cannot overshoot (film.h's el_film_options.nonnegative_filter) */
+  f->nonneg = elr__pbool(P, "nonnegative", 0);
   elr__check_range(P, "xwidth", f->xw, 1e-3, 16);
   elr__check_range(P, "ywidth", f->yw, 1e-3, 16);
 }
@@ -984,6 +987,7 @@ static void elr__light(elr__parser *P, const char *type) {
     char e[512];
     float scale3[3];
     float *rgb = NULL;
+    char *path = NULL;
     int w = 1, h = 1;
     l->kind = ELR_LIGHT_INFINITE;
     l->nsamples = elr__pint(P, "samples", 1);
@@ -1011,6 +1015,19 @@ static void elr__light(elr__parser *P, const char *type) {
       else if (!strcmp(ls, "map")) l->sampling = ELR_ENVLS_MAP;
       else elr__failf(P, elr__find(P, "sampling")->file, elr__find(P, "sampling")->line, "LightSource \"infinite\": sampling must be \"product\" or \"map\"");
     }
+    {
+      /* envlight's extension: what becomes of texels envlight cannot use. "clampnegative" (the default):
+       * finite negative texels become 0, with one warning that counts them and names the most negative
+       * value (lossy EXR compression, DWAA/DWAB, rings slightly below 0: the HDRIs Blender ships hold 3 to
+       * 8980 such texels, down to -0.0039), NaN and infinite texels are errors naming the file and the
+       * texel; "zero": NaN and infinite texels become 0 too (one warning); "error": negatives are errors
+       * as well. The image reader keeps every value as the file holds it: the policy is the light's. */
+      const char *bt = elr__pstring(P, "badtexels", "clampnegative");
+      if (!strcmp(bt, "clampnegative")) l->bad_texels = EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE;
+      else if (!strcmp(bt, "zero")) l->bad_texels = EL_ENVLIGHT_BAD_TEXELS_ZERO;
+      else if (!strcmp(bt, "error")) l->bad_texels = EL_ENVLIGHT_BAD_TEXELS_ERROR;
+      else elr__failf(P, elr__find(P, "badtexels")->file, elr__find(P, "badtexels")->line, "LightSource \"infinite\": badtexels must be \"clampnegative\", \"zero\" or \"error\"");
+    }
     l->L = elr_vmul(L, sc);
     scale3[0] = l->L.x; scale3[1] = l->L.y; scale3[2] = l->L.z;
     for (i = 0; i < 3; i++) /* else envlight reports "texel (0, 0) is NaN, infinite or negative" */
@@ -1034,9 +1051,16 @@ static void elr__light(elr__parser *P, const char *type) {
       }
     if (map[0]) {
       el_image img;
-      char *path = elr__resolve(P, map);
+      path = elr__resolve(P, map);
       elr__load_image(P, path, P->dir_line, &img);
-      rgb = elr__to_rgb(P, &img, 0, 1.f, path);
+      if (l->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) {
+        rgb = elr__to_rgb(P, &img, 0, 1.f, path); /* NaN / infinite: an error naming the file and texel */
+      } else { /* "zero": every value as the file holds it, for envlight to count and replace */
+        size_t n = (size_t)img.width * (size_t)img.height, k;
+        rgb = (float *)malloc(n * 3 * sizeof(float));
+        if (!rgb) { el_image_free(&img); snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+        for (k = 0; k < 3 * n; k++) rgb[k] = img.pixels[(k / 3) * (size_t)img.channels + (img.channels >= 3 ? k % 3 : 0)];
+      }
       w = img.width; h = img.height;
       el_image_free(&img);
       l->has_map = 1;
@@ -1047,8 +1071,22 @@ static void elr__light(elr__parser *P, const char *type) {
       double t0 = elr_now();
       int r = elr_infinite_init(l, rgb, w, h, scale3, m3, e, sizeof e);
       free(rgb);
-      if (r != 0) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
+      if (r != 0) {
+        if (path) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": image \"%s\": %s", path, e);
+        elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
+      }
       s->t_images += elr_now() - t0;
+      /* one warning per kind of texel replaced (the light's policy above) */
+      if (l->env->negative_texels > 0) {
+        int mi = l->env->most_negative_index;
+        elr_warn(P->s, P->dir_file, P->dir_line,
+                 "LightSource \"infinite\": image \"%s\": %zu negative texels clamped to 0 (the most negative %.3g at texel (%d, %d);"
+                 " lossy EXR compression such as DWAB rings below 0; \"string badtexels\" \"error\" refuses them)",
+                 path ? path : "(constant L)", l->env->negative_texels, (double)l->env->most_negative, mi % w, mi / w);
+      }
+      if (l->env->nonfinite_texels > 0)
+        elr_warn(P->s, P->dir_file, P->dir_line, "LightSource \"infinite\": image \"%s\": %zu NaN or infinite texels set to 0 (\"string badtexels\" \"zero\")",
+                 path ? path : "(constant L)", l->env->nonfinite_texels);
     }
   } else if (!strcmp(type, "point")) {
     elr_v3 I = elr__prgb(P, "I", elr_v(1, 1, 1));
