@@ -156,49 +156,67 @@ static __m128i elr__swap(__m128i v, uint32_t mask, int k) { /* swap the k-bit gr
   return _mm_or_si128(_mm_slli_epi32(_mm_and_si128(v, m), k), _mm_and_si128(_mm_srli_epi32(v, k), m));
 }
 #endif
-static void elr__zsobol_points(elr_sampler *S, int dim, int c, uint32_t seed, float *out) {
+/* the scrambled points of the pixel for dimension dim: 2D (two = 1; components 0 and 1 with the seeds
+ * h and h >> 32, into out[3 s], out[3 s + 1]) or 1D (component 0 with seed h, into out[3 s + 2]), for
+ * every sample s: pbrt-v4's SobolSample(index, c, randomizer) */
+#if defined(__SSE2__) && !defined(ELR_NO_SIMD)
+/* FastOwenScrambler on four reversed points, then the floats of their first 24 digits */
+static __m128 elr__fast_owen4(__m128i r, __m128i sd, __m128i sm) {
+  r = _mm_xor_si128(r, elr__mullo(r, _mm_set1_epi32(0x3d20adea)));
+  r = _mm_add_epi32(r, sd);
+  r = elr__mullo(r, sm);
+  r = _mm_xor_si128(r, elr__mullo(r, _mm_set1_epi32(0x05526c56)));
+  r = _mm_xor_si128(r, elr__mullo(r, _mm_set1_epi32(0x53a22864)));
+  /* elr_reverse_bits32(r) >> 8: the reversal of the low 24 bits */
+  r = _mm_or_si128(_mm_slli_epi32(r, 16), _mm_srli_epi32(r, 16));
+  r = elr__swap(r, 0x00ff00ffu, 8);
+  r = elr__swap(r, 0x0f0f0f0fu, 4);
+  r = elr__swap(r, 0x33333333u, 2);
+  r = elr__swap(r, 0x55555555u, 1);
+  return _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(r, 8)), _mm_set1_ps(0x1p-24f));
+}
+#endif
+static void elr__zsobol_points(elr_sampler *S, int dim, int two, uint64_t h, float *out) {
   const elr_sobol *T = &S->T->sobol;
   const uint8_t *low = S->zlow + (size_t)dim * (size_t)S->spp;
-  uint32_t base = S->zsob[dim][c];
-  int s = 0, spp = S->spp;
+  int s = 0, spp = S->spp, nc = two ? 2 : 1, c, off = two ? 0 : 2;
+  uint32_t seed[2], base[2];
+  seed[0] = (uint32_t)h; seed[1] = (uint32_t)(h >> 32);
+  base[0] = S->zsob[dim][0]; base[1] = S->zsob[dim][1];
   if (S->randomize != ELR_RANDOMIZE_FAST_OWEN) {
-    for (; s < spp; s++) out[3 * s] = elr_bits_to_float(elr_randomize(base ^ T->lut[c][0][low[s]], S->randomize, seed));
+    for (c = 0; c < nc; c++)
+      for (s = 0; s < spp; s++) out[3 * s + off + c] = elr_bits_to_float(elr_randomize(base[c] ^ T->lut[c][0][low[s]], S->randomize, seed[c]));
     return;
   }
 #if defined(__SSE2__) && !defined(ELR_NO_SIMD)
   {
-    const __m128i k0 = _mm_set1_epi32(0x3d20adea), k1 = _mm_set1_epi32(0x05526c56), k2 = _mm_set1_epi32(0x53a22864);
-    const __m128i sd = _mm_set1_epi32((int)seed), sm = _mm_set1_epi32((int)((seed >> 16) | 1u));
-    const __m128 scale = _mm_set1_ps(0x1p-24f);
+    const __m128i sd0 = _mm_set1_epi32((int)seed[0]), sm0 = _mm_set1_epi32((int)((seed[0] >> 16) | 1u));
+    const __m128i sd1 = _mm_set1_epi32((int)seed[1]), sm1 = _mm_set1_epi32((int)((seed[1] >> 16) | 1u));
     for (; s + 4 <= spp; s += 4) {
       float f[4];
-      __m128i r = _mm_set_epi32((int)(base ^ T->rlut[c][low[s + 3]]), (int)(base ^ T->rlut[c][low[s + 2]]), (int)(base ^ T->rlut[c][low[s + 1]]),
-                                (int)(base ^ T->rlut[c][low[s]]));
-      r = _mm_xor_si128(r, elr__mullo(r, k0));
-      r = _mm_add_epi32(r, sd);
-      r = elr__mullo(r, sm);
-      r = _mm_xor_si128(r, elr__mullo(r, k1));
-      r = _mm_xor_si128(r, elr__mullo(r, k2));
-      /* elr_reverse_bits32(r) >> 8: the reversal of the low 24 bits */
-      r = _mm_or_si128(_mm_slli_epi32(r, 16), _mm_srli_epi32(r, 16));
-      r = elr__swap(r, 0x00ff00ffu, 8);
-      r = elr__swap(r, 0x0f0f0f0fu, 4);
-      r = elr__swap(r, 0x33333333u, 2);
-      r = elr__swap(r, 0x55555555u, 1);
-      _mm_storeu_ps(f, _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(r, 8)), scale));
-      out[3 * s] = f[0]; out[3 * s + 3] = f[1]; out[3 * s + 6] = f[2]; out[3 * s + 9] = f[3];
+      unsigned l0 = low[s], l1 = low[s + 1], l2 = low[s + 2], l3 = low[s + 3];
+      __m128i r = _mm_set_epi32((int)(base[0] ^ T->rlut[0][l3]), (int)(base[0] ^ T->rlut[0][l2]), (int)(base[0] ^ T->rlut[0][l1]),
+                                (int)(base[0] ^ T->rlut[0][l0]));
+      _mm_storeu_ps(f, elr__fast_owen4(r, sd0, sm0));
+      out[3 * s + off] = f[0]; out[3 * s + 3 + off] = f[1]; out[3 * s + 6 + off] = f[2]; out[3 * s + 9 + off] = f[3];
+      if (two) {
+        r = _mm_set_epi32((int)(base[1] ^ T->rlut[1][l3]), (int)(base[1] ^ T->rlut[1][l2]), (int)(base[1] ^ T->rlut[1][l1]), (int)(base[1] ^ T->rlut[1][l0]));
+        _mm_storeu_ps(f, elr__fast_owen4(r, sd1, sm1));
+        out[3 * s + 1] = f[0]; out[3 * s + 4] = f[1]; out[3 * s + 7] = f[2]; out[3 * s + 10] = f[3];
+      }
     }
   }
 #endif
-  for (; s < spp; s++) {
-    uint32_t r = base ^ T->rlut[c][low[s]];
-    r ^= r * 0x3d20adeau;
-    r += seed;
-    r *= (seed >> 16) | 1u;
-    r ^= r * 0x05526c56u;
-    r ^= r * 0x53a22864u;
-    out[3 * s] = elr_bits_to_float(elr_reverse_bits32(r));
-  }
+  for (; s < spp; s++)
+    for (c = 0; c < nc; c++) {
+      uint32_t r = base[c] ^ T->rlut[c][low[s]];
+      r ^= r * 0x3d20adeau;
+      r += seed[c];
+      r *= (seed[c] >> 16) | 1u;
+      r ^= r * 0x05526c56u;
+      r ^= r * 0x53a22864u;
+      out[3 * s + off + c] = elr_bits_to_float(elr_reverse_bits32(r));
+    }
 }
 
 /* the pixel's 1D (two = 0) or 2D points of dimension dim, made if needed; NULL past the fast path */
@@ -210,11 +228,10 @@ const float *elr_zsobol_table(elr_sampler *S, int dim, int two) {
     if (!((S->zfast >> dim) & 1u)) elr__zsobol_make(S, dim);
     if (two) {
       uint64_t h = elr_sampler_dim_hash(S, dim + 2);
-      elr__zsobol_points(S, dim, 0, (uint32_t)h, t);
-      elr__zsobol_points(S, dim, 1, (uint32_t)(h >> 32), t + 1);
+      elr__zsobol_points(S, dim, 1, h, t);
       S->zf2 |= 1ull << dim;
     } else {
-      elr__zsobol_points(S, dim, 0, (uint32_t)elr_sampler_dim_hash(S, dim + 1), t + 2);
+      elr__zsobol_points(S, dim, 0, elr_sampler_dim_hash(S, dim + 1), t);
       S->zf1 |= 1ull << dim;
     }
   }
