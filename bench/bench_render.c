@@ -89,8 +89,9 @@
  * Instructions per camera sample BY PART (sampler, light, BSDF, film, Embree, camera, loop):
  *     sh bench/callgrind_parts.sh [--integrator path] [--loop one]
  * (two --callgrind samples runs, 25600 and 51200, and bench/callgrind_parts.py on their difference).
- * Measured 2026-12-02 (issue 21), zsobol's fast path: direct lighting 6150 -> 5447 per camera sample
- * (sampler 1225 -> 522), path 8426 -> 7839 (sampler 2123 -> 1536); the same images. */
+ * Measured 2026-12-02 (issue 21), zsobol's fast path: sampler 1225 -> 512 instructions per camera
+ * sample with direct lighting, 2123 -> 1411 with the path tracer (4 spp); the same images
+ * (examples/render/README.md has the table by part). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
