@@ -116,7 +116,9 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
    * and the sphere code take 1529 instructions per camera sample with Embree's spheres against 1087
    * with the callbacks, loop CPU 0.94-1.11x (median 1.03x) of the callbacks' in 5 interleaved runs;
    * the image differs in the sphere's pixels by at most 4.6e-5 relative (Embree's float t before the
-   * projection onto the sphere). Still not the default. */
+   * projection onto the sphere); on 200000 random rays at the bench sphere the hit distances differ by
+   * at most 1.4e-6 relative, the normals by 4.4e-6, and no ray hits one and misses the other. Exact
+   * enough, but not faster: still not the default. */
   s->sph_builtin = (int *)calloc((size_t)s->nsph + 1, sizeof(int));
   if (!s->sph_builtin) { snprintf(err, errlen, "out of memory"); return -1; }
   s->builtin_geom = ~0u;
