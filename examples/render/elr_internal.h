@@ -546,6 +546,8 @@ typedef struct elr_sobol {
   uint64_t inv[64], delta[64];        /* its tables (lowdiscrepancy.c) */
   uint32_t lut[2][7][256];            /* dimensions 0 and 1 a byte of the index at a time: the XOR of the
                                          columns of each byte value (the zsobol, paddedsobol and 02sequence loops) */
+  uint32_t rlut[2][256];              /* lut[d][0] bit-reversed (zsobol's fast path with fastowen) */
+  uint8_t rev8[256];                  /* each byte bit-reversed */
 } elr_sobol;
 int elr_sobol_init(elr_sobol *T, int ndims, int log2res);
 void elr_sobol_free(elr_sobol *T);
@@ -606,6 +608,14 @@ typedef struct elr_sampler {
   int64_t hindex, hoffset; /* halton: the sample's index and the pixel's first; sobol: the sample's index;
                               zsobol: the Morton index of pixel and sample */
   uint64_t zvalid, zpixel[64]; /* zsobol: the pixel's permuted digits for dimensions 0..63 (bit d of zvalid: known) */
+  /* zsobol's fast path (sampler_zsobol.c; spp <= ELR_ZSOBOL_FAST_SPP): per pixel the Morton code, and per
+   * dimension d < 64 met in the pixel (bit d of zfast) the permuted sample digits of each sample
+   * (zlow[d * spp + s]) and the Sobol' points' pixel part (zsob[d][c], bit-reversed for fastowen) */
+  uint64_t zmorton, zfast, zf1, zf2; /* zf1, zf2: bit d, dimension d's 1D or 2D points of the pixel made */
+  uint8_t *zlow;
+  uint32_t zsob[64][2];
+  float *zpt;                 /* zsobol's fast path: the pixel's points, 2D (zpt[(d * spp + s) * 3 + 0, 1]) and 1D (+ 2) */
+  uint64_t zpm[64], zpp[64], zpvalid; /* the Morton code and the permuted pixel digits of dimension d's last pixel */
   uint64_t dhash[72];          /* elr_dim_hash(d, sseed) of the first dimensions: the scrambles' seeds */
 } elr_sampler;
 int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
@@ -619,8 +629,27 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
 void elr_stratified_make(elr_sampler *S, int two, int d);
 void elr_zerotwo_make(elr_sampler *S, int two, int d);
 float elr_sobol_sampler_1d(const elr_sampler *S, int dim);
-float elr_zsobol_1d(elr_sampler *S, int dim);
-void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]);
+/* zsobol's draws: the pixel's points of the dimension when made (the fast path's tables), else made
+ * (elr_zsobol_table) or the reference's (sampler_zsobol.c) */
+const float *elr_zsobol_table(elr_sampler *S, int dim, int two);
+float elr_zsobol_ref_1d(elr_sampler *S, int dim);
+void elr_zsobol_ref_2d(elr_sampler *S, int dim, float u[2]);
+static inline float elr_zsobol_1d(elr_sampler *S, int dim) {
+  const float *t;
+  if ((unsigned)dim < 64u && ((S->zf1 >> dim) & 1u)) return S->zpt[((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 3u + 2u];
+  t = elr_zsobol_table(S, dim, 0);
+  return t ? t[2] : elr_zsobol_ref_1d(S, dim);
+}
+static inline void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]) {
+  const float *t;
+  if ((unsigned)dim < 64u && ((S->zf2 >> dim) & 1u)) t = S->zpt + ((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 3u;
+  else if (!(t = elr_zsobol_table(S, dim, 1))) { elr_zsobol_ref_2d(S, dim, u); return; }
+  u[0] = t[0]; u[1] = t[1];
+}
+/* zsobol's reference path (pbrt-v4's GetSampleIndex, SobolSample and randomizer as written there): the
+ * fast path above gives the same bits (test_render_samplers) */
+#define ELR_ZSOBOL_FAST_SPP 256
+void elr_zsobol_start_pixel(elr_sampler *S, uint64_t morton);
 float elr_paddedsobol_1d(const elr_sampler *S, int dim);
 void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);
 /* a 64-bit hash of a dimension and a seed (pbrt-v4's Hash(dimension, seed)): a scramble's seed */
