@@ -112,6 +112,7 @@ typedef struct elr_light_stats {
   int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
   float env_lobe_alpha; /* environment, product sampling: vertices with a glossy lobe of alpha below it took the map */
   float env_light_alpha; /* and directlighting vertices with no lobe narrower than it, the light sample alone */
+  float env_sun_share;   /* the share of the map's power above 100x its mean radiance (> 0.5: diffuse lobes take the map) */
   int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
   int env_importance;   /* environment: the map's importance mode (EL_ENVLIGHT_IMPORTANCE_*) */
   int env_portals;      /* environment: pbrt-v4's portals (issue 23), 0 without */

@@ -161,6 +161,11 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
 /* and a vertex whose lobes are diffuse or glossy with alpha at least this is estimated, by directlighting,
  * with the product light sample alone (no BSDF sample: elr_env_light_only) */
 #define ELR_ENV_LIGHT_ALPHA 0.3f
+/* a map whose brightest texels covering ELR_ENV_SUN_AREA of the sphere (about twice the sun's solid
+ * angle) hold more than ELR_ENV_SUN_SHARE of its power is a sun map: there diffuse-only vertices sample
+ * the map alone (render.c's elr__sun_share; city.hdr 0.219, studio.hdr 0.004: its lights are larger) */
+#define ELR_ENV_SUN_AREA 1e-5
+#define ELR_ENV_SUN_SHARE 0.1f
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
@@ -239,6 +244,9 @@ struct elr_scene {
   /* and vertices whose glossy lobes (if any) all have alpha >= this take directlighting's product light
    * sample alone, without the BSDF sample (elr_bsdf.env_light_only; INFINITY never) */
   float env_light_alpha;
+  /* and under a sun (elr__sun_share > ELR_ENV_SUN_SHARE) vertices with only diffuse lobes take the map alone */
+  int env_sunny;
+  float env_sun_share;
   char last_warning[512];
   int quiet;
   double t_parse, t_images, t_embree;

@@ -133,7 +133,7 @@ static void elr__env_choice(const elr_scene *s, elr_bsdf *b) {
   float a = elr_bsdf_lobe_alpha(b);
   int diffuse = b->has_diffuse, i;
   for (i = 0; i < b->nlobes; i++) diffuse |= b->lobe[i].type == ELR_BXDF_LAMBERTIAN || b->lobe[i].type == ELR_BXDF_FRESNEL_BLEND;
-  b->env_map = a < s->env_lobe_alpha;
+  b->env_map = a < s->env_lobe_alpha || (s->env_sunny && a == INFINITY && diffuse); /* (a sun: elr__sun_share) */
   b->env_light_only = s->env_light_alpha < INFINITY && a >= (diffuse ? 1.f : 2.f) * s->env_light_alpha; /* (INFINITY: never) */
 }
 

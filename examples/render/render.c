@@ -189,6 +189,42 @@ static int elr__mat_transmits_rough(const elr_scene *s) {
   for (i = 0; i < s->ndisk; i++) if (elr__may_transmit_rough(s, &s->mat[s->disk[i].material])) return 1;
   return 0;
 }
+/* The share of the environment's power (luminance x solid angle) that its brightest texels covering
+ * ELR_ENV_SUN_AREA of the sphere hold: a sun's. Issue 20: under such a map the product light sample alone
+ * misses the sky wherever the sun is occluded (bench/lobes.py's shadows region: 0.41x the map alone's
+ * efficiency on city.hdr), so diffuse-only lobes there keep the map alone with MIS (elr_scene.env_sunny). */
+typedef struct { float lum, w; } elr__texel_lw;
+static int elr__cmp_lum(const void *a, const void *b) {
+  float x = ((const elr__texel_lw *)a)->lum, y = ((const elr__texel_lw *)b)->lum;
+  return x < y ? 1 : x > y ? -1 : 0;
+}
+static double elr__sun_share(const el_envlight *e) {
+  double P = 0, W = 0, Ps = 0, Ws = 0;
+  size_t n, k;
+  int x, y;
+  elr__texel_lw *t;
+  if (!e || e->width <= 0 || !e->texels) return 0.0;
+  n = (size_t)e->width * (size_t)e->height;
+  t = (elr__texel_lw *)malloc(n * sizeof *t);
+  if (!t) return 0.0;
+  for (y = 0; y < e->height; y++) {
+    float w = e->mapping == EL_ENVLIGHT_MAPPING_LATLONG ? (float)sin(3.14159265358979 * (y + 0.5) / e->height) : 1.f;
+    for (x = 0; x < e->width; x++) {
+      size_t i = (size_t)y * (size_t)e->width + (size_t)x;
+      const float *c = &e->texels[3 * i];
+      t[i].lum = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+      t[i].w = w;
+      P += (double)w * t[i].lum; W += w;
+    }
+  }
+  qsort(t, n, sizeof *t, elr__cmp_lum);
+  for (k = 0; k < n && Ws < ELR_ENV_SUN_AREA * W; k++) { /* (of the last texel only the part that fits: coarse maps) */
+    double part = ELR_ENV_SUN_AREA * W - Ws < t[k].w ? (ELR_ENV_SUN_AREA * W - Ws) / t[k].w : 1.0;
+    Ps += part * t[k].w * t[k].lum; Ws += part * t[k].w;
+  }
+  free(t);
+  return P > 0.0 ? Ps / P : 0.0;
+}
 /* whether some shape's material may have a glossy reflection lobe (plastic, metal, uber, substrate)
  * of alpha below a (elr_bsdf_lobe_alpha's sqrt(ax ay) is below a when either alpha is): issue 20's
  * per-lobe choice samples the environment's map alone there */
@@ -240,6 +276,7 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
   float light_alpha = o->env_light_alpha < 0.f ? ELR_ENV_LIGHT_ALPHA : o->env_light_alpha;
   *emits = 0;
   s->env_lobe_alpha = 0.f; s->env_light_alpha = INFINITY; /* (set below where an environment is product-sampled) */
+  s->env_sunny = 0; s->env_sun_share = 0.f;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) *emits = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_INFINITE) C->has_env = 1;
   for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i]) && s->light[i].kind == ELR_LIGHT_AREA) C->has_area = 1;
@@ -275,7 +312,11 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
         snprintf(err, errlen, "environment: cannot build the sampling distribution");
         return -1;
       }
-      if (l->product) { s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha; }
+      if (l->product) {
+        s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha;
+        s->env_sun_share = (float)elr__sun_share(l->env);
+        s->env_sunny = s->env_sun_share > ELR_ENV_SUN_SHARE;
+      }
       if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
     }
@@ -365,6 +406,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
       ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample) + el_envlight_product_bytes(l->env_sample);
       ls->env_product = l->product; ls->env_lobe_alpha = l->product ? s->env_lobe_alpha : 0.f;
       ls->env_light_alpha = l->product ? s->env_light_alpha : INFINITY;
+      ls->env_sun_share = l->product ? s->env_sun_share : 0.f;
       ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
       ls->env_importance = l->env_sample->importance;
     }

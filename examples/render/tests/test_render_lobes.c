@@ -5,7 +5,8 @@
  *     thresholds (0.1 and 0.3) and moved ones; --stats' counts must say the map alone (below the first),
  *     product MIS (between), the product light sample alone (at or above the second with a diffuse lobe,
  *     twice the second without: metal; matte: then no BSDF-sampled ray either). With --env-sampling map
- *     nothing is counted as product.
+ *     nothing is counted as product. Under a sun map (one texel 1e6x the sky: render.c's elr__sun_share
+ *     above ELR_ENV_SUN_SHARE) matte takes the map alone, the metals keep their choice.
  *  2. Unbiased: a near-specular metal (alpha 0.02), a glossy plastic (roughness 0.1 remapped: alpha 0.46)
  *     and a rough plastic (alpha 1.13) on a matte plane under a sky with a sun 600x the sky (a 64 x 32
  *     map written here), directlighting and path: with the default thresholds the metal takes the map
@@ -104,22 +105,46 @@ static void decisions(void) {
     {"Material \"plastic\" \"float roughness\" [ 0.1 ]", -1.f, -1.f, 2},
   };
   static const char *what[3] = {"the map alone", "product MIS", "the product light sample alone"};
+  /* a sun map (1024 x 512, one texel 1e6x the sky: share 0.7 within ELR_ENV_SUN_AREA): matte takes the map alone, the
+   * glossy lobes keep their choice (render.c's elr__sun_share) */
+  {
+    static float m[3 * 1024 * 512];
+    char err[256];
+    int i;
+    for (i = 0; i < 3 * 1024 * 512; i++) m[i] = 0.5f;
+    for (i = 0; i < 3; i++) m[3 * (150 * 1024 + 300) + i] = 5e5f;
+    if (el_image_write_pfm(rt_path("sun.pfm"), m, 1024, 512, 3, err, sizeof err) != 0) printf("write: %s\n", err);
+  }
   int k;
-  for (k = 0; k < (int)(sizeof c / sizeof c[0]); k++) {
-    char err[512];
-    elr_scene *s = rt_load("one.pbrt", one_sphere(c[k].mat), err, sizeof err);
+  for (k = 0; k < (int)(sizeof c / sizeof c[0]) + 3; k++) {
+    char err[512], mat[256];
+    int sun = k >= (int)(sizeof c / sizeof c[0]), want;
+    elr_scene *s;
+    /* (the last three: matte, metal 0.05 and 0.7 under the sun map) */
+    snprintf(mat, sizeof mat, "%s", sun ? (k == (int)(sizeof c / sizeof c[0]) ? "Material \"matte\"" : k == (int)(sizeof c / sizeof c[0]) + 1
+                                                ? "Material \"metal\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\""
+                                                : "Material \"metal\" \"float roughness\" [ 0.7 ] \"bool remaproughness\" \"false\"") : c[k].mat);
+    want = sun ? (k == (int)(sizeof c / sizeof c[0]) + 2 ? 2 : 0) : c[k].want;
+    {
+      char text[2048];
+      snprintf(text, sizeof text, "%s", one_sphere(mat));
+      if (sun) { char *p = strstr(text, "sky.pfm"); if (p) memcpy(p, "sun.pfm", 7); }
+      s = rt_load("one.pbrt", text, err, sizeof err);
+    }
     elr_image img;
     elr_stats st;
     int got;
     if (!s) { rt_check(0, "load: %s", err); continue; }
-    if (render(s, -1, c[k].lobe_a, c[k].light_a, 1, &img, &st) != 0) { rt_check(0, "render %d", k); elr_scene_free(s); continue; }
+    if (render(s, -1, sun ? -1.f : c[k].lobe_a, sun ? -1.f : c[k].light_a, 1, &img, &st) != 0) { rt_check(0, "render %d", k); elr_scene_free(s); continue; }
     /* every camera sample hits the sphere: one light sample each, all by one strategy */
     got = st.env_map_samples == st.samples && st.env_product_samples == 0 ? 0
         : st.env_product_samples == st.samples && st.env_map_samples == 0 ? (st.env_light_only_samples == st.samples ? 2 : st.env_light_only_samples == 0 ? 1 : -1)
         : -1;
-    rt_check(got == c[k].want && (got != 2 || st.bsdf_light_rays == 0) && (got == 2 || st.bsdf_light_rays > 0),
-             "%s, thresholds %g / %g: %s (samples %llu: product %llu, of them alone %llu, map %llu; BSDF rays %llu)", c[k].mat,
-             (double)c[k].lobe_a, (double)c[k].light_a, what[c[k].want], (unsigned long long)st.samples,
+    rt_check(got == want && (got != 2 || st.bsdf_light_rays == 0) && (got == 2 || st.bsdf_light_rays > 0) &&
+             (sun ? st.light[0].env_sun_share > 0.5f : st.light[0].env_sun_share < ELR_ENV_SUN_SHARE),
+             "%s%s, thresholds %g / %g: %s (sun share %.3f; samples %llu: product %llu, of them alone %llu, map %llu; BSDF rays %llu)", mat,
+             sun ? " under the sun map" : "", sun ? -1.0 : (double)c[k].lobe_a, sun ? -1.0 : (double)c[k].light_a, what[want],
+             (double)st.light[0].env_sun_share, (unsigned long long)st.samples,
              (unsigned long long)st.env_product_samples, (unsigned long long)st.env_light_only_samples,
              (unsigned long long)st.env_map_samples, (unsigned long long)st.bsdf_light_rays);
     elr_image_free(&img);
