@@ -439,6 +439,106 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    object itself const. After that every query is read-only. The light's own sampling tables
  *    (sample_li's) are not built by product sampling, nor the normal tables by importance BILINEAR. */
 
+/* >> declarations: hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS below) */
+
+/* The most hot spots a map can have (el_envlight_hotspots.spot[]). */
+#define EL_ENVLIGHT_HOTSPOT_MAX 8
+
+/* How hot spots are found (all zero: the defaults in brackets; NOTES ON HOT SPOTS 1). */
+typedef struct el_envlight_hotspot_options {
+  float min_radiance;   /* a bin is hot when its mean density is >= this x the map's mean (power / 4 pi) [100] */
+  float min_share;      /* a spot is kept when it holds >= this share of the map's sampling mass [0.05] */
+  float max_half_angle; /* ... and its cone's half-angle is <= this, in radians [0.2, 11.5 degrees] */
+  int max_spots;        /* at most this many spots, the largest shares first, 1..EL_ENVLIGHT_HOTSPOT_MAX [8] */
+} el_envlight_hotspot_options;
+
+/* One hot spot: a connected set of importance bins, described by a cone. */
+typedef struct el_envlight_hotspot {
+  float axis[3];    /* world space, unit: the mass-weighted mean direction of its bins */
+  float half_angle; /* radians: every bin of the spot lies within this angle of axis */
+  float share;      /* the probability with which sample_li lands in it (its share of the power, for a
+                       light without compensation) */
+  int bins;         /* importance bins in it */
+} el_envlight_hotspot;
+
+/* The hot spots of one light and the tables that sample "spot k" and "the rest" apart. PUBLIC: count,
+ * spot[], rest_share; the rest is private. Made by el_envlight_hotspots_init, freed by
+ * el_envlight_hotspots_free (safe on a zeroed struct). */
+typedef struct el_envlight_hotspots {
+  int count;                                  /* PUBLIC: 0 .. EL_ENVLIGHT_HOTSPOT_MAX */
+  el_envlight_hotspot spot[EL_ENVLIGHT_HOTSPOT_MAX]; /* PUBLIC: the largest share first */
+  float rest_share;                           /* PUBLIC: 1 - the spots' shares */
+  /* ---- private ---- */
+  const float *key;                           /* the light's pdf table it was made for */
+  int nu, nv;                                 /* its importance bins */
+  double share_d[EL_ENVLIGHT_HOTSPOT_MAX + 1]; /* spots' and rest's shares (index count = the rest) */
+  int rect[EL_ENVLIGHT_HOTSPOT_MAX][4];       /* first column (wraps), first row, columns, rows */
+  unsigned char *mask[EL_ENVLIGHT_HOTSPOT_MAX]; /* columns x rows: 1 = the bin belongs to the spot */
+  el_distribution2d dist[EL_ENVLIGHT_HOTSPOT_MAX + 1]; /* each spot's bins, then the rest (index count) */
+} el_envlight_hotspots;
+
+/* Mixture weights: the probability of drawing from spot k (spot[k], k < count) and from the rest of the
+ * map (rest), normalised by their sum. All zero (or NULL), any NaN, infinite or negative weight, or a sum
+ * of 0 over the parts that have mass: the DEFAULT weights, each part's own share, which give
+ * sample_li's density exactly (then sample_li_mix is sample_li and pdf_li_mix is pdf_li, bit for bit). */
+typedef struct el_envlight_mix_weights {
+  float spot[EL_ENVLIGHT_HOTSPOT_MAX];
+  float rest;
+} el_envlight_mix_weights;
+
+/* Find the hot spots of l (builds its sampling tables if needed). opt may be NULL (the defaults).
+ * A constant light, importance mode BILINEAR, a black map or a map without a compact bright region: count
+ * 0 (success; the mixture is then sample_li itself). EL_ERROR_INVALID_ARGUMENT for NULL pointers or
+ * options out of range (negative, NaN, max_spots > EL_ENVLIGHT_HOTSPOT_MAX), EL_ERROR_OUT_OF_MEMORY, or
+ * the light's own table build result. On failure *h is zeroed. Extra memory: about 4 bytes per bin
+ * (the rest's distribution) when a spot is found, nothing otherwise. */
+EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_envlight *l,
+                                           const el_envlight_hotspot_options *opt);
+EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h);
+/* Weights that give the spots together the probability spot_share (clamped to [0, 1]), shared among
+ * them in proportion to their own shares, and the rest 1 - spot_share. A NaN spot_share, or no spot:
+ * the default weights (all zero). */
+EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w);
+/* Sample the mixture sum_k w_k p_k + w_rest p_rest, where p_k is sample_li's density restricted to spot k
+ * (renormalised) and p_rest the density restricted to the rest: wi (world, unit), rgb = le(wi) (may be
+ * NULL) and *pdf = el_envlight_pdf_li_mix(l, h, w, wi) bit for bit. u[0] picks the part and is reused
+ * (remapped) inside it. pdf 0: no sample (skip it). h must come from this light (else, or with default
+ * weights: sample_li itself). About 2x sample_li's cost plus pdf_li's. */
+EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                      const el_envlight_mix_weights *w, const float u[2], float wi[3],
+                                      float rgb[3], float *pdf);
+/* The mixture's solid-angle density at dir: pdf_li(dir) x w_part / share_part for the part holding dir
+ * (0 for a part of weight 0). With default weights: pdf_li(dir), bit for bit. */
+EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                    const el_envlight_mix_weights *w, const float dir[3]);
+
+/* << declarations: hot spots */
+
+/* ----------------------------------------------------------------------------------------------------
+ * NOTES ON HOT SPOTS AND THE MIXTURE SAMPLER (issue 22; numbers: bench/bench_sun.c)
+ *
+ * 1. FINDING THEM. On the light's importance bins (sample_li's own distribution: its probability m_b per
+ *    bin), a bin is hot when its density m_b / (solid angle of the bin) is at least min_radiance times
+ *    the map's mean 1 / (4 pi). Hot bins are grouped into connected components (8 neighbours, u wraps
+ *    around the seam, a pole row's bins also touch the bins half a turn away). A component is a spot
+ *    when its share sum(m_b) >= min_share and every corner and edge midpoint of its bins lies within
+ *    max_half_angle of its axis (the mass-weighted mean direction). The largest max_spots are kept.
+ *    So a sun of one texel, at a pole or across the seam is one spot; a bright sky is none (its density
+ *    is below 100x the mean, or its cone too wide).
+ * 2. THE MIXTURE. p(w) = sum_k a_k p_li(w) [w in S_k] / P_k + a_r p_li(w) [w in rest] / P_r, where P_k,
+ *    P_r are the shares (their sample_li probabilities) and a the normalised weights: sample_li's density
+ *    rescaled per part by a / P. a = P (the default) is p_li. Each part is sampled from its own integer
+ *    CDF over the same bins (distribution2d.h), uniform inside the bin like sample_li (the same direction
+ *    tables); the returned pdf is the pdf query's (the part of a direction is found with pdf_li's own
+ *    bin search), so sample and query agree bit for bit. The sampled density equals the stated one up
+ *    to the integer CDFs' rounding of bin probabilities (about 2^-32 of the part) and rounding of the
+ *    sampled direction across a bin edge at a spot's border (within 2^-21 of a bin, as sample_li).
+ * 3. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
+ *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
+ *    those of the compensated density. Product sampling (rest x cosine) is not combined with the mixture.
+ *    Thread safety: h is read-only after init; it refers to the light's tables, so free h before l.
+ */
+
 #ifdef __cplusplus
 }
 #endif
@@ -2926,6 +3026,396 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
   if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
   return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
 }
+
+/* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */
+
+/* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
+ * first half), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN, infinite). */
+static long el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
+  float d[3], r, pu, t;
+  size_t c;
+  uint32_t iu, iv;
+  if (!el_envlight__to_light_dir(l, dir, d)) return -1; /* as pdf_li: rescaled in world space if needed */
+  r = el_envlight__sqrt(d[0] * d[0] + d[1] * d[1]);
+  pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
+  pu = pu < 3.99999976f ? pu : 3.99999976f;
+  c = (size_t)(int64_t)(pu * l->u_cell_scale);
+  iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
+  t = 1.0f - d[2] / (r + fabsf(d[2]));
+  c = (size_t)(int64_t)(t * l->v_cell_scale);
+  iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+  return (long)iv * (long)l->dist.nu + (long)iu;
+}
+
+/* Which part holds bin b: a spot index, or h->count for the rest. */
+static int el_envlight__hot_part(const el_envlight_hotspots *h, long b) {
+  int k, iu = (int)(b % h->nu), iv = (int)(b / h->nu);
+  for (k = 0; k < h->count; ++k) {
+    const int *rc = h->rect[k];
+    int x = iu - rc[0], y = iv - rc[1];
+    if (x < 0) x += h->nu;
+    if (x < rc[2] && y >= 0 && y < rc[3] && h->mask[k][(size_t)y * (size_t)rc[2] + (size_t)x]) return k;
+  }
+  return h->count;
+}
+
+/* The normalised weights a[0..count] (count = the rest); 0 when they are the defaults. */
+static int el_envlight__hot_weights(const el_envlight_hotspots *h, const el_envlight_mix_weights *w, double a[EL_ENVLIGHT_HOTSPOT_MAX + 1]) {
+  double sum = 0.0;
+  int k;
+  if (!w) return 0;
+  for (k = 0; k <= h->count; ++k) {
+    float x = k < h->count ? w->spot[k] : w->rest;
+    if (!(x >= 0.0f && x <= FLT_MAX)) return 0; /* NaN, negative or infinite: the defaults */
+    a[k] = h->share_d[k] > 0.0 ? (double)x : 0.0; /* a part without mass cannot be drawn */
+    sum += a[k];
+  }
+  if (!(sum > 0.0)) return 0;
+  for (k = 0; k <= h->count; ++k) a[k] /= sum;
+  return 1;
+}
+
+/* h made for this light, with at least one spot and tables usable */
+static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotspots *h) {
+  return h && h->count > 0 && l->width > 0 && el_envlight__ensure(l) && h->key == l->pdf_table &&
+         h->nu == l->dist.nu && h->nv == l->dist.nv;
+}
+
+EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                    const el_envlight_mix_weights *w, const float dir[3]) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  float p;
+  long b;
+  int k;
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) return el_envlight_pdf_li(l, dir);
+  p = el_envlight_pdf_li(l, dir);
+  if (!(p > 0.0f)) return 0.0f;
+  b = el_envlight__hot_bin(l, dir);
+  if (b < 0) return 0.0f;
+  k = el_envlight__hot_part(h, b);
+  p = (float)((double)p * (a[k] / h->share_d[k]));
+  return p < FLT_MAX ? p : FLT_MAX;
+}
+
+EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                      const el_envlight_mix_weights *w, const float u[2], float wi[3],
+                                      float rgb[3], float *pdf) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
+  float fu, fv, pb, uu;
+  int k, iu, iv;
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) {
+    el_envlight_sample_li(l, u, wi, rgb, pdf);
+    return;
+  }
+  /* pick the part with u[0] and remap it to [0, 1) within the part */
+  u0 = (double)el_envlight__clamp_u(u[0]);
+  for (k = 0; k < h->count; ++k) {
+    if (a[k] > 0.0 && u0 < c + a[k]) break;
+    c += a[k];
+  }
+  if (k == h->count && !(a[k] > 0.0)) { /* rounding past the last part of mass: the last one with weight */
+    for (k = h->count; k > 0 && !(a[k] > 0.0); --k) {}
+    c = 1.0 - a[k];
+  }
+  uu = (float)((u0 - c) / a[k]);
+  uu = el_envlight__clamp_u(uu);
+  el_distribution2d_sample_bins(&h->dist[k], uu, u[1], &iu, &iv, &fu, &fv, &pb);
+  if (k < h->count) {
+    iu += h->rect[k][0];
+    if (iu >= h->nu) iu -= h->nu;
+    iv += h->rect[k][1];
+  }
+  fu = fu > l->u_margin ? fu : l->u_margin;
+  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
+  fv = fv > l->v_margin ? fv : l->v_margin;
+  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
+  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
+  else {
+    float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
+    float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
+    el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
+    el_envlight__to_world(l, d, wi);
+  }
+  *pdf = el_envlight_pdf_li_mix(l, h, w, wi);
+  if (rgb) {
+    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
+}
+
+EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w) {
+  int k;
+  double s = 0.0;
+  if (!w) return;
+  memset(w, 0, sizeof *w);
+  if (!h || h->count <= 0 || spot_share != spot_share) return;
+  spot_share = spot_share > 0.0f ? (spot_share < 1.0f ? spot_share : 1.0f) : 0.0f;
+  for (k = 0; k < h->count; ++k) s += h->share_d[k];
+  if (!(s > 0.0)) return;
+  for (k = 0; k < h->count; ++k) w->spot[k] = (float)((double)spot_share * h->share_d[k] / s);
+  w->rest = 1.0f - spot_share;
+  if (!(h->share_d[h->count] > 0.0) && spot_share > 0.0f) w->rest = 0.0f;
+}
+
+EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h) {
+  int k;
+  if (!h) return;
+  for (k = 0; k <= EL_ENVLIGHT_HOTSPOT_MAX; ++k) el_distribution2d_free(&h->dist[k]);
+  for (k = 0; k < EL_ENVLIGHT_HOTSPOT_MAX; ++k) EL_FREE(h->mask[k]);
+  memset(h, 0, sizeof *h);
+}
+
+/* the light-space direction of bin point (u, v) in bin units */
+static void el_envlight__hot_dir(const el_envlight *l, double u, double v, double d[3]) {
+  double phi = 2.0 * EL_ENVLIGHT__PI * u / l->dist.nu, th = EL_ENVLIGHT__PI * v / l->dist.nv;
+  d[0] = sin(th) * cos(phi); d[1] = sin(th) * sin(phi); d[2] = cos(th);
+}
+
+/* the neighbours of bin (iu, iv): 8 around it (u wraps), and at a pole row the bins half a turn away */
+static int el_envlight__hot_neighbours(int nu, int nv, int iu, int iv, long nb[11]) {
+  int n = 0, dx, dy;
+  for (dy = -1; dy <= 1; ++dy)
+    for (dx = -1; dx <= 1; ++dx) {
+      int x = iu + dx, y = iv + dy;
+      if ((dx == 0 && dy == 0) || y < 0 || y >= nv) continue;
+      x = (x % nu + nu) % nu;
+      nb[n++] = (long)y * nu + x;
+    }
+  if (iv == 0 || iv == nv - 1)
+    for (dx = -1; dx <= 1; ++dx) nb[n++] = (long)iv * nu + (((iu + nu / 2 + dx) % nu + nu) % nu);
+  return n;
+}
+
+/* state bits of a bin during the search */
+#define EL_ENVLIGHT__HOT_CORE 1u  /* density >= min_radiance x the mean */
+#define EL_ENVLIGHT__HOT_WARM 2u  /* density >= min_radiance / 8 x the mean (a core's rim) */
+#define EL_ENVLIGHT__HOT_SEEN 4u  /* visited by the first pass (core + rim) */
+#define EL_ENVLIGHT__HOT_CSEEN 8u /* visited by the core-only pass */
+#define EL_ENVLIGHT__HOT_BUILT 16u /* visited by the build pass */
+
+/* Breadth-first search from seed over bins with a bit of `accept`, marking `seen`; the component's
+ * bins go to queue. Returns their number. */
+static long el_envlight__hot_grow(int nu, int nv, unsigned char *state, long *queue, long seed, unsigned accept, unsigned seen) {
+  long head = 0, tail = 0;
+  state[seed] = (unsigned char)(state[seed] | seen);
+  queue[tail++] = seed;
+  while (head < tail) {
+    long q = queue[head++], nbr[11];
+    int n = el_envlight__hot_neighbours(nu, nv, (int)(q % nu), (int)(q / nu), nbr), t;
+    for (t = 0; t < n; ++t)
+      if ((state[nbr[t]] & accept) && !(state[nbr[t]] & seen)) { state[nbr[t]] = (unsigned char)(state[nbr[t]] | seen); queue[tail++] = nbr[t]; }
+  }
+  return tail;
+}
+
+/* A component's share (of the light's total), axis (light space, unit) and half-angle (radians, over its
+ * bins' corners and edge midpoints). Returns 0 when its mass is spread too wide for a mean direction. */
+static int el_envlight__hot_cone(const el_envlight *l, const long *queue, long n, const double *rowk, double total,
+                                 double *share, double ax[3], double *half) {
+  double d[3], len, cmin = 1.0, s = 0.0;
+  long t;
+  int nu = l->dist.nu;
+  ax[0] = ax[1] = ax[2] = 0.0;
+  for (t = 0; t < n; ++t) {
+    long q = queue[t];
+    double m = (double)l->pdf_table[q] * rowk[q / nu];
+    el_envlight__hot_dir(l, (double)(q % nu) + 0.5, (double)(q / nu) + 0.5, d);
+    ax[0] += m * d[0]; ax[1] += m * d[1]; ax[2] += m * d[2];
+    s += m;
+  }
+  *share = s / total;
+  len = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+  *half = EL_ENVLIGHT__PI;
+  if (!(len > 0.5 * s)) return 0; /* mass spread over far more than a hemisphere: not compact */
+  ax[0] /= len; ax[1] /= len; ax[2] /= len;
+  for (t = 0; t < n; ++t) {
+    long q = queue[t];
+    int pu, pv;
+    for (pv = 0; pv <= 2; ++pv)
+      for (pu = 0; pu <= 2; ++pu) {
+        double c;
+        el_envlight__hot_dir(l, (double)(q % nu) + 0.5 * pu, (double)(q / nu) + 0.5 * pv, d);
+        c = ax[0] * d[0] + ax[1] * d[1] + ax[2] * d[2];
+        if (c < cmin) cmin = c;
+      }
+  }
+  cmin = cmin < 1.0 ? (cmin > -1.0 ? cmin : -1.0) : 1.0;
+  *half = acos(cmin);
+  return 1;
+}
+
+/* Keep a candidate among the max_spots largest shares >= min_share (sorted, largest first). */
+static void el_envlight__hot_keep(double share, float min_share, long seed, unsigned accept, int max_spots, int *found,
+                                  double *cand_share, long *cand_seed, unsigned *cand_accept) {
+  int s, ins;
+  if (share < (double)min_share) return;
+  if (*found == max_spots && !(share > cand_share[*found - 1])) return;
+  ins = *found < max_spots ? (*found)++ : *found - 1;
+  for (s = ins; s > 0 && cand_share[s - 1] < share; --s) {
+    cand_share[s] = cand_share[s - 1]; cand_seed[s] = cand_seed[s - 1]; cand_accept[s] = cand_accept[s - 1];
+  }
+  cand_share[s] = share; cand_seed[s] = seed; cand_accept[s] = accept;
+}
+
+EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_envlight *l,
+                                           const el_envlight_hotspot_options *opt) {
+  float min_rad = 100.0f, min_share = 0.05f, max_half = 0.2f;
+  int max_spots = EL_ENVLIGHT_HOTSPOT_MAX, nu, nv, k, found = 0;
+  long nb, b, *queue = NULL, *queue2 = NULL;
+  unsigned char *state = NULL;
+  float *f = NULL;
+  double *rowk = NULL, total = 0.0;
+  long cand_seed[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  double cand_share[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  unsigned cand_accept[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  el_result r = EL_SUCCESS;
+  if (!h) return EL_ERROR_INVALID_ARGUMENT;
+  memset(h, 0, sizeof *h);
+  if (!l) return EL_ERROR_INVALID_ARGUMENT;
+  if (opt) {
+    if (opt->min_radiance != 0.0f) min_rad = opt->min_radiance;
+    if (opt->min_share != 0.0f) min_share = opt->min_share;
+    if (opt->max_half_angle != 0.0f) max_half = opt->max_half_angle;
+    if (opt->max_spots != 0) max_spots = opt->max_spots;
+    if (!(min_rad > 0.0f && min_rad <= FLT_MAX) || !(min_share > 0.0f && min_share <= 1.0f) ||
+        !(max_half > 0.0f && max_half <= (float)EL_ENVLIGHT__PI) || max_spots < 1 || max_spots > EL_ENVLIGHT_HOTSPOT_MAX)
+      return EL_ERROR_INVALID_ARGUMENT;
+  }
+  h->rest_share = 1.0f;
+  if (l->width == 0 || l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return EL_SUCCESS;
+  if (!el_envlight__ensure(l)) return l->sampling_result;
+  if (!l->pdf_table || !(el_distribution2d_integral(&l->dist) > 0.0f)) return EL_SUCCESS; /* black */
+  nu = l->dist.nu; nv = l->dist.nv;
+  nb = (long)nu * (long)nv;
+  state = (unsigned char *)EL_MALLOC((size_t)nb);
+  queue = (long *)EL_MALLOC((size_t)nb * sizeof(long));
+  queue2 = (long *)EL_MALLOC((size_t)nb * sizeof(long));
+  rowk = (double *)EL_MALLOC((size_t)nv * sizeof(double));
+  if (!state || !queue || !queue2 || !rowk) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+  { /* <<hot bins>>: bin b's probability m_b = pdf_table[b] 2 pi^2 / (nu nv); its density over its solid
+     * angle against the mean 1 / (4 pi): core when m_b 4 pi / area_b >= min_rad, rim when >= min_rad / 8 */
+    int j, i;
+    double mk = 2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI / ((double)nu * (double)nv);
+    for (j = 0; j < nv; ++j) {
+      double area = 2.0 * EL_ENVLIGHT__PI / nu * (cos(EL_ENVLIGHT__PI * j / nv) - cos(EL_ENVLIGHT__PI * (j + 1) / nv));
+      rowk[j] = mk;
+      for (i = 0; i < nu; ++i) {
+        double m = (double)l->pdf_table[(size_t)j * (size_t)nu + (size_t)i] * mk, ratio = m * 4.0 * EL_ENVLIGHT__PI / area;
+        total += m;
+        state[(long)j * nu + i] = (unsigned char)(!(m > 0.0) ? 0u : ratio >= (double)min_rad ? EL_ENVLIGHT__HOT_CORE | EL_ENVLIGHT__HOT_WARM
+                                                 : ratio >= (double)min_rad / 8.0 ? EL_ENVLIGHT__HOT_WARM : 0u);
+      }
+    }
+  }
+  /* <<components>>: a core with its rim; when that is too wide or spread, the core alone (and every other
+   * core of the region alone). Keep the max_spots largest shares >= min_share within max_half. */
+  for (b = 0; b < nb; ++b) {
+    long n1, t;
+    double share, ax[3], half;
+    if (!(state[b] & EL_ENVLIGHT__HOT_CORE) || (state[b] & EL_ENVLIGHT__HOT_SEEN)) continue;
+    n1 = el_envlight__hot_grow(nu, nv, state, queue, b, EL_ENVLIGHT__HOT_WARM, EL_ENVLIGHT__HOT_SEEN);
+    if (el_envlight__hot_cone(l, queue, n1, rowk, total, &share, ax, &half) && half <= (double)max_half) {
+      el_envlight__hot_keep(share, min_share, b, EL_ENVLIGHT__HOT_WARM, max_spots, &found, cand_share, cand_seed, cand_accept);
+      continue;
+    }
+    for (t = 0; t < n1; ++t) { /* too wide with its rim: each core of the region alone */
+      long seed = queue[t], n2;
+      if (!(state[seed] & EL_ENVLIGHT__HOT_CORE) || (state[seed] & EL_ENVLIGHT__HOT_CSEEN)) continue;
+      n2 = el_envlight__hot_grow(nu, nv, state, queue2, seed, EL_ENVLIGHT__HOT_CORE, EL_ENVLIGHT__HOT_CSEEN);
+      if (el_envlight__hot_cone(l, queue2, n2, rowk, total, &share, ax, &half) && half <= (double)max_half)
+        el_envlight__hot_keep(share, min_share, seed, EL_ENVLIGHT__HOT_CORE, max_spots, &found, cand_share, cand_seed, cand_accept);
+    }
+  }
+  /* <<build the parts>>: each spot's rectangle, mask and distribution; the rest's distribution */
+  {
+    double rest = 0.0;
+    size_t q;
+    f = (float *)EL_MALLOC((size_t)nb * sizeof(float));
+    if (!f) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+    memcpy(f, l->pdf_table, (size_t)nb * sizeof(float));
+    for (k = 0; k < found; ++k) {
+      long tail, t2;
+      double share, ax[3], half;
+      int gap_start = 0, gap_len = 0, run = 0, x, i, y0 = nv, y1 = -1, cols, rows;
+      unsigned char *colused;
+      float *g;
+      el_distribution_options dopt;
+      tail = el_envlight__hot_grow(nu, nv, state, queue, cand_seed[k], cand_accept[k], EL_ENVLIGHT__HOT_BUILT);
+      /* columns used; the rectangle's columns are the complement of the longest circular gap */
+      colused = (unsigned char *)EL_MALLOC((size_t)nu);
+      if (!colused) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+      memset(colused, 0, (size_t)nu);
+      for (t2 = 0; t2 < tail; ++t2) {
+        int row = (int)(queue[t2] / nu);
+        colused[queue[t2] % nu] = 1;
+        if (row < y0) y0 = row;
+        if (row > y1) y1 = row;
+      }
+      for (i = 0; i < 2 * nu; ++i) { /* twice around: the longest run of unused columns */
+        if (!colused[i % nu]) { if (++run > gap_len && run <= nu) { gap_len = run; gap_start = (i - run + 1) % nu; } }
+        else run = 0;
+      }
+      EL_FREE(colused);
+      cols = nu - gap_len;
+      h->rect[k][0] = gap_len ? (gap_start + gap_len) % nu : 0;
+      h->rect[k][1] = y0;
+      h->rect[k][2] = cols;
+      h->rect[k][3] = rows = y1 - y0 + 1;
+      h->mask[k] = (unsigned char *)EL_MALLOC((size_t)cols * (size_t)rows);
+      g = (float *)EL_MALLOC((size_t)cols * (size_t)rows * sizeof(float));
+      if (!h->mask[k] || !g) { EL_FREE(g); r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+      memset(h->mask[k], 0, (size_t)cols * (size_t)rows);
+      for (q = 0; q < (size_t)cols * (size_t)rows; ++q) g[q] = 0.0f;
+      for (t2 = 0; t2 < tail; ++t2) {
+        long qq = queue[t2];
+        int iu = (int)(qq % nu), iv = (int)(qq / nu);
+        x = iu - h->rect[k][0];
+        if (x < 0) x += nu;
+        h->mask[k][(size_t)(iv - y0) * (size_t)cols + (size_t)x] = 1;
+        g[(size_t)(iv - y0) * (size_t)cols + (size_t)x] = l->pdf_table[qq];
+        f[qq] = 0.0f;
+      }
+      memset(&dopt, 0, sizeof dopt);
+      r = el_distribution2d_init(&h->dist[k], g, cols, rows, &dopt);
+      EL_FREE(g);
+      if (r != EL_SUCCESS) goto done;
+      el_envlight__hot_cone(l, queue, tail, rowk, total, &share, ax, &half);
+      {
+        float la[3], wa[3];
+        la[0] = (float)ax[0]; la[1] = (float)ax[1]; la[2] = (float)ax[2];
+        el_envlight__to_world(l, la, wa);
+        h->spot[k].axis[0] = wa[0]; h->spot[k].axis[1] = wa[1]; h->spot[k].axis[2] = wa[2];
+      }
+      h->spot[k].half_angle = (float)half;
+      h->spot[k].share = (float)share;
+      h->spot[k].bins = (int)tail;
+      h->share_d[k] = share;
+      h->count = k + 1;
+    }
+    if (found > 0) {
+      el_distribution_options dopt;
+      int anyrest = 0;
+      for (b = 0; b < nb; ++b) rest += (double)f[b] * rowk[b / nu];
+      rest /= total;
+      h->share_d[found] = rest > 0.0 ? rest : 0.0;
+      h->rest_share = (float)h->share_d[found];
+      memset(&dopt, 0, sizeof dopt);
+      for (q = 0; q < (size_t)nb; ++q) if (f[q] > 0.0f) { anyrest = 1; break; }
+      if (anyrest) r = el_distribution2d_init(&h->dist[found], f, nu, nv, &dopt);
+      else { h->share_d[found] = 0.0; h->rest_share = 0.0f; }
+      if (r != EL_SUCCESS) goto done;
+      h->key = l->pdf_table;
+      h->nu = nu; h->nv = nv;
+    }
+  }
+done:
+  EL_FREE(state); EL_FREE(queue); EL_FREE(queue2); EL_FREE(rowk); EL_FREE(f);
+  if (r != EL_SUCCESS) el_envlight_hotspots_free(h);
+  return r;
+}
+
+/* << hot spots */
 
 #ifdef __cplusplus
 }
