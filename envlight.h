@@ -475,6 +475,8 @@ typedef struct el_envlight_hotspots {
   int rect[EL_ENVLIGHT_HOTSPOT_MAX][4];       /* first column (wraps), first row, columns, rows */
   unsigned char *mask[EL_ENVLIGHT_HOTSPOT_MAX]; /* columns x rows: 1 = the bin belongs to the spot */
   el_distribution2d dist[EL_ENVLIGHT_HOTSPOT_MAX + 1]; /* each spot's bins, then the rest (index count) */
+  el_distribution2d_fast rest_fast;           /* the rest's guide table (constant expected time) */
+  int rest_fast_ok;
 } el_envlight_hotspots;
 
 /* Mixture weights: the probability of drawing from spot k (spot[k], k < count) and from the rest of the
@@ -507,6 +509,11 @@ EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float sp
 EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
                                       const el_envlight_mix_weights *w, const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
+/* n samples at once (u[2i], u[2i+1] -> wi[3i..], rgb[3i..] (may be NULL), pdf[i]), bit for bit n calls
+ * of sample_li_mix; with default weights (or h unusable) el_envlight_sample_li_n itself. n <= 0: nothing. */
+EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_hotspots *h,
+                                        const el_envlight_mix_weights *w, int n, const float *u, float *wi,
+                                        float *rgb, float *pdf);
 /* The mixture's solid-angle density at dir: pdf_li(dir) x w_part / share_part for the part holding dir
  * (0 for a part of weight 0). With default weights: pdf_li(dir), bit for bit. */
 EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
@@ -3030,7 +3037,8 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
 /* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */
 
 /* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
- * first half), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN, infinite). */
+ * first half: keep the two in step), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN,
+ * infinite). The chi-square tests of tests/test_envlight_sun.c fail if they disagree. */
 static long el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
   float d[3], r, pu, t;
   size_t c;
@@ -3081,13 +3089,11 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
          h->nu == l->dist.nu && h->nv == l->dist.nv;
 }
 
-EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
-                                    const el_envlight_mix_weights *w, const float dir[3]) {
-  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+/* pdf_li_mix with usable h and normalised weights a */
+static float el_envlight__hot_pdf(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float dir[3]) {
   float p;
   long b;
   int k;
-  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) return el_envlight_pdf_li(l, dir);
   p = el_envlight_pdf_li(l, dir);
   if (!(p > 0.0f)) return 0.0f;
   b = el_envlight__hot_bin(l, dir);
@@ -3095,6 +3101,13 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
   k = el_envlight__hot_part(h, b);
   p = (float)((double)p * (a[k] / h->share_d[k]));
   return p < FLT_MAX ? p : FLT_MAX;
+}
+
+EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                    const el_envlight_mix_weights *w, const float dir[3]) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) return el_envlight_pdf_li(l, dir);
+  return el_envlight__hot_pdf(l, h, a, dir);
 }
 
 EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
@@ -3119,7 +3132,8 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
   }
   uu = (float)((u0 - c) / a[k]);
   uu = el_envlight__clamp_u(uu);
-  el_distribution2d_sample_bins(&h->dist[k], uu, u[1], &iu, &iv, &fu, &fv, &pb);
+  if (k == h->count && h->rest_fast_ok) el_distribution2d_fast_sample_bins(&h->rest_fast, uu, u[1], &iu, &iv, &fu, &fv, &pb);
+  else el_distribution2d_sample_bins(&h->dist[k], uu, u[1], &iu, &iv, &fu, &fv, &pb);
   if (k < h->count) {
     iu += h->rect[k][0];
     if (iu >= h->nu) iu -= h->nu;
@@ -3137,11 +3151,24 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
     el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
     el_envlight__to_world(l, d, wi);
   }
-  *pdf = el_envlight_pdf_li_mix(l, h, w, wi);
+  *pdf = el_envlight__hot_pdf(l, h, a, wi);
   if (rgb) {
     if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
     else rgb[0] = rgb[1] = rgb[2] = 0.0f;
   }
+}
+
+EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_hotspots *h,
+                                        const el_envlight_mix_weights *w, int n, const float *u, float *wi,
+                                        float *rgb, float *pdf) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  int i;
+  if (n <= 0) return;
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) {
+    el_envlight_sample_li_n(l, n, u, wi, rgb, pdf);
+    return;
+  }
+  for (i = 0; i < n; ++i) el_envlight_sample_li_mix(l, h, w, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
 }
 
 EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w) {
@@ -3161,6 +3188,7 @@ EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float sp
 EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h) {
   int k;
   if (!h) return;
+  if (h->rest_fast_ok) el_distribution2d_fast_free(&h->rest_fast); /* before the distribution it shares */
   for (k = 0; k <= EL_ENVLIGHT_HOTSPOT_MAX; ++k) el_distribution2d_free(&h->dist[k]);
   for (k = 0; k < EL_ENVLIGHT_HOTSPOT_MAX; ++k) EL_FREE(h->mask[k]);
   memset(h, 0, sizeof *h);
@@ -3402,8 +3430,13 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
       h->rest_share = (float)h->share_d[found];
       memset(&dopt, 0, sizeof dopt);
       for (q = 0; q < (size_t)nb; ++q) if (f[q] > 0.0f) { anyrest = 1; break; }
-      if (anyrest) r = el_distribution2d_init(&h->dist[found], f, nu, nv, &dopt);
-      else { h->share_d[found] = 0.0; h->rest_share = 0.0f; }
+      if (anyrest) {
+        r = el_distribution2d_init(&h->dist[found], f, nu, nv, &dopt);
+        if (r == EL_SUCCESS) {
+          r = el_distribution2d_fast_init(&h->rest_fast, &h->dist[found]);
+          h->rest_fast_ok = r == EL_SUCCESS;
+        }
+      } else { h->share_d[found] = 0.0; h->rest_share = 0.0f; }
       if (r != EL_SUCCESS) goto done;
       h->key = l->pdf_table;
       h->nu = nu; h->nv = nv;

@@ -261,6 +261,20 @@ static void test_defaults(void) {
       }
       check(worst < 1e-6, "weights = the shares%s: pdf_li_mix / pdf_li - 1 <= %.2g", rot ? " rotated" : "", worst);
     }
+    { /* sample_li_mix_n: n calls of sample_li_mix, bit for bit (moved and default weights) */
+      float uu[2 * 37], wa[3 * 37], ra[3 * 37], pa[37], wb[3], rb[3], pb;
+      int differ = 0, pass;
+      for (pass = 0; pass < 2; ++pass) {
+        el_envlight_hotspots_weights(&h, pass ? 0.1f : NAN, &ws);
+        for (i = 0; i < 2 * 37; ++i) uu[i] = frand();
+        el_envlight_sample_li_mix_n(&l, &h, &ws, 37, uu, wa, ra, pa);
+        for (i = 0; i < 37; ++i) {
+          el_envlight_sample_li_mix(&l, &h, &ws, uu + 2 * i, wb, rb, &pb);
+          if (memcmp(wa + 3 * i, wb, sizeof wb) || memcmp(ra + 3 * i, rb, sizeof rb) || memcmp(pa + i, &pb, sizeof pb)) ++differ;
+        }
+      }
+      check(differ == 0, "sample_li_mix_n == sample_li_mix bit for bit%s (%d differ)", rot ? " rotated" : "", differ);
+    }
     el_envlight_hotspots_weights(&h, NAN, &ws);
     check(ws.rest == 0 && ws.spot[0] == 0, "hotspots_weights(NaN): the default weights (all zero)");
     el_envlight_hotspots_free(&h);
