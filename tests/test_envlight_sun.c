@@ -1,5 +1,6 @@
 /* test_envlight_sun.c: issue 22's hot spots and the mixture sampler (envlight.h, NOTES ON HOT SPOTS),
- * through the public API, on maps generated here (128 x 64, a smooth sky plus):
+ * through the public API, on maps generated here (128 x 64, and 512 x 256 for the chi-square of the
+ * direction-table path; a smooth sky plus):
  *
  *   1. detection: two suns, a sun at the pole, a sun across the seam, a sun of one texel, each found
  *      where it was put (the cone holds the sun's true direction, is a few bins wide) with a share that
@@ -10,9 +11,9 @@
  *      to 1e-6;
  *   3. chi-square of sample_li_mix against pdf_li_mix over the importance bins (the expected count of a
  *      bin is the integral of pdf_li_mix over it: pdf at the centre x sin(theta) x the bin's angles, exact
- *      for a density c / sin(theta)), on the hard maps, under a general rotation, for spot weights 1e-3,
- *      0.3, 0.999 and 1; the sampled pdf equals pdf_li_mix(wi) bit for bit; the mixture puts exactly its
- *      weight on each spot;
+ *      for a density c / sin(theta); on 512 x 256 over cells of 4 x 4 bins), on the hard maps, under a general rotation, for spot weights 1e-3,
+ *      0.3, 0.999 and 1, and for a compensated light, the CDF and alias samplers and importance TEXEL;
+ *      the sampled pdf equals pdf_li_mix(wi) bit for bit; the mixture puts exactly its weight on the spots;
  *   4. unbiasedness: the mean of f / pdf for f = le x max(0, n.w), with arbitrary weights, against a
  *      brute-force quadrature of the same integral (16 points per texel of le itself); and for a
  *      shadowed point (f = 0 on the sun) with the sun's weight 0;
@@ -30,8 +31,10 @@
 #include <string.h>
 
 #define PI 3.14159265358979323846
-#define W 128
-#define H 64
+static int g_w = 128, g_h = 64; /* 512 x 256 once: the direction-table path of maps >= 256 x 128 */
+#define W g_w
+#define H g_h
+#define MAXWH (512 * 256)
 
 static int g_pass, g_fail;
 static void check(int ok, const char *fmt, ...)
@@ -136,16 +139,22 @@ static int sun_dirs(int kind, double d[2][3]) {
   return 0;
 }
 
+static int g_variant = 0; /* 0 defaults, 1 compensated, 2 the CDF sampler, 3 the alias sampler, 4 importance TEXEL */
+static const char *variant_name[5] = {"", " compensated", " CDF sampler", " alias sampler", " importance TEXEL"};
 static el_result make_light(el_envlight *l, const float *px, int rotated) {
   el_envlight_options o;
   memset(&o, 0, sizeof o);
+  o.compensated = g_variant == 1;
+  if (g_variant == 2) o.sampler = EL_ENVLIGHT_SAMPLER_CDF;
+  if (g_variant == 3) o.sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
+  if (g_variant == 4) o.importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
   if (rotated) rotation(o.light_to_world);
   return el_envlight_init(l, px, W, H, 3, &o);
 }
 
 /* ---- 1. detection ---- */
 static void test_detection(void) {
-  static float px[W * H * 3];
+  static float px[MAXWH * 3];
   int kind, rot;
   for (rot = 0; rot < 2; ++rot)
     for (kind = 0; kind < MAP_COUNT; ++kind) {
@@ -212,7 +221,7 @@ static void test_detection(void) {
 
 /* ---- 2. default weights ---- */
 static void test_defaults(void) {
-  static float px[W * H * 3];
+  static float px[MAXWH * 3];
   el_envlight l;
   el_envlight_hotspots h;
   el_envlight_mix_weights w[6], ws;
@@ -284,16 +293,17 @@ static void test_defaults(void) {
 
 /* ---- 3. chi-square over the importance bins ---- */
 static int g_chi2 = 0;
-#define CHI2_PLANNED 16
+#define CHI2_PLANNED 22
 static void chi2(const char *name, int kind, int rot, float spot_share) {
-  static float px[W * H * 3];
-  static double expect[W * H];
-  static int obs[W * H];
+  static float px[MAXWH * 3];
+  static double expect[MAXWH];
+  static int obs[MAXWH];
   el_envlight l;
   el_envlight_hotspots h;
   el_envlight_mix_weights w;
   float m[9];
   int i, n = 200000, mismatch = 0, nonfinite = 0, dof = -1, zero_pdf_hits = 0, k;
+  double frac[2][16], fx2 = 0, fp;
   double x2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / CHI2_PLANNED, spot_mass = 0, spot_obs = 0;
   make_map(kind, px);
   make_light(&l, px, rot);
@@ -301,6 +311,7 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
   el_envlight_hotspots_init(&h, &l, NULL);
   el_envlight_hotspots_weights(&h, spot_share, &w);
   memset(obs, 0, sizeof obs);
+  memset(frac, 0, sizeof frac);
   for (i = 0; i < W * H; ++i) { /* the integral of pdf_li_mix over bin i: pdf(centre) sin(theta_c) dtheta dphi */
     int x = i % W, y = i / W;
     double dd[3];
@@ -328,18 +339,37 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
     if (x >= W) x = W - 1;
     if (y >= H) y = H - 1;
     obs[y * W + x]++;
+    { /* inside its bin the point is uniform in (u, v), as sample_li's */
+      int fx = (int)((uu * W - x) * 16), fy = (int)((vv * H - y) * 16);
+      frac[0][fx < 0 ? 0 : fx > 15 ? 15 : fx]++;
+      frac[1][fy < 0 ? 0 : fy > 15 ? 15 : fy]++;
+    }
   }
-  for (i = 0; i < W * H; ++i) {
-    double e = expect[i] * n;
-    if (e < 5) { pool_e += e; pool_o += obs[i]; if (expect[i] == 0 && obs[i]) ++zero_pdf_hits; continue; }
-    x2 += (obs[i] - e) * (obs[i] - e) / e; ++dof;
+  { /* cells of agg x agg bins (128 x 64 cells; every bin alone on the 128 x 64 maps) */
+    static double ce[128 * 64];
+    static double co[128 * 64];
+    int agg = W / 128;
+    memset(ce, 0, sizeof ce); memset(co, 0, sizeof co);
+    for (i = 0; i < W * H; ++i) {
+      int c = (i / W / agg) * 128 + (i % W) / agg;
+      if (expect[i] == 0 && obs[i]) ++zero_pdf_hits;
+      ce[c] += expect[i]; co[c] += obs[i];
+    }
+    for (i = 0; i < 128 * 64; ++i) {
+      double e = ce[i] * n;
+      if (e < 5) { pool_e += e; pool_o += co[i]; continue; }
+      x2 += (co[i] - e) * (co[i] - e) / e; ++dof;
+    }
   }
   if (pool_e > 0) { x2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++dof; }
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * x2) : 1.0;
   ++g_chi2;
   check(pval > alpha && fabs(total - 1) < 2e-3 && zero_pdf_hits == 0,
-        "chi2 %-22s%s spots %.3f: chi2 = %.1f, %d dof, p = %.3g (> %.2g), pdf sums to %.5f, %d hits in zero-pdf bins",
-        name, rot ? " rotated" : "        ", spot_share, x2, dof, pval, alpha, total, zero_pdf_hits);
+        "chi2 %-22s%s%s spots %.3f: chi2 = %.1f, %d dof, p = %.3g (> %.2g), pdf sums to %.5f, %d hits in zero-pdf bins",
+        name, rot ? " rotated" : "        ", variant_name[g_variant], spot_share, x2, dof, pval, alpha, total, zero_pdf_hits);
+  for (i = 0; i < 32; ++i) fx2 += (frac[i / 16][i % 16] - n / 16.0) * (frac[i / 16][i % 16] - n / 16.0) / (n / 16.0);
+  fp = gammq(0.5 * 30, 0.5 * fx2);
+  check(fp > alpha, "chi2 %-22s: uniform inside the bins in u and v (chi2 %.1f, 30 dof, p = %.3g)", name, fx2, fp);
   check(mismatch == 0 && nonfinite == 0, "chi2 %-22s: sampled pdf == pdf_li_mix(wi) for all %d samples (%d differ, %d non-finite / 0)",
         name, n, mismatch, nonfinite);
   /* the spots get exactly their weight: the mass of the expected counts in spot bins, and the draws
@@ -381,6 +411,12 @@ static void test_chi2(void) {
   chi2("one-texel sun", MAP_ONE, 1, 0.5f);
   chi2("one-texel sun", MAP_ONE, 0, 1.0f);
   chi2("sun at the pole", MAP_POLE, 0, 0.0f);
+  for (g_variant = 1; g_variant <= 4; ++g_variant) chi2("two suns", MAP_TWO, g_variant & 1, 0.2f);
+  g_variant = 0;
+  g_w = 512; g_h = 256; /* sample_li's direction tables: the mixture builds its directions with them */
+  chi2("512x256 two suns", MAP_TWO, 0, 0.3f);
+  chi2("512x256 seam", MAP_SEAM, 1, 0.05f);
+  g_w = 128; g_h = 64;
 }
 
 /* ---- 4. unbiasedness ---- */
@@ -408,7 +444,7 @@ static double cosine_integral(const el_envlight *l, const float n[3], const doub
 }
 
 static void unbiased(int kind, float spot_share, int shadow) {
-  static float px[W * H * 3];
+  static float px[MAXWH * 3];
   el_envlight l;
   el_envlight_hotspots h;
   el_envlight_mix_weights w;
@@ -453,7 +489,7 @@ static void test_unbiased(void) {
 
 /* ---- 5. hostile inputs ---- */
 static void test_hostile(void) {
-  static float px[W * H * 3], px2[W * H * 3];
+  static float px[MAXWH * 3], px2[MAXWH * 3];
   el_envlight l, l2;
   el_envlight_hotspots h, h2;
   el_envlight_hotspot_options o;
