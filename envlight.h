@@ -3070,7 +3070,7 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
 /* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
  * first half: keep the two in step), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN,
  * infinite). The chi-square tests of tests/test_envlight_sun.c fail if they disagree. */
-static long el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
+static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
   float d[3], r, pu, t;
   size_t c;
   uint32_t iu, iv;
@@ -3083,11 +3083,11 @@ static long el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
   t = 1.0f - d[2] / (r + fabsf(d[2]));
   c = (size_t)(int64_t)(t * l->v_cell_scale);
   iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
-  return (long)iv * (long)l->dist.nu + (long)iu;
+  return (int64_t)iv * (int64_t)l->dist.nu + (int64_t)iu;
 }
 
 /* Which part holds bin b: a spot index, or h->count for the rest. */
-static int el_envlight__hot_part(const el_envlight_hotspots *h, long b) {
+static int el_envlight__hot_part(const el_envlight_hotspots *h, int64_t b) {
   int k, iu = (int)(b % h->nu), iv = (int)(b / h->nu);
   for (k = 0; k < h->count; ++k) {
     const int *rc = h->rect[k];
@@ -3123,7 +3123,7 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
 /* pdf_li_mix with usable h and normalised weights a */
 static float el_envlight__hot_pdf(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float dir[3]) {
   float p;
-  long b;
+  int64_t b;
   int k;
   p = el_envlight_pdf_li(l, dir);
   if (!(p > 0.0f)) return 0.0f;
@@ -3232,17 +3232,17 @@ static void el_envlight__hot_dir(const el_envlight *l, double u, double v, doubl
 }
 
 /* the neighbours of bin (iu, iv): 8 around it (u wraps), and at a pole row the bins half a turn away */
-static int el_envlight__hot_neighbours(int nu, int nv, int iu, int iv, long nb[11]) {
+static int el_envlight__hot_neighbours(int nu, int nv, int iu, int iv, int64_t nb[11]) {
   int n = 0, dx, dy;
   for (dy = -1; dy <= 1; ++dy)
     for (dx = -1; dx <= 1; ++dx) {
       int x = iu + dx, y = iv + dy;
       if ((dx == 0 && dy == 0) || y < 0 || y >= nv) continue;
       x = (x % nu + nu) % nu;
-      nb[n++] = (long)y * nu + x;
+      nb[n++] = (int64_t)y * nu + x;
     }
   if (iv == 0 || iv == nv - 1)
-    for (dx = -1; dx <= 1; ++dx) nb[n++] = (long)iv * nu + (((iu + nu / 2 + dx) % nu + nu) % nu);
+    for (dx = -1; dx <= 1; ++dx) nb[n++] = (int64_t)iv * nu + (((iu + nu / 2 + dx) % nu + nu) % nu);
   return n;
 }
 
@@ -3255,12 +3255,12 @@ static int el_envlight__hot_neighbours(int nu, int nv, int iu, int iv, long nb[1
 
 /* Breadth-first search from seed over bins with a bit of `accept`, marking `seen`; the component's
  * bins go to queue. Returns their number. */
-static long el_envlight__hot_grow(int nu, int nv, unsigned char *state, long *queue, long seed, unsigned accept, unsigned seen) {
-  long head = 0, tail = 0;
+static int64_t el_envlight__hot_grow(int nu, int nv, unsigned char *state, int64_t *queue, int64_t seed, unsigned accept, unsigned seen) {
+  int64_t head = 0, tail = 0;
   state[seed] = (unsigned char)(state[seed] | seen);
   queue[tail++] = seed;
   while (head < tail) {
-    long q = queue[head++], nbr[11];
+    int64_t q = queue[head++], nbr[11];
     int n = el_envlight__hot_neighbours(nu, nv, (int)(q % nu), (int)(q / nu), nbr), t;
     for (t = 0; t < n; ++t)
       if ((state[nbr[t]] & accept) && !(state[nbr[t]] & seen)) { state[nbr[t]] = (unsigned char)(state[nbr[t]] | seen); queue[tail++] = nbr[t]; }
@@ -3270,14 +3270,14 @@ static long el_envlight__hot_grow(int nu, int nv, unsigned char *state, long *qu
 
 /* A component's share (of the light's total), axis (light space, unit) and half-angle (radians, over its
  * bins' corners and edge midpoints). Returns 0 when its mass is spread too wide for a mean direction. */
-static int el_envlight__hot_cone(const el_envlight *l, const long *queue, long n, const double *rowk, double total,
+static int el_envlight__hot_cone(const el_envlight *l, const int64_t *queue, int64_t n, const double *rowk, double total,
                                  double *share, double ax[3], double *half) {
   double d[3], len, cmin = 1.0, s = 0.0;
-  long t;
+  int64_t t;
   int nu = l->dist.nu;
   ax[0] = ax[1] = ax[2] = 0.0;
   for (t = 0; t < n; ++t) {
-    long q = queue[t];
+    int64_t q = queue[t];
     double m = (double)l->pdf_table[q] * rowk[q / nu];
     el_envlight__hot_dir(l, (double)(q % nu) + 0.5, (double)(q / nu) + 0.5, d);
     ax[0] += m * d[0]; ax[1] += m * d[1]; ax[2] += m * d[2];
@@ -3289,7 +3289,7 @@ static int el_envlight__hot_cone(const el_envlight *l, const long *queue, long n
   if (!(len > 0.5 * s)) return 0; /* mass spread over far more than a hemisphere: not compact */
   ax[0] /= len; ax[1] /= len; ax[2] /= len;
   for (t = 0; t < n; ++t) {
-    long q = queue[t];
+    int64_t q = queue[t];
     int pu, pv;
     for (pv = 0; pv <= 2; ++pv)
       for (pu = 0; pu <= 2; ++pu) {
@@ -3305,8 +3305,8 @@ static int el_envlight__hot_cone(const el_envlight *l, const long *queue, long n
 }
 
 /* Keep a candidate among the max_spots largest shares >= min_share (sorted, largest first). */
-static void el_envlight__hot_keep(double share, float min_share, long seed, unsigned accept, int max_spots, int *found,
-                                  double *cand_share, long *cand_seed, unsigned *cand_accept) {
+static void el_envlight__hot_keep(double share, float min_share, int64_t seed, unsigned accept, int max_spots, int *found,
+                                  double *cand_share, int64_t *cand_seed, unsigned *cand_accept) {
   int s, ins;
   if (share < (double)min_share) return;
   if (*found == max_spots && !(share > cand_share[*found - 1])) return;
@@ -3321,11 +3321,11 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
                                            const el_envlight_hotspot_options *opt) {
   float min_rad = 100.0f, min_share = 0.05f, max_half = 0.2f;
   int max_spots = EL_ENVLIGHT_HOTSPOT_MAX, nu, nv, k, found = 0;
-  long nb, b, *queue = NULL, *queue2 = NULL;
+  int64_t nb, b, *queue = NULL, *queue2 = NULL;
   unsigned char *state = NULL;
   float *f = NULL;
   double *rowk = NULL, total = 0.0;
-  long cand_seed[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  int64_t cand_seed[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
   double cand_share[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
   unsigned cand_accept[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
   el_result r = EL_SUCCESS;
@@ -3346,10 +3346,10 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
   if (!el_envlight__ensure(l)) return l->sampling_result;
   if (!l->pdf_table || !(el_distribution2d_integral(&l->dist) > 0.0f)) return EL_SUCCESS; /* black */
   nu = l->dist.nu; nv = l->dist.nv;
-  nb = (long)nu * (long)nv;
+  nb = (int64_t)nu * (int64_t)nv;
   state = (unsigned char *)EL_MALLOC((size_t)nb);
-  queue = (long *)EL_MALLOC((size_t)nb * sizeof(long));
-  queue2 = (long *)EL_MALLOC((size_t)nb * sizeof(long));
+  queue = (int64_t *)EL_MALLOC((size_t)nb * sizeof(int64_t));
+  queue2 = (int64_t *)EL_MALLOC((size_t)nb * sizeof(int64_t));
   rowk = (double *)EL_MALLOC((size_t)nv * sizeof(double));
   if (!state || !queue || !queue2 || !rowk) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
   { /* <<hot bins>>: bin b's probability m_b = pdf_table[b] 2 pi^2 / (nu nv); its density over its solid
@@ -3362,7 +3362,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
       for (i = 0; i < nu; ++i) {
         double m = (double)l->pdf_table[(size_t)j * (size_t)nu + (size_t)i] * mk, ratio = m * 4.0 * EL_ENVLIGHT__PI / area;
         total += m;
-        state[(long)j * nu + i] = (unsigned char)(!(m > 0.0) ? 0u : ratio >= (double)min_rad ? EL_ENVLIGHT__HOT_CORE | EL_ENVLIGHT__HOT_WARM
+        state[(int64_t)j * nu + i] = (unsigned char)(!(m > 0.0) ? 0u : ratio >= (double)min_rad ? EL_ENVLIGHT__HOT_CORE | EL_ENVLIGHT__HOT_WARM
                                                  : ratio >= (double)min_rad / 8.0 ? EL_ENVLIGHT__HOT_WARM : 0u);
       }
     }
@@ -3370,7 +3370,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
   /* <<components>>: a core with its rim; when that is too wide or spread, the core alone (and every other
    * core of the region alone). Keep the max_spots largest shares >= min_share within max_half. */
   for (b = 0; b < nb; ++b) {
-    long n1, t;
+    int64_t n1, t;
     double share, ax[3], half;
     if (!(state[b] & EL_ENVLIGHT__HOT_CORE) || (state[b] & EL_ENVLIGHT__HOT_SEEN)) continue;
     n1 = el_envlight__hot_grow(nu, nv, state, queue, b, EL_ENVLIGHT__HOT_WARM, EL_ENVLIGHT__HOT_SEEN);
@@ -3379,7 +3379,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
       continue;
     }
     for (t = 0; t < n1; ++t) { /* too wide with its rim: each core of the region alone */
-      long seed = queue[t], n2;
+      int64_t seed = queue[t], n2;
       if (!(state[seed] & EL_ENVLIGHT__HOT_CORE) || (state[seed] & EL_ENVLIGHT__HOT_CSEEN)) continue;
       n2 = el_envlight__hot_grow(nu, nv, state, queue2, seed, EL_ENVLIGHT__HOT_CORE, EL_ENVLIGHT__HOT_CSEEN);
       if (el_envlight__hot_cone(l, queue2, n2, rowk, total, &share, ax, &half) && half <= (double)max_half)
@@ -3387,6 +3387,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
     }
   }
   /* <<build the parts>>: each spot's rectangle, mask and distribution; the rest's distribution */
+  EL_FREE(queue2); queue2 = NULL; /* the peak of temporary memory: 1 + 8 + 4 bytes per bin from here */
   {
     double rest = 0.0;
     size_t q;
@@ -3394,7 +3395,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
     if (!f) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
     memcpy(f, l->pdf_table, (size_t)nb * sizeof(float));
     for (k = 0; k < found; ++k) {
-      long tail, t2;
+      int64_t tail, t2;
       double share, ax[3], half;
       int gap_start = 0, gap_len = 0, run = 0, x, i, y0 = nv, y1 = -1, cols, rows;
       unsigned char *colused;
@@ -3427,7 +3428,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
       memset(h->mask[k], 0, (size_t)cols * (size_t)rows);
       for (q = 0; q < (size_t)cols * (size_t)rows; ++q) g[q] = 0.0f;
       for (t2 = 0; t2 < tail; ++t2) {
-        long qq = queue[t2];
+        int64_t qq = queue[t2];
         int iu = (int)(qq % nu), iv = (int)(qq / nu);
         x = iu - h->rect[k][0];
         if (x < 0) x += nu;
