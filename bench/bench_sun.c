@@ -14,6 +14,9 @@
  *    sample_li, sample_li_cos and the mixture with the largest spot's weight 0.1, 0.02, 0 (the other parts
  *    keep their proportions: the other lamps of night and studio stay lit); the ratio to
  *    sample_li's variance, and the mean against sample_li's (all estimate the same E).
+ *    Last row, projected: product sampling restricted to outside the cone (li_cos's samples in the cone
+ *    rejected, the estimate scaled by the acceptance rate Z: the variance of f Z / p_cos over accepted
+ *    samples), the variance a "rest x cosine" part of the mixture would reach (not implemented).
  * 4. Cost: ns per sample of sample_li and sample_li_mix (spots 0.02) with radiance on the sunrise map,
  *    best of 5 interleaved rounds of 2^20 (the machine is shared: read ratios), and the bytes of the
  *    hot-spot tables.
@@ -114,7 +117,7 @@ static void draw(const el_envlight *l, const el_envlight_hotspots *h, int which,
 static void study(const char *name, const el_envlight *l) {
   el_envlight_hotspots h;
   const float shares[3] = {0.1f, 0.02f, 0.0f};
-  const char *sname[5] = {"sample_li", "li_cos(n)", "mix 0.1", "mix 0.02", "mix 0"};
+  const char *sname[6] = {"sample_li", "li_cos(n)", "mix 0.1", "mix 0.02", "mix 0", "li_cos|rest"};
   float ax[3], ns[2][3];
   double cosc, cos1 = cos(PI / 180), var0[2] = {0, 0}, mean0[2] = {0, 0};
   int which, ni, i, count = 1 << 20;
@@ -131,8 +134,32 @@ static void study(const char *name, const el_envlight *l) {
          h.spot[0].share, h.spot[0].half_angle * 180 / PI, asin(ax[2]) * 180 / PI, h.count, 1 - h.rest_share);
   for (ni = 0; ni < 2; ++ni) {
     printf("    n %-6s %-10s %8s %8s %12s %12s %9s %9s\n", ni ? "to sun" : "up", "sampler", "in cone", "<1 deg", "E (mean)", "var/sample", "var ratio", "sli/this");
-    for (which = 0; which < 5; ++which) {
+    for (which = 0; which < 6; ++which) {
       double in = 0, near = 0, sum = 0, sum2 = 0, mean, var;
+      if (which == 5) { /* projected: product sampling restricted to outside the cone (rejection; Z = the
+                           acceptance rate), what a "rest x cosine" part of the mixture would give */
+        double acc = 0, tries = 0, g1 = 0, g2 = 0, z;
+        for (i = 0; i < count; ++i) {
+          float u[2], wi[3], rgb[3], pdf, c, cs;
+          double f;
+          u[0] = frand(); u[1] = frand();
+          el_envlight_sample_li_cos(l, ns[ni], u, wi, rgb, &pdf);
+          tries += 1;
+          if (!(pdf > 0)) continue;
+          cs = wi[0] * ax[0] + wi[1] * ax[1] + wi[2] * ax[2];
+          if (cs >= cosc) continue;
+          acc += 1;
+          c = ns[ni][0] * wi[0] + ns[ni][1] * wi[1] + ns[ni][2] * wi[2];
+          f = c > 0 ? (0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]) * c / pdf : 0;
+          g1 += f; g2 += f * f;
+        }
+        z = acc / tries;
+        mean = z * g1 / acc; /* = g1 / tries */
+        var = z * z * (g2 / acc) - mean * mean;
+        printf("    %-8s %-10s %7s  %7s  %12.5g %12.4g %9.3f %9.2fx  (projected; %.1f%% of li_cos's draws were in the cone)\n", "", sname[which], "-", "-",
+               mean, var, var / var0[ni], var > 0 ? var0[ni] / var : 0.0, 100 * (1 - z));
+        continue;
+      }
       g_rng = 0x853c49e6748fea9bULL + (uint64_t)ni;
       for (i = 0; i < count; ++i) {
         float u[2], wi[3], rgb[3], pdf, c, cs;
