@@ -222,7 +222,8 @@ typedef struct el_envlight {
    * API): their own tables, built on first use with their own once-flags (the same scheme as state) */
   int warp_state, cos_state;        /* 0 not built, 1 being built, 2 ready, 3 failed */
   el_result warp_result, cos_result;
-  struct el_envlight__warp *warp;   /* the warp's cells and CDFs, and the normal tables (private) */
+  struct el_envlight__warp *warp;   /* the warp's cells and CDFs (private) */
+  struct el_envlight__warp *prod;   /* product sampling's patches, cells and normal tables (private; cos_state) */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -302,21 +303,22 @@ typedef struct el_envlight_product_options {
 
 /* Sample a direction wi (world, unit) for a surface of world normal n, with a density close to
  * L(wi) max(0, n.wi): *pdf is its solid-angle density, rgb (may be NULL) gets le(wi), bit for bit.
- * n need not be unit length; a zero, NaN or infinite n gives the warp's density without the cosine.
+ * n need not be unit length (only its direction counts; it must point to the side the light arrives
+ * from); a zero, NaN or infinite n gives no sample (pdf 0).
  * Directions fall below the surface only in cells that straddle its horizon: n.wi <= 0 there, the sample
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, or nothing emits above this surface); skip it. Cost: about 1200 instructions (1300
- * with rgb), the pdf included. Builds the warp and the normal tables on first use (21 MB for a
- * 2048x1024 map, 70 ms); thread-safe like sample_li's lazy build; the light's own sampling tables
- * (sample_li's) are not needed. */
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 970
+ * instructions (1090 with rgb), the pdf included. Builds its tables on first use (7.3 MB for a
+ * 1024x512 map, at most about 17 MB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
+ * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
- * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi gives 0.
- * About 420 instructions. Builds the tables on first use, as sample_li_cos. */
+ * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
+ * zero, NaN or infinite n, gives 0. About 380 instructions. Builds the tables on first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
  * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
@@ -367,8 +369,15 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    1e-4): B = cos(max(0, angle(c, cell) - r)). So B > 0 for every cell holding a direction above the
  *    surface of any normal of the bin: pdf_li_cos > 0 wherever le > 0 and n.w > 0 (compensation aside),
  *    and light sampling alone is unbiased (tested: a grid of directions x 12 normals, the poles and the
- *    seam among them, on hard maps; and against quadratures of the irradiance). A sample costs a table
- *    lookup, two searches over the cells and the warp; the pdf the same lookups.
+ *    seam among them, on hard maps; and against quadratures of the irradiance). Inside the cell (issue
+ *    20) a patch row is picked from the cell's integer CDF over its rows (each row's mass, every row
+ *    with mass at least one of 32768 units), a patch from that row's CDF over the cell column, then
+ *    (s, t) inside the patch from the bilinear itself (t from the linear marginal, s from the linear
+ *    conditional at t: two square roots), kept 2^-12 of a patch inside its edges (the round trip of a
+ *    general rotation must find the same patch). The density is P(cell | n) x the patch's integer
+ *    share x bil(s, t) / mean(corners): the warp's bilinear interpolant up to the units' rounding (the
+ *    same variance per sample as before, measured). A sample costs a table lookup, four small binary
+ *    searches, two linear inversions and the direction; the pdf an atan pair and the same tables.
  *    WHERE IT CANNOT STAY ABOVE THE SURFACE: in cells that straddle the horizon of the bin's normals
  *    (the cells' size plus the bins' radius); such samples come back with n.wi <= 0 and contribute
  *    nothing. Their share is the share of the bound's mass in those cells, so it depends on how bright
@@ -398,42 +407,54 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
- *    COST: sample_li_cos 1179-1205 instructions (+radiance 1310-1336; a general rotation +53), with a
- *    new random normal on every call; pdf_li_cos 419 (+30). 0.5-1.1 us per estimate with the radiance
- *    in table 4 (sample_li: 0.23-0.59). The sample includes its own pdf: it runs pdf_li_cos's
- *    code on the sampled direction (about 355 instructions) so that the two agree bit for bit.
- *    Issue 24's fixes add 74 instructions per sample (keeping the point in its patch and checking it:
- *    bench_envlight --callgrind sample_cos_rgb, 1366 -> 1440 with the loop) and 20 per pdf_li_cos under
- *    a general rotation (the world-space rescale test: pdf_cos_rotated 458 -> 478).
- *    MEMORY: the warp (above) + the normal tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB:
- *    8.7 MB at 1024x512, 21 MB at 2048x1024. BUILD: the warp + 257 M instructions for the tables
- *    (fixed: 2.1 M bin-cell pairs), 45-65 ms at 1024x512, 70 ms at 2048x1024. el_envlight_product_options
- *    trade them: 32x16 cells and 16^2 bins need 0.3 MB of tables and a sixteenth of their build, for
- *    3x the variance.
+ *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random
+ *    normal per call, the loop's own 9 subtracted): sample_li_cos 966 instructions (1094 with the
+ *    radiance; before issue 20: 1179, 1310), pdf_li_cos 377 (419); sample_li 97 (261 with the radiance),
+ *    pdf_li 76. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <= 150 and
+ *    <= 1.5x pdf_li) are NOT met: the sample includes its own pdf (it runs pdf_li_cos's code on the
+ *    sampled direction, about 260 instructions, so that the two agree bit for bit), and the pdf needs
+ *    (u, v) to the bilinear's precision (two atan polynomials) plus the normal's bin. Time per estimate
+ *    (table 4, light sampling alone, loaded machine, old and new back to back): 707 -> 405 ns on city,
+ *    673 -> 379 on forest (sample_li: 160), so 1.7-1.8x less time-to-unit-variance (variance x time:
+ *    city 23.7 -> 13.6, sample_li 414). TRIED AND DROPPED for issue 20: the light's own piecewise-
+ *    constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340 instructions
+ *    estimated) has 2.4x the variance on city (0.080 against 0.033, bench_product "table 32^2 64x32":
+ *    20x on the normal facing up, where the sun's texel dominates and its density is flat while le is
+ *    bilinear); an SSE2 count in place of the binary searches: more instructions (1049 against 953), not fewer.
+ *    Not tried: a batched call for n normals, Conty and Lecocq's per-point 12x12 coarse level (its
+ *    variance at 16x8 cells, above, is 2x the tables'), a diamond-angle patch parametrisation whose pdf
+ *    needs no atan (the likely way to the targets).
+ *    MEMORY: the vertex grid (4 bytes per vertex), the patch CDFs (2 bytes per patch) and the normal
+ *    tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB: 7.3 MB at 1024x512 (8.7 before; the target 4 MB
+ *    is not met: the normal tables alone are 4.3 MB). Maps over 2048x1024 use a coarse grid of that size
+ *    (each coarse vertex the largest lum of the texels of its 3 x 3 coarse bins, so the density stays > 0
+ *    wherever le is): at most about 17 MB for any map (before: 1.09 GB at 16384x8192). BUILD: 300 M
+ *    instructions at 1024x512 (the normal tables 2.1 M bin-cell pairs: about 250 M), 29-53 ms on this
+ *    loaded machine (target 20 ms: not met). el_envlight_product_options trade them: 32x16 cells and 16^2
+ *    bins need 0.3 MB of tables and a sixteenth of their build, for 3x the variance.
  *
  * 3. EXACTNESS. pdf_li_cos(n, wi) of a sampled wi equals the returned pdf bit for bit, and rgb equals
  *    le(wi) bit for bit (signed-permutation matrices and general rotations alike: the sampler brings
- *    wi back to light space as pdf_li_cos does). For continuous u the warp is exact CDF inversion. For
- *    u on a 2^-24 lattice (24-bit samplers) the cell is picked with exactly its tabulated probability,
- *    but inside the cell the warp sees the lattice of the remaining fraction: each patch row's and
- *    patch's probability can differ from the stated one by one lattice point, 2^-24 of the total (the
- *    chi-square tests at 150,000 samples see nothing). A sampled point is kept w 2^-21 (h 2^-21) of a
- *    patch inside its patch, so that the pdf, which finds the patch again from wi, finds the same one;
- *    where rounding still moves it out (near a pole under a general rotation) or the point sits on a
- *    massless end of its patch (a u exactly on a CDF step, such as u = 0 from a Sobol' sampler), it
- *    moves to the patch's centre: no sample of a cell with mass comes back with pdf 0 (issue 24; tested
- *    with u at 0 and within 8 ulps of 1).
+ *    wi back to light space as pdf_li_cos does). For continuous u the cell, patch row and patch are
+ *    picked with exactly their integer shares and (s, t) by exact inversion of the bilinear, but for
+ *    the 2^-12 band at each patch edge (points there are moved onto it; the density differs by 2^-12 of
+ *    the patch's variation: no measurable bias). For u on a 2^-24 lattice the fractions inside a cell
+ *    see the lattice of the remaining fraction (the chi-square tests at 100,000 samples see nothing).
+ *    (Issue 24 had kept the earlier warp's points 2^-21 inside their patch and moved points that still
+ *    left it to the patch's centre; the 2^-12 band does that job here: tested with u at 0 and within 8
+ *    ulps of 1, and with sparse maps under a general rotation.)
  *
- * 4. INPUTS. n need not be unit length; a zero, NaN or infinite n gives the warp's density without
- *    the cosine (its plain table). n and wi are rescaled in world space when their light-space squared
- *    length leaves the normal floats (as pdf_li and le do), so the results depend only on their
- *    directions, also for components near FLT_MAX or denormal under a general rotation. The constant light: cosine-weighted hemisphere sampling, exactly the
- *    product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an unusable n. A black map, or a
- *    normal whose hemisphere holds no mass: pdf 0 (skip the sample). Compensation (options.compensated):
- *    the warp's vertices become max(lum - mean, 0) x sin (the mean from the exact integral); use it
- *    with MIS only, as sample_li's. 1xN and Nx1 maps work (one patch column; two pole patch rows).
+ * 4. INPUTS. n and wi need not be unit length: they are rescaled in world space when their light-space
+ *    squared length leaves the normal floats (as pdf_li and le do), so the results depend only on their
+ *    directions, also for components near FLT_MAX or denormal under a general rotation. A zero,
+ *    NaN or infinite n gives pdf 0 for a map (no sample). The constant light: cosine-weighted hemisphere
+ *    sampling, exactly the product (pdf max(0, n.w) / pi), or sample_li's uniform sphere for an
+ *    unusable n. A black map, or a normal whose hemisphere holds no mass: pdf 0 (skip the sample).
+ *    Compensation (options.compensated): the vertices become max(lum - mean, 0) x sin (the mean from
+ *    the exact integral); use it with MIS only, as sample_li's. 1xN and Nx1 maps work (one patch
+ *    column; two pole patch rows).
  *
- * 5. THREADS. The warp and the normal tables are built on first use by their own once-flags (the same
+ * 5. THREADS. The product tables are built on first use by their own once-flag (the same
  *    scheme as the sampling tables: atomics with GCC/Clang, else call el_envlight_prepare_product before
  *    sharing the light); the build writes through the const pointer, so never define an el_envlight
  *    object itself const. After that every query is read-only. The light's own sampling tables
@@ -1331,6 +1352,7 @@ EL_DEF void el_envlight_free(el_envlight *l) {
   if (!l) return;
   el_envlight__free_tables(l);
   el_envlight__warp_free(l->warp);
+  el_envlight__warp_free(l->prod);
   EL_FREE(l->texels);
   memset(l, 0, sizeof *l);
 }
@@ -2365,6 +2387,12 @@ struct el_envlight__warp {
   int m;                 /* octahedral bins per axis */
   uint16_t *cos_tab;     /* m * m cell tables */
   size_t cos_bytes;
+  /* product sampling's patches (issue 20; a product table set uses w, h, ku, kv, a0, b0, cu_of, cv_of,
+     coff, sin_row, V, mass, plain and the normal tables above, and these two instead of S, cond, marg) */
+  uint16_t *pcol;        /* (h + 1) x (w + ku): patch row r's CDF over the patches of each cell column */
+  uint16_t *prow;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
+  int coarse;            /* 1: V is a max-filtered coarse grid of the map (maps over the size cap) */
+  float dens_k;          /* 2^-60 w h / (2 pi^2): integer widths -> density per solid angle x sin */
 };
 
 /* cdf[0..n] for n weights >= 0, total `units`: every positive weight gets at least one unit and the rest
@@ -2434,6 +2462,7 @@ static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
   EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
   EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab);
+  EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
 
@@ -2807,18 +2836,6 @@ static void el_envlight__oct_decode(double x, double y, double n[3]) {
   n[0] = px / len; n[1] = py / len; n[2] = z / len;
 }
 
-/* The cell table for world normal n: its octahedral bin's, or the plain one for a zero, NaN or infinite n. */
-static const uint16_t *el_envlight__cos_table(const el_envlight *l, const struct el_envlight__warp *W, const float n[3]) {
-  float nl[3], x, y;
-  int i, j, m = W->m;
-  if (!el_envlight__to_light_dir(l, n, nl)) return W->plain; /* rescaled in world space first (issue 24) */
-  el_envlight__oct_encode(nl, &x, &y);
-  i = (int)(x * (float)m); j = (int)(y * (float)m);
-  i = i < m - 1 ? (i > 0 ? i : 0) : m - 1;
-  j = j < m - 1 ? (j > 0 ? j : 0) : m - 1;
-  return W->cos_tab + ((size_t)j * (size_t)m + (size_t)i) * W->table_len;
-}
-
 /* max of n.w over the lat-long cell [phi0, phi1] x [theta0, theta1] (light space), exactly: over phi
  * the best is the normal's own phi if inside, else the nearer edge; then a sin(theta) + b cos(theta)
  * peaks at atan2(a, b) if inside, else at an edge. cs: cos, sin of phi0, of phi1, cos, sin of theta0,
@@ -2898,30 +2915,343 @@ static el_result el_envlight__cos_build(struct el_envlight__warp *W, int m) {
   return EL_SUCCESS;
 }
 
-/* The normal tables' once-scheme (after the warp's). NULL: failed (or a constant light). */
-static const struct el_envlight__warp *el_envlight__cos_ensure(const el_envlight *cl, int ku, int kv, int m) {
-  el_envlight *l = (el_envlight *)cl;
+/* >> product sampling over patches (issue 20)
+ * The density is the one before (the cells' P(cell | n) from the normal tables, then inside the cell the
+ * bilinear interpolant of the vertex values V = lum x sin(theta), normalised), sampled more cheaply: the
+ * cell's patch row and the patch in it are picked from small integer CDFs (each patch with mass gets a
+ * unit, so none is unreachable at any dynamic range), then the point inside the patch from the bilinear
+ * itself (two linear inversions). The density of a patch is its integer share times bil(s, t) / mean(V of
+ * its corners): the bilinear interpolant up to the units' rounding. pdf_li_cos reads the same widths, so
+ * the sample's pdf is pdf_li_cos's (computed by the same function from the same light-space direction).
+ * Maps over EL_ENVLIGHT__PROD_MAX_W x _H use a coarse vertex grid of that size: each coarse vertex holds
+ * the largest lum over the fine texels of its 3 x 3 coarse bins (times its own sin), so the density is > 0
+ * wherever le() is (a texel reaches 1 texel around it, and every point of a coarse patch is within one
+ * coarse step of a corner). The tables stay below a fixed size whatever the map. */
+#define EL_ENVLIGHT__PROD_MAX_W 2048
+#define EL_ENVLIGHT__PROD_MAX_H 1024
+#define EL_ENVLIGHT__PATCH_UNITS 32768u
+
+/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2, in float (as el_envlight__lin_inv) */
+static inline float el_envlight__lin_invf(float a, float b, float q) {
+  float m = a > b ? a : b, d, den, t;
+  if (!(m > 0.0f)) return q;
+  a /= m; b /= m;
+  d = a * a + q * (b * b - a * a);
+  den = a + el_envlight__sqrt(d > 0.0f ? d : 0.0f);
+  t = den > 0.0f ? q * (a + b) / den : 0.0f;
+  return t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
+}
+
+/* <<Build the product tables>>: vertex grid, cells, patch CDFs, cell masses, plain and normal tables. */
+static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
   struct el_envlight__warp *W;
+  int w = l->width, h = l->height, gw, gh, i, j, a, b, r, k;
+  double *wgt = NULL, *rs = NULL, total = 0.0;
+  float *bins = NULL, *rowmax = NULL;
+  uint32_t *tmp = NULL;
+  size_t nv, np, nr, big;
+  el_result res;
+  *out = NULL;
+  W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
+  if (!W) return EL_ERROR_OUT_OF_MEMORY;
+  memset(W, 0, sizeof *W);
+  gw = w < EL_ENVLIGHT__PROD_MAX_W ? w : EL_ENVLIGHT__PROD_MAX_W;
+  gh = h < EL_ENVLIGHT__PROD_MAX_H ? h : EL_ENVLIGHT__PROD_MAX_H;
+  W->coarse = gw != w || gh != h;
+  ku = ku < gw ? ku : gw;
+  kv = kv < gh + 1 ? kv : gh + 1;
+  W->w = gw; W->h = gh; W->ku = ku; W->kv = kv;
+  W->marg_len = kv + 1;
+  W->row_len = ku + 1;
+  W->table_len = (size_t)W->marg_len + (size_t)kv * (size_t)W->row_len;
+  W->cond_stride = (size_t)gw + (size_t)ku;
+  W->inv_w = 1.0f / (float)gw; W->inv_h = 1.0f / (float)gh; W->half_inv_h = 0.5f / (float)gh;
+  W->dens_k = (float)(8.673617379884035e-19 * (double)gw * (double)gh / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI)); /* 2^-60 */
+  nv = ((size_t)gh + 2) * (size_t)gw;
+  np = ((size_t)gh + 1) * W->cond_stride;
+  nr = (size_t)ku * ((size_t)gh + 1 + (size_t)kv);
+  big = (size_t)(gw > gh + 1 ? gw : gh + 1);
+  W->sin_row = (float *)EL_MALLOC((size_t)gh * sizeof(float));
+  W->V = (float *)EL_MALLOC(nv * sizeof(float));
+  W->coff = (int *)EL_MALLOC((size_t)ku * sizeof(int));
+  W->pcol = (uint16_t *)EL_MALLOC(np * sizeof(uint16_t));
+  W->prow = (uint16_t *)EL_MALLOC(nr * sizeof(uint16_t));
+  W->a0 = (int *)EL_MALLOC(((size_t)ku + 1) * sizeof(int));
+  W->b0 = (int *)EL_MALLOC(((size_t)kv + 1) * sizeof(int));
+  W->cu_of = (int *)EL_MALLOC((size_t)gw * sizeof(int));
+  W->cv_of = (int *)EL_MALLOC(((size_t)gh + 1) * sizeof(int));
+  W->mass = (double *)EL_MALLOC((size_t)ku * (size_t)kv * sizeof(double));
+  W->plain = (uint16_t *)EL_MALLOC(W->table_len * sizeof(uint16_t));
+  wgt = (double *)EL_MALLOC((big + (size_t)ku * (size_t)kv) * sizeof(double));
+  rs = (double *)EL_MALLOC(((size_t)gh + 1) * (size_t)ku * sizeof(double));
+  tmp = (uint32_t *)EL_MALLOC((big + (size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
+  if (W->coarse) {
+    bins = (float *)EL_MALLOC((size_t)gh * (size_t)gw * sizeof(float));
+    rowmax = (float *)EL_MALLOC((size_t)gw * sizeof(float));
+  }
+  if (!W->sin_row || !W->V || !W->coff || !W->pcol || !W->prow || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
+      !W->plain || !wgt || !rs || !tmp || (W->coarse && (!bins || !rowmax))) {
+    res = EL_ERROR_OUT_OF_MEMORY;
+    goto fail;
+  }
+  for (a = 0; a <= ku; ++a) W->a0[a] = (int)((int64_t)a * gw / ku);
+  for (b = 0; b <= kv; ++b) W->b0[b] = (int)((int64_t)b * (gh + 1) / kv);
+  for (a = 0; a < ku; ++a) for (i = W->a0[a]; i < W->a0[a + 1]; ++i) W->cu_of[i] = a;
+  for (a = 0; a < ku; ++a) W->coff[a] = W->a0[a] + a;
+  for (b = 0; b < kv; ++b) for (r = W->b0[b]; r < W->b0[b + 1]; ++r) W->cv_of[r] = b;
+  for (j = 0; j < gh; ++j) W->sin_row[j] = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / gh);
+  /* <<Initialize compensated PDF>> (pbrt-v4), as the warp: the mean luminance subtracted, clamped at 0 */
+  if (l->compensated) {
+    double mean = (0.212671 * l->integral[0] + 0.715160 * l->integral[1] + 0.072169 * l->integral[2]) / (4.0 * EL_ENVLIGHT__PI);
+    int any = 0, x, y;
+    W->offset = mean < (double)FLT_MAX ? (float)mean : FLT_MAX;
+    for (y = 0; y < h && !any; ++y)
+      for (x = 0; x < w; ++x) {
+        float v = el_envlight__luminance(l->texels + ((size_t)y * (size_t)w + (size_t)x) * 3);
+        if ((v < FLT_MAX ? v : FLT_MAX) > W->offset) { any = 1; break; }
+      }
+    if (!any) { W->offset = 0.0f; W->fell_back = 1; }
+  }
+  for (i = 0; i < gw; ++i) W->V[i] = W->V[((size_t)gh + 1) * (size_t)gw + (size_t)i] = 0.0f;
+  if (!W->coarse) {
+    for (j = 0; j < gh; ++j)
+      for (i = 0; i < gw; ++i) W->V[((size_t)j + 1) * (size_t)gw + (size_t)i] = el_envlight__vertex_of(l, W, i, j);
+  } else {
+    /* bins[jb][ib]: the largest lum (less the offset) over the fine texels whose centres fall in coarse
+     * bin (ib, jb); then each coarse vertex takes the largest of its 3 x 3 bins (wrapping in u) */
+    int x, y;
+    for (k = 0; k < gh * gw; ++k) bins[k] = 0.0f;
+    for (y = 0; y < h; ++y) {
+      int jb = (int)(((int64_t)2 * y + 1) * gh / (2 * (int64_t)h));
+      float *br = bins + (size_t)jb * (size_t)gw;
+      for (x = 0; x < w; ++x) {
+        int ib = (int)(((int64_t)2 * x + 1) * gw / (2 * (int64_t)w));
+        float v = el_envlight__luminance(l->texels + ((size_t)y * (size_t)w + (size_t)x) * 3);
+        v = v < FLT_MAX ? v : FLT_MAX;
+        v = v > W->offset ? v - W->offset : 0.0f;
+        if (v > br[ib]) br[ib] = v;
+      }
+    }
+    for (j = 0; j < gh; ++j) {
+      for (i = 0; i < gw; ++i) {
+        float v = 0.0f;
+        for (k = j - 1; k <= j + 1; ++k)
+          if (k >= 0 && k < gh && bins[(size_t)k * (size_t)gw + (size_t)i] > v) v = bins[(size_t)k * (size_t)gw + (size_t)i];
+        rowmax[i] = v;
+      }
+      for (i = 0; i < gw; ++i) {
+        float v = rowmax[i], vl = rowmax[i > 0 ? i - 1 : gw - 1], vr = rowmax[i + 1 < gw ? i + 1 : 0];
+        v = v > vl ? v : vl;
+        v = v > vr ? v : vr;
+        W->V[((size_t)j + 1) * (size_t)gw + (size_t)i] = v * W->sin_row[j];
+      }
+    }
+  }
+  /* patch (i, r): corners V[r][i], V[r][i+1], V[r+1][i], V[r+1][i+1]; mass = their mean x dv (dv 1 / gh, half
+   * at the pole rows; du = 1 / gw is common). pcol: each cell column's patches per patch row. */
+  for (r = 0; r <= gh; ++r) {
+    const float *v0 = W->V + (size_t)r * (size_t)gw, *v1 = v0 + gw;
+    double dv = (r == 0 || r == gh) ? 0.5 : 1.0;
+    for (a = 0; a < ku; ++a) {
+      int n = W->a0[a + 1] - W->a0[a];
+      uint16_t *c = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a];
+      double s = 0.0;
+      for (k = 0; k < n; ++k) {
+        int i0 = W->a0[a] + k, i1 = i0 + 1 < gw ? i0 + 1 : 0;
+        wgt[k] = (double)v0[i0] + (double)v0[i1] + (double)v1[i0] + (double)v1[i1];
+        s += wgt[k];
+      }
+      rs[(size_t)r * (size_t)ku + (size_t)a] = 0.25 * s * dv;
+      el_envlight__int_cdf(wgt, n, EL_ENVLIGHT__PATCH_UNITS, tmp);
+      for (k = 0; k <= n; ++k) c[k] = (uint16_t)tmp[k];
+    }
+  }
+  /* prow: each cell's CDF over its patch rows; the cells' masses */
+  for (a = 0; a < ku; ++a)
+    for (b = 0; b < kv; ++b) {
+      int n = W->b0[b + 1] - W->b0[b];
+      uint16_t *c = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b;
+      double s = 0.0;
+      for (k = 0; k < n; ++k) { wgt[k] = rs[(size_t)(W->b0[b] + k) * (size_t)ku + (size_t)a]; s += wgt[k]; }
+      el_envlight__int_cdf(wgt, n, EL_ENVLIGHT__PATCH_UNITS, tmp);
+      for (k = 0; k <= n; ++k) c[k] = (uint16_t)tmp[k];
+      W->mass[(size_t)b * (size_t)ku + (size_t)a] = s;
+      total += s;
+    }
+  W->all_zero = !(total > 0.0);
+  el_envlight__cell_table(W, W->mass, W->plain, tmp, wgt);
+  EL_FREE(wgt); EL_FREE(rs); EL_FREE(tmp); EL_FREE(bins); EL_FREE(rowmax);
+  wgt = NULL; rs = NULL; tmp = NULL; bins = NULL; rowmax = NULL;
+  res = el_envlight__cos_build(W, m);
+  if (res != EL_SUCCESS) goto fail;
+  W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(float) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
+                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int) +
+                  (size_t)ku * (size_t)kv * sizeof(double) + W->table_len * sizeof(uint16_t);
+  *out = W;
+  return EL_SUCCESS;
+fail:
+  EL_FREE(wgt); EL_FREE(rs); EL_FREE(tmp); EL_FREE(bins); EL_FREE(rowmax);
+  el_envlight__warp_free(W);
+  return res;
+}
+
+/* The product tables' once-scheme (cos_state; the same scheme as the sampling tables). NULL: failed. */
+static const struct el_envlight__warp *el_envlight__prod_ensure(const el_envlight *cl, int ku, int kv, int m) {
+  el_envlight *l = (el_envlight *)cl;
 #if EL_ENVLIGHT__ATOMICS
   int expected = 0;
-  if (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2) return l->warp;
-  W = (struct el_envlight__warp *)el_envlight__warp_ensure(l, ku, kv);
+  if (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2) return l->prod;
   if (__atomic_compare_exchange_n(&l->cos_state, &expected, 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
-    el_result r = W ? el_envlight__cos_build(W, m) : l->warp_result;
+    struct el_envlight__warp *W = NULL;
+    el_result r = el_envlight__prod_build(l, ku, kv, m, &W);
+    l->prod = W;
     l->cos_result = r;
     __atomic_store_n(&l->cos_state, r == EL_SUCCESS ? 2 : 3, __ATOMIC_RELEASE);
   } else {
     while (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 1) { /* another thread builds */ }
   }
-  return __atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2 ? l->warp : NULL;
+  return __atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2 ? l->prod : NULL;
 #else
   if (l->cos_state == 0) {
-    W = (struct el_envlight__warp *)el_envlight__warp_ensure(l, ku, kv);
-    l->cos_result = W ? el_envlight__cos_build(W, m) : l->warp_result;
+    struct el_envlight__warp *W = NULL;
+    l->cos_result = el_envlight__prod_build(l, ku, kv, m, &W);
+    l->prod = W;
     l->cos_state = l->cos_result == EL_SUCCESS ? 2 : 3;
   }
-  return l->cos_state == 2 ? l->warp : NULL;
+  return l->cos_state == 2 ? l->prod : NULL;
 #endif
+}
+
+/* The cell table for world normal n (its octahedral bin's), or NULL for a zero, NaN or infinite n. A
+ * huge or tiny n is scaled in world space first, so the bin depends only on n's direction. */
+static inline const uint16_t *el_envlight__prod_table(const el_envlight *l, const struct el_envlight__warp *W, const float n[3]) {
+  float nl[3], s, x, y;
+  int i, j, mm = W->m;
+  s = fabsf(n[0]) + fabsf(n[1]) + fabsf(n[2]);
+  if (!(s >= 1e-18f && s <= 1e18f)) {
+    if (!el_envlight__to_light_rescaled(l, n, nl)) return NULL;
+  } else el_envlight__to_light(l, n, nl);
+  el_envlight__oct_encode(nl, &x, &y);
+  i = (int)(x * (float)mm); j = (int)(y * (float)mm);
+  i = i < mm - 1 ? (i > 0 ? i : 0) : mm - 1;
+  j = j < mm - 1 ? (j > 0 ? j : 0) : mm - 1;
+  return W->cos_tab + ((size_t)j * (size_t)mm + (size_t)i) * W->table_len;
+}
+
+/* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
+ * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
+ * be NULL) gets the (u, v) at which le() looks d up. */
+static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
+  float dd[3], r2, len2, rr, len, u, v, vp, X, Y, s, t, v00, v01, v10, v11, e0, e1, sum, p;
+  int gw = W->w, gh = W->h, i, i1, r, a, b;
+  const uint16_t *row, *pc, *pr;
+  const float *V;
+  uint32_t wc, wr;
+  if (uv) uv[0] = uv[1] = 0.0f;
+  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
+  r2 = dd[0] * dd[0] + dd[1] * dd[1];
+  len2 = r2 + dd[2] * dd[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
+    if (!el_envlight__rescale(dd)) return 0.0f;
+    r2 = dd[0] * dd[0] + dd[1] * dd[1];
+    len2 = r2 + dd[2] * dd[2];
+  }
+  rr = el_envlight__sqrt(r2);
+  u = el_envlight__phi_turns(dd[1], dd[0]);
+  el_envlight__theta_vp(rr, dd[2], &v, &vp);
+  if (uv) { uv[0] = u; uv[1] = v; }
+  X = u * (float)gw - 0.5f;
+  if (X < 0.0f) X += (float)gw;
+  i = (int)X;
+  if (i > gw - 1) i = gw - 1;
+  s = X - (float)i;
+  s = s < 1.0f ? (s > 0.0f ? s : 0.0f) : 1.0f;
+  Y = v * (float)gh + 0.5f;
+  r = (int)Y;
+  if (r > gh) r = gh;
+  a = W->cu_of[i]; b = W->cv_of[r];
+  row = tab + W->marg_len + (size_t)b * (size_t)W->row_len;
+  wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[a + 1] - row[a]);
+  pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a] + (size_t)(i - W->a0[a]);
+  pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
+  wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
+  if (wc == 0 || wr == 0) return 0.0f;
+  i1 = i + 1 < gw ? i + 1 : 0;
+  V = W->V + (size_t)r * (size_t)gw;
+  v00 = V[i]; v01 = V[i1]; v10 = V[(size_t)gw + (size_t)i]; v11 = V[(size_t)gw + (size_t)i1];
+  sum = (v00 + v01) + (v10 + v11);
+  e0 = v00 + s * (v01 - v00);
+  e1 = v10 + s * (v11 - v10);
+  p = (float)wc * (float)wr * W->dens_k * 4.0f / sum; /* P / (mean du dv 2 pi^2) */
+  len = el_envlight__sqrt(len2);
+  /* bil / sin(theta). In the pole rows one edge is 0 and t = 2 gh vp (or 1 - t), dv halves: bil / sin =
+   * 2 gh e (vp / sin theta) x 2, with vp / sin -> 1 / pi at the pole itself */
+  if (r == 0 || r == gh) {
+    float ratio = rr > 0.0f ? vp * len / rr : 0.318309886f;
+    p *= 4.0f * (float)gh * (r == 0 ? e1 : e0) * ratio;
+  } else {
+    t = Y - (float)r;
+    t = t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
+    p *= (e0 + t * (e1 - e0)) * len / rr;
+  }
+  return p < FLT_MAX ? p : FLT_MAX;
+}
+
+/* <<Sample the product>>: cell, patch row, patch, then (s, t) from the bilinear; wi and the pdf as
+ * pdf_li_cos computes it at wi. */
+static void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, v00, v01, v10, v11, p;
+  int a, b, gw = W->w, gh = W->h, r, i, i1, n;
+  const uint16_t *pr, *pc;
+  const float *V;
+  el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
+  /* the patch row: the cell's CDF over its rows, with f1 */
+  n = W->b0[b + 1] - W->b0[b];
+  pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
+  x = el_envlight__clamp01(f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
+  r = el_envlight__search16(pr, n, (uint32_t)x);
+  q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
+  r += W->b0[b];
+  /* the patch: the row's CDF over the cell column, with f0 */
+  n = W->a0[a + 1] - W->a0[a];
+  pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a];
+  x = el_envlight__clamp01(f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
+  i = el_envlight__search16(pc, n, (uint32_t)x);
+  s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
+  i += W->a0[a];
+  /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
+  i1 = i + 1 < gw ? i + 1 : 0;
+  V = W->V + (size_t)r * (size_t)gw;
+  v00 = V[i]; v01 = V[i1]; v10 = V[(size_t)gw + (size_t)i]; v11 = V[(size_t)gw + (size_t)i1];
+  t = el_envlight__lin_invf(v00 + v01, v10 + v11, q);
+  s = el_envlight__lin_invf(v00 + t * (v10 - v00), v01 + t * (v11 - v01), s);
+  /* 2^-12 of a patch inside its edges: a q of exactly 0 or 1 (x on a unit) would put the point on the
+   * edge, where the pdf may read the neighbour (after a general rotation's round trip, ~1e-7 rad): pdf 0
+   * next to a patch without mass. The density there is within 2^-12 of the edge's: no measurable bias */
+  t = t > 2.44140625e-4f ? (t < 0.999755859f ? t : 0.999755859f) : 2.44140625e-4f;
+  s = s > 2.44140625e-4f ? (s < 0.999755859f ? s : 0.999755859f) : 2.44140625e-4f;
+  for (n = 0; n < 2; ++n) {
+    /* <<Compute direction>>: u from the patch's left vertex, v and its distance to the nearer pole */
+    u = ((float)i + 0.5f + s) * W->inv_w;
+    if (u >= 1.0f) u -= 1.0f;
+    u = u < 0.99999994f ? u : 0.99999994f;
+    if (r == 0) { vp = t * W->half_inv_h; v = vp; }
+    else if (r == gh) { vp = (1.0f - t) * W->half_inv_h; v = 1.0f - vp; }
+    else { v = ((float)r - 0.5f + t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
+    el_envlight__uvp_to_dir(u, v, vp, d);
+    el_envlight__to_world(l, d, wi);
+    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li_cos brings wi back */
+    p = el_envlight__prod_pdf_light(W, tab, d, uv);
+    if (p > 0.0f) break;
+    /* the round trip left the patch for one without mass (near a pole under a general rotation, where
+     * 1e-7 of direction is a large step in phi): the patch's centre instead, as issue 24 did */
+    s = 0.5f; t = 0.5f;
+  }
+  *pdf = p;
+  if (rgb) {
+    if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb); /* le(wi): the same (u, v) */
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
 }
 
 /* The constant light: cosine-weighted hemisphere sampling about n, exactly the product (pdf
@@ -3017,8 +3347,8 @@ EL_DEF el_result el_envlight_prepare_product(const el_envlight *l, const el_envl
     if (opt->normal_bins) m = opt->normal_bins;
   }
   if (l->width == 0) return EL_SUCCESS; /* the constant light needs no tables */
-  W = el_envlight__cos_ensure(l, ku, kv, m);
-  if (!W) return l->cos_result != EL_SUCCESS ? l->cos_result : l->warp_result;
+  W = el_envlight__prod_ensure(l, ku, kv, m);
+  if (!W) return l->cos_result;
   if (opt && ((opt->cells_u && (W->ku != (ku < W->w ? ku : W->w) || W->kv != (kv < W->h + 1 ? kv : W->h + 1))) ||
               (opt->normal_bins && W->m != m)))
     return EL_ERROR_INVALID_ARGUMENT; /* built before with other sizes */
@@ -3027,38 +3357,39 @@ EL_DEF el_result el_envlight_prepare_product(const el_envlight *l, const el_envl
 
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3], float rgb[3], float *pdf) {
   const struct el_envlight__warp *W;
+  const uint16_t *tab;
   if (l->width == 0) { el_envlight__cos_sample_constant(l, n, u, wi, rgb, pdf); return; }
-  W = el_envlight__cos_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
-  if (!W) {
+  W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
+  tab = W ? el_envlight__prod_table(l, W, n) : NULL;
+  if (!tab || W->all_zero || tab[W->kv] == 0) { /* no tables, an unusable n, or nothing emits above it */
     wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
     if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
     return;
   }
-  el_envlight__warp_sample(l, W, el_envlight__cos_table(l, W, n), u, wi, rgb, pdf);
+  el_envlight__prod_sample(l, W, tab, u, wi, rgb, pdf);
 }
 
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]) {
   const struct el_envlight__warp *W;
+  const uint16_t *tab;
   float d[3];
   if (l->width == 0) return el_envlight__cos_pdf_constant(l, n, wi);
-  W = el_envlight__cos_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
+  W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
   if (!W || W->all_zero) return 0.0f;
+  tab = el_envlight__prod_table(l, W, n);
+  if (!tab || tab[W->kv] == 0) return 0.0f;
   if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f; /* rescaled in world space first (issue 24) */
-  return el_envlight__warp_pdf_light(W, el_envlight__cos_table(l, W, n), d, NULL);
+  return el_envlight__prod_pdf_light(W, tab, d, NULL);
 }
 
 EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
-  size_t b = 0;
-  int ws, cs;
+  int cs;
 #if EL_ENVLIGHT__ATOMICS
-  ws = __atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE);
   cs = __atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE);
 #else
-  ws = l->warp_state; cs = l->cos_state;
+  cs = l->cos_state;
 #endif
-  if (ws == 2 && l->warp && l->importance != EL_ENVLIGHT_IMPORTANCE_BILINEAR) b += l->warp->warp_bytes; /* else sampling_bytes' */
-  if (cs == 2 && l->warp) b += l->warp->cos_bytes;
-  return b;
+  return (cs == 2 && l->prod) ? l->prod->warp_bytes + l->prod->cos_bytes : 0;
 }
 
 static size_t el_envlight__warp_bytes(const el_envlight *l) { return l->warp ? l->warp->warp_bytes : 0; }

@@ -475,8 +475,8 @@ static void variance_table(const char *path, int nsamp) {
   }
   printf("\n%s (%dx%d): E(up) = %.4g, E(horizon) = %.4g, E(down) = %.4g; %d samples per cell\n", path, img.width,
          img.height, E[0], E[1], E[2], nsamp);
-  printf("  %-28s %27s %20s %8s %10s %10s\n", "strategy", "rel. variance (up/hor/down)", "|bias|/SE (u/h/d)", "ns/spl",
-         "efficiency", "lum/pdf");
+  printf("  %-28s %27s %20s %8s %10s %9s %10s\n", "strategy", "rel. variance (up/hor/down)", "|bias|/SE (u/h/d)", "ns/spl",
+         "efficiency", "ns x var", "lum/pdf");
   for (s = 0; s < S_N; ++s) {
     double *rv = res_rv[s], *bias = res_bias[s], t, mean_rv = 0;
     if (!ok[s]) continue;
@@ -493,9 +493,9 @@ static void variance_table(const char *path, int nsamp) {
   }
   for (s = 0; s < S_N; ++s) {
     if (!ok[s]) { printf("  %-28s init failed\n", S_NAME[s]); continue; }
-    printf("  %-28s %8.3g %8.3g %8.3g  %6.1f %6.1f %6.1f %8.0f %10.3g", S_NAME[s], res_rv[s][0], res_rv[s][1],
+    printf("  %-28s %8.3g %8.3g %8.3g  %6.1f %6.1f %6.1f %8.0f %10.3g %9.3g", S_NAME[s], res_rv[s][0], res_rv[s][1],
            res_rv[s][2], res_bias[s][0], res_bias[s][1], res_bias[s][2], res_ns[s],
-           ok[S_CELL] ? (res_mean[S_CELL] * res_ns[S_CELL]) / (res_mean[s] * res_ns[s]) : 0.0);
+           ok[S_CELL] ? (res_mean[S_CELL] * res_ns[S_CELL]) / (res_mean[s] * res_ns[s]) : 0.0, res_mean[s] * res_ns[s]);
     if (s >= S_CELL && s != S_COMP_MIS) { /* how well the density matches le alone: rel. variance of lum(le)/pdf */
       double sum = 0, sum2 = 0, m;
       long i;
@@ -585,7 +585,7 @@ static void product_table(const char *path, int nsamp) {
   }
   printf("  %-26s %-5s", "relative variance per", "");
   for (k = 0; k < PN; ++k) printf(" %8s", PN_NAME[k]);
-  printf(" %8s %7s %7s %10s\n", "geomean", "below", "ns", "efficiency");
+  printf(" %8s %7s %7s %10s %9s\n", "geomean", "below", "ns", "efficiency", "ns x var");
   for (mis = 0; mis < 3; ++mis) {
     double ref = 0;
     for (s = 0; s < P_N; ++s) {
@@ -616,7 +616,7 @@ static void product_table(const char *path, int nsamp) {
       if (s == 0) ref = exp(lg) * t;
       printf("  %-26s %-5s", P_NAME[s], mis == 2 ? "+MISp" : mis ? "+MIS" : "light");
       for (k = 0; k < PN; ++k) printf(" %8.3g", rv[k]);
-      printf(" %8.3g %6.1f%% %7.0f %10.3g\n", exp(lg), 100 * nbelow, t, ref / (exp(lg) * t));
+      printf(" %8.3g %6.1f%% %7.0f %10.3g %9.3g\n", exp(lg), 100 * nbelow, t, ref / (exp(lg) * t), exp(lg) * t);
     }
   }
   for (s = 0; s < P_N; ++s) el_envlight_free(&lights[s]);
@@ -964,7 +964,8 @@ int main(int argc, char **argv) {
   }
 
   printf("\n3. Variance of a direct-lighting estimate (irradiance, luminance, of a diffuse point; light space\n"
-         "   normals up (0,0,1), horizon (1,0,0), down (0,0.6,-0.8)); efficiency relative to CELL_AVERAGE + guide\n");
+         "   normals up (0,0,1), horizon (1,0,0), down (0,0.6,-0.8)); efficiency relative to CELL_AVERAGE + guide;\n"
+         "   'ns x var' the time-to-unit-variance: the mean relative variance per sample x ns per sample\n");
   for (i = 0; i < 5; ++i) {
     char path[512 + 64];
     FILE *f;
@@ -982,7 +983,7 @@ int main(int argc, char **argv) {
          "   sample of the strategy, '+MIS' one of it and one cosine sample (balance heuristic; '+MISp' power heuristic)\n"
          "   per estimate; 'below' the\n"
          "   light samples below the horizon (wasted); ns per estimate; efficiency 1 / (geomean x ns), normalised to\n"
-         "   the first row of each block\n");
+         "   the first row of each block; 'ns x var' the time-to-unit-variance, geomean x ns (smaller is better)\n");
   for (i = 0; i < 5; ++i) {
     char path[512 + 64];
     FILE *f;

@@ -431,7 +431,7 @@ def family_envlight(args, info, md):
         base = eff[default][0] * eff[default][1]
         out = []
         for k, (rv, ns, floor) in eff.items():
-            out.append([k, "%.3g" % rv, "%.0f" % ns, "%.2g" % floor, "%.2f" % (base / (rv * ns))])
+            out.append([k, "%.3g" % rv, "%.0f" % ns, "%.3g" % (rv * ns), "%.2g" % floor, "%.2f" % (base / (rv * ns))])
         return out
 
     c, s = summary["city"], summary["studio"]
@@ -494,8 +494,8 @@ PBRT_V3 at 8192 would need 16384x8192 bins and is left out.
 
 %s
 """ % (imgs["city"], imgs["studio"], nsamp,
-       table(["strategy", "rel. variance", "ns/estimate", "bias^2", "efficiency"], eff_rows(c)),
-       table(["strategy", "rel. variance", "ns/estimate", "bias^2", "efficiency"], eff_rows(s)),
+       table(["strategy", "rel. variance", "ns/estimate", "variance x ns (time to unit variance)", "bias^2", "efficiency"], eff_rows(c)),
+       table(["strategy", "rel. variance", "ns/estimate", "variance x ns (time to unit variance)", "bias^2", "efficiency"], eff_rows(s)),
        ratio(c, default, "product sample_li_cos"), ratio(c, default, "MIS pair (light + cosine)"),
        ratio(c, default, "MIS pair compensated"),
        ratio(c, "cosine (BSDF)", default), ratio(s, default, "product sample_li_cos"), ratio(s, "cosine (BSDF)", default),

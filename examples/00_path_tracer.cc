@@ -3,7 +3,9 @@
  * WHAT IT DEMONSTRATES
  *   Three diffuse spheres on a checkered ground plane (intersection code written out here), lit only by
  *   an environment map. At every bounce, multiple importance sampling (MIS) with the power heuristic
- *   combines a direction from the map's importance sampling (envlight.h) with one from the cosine lobe;
+ *   combines a direction from the map's product sampling (envlight.h's el_envlight_sample_li_cos: the
+ *   map times the clamped cosine of the hit's normal; --plain: the map alone, el_envlight_sample_li)
+ *   with one from the cosine lobe;
  *   the cosine direction is also the path's next ray, so its MIS weight is applied where that ray
  *   escapes to the map ("escaped" in Li). The ground's texture is filtered by mipmap.h over a footprint
  *   from ray differentials; film.h filters the samples with pbrt's Gaussian and writes exact sRGB.
@@ -22,6 +24,11 @@
  *     frame under a sky of radiance 1 + 0.75 P3(cos theta), P3 the Legendre polynomial. A cosine lobe
  *     has no l = 3 part, so every pixel must be 1, as under a constant sky of 1, while this sky's
  *     importance sampling is far from uniform: a wrong MIS weight or pdf shows (tests/test_path_tracer.c).
+ *   build/bin/00_path_tracer --plain [map] [out] [spp] [width] [height]: the same with plain light
+ *     sampling (el_envlight_sample_li / el_envlight_pdf_li) instead of product sampling.
+ *   build/bin/00_path_tracer --compare [map] [spp] [width] [height]: renders the scene both ways (no
+ *     file) and prints for each the variance per sample (luminance, mean over the pixels of each
+ *     pixel's sample variance), the render time and their product, the time-to-unit-variance.
  *   The picture depends only on the arguments, not on the number of threads.
  *
  * WHAT IT WRITES
@@ -42,6 +49,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -146,9 +154,12 @@ static Vec3 ground_albedo(const Scene &sc, const Ray &ray, Vec3 p) {
 }
 
 // ---- the integrator: pbrt's PathIntegrator::Li for diffuse surfaces ----------------------------
-static Vec3 Li(const Scene &sc, Ray ray, Rng &rng) {
+// product: light samples from el_envlight_sample_li_cos (the map times max(0, n.wi) at the hit), whose
+// pdf for another direction is el_envlight_pdf_li_cos with the same normal; else el_envlight_sample_li.
+static Vec3 Li(const Scene &sc, Ray ray, Rng &rng, bool product) {
   Vec3 L = v3(0, 0, 0), beta = v3(1, 1, 1);  // radiance so far, path throughput
   float bsdf_pdf = 0.0f;                     // the pdf of the cosine sample that made `ray`
+  Vec3 prev_n = v3(0, 0, 0);                 // the normal of the hit that made `ray`
   for (int depth = 0;; ++depth) {
     Hit h;
     if (!intersect(sc, ray, &h)) {
@@ -159,7 +170,7 @@ static Vec3 Li(const Scene &sc, Ray ray, Rng &rng) {
       if (depth > 0) {
         // The escaped ray is a cosine sample at the last hit; the light sample there could have
         // drawn the same direction, with the light's pdf. MIS weight of the BSDF strategy:
-        float light_pdf = el_envlight_pdf_li(&sc.light, &ray.d.x);
+        float light_pdf = product ? el_envlight_pdf_li_cos(&sc.light, &prev_n.x, &ray.d.x) : el_envlight_pdf_li(&sc.light, &ray.d.x);
         w = power_heuristic(bsdf_pdf, light_pdf);
       }
       L = L + beta * rgb(Le) * w;
@@ -171,8 +182,11 @@ static Vec3 Li(const Scene &sc, Ray ray, Rng &rng) {
     Vec3 albedo = h.sphere >= 0 ? sc.spheres[size_t(h.sphere)].albedo : ground_albedo(sc, ray, h.p);
 
     // <<Sample illumination from lights to find path contribution>> (EstimateDirect, light sample)
+    // Product sampling: the normal need not be unit length; it must face the side the light arrives
+    // from (the outside of the surface). pdf 0 means no sample (nothing emits above this surface).
     float u[2] = {rng.uniform(), rng.uniform()}, wi[3], Li_light[3], light_pdf;
-    el_envlight_sample_li(&sc.light, u, wi, Li_light, &light_pdf);
+    if (product) el_envlight_sample_li_cos(&sc.light, &h.n.x, u, wi, Li_light, &light_pdf);
+    else el_envlight_sample_li(&sc.light, u, wi, Li_light, &light_pdf);
     float cos_l = dot(h.n, v3(wi[0], wi[1], wi[2]));
     Hit blocker;
     if (light_pdf > 0.0f && cos_l > 0.0f && !intersect(sc, ray_from(h.p, v3(wi[0], wi[1], wi[2])), &blocker)) {
@@ -183,6 +197,7 @@ static Vec3 Li(const Scene &sc, Ray ray, Rng &rng) {
     // <<Sample BSDF to get new path direction>>: f cos / pdf = albedo for a cosine-weighted sample.
     float u0 = rng.uniform(), u1 = rng.uniform();
     ray = ray_from(h.p, cosine_sample(h.n, u0, u1, &bsdf_pdf));
+    prev_n = h.n;
     beta = beta * albedo;
 
     // <<Possibly terminate the path with Russian roulette>>
@@ -228,12 +243,65 @@ static std::vector<float> checker_texture(int n) {
   return tex;
 }
 
+// 4. Render. Bands of 16 rows, each into its own FilmTile, taken by the threads in turn; the tiles
+//    are merged in band order afterwards, so the sums (and the picture) do not depend on threads.
+//    Returns the tiles that could not be allocated; *variance gets the mean over the pixels of each
+//    pixel's sample variance (luminance), *seconds the wall time.
+static int render(const Scene &sc, const Camera &cam, el_film *film, int spp, bool product, double *variance, double *seconds) {
+  int b[4];
+  el_film_sample_bounds(film, b);
+  float diff_scale = std::max(0.125f, 1.0f / std::sqrt(float(spp)));
+  int bands = (b[3] - b[1] + 15) / 16;
+  std::vector<el_film_tile> tiles(static_cast<size_t>(bands));  // zeroed
+  std::vector<double> band_var(static_cast<size_t>(bands), 0.0);
+  std::atomic<int> next_band(0);
+  auto work = [&]() {
+    for (int band = next_band++; band < bands; band = next_band++) {
+      int y0 = b[1] + 16 * band, y1 = std::min(y0 + 16, b[3]);
+      el_film_tile &tile = tiles[size_t(band)];
+      if (el_film_tile_init(film, &tile, b[0], y0, b[2], y1) != EL_SUCCESS) continue;  // merge reports it
+      for (int y = y0; y < y1; ++y)
+        for (int x = b[0]; x < b[2]; ++x) {
+          Rng rng(uint64_t(y - b[1]) * uint64_t(b[2] - b[0]) + uint64_t(x - b[0]));
+          double sum = 0.0, sum2 = 0.0;
+          for (int s = 0; s < spp; ++s) {
+            float px = float(x) + rng.uniform(), py = float(y) + rng.uniform();
+            Vec3 L = Li(sc, cam.ray(px, py, diff_scale), rng, product);
+            el_film_tile_add_sample(&tile, px, py, &L.x, 1.0f);
+            double lum = 0.212671 * L.x + 0.715160 * L.y + 0.072169 * L.z;
+            sum += lum; sum2 += lum * lum;
+          }
+          if (spp > 1) band_var[size_t(band)] += std::max(0.0, (sum2 - sum * sum / spp) / (spp - 1));
+        }
+    }
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::thread> threads;
+  for (unsigned i = 0; i < std::max(1u, std::thread::hardware_concurrency()); ++i) threads.push_back(std::thread(work));
+  for (size_t i = 0; i < threads.size(); ++i) threads[i].join();
+  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  int lost = 0;  // tiles that could not be allocated: merging a zeroed tile is an error
+  double var = 0.0;
+  for (size_t i = 0; i < tiles.size(); ++i) {
+    lost += el_film_merge_tile(film, &tiles[i]) != EL_SUCCESS;
+    el_film_tile_free(&tiles[i]);
+    var += band_var[i];
+  }
+  *variance = var / (double(b[2] - b[0]) * double(b[3] - b[1]));
+  return lost;
+}
+
 int main(int argc, char **argv) {
+  // --plain and --compare come first and are taken off the arguments; --compare has no output file
+  bool plain = argc > 1 && std::string(argv[1]) == "--plain";
+  bool compare = argc > 1 && std::string(argv[1]) == "--compare";
+  if (plain || compare) { ++argv; --argc; }
+  int k = compare ? 1 : 0;  // --compare: [map] [spp] [width] [height]
   bool furnace = argc > 1 && std::string(argv[1]) == "--furnace";
   std::string map_path = argc > 1 && !furnace ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
-  std::string out_path = argc > 2 ? argv[2] : "00_path_tracer.png";
-  int spp = argc > 3 ? std::atoi(argv[3]) : 16, width = argc > 4 ? std::atoi(argv[4]) : 480;
-  int height = argc > 5 ? std::atoi(argv[5]) : 270;
+  std::string out_path = argc > 2 && !compare ? argv[2] : "00_path_tracer.png";
+  int spp = argc > 3 - k ? std::atoi(argv[3 - k]) : 16, width = argc > 4 - k ? std::atoi(argv[4 - k]) : 480;
+  int height = argc > 5 - k ? std::atoi(argv[5 - k]) : 270;
   if (spp < 1 || spp > 65536 || width < 1 || width > 8192 || height < 1 || height > 8192) {
     std::fprintf(stderr, "00_path_tracer: spp must be in 1..65536, width and height in 1..8192\n");
     return 1;
@@ -279,7 +347,6 @@ int main(int argc, char **argv) {
     res = el_mipmap_init(&sc.ground, tex.data(), 256, 256, 3, &mo);
   }
   Camera cam(eye, at, 40.0f, width, height);
-  float diff_scale = std::max(0.125f, 1.0f / std::sqrt(float(spp)));
 
   // 3. The film, with pbrt's Gaussian filter (radius 2, alpha 2). pbrt's GetSampleBounds grows the
   //    image by the radius, so that border pixels get their full filter support too.
@@ -293,38 +360,27 @@ int main(int argc, char **argv) {
     std::fprintf(stderr, "00_path_tracer: %s\n", el_result_string(res));
     return 1;
   }
-  int b[4];
-  el_film_sample_bounds(&film, b);
 
-  // 4. Render. Bands of 16 rows, each into its own FilmTile, taken by the threads in turn; the tiles
-  //    are merged in band order afterwards, so the sums (and the picture) do not depend on threads.
-  int bands = (b[3] - b[1] + 15) / 16;
-  std::vector<el_film_tile> tiles(static_cast<size_t>(bands));  // zeroed
-  std::atomic<int> next_band(0);
-  auto render = [&]() {
-    for (int band = next_band++; band < bands; band = next_band++) {
-      int y0 = b[1] + 16 * band, y1 = std::min(y0 + 16, b[3]);
-      el_film_tile &tile = tiles[size_t(band)];
-      if (el_film_tile_init(&film, &tile, b[0], y0, b[2], y1) != EL_SUCCESS) continue;  // merge reports it
-      for (int y = y0; y < y1; ++y)
-        for (int x = b[0]; x < b[2]; ++x) {
-          Rng rng(uint64_t(y - b[1]) * uint64_t(b[2] - b[0]) + uint64_t(x - b[0]));
-          for (int s = 0; s < spp; ++s) {
-            float px = float(x) + rng.uniform(), py = float(y) + rng.uniform();
-            Vec3 L = Li(sc, cam.ray(px, py, diff_scale), rng);
-            el_film_tile_add_sample(&tile, px, py, &L.x, 1.0f);
-          }
-        }
-    }
-  };
-  std::vector<std::thread> threads;
-  for (unsigned i = 0; i < std::max(1u, std::thread::hardware_concurrency()); ++i) threads.push_back(std::thread(render));
-  for (size_t i = 0; i < threads.size(); ++i) threads[i].join();
-  int lost = 0;  // tiles that could not be allocated: merging a zeroed tile is an error
-  for (size_t i = 0; i < tiles.size(); ++i) {
-    lost += el_film_merge_tile(&film, &tiles[i]) != EL_SUCCESS;
-    el_film_tile_free(&tiles[i]);
+  // 4. Render (above), once; or both ways for --compare (product first: it builds its own tables, the
+  //    plain pass then builds the light's sampling tables; each pass's time includes its build).
+  double var = 0.0, secs = 0.0;
+  int lost = 0;
+  if (compare) {
+    double var_p = 0.0, secs_p = 0.0;
+    lost = render(sc, cam, &film, spp, true, &var_p, &secs_p);
+    el_film_clear(&film);
+    lost += render(sc, cam, &film, spp, false, &var, &secs);
+    std::printf("%-32s %14s %10s %22s\n", "light sampling (MIS with cosine)", "variance/spl", "time (s)", "time x variance");
+    std::printf("%-32s %14.5g %10.3f %22.5g\n", "product (sample_li_cos)", var_p, secs_p, var_p * secs_p);
+    std::printf("%-32s %14.5g %10.3f %22.5g\n", "plain (sample_li)", var, secs, var * secs);
+    std::printf("product: %.2fx less variance per sample, %.2fx the time, %.2fx the efficiency (1 / time x variance)\n",
+                var / var_p, secs_p / secs, (var * secs) / (var_p * secs_p));
+    el_film_free(&film);
+    el_mipmap_free(&sc.ground);
+    el_envlight_free(&sc.light);
+    return lost > 0;
   }
+  lost = render(sc, cam, &film, spp, !plain, &var, &secs);
 
   // 5. Output: linear RGB; for .png one stop darker (the sunlit ground would clip; the furnace keeps
   //    1 as white), then pbrt's clamp at 1, the exact sRGB curve and rounding (TO_BYTE).
@@ -341,7 +397,7 @@ int main(int argc, char **argv) {
   else if (el_film_to_srgb8(linear.data(), width, height, &oo, srgb.data()) == EL_SUCCESS)
     failed = el_image_write_png(out_path.c_str(), srgb.data(), width, height, 3, err, sizeof err);
   if (failed) std::fprintf(stderr, "00_path_tracer: %s\n", err[0] ? err : "cannot encode the picture");
-  else std::printf("wrote %s (%dx%d, %d spp, %zu threads)\n", out_path.c_str(), width, height, spp, threads.size());
+  else std::printf("wrote %s (%dx%d, %d spp, %s sampling, %.2f s)\n", out_path.c_str(), width, height, spp, plain ? "plain light" : "product", secs);
   el_film_free(&film);
   el_mipmap_free(&sc.ground);
   el_envlight_free(&sc.light);

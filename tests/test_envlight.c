@@ -1504,6 +1504,9 @@ static float ps_pdf_tested(const psrc *s, const float wi[3]) {
  * and its radiance equals le(wi) bit for bit. Returns the p-value (1 when the test could not run). */
 static int g_prod_tests = 0;
 #define PROD_TESTS_PLANNED 28
+/* sub x sub midpoints per patch for the expectation (1: exact for a density bilinear in the map's
+ * patches; maps over the product's size cap are bilinear in coarser patches: 4 there) */
+static int g_chi2_sub = 1;
 static double chi2_patches(const char *name, const psrc *s, const float m[9], int w, int h, int gu, int gv, int n,
                            uint64_t seed, int expect_pass) {
   int cells = gu * gv, i, r, pooled = 0, dof, impossible = 0, mismatch = 0, nonfinite = 0, rgb_mismatch = 0, zero = 0;
@@ -1513,14 +1516,18 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
   for (r = 0; r <= h; ++r) {
     double v0 = r == 0 ? 0.0 : (r - 0.5) / h, v1 = r == h ? 1.0 : (r + 0.5) / h, v = 0.5 * (v0 + v1);
     for (i = 0; i < w; ++i) {
-      double u = (i + 1.0) / w, dl[3], dw[3];
-      float fd[3], p;
-      if (u >= 1) u -= 1;
-      ref_uv_to_dir(u, v, dl);
-      mat_mul(m, dl, dw);
-      fd[0] = (float)dw[0]; fd[1] = (float)dw[1]; fd[2] = (float)dw[2];
-      p = ps_pdf_tested(s, fd);
-      expect[(r * gv / (h + 1)) * gu + i * gu / w] += p * 2 * PI * PI * sin(PI * v) * (v1 - v0) / w;
+      int a, b, ns = g_chi2_sub;
+      for (b = 0; b < ns; ++b)
+        for (a = 0; a < ns; ++a) {
+          double u = (i + 0.5 + (a + 0.5) / ns) / w, vs = ns == 1 ? v : v0 + (v1 - v0) * (b + 0.5) / ns, dl[3], dw[3];
+          float fd[3], p;
+          if (u >= 1) u -= 1;
+          ref_uv_to_dir(u, vs, dl);
+          mat_mul(m, dl, dw);
+          fd[0] = (float)dw[0]; fd[1] = (float)dw[1]; fd[2] = (float)dw[2];
+          p = ps_pdf_tested(s, fd);
+          expect[(r * gv / (h + 1)) * gu + i * gu / w] += p * 2 * PI * PI * sin(PI * vs) * (v1 - v0) / w / (ns * ns);
+        }
     }
   }
   for (i = 0; i < cells; ++i) total += expect[i];
@@ -1854,6 +1861,64 @@ static void test_product_chi2(const el_image *studio, const el_image *city) {
   free(st); free(ct); free(sunmap); free(half); free(poles);
 }
 
+/* Maps over product sampling's size cap (2048 x 1024 vertices) use a coarse vertex grid, each coarse vertex
+ * the largest lum of the texels of its 3 x 3 coarse bins: the density must stay > 0 wherever le() > 0
+ * (checked around every lit texel of sparse maps, where one texel's reach is all there is: at offsets
+ * up to 1.45 texels, 6 normals), and the sampler must draw that density (chi-square). A 4100 x 24 map
+ * (coarse in u, 4100 / 2048 not an integer) and a 12 x 1100 map (coarse in v). */
+static void test_product_coarse(void) {
+  int wa = 4100, ha = 24, wb = 12, hb = 1100, k, mi;
+  float *A = (float *)calloc((size_t)wa * ha * 3, sizeof(float)), *B = (float *)calloc((size_t)wb * hb * 3, sizeof(float));
+  static const double UP[3] = {0, 0, 1}, TILT[3] = {0.36, -0.48, 0.8};
+  static const float offs[7] = {-1.45f, -0.9f, -0.5f, 0.0f, 0.5f, 0.9f, 1.45f};
+  for (k = 0; k < 40; ++k) { /* isolated lit texels; one at 1e3 (A), one at 1e12 (B) */
+    int x = (k * 397 + 11) % wa, y = (k * 5 + 1) % ha, c;
+    for (c = 0; c < 3; ++c) A[((size_t)y * wa + x) * 3 + c] = k == 7 ? 1e3f : 1.0f + (float)k;
+    x = (k * 5 + 3) % wb; y = (k * 271 + 2) % hb;
+    for (c = 0; c < 3; ++c) B[((size_t)y * wb + x) * 3 + c] = k == 9 ? 1e12f : 2.0f + (float)k;
+  }
+  for (mi = 0; mi < 2; ++mi) {
+    const float *px = mi ? B : A;
+    int w = mi ? wb : wa, h = mi ? hb : ha, x, y, bad = 0, tried = 0;
+    el_envlight l;
+    float m[9];
+    identity(m);
+    make_light_imp(&l, px, w, h, m, 0, 0);
+    for (y = 0; y < h; ++y)
+      for (x = 0; x < w; ++x) {
+        int a, b, q;
+        if (!(px[((size_t)y * w + x) * 3] > 0)) continue;
+        for (q = 0; q < 6; ++q) {
+          float n[3] = {0, 0, 0};
+          n[q / 2] = q % 2 ? -1.0f : 1.0f;
+          for (a = 0; a < 7; ++a)
+            for (b = 0; b < 7; ++b) {
+              double d[3], u = (x + 0.5 + offs[a]) / w, v = (y + 0.5 + offs[b]) / h;
+              float fd[3], L[3], p;
+              if (v <= 0 || v >= 1) continue;
+              if (u < 0) u += 1; else if (u >= 1) u -= 1;
+              ref_uv_to_dir(u, v, d);
+              fd[0] = (float)d[0]; fd[1] = (float)d[1]; fd[2] = (float)d[2];
+              if (n[0] * fd[0] + n[1] * fd[1] + n[2] * fd[2] <= 1e-6f) continue;
+              el_envlight_le(&l, fd, L);
+              if (!(L[0] + L[1] + L[2] > 0)) continue;
+              ++tried;
+              p = el_envlight_pdf_li_cos(&l, n, fd);
+              if (!(p > 0 && p < 1e30f)) ++bad;
+            }
+        }
+      }
+    check(bad == 0 && tried > 0, "coarse product grid, sparse %dx%d: pdf_li_cos > 0 at all %d directions around lit texels "
+          "above the surface with le > 0 (%d not)", w, h, tried, bad);
+    el_envlight_free(&l);
+  }
+  g_chi2_sub = 4;
+  chi2_product_case("coarse sparse 4100x24", A, wa, ha, 0, 0, TILT, 64, 12, 100000, 150);
+  chi2_product_case("coarse sparse 12x1100", B, wb, hb, 1, 0, UP, 12, 64, 100000, 151);
+  g_chi2_sub = 1;
+  free(A); free(B);
+}
+
 /* pdf_li_cos > 0 wherever le > 0 and n.w > 0 (no compensation), over a grid of directions finer than
  * the maps' texels and 12 normals (both poles, the seam and its other side, random ones), on the hard
  * maps. (That it integrates to 1 the chi-square tests check exactly, over the patches.) */
@@ -1993,27 +2058,34 @@ static void test_product_hard(const el_image *city) {
   float *sunmap = map_sun();
   float wi[3], rgb[3], p, uu[2] = {0.3f, 0.6f}, dir[3] = {0.2f, -0.4f, 0.5f}, n[3] = {0, 0, 1};
   int k, ok;
-  { /* normals that are not unit: scaled ones give the unit normal's results; zero, NaN, Inf the warp alone */
-    float nu[3] = {0.2f, -0.7f, 0.4f}, ns[3], zero[3] = {0, 0, 0}, nan3[3] = {NAN, 0, 1}, inf3[3] = {INFINITY, 0, 0};
-    float scales[4] = {5.0f, 1e-30f, 1e30f, 1e-41f}, p0, pz, pn, pi, pw;
-    el_envlight lb;
-    make_light_imp(&l, sunmap, PW, PH, NULL, 0, 0);
-    make_light_imp(&lb, sunmap, PW, PH, NULL, 0, EL_ENVLIGHT_IMPORTANCE_BILINEAR);
-    p0 = el_envlight_pdf_li_cos(&l, nu, dir);
-    ok = p0 > 0;
-    for (k = 0; k < 4; ++k) {
-      int c;
-      for (c = 0; c < 3; ++c) ns[c] = nu[c] * scales[k];
-      if (el_envlight_pdf_li_cos(&l, ns, dir) != p0) ok = 0;
+  { /* normals and directions that are not unit: scaled ones (2^-149 .. FLT_MAX) give the unit ones' results,
+     * under the identity and under a general rotation (whose sums of huge products would overflow if the
+     * vectors were not scaled in world space first); zero, NaN, Inf normals: no sample (pdf 0) */
+    float nu[3] = {0.5f, -0.75f, 0.25f}, ns[3], zero[3] = {0, 0, 0}, nan3[3] = {NAN, 0, 1}, inf3[3] = {INFINITY, 0, 0};
+    float scales[5] = {4.0f, 1e-30f, 1e30f, 1e-41f, 3.4e38f}, dscales[5] = {4.0f, 0x1p-100f, 0x1p100f, 0x1p126f, 0x1p-120f};
+    float p0, pz, pn, pi, ds[3], m[9];
+    int mi;
+    for (mi = 0; mi < 2; ++mi) {
+      if (mi == 0) identity(m); else some_rotation(m);
+      make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
+      p0 = el_envlight_pdf_li_cos(&l, nu, dir);
+      ok = p0 > 0;
+      for (k = 0; k < 5; ++k) {
+        int c;
+        for (c = 0; c < 3; ++c) { ns[c] = nu[c] * scales[k]; ds[c] = dir[c] * dscales[k]; }
+        if (el_envlight_pdf_li_cos(&l, ns, dir) != p0 || el_envlight_pdf_li_cos(&l, nu, ds) != p0) ok = 0;
+      }
+      check(ok, "pdf_li_cos (%s): a normal scaled by 4, 1e-30, 1e30, 1e-41 (subnormal), 3.4e38 and a direction by 4, 2^-100, "
+                "2^100, 2^126, 2^-120 give the unit ones' pdf", mi ? "general rotation" : "identity");
+      pz = el_envlight_pdf_li_cos(&l, zero, dir); pn = el_envlight_pdf_li_cos(&l, nan3, dir); pi = el_envlight_pdf_li_cos(&l, inf3, dir);
+      check(pz == 0 && pn == 0 && pi == 0, "zero, NaN and infinite normals: pdf_li_cos 0 (%.4g, %.4g, %.4g) (%s)", pz, pn, pi,
+            mi ? "general rotation" : "identity");
+      el_envlight_sample_li_cos(&l, nan3, uu, wi, rgb, &p);
+      check(p == 0 && wi[0] == wi[0] && wi[1] == wi[1] && wi[2] == wi[2] && rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0,
+            "sample_li_cos with a NaN normal: no sample (pdf 0, radiance 0, a finite direction)");
+      el_envlight_free(&l);
     }
-    check(ok, "pdf_li_cos: a normal scaled by 5, 1e-30, 1e30, 1e-41 (subnormal) gives the unit normal's pdf");
-    pz = el_envlight_pdf_li_cos(&l, zero, dir); pn = el_envlight_pdf_li_cos(&l, nan3, dir); pi = el_envlight_pdf_li_cos(&l, inf3, dir);
-    pw = el_envlight_pdf_li(&lb, dir);
-    check(pz > 0 && pz == pn && pz == pi && pz == pw,
-          "zero, NaN and infinite normals: the warp density without the cosine (%.4g, %.4g, %.4g; BILINEAR pdf_li %.4g)", pz, pn, pi, pw);
-    el_envlight_sample_li_cos(&l, nan3, uu, wi, rgb, &p);
-    check(p > 0 && p == el_envlight_pdf_li_cos(&l, zero, wi) && wi[0] == wi[0], "sample_li_cos with a NaN normal: a finite sample of the warp");
-    el_envlight_free(&lb);
+    make_light_imp(&l, sunmap, PW, PH, NULL, 0, 0);
   }
   { /* u at the ends, NaN; directions zero / NaN / huge */
     float us[5] = {0.0f, 0.99999994f, 1.0f, -3.0f, NAN}, z3[3] = {0, 0, 0}, nan3[3] = {NAN, 1, 0}, big[3];
@@ -2183,6 +2255,7 @@ int main(void) {
   test_threads(&city);
   test_product_chi2(&studio, &city);
   test_product_coverage(&studio);
+  test_product_coarse();
   test_product_unbiased(&studio, &city);
   test_product_hard(&city);
   el_image_free(&studio);

@@ -20,6 +20,10 @@
  *    commands to a few seconds: they run in every build of the suite, the sanitizer build included.
  *    A program that the build did not make (a benchmark in a build without benchmarks) is reported and
  *    skipped only when EL_HAVE_BENCH is 0 and its name starts with bench_; otherwise it is a failure.
+ *  - Lab output: `<!-- lab output: PROGRAM -->` is an output block of a lab test program run on the
+ *    repository's untouched lab file (lab_NN_untouched): the same check, but the program must exit
+ *    with 1 (the lab fails with its diagnosis), not 0.
+ *  - Labs: chapters 01 to 04 (both editions) each link to their lab, tutorials/labs/NN-*.
  *  - Links: every `![alt](path)` picture and every `[text](path)` link to a local file (no scheme, no
  *    leading #) must name a file that exists, relative to the tutorial's own directory.
  *
@@ -32,6 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #ifndef EL_SOURCE_DIR
 #define EL_SOURCE_DIR "."
@@ -335,10 +340,10 @@ static int check_text(const char *file, const char *dir, char *text) {
     if (!strncmp(t, "```", 3)) in_fence = !in_fence;
     if (!in_fence) check_links(file, dir, i + 1, L.v[i]);
     if (in_fence) continue;
-    if (!strncmp(t, "<!-- excerpt:", 13) || !strncmp(t, "<!-- output:", 12)) {
-      int excerpt = t[5] == 'e', b0 = 0, b1 = 0, next;
+    if (!strncmp(t, "<!-- excerpt:", 13) || !strncmp(t, "<!-- output:", 12) || !strncmp(t, "<!-- lab output:", 16)) {
+      int excerpt = t[5] == 'e', lab = t[5] == 'l', b0 = 0, b1 = 0, next;
       char arg[2048], *end;
-      snprintf(arg, sizeof arg, "%s", t + (excerpt ? 13 : 12));
+      snprintf(arg, sizeof arg, "%s", t + (excerpt ? 13 : lab ? 16 : 12));
       end = strstr(arg, "-->");
       if (!end) { report(0, file, i + 1, "marker without -->", t); continue; }
       *end = 0;
@@ -373,7 +378,10 @@ static int check_text(const char *file, const char *dir, char *text) {
           if (!EL_HAVE_BENCH && !strncmp(arg, "bench_", 6)) printf("SKIP: %s:%d: %s (benchmarks not built)\n", file, i + 1, arg);
           else report(0, file, i + 1, "output: program not built", arg);
         } else {
-          report(status == 0, file, i + 1, "output: program exits with 0", arg);
+          if (lab)
+            report(WIFEXITED(status) && WEXITSTATUS(status) == 1, file, i + 1, "lab output: program exits with 1", arg);
+          else
+            report(status == 0, file, i + 1, "output: program exits with 0", arg);
           {
             /* the fence's own indentation (a block inside a list item) is not part of the quote */
             int strip = 0, bad = 0, ok;
@@ -481,6 +489,11 @@ int main(int argc, char **argv) {
       snprintf(path, sizeof path, "%s/%s", dir, names[i]);
       snprintf(shown, sizeof shown, "%s/%s", dirs[d], names[i]);
       text = read_file(path);
+      if (text && names[i][0] == '0' && names[i][1] >= '1' && names[i][1] <= '4' && names[i][2] == '-') {
+        char want[32];
+        snprintf(want, sizeof want, "labs/0%c-", names[i][1]);
+        report(strstr(text, want) != NULL, shown, 0, "the chapter links to its lab", want);
+      }
       if (!text) report(0, shown, 0, "readable", NULL);
       else { check_text(shown, dir, text); files++; }
       free(names[i]);

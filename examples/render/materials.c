@@ -1,6 +1,6 @@
 /* materials.c: pbrt-v3's materials/ directory: each material's ComputeScatteringFunctions, which
  * evaluates its textures at the shading point and makes the BSDF's lobes (reflection.c).
- *   matte.cpp    LambertianReflection(Kd)            (sigma 0: the Oren-Nayar part is not supported)
+ *   matte.cpp    LambertianReflection(Kd), or OrenNayar(Kd, sigma) where sigma (degrees) is not 0
  *   mirror.cpp   SpecularReflection(Kr, FresnelNoOp)
  *   plastic.cpp  LambertianReflection(Kd) + MicrofacetReflection(Ks, Trowbridge-Reitz(roughness),
  *                FresnelDielectric(1.5, 1))
@@ -95,6 +95,29 @@ static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *
     break;
   }
   }
+  { /* BSDF::BSDF's frame: ss = Normalize(shading.dpdu), ts = Cross(ns, ss) (the shape's dp/du, made
+     * orthogonal to ns as pbrt-v3's shading geometry makes it). Only an anisotropic microfacet lobe can
+     * tell one frame around ns from another, so the hit's dp/du is computed for those alone (elr_hit_uv
+     * on a copy); the others keep elr_onb's frame. A dp/du along ns keeps it too. */
+    int k, aniso = 0;
+    for (k = 0; k < b->nlobes; k++) {
+      const elr_bxdf *l = &b->lobe[k];
+      if ((l->type == ELR_BXDF_MICROFACET_REFLECTION || l->type == ELR_BXDF_MICROFACET_TRANSMISSION || l->type == ELR_BXDF_FRESNEL_BLEND) && l->ax != l->ay)
+        aniso = 1;
+    }
+    if (aniso) {
+      elr_hit hu = *h;
+      elr_v3 d;
+      float d2;
+      elr_hit_uv(s, &hu);
+      d = elr_sub(hu.dpdu, elr_mul(b->ns, elr_dot(b->ns, hu.dpdu)));
+      d2 = elr_dot(d, d);
+      if (d2 > 1e-12f * elr_dot(hu.dpdu, hu.dpdu) && isfinite(d2)) {
+        b->ss = elr_mul(d, 1.f / sqrtf(d2));
+        b->ts = elr_cross(b->ns, b->ss);
+      }
+    }
+  }
 }
 
 /* The BSDF of the hit's material at the shading point c (its textures evaluated there). */
@@ -108,15 +131,25 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
   b->kd = b->ks = b->kr = elr_v(0, 0, 0);
   b->alpha = 1.f;
   if (m->kind == ELR_MAT_MATTE) { /* MatteMaterial::ComputeScatteringFunctions */
-    b->kd = elr_tex_eval(s, m->kd, c);
+    float sig = m->rough >= 0 ? elr__ftex(s, m->rough, c) : 0.f;
+    b->kd = elr__clamp0(elr_tex_eval(s, m->kd, c));
+    if (sig != 0.f && !elr_isblack(b->kd)) { /* OrenNayar(r, Clamp(sigma, 0, 90)): its constructor's A and B */
+      float sr = (sig < 0.f ? 0.f : (sig > 90.f ? 90.f : sig)) * (ELR_PI / 180.f), s2 = sr * sr;
+      elr_bxdf *x;
+      elr_v3 kd = b->kd;
+      elr_bsdf_begin(b, h->ns, h->ng, 1.f);
+      x = elr_bsdf_add(b, ELR_BXDF_OREN_NAYAR);
+      x->R = kd; x->ax = 1.f - (s2 / (2.f * (s2 + 0.33f))); x->ay = 0.45f * s2 / (s2 + 0.09f);
+      return;
+    }
     b->has_diffuse = !elr_isblack(b->kd);
   } else if (m->kind == ELR_MAT_MIRROR) { /* MirrorMaterial::ComputeScatteringFunctions */
-    b->kr = elr_tex_eval(s, m->kr, c);
+    b->kr = elr__clamp0(elr_tex_eval(s, m->kr, c)); /* pbrt-v3: Kr->Evaluate(*si).Clamp() */
     b->has_specular = !elr_isblack(b->kr);
   } else { /* PlasticMaterial::ComputeScatteringFunctions */
     float r;
-    b->kd = elr_tex_eval(s, m->kd, c);
-    b->ks = elr_tex_eval(s, m->ks, c);
+    b->kd = elr__clamp0(elr_tex_eval(s, m->kd, c)); /* pbrt-v3: Kd->Evaluate(*si).Clamp() */
+    b->ks = elr__clamp0(elr_tex_eval(s, m->ks, c));
     r = elr_tex_eval(s, m->rough, c).x;
     b->alpha = m->remap ? elr_roughness_to_alpha(r) : r;
     if (!(b->alpha > 1e-4f)) b->alpha = 1e-4f;

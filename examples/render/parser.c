@@ -1407,11 +1407,9 @@ static int elr__make_material(elr__parser *P, const char *type) {
   if (kind < 0) { m->kd = elr__const_tex(P, elr_v(.5f, .5f, .5f)); return s->nmat - 1; }
   if (kind == ELR_MAT_MATTE) {
     m->kd = elr__ptex(P, "Kd", elr_v(.5f, .5f, .5f), 0);
-    if (elr__find(P, "sigma")) {
-      elr__param *sg = elr__find(P, "sigma");
-      if (strcmp(sg->type, "float") == 0 && sg->n == 1 && sg->num[0] == 0.0) sg->used = 1;
-      else { sg->used = 1; elr_warn(P->s, sg->file, sg->line, "Material \"matte\": \"sigma\" ignored (only sigma 0, Lambertian)"); }
-    }
+    /* sigma (degrees): pbrt-v3's OrenNayar where it is not 0; its texture in the "rough" slot, only
+     * when given, so a matte without it keeps the fixed Lambertian lobe */
+    if (elr__find(P, "sigma")) m->rough = elr__ptex(P, "sigma", elr_v(0, 0, 0), 1);
   } else if (kind == ELR_MAT_MIRROR) {
     m->kr = elr__ptex(P, "Kr", elr_v(.9f, .9f, .9f), 0);
   } else if (kind == ELR_MAT_PLASTIC) {

@@ -8,7 +8,8 @@
  *   - the fixed lobes of matte, mirror and plastic (LambertianReflection; MicrofacetReflection with
  *     isotropic Trowbridge-Reitz and plastic's FresnelDielectric(1.5, 1); SpecularReflection with
  *     FresnelNoOp), the renderer's first and fastest path, kept as it was;
- *   - a list of BxDFs (">> BxDFs" below) for glass, metal, uber and substrate: LambertianReflection,
+ *   - a list of BxDFs (">> BxDFs" below) for glass, metal, uber, substrate and matte of sigma > 0:
+ *     LambertianReflection, OrenNayar,
  *     SpecularReflection and SpecularTransmission, FresnelSpecular (smooth glass in the path tracer),
  *     MicrofacetReflection and MicrofacetTransmission with anisotropic Trowbridge-Reitz, FresnelBlend;
  *     Fresnel terms FresnelNoOp, FresnelDielectric, FresnelConductor.
@@ -77,7 +78,11 @@ static elr_v3 elr__glossy_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   if (ci == 0.f || co == 0.f) return elr_v(0, 0, 0);
   if (wh.x == 0.f && wh.y == 0.f && wh.z == 0.f) return elr_v(0, 0, 0);
   wh = elr_norm(wh);
-  F = elr_fr_dielectric(elr_dot(wi, wh), 1.5f, 1.f); /* pbrt-v3 plastic: FresnelDielectric(1.5, 1) */
+  /* pbrt-v3 plastic: FresnelDielectric(1.5, 1), evaluated as MicrofacetReflection::f does: <<For the
+   * Fresnel call, make sure that wh is in the same hemisphere as the surface normal>>. Below the shading
+   * normal (a mesh whose normals point inwards: pbrt-v3's loopsubdiv, killeroo-simple.pbrt) the cosine is
+   * then negative and FrDielectric swaps the indices: no total internal reflection past 41.8 degrees. */
+  F = elr_fr_dielectric(elr_dot(wi, wh.z < 0.f ? elr_mul(wh, -1.f) : wh), 1.5f, 1.f);
   return elr_mul(b->ks, elr__tr_d(b->alpha, wh) * elr__tr_g(b->alpha, wo, wi) * F / (4.f * ci * co));
 }
 static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
@@ -256,6 +261,17 @@ static int elr__refract(elr_v3 wi, elr_v3 n, float eta, elr_v3 *wt) {
 static elr_v3 elr__bxdf_f(const elr_bxdf *x, elr_v3 wo, elr_v3 wi) {
   switch (x->type) {
   case ELR_BXDF_LAMBERTIAN: return elr_mul(x->R, ELR_INV_PI);
+  case ELR_BXDF_OREN_NAYAR: { /* OrenNayar::f: R / pi (A + B max(0, cos(phi_i - phi_o)) sin(alpha) tan(beta)) */
+    float si = sqrtf(fmaxf(0.f, 1.f - wi.z * wi.z)), so = sqrtf(fmaxf(0.f, 1.f - wo.z * wo.z)), maxcos = 0.f, sa, tb;
+    if (si > 1e-4f && so > 1e-4f) {
+      float ci = fminf(fmaxf(wi.x / si, -1.f), 1.f), sni = fminf(fmaxf(wi.y / si, -1.f), 1.f);
+      float co = fminf(fmaxf(wo.x / so, -1.f), 1.f), sno = fminf(fmaxf(wo.y / so, -1.f), 1.f);
+      maxcos = fmaxf(0.f, ci * co + sni * sno);
+    }
+    if (fabsf(wi.z) > fabsf(wo.z)) { sa = so; tb = si / fabsf(wi.z); }
+    else { sa = si; tb = wo.z != 0.f ? so / fabsf(wo.z) : 0.f; } /* (both grazing: pbrt-v3 divides by 0) */
+    return elr_mul(x->R, ELR_INV_PI * (x->ax + x->ay * maxcos * sa * tb));
+  }
   case ELR_BXDF_MICROFACET_REFLECTION: { /* MicrofacetReflection::f */
     float co = fabsf(wo.z), ci = fabsf(wi.z);
     elr_v3 wh = elr_add(wi, wo), F;
@@ -301,7 +317,8 @@ static elr_v3 elr__bxdf_f(const elr_bxdf *x, elr_v3 wo, elr_v3 wi) {
 }
 static float elr__bxdf_pdf(const elr_bxdf *x, elr_v3 wo, elr_v3 wi) {
   switch (x->type) {
-  case ELR_BXDF_LAMBERTIAN: return wo.z * wi.z > 0.f ? fabsf(wi.z) * ELR_INV_PI : 0.f;
+  case ELR_BXDF_LAMBERTIAN: case ELR_BXDF_OREN_NAYAR: /* BxDF::Pdf: the cosine */
+    return wo.z * wi.z > 0.f ? fabsf(wi.z) * ELR_INV_PI : 0.f;
   case ELR_BXDF_MICROFACET_REFLECTION: {
     elr_v3 wh;
     if (!(wo.z * wi.z > 0.f)) return 0.f;
@@ -347,7 +364,7 @@ static elr_v3 elr__bxdf_sample(const elr_bxdf *x, elr_v3 wo, float u0, float u1,
   elr_v3 z = elr_v(0, 0, 0);
   *pdf = 0.f; *flags = x->flags;
   switch (x->type) {
-  case ELR_BXDF_LAMBERTIAN:
+  case ELR_BXDF_LAMBERTIAN: case ELR_BXDF_OREN_NAYAR: /* (OrenNayar: BxDF::Sample_f, the cosine) */
     *wi = elr__cosine_sample(wo, u0, u1);
     *pdf = elr__bxdf_pdf(x, wo, *wi);
     return elr__bxdf_f(x, wo, *wi);
@@ -437,7 +454,7 @@ elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type) {
   static const int flags[] = {ELR_BSDF_REFLECTION | ELR_BSDF_DIFFUSE, ELR_BSDF_REFLECTION | ELR_BSDF_SPECULAR,
                               ELR_BSDF_TRANSMISSION | ELR_BSDF_SPECULAR, ELR_BSDF_REFLECTION | ELR_BSDF_TRANSMISSION | ELR_BSDF_SPECULAR,
                               ELR_BSDF_REFLECTION | ELR_BSDF_GLOSSY, ELR_BSDF_TRANSMISSION | ELR_BSDF_GLOSSY,
-                              ELR_BSDF_REFLECTION | ELR_BSDF_GLOSSY};
+                              ELR_BSDF_REFLECTION | ELR_BSDF_GLOSSY, ELR_BSDF_REFLECTION | ELR_BSDF_DIFFUSE};
   if (b->nlobes >= ELR_MAX_BXDFS) return NULL;
   x = &b->lobe[b->nlobes++];
   memset(x, 0, sizeof *x);

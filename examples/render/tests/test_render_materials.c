@@ -184,6 +184,7 @@ static int material_bsdf(const char *mat, const char *integrator, elr_bsdf *b) {
   if (!s) { rt_check(0, "material scene: %s", err); return -1; }
   memset(&h, 0, sizeof h); memset(&tc, 0, sizeof tc);
   h.ns = h.ng = elr_v(0, 0, 1); h.material = s->sph[0].material; h.inst = -1;
+  h.has_uv = 1; h.dpdu = elr_v(1, 0, 0); h.dpdv = elr_v(0, 1, 0); /* the frame ss = x, ts = y (pbrt-v3's for dpdu = x) */
   elr_bsdf_init(s, &h, &tc, b);
   elr_scene_free(s);
   return 0;
