@@ -16,7 +16,9 @@
  *    sample_li's variance, and the mean against sample_li's (all estimate the same E).
  *    Last row, projected: product sampling restricted to outside the cone (li_cos's samples in the cone
  *    rejected, the estimate scaled by the acceptance rate Z: the variance of f Z / p_cos over accepted
- *    samples), the variance a "rest x cosine" part of the mixture would reach (not implemented).
+ *    samples), the variance an exact "rest x product sampling" part would reach; then the rest x cosine
+ *    mixture that is implemented (el_envlight_sample_li_mix_cos: the rest's 32 x 16 cells by their mass
+ *    times a cosine bound) with the largest spot's weight 0.02 and 0.
  * 4. Cost: ns per sample of sample_li and sample_li_mix (spots 0.02) with radiance on the sunrise map,
  *    best of 5 interleaved rounds of 2^20 (the machine is shared: read ratios), and the bytes of the
  *    hot-spot tables.
@@ -99,7 +101,7 @@ static void spots_line(const char *name, const el_envlight *l, float thr) {
   el_envlight_hotspots_free(&h);
 }
 
-/* sampler: 0 sample_li, 1 sample_li_cos(n), 2.. mixture with spot weight s */
+/* sampler: 0 sample_li, 1 sample_li_cos(n), 2..4 mixture with spot weight s, 6, 7 the rest x cosine mixture */
 static void draw(const el_envlight *l, const el_envlight_hotspots *h, int which, float s, const float n[3], const float u[2], float wi[3], float rgb[3], float *pdf) {
   if (which == 0) el_envlight_sample_li(l, u, wi, rgb, pdf);
   else if (which == 1) el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf);
@@ -110,14 +112,15 @@ static void draw(const el_envlight *l, const el_envlight_hotspots *h, int which,
     w.spot[0] = s;
     for (k = 1; k < h->count; ++k) w.spot[k] = h->spot[k].share * (1 - s) / (1 - h->spot[0].share);
     w.rest = h->rest_share * (1 - s) / (1 - h->spot[0].share);
-    el_envlight_sample_li_mix(l, h, &w, u, wi, rgb, pdf);
+    if (which >= 6) el_envlight_sample_li_mix_cos(l, h, &w, n, u, wi, rgb, pdf);
+    else el_envlight_sample_li_mix(l, h, &w, u, wi, rgb, pdf);
   }
 }
 
 static void study(const char *name, const el_envlight *l) {
   el_envlight_hotspots h;
   const float shares[3] = {0.1f, 0.02f, 0.0f};
-  const char *sname[6] = {"sample_li", "li_cos(n)", "mix 0.1", "mix 0.02", "mix 0", "li_cos|rest"};
+  const char *sname[8] = {"sample_li", "li_cos(n)", "mix 0.1", "mix 0.02", "mix 0", "li_cos|rest", "mixcos .02", "mixcos 0"};
   float ax[3], ns[2][3];
   double cosc, cos1 = cos(PI / 180), var0[2] = {0, 0}, mean0[2] = {0, 0};
   int which, ni, i, count = 1 << 20;
@@ -134,7 +137,7 @@ static void study(const char *name, const el_envlight *l) {
          h.spot[0].share, h.spot[0].half_angle * 180 / PI, asin(ax[2]) * 180 / PI, h.count, 1 - h.rest_share);
   for (ni = 0; ni < 2; ++ni) {
     printf("    n %-6s %-10s %8s %8s %12s %12s %9s %9s\n", ni ? "to sun" : "up", "sampler", "in cone", "<1 deg", "E (mean)", "var/sample", "var ratio", "sli/this");
-    for (which = 0; which < 6; ++which) {
+    for (which = 0; which < 8; ++which) {
       double in = 0, near = 0, sum = 0, sum2 = 0, mean, var;
       if (which == 5) { /* projected: product sampling restricted to outside the cone (rejection; Z = the
                            acceptance rate), what a "rest x cosine" part of the mixture would give */
@@ -165,7 +168,7 @@ static void study(const char *name, const el_envlight *l) {
         float u[2], wi[3], rgb[3], pdf, c, cs;
         double f = 0;
         u[0] = frand(); u[1] = frand();
-        draw(l, &h, which, which >= 2 ? shares[which - 2] : 0, ns[ni], u, wi, rgb, &pdf);
+        draw(l, &h, which, which >= 6 ? shares[which - 5] : which >= 2 ? shares[which - 2] : 0, ns[ni], u, wi, rgb, &pdf);
         if (!(pdf > 0)) continue;
         cs = wi[0] * ax[0] + wi[1] * ax[1] + wi[2] * ax[2];
         if (cs >= cosc) in += 1;
@@ -190,7 +193,8 @@ static void cost(const el_envlight *l) {
   el_envlight_hotspots h;
   el_envlight_mix_weights w;
   float *u = (float *)malloc(sizeof(float) * 2 * (1 << 20));
-  double best[2] = {1e30, 1e30}, worst[2] = {0, 0}, sink = 0;
+  double best[4] = {1e30, 1e30, 1e30, 1e30}, worst[4] = {0, 0, 0, 0}, sink = 0;
+  const float nup[3] = {0, 0, 1};
   int round, which, i, n = 1 << 20;
   size_t bytes = 0;
   if (!u) return;
@@ -198,12 +202,14 @@ static void cost(const el_envlight *l) {
   el_envlight_hotspots_weights(&h, 0.02f, &w);
   for (i = 0; i < 2 * n; ++i) u[i] = frand();
   for (round = 0; round < 5; ++round)
-    for (which = 0; which < 2; ++which) {
+    for (which = 0; which < 4; ++which) {
       double t0 = now(), t;
       for (i = 0; i < n; ++i) {
         float wi[3], rgb[3], pdf;
         if (which == 0) el_envlight_sample_li(l, u + 2 * i, wi, rgb, &pdf);
-        else el_envlight_sample_li_mix(l, &h, &w, u + 2 * i, wi, rgb, &pdf);
+        else if (which == 1) el_envlight_sample_li_mix(l, &h, &w, u + 2 * i, wi, rgb, &pdf);
+        else if (which == 2) el_envlight_sample_li_cos(l, nup, u + 2 * i, wi, rgb, &pdf);
+        else el_envlight_sample_li_mix_cos(l, &h, &w, nup, u + 2 * i, wi, rgb, &pdf);
         sink += pdf + rgb[0];
       }
       t = (now() - t0) / n * 1e9;
@@ -211,10 +217,13 @@ static void cost(const el_envlight *l) {
       if (t > worst[which]) worst[which] = t;
     }
   for (i = 0; i <= h.count; ++i) bytes += el_distribution2d_bytes(&h.dist[i]);
+  for (i = 0; h.cell_dist && i < h.cells_u * h.cells_v; ++i) bytes += el_distribution2d_bytes(&h.cell_dist[i]);
   bytes += el_distribution2d_fast_bytes(&h.rest_fast);
   printf("4. cost on the sunrise map (2^20 samples, best - worst of 5 interleaved rounds, loaded machine):\n");
   printf("   sample_li + radiance %.0f - %.0f ns, sample_li_mix (spots 0.02) + radiance %.0f - %.0f ns (%.2fx at best); hot-spot tables %.2f MB (light's sampling tables %.2f MB) [%g]\n",
          best[0], worst[0], best[1], worst[1], best[1] / best[0], bytes / 1e6, el_envlight_sampling_bytes(l) / 1e6, sink > 0 ? 0.0 : 1.0);
+  printf("   sample_li_cos (n up) + radiance %.0f - %.0f ns, sample_li_mix_cos + radiance %.0f - %.0f ns (%.2fx at best)\n",
+         best[2], worst[2], best[3], worst[3], best[3] / best[2]);
   el_envlight_hotspots_free(&h);
   free(u);
 }
