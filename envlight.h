@@ -540,7 +540,7 @@ EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_
                                         const el_envlight_mix_weights *w, int n, const float *u, float *wi,
                                         float *rgb, float *pdf);
 /* The mixture with the rest drawn in proportion to the map times a cosine bound of the surface of world
- * normal n (NOTES ON HOT SPOTS 5): spot k as in sample_li_mix, the rest's cells (32 x 16) picked by their
+ * normal n (NOTES ON HOT SPOTS 4): spot k as in sample_li_mix, the rest's cells (32 x 16) picked by their
  * mass times max(1e-3, an upper bound of n.w over the cell), then sample_li's density inside the cell.
  * Default weights here mean each part's own share. No spot (or h unusable): sample_li_cos itself, and
  * pdf_li_mix_cos is pdf_li_cos. A zero or NaN n: bound 1 (sample_li_mix's density). *pdf equals
@@ -607,7 +607,7 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    the product sampler's cells without the spots' bins) gives, n up / towards the spot, 34x / 160x
  *    less variance than sample_li_cos on sunrise, 45x / 18x on city, 6x / 6x forest, 2.7x / 23x night,
  *    2.4x / 29x studio, 240x / 300x two suns (the second one below the horizon).
- * 5. THE REST x COSINE MIXTURE (sample_li_mix_cos, pdf_li_mix_cos): the rest's bins grouped into 32 x 16
+ * 4. THE REST x COSINE MIXTURE (sample_li_mix_cos, pdf_li_mix_cos): the rest's bins grouped into 32 x 16
  *    cells; per call every cell gets B = max(1e-3, cos(max(0, angle(n, centre) - radius))), an upper
  *    bound of n.w over the cell (its cone: the farthest of 5 x 5 points plus a tenth of the cell's
  *    angle; the floor keeps every cell with mass reachable, so light sampling alone stays unbiased);
@@ -621,12 +621,13 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    of 5 interleaved rounds, loaded machine); so at equal time it wins on sun maps (sunrise, city),
  *    not on lamp maps. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
  *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
- * 4. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
+ * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
- *    those of the compensated density. COST: sample_li_mix with radiance 3.9x sample_li's time on the sunrise map (1645 against 416 ns,
- *    best of 5 interleaved rounds, loaded machine): the part's search, the pdf query (pdf_li and the
- *    bin search) and le(wi). MEMORY: the rest's distribution and guide table, 2.6 MB at 1024x512 (the
- *    light's own tables: 4.9 MB), and each spot's bins. Thread safety: h is read-only after init; it
+ *    those of the compensated density. COST: sample_li_mix with radiance 3.9-4.4x sample_li's time on
+ *    the sunrise map (292 against 66 ns; 1645 against 416 ns in a busier run; best of 5 interleaved
+ *    rounds, loaded machine): the part's search, the pdf query (pdf_li and the bin search) and le(wi).
+ *    MEMORY: the rest's distribution and guide table, 2.6 MB at 1024x512 (the light's own tables:
+ *    4.9 MB), and each spot's bins. Thread safety: h is read-only after init; it
  *    refers to the light's tables, so free h before l; it is only used with the light it was made from
  *    (checked: another light's h gives sample_li / pdf_li).
  */
