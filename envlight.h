@@ -128,6 +128,15 @@ extern "C" {
 
 /* The largest importance-map resolution per axis (the 2^-21 in-bin margin must stay far below a bin). */
 #define EL_ENVLIGHT_MAX_IMPORTANCE 65536
+/* The default cap of the importance map's width (its height: half of it): a map wider than 4096 is
+ * summarised by 4096 x 2048 exact cell averages (73 MB of tables at most) unless options.importance_cap
+ * says otherwise; maps up to 4096x2048 (and pbrt-v3's 2x map of a 2048x1024 image) are untouched. Chosen
+ * by measurement (NOTES: BIG MAPS): on a 16k map with a 0.5-degree sun it costs 1.9x the irradiance
+ * variance of the full resolution for 6% of its tables (2048: 3.2x for 1.6%). */
+#define EL_ENVLIGHT_IMPORTANCE_CAP 4096
+/* How the image maps to the sphere (options.mapping). */
+#define EL_ENVLIGHT_MAPPING_LATLONG 0    /* default: pbrt-v3's latitude-longitude map, width x height */
+#define EL_ENVLIGHT_MAPPING_EQUAL_AREA 1 /* pbrt-v4's square equal-area octahedral map (Clarberg 2008), N x N */
 /* The radii el_envlight_preprocess accepts: 2^-64 and 2^62, where sample_le's pdf_pos = 1 / (pi r^2)
  * is still a finite, normal float. */
 #define EL_ENVLIGHT_MIN_RADIUS 5.42101086e-20f
@@ -144,6 +153,13 @@ typedef struct el_envlight_options {
   int importance_height;   /*  it), each capped at EL_ENVLIGHT_MAX_IMPORTANCE. TEXEL ignores these. */
   int sampler;             /* EL_ENVLIGHT_SAMPLER_* */
   int bad_texels;          /* EL_ENVLIGHT_BAD_TEXELS_*; what became 0 is reported in the light's fields */
+  /* big maps and pbrt-v4's maps (issue 24; NOTES: BIG MAPS, EQUAL-AREA MAPS) */
+  int importance_cap;      /* when importance_width is 0: the largest importance width (height: half; an
+                              equal-area map: half per axis). 0: EL_ENVLIGHT_IMPORTANCE_CAP; < 0: no cap */
+  int no_copy;             /* 1: keep a pointer to the caller's pixels instead of copying them (channels 3,
+                              scale all zero or (1, 1, 1)); they must stay alive and unchanged until
+                              el_envlight_free. A texel bad_texels must replace makes init copy after all */
+  int mapping;             /* EL_ENVLIGHT_MAPPING_* */
 } el_envlight_options;
 
 /* The light. PUBLIC (read, never write): width, height, bad_index and what init replaced by 0
@@ -224,6 +240,8 @@ typedef struct el_envlight {
   el_result warp_result, cos_result;
   struct el_envlight__warp *warp;   /* the warp's cells and CDFs (private) */
   struct el_envlight__warp *prod;   /* product sampling's patches, cells and normal tables (private; cos_state) */
+  int mapping;             /* EL_ENVLIGHT_MAPPING_* */
+  int borrowed;            /* 1: texels is the caller's array (options.no_copy): never written nor freed */
 } el_envlight;
 
 /* pixels: width*height*channels floats (row-major, row 0 first), copied into RGB. channels 1 (grey) or
@@ -272,7 +290,7 @@ EL_DEF void el_envlight_pdf_le(const el_envlight *l, const float ray_dir[3], flo
 EL_DEF void el_envlight_power(const el_envlight *l, float rgb[3]);
 /* integral(le) d omega over the sphere, per channel (exact for the bilinear reconstruction). */
 EL_DEF void el_envlight_integral(const el_envlight *l, float rgb[3]);
-/* Bytes in use: the struct, the texels and the sampling tables (if built). */
+/* Bytes in use: the struct, the texels (not the caller's, with options.no_copy) and the tables built. */
 EL_DEF size_t el_envlight_bytes(const el_envlight *l);
 /* Bytes of the sampling tables alone (0 until built). */
 EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l);
@@ -285,6 +303,10 @@ EL_DEF void el_envlight_zup_matrix(float m[9]);
  * (u, v) -> unit dir. Both use the same polynomials as the light. */
 EL_DEF void el_envlight_dir_to_uv(const float dir[3], float *u, float *v);
 EL_DEF void el_envlight_uv_to_dir(float u, float v, float dir[3]);
+/* The same for pbrt-v4's equal-area square (EqualAreaSphereToSquare / EqualAreaSquareToSphere, light space:
+ * +z is the square's centre, -z its corners). Accurate to about 2e-7 in (u, v) (pbrt-v4's polynomial: 4e-6). */
+EL_DEF void el_envlight_dir_to_square(const float dir[3], float *u, float *v);
+EL_DEF void el_envlight_square_to_dir(float u, float v, float dir[3]);
 
 /* << declarations */
 
@@ -632,6 +654,111 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    (checked: another light's h gives sample_li / pdf_li).
  */
 
+/* >> declarations: portals (issue 23; NOTES ON PORTALS below) */
+
+/* At most this many portals per light. */
+#define EL_ENVLIGHT_PORTAL_MAX 16
+
+typedef struct el_envlight_portal_options {
+  int resolution;  /* rectified image texels per axis, 4..4096; 0: the map's height within 64..2048 (a
+                      rectified texel about a map texel at the window's centre: a sun stays sharp) */
+  int supersample; /* importance lookups per texel and axis, 1..16; 0: 2 */
+  int compensated; /* 1: density max(lum - mean, 0) (the mean over the portal's hemisphere): MIS only */
+  float map_share; /* 0..1: the share of samples drawn by the map's own sample_li where a portal is seen
+                      (a defensive mixture: a point outside the room that sees a portal's back still
+                      finds the sun). 0: pbrt-v4's pure portal density */
+} el_envlight_portal_options;
+
+/* One or more planar rectangular portals (windows) of a light, in world space, with pbrt-v4's vertex
+ * order and frame: x along p3 - p0, y along p1 - p0, z = x cross y points from the room to the outside
+ * (a shading point sees the portal when the portal lies on the +z side of it). PUBLIC (read, never
+ * write): count, res, map_share, bad_index and error; the rest is private. */
+typedef struct el_envlight_portal {
+  int count, res;                           /* PUBLIC: portals, rectified texels per axis */
+  double frame[EL_ENVLIGHT_PORTAL_MAX][12]; /* per portal: p0, x, y, z (unit) */
+  double size[EL_ENVLIGHT_PORTAL_MAX][2];   /* |p3 - p0|, |p1 - p0| */
+  uint64_t *sat;                            /* count x (res+1)^2 integer summed-area tables */
+  int compensated, fell_back;               /* fell_back: the compensated density was empty: plain one */
+  float map_share;                          /* options.map_share */
+  int bad_index;                            /* after a failed init: the portal at fault, else -1 */
+  char error[128];                          /* after a failed init: what is wrong, else "" */
+} el_envlight_portal;
+
+/* points: count x 4 vertices x 3 floats, world space (pbrt-v4's "point3 portal", ignoring the light's
+ * CTM). The tables are built from light's le() (its matrix and scale); pass the same light to the
+ * queries (the portal keeps no pointer to it). opt may be NULL. Errors:
+ * EL_ERROR_INVALID_ARGUMENT (count outside 1..EL_ENVLIGHT_PORTAL_MAX, options out of range, a degenerate
+ * or non-rectangular portal), EL_ERROR_NAN / EL_ERROR_INFINITE (a vertex), EL_ERROR_OUT_OF_MEMORY; then
+ * p->error names the problem ("portal 1: not planar: ...") and p->bad_index the portal. */
+EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envlight *light, const float *points,
+                                         int count, const el_envlight_portal_options *opt);
+EL_DEF void el_envlight_portal_free(el_envlight_portal *p);
+/* Sample a direction wi (world, unit) from point pos: through the portals pos sees, in proportion to
+ * the map's luminance there, with solid-angle density *pdf; rgb (may be NULL) gets le(wi). Returns 1
+ * when the portals were used, 0 when pos sees no portal (it lies behind every portal's plane or on it)
+ * and the map's own sample_li was used instead. With options.map_share s > 0, where pos sees a portal
+ * a share s of the samples comes from the map's sample_li and the pdf is the mixture's,
+ * (1 - s) portal + s map (then directions outside the portals keep the map's share). */
+EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                        const float u[2], float wi[3], float rgb[3], float *pdf);
+/* The density with which sample_li picks wi at pos: 0 for a direction through no portal (when pos sees
+ * one), the map's pdf_li when it sees none. */
+EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                       const float wi[3]);
+/* 1 when pos sees a portal (the portal strategy applies there), else 0 (the map's sampling). */
+EL_DEF int el_envlight_portal_sees(const el_envlight_portal *p, const float pos[3]);
+/* Bytes of the portal's tables: 8 per rectified texel (the tables are all it keeps). */
+EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
+
+/* << declarations: portals */
+
+/* ----------------------------------------------------------------------------------------------------
+ * NOTES ON PORTALS (issue 23; Bitterli, Novak, Jarosz 2015, "Portal-masked environment map sampling";
+ * pbrt-v4's PortalImageInfiniteLight, src/pbrt/lights.{h,cpp}, WindowedPiecewiseConstant2D in
+ * src/pbrt/util/sampling.h)
+ *
+ * 1. THE RECTIFIED DOMAIN (pbrt-v4's): a direction w with local z > 0 in a portal's frame has angles
+ *    alpha = atan(w.x / w.z), beta = atan(w.y / w.z), and (a, b) = (alpha / pi + 1/2, beta / pi + 1/2) in
+ *    [0,1]^2; dw / d(a,b) = pi^2 (1 - w.x^2)(1 - w.y^2) / w.z. From any point in front of the portal,
+ *    the directions through it are the rectangle between the images of p0 and p2: a window.
+ * 2. THE DENSITY: the rectified image holds, per texel, the mean over supersample^2 points of
+ *    luminance(le(w)) x dw/d(a,b) (so a texel's mass is the luminance integrated over its solid angle;
+ *    le() carries the light's matrix and scale), quantised to integers (2^40 units over the largest
+ *    portal's image, every texel at least 1 unit without compensation, so that every direction through
+ *    a portal has pdf > 0 even where the supersampling missed a sun). The density at a point is that
+ *    image restricted to the windows, texels cut by a window's edge counted by their covered part: the
+ *    map's own radiance distribution through the portals, not a uniform solid angle.
+ * 3. THE SAMPLER (not pbrt-v4's bisection of a continuous double SAT, ~400 table reads): one INTEGER
+ *    summed-area table per portal (uint64, 8 bytes per texel, exact sums, no cancellation however small
+ *    the window or bright the sun elsewhere). The window's row masses have a closed-form prefix (4 table
+ *    reads per row boundary, two adjacent pairs), so the row is found by integer binary search over the
+ *    window's rows and the position in the row by linear inversion; then the column by a binary search
+ *    over the row's prefix (2 reads per step). pdf = q_texel R^2 / (window mass) / (dw/d(a,b)), the exact
+ *    density of those steps. Several portals: one is picked by the windows' masses with the same u.
+ *    No rectified RGB image: radiance is le() of the map. COST (bench/bench_portal.c, 4 floor points
+ *    of a room, gcc -O3, a shared loaded 2-core machine): 267-313 ns per sample with the radiance and
+ *    the pdf, against 1280-1480 ns for a plain port of pbrt-v4's sampler (bisection over a double
+ *    SAT) at the same resolution: 4.7-4.9x less; at equal variance on a smooth sky (the same density:
+ *    relative variance 0.039 both; the map's sample_li: 50). MEMORY: 8 bytes per rectified texel
+ *    (pbrt-v4: 24); the default resolution is the map's height (city, 1024x512: 512^2, 2 MB per
+ *    portal, built in about 100 ms), because a sun must stay sharp: 256^2 left 2x the variance of
+ *    the irradiance and 2x of a rendered room's pixels. The renderer (bench/bench_portal_render.c):
+ *    time to unit variance 112x better on an overcast sky, 4.3x on city with its sun shining in
+ *    (path traced, depth 3: the rest is indirect light from the sunlit floor); direct light alone
+ *    (depth 1) 1600x and 11x.
+ * 4. FALLBACK: a point on or behind every portal's plane (or seeing windows of zero mass) uses the map's
+ *    sample_li / pdf_li, so the strategy stays unbiased everywhere; sample_li returns which was used.
+ *    Directions through no portal have pdf 0 (as pbrt-v4): the caller's BSDF samples must find them.
+ * 5. COMPENSATION (pbrt-v4 has none for portals): max(lum - mean, 0), mean over the portal's whole
+ *    hemisphere of directions (solid-angle weighted): with MIS only (dim directions get pdf 0).
+ *    MAP SHARE (options.map_share): a point outside the room may stand in front of a portal's plane and
+ *    see its back; its sun is then sought only through the room. A share s of the samples from the
+ *    map's sample_li, pdf (1 - s) portal + s map, keeps such points well sampled (the renderer uses
+ *    0.1: a sphere outside a window read 1% dark at 8 seeds without it, -3.6 sd; with it 0.07 sd).
+ * 6. INPUTS: a NaN, infinite or zero u is clamped as sample_li's; a NaN or zero wi has pdf 0; a NaN pos
+ *    sees no portal. Queries are read-only and thread-safe (the fallback builds the light's tables lazily,
+ *    as sample_li does). */
+
 #ifdef __cplusplus
 }
 #endif
@@ -762,6 +889,56 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  * MIS COMPENSATION (options.compensated, pbrt-v4): the density is max(L - mean L, 0) sin(theta), so
  * light sampling alone NO LONGER covers the dim parts of the map: use it only with MIS against BSDF
  * sampling. A map where nothing exceeds the mean (a constant one) falls back to the plain density.
+ *
+ * BIG MAPS (issue 24; bench/bench_bigmaps.c, numbers in docs/accuracy-vs-time.md). A 16384x8192 map is a
+ * 1.5 GB float image. Before: init copied it (1.5 GB more, page-faulted in) and the sampling tables were
+ * built at its resolution (1.15 GB; with the product tables 2.4x the image at peak, 5-18 s CPU). Now:
+ *   - THE CAP. When importance_width is 0 the importance map is at most importance_cap x importance_cap/2
+ *     bins (EL_ENVLIGHT_IMPORTANCE_CAP = 4096 by default; -1: none), each the EXACT mean of le()'s bilinear
+ *     reconstruction over the bin (the CELL_AVERAGE weights for any ratio, bins need not divide the image),
+ *     times sin(theta). The pdf is exact for the piecewise-constant density actually sampled (pdf_li and
+ *     sample_li agree as in point 4); radiance is still read from the full image. A capped PBRT_V3 map
+ *     takes cell averages (its point lookups at fewer bins could miss a small sun: pdf 0 where le > 0);
+ *     TEXEL is never capped. The cost, measured on a 16384x8192 map with a 0.5-degree sun (radiance 1e5,
+ *     half the map's power), relative variance per sample of sample_li's estimates (full resolution /
+ *     cap 8192 / 4096 / 2048 / 1024): the luminance integral 0.026 / 0.072 / 0.19 / 0.43 / 1.08, the
+ *     irradiance of a surface facing the sun 0.37 / 0.45 / 0.69 / 1.16 / 2.45; tables 1155 / 289 / 73 / 18 /
+ *     4.7 MB. A bin wider than the sun's edge mixes sun and sky: that is the whole cost. 4096 keeps the
+ *     tables within 0.05x of a 16k image and 0.19x of an 8k one, at 1.9x the irradiance variance of full
+ *     resolution on that map (2048: 3.1x); maps up to 4096x2048, and pbrt-v3's 2x map of a 2048x1024 image,
+ *     are untouched. Ask for the full resolution with importance_cap = -1 when the memory is there.
+ *     Product sampling's tables may use the same cap: the resolved size is (imp_w, imp_h), and the
+ *     exact bin means at any size come from one streaming pass (el_envlight__cell_average).
+ *   - NO COPY. options.no_copy = 1 keeps a pointer to the caller's pixels (3 channels, no scale: fold a
+ *     scale into the pixels first). init then only reads them once (validation and the integral: 0.26-0.34 s
+ *     CPU for 16k instead of 0.8-1.1 s with the copy's page faults; with the capped sampling tables
+ *     0.7-1.0 s CPU and 72 MB, 0.047x the image; with issue 20's product tables too, 1.4-1.5 s CPU and 93 MB,
+ *     0.061x) and el_envlight_bytes leaves them out.
+ *     LIFETIME: the pixels must stay allocated and unchanged until el_envlight_free (the light reads them
+ *     on every le and sample_li, and its tables describe them); el_envlight_free does not free them. A
+ *     texel that BAD_TEXELS_ZERO or CLAMP_NEGATIVE must replace makes init copy after all (light.borrowed
+ *     then says 0, and the counts are the copy's); a texel the policy refuses is named without a copy.
+ *   - Half floats would halve a copy (0.5x the image), still above the 0.25x budget that no_copy meets
+ *     with 0.05x: not done.
+ *   - The tables of a capped map are small and filled in one pass each (no calloc-then-touch of arrays
+ *     of the image's size); the build reads the image once, row by row, through a ring of u-filtered rows.
+ *
+ * EQUAL-AREA MAPS (options.mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA: pbrt-v4's ImageInfiniteLight,
+ * Clarberg 2008's octahedral equal-area square). A square N x N image; light space as pbrt-v4's
+ * EqualAreaSquareToSphere: the square's centre is +z, its corners -z, (1, 1/2) is +x, (1/2, 1) is +y
+ * (el_envlight_square_to_dir / el_envlight_dir_to_square; the light_to_world matrix applies as for
+ * lat-long maps). le is the nearest texel (pbrt-v4's LookupNearest), so each texel is exactly a patch of
+ * solid angle 4 pi / N^2 with constant radiance: the importance map is the texels' luminance (box means
+ * of it under the cap, which is importance_cap / 2 per axis), with no sin(theta), and pdf = mapPdf /
+ * (4 pi). The integral is exact. sample_li returns pdf_li(wi) and le(wi) themselves (bit for bit; the
+ * mapping's round trip, about 2e-7 in (u, v), stays inside the 2^-21 margin: every sampled point's pdf is
+ * its bin's, tests/test_envlight_bigmaps.c). Costs (bench_bigmaps table 3, 2896^2 against 4096x2048
+ * lat-long, two runs): sample_li 1.2-1.3x, pdf_li 1.3-1.5x the lat-long times (no inline fast paths),
+ * le 0.7x (a nearest lookup), tables 0.8x. Native rather than converted on load: a conversion to lat-long resamples (blurs) the
+ * map and its pdf would no longer describe pbrt-v4's image. Not supported (EL_ERROR_INVALID_ARGUMENT):
+ * importance PBRT_V3 and BILINEAR, a non-square image. Product sampling has no equal-area tables:
+ * sample_li_cos and pdf_li_cos are sample_li and pdf_li there (unbiased, no cosine factor), and
+ * prepare_product builds sample_li's tables.
  * ==================================================================================================== */
 
 /* ====================================================================================================
@@ -1078,6 +1255,7 @@ static el_result el_envlight__common(el_envlight *l, const el_envlight_options *
       opt->importance_width > EL_ENVLIGHT_MAX_IMPORTANCE || opt->importance_height > EL_ENVLIGHT_MAX_IMPORTANCE)
     return EL_ERROR_INVALID_ARGUMENT;
   if ((opt->importance_width == 0) != (opt->importance_height == 0)) return EL_ERROR_INVALID_ARGUMENT;
+  if (opt->mapping < 0 || opt->mapping > EL_ENVLIGHT_MAPPING_EQUAL_AREA) return EL_ERROR_INVALID_ARGUMENT;
   for (c = 0; c < 3; ++c) {
     r = el_envlight__check_value(opt->scale[c]);
     if (r != EL_SUCCESS) return r;
@@ -1235,6 +1413,50 @@ static int el_envlight__row3(const float *src, float *dst, int w, const float *k
   return !(top & 0x80000000u);
 }
 
+/* el_envlight__row3 without the copy (options.no_copy, scale 1): validates one RGB row of the caller's
+ * pixels and sums it per channel, reading it once and writing nothing. The same validity test and the
+ * same sums, in the same order, as el_envlight__row3 with a scale of 1. */
+static int el_envlight__row3_check(const float *src, int w, double sum[3]) {
+  double acc[12], t[3] = {0.0, 0.0, 0.0};
+  uint32_t top = 0;
+  int x = 0, k;
+#if EL_ENVLIGHT__SSE
+  {
+    const __m128i h = _mm_set1_epi32(0x00800000);
+    __m128i bad = _mm_setzero_si128();
+    __m128d a0 = _mm_setzero_pd(), a1 = a0, a2 = a0, a3 = a0, a4 = a0, a5 = a0;
+    for (; x + 4 <= w; x += 4, src += 12) {
+      __m128 p0 = _mm_loadu_ps(src), p1 = _mm_loadu_ps(src + 4), p2 = _mm_loadu_ps(src + 8);
+      __m128i b0 = _mm_castps_si128(p0), b1 = _mm_castps_si128(p1), b2 = _mm_castps_si128(p2);
+      bad = _mm_or_si128(bad, _mm_or_si128(_mm_or_si128(_mm_or_si128(b0, _mm_add_epi32(b0, h)), _mm_or_si128(b1, _mm_add_epi32(b1, h))),
+                                           _mm_or_si128(b2, _mm_add_epi32(b2, h))));
+      a0 = _mm_add_pd(a0, _mm_cvtps_pd(p0)); a1 = _mm_add_pd(a1, _mm_cvtps_pd(_mm_movehl_ps(p0, p0)));
+      a2 = _mm_add_pd(a2, _mm_cvtps_pd(p1)); a3 = _mm_add_pd(a3, _mm_cvtps_pd(_mm_movehl_ps(p1, p1)));
+      a4 = _mm_add_pd(a4, _mm_cvtps_pd(p2)); a5 = _mm_add_pd(a5, _mm_cvtps_pd(_mm_movehl_ps(p2, p2)));
+    }
+    _mm_storeu_pd(acc, a0); _mm_storeu_pd(acc + 2, a1); _mm_storeu_pd(acc + 4, a2);
+    _mm_storeu_pd(acc + 6, a3); _mm_storeu_pd(acc + 8, a4); _mm_storeu_pd(acc + 10, a5);
+    top = _mm_movemask_ps(_mm_castsi128_ps(bad)) ? 0x80000000u : 0u;
+  }
+#else
+  for (k = 0; k < 12; ++k) acc[k] = 0.0;
+  for (; x + 4 <= w; x += 4, src += 12)
+    for (k = 0; k < 12; ++k) acc[k] += el_envlight__scale1(src[k], 1.0f, &top);
+#endif
+  for (; x < w; ++x, src += 3)
+    for (k = 0; k < 3; ++k) t[k] += el_envlight__scale1(src[k], 1.0f, &top);
+  for (k = 0; k < 3; ++k) sum[k] = ((acc[k] + acc[k + 3]) + (acc[k + 6] + acc[k + 9])) + t[k];
+  return !(top & 0x80000000u);
+}
+
+/* The weight of row y's mean in the integral of le over the sphere: the bilinear lat-long rows' exact
+ * solid angle, or 4 pi / N^2 per texel of an equal-area map (each texel covers that solid angle exactly,
+ * and le is its nearest lookup). */
+static double el_envlight__row_wgt(const el_envlight *l, int y, int w, int h) {
+  if (l->mapping == EL_ENVLIGHT_MAPPING_EQUAL_AREA) return 4.0 * EL_ENVLIGHT__PI / ((double)w * (double)h);
+  return el_envlight__row_weight(y, h) / w;
+}
+
 /* >> construction */
 
 /* A failed init: *l zeroed but for bad_index. */
@@ -1263,6 +1485,10 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
   if (n > ((size_t)-1) / (3 * sizeof(float))) return EL_ERROR_SIZE_OVERFLOW;
   r = el_envlight__common(l, opt, scale);
   if (r != EL_SUCCESS) return el_envlight__fail(l, r, -1);
+  l->mapping = opt->mapping;
+  if (l->mapping == EL_ENVLIGHT_MAPPING_EQUAL_AREA &&
+      (width != height || opt->importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 || opt->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR))
+    return el_envlight__fail(l, EL_ERROR_INVALID_ARGUMENT, -1); /* a square image; box cell averages only */
   if (opt->importance == EL_ENVLIGHT_IMPORTANCE_TEXEL) {
     l->imp_w = width; l->imp_h = height;
     if (l->imp_w > EL_ENVLIGHT_MAX_IMPORTANCE || l->imp_h > EL_ENVLIGHT_MAX_IMPORTANCE) return el_envlight__fail(l, EL_ERROR_SIZE_OVERFLOW, -1);
@@ -1272,6 +1498,49 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
     int k = opt->importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 ? 2 : 1;
     l->imp_w = width <= EL_ENVLIGHT_MAX_IMPORTANCE / k ? k * width : EL_ENVLIGHT_MAX_IMPORTANCE;
     l->imp_h = height <= EL_ENVLIGHT_MAX_IMPORTANCE / k ? k * height : EL_ENVLIGHT_MAX_IMPORTANCE;
+    if (opt->importance_cap >= 0) { /* the default cap (NOTES: BIG MAPS) */
+      int cw = opt->importance_cap > 0 ? opt->importance_cap : EL_ENVLIGHT_IMPORTANCE_CAP, ch = cw / 2;
+      if (ch < 1) ch = 1;
+      if (l->mapping == EL_ENVLIGHT_MAPPING_EQUAL_AREA) cw = ch;
+      if (l->imp_w > cw || l->imp_h > ch) {
+        l->imp_w = l->imp_w < cw ? l->imp_w : cw;
+        l->imp_h = l->imp_h < ch ? l->imp_h : ch;
+        /* point lookups at fewer bins than pbrt-v3's 2x could miss a small sun (pdf 0 where le > 0):
+         * a capped map takes the exact cell averages */
+        l->importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
+      }
+    }
+  }
+  if (opt->no_copy) { /* <<keep the caller's texels>>: validate and integrate them in one read */
+    int copy = 0;
+    if (channels != 3 || scale[0] != 1.0f || scale[1] != 1.0f || scale[2] != 1.0f) return el_envlight__fail(l, EL_ERROR_INVALID_ARGUMENT, -1);
+    for (y = 0; y < height && !copy; ++y) {
+      double row[3], wgt = el_envlight__row_wgt(l, y, width, height);
+      const float *src = pixels + (size_t)y * (size_t)width * 3;
+      if (!el_envlight__row3_check(src, width, row)) { /* texel by texel, as the copy's careful path: a -0 passes */
+        row[0] = row[1] = row[2] = 0.0;
+        for (x = 0; x < width && !copy; ++x)
+          for (c = 0; c < 3; ++c) {
+            r = el_envlight__check_value(src[3 * x + c]);
+            if (r != EL_SUCCESS) { /* name it without a copy, or zero it in a copy */
+              if (opt->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO &&
+                  !(r == EL_ERROR_NEGATIVE && opt->bad_texels == EL_ENVLIGHT_BAD_TEXELS_CLAMP_NEGATIVE))
+                return el_envlight__fail(l, r, y * width + x);
+              copy = 1;
+              break;
+            }
+            row[c] += src[3 * x + c];
+          }
+      }
+      for (c = 0; c < 3; ++c) l->integral[c] += row[c] * wgt;
+    }
+    if (!copy) {
+      memcpy(&l->texels, &pixels, sizeof l->texels); /* the caller's: never written (l->borrowed) */
+      l->borrowed = 1;
+      l->width = width; l->height = height;
+      return EL_SUCCESS;
+    }
+    l->integral[0] = l->integral[1] = l->integral[2] = 0.0; /* a texel to zero: copy after all */
   }
   l->texels = (float *)EL_MALLOC(n * 3 * sizeof(float));
   if (!l->texels) return el_envlight__fail(l, EL_ERROR_OUT_OF_MEMORY, -1);
@@ -1281,7 +1550,7 @@ EL_DEF el_result el_envlight_init(el_envlight *l, const float *pixels, int width
    * by texel */
   for (c = 0; c < 12; ++c) k12[c] = scale[c % 3];
   for (y = 0; y < height; ++y) {
-    double row[3] = {0.0, 0.0, 0.0}, wgt = el_envlight__row_weight(y, height) / width;
+    double row[3] = {0.0, 0.0, 0.0}, wgt = el_envlight__row_wgt(l, y, width, height);
     if (channels == 3 && el_envlight__row3(pixels + (size_t)y * (size_t)width * 3, l->texels + (size_t)y * (size_t)width * 3, width, k12, row)) {
       for (c = 0; c < 3; ++c) l->integral[c] += row[c] * wgt;
       continue;
@@ -1381,7 +1650,7 @@ EL_DEF void el_envlight_free(el_envlight *l) {
   el_envlight__free_tables(l);
   el_envlight__warp_free(l->warp);
   el_envlight__warp_free(l->prod);
-  EL_FREE(l->texels);
+  if (!l->borrowed) EL_FREE(l->texels);
   memset(l, 0, sizeof *l);
 }
 
@@ -1497,12 +1766,55 @@ static el_result el_envlight__cell_average_same(const el_envlight *l, float *f, 
   return EL_SUCCESS;
 }
 
-static el_result el_envlight__cell_average(const el_envlight *l, float *f, int nu, int nv) {
+/* One axis of the exact "mean of the nearest (box) reconstruction over each bin" weights (equal-area
+ * maps): texel k covers [k, k + 1], bin b [b n / nb, (b + 1) n / nb]; the same output as axis_weights. */
+static el_result el_envlight__box_weights(int n, int nb, int **start, int **idx, float **wt) {
+  size_t cap = (size_t)nb * (size_t)((n + nb - 1) / nb + 2), m = 0;
+  int b, k;
+  *start = (int *)EL_MALLOC(((size_t)nb + 1) * sizeof(int));
+  *idx = (int *)EL_MALLOC(cap * sizeof(int));
+  *wt = (float *)EL_MALLOC(cap * sizeof(float));
+  if (!*start || !*idx || !*wt) return EL_ERROR_OUT_OF_MEMORY;
+  for (b = 0; b < nb; ++b) {
+    double a = (double)b * n / nb, e = (double)(b + 1) * n / nb;
+    (*start)[b] = (int)m;
+    for (k = (int)floor(a); k < n && (double)k < e; ++k) {
+      double lo = a > k ? a : (double)k, hi = e < k + 1.0 ? e : k + 1.0;
+      if (!(hi > lo)) continue;
+      EL_ASSERT(m < cap);
+      (*idx)[m] = k; (*wt)[m] = (float)((hi - lo) / (e - a)); ++m;
+    }
+  }
+  (*start)[nb] = (int)m;
+  return EL_SUCCESS;
+}
+
+/* lum[x] = the luminance of texel x of a row of w RGB texels: the products and sums of
+ * el_envlight__luminance, 4 texels at a time with SSE2 (the same bits) */
+static void el_envlight__lum_row(const float *t, float *lum, int w) {
+  int x = 0;
+#if EL_ENVLIGHT__SSE
+  const __m128 wr = _mm_set1_ps(0.212671f), wg = _mm_set1_ps(0.715160f), wb = _mm_set1_ps(0.072169f);
+  for (; x + 4 <= w; x += 4) { /* r0 g0 b0 r1 | g1 b1 r2 g2 | b2 r3 g3 b3 -> R, G, B (as cell_average_same) */
+    __m128 p0 = _mm_loadu_ps(t + 3 * x), p1 = _mm_loadu_ps(t + 3 * x + 4), p2 = _mm_loadu_ps(t + 3 * x + 8);
+    __m128 yy = _mm_shuffle_ps(p1, p2, _MM_SHUFFLE(2, 1, 3, 2));
+    __m128 zz = _mm_shuffle_ps(p0, p1, _MM_SHUFFLE(1, 0, 2, 1));
+    __m128 rr = _mm_shuffle_ps(p0, yy, _MM_SHUFFLE(2, 0, 3, 0));
+    __m128 gg = _mm_shuffle_ps(zz, yy, _MM_SHUFFLE(3, 1, 2, 0));
+    __m128 bb = _mm_shuffle_ps(zz, p2, _MM_SHUFFLE(3, 0, 3, 1));
+    _mm_storeu_ps(lum + x, _mm_add_ps(_mm_add_ps(_mm_mul_ps(wr, rr), _mm_mul_ps(wg, gg)), _mm_mul_ps(wb, bb)));
+  }
+#endif
+  for (; x < w; ++x) lum[x] = el_envlight__luminance(t + 3 * x);
+}
+
+/* box: the equal-area map's nearest reconstruction (box weights) instead of le()'s bilinear one. */
+static el_result el_envlight__cell_average(const el_envlight *l, float *f, int nu, int nv, int box) {
   int w = l->width, h = l->height;
   int *us = NULL, *ui = NULL, *vs = NULL, *vi = NULL, j, i, e, span = 1, cached_hi = -1;
   float *uw = NULL, *vw = NULL, *lum = NULL, *cache = NULL;
-  el_result r = el_envlight__axis_weights(w, nu, 1, &us, &ui, &uw);
-  if (r == EL_SUCCESS) r = el_envlight__axis_weights(h, nv, 0, &vs, &vi, &vw);
+  el_result r = box ? el_envlight__box_weights(w, nu, &us, &ui, &uw) : el_envlight__axis_weights(w, nu, 1, &us, &ui, &uw);
+  if (r == EL_SUCCESS) r = box ? el_envlight__box_weights(h, nv, &vs, &vi, &vw) : el_envlight__axis_weights(h, nv, 0, &vs, &vi, &vw);
   if (r != EL_SUCCESS) goto done;
   /* the widest range of rows one bin row needs: a ring of that many u-filtered rows */
   for (j = 0; j < nv; ++j) {
@@ -1519,10 +1831,10 @@ static el_result el_envlight__cell_average(const el_envlight *l, float *f, int n
     for (e = vs[j]; e < vs[j + 1]; ++e) if (vi[e] > hi) hi = vi[e];
     /* <<u-filter the rows this bin row needs that are not cached yet>> */
     while (cached_hi < hi) {
-      int y = ++cached_hi, x;
+      int y = ++cached_hi;
       const float *src = l->texels + (size_t)y * (size_t)w * 3;
       float *dst = cache + (size_t)(y % span) * (size_t)nu;
-      for (x = 0; x < w; ++x) lum[x] = el_envlight__luminance(src + 3 * x);
+      el_envlight__lum_row(src, lum, w);
       for (i = 0; i < nu; ++i) {
         float s = 0.0f;
         int q;
@@ -1559,9 +1871,13 @@ static el_result el_envlight__build(el_envlight *l) {
   f = (float *)EL_MALLOC(nb * sizeof(float));
   if (!f) return EL_ERROR_OUT_OF_MEMORY;
   /* <<Compute scalar-valued image img from environment map>> */
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE) {
+  if (l->mapping == EL_ENVLIGHT_MAPPING_EQUAL_AREA) { /* le is the nearest texel: box means, no sin */
+    sin_done = 1;
+    if (nu == l->width && nv == l->height) for (q = 0; q < nb; ++q) f[q] = el_envlight__luminance(l->texels + 3 * q);
+    else r = el_envlight__cell_average(l, f, nu, nv, 1);
+  } else if (l->importance == EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE) {
     if (nu == l->width && nv == l->height) { sin_done = !l->compensated; r = el_envlight__cell_average_same(l, f, sin_done); }
-    else r = el_envlight__cell_average(l, f, nu, nv);
+    else r = el_envlight__cell_average(l, f, nu, nv, 0);
   } else if (l->importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3) {
     for (j = 0; j < nv; ++j)
       for (i = 0; i < nu; ++i) {
@@ -1578,8 +1894,8 @@ static el_result el_envlight__build(el_envlight *l) {
   if (l->compensated) {
     /* <<Initialize compensated PDF>> (pbrt-v4): subtract the solid-angle mean of L, clamp at 0 */
     double sum = 0.0, area = 0.0, mean;
-    for (j = 0; j < nv; ++j) {
-      double da = cos(EL_ENVLIGHT__PI * j / nv) - cos(EL_ENVLIGHT__PI * (j + 1) / nv), rs = 0.0;
+    for (j = 0; j < nv; ++j) { /* equal-area bins all have the same solid angle */
+      double da = l->mapping == EL_ENVLIGHT_MAPPING_EQUAL_AREA ? 1.0 : cos(EL_ENVLIGHT__PI * j / nv) - cos(EL_ENVLIGHT__PI * (j + 1) / nv), rs = 0.0;
       for (i = 0; i < nu; ++i) rs += f[(size_t)j * (size_t)nu + (size_t)i];
       sum += rs * da; area += da * nu;
     }
@@ -1601,6 +1917,27 @@ static el_result el_envlight__build(el_envlight *l) {
   if (r != EL_SUCCESS) { EL_FREE(f); return r; }
   /* f is not needed any more: its memory (already paged in) becomes the per-bin pdf table below */
   l->pdf_table = f;
+  if (l->mapping == EL_ENVLIGHT_MAPPING_EQUAL_AREA) { /* pdf = mapPdf / (4 pi): no finders, no direction tables */
+    l->u_margin = EL_ENVLIGHT__MARGIN * (float)nu * 1.0001f;
+    l->v_margin = EL_ENVLIGHT__MARGIN * (float)nv * 1.0001f;
+    l->u_margin_hi = 1.0f - l->u_margin;
+    l->v_margin_hi = 1.0f - l->v_margin;
+    pdf_k = (float)((double)l->dist.v_pdf_scale * (double)l->dist.u_pdf_scale / (4.0 * EL_ENVLIGHT__PI));
+    for (j = 0; j < nv; ++j) {
+      const uint32_t *row = l->dist.cdf + (size_t)j * ((size_t)nu + 1);
+      float wv = (float)(int32_t)(l->dist.marginal[j + 1] - l->dist.marginal[j]);
+      for (i = 0; i < nu; ++i) f[(size_t)j * (size_t)nu + (size_t)i] = (wv * (float)(int32_t)(row[i + 1] - row[i])) * pdf_k;
+    }
+    if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
+      el_distribution_fast_options fo;
+      memset(&fo, 0, sizeof fo);
+      fo.method = l->sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? EL_DISTRIBUTION_FAST_ALIAS : EL_DISTRIBUTION_FAST_GUIDE;
+      fo.guide_shrink_log2 = 2;
+      r = el_distribution2d_fast_init_ex(&l->fast, &l->dist, &fo);
+      if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
+    }
+    return EL_SUCCESS;
+  }
   r = el_envlight__finder(nu, 4, &l->u_base, &l->u_edge, &l->u_cells);
   if (r == EL_SUCCESS) r = el_envlight__finder(nv, 2, &l->v_base, &l->v_edge, &l->v_cells);
   if (r != EL_SUCCESS) { el_envlight__free_tables(l); return r; }
@@ -1702,7 +2039,7 @@ static el_result el_envlight__build(el_envlight *l) {
 
 /* Which inline fast paths are usable once the tables are built (stored after them, with release). */
 static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
-  if (r != EL_SUCCESS || l->width == 0 || l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return 0;
+  if (r != EL_SUCCESS || l->width == 0 || l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR || l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return 0;
   /* sample_li's inline path: direction tables and the guide sampler; HOT_SAMPLE when the table direction
    * and pdf are final (table_done: a signed-permutation matrix, a map that is not all black), else
    * HOT_SAMPLE_FINISH (the pdf is then recomputed from wi) */
@@ -1773,10 +2110,113 @@ EL_DEF void el_envlight_uv_to_dir(float u, float v, float d[3]) {
   el_envlight__uv_to_dir(u, v, d);
 }
 
+static inline float el_envlight__sample_bin(const el_envlight *l, float u0, float u1, int *iu, int *iv, float *fu, float *fv);
+
+/* >> equal-area maps (pbrt-v4's ImageInfiniteLight: EqualAreaSquareToSphere, EqualAreaSphereToSquare;
+ * Clarberg 2008). Light space: the square's centre is +z, its corners -z, u grows with x, v with y. */
+
+/* (u, v) in [0,1]^2 -> unit direction. r (the distance from the diagonal fold, pbrt's "1 - d") and
+ * 1 - r^2 = |sd| (1 + r) are formed without cancellation, so sin(theta) and z stay accurate at both poles. */
+static void el_envlight__square_to_dir(float u, float v, float d[3]) {
+  float uu = 2.0f * u - 1.0f, vv = 2.0f * v - 1.0f, up = fabsf(uu), vp = fabsf(vv), s = up + vp;
+  float sd = 1.0f - s, r = sd >= 0.0f ? s : 2.0f - s, t, st, z;
+  t = r > 0.0f ? 0.25f * ((vp - up) / r + 1.0f) : 0.25f; /* phi / pi within the quadrant, [0, 1/2] */
+  t = t > 0.0f ? (t < 0.5f ? t : 0.5f) : 0.0f;
+  z = fabsf(sd) * (1.0f + r);
+  st = r * el_envlight__sqrt(2.0f - r * r);
+  d[0] = copysignf(el_envlight__cospi(t), uu) * st;
+  d[1] = copysignf(el_envlight__sinpi(t), vv) * st;
+  d[2] = sd >= 0.0f ? z : -z;
+}
+
+/* Direction (any length whose squared length is a normal float) -> (u, v) in [0,1]^2. 1 - |z| / len is
+ * formed as r2 / (len (len + |z|)), so the radius does not lose its digits near the poles; the angle is
+ * the light's atan polynomial (2.5e-7 rad), not pbrt-v4's 4e-6 one. */
+static void el_envlight__dir_to_square(const float d[3], float *u, float *v) {
+  float x = d[0], y = d[1], z = d[2], ax = fabsf(x), ay = fabsf(y), az = fabsf(z);
+  float r2 = x * x + y * y, len = el_envlight__sqrt(r2 + z * z), r, mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax, phi, a, b;
+  r = el_envlight__sqrt(r2 / (len * (len + az)));
+  phi = el_envlight__atan01(mx > 0.0f ? mn / mx : 0.0f) * 0.636619772f; /* 2 / pi */
+  if (ax < ay) phi = 1.0f - phi;
+  b = phi * r;
+  a = r - b;
+  if (z < 0.0f) { float t = a; a = 1.0f - b; b = 1.0f - t; }
+  a = copysignf(a, x);
+  b = copysignf(b, y);
+  a = 0.5f * (a + 1.0f); b = 0.5f * (b + 1.0f);
+  *u = a > 0.0f ? (a < 1.0f ? a : 1.0f) : 0.0f;
+  *v = b > 0.0f ? (b < 1.0f ? b : 1.0f) : 0.0f;
+}
+
+/* le of an equal-area map: the nearest texel (pbrt-v4's LookupNearest; u = 1 takes the last column). */
+static void el_envlight__ea_le(const el_envlight *l, const float d[3], float rgb[3]) {
+  float u, v;
+  int x, y;
+  const float *p;
+  el_envlight__dir_to_square(d, &u, &v);
+  x = (int)(u * (float)l->width); y = (int)(v * (float)l->height);
+  x = x < l->width - 1 ? x : l->width - 1;
+  y = y < l->height - 1 ? y : l->height - 1;
+  p = l->texels + ((size_t)y * (size_t)l->width + (size_t)x) * 3;
+  rgb[0] = p[0]; rgb[1] = p[1]; rgb[2] = p[2];
+}
+
+/* pdf_li of an equal-area map for a world direction (tables built): the bin's mapPdf / (4 pi). */
+static float el_envlight__ea_pdf_li(const el_envlight *l, const float dir[3]) {
+  float d[3], u, v, len2;
+  int iu, iv;
+  el_envlight__to_light(l, dir, d);
+  len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX) && !el_envlight__to_light_rescaled(l, dir, d)) return 0.0f;
+  el_envlight__dir_to_square(d, &u, &v);
+  iu = (int)(u * (float)l->dist.nu); iv = (int)(v * (float)l->dist.nv);
+  iu = iu < l->dist.nu - 1 ? iu : l->dist.nu - 1;
+  iv = iv < l->dist.nv - 1 ? iv : l->dist.nv - 1;
+  return l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu];
+}
+
+/* sample_li of an equal-area map (tables built): the bin and the point in it, kept 2^-21 inside its
+ * edges, mapped to the sphere; pdf and radiance are pdf_li(wi) and le(wi) themselves, so they agree
+ * bit for bit with what a caller computes from wi (the round trip's error, about 2e-7 in (u, v), stays
+ * inside the margin: tests/test_envlight_bigmaps.c counts the samples whose pdf is not their bin's). */
+static void el_envlight__ea_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  float fu, fv, p, d[3];
+  int iu, iv;
+  p = el_envlight__sample_bin(l, uu[0], uu[1], &iu, &iv, &fu, &fv);
+  if (!(p > 0.0f)) {
+    wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
+    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    return;
+  }
+  el_envlight__square_to_dir(((float)iu + fu) * l->dist.u_width, ((float)iv + fv) * l->dist.v_width, d);
+  el_envlight__to_world(l, d, wi);
+  *pdf = p = el_envlight__ea_pdf_li(l, wi);
+  if (rgb) {
+    if (p > 0.0f) el_envlight_le(l, wi, rgb);
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
+}
+
+EL_DEF void el_envlight_dir_to_square(const float dir[3], float *u, float *v) {
+  float d[3], len2;
+  d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2];
+  len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX) && !el_envlight__rescale(d)) { *u = 0.0f; *v = 0.0f; return; }
+  el_envlight__dir_to_square(d, u, v);
+}
+
+EL_DEF void el_envlight_square_to_dir(float u, float v, float dir[3]) {
+  u = u > 0.0f ? (u < 1.0f ? u : 1.0f) : 0.0f; /* NaN -> 0 */
+  v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  el_envlight__square_to_dir(u, v, dir);
+}
+
+static void el_envlight__ea_le(const el_envlight *l, const float d[3], float rgb[3]);
 /* le for the light-space direction d, whose r2 = x^2 + y^2 is given. */
 static inline void el_envlight__le_light(const el_envlight *l, const float d[3], float r2, float rgb[3]) {
   float u, v;
   if (l->width == 0) { rgb[0] = l->constant[0]; rgb[1] = l->constant[1]; rgb[2] = l->constant[2]; return; }
+  if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) { el_envlight__ea_le(l, d, rgb); return; }
   u = el_envlight__phi_turns(d[1], d[0]);
   v = el_envlight__theta_halfturns(sqrtf(r2), d[2]);
   el_envlight__bilerp(l, u, v, rgb);
@@ -1862,6 +2302,7 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l
   float d[3], len2;
   if (!el_envlight__ensure(l)) return 0.0f;
   if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__warp_pdf_li(l, dir);
+  if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) return el_envlight__ea_pdf_li(l, dir);
   el_envlight__to_light(l, dir, d);
   len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
   if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_world_cold(l, dir);
@@ -2042,6 +2483,10 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight 
   }
   if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { /* the continuous warp */
     el_envlight__warp_sample_plain(l, uu, wi, rgb, pdf);
+    return;
+  }
+  if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) { /* pbrt-v4's equal-area map */
+    el_envlight__ea_sample(l, uu, wi, rgb, pdf);
     return;
   }
   if (l->dir_tables) {
@@ -2353,7 +2798,8 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
 }
 
 EL_DEF size_t el_envlight_bytes(const el_envlight *l) {
-  return sizeof *l + (size_t)l->width * (size_t)l->height * 3 * sizeof(float) + el_envlight_sampling_bytes(l) + el_envlight_product_bytes(l);
+  return sizeof *l + (l->borrowed ? 0 : (size_t)l->width * (size_t)l->height * 3 * sizeof(float)) + el_envlight_sampling_bytes(l) +
+         el_envlight_product_bytes(l);
 }
 
 EL_DEF void el_envlight_yup_matrix(float m[9]) {
@@ -3375,6 +3821,8 @@ EL_DEF el_result el_envlight_prepare_product(const el_envlight *l, const el_envl
     if (opt->normal_bins) m = opt->normal_bins;
   }
   if (l->width == 0) return EL_SUCCESS; /* the constant light needs no tables */
+  if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) /* equal-area maps: sample_li's tables (issue 24) */
+    return el_envlight__ensure(l) ? EL_SUCCESS : l->sampling_result;
   W = el_envlight__prod_ensure(l, ku, kv, m);
   if (!W) return l->cos_result;
   if (opt && ((opt->cells_u && (W->ku != (ku < W->w ? ku : W->w) || W->kv != (kv < W->h + 1 ? kv : W->h + 1))) ||
@@ -3387,6 +3835,7 @@ EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], co
   const struct el_envlight__warp *W;
   const uint16_t *tab;
   if (l->width == 0) { el_envlight__cos_sample_constant(l, n, u, wi, rgb, pdf); return; }
+  if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) { el_envlight_sample_li(l, u, wi, rgb, pdf); return; } /* no product tables */
   W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
   tab = W ? el_envlight__prod_table(l, W, n) : NULL;
   if (!tab || W->all_zero || tab[W->kv] == 0) { /* no tables, an unusable n, or nothing emits above it */
@@ -3402,6 +3851,7 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   const uint16_t *tab;
   float d[3];
   if (l->width == 0) return el_envlight__cos_pdf_constant(l, n, wi);
+  if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return el_envlight_pdf_li(l, wi); /* sample_li_cos is sample_li there */
   W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
   if (!W || W->all_zero) return 0.0f;
   tab = el_envlight__prod_table(l, W, n);
@@ -4067,6 +4517,443 @@ done:
 }
 
 /* << hot spots */
+
+/* >> portals (issue 23; NOTES ON PORTALS below the declarations) */
+
+#define EL_ENVLIGHT__PORTAL_UNITS 1099511627776.0 /* 2^40: the quantised mass of the largest portal image */
+
+/* atan2(x, z) / pi for z > 0, in (-1/2, 1/2) (the rectified angle of a direction, in turns of pi). */
+static double el_envlight__portal_angle(double x, double z) {
+  double ax = fabs(x);
+  double a;
+  if (ax <= z) a = (double)el_envlight__atan01((float)(ax / z)) * (1.0 / EL_ENVLIGHT__PI);
+  else a = 0.5 - (double)el_envlight__atan01((float)(z / ax)) * (1.0 / EL_ENVLIGHT__PI);
+  return x < 0.0 ? -a : a;
+}
+
+/* A window: portal k's directions from a point, in texel coordinates [x0, x1] x [y0, y1] of [0, R]^2,
+ * with the integer prefix values the sampler and the pdf share. */
+typedef struct el_envlight__pwin {
+  double x0, x1, y0, y1;
+  int ia, ib;        /* floor of x0, x1 (<= R - 1) */
+  double fa, fb;     /* x0 - ia, x1 - ib */
+  double k0, mass;   /* K at y0 (the prefix of the rows below y0), the window's mass */
+} el_envlight__pwin;
+
+/* K(j): the mass of rows < j between columns x0 and x1 (4 table reads, two adjacent pairs). */
+static double el_envlight__portal_k(const uint64_t *S, int R, const el_envlight__pwin *w, int j) {
+  const uint64_t *row = S + (size_t)j * (size_t)(R + 1);
+  uint64_t a0 = row[w->ia], a1 = row[w->ia + 1], b0 = row[w->ib], b1 = row[w->ib + 1];
+  return (double)(int64_t)(b0 - a0) + w->fb * (double)(b1 - b0) - w->fa * (double)(a1 - a0);
+}
+/* K at a continuous row coordinate y in [0, R]. */
+static double el_envlight__portal_kc(const uint64_t *S, int R, const el_envlight__pwin *w, double y) {
+  int j = (int)y;
+  double k;
+  if (j > R - 1) j = R - 1;
+  k = el_envlight__portal_k(S, R, w, j);
+  return k + (y - (double)j) * (el_envlight__portal_k(S, R, w, j + 1) - k);
+}
+
+/* Portal k's window from pos: 0 when pos does not see it (on or behind its plane, or NaN). */
+static int el_envlight__portal_window(const el_envlight_portal *p, int k, const double pos[3], el_envlight__pwin *w) {
+  const double *f = p->frame[k];
+  double r[3], x0, y0, z, R = (double)p->res;
+  r[0] = f[0] - pos[0]; r[1] = f[1] - pos[1]; r[2] = f[2] - pos[2];
+  z = r[0] * f[9] + r[1] * f[10] + r[2] * f[11];
+  if (!(z > 1e-9 * (fabs(f[0]) + fabs(f[1]) + fabs(f[2]) + p->size[k][0] + p->size[k][1]))) return 0;
+  x0 = r[0] * f[3] + r[1] * f[4] + r[2] * f[5];
+  y0 = r[0] * f[6] + r[1] * f[7] + r[2] * f[8];
+  w->x0 = (el_envlight__portal_angle(x0, z) + 0.5) * R;
+  w->x1 = (el_envlight__portal_angle(x0 + p->size[k][0], z) + 0.5) * R;
+  w->y0 = (el_envlight__portal_angle(y0, z) + 0.5) * R;
+  w->y1 = (el_envlight__portal_angle(y0 + p->size[k][1], z) + 0.5) * R;
+  if (w->x0 < 0.0) w->x0 = 0.0;
+  if (w->x1 > R) w->x1 = R;
+  if (w->y0 < 0.0) w->y0 = 0.0;
+  if (w->y1 > R) w->y1 = R;
+  if (!(w->x1 > w->x0) || !(w->y1 > w->y0)) return 0;
+  w->ia = (int)w->x0; if (w->ia > p->res - 1) w->ia = p->res - 1;
+  w->ib = (int)w->x1; if (w->ib > p->res - 1) w->ib = p->res - 1;
+  w->fa = w->x0 - (double)w->ia;
+  w->fb = w->x1 - (double)w->ib;
+  return 1;
+}
+
+/* All windows from pos and their masses; returns the total mass (0: the fallback). */
+static double el_envlight__portal_windows(const el_envlight_portal *p, const float pos[3], el_envlight__pwin *w, int *seen) {
+  double P[3], total = 0.0;
+  int k;
+  size_t n = (size_t)(p->res + 1) * (size_t)(p->res + 1);
+  P[0] = pos[0]; P[1] = pos[1]; P[2] = pos[2];
+  for (k = 0; k < p->count; ++k) {
+    seen[k] = el_envlight__portal_window(p, k, P, &w[k]);
+    w[k].mass = 0.0;
+    if (seen[k]) {
+      const uint64_t *S = p->sat + n * (size_t)k;
+      w[k].k0 = el_envlight__portal_kc(S, p->res, &w[k], w[k].y0);
+      w[k].mass = el_envlight__portal_kc(S, p->res, &w[k], w[k].y1) - w[k].k0;
+      if (!(w[k].mass > 0.0)) { w[k].mass = 0.0; seen[k] = 0; }
+      total += w[k].mass;
+    }
+  }
+  return total;
+}
+
+/* Rectified (a - 1/2, b - 1/2) -> local unit direction; returns dw/d(a,b). */
+static double el_envlight__portal_dir(double ta, double tb, double d[3]) {
+  double sa = (double)el_envlight__sinpi((float)ta), ca = (double)el_envlight__cospi((float)ta);
+  double sb = (double)el_envlight__sinpi((float)tb), cb = (double)el_envlight__cospi((float)tb);
+  double v0 = sa * cb, v1 = ca * sb, v2 = ca * cb, n = sqrt(v0 * v0 + v1 * v1 + v2 * v2);
+  d[0] = v0 / n; d[1] = v1 / n; d[2] = v2 / n;
+  /* pi^2 (1 - wx^2)(1 - wy^2) / wz = pi^2 ca^2 cb^2 / n^4 * n / (ca cb) */
+  return EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * ca * cb / (n * n * n);
+}
+
+EL_DEF void el_envlight_portal_free(el_envlight_portal *p) {
+  if (!p) return;
+  EL_FREE(p->sat);
+  memset(p, 0, sizeof *p);
+  p->bad_index = -1;
+}
+
+static el_result el_envlight__portal_fail(el_envlight_portal *p, el_result r, int k, const char *msg) {
+  char buf[128];
+  size_t i;
+  const char *pre = "portal ";
+  size_t o = 0;
+  for (i = 0; pre[i] && o < sizeof buf - 1; ++i) buf[o++] = pre[i];
+  if (k >= 10 && o < sizeof buf - 1) buf[o++] = (char)('0' + k / 10);
+  if (o < sizeof buf - 1) buf[o++] = (char)('0' + k % 10);
+  if (o < sizeof buf - 1) buf[o++] = ':';
+  if (o < sizeof buf - 1) buf[o++] = ' ';
+  for (i = 0; msg[i] && o < sizeof buf - 1; ++i) buf[o++] = msg[i];
+  buf[o] = 0;
+  el_envlight_portal_free(p);
+  p->bad_index = k;
+  memcpy(p->error, buf, o + 1);
+  return r;
+}
+
+EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envlight *light, const float *points,
+                                         int count, const el_envlight_portal_options *opt) {
+  el_envlight_portal_options o;
+  int k, i, j, R, ss;
+  size_t n;
+  double *f = NULL, fmax = 0.0, unit;
+  if (!p) return EL_ERROR_INVALID_ARGUMENT;
+  memset(p, 0, sizeof *p);
+  p->bad_index = -1;
+  if (opt) o = *opt;
+  else memset(&o, 0, sizeof o);
+  if (!light || !points) {
+    memcpy(p->error, "NULL light or points", 21);
+    return EL_ERROR_INVALID_ARGUMENT;
+  }
+  if (count < 1 || count > EL_ENVLIGHT_PORTAL_MAX) {
+    memcpy(p->error, "portal count outside 1..16", 27);
+    return EL_ERROR_INVALID_ARGUMENT;
+  }
+  R = o.resolution ? o.resolution : (light->height < 64 ? 64 : light->height > 2048 ? 2048 : light->height);
+  ss = o.supersample ? o.supersample : 2;
+  if (R < 4 || R > 4096 || ss < 1 || ss > 16 || !(o.map_share >= 0.0f && o.map_share <= 1.0f)) {
+    memcpy(p->error, "resolution outside 4..4096, supersample outside 1..16 or map_share outside 0..1", 80);
+    return EL_ERROR_INVALID_ARGUMENT;
+  }
+  /* the frames (pbrt-v4: Frame::FromXY(p03, p01), with its 0.001 tolerances) */
+  for (k = 0; k < count; ++k) {
+    const float *v = points + 12 * k;
+    double e01[3], e03[3], e12[3], e32[3], l01 = 0, l03 = 0, l12 = 0, l32 = 0, d, scale = 0.0;
+    for (i = 0; i < 12; ++i) {
+      if (v[i] != v[i]) return el_envlight__portal_fail(p, EL_ERROR_NAN, k, "a vertex coordinate is NaN");
+      if (v[i] > FLT_MAX || v[i] < -FLT_MAX) return el_envlight__portal_fail(p, EL_ERROR_INFINITE, k, "a vertex coordinate is infinite");
+      if (fabs((double)v[i]) > scale) scale = fabs((double)v[i]);
+    }
+    for (i = 0; i < 3; ++i) {
+      e01[i] = (double)v[3 + i] - v[i]; e03[i] = (double)v[9 + i] - v[i];
+      e12[i] = (double)v[6 + i] - v[3 + i]; e32[i] = (double)v[6 + i] - v[9 + i];
+      l01 += e01[i] * e01[i]; l03 += e03[i] * e03[i]; l12 += e12[i] * e12[i]; l32 += e32[i] * e32[i];
+    }
+    l01 = sqrt(l01); l03 = sqrt(l03); l12 = sqrt(l12); l32 = sqrt(l32);
+    if (!(l01 > 1e-6 * scale) || !(l03 > 1e-6 * scale) || !(l12 > 1e-6 * scale) || !(l32 > 1e-6 * scale))
+      return el_envlight__portal_fail(p, EL_ERROR_INVALID_ARGUMENT, k, "degenerate: an edge has zero length (vertices coincide)");
+    for (i = 0; i < 3; ++i) { e01[i] /= l01; e03[i] /= l03; e12[i] /= l12; e32[i] /= l32; }
+#define EL_ENVLIGHT__DOT(a, b) ((a)[0] * (b)[0] + (a)[1] * (b)[1] + (a)[2] * (b)[2])
+    if (fabs(EL_ENVLIGHT__DOT(e01, e32) - 1.0) > 0.001 || fabs(EL_ENVLIGHT__DOT(e12, e03) - 1.0) > 0.001)
+      return el_envlight__portal_fail(p, EL_ERROR_INVALID_ARGUMENT, k,
+                                      "not a planar rectangle: opposite edges are not parallel (non-planar, or wrong vertex order)");
+    if (fabs(EL_ENVLIGHT__DOT(e01, e12)) > 0.001 || fabs(EL_ENVLIGHT__DOT(e12, e32)) > 0.001 ||
+        fabs(EL_ENVLIGHT__DOT(e32, e03)) > 0.001 || fabs(EL_ENVLIGHT__DOT(e03, e01)) > 0.001)
+      return el_envlight__portal_fail(p, EL_ERROR_INVALID_ARGUMENT, k, "not a rectangle: its sides are not perpendicular");
+    /* x = p03, y = p01 made exactly orthogonal, z = x cross y */
+    d = EL_ENVLIGHT__DOT(e01, e03);
+    for (i = 0; i < 3; ++i) e01[i] -= d * e03[i];
+    d = sqrt(EL_ENVLIGHT__DOT(e01, e01));
+    for (i = 0; i < 3; ++i) e01[i] /= d;
+#undef EL_ENVLIGHT__DOT
+    for (i = 0; i < 3; ++i) {
+      p->frame[k][i] = v[i];
+      p->frame[k][3 + i] = e03[i];
+      p->frame[k][6 + i] = e01[i];
+    }
+    p->frame[k][9] = e03[1] * e01[2] - e03[2] * e01[1];
+    p->frame[k][10] = e03[2] * e01[0] - e03[0] * e01[2];
+    p->frame[k][11] = e03[0] * e01[1] - e03[1] * e01[0];
+    p->size[k][0] = l03;
+    p->size[k][1] = l01;
+  }
+  p->count = count;
+  p->res = R;
+  p->compensated = o.compensated ? 1 : 0;
+  p->map_share = o.map_share;
+  n = (size_t)(R + 1) * (size_t)(R + 1);
+  p->sat = (uint64_t *)EL_MALLOC(n * (size_t)count * sizeof(uint64_t));
+  f = (double *)EL_MALLOC((size_t)R * (size_t)R * (size_t)count * sizeof(double));
+  if (!p->sat || !f) {
+    EL_FREE(f);
+    return el_envlight__portal_fail(p, EL_ERROR_OUT_OF_MEMORY, 0, "out of memory for the tables");
+  }
+  /* the rectified images: mean of lum(le) dw/dab over ss x ss points per texel */
+  for (k = 0; k < count; ++k) {
+    const double *fr = p->frame[k];
+    double *fk = f + (size_t)R * (size_t)R * (size_t)k, sum_lj = 0.0, sum_j = 0.0, mean, s = 0.0;
+    double *lum = (double *)EL_MALLOC((size_t)R * (size_t)R * sizeof(double));
+    if (!lum) {
+      EL_FREE(f);
+      return el_envlight__portal_fail(p, EL_ERROR_OUT_OF_MEMORY, k, "out of memory for the tables");
+    }
+    for (j = 0; j < R; ++j)
+      for (i = 0; i < R; ++i) {
+        double aj = 0.0, al = 0.0;
+        int sy, sx;
+        for (sy = 0; sy < ss; ++sy)
+          for (sx = 0; sx < ss; ++sx) {
+            double ta = ((double)i + ((double)sx + 0.5) / (double)ss) / (double)R - 0.5;
+            double tb = ((double)j + ((double)sy + 0.5) / (double)ss) / (double)R - 0.5;
+            double d[3], J = el_envlight__portal_dir(ta, tb, d);
+            float wd[3], rgb[3];
+            int c;
+            for (c = 0; c < 3; ++c) wd[c] = (float)(d[0] * fr[3 + c] + d[1] * fr[6 + c] + d[2] * fr[9 + c]);
+            el_envlight_le(light, wd, rgb);
+            al += (double)el_envlight__luminance(rgb) * J;
+            aj += J;
+          }
+        fk[(size_t)j * (size_t)R + (size_t)i] = al / (double)(ss * ss);
+        lum[(size_t)j * (size_t)R + (size_t)i] = aj / (double)(ss * ss); /* dw/dab for the mean */
+        sum_lj += al; sum_j += aj;
+      }
+    if (p->compensated) {
+      mean = sum_j > 0.0 ? sum_lj / sum_j : 0.0; /* the solid-angle mean luminance */
+      for (i = 0; i < R * R; ++i) {
+        double c = fk[i] - mean * lum[i];
+        fk[i] = c > 0.0 ? c : 0.0;
+      }
+    }
+    EL_FREE(lum);
+    for (i = 0; i < R * R; ++i) s += fk[i];
+    if (s > fmax) fmax = s;
+  }
+  if (p->compensated && !(fmax > 0.0)) { /* nothing above the mean: the plain density, as the light does */
+    EL_FREE(f);
+    EL_FREE(p->sat);
+    {
+      el_envlight_portal_options o2 = o;
+      el_result r;
+      o2.compensated = 0;
+      r = el_envlight_portal_init(p, light, points, count, &o2);
+      if (r == EL_SUCCESS) p->fell_back = 1;
+      return r;
+    }
+  }
+  unit = fmax > 0.0 ? EL_ENVLIGHT__PORTAL_UNITS / fmax : 0.0;
+  if (!(unit < 1e300)) unit = 0.0; /* fmax denormal */
+  for (k = 0; k < count; ++k) {
+    const double *fk = f + (size_t)R * (size_t)R * (size_t)k;
+    uint64_t *S = p->sat + n * (size_t)k;
+    for (i = 0; i <= R; ++i) S[i] = 0;
+    for (j = 0; j < R; ++j) {
+      uint64_t run = 0;
+      S[(size_t)(j + 1) * (size_t)(R + 1)] = 0;
+      for (i = 0; i < R; ++i) {
+        double q = fk[(size_t)j * (size_t)R + (size_t)i] * unit;
+        uint64_t qi = (uint64_t)(q < 1099511627776.0 ? q : 1099511627776.0);
+        if (q > (double)qi) qi++;   /* ceil: every texel with mass > 0 gets a unit */
+        if (!p->compensated && qi == 0) qi = 1;
+        run += qi;
+        S[(size_t)(j + 1) * (size_t)(R + 1) + (size_t)i + 1] = S[(size_t)j * (size_t)(R + 1) + (size_t)i + 1] + run;
+      }
+    }
+  }
+  EL_FREE(f);
+  return EL_SUCCESS;
+}
+
+EL_DEF int el_envlight_portal_sees(const el_envlight_portal *p, const float pos[3]) {
+  el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
+  int seen[EL_ENVLIGHT_PORTAL_MAX];
+  if (!p || !p->sat || !pos) return 0;
+  return el_envlight__portal_windows(p, pos, w, seen) > 0.0;
+}
+
+EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p) {
+  if (!p || !p->sat) return 0;
+  return (size_t)(p->res + 1) * (size_t)(p->res + 1) * (size_t)p->count * sizeof(uint64_t);
+}
+
+/* The portals' density alone at unit world direction D, given the windows of the point (total > 0). */
+static double el_envlight__portal_density(const el_envlight_portal *p, const el_envlight__pwin *w, const int *seen, double total,
+                                          const double D[3]) {
+  double acc = 0.0;
+  int k, R = p->res;
+  size_t n = (size_t)(R + 1) * (size_t)(R + 1);
+  for (k = 0; k < p->count; ++k) {
+    const double *f = p->frame[k];
+    double lx, ly, lz, x, y, J, q;
+    int i, j;
+    const uint64_t *r0, *r1;
+    if (!seen[k]) continue;
+    lz = D[0] * f[9] + D[1] * f[10] + D[2] * f[11];
+    if (!(lz > 0.0)) continue;
+    lx = D[0] * f[3] + D[1] * f[4] + D[2] * f[5];
+    ly = D[0] * f[6] + D[1] * f[7] + D[2] * f[8];
+    x = (el_envlight__portal_angle(lx, lz) + 0.5) * (double)R;
+    y = (el_envlight__portal_angle(ly, lz) + 0.5) * (double)R;
+    if (x < w[k].x0 || x > w[k].x1 || y < w[k].y0 || y > w[k].y1) continue;
+    i = (int)x; if (i > R - 1) i = R - 1;
+    j = (int)y; if (j > R - 1) j = R - 1;
+    r0 = p->sat + n * (size_t)k + (size_t)j * (size_t)(R + 1);
+    r1 = r0 + (R + 1);
+    q = (double)((r1[i + 1] - r1[i]) - (r0[i + 1] - r0[i]));
+    J = EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * (ly * ly + lz * lz) * (lx * lx + lz * lz) / lz; /* (1-x^2)(1-y^2)/z */
+    if (J > 0.0) acc += q / J;
+  }
+  return acc * (double)R * (double)R / total;
+}
+/* a float direction, normalised in double; 0 for a zero, NaN or infinite one */
+static int el_envlight__portal_unit(const float wi[3], double D[3]) {
+  double len;
+  D[0] = wi[0]; D[1] = wi[1]; D[2] = wi[2];
+  len = sqrt(D[0] * D[0] + D[1] * D[1] + D[2] * D[2]);
+  if (!(len > 0.0) || len > 1e300) return 0;
+  D[0] /= len; D[1] /= len; D[2] /= len;
+  return 1;
+}
+
+EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                        const float u[2], float wi[3], float rgb[3], float *pdf) {
+  el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
+  int seen[EL_ENVLIGHT_PORTAL_MAX], k, lo, hi, R;
+  double total, t, y, x, kl, kh, q, d[3], J, pl, ph, share;
+  const uint64_t *S, *r0, *r1;
+  size_t n, stride;
+  float u0 = el_envlight__clamp_u(u[0]), u1 = el_envlight__clamp_u(u[1]);
+  total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
+  if (!(total > 0.0)) {
+    el_envlight_sample_li(light, u, wi, rgb, pdf);
+    return 0;
+  }
+  share = (double)p->map_share;
+  if (share > 0.0) { /* <<Defensive mixture>>: u1 picks the map or the portals, then is stretched back */
+    double D[3];
+    if ((double)u1 < share) {
+      float um[2], pm;
+      um[0] = u0;
+      um[1] = el_envlight__clamp_u((float)((double)u1 / share));
+      el_envlight_sample_li(light, um, wi, rgb, &pm);
+      *pdf = el_envlight__portal_unit(wi, D) ? (float)(share * (double)pm + (1.0 - share) * el_envlight__portal_density(p, w, seen, total, D)) : 0.0f;
+      return 1;
+    }
+    u1 = el_envlight__clamp_u((float)(((double)u1 - share) / (1.0 - share)));
+  }
+  R = p->res;
+  n = (size_t)(R + 1) * (size_t)(R + 1);
+  stride = (size_t)(R + 1);
+  /* <<Pick a portal>> and the target in its rows' prefix, with u1 */
+  t = (double)u1 * total;
+  for (k = 0; k < p->count - 1; ++k) {
+    if (!seen[k]) continue;
+    if (t < w[k].mass) break;
+    t -= w[k].mass;
+  }
+  while (!seen[k]) --k; /* t rounded past the last seen portal */
+  if (t > w[k].mass) t = w[k].mass;
+  S = p->sat + n * (size_t)k;
+  t += w[k].k0;
+  /* <<Find the row>>: the largest j in the window's rows with K(j) <= t */
+  lo = (int)w[k].y0; if (lo > R - 1) lo = R - 1;
+  hi = (int)w[k].y1; if ((double)hi < w[k].y1) hi++; /* ceil */
+  if (hi > R) hi = R;
+  while (hi - lo > 1) {
+    int mid = (lo + hi) >> 1;
+    if (el_envlight__portal_k(S, R, &w[k], mid) <= t) lo = mid;
+    else hi = mid;
+  }
+  kl = el_envlight__portal_k(S, R, &w[k], lo);
+  kh = el_envlight__portal_k(S, R, &w[k], lo + 1);
+  y = kh > kl ? (double)lo + (t - kl) / (kh - kl) : (double)lo + 0.5;
+  if (y < w[k].y0) y = w[k].y0;
+  if (y > w[k].y1) y = w[k].y1;
+  if (y < (double)lo) y = (double)lo;
+  if (y > (double)lo + 0.9999999) y = (double)lo + 0.9999999;
+  /* <<Find the column>> in row lo: its prefix P(i) = S(i, lo + 1) - S(i, lo) */
+  r0 = S + (size_t)lo * stride;
+  r1 = r0 + stride;
+  pl = (double)(r1[w[k].ia] - r0[w[k].ia]);
+  ph = (double)(r1[w[k].ia + 1] - r0[w[k].ia + 1]);
+  t = pl + w[k].fa * (ph - pl);
+  pl = (double)(r1[w[k].ib] - r0[w[k].ib]);
+  ph = (double)(r1[w[k].ib + 1] - r0[w[k].ib + 1]);
+  t += (double)u0 * (pl + w[k].fb * (ph - pl) - t);
+  {
+    int a = w[k].ia, b = w[k].ib + 1;
+    while (b - a > 1) {
+      int mid = (a + b) >> 1;
+      if ((double)(r1[mid] - r0[mid]) <= t) a = mid;
+      else b = mid;
+    }
+    lo = a;
+  }
+  pl = (double)(r1[lo] - r0[lo]);
+  ph = (double)(r1[lo + 1] - r0[lo + 1]);
+  q = ph - pl;
+  x = q > 0.0 ? (double)lo + (t - pl) / q : (double)lo + 0.5;
+  if (x < w[k].x0) x = w[k].x0;
+  if (x > w[k].x1) x = w[k].x1;
+  if (x < (double)lo) x = (double)lo;
+  if (x > (double)lo + 0.9999999) x = (double)lo + 0.9999999;
+  /* <<Direction and pdf>> */
+  J = el_envlight__portal_dir(x / (double)R - 0.5, y / (double)R - 0.5, d);
+  {
+    const double *f = p->frame[k];
+    int c;
+    for (c = 0; c < 3; ++c) wi[c] = (float)(d[0] * f[3 + c] + d[1] * f[6 + c] + d[2] * f[9 + c]);
+  }
+  {
+    double D[3], pp;
+    /* other portals' windows may hold wi too: the pdf is the mixture's */
+    if (p->count > 1) pp = el_envlight__portal_unit(wi, D) ? el_envlight__portal_density(p, w, seen, total, D) : 0.0;
+    else pp = q * (double)R * (double)R / (total * J);
+    if (share > 0.0) pp = (1.0 - share) * pp + share * (double)el_envlight_pdf_li(light, wi);
+    *pdf = (float)pp;
+  }
+  if (rgb) el_envlight_le(light, wi, rgb);
+  return 1;
+}
+
+EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
+                                       const float wi[3]) {
+  el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
+  int seen[EL_ENVLIGHT_PORTAL_MAX];
+  double total, D[3], pp;
+  total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
+  if (!(total > 0.0)) return el_envlight_pdf_li(light, wi);
+  if (!el_envlight__portal_unit(wi, D)) return 0.0f;
+  pp = el_envlight__portal_density(p, w, seen, total, D);
+  if (p->map_share > 0.0f) pp = (1.0 - (double)p->map_share) * pp + (double)p->map_share * (double)el_envlight_pdf_li(light, wi);
+  return (float)pp;
+}
+
+/* << portals */
 
 #ifdef __cplusplus
 }

@@ -85,7 +85,13 @@
  * with packets of 16 4532 (Embree 643); path one at a time 7234 (2274), wave 6389 (979). --loops, best
  * of 5 interleaved rounds at load average 6-9: direct 2.343 -> 1.432 s (1.64x; batched 1.48x), path
  * 0.831 -> 0.439 s (1.89x); Embree's calls 11% and 14% of the wave loop's time (timed). --split on
- * bench_city: 2 and 4 pairs cost 1.25-2.34x more error x time than one; auto keeps one. */
+ * bench_city: 2 and 4 pairs cost 1.25-2.34x more error x time than one; auto keeps one.
+ * Instructions per camera sample BY PART (sampler, light, BSDF, film, Embree, camera, loop):
+ *     sh bench/callgrind_parts.sh [--integrator path] [--loop one]
+ * (two --callgrind samples runs, 25600 and 51200, and bench/callgrind_parts.py on their difference).
+ * Measured 2026-12-02 (issue 21), zsobol's fast path: sampler 1225 -> 512 instructions per camera
+ * sample with direct lighting, 2123 -> 1411 with the path tracer (4 spp); the same images
+ * (examples/render/README.md has the table by part). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"

@@ -490,7 +490,8 @@ sun map.
 Generated city-like maps (bench_envlight's make_map: sky gradient, texture noise, a 3e4 sun), width
 512 to 8192 (to 1024 in --quick), the whole `el_envlight_init` + `el_envlight_prepare_sampling` (or
 `el_envlight_prepare_product`), CPU time, median of 3 repeats (1 above 2048), and `el_envlight_bytes`.
-PBRT_V3 at 8192 would need 16384x8192 bins and is left out.
+PBRT_V3 at 8192 is left out; at 8192 the default cap gives CELL_AVERAGE a 4096x2048
+importance map (the section [big maps](#big-environment-maps) prices the cap).
 
 %s
 """ % (imgs["city"], imgs["studio"], nsamp,
@@ -503,6 +504,62 @@ PBRT_V3 at 8192 would need 16384x8192 bins and is left out.
        ("%.0f" % (c["TEXEL"][0] / c["TEXEL"][2])) if c["TEXEL"][2] > 0 else "(no measurable bias)",
        imgs["build"], table(["importance", "width", "build", "memory"], brow)))
     return summary
+
+
+def family_bigmaps(args, info, md):
+    """Big maps (issue 24): bench_bigmaps' build cost per size and configuration, the cap's variance, and
+    pbrt-v4's equal-area maps against lat-long ones. Tables only."""
+    rows = run_csv(args.build, "bench_bigmaps", args.quick)
+    bld = [r for r in rows if r[0] == "bigmap_build"]
+    cap = [r for r in rows if r[0] == "bigmap_cap"]
+    mp = [r for r in rows if r[0] == "bigmap_mapping"]
+    t1 = []
+    for r in bld:
+        f = [float(x) for x in r[4:16]]
+        t1.append(["%sx%s" % (r[2], r[3]), r[1], "%.0f" % f[0], "%s x %s" % (r[16], r[17]),
+                   "%.0f / %.0f" % (f[4], f[1]), "%.0f / %.0f" % (f[5], f[2]), "%.0f" % (f[4] + f[5]),
+                   "%.0f MB (%.3fx)" % (f[7], f[9]), "%.0f / %.0f" % (f[6], f[3]), "%.0f MB (%.2fx)" % (f[8], f[11])])
+    t2 = [["no cap" if r[1] == "-1" else r[1], "%s x %s" % (r[4], r[5]), r[6], r[7], r[8], r[9], "%.0f" % float(r[10]), r[11]]
+          for r in cap]
+    t3 = [[r[1], "%s x %s" % (r[2], r[3]), r[4], r[5], r[6], r[7]] for r in mp]
+    big = bld[-1][2] + "x" + bld[-1][3] if bld else "?"
+    md.append("""## Big environment maps
+
+bench_bigmaps (issue 24): a generated lat-long map (sky gradient with texel noise, dark ground, a sun of
+0.5 degree diameter and radiance 1e5 at 30 degrees elevation, about half the map's power), 1024x512 to %s
+(%s in --quick). Configurations: **copy nocap (before)** is the library before issue 24 (a copy of the image,
+importance map at its resolution: `importance_cap = -1`); **copy cap (default)** the default now (the
+importance map capped at `EL_ENVLIGHT_IMPORTANCE_CAP` = 4096 x 2048 exact cell averages); **no_copy cap**
+adds `options.no_copy = 1` (the caller's pixels used in place). Times: CPU (user + system, single thread) /
+wall milliseconds of `el_envlight_init`, `el_envlight_prepare_sampling` and `el_envlight_prepare_product`;
+the machine was loaded (wall times up to 5x the CPU times). Peak: VmHWM above the caller's image (reset
+through /proc/self/clear_refs before each configuration), in MB and as a fraction of the image's bytes,
+after the sampling tables and after the product tables.
+
+%s
+
+The cap's variance on the %s map: relative variance per sample of sample_li's estimate of the map's
+luminance integral (lum(le) / pdf: how well the density follows the map), and of the irradiance of a
+surface facing up and one facing the sun; bias in standard errors against the exact integral; the
+sampling tables' build (CPU ms, the caller's pixels) and size.
+
+%s
+
+pbrt-v4's equal-area maps (`options.mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA`, sampled natively) against a
+lat-long map of the same texel count: CPU ns per call (2^20 calls) and the tables' build (CPU ms).
+
+%s
+
+- **Student's first renderer**: the defaults; maps up to 4096x2048 are unchanged by the cap.
+- **Production renderer**: for 8k and 16k maps keep the image and pass `no_copy = 1` (init reads it once,
+  the light adds 0.05x of a 16k image); raise `importance_cap` (or -1) on sun maps when the memory is
+  there: the table above prices each step.
+- **Real-time preview**: `importance_cap = 1024` or 2048 (4.7 / 18 MB of tables) and few samples.
+""" % (big, "2048x1024", table(["map", "configuration", "image MB", "importance", "init ms CPU / wall", "sampling ms CPU / wall",
+                                 "init + sampling CPU ms", "peak after sampling", "product ms CPU / wall", "peak after product"], t1),
+       cap[0][2] + "x" + cap[0][3] if cap else "?",
+       table(["cap", "importance", "rel. var. lum", "rel. var. E up", "rel. var. E sun", "bias / se", "build ms", "tables MB"], t2),
+       table(["mapping", "map", "sample_li ns", "pdf_li ns", "le ns", "tables ms"], t3)))
 
 
 def render_family(args, info, md, tmp, refs, res):
@@ -881,6 +938,7 @@ def main():
     print("report.py: measuring (%s)" % ("quick" if args.quick else "full"), flush=True)
     family_mipmap(args, info, md)
     family_envlight(args, info, md)
+    family_bigmaps(args, info, md)
     res = (32, 24) if args.quick else (128, 96)
     ref_spp = 64 if args.quick else 512
     glossy = 'Material "plastic" "rgb Kd" [ 0.3 0.3 0.3 ] "rgb Ks" [ 0.5 0.5 0.5 ] "float roughness" 0.01'
@@ -923,6 +981,7 @@ is measured against, then which option to pick for a student's first renderer, a
 and a real-time preview, and where the curves cross.
 
 Contents: [MIP map lookups](#mip-map-lookups) · [environment light importance](#environment-light-importance-sampling) ·
+[big maps](#big-environment-maps) ·
 [light strategies](#renderer-light-strategies) · [samplers](#renderer-samplers) ·
 [splitting](#renderer-splitting) · [film](#film-pixel-filters-and-8-bit-output)
 

@@ -23,5 +23,5 @@ if ! "$PY" -c "import matplotlib, numpy" 2>/dev/null; then
 fi
 JOBS=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j "$JOBS" --target bench_mipmap bench_envlight bench_film render
+cmake --build build -j "$JOBS" --target bench_mipmap bench_envlight bench_bigmaps bench_film render
 exec "$PY" bench/report.py --build build "$@"

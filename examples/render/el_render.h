@@ -108,6 +108,10 @@ typedef struct elr_light_stats {
   int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
   int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
   int env_importance;   /* environment: the map's importance mode (EL_ENVLIGHT_IMPORTANCE_*) */
+  int env_portals;      /* environment: pbrt-v4's portals (issue 23), 0 without */
+  size_t env_portal_bytes;
+  float env_portal_share; /* "float portalmapshare": the map's share where a portal is seen */
+  uint64_t env_portal_used, env_portal_fallback; /* light samples through the portals, and by the map behind them */
 } elr_light_stats;
 
 typedef struct elr_stats {

@@ -20,6 +20,8 @@
 
 #ifndef ELR_PI
 #define ELR_PI 3.14159265358979323846f
+/* LightSource "infinite" "float portalmapshare" default (bench/bench_portal_render.c measures it) */
+#define ELR_PORTAL_MAP_SHARE 0.1
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
@@ -183,7 +185,13 @@ typedef struct elr_light {
   int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */
   int has_map;
+  int mapping;             /* infinite: EL_ENVLIGHT_MAPPING_* (pbrt-v4's "filename" with a square image: equal-area) */
+  float *env_pixels;       /* infinite: the image env reads in place (options.no_copy), freed with the light */
   int bad_texels;          /* the scene's "badtexels": EL_ENVLIGHT_BAD_TEXELS_* (CLAMP_NEGATIVE by default) */
+  /* pbrt-v4's "point3 portal" (issue 23): envlight.h's portal sampler, or NULL; with it sample_li and
+   * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
+  el_envlight_portal *portal;
+  float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
 } elr_light;
 
 typedef struct elr_scene_desc {
@@ -404,6 +412,7 @@ typedef struct elr_light_sample {
   elr_v3 p_light;
   float dist;
   int at_point;
+  int portal; /* an infinite light with portals: 1 sampled through them, 0 the map's fallback; else -1 */
 } elr_light_sample;
 static inline int elr_light_emits(const elr_light *l) { return elr_maxc(l->L) > 0.f; }
 static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR_LIGHT_POINT || l->kind == ELR_LIGHT_DISTANT; }
@@ -411,6 +420,12 @@ static inline int elr_light_is_delta(const elr_light *l) { return l->kind == ELR
  * infinite light with product = 1 then samples the map times max(0, n.wi), and pdf_li is that density */
 void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls);
 float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi);
+/* the same at shading point p: with portals the density depends on it (elr_light_pdf_li then gives the
+ * map's own density: only the loops that never meet a portal light call it) */
+float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 wi);
+/* pbrt-v4's portals of an infinite light with a map: count rectangles of 4 world-space points (12 floats
+ * each, pbrt-v4's vertex order); -1 with err naming the problem */
+int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
 int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
@@ -531,6 +546,8 @@ typedef struct elr_sobol {
   uint64_t inv[64], delta[64];        /* its tables (lowdiscrepancy.c) */
   uint32_t lut[2][7][256];            /* dimensions 0 and 1 a byte of the index at a time: the XOR of the
                                          columns of each byte value (the zsobol, paddedsobol and 02sequence loops) */
+  uint32_t rlut[2][256];              /* lut[d][0] bit-reversed (zsobol's fast path with fastowen) */
+  uint8_t rev8[256];                  /* each byte bit-reversed */
 } elr_sobol;
 int elr_sobol_init(elr_sobol *T, int ndims, int log2res);
 void elr_sobol_free(elr_sobol *T);
@@ -591,6 +608,14 @@ typedef struct elr_sampler {
   int64_t hindex, hoffset; /* halton: the sample's index and the pixel's first; sobol: the sample's index;
                               zsobol: the Morton index of pixel and sample */
   uint64_t zvalid, zpixel[64]; /* zsobol: the pixel's permuted digits for dimensions 0..63 (bit d of zvalid: known) */
+  /* zsobol's fast path (sampler_zsobol.c; spp <= ELR_ZSOBOL_FAST_SPP): per pixel the Morton code, and per
+   * dimension d < 64 met in the pixel (bit d of zfast) the permuted sample digits of each sample
+   * (zlow[d * spp + s]) and the Sobol' points' pixel part (zsob[d][c], bit-reversed for fastowen) */
+  uint64_t zmorton, zfast, zf1, zf2; /* zf1, zf2: bit d, dimension d's 1D or 2D points of the pixel made */
+  uint8_t *zlow;
+  uint32_t zsob[64][2];
+  float *zpt;                 /* zsobol's fast path: the pixel's points, 2D (zpt[(d * spp + s) * 3 + 0, 1]) and 1D (+ 2) */
+  uint64_t zpm[64], zpp[64], zpvalid; /* the Morton code and the permuted pixel digits of dimension d's last pixel */
   uint64_t dhash[72];          /* elr_dim_hash(d, sseed) of the first dimensions: the scrambles' seeds */
 } elr_sampler;
 int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
@@ -604,8 +629,27 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
 void elr_stratified_make(elr_sampler *S, int two, int d);
 void elr_zerotwo_make(elr_sampler *S, int two, int d);
 float elr_sobol_sampler_1d(const elr_sampler *S, int dim);
-float elr_zsobol_1d(elr_sampler *S, int dim);
-void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]);
+/* zsobol's draws: the pixel's points of the dimension when made (the fast path's tables), else made
+ * (elr_zsobol_table) or the reference's (sampler_zsobol.c) */
+const float *elr_zsobol_table(elr_sampler *S, int dim, int two);
+float elr_zsobol_ref_1d(elr_sampler *S, int dim);
+void elr_zsobol_ref_2d(elr_sampler *S, int dim, float u[2]);
+static inline float elr_zsobol_1d(elr_sampler *S, int dim) {
+  const float *t;
+  if ((unsigned)dim < 64u && ((S->zf1 >> dim) & 1u)) return S->zpt[((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 3u + 2u];
+  t = elr_zsobol_table(S, dim, 0);
+  return t ? t[2] : elr_zsobol_ref_1d(S, dim);
+}
+static inline void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]) {
+  const float *t;
+  if ((unsigned)dim < 64u && ((S->zf2 >> dim) & 1u)) t = S->zpt + ((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 3u;
+  else if (!(t = elr_zsobol_table(S, dim, 1))) { elr_zsobol_ref_2d(S, dim, u); return; }
+  u[0] = t[0]; u[1] = t[1];
+}
+/* zsobol's reference path (pbrt-v4's GetSampleIndex, SobolSample and randomizer as written there): the
+ * fast path above gives the same bits (test_render_samplers) */
+#define ELR_ZSOBOL_FAST_SPP 256
+void elr_zsobol_start_pixel(elr_sampler *S, uint64_t morton);
 float elr_paddedsobol_1d(const elr_sampler *S, int dim);
 void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);
 /* a 64-bit hash of a dimension and a seed (pbrt-v4's Hash(dimension, seed)): a scramble's seed */
@@ -632,6 +676,7 @@ int elr_film_init(el_film *f, const elr_scene_desc *d, const int b[4], char *err
 #define ELR_SPLIT_MAX_GIVEN 1024 /* --split N: at most this */
 typedef struct elr_tstats { /* one thread's counts */
   uint64_t camera, bounce, shadow, bsdfl, samples;
+  uint64_t portal_used, portal_fallback; /* light samples through portals, and behind them (the map's) */
   double t_embree; /* the wave loop: seconds inside its Embree calls */
 } elr_tstats;
 typedef struct elr_ctx {

@@ -47,6 +47,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   if (delta || C->ls != ELR_LS_BSDF) {
     elr_light_sample ls;
     elr_light_sample_li(l, s, h->p, n, ul, &ls);
+    if (ls.portal >= 0) { if (ls.portal) ts->portal_used++; else ts->portal_fallback++; }
     if (ls.pdf > 0.f) {
       /* <<Compute BSDF value for light sample>> */
       elr_v3 f = elr_mul(elr_bsdf_f(b, wo, ls.wi), fabsf(elr_dot(ls.wi, b->ns)));
@@ -90,7 +91,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
        * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
       if (!elr_occluded(s, elr_spawn_origin(h, wi), wi, INFINITY)) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li(l, n, wi));
+        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li_at(l, h->p, n, wi));
         /* <<Add light contribution from material sampling>> */
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, elr_light_le(l, wi)), w / pdf));
       }

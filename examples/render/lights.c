@@ -21,6 +21,7 @@
 void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const elr_v3 *n, const float u[2], elr_light_sample *ls) {
   ls->at_point = 0;
   ls->dist = INFINITY;
+  ls->portal = -1;
   switch (l->kind) {
   case ELR_LIGHT_POINT: { /* PointLight::Sample_Li: I / r^2 from the light's position */
     elr_v3 dp = elr_sub(l->pos, p);
@@ -54,7 +55,11 @@ void elr_light_sample_li(const elr_light *l, const elr_scene *s, elr_v3 p, const
               * L(wi) max(0, n.wi), so no sample is wasted below the surface (envlight.h's NOTES ON
               * PRODUCT SAMPLING); pbrt-v3 samples the map alone. */
     float wi[3], L[3];
-    if (n && l->product) {
+    if (l->portal) { /* pbrt-v4's PortalImageInfiniteLight: through the windows p sees (envlight.h) */
+      float pp[3];
+      elr_to3(p, pp);
+      ls->portal = el_envlight_portal_sample_li(l->portal, l->env_sample, pp, u, wi, L, &ls->pdf);
+    } else if (n && l->product) {
       float nn[3];
       elr_to3(*n, nn);
       el_envlight_sample_li_cos(l->env_sample, nn, u, wi, L, &ls->pdf);
@@ -80,6 +85,14 @@ float elr_light_pdf_li(const elr_light *l, const elr_v3 *n, elr_v3 wi) {
     return el_envlight_pdf_li_cos(l->env_sample, nn, d);
   }
   return el_envlight_pdf_li(l->env_sample, d);
+}
+
+float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 wi) {
+  float d[3], pp[3];
+  if (l->kind != ELR_LIGHT_INFINITE || !l->portal) return elr_light_pdf_li(l, n, wi);
+  elr_to3(wi, d);
+  elr_to3(p, pp);
+  return el_envlight_portal_pdf_li(l->portal, l->env_sample, pp, d);
 }
 
 /* pbrt-v3's Light::Le: the radiance a ray that leaves the scene in direction d receives from the light
@@ -162,9 +175,13 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
   o.compensated = l->compensated;
   o.importance = elr__importance(l->importance);
   o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE; /* the CDF's points in expected O(1): keeps stratification */
+  o.mapping = l->mapping; /* pbrt-v4's equal-area maps: box cell averages, pbrt-v4's own density */
+  if (o.mapping != EL_ENVLIGHT_MAPPING_LATLONG) o.importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
   o.bad_texels = l->bad_texels; /* the caller reports what became 0 (l->env's negative_texels ...) */
   if (rgb) {
     o.scale[0] = scale[0]; o.scale[1] = scale[1]; o.scale[2] = scale[2];
+    /* an unscaled map is read in place (the parser keeps rgb in l->env_pixels when env->borrowed) */
+    o.no_copy = scale[0] == 1.f && scale[1] == 1.f && scale[2] == 1.f;
     if (scale[0] == 0.f && scale[1] == 0.f && scale[2] == 0.f) {
       /* all zero means (1,1,1) to envlight: a black light instead */
       float z[3] = {0.f, 0.f, 0.f};
@@ -228,6 +245,9 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
       o.compensated = compensated;
       o.importance = elr__importance(importance);
       o.sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
+      o.mapping = l->env->mapping;
+      o.no_copy = 1; /* env's texels (checked, scaled), which live as long as env_alt */
+      if (o.mapping != EL_ENVLIGHT_MAPPING_LATLONG) o.importance = EL_ENVLIGHT_IMPORTANCE_CELL_AVERAGE;
       if (l->env->width > 0) r = el_envlight_init(a, l->env->texels, l->env->width, l->env->height, 3, &o);
       else r = el_envlight_init_constant(a, l->env->constant, &o);
       if (r != EL_SUCCESS) { el_envlight_free(a); free(a); return -1; }
@@ -236,6 +256,7 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
     l->env_sample = l->env_alt;
   }
   l->product = product < 0 ? l->sampling == ELR_ENVLS_PRODUCT : product;
+  if (l->portal) l->product = 0; /* the portals sample every vertex; the map's own tables behind them */
   if (l->product && el_envlight_prepare_product(l->env_sample, NULL) != EL_SUCCESS) return -1;
   if (l->product && !need_map) return 0;
   return el_envlight_prepare_sampling(l->env_sample) == EL_SUCCESS ? 0 : -1;
@@ -267,7 +288,7 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
   int x, y, y1, w, h;
   if (l->kind != ELR_LIGHT_INFINITE) return;
   e = l->env_sample; p = l->env; m = p->to_world; w = p->width; h = p->height;
-  if (w <= 0 || !p->texels) return;
+  if (w <= 0 || !p->texels || p->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return;
   d[0] = m[0] * wi.x + m[3] * wi.y + m[6] * wi.z; /* light space: the transpose of the rotation */
   d[1] = m[1] * wi.x + m[4] * wi.y + m[7] * wi.z;
   d[2] = m[2] * wi.x + m[5] * wi.y + m[8] * wi.z;
@@ -300,10 +321,36 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
 #endif
 }
 
+int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen) {
+  el_result r;
+  el_envlight_portal *P;
+  if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
+  P = (el_envlight_portal *)calloc(1, sizeof *P);
+  if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
+  {
+    el_envlight_portal_options po;
+    memset(&po, 0, sizeof po);
+    po.compensated = l->compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
+    po.map_share = l->portal_share;
+    r = el_envlight_portal_init(P, l->env, pts, count, &po);
+  }
+  if (r != EL_SUCCESS) {
+    snprintf(err, errlen, "\"point3 portal\": %s (%s)", P->error, el_result_string(r));
+    el_envlight_portal_free(P);
+    free(P);
+    return -1;
+  }
+  l->portal = P;
+  return 0;
+}
+
 void elr_light_free(elr_light *l) {
+  if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); l->portal = NULL; }
   free(l->tri_cdf);
   l->tri_cdf = NULL;
   if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }
   if (l->env) { el_envlight_free(l->env); free(l->env); }
+  free(l->env_pixels); /* after the lights that read it */
+  l->env_pixels = NULL;
   l->env = l->env_alt = l->env_sample = NULL;
 }

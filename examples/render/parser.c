@@ -980,7 +980,8 @@ static void elr__light(elr__parser *P, const char *type) {
   ELR_PUSH(P, s->light, s->nlight, s->caplight, elr_light);
   l = &s->light[s->nlight - 1];
   if (!strcmp(type, "infinite")) {
-    const char *map = elr__pstring(P, "mapname", "");
+    /* pbrt-v3 names the map "mapname" (lat-long); pbrt-v4 "filename" (a square equal-area map) */
+    const char *map = elr__pstring(P, "mapname", ""), *fn4 = elr__pstring(P, "filename", "");
     float m3[9];
     int i, j;
     elr_v3 L = elr__prgb(P, "L", elr_v(1, 1, 1));
@@ -1049,9 +1050,12 @@ static void elr__light(elr__parser *P, const char *type) {
         else if (fabs(v + 1.0) < 1e-9) v = -1.0;
         m3[i * 3 + j] = (float)v;
       }
-    if (map[0]) {
+    if (map[0] && fn4[0])
+      elr__failf(P, elr__find(P, "filename")->file, elr__find(P, "filename")->line,
+                 "LightSource \"infinite\": both \"mapname\" (pbrt-v3, lat-long) and \"filename\" (pbrt-v4, equal-area) are given");
+    if (map[0] || fn4[0]) {
       el_image img;
-      path = elr__resolve(P, map);
+      path = elr__resolve(P, map[0] ? map : fn4);
       elr__load_image(P, path, P->dir_line, &img);
       if (l->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) {
         rgb = elr__to_rgb(P, &img, 0, 1.f, path); /* NaN / infinite: an error naming the file and texel */
@@ -1064,13 +1068,21 @@ static void elr__light(elr__parser *P, const char *type) {
       w = img.width; h = img.height;
       el_image_free(&img);
       l->has_map = 1;
+      /* pbrt-v4 reads "filename" as a square equal-area octahedral map (ImageInfiniteLight) and refuses any
+       * other shape; here a non-square "filename" is read as pbrt-v3's lat-long map, with a warning */
+      if (fn4[0] && w == h) l->mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA;
+      else if (fn4[0])
+        elr_warn(s, elr__find(P, "filename")->file, elr__find(P, "filename")->line,
+                 "LightSource \"infinite\": \"%s\" is %dx%d, not square: pbrt-v4 wants a square equal-area map; read as a lat-long "
+                 "map (pbrt-v3's \"mapname\")", path, w, h);
     } else {
       rgb = NULL; /* a constant light */
     }
     {
       double t0 = elr_now();
       int r = elr_infinite_init(l, rgb, w, h, scale3, m3, e, sizeof e);
-      free(rgb);
+      if (r == 0 && rgb && l->env && l->env->borrowed) l->env_pixels = rgb; /* read in place: freed with the light */
+      else free(rgb);
       if (r != 0) {
         if (path) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": image \"%s\": %s", path, e);
         elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
@@ -1087,6 +1099,29 @@ static void elr__light(elr__parser *P, const char *type) {
       if (l->env->nonfinite_texels > 0)
         elr_warn(P->s, P->dir_file, P->dir_line, "LightSource \"infinite\": image \"%s\": %zu NaN or infinite texels set to 0 (\"string badtexels\" \"zero\")",
                  path ? path : "(constant L)", l->env->nonfinite_texels);
+    }
+    {
+      /* pbrt-v4's "point3 portal" [p0 p1 p2 p3]: a window the light shines through (world space, not
+       * the light's CTM, as pbrt-v4's cameraTransform.RenderFromWorld(p)); envlight also takes several
+       * rectangles, 4 points each */
+      elr__param *pp = elr__find(P, "portal");
+      /* envlight's extension: the share of light samples drawn from the map where a portal is seen (a
+       * defensive mixture for points outside the room in front of a portal's plane; 0: pbrt-v4's) */
+      l->portal_share = (float)elr__pfloat(P, "portalmapshare", ELR_PORTAL_MAP_SHARE);
+      elr__check_range(P, "portalmapshare", l->portal_share, 0, 1);
+      if (pp) {
+        float pts[12 * EL_ENVLIGHT_PORTAL_MAX];
+        int np, k;
+        double t0 = elr_now();
+        pp = elr__findt(P, "portal", "point3", -12);
+        np = pp->n / 12;
+        if (np < 1 || np > EL_ENVLIGHT_PORTAL_MAX)
+          elr__failf(P, pp->file, pp->line, "LightSource \"infinite\": \"point3 portal\" takes 4 points per portal, 1 to %d portals; got %d values",
+                     EL_ENVLIGHT_PORTAL_MAX, pp->n);
+        for (k = 0; k < 12 * np; k++) pts[k] = (float)pp->num[k];
+        if (elr_infinite_set_portals(l, pts, np, e, sizeof e) != 0) elr__failf(P, pp->file, pp->line, "LightSource \"infinite\": %s", e);
+        s->t_images += elr_now() - t0;
+      }
     }
   } else if (!strcmp(type, "point")) {
     elr_v3 I = elr__prgb(P, "I", elr_v(1, 1, 1));

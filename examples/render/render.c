@@ -137,6 +137,7 @@ static void *elr__worker(void *arg) {
   pthread_mutex_lock(&J->mu);
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
   J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples; J->total.t_embree += ts.t_embree;
+  J->total.portal_used += ts.portal_used; J->total.portal_fallback += ts.portal_fallback;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
   elr_wave_free(W);
@@ -249,6 +250,9 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
+    /* a portal light's density depends on the shading point: the batched and wave loops, which draw
+     * the map's samples ahead of the points, do not apply (the reference loop below) */
+    if (C->batch_light && C->batch_light->portal) C->batch_light = NULL;
   }
   /* the per-tile loop: the batched and wave loops need batch_light; the default is the wave loop
    * (bench_render --loops measures them), except for the path tracer with a pixel sampler (stratified,
@@ -322,6 +326,10 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
       ls->tables_built = 1; ls->bytes = el_envlight_sampling_bytes(l->env_sample) + el_envlight_product_bytes(l->env_sample);
       ls->env_product = l->product; ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
       ls->env_importance = l->env_sample->importance;
+    }
+    if (l->kind == ELR_LIGHT_INFINITE && l->portal) {
+      ls->env_portals = l->portal->count; ls->env_portal_bytes = el_envlight_portal_bytes(l->portal); ls->env_portal_share = l->portal->map_share;
+      ls->env_portal_used = T->portal_used; ls->env_portal_fallback = T->portal_fallback; /* (the one emitting light with portals) */
     }
     if (l->kind == ELR_LIGHT_AREA) {
       ls->shape_kind = l->shape_kind; ls->shape = l->shape; ls->twosided = l->twosided; ls->area = l->area;

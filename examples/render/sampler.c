@@ -99,6 +99,11 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
   S->sseed = d->has_seed ? (uint32_t)d->seed : (uint32_t)(seed ^ (seed >> 32));
   S->log2spp = elr__log2(d->spp);
   { int k; for (k = 0; k < 72; k++) S->dhash[k] = elr_dim_hash(k, S->sseed); }
+  if (S->kind == ELR_SAMPLER_ZSOBOL && S->spp <= ELR_ZSOBOL_FAST_SPP && !getenv("ELR_ZSOBOL_REFERENCE")) {
+    S->zlow = (uint8_t *)malloc((size_t)64 * (size_t)S->spp); /* the fast path's tables (sampler_zsobol.c) */
+    S->zpt = (float *)malloc(sizeof(float) * 3 * 64 * (size_t)S->spp);
+    if (!S->zlow || !S->zpt) { elr_sampler_free(S); return -1; }
+  }
   if (S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) {
     S->s1d = (float *)malloc(sizeof(float) * (size_t)S->spp * (size_t)(S->dims + 1));
     S->s2d = (float *)malloc(sizeof(float) * 2 * (size_t)S->spp * (size_t)(S->dims + 1));
@@ -110,7 +115,10 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
   }
   return 0;
 }
-void elr_sampler_free(elr_sampler *S) { free(S->s1d); free(S->s2d); free(S->bits); S->s1d = S->s2d = NULL; S->bits = NULL; }
+void elr_sampler_free(elr_sampler *S) {
+  free(S->s1d); free(S->s2d); free(S->bits); free(S->zlow); free(S->zpt);
+  S->s1d = S->s2d = NULL; S->bits = NULL; S->zlow = NULL; S->zpt = NULL;
+}
 
 /* a Morton code of (x, y): x in the even bits, y in the odd */
 static uint64_t elr__spread2(uint32_t x) {
@@ -141,6 +149,8 @@ void elr_sampler_start_pixel(elr_sampler *S, int px, int py) {
     S->hoffset = elr_halton_pixel_offset(&S->T->halton, px, py);
   }
   S->zvalid = 0; /* zsobol's permuted pixel digits belong to the last pixel */
+  if (S->kind == ELR_SAMPLER_ZSOBOL)
+    elr_zsobol_start_pixel(S, (elr__spread2((uint32_t)(py - S->T->by0)) << 1) | elr__spread2((uint32_t)(px - S->T->bx0)));
 }
 
 /* pbrt-v3's SetSampleNumber: sample `sample` of the pixel, from its first dimension */
@@ -150,9 +160,7 @@ void elr_sampler_start_sample(elr_sampler *S, int sample) {
   /* <<GetIndexForSample>>: the sample's index in the image-wide Sobol' sequence */
   if (S->kind == ELR_SAMPLER_SOBOL) S->hindex = (int64_t)elr_sobol_interval_to_index(&S->T->sobol, (uint64_t)sample, S->px - S->T->bx0, S->py - S->T->by0);
   /* pbrt-v4's StartPixelSample: the Morton index of the pixel, then the sample */
-  if (S->kind == ELR_SAMPLER_ZSOBOL)
-    S->hindex = (int64_t)((((elr__spread2((uint32_t)(S->py - S->T->by0)) << 1) | elr__spread2((uint32_t)(S->px - S->T->bx0))) << S->log2spp) |
-                          (uint64_t)(uint32_t)sample);
+  if (S->kind == ELR_SAMPLER_ZSOBOL) S->hindex = (int64_t)((S->zmorton << S->log2spp) | (uint64_t)(uint32_t)sample);
   if (S->kind == ELR_SAMPLER_RANDOM) {
     /* every pixel sample its own stream: the same numbers whatever the tile order */
     uint64_t k = elr_mix64(elr_mix64(elr_mix64(S->seed ^ 0x632be59bd9b4e019ULL) ^ (uint64_t)(uint32_t)S->px) ^ (uint64_t)(uint32_t)S->py);

@@ -77,10 +77,18 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       if (l->power > 0.0) fprintf(f, ", power %.4g", l->power);
       if (l->kind == 0 && l->tables_built) {
         static const char *im[4] = {"cellaverage", "pbrt-v3", "texel", "bilinear"};
-        if (l->env_product)
+        if (l->env_portals) {
+          /* below */
+        } else if (l->env_product)
           fprintf(f, "; sampled by product sampling (map x cosine: el_envlight_sample_li_cos)%s",
                   l->env_map_built ? ", the map alone where a rough lobe transmits" : "");
         else fprintf(f, "; sampled by the map alone (el_envlight_sample_li, importance %s)", im[l->env_importance & 3]);
+      }
+      if (l->kind == 0 && l->env_portals) {
+        double n = (double)(l->env_portal_used + l->env_portal_fallback);
+        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
+                l->env_portals, l->env_portals == 1 ? "" : "s", (double)l->env_portal_bytes / 1024.0, l->env_portal_share,
+                n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
       }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
       if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");

@@ -396,6 +396,72 @@ static void test_renders(void) {
   }
 }
 
+/* >> 7. zsobol's fast path (per-pixel tables, sampler_zsobol.c) gives the reference's bits: every
+ * sample count it takes (1 .. 256, odd and even powers of two) and one past it, every randomization, 1D
+ * and 2D draws mixed, dimensions past its 64, samples in a scrambled order and pixels revisited; and
+ * the rendered image is the same bit for bit (direct lighting and path, reference path forced with
+ * ELR_ZSOBOL_REFERENCE). */
+static void test_zsobol_fast(void) {
+  static const int rz[4] = {ELR_RANDOMIZE_NONE, ELR_RANDOMIZE_PERMUTE_DIGITS, ELR_RANDOMIZE_FAST_OWEN, ELR_RANDOMIZE_OWEN};
+  int L, r, bad = 0, fast_used = 0, draws = 0;
+  for (L = 0; L <= 9; L++)
+    for (r = 0; r < 4; r++) {
+      int spp = 1 << L, x, y, k, j, pass;
+      tsamp a, b;
+      if (tsamp_init(&a, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0 || tsamp_init(&b, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0) {
+        rt_check(0, "zsobol init"); return;
+      }
+      fast_used += a.S.zlow != NULL;
+      for (pass = 0; pass < 2; pass++)
+        for (y = -1; y < 13; y += 5 + pass)
+          for (x = -1; x < 21; x += 7 - pass) {
+            elr_sampler_start_pixel(&a.S, x, y);
+            elr_sampler_start_pixel(&b.S, x, y);
+            for (k = 0; k < spp && k < 64; k++) {
+              int sample = (int)(((unsigned)k * 37u + (unsigned)pass * 5u) & (unsigned)(spp - 1)); /* not in order */
+              float fa, fb, ga, gb;
+              elr_sampler_camera_sample(&a.S, sample, x, y, &fa, &ga);
+              elr_sampler_camera_sample(&b.S, sample, x, y, &fb, &gb);
+              bad += memcmp(&fa, &fb, sizeof fa) != 0 || memcmp(&ga, &gb, sizeof ga) != 0;
+              for (j = 5; j < 72; j++) {
+                float u[2], v[2];
+                if ((j * 7 + k) % 3 == 0) {
+                  u[0] = elr_zsobol_1d(&a.S, j); v[0] = elr_zsobol_ref_1d(&b.S, j);
+                  bad += memcmp(u, v, sizeof(float)) != 0;
+                } else {
+                  elr_zsobol_2d(&a.S, j, u); elr_zsobol_ref_2d(&b.S, j, v);
+                  bad += memcmp(u, v, sizeof u) != 0;
+                }
+                draws++;
+              }
+            }
+          }
+      tsamp_free(&a); tsamp_free(&b);
+    }
+  rt_check(bad == 0 && fast_used == 9 * 4, "zsobol: the fast path's numbers are the reference's bit for bit (%d of %d draws differ; "
+           "fast path used for %d of 36 sample counts x randomizations up to 256 spp)", bad, draws, fast_used);
+  {
+    static const char *integs[2] = {"\"directlighting\"", "\"path\" \"integer maxdepth\" 4"};
+    int ig;
+    make_map();
+    for (ig = 0; ig < 2; ig++) {
+      elr_scene *s = load_scene("Sampler \"zsobol\" \"integer pixelsamples\" 32", integs[ig]);
+      elr_image fa, rf;
+      if (!s) { rt_check(0, "scene"); continue; }
+      if (render_opts(s, 2, 0, 7, &fa) == 0) {
+        setenv("ELR_ZSOBOL_REFERENCE", "1", 1);
+        if (render_opts(s, 2, 0, 7, &rf) == 0) {
+          rt_check(same_image(&fa, &rf), "zsobol, %s: the fast path's image is the reference path's bit for bit", integs[ig]);
+          elr_image_free(&rf);
+        }
+        unsetenv("ELR_ZSOBOL_REFERENCE");
+        elr_image_free(&fa);
+      }
+      elr_scene_free(s);
+    }
+  }
+}
+
 /* >> 6. the Sampler directive */
 static void test_parser(void) {
   static const char *bad[][2] = { /* the directive, a word the error must contain */
@@ -460,6 +526,7 @@ int main(void) {
   test_randomizations();
   test_interface();
   test_renders();
+  test_zsobol_fast();
   test_parser();
   return rt_finish("test_render_samplers");
 }
