@@ -521,7 +521,8 @@ typedef struct el_envlight_hotspots {
   el_distribution2d_fast rest_fast;           /* the rest's guide table (constant expected time) */
   int rest_fast_ok;
   int cells_u, cells_v;                       /* the rest x cosine part: cells of the rest's bins */
-  float *cell_cone;                           /* per cell: centre (light space), cos r, sin r, 0, 0, 0 */
+  float *cell_cone;                           /* 6 arrays of a float per cell: the cone's centre x, y, z
+                                                 (light space), cos and sin of its radius; the rest's mass */
   double *cell_mass;                          /* per cell: the rest's probability under sample_li */
   el_distribution2d *cell_dist;               /* per cell: the rest's bins in it */
 } el_envlight_hotspots;
@@ -3883,7 +3884,13 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
 /* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */
 
 /* the rest x cosine part's helpers (defined with the cells, below) */
-static double el_envlight__hot_bounds(const el_envlight_hotspots *h, const float *nl, double *bm);
+static float el_envlight__hot_bounds(const el_envlight_hotspots *h, const float *nl, float *bm);
+/* the cosine bound of a cell from ca = n . centre (the same float expression in the loop and the pdf) */
+static inline float el_envlight__hot_b(float ca, float cr, float sr) {
+  float sa = 1.0f - ca * ca, b = ca * cr + el_envlight__sqrt(sa > 0.0f ? sa : 0.0f) * sr;
+  b = ca >= cr ? 1.0f : b;       /* the normal's direction lies within the cone */
+  return b > 1e-3f ? b : 1e-3f;  /* a floor: every cell with rest mass stays reachable */
+}
 static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float nl[3]);
 static int el_envlight__hot_cell_of(const el_envlight_hotspots *h, int64_t b);
 
@@ -4030,7 +4037,7 @@ static void el_envlight__hot_weights_cos(const el_envlight_hotspots *h, const el
 }
 
 static float el_envlight__hot_pdf_cos(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float *nl,
-                                      double s, const float dir[3]) {
+                                      float s, const float dir[3]) {
   float p;
   int64_t b;
   int k, c;
@@ -4046,20 +4053,19 @@ static float el_envlight__hot_pdf_cos(const el_envlight *l, const el_envlight_ho
   }
   c = el_envlight__hot_cell_of(h, b);
   if (nl) {
-    const float *q = h->cell_cone + 8 * c;
-    double ca = (double)nl[0] * q[0] + (double)nl[1] * q[1] + (double)nl[2] * q[2];
-    if (ca < (double)q[3]) { double sa = 1.0 - ca * ca; bnd = ca * q[3] + sqrt(sa > 0.0 ? sa : 0.0) * q[4]; }
-    bnd = bnd > 1e-3 ? bnd : 1e-3;
+    const float *q = h->cell_cone;
+    size_t nc = (size_t)h->cells_u * (size_t)h->cells_v, cc = (size_t)c;
+    bnd = el_envlight__hot_b(nl[0] * q[cc] + nl[1] * q[nc + cc] + nl[2] * q[2 * nc + cc], q[3 * nc + cc], q[4 * nc + cc]);
   }
-  if (!(s > 0.0)) return 0.0f;
-  p = (float)((double)p * a[k] * bnd / s); /* pdf_li's density of the cell's rest bins x B_c / S(n) */
+  if (!(s > 0.0f)) return 0.0f;
+  p = (float)((double)p * a[k] * bnd / (double)s); /* pdf_li's density of the cell's rest bins x B_c / S(n) */
   return p < FLT_MAX ? p : FLT_MAX;
 }
 
 EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
                                         const el_envlight_mix_weights *w, const float n[3], const float dir[3]) {
-  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], s = 0.0;
-  float nl[3];
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  float nl[3], s = 0.0f;
   int hn;
   if (!el_envlight__hot_usable(l, h)) return el_envlight_pdf_li_cos(l, n, dir);
   el_envlight__hot_weights_cos(h, w, a);
@@ -4071,8 +4077,8 @@ EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_
 EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
                                           const el_envlight_mix_weights *w, const float n[3], const float u[2],
                                           float wi[3], float rgb[3], float *pdf) {
-  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0, s = 0.0, bm[32 * 16];
-  float fu, fv, pb, uu, nl[3];
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
+  float fu, fv, pb, uu, nl[3], s = 0.0f, bm[32 * 16];
   int k, iu, iv, hn, cell = 0;
   if (!el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf); return; }
   el_envlight__hot_weights_cos(h, w, a);
@@ -4083,7 +4089,7 @@ EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envligh
     if (a[k] > 0.0 && u0 < c + a[k]) break;
     c += a[k];
   }
-  if (k == h->count && !(a[k] > 0.0 && h->cell_dist && s > 0.0)) {
+  if (k == h->count && !(a[k] > 0.0 && h->cell_dist && s > 0.0f)) {
     for (k = h->count - 1; k > 0 && !(a[k] > 0.0); --k) {}
     c = 0.0;
     { int t; for (t = 0; t < k; ++t) c += a[t]; }
@@ -4097,13 +4103,13 @@ EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envligh
     iv += h->rect[k][1];
   } else { /* the rest: a cell by its bound x mass, then its bins */
     int lo = 0, hi = h->cells_u * h->cells_v - 1, cu, cv;
-    double t = (double)uu * s, prev;
+    float t = uu * s, prev;
     while (lo < hi) { int mid = (lo + hi) / 2; if (bm[mid] > t) hi = mid; else lo = mid + 1; }
     cell = lo;
     while (cell > 0 && !(h->cell_mass[cell] > 0.0)) --cell; /* never a cell without mass */
     while (!(h->cell_mass[cell] > 0.0) && cell + 1 < h->cells_u * h->cells_v) ++cell;
-    prev = cell > 0 ? bm[cell - 1] : 0.0;
-    uu = el_envlight__clamp_u((float)((t - prev) / (bm[cell] - prev > 0.0 ? bm[cell] - prev : 1.0)));
+    prev = cell > 0 ? bm[cell - 1] : 0.0f;
+    uu = el_envlight__clamp_u((t - prev) / (bm[cell] - prev > 0.0f ? bm[cell] - prev : 1.0f));
     el_distribution2d_sample_bins(&h->cell_dist[cell], uu, u[1], &iu, &iv, &fu, &fv, &pb);
     cu = cell % h->cells_u; cv = cell / h->cells_u;
     iu += (int)((int64_t)cu * h->nu / h->cells_u);
@@ -4242,7 +4248,7 @@ static el_result el_envlight__hot_cells(el_envlight_hotspots *h, const el_envlig
   h->cells_u = nu < 32 ? nu : 32;
   h->cells_v = nv < 16 ? nv : 16;
   nc = (size_t)h->cells_u * (size_t)h->cells_v;
-  h->cell_cone = (float *)EL_MALLOC(nc * 8 * sizeof(float));
+  h->cell_cone = (float *)EL_MALLOC(nc * 6 * sizeof(float));
   h->cell_mass = (double *)EL_MALLOC(nc * sizeof(double));
   h->cell_dist = (el_distribution2d *)EL_MALLOC(nc * sizeof(el_distribution2d));
   if (!h->cell_cone || !h->cell_mass || !h->cell_dist) return EL_ERROR_OUT_OF_MEMORY;
@@ -4263,6 +4269,7 @@ static el_result el_envlight__hot_cells(el_envlight_hotspots *h, const el_envlig
           m += (double)x * rowk[j];
         }
       h->cell_mass[c] = m / total;
+      h->cell_cone[5 * nc + c] = (float)(m / total);
       if (m > 0.0) {
         el_result r;
         memset(&dopt, 0, sizeof dopt);
@@ -4287,32 +4294,29 @@ static el_result el_envlight__hot_cells(el_envlight_hotspots *h, const el_envlig
       ext = EL_ENVLIGHT__PI * (u1 - u0 > v1 - v0 ? 2.0 * (u1 - u0) / nu : (double)(v1 - v0) / nv);
       rad = acos(cmin < 1.0 ? (cmin > -1.0 ? cmin : -1.0) : 1.0) + 0.1 * ext;
       if (rad > EL_ENVLIGHT__PI) rad = EL_ENVLIGHT__PI;
-      h->cell_cone[8 * c + 0] = (float)ctr[0]; h->cell_cone[8 * c + 1] = (float)ctr[1]; h->cell_cone[8 * c + 2] = (float)ctr[2];
-      h->cell_cone[8 * c + 3] = (float)cos(rad); h->cell_cone[8 * c + 4] = (float)sin(rad);
-      h->cell_cone[8 * c + 5] = h->cell_cone[8 * c + 6] = h->cell_cone[8 * c + 7] = 0.0f;
+      h->cell_cone[c] = (float)ctr[0]; h->cell_cone[nc + c] = (float)ctr[1]; h->cell_cone[2 * nc + c] = (float)ctr[2];
+      h->cell_cone[3 * nc + c] = (float)cos(rad); h->cell_cone[4 * nc + c] = (float)sin(rad);
     }
   return EL_SUCCESS;
 }
 
-/* The cosine bounds of every cell for the light-space normal nl (NULL: 1), times the cell's mass, into
- * bm (cumulative when cum); returns their sum S(n). */
-static double el_envlight__hot_bounds(const el_envlight_hotspots *h, const float *nl, double *bm) {
+/* The cosine bounds of every cell for the light-space normal nl (NULL: 1) times the cell's mass, summed
+ * into bm (cumulative; may be NULL); returns their sum S(n). Two loops: the bounds (vectorisable: the
+ * cones are stored as arrays), then the running sum. */
+static float el_envlight__hot_bounds(const el_envlight_hotspots *h, const float *nl, float *bm) {
   int c, nc = h->cells_u * h->cells_v;
-  double s = 0.0;
-  for (c = 0; c < nc; ++c) {
-    const float *k = h->cell_cone + 8 * c;
-    double bnd = 1.0;
-    if (nl) {
-      double ca = (double)nl[0] * k[0] + (double)nl[1] * k[1] + (double)nl[2] * k[2];
-      if (ca < (double)k[3]) { /* the angle to the centre exceeds the radius: cos(angle - radius) */
-        double sa = 1.0 - ca * ca;
-        bnd = ca * k[3] + sqrt(sa > 0.0 ? sa : 0.0) * k[4];
-      }
-      bnd = bnd > 1e-3 ? bnd : 1e-3; /* a floor: every cell with rest mass stays reachable */
+  const float *q = h->cell_cone;
+  float s = 0.0f, tmp[32 * 16], *b = bm ? bm : tmp;
+  size_t n = (size_t)nc;
+  if (nl) {
+    float x = nl[0], y = nl[1], z = nl[2];
+    for (c = 0; c < nc; ++c) {
+      size_t i = (size_t)c;
+      b[c] = el_envlight__hot_b(x * q[i] + y * q[n + i] + z * q[2 * n + i], q[3 * n + i], q[4 * n + i]) * q[5 * n + i];
     }
-    s += bnd * h->cell_mass[c];
-    if (bm) bm[c] = s;
-  }
+  } else
+    for (c = 0; c < nc; ++c) b[c] = q[5 * n + (size_t)c];
+  for (c = 0; c < nc; ++c) { s += b[c]; b[c] = s; }
   return s;
 }
 
