@@ -7,6 +7,7 @@
 # each change.
 set -eu
 cd "$(dirname "$0")/.."
+sh scripts/setup.sh
 case "${1:-}" in
   1) t=lab_01_mipmap ;;
   2) t=lab_02_lookups ;;

@@ -52,31 +52,7 @@ static uint32_t hash32(uint32_t x) {
   return x;
 }
 
-/* ---- chi-square p-value: regularized upper incomplete gamma Q(a, x) (Numerical Recipes' gammq) ---- */
-static double gammq(double a, double x) {
-  double gln = lgamma(a);
-  if (x <= 0) return 1.0;
-  if (x < a + 1.0) {
-    double ap = a, sum = 1.0 / a, del = sum;
-    int n;
-    for (n = 0; n < 100000; ++n) {
-      ap += 1.0; del *= x / ap; sum += del;
-      if (fabs(del) < fabs(sum) * 1e-15) break;
-    }
-    return 1.0 - sum * exp(-x + a * log(x) - gln);
-  } else {
-    double b = x + 1.0 - a, c = 1.0 / 1e-300, d = 1.0 / b, h = d, an, del;
-    int i;
-    for (i = 1; i < 100000; ++i) {
-      an = -i * (i - a); b += 2.0;
-      d = an * d + b; if (fabs(d) < 1e-300) d = 1e-300;
-      c = b + an / c; if (fabs(c) < 1e-300) c = 1e-300;
-      d = 1.0 / d; del = d * c; h *= del;
-      if (fabs(del - 1.0) < 1e-15) break;
-    }
-    return exp(-x + a * log(x) - gln) * h;
-  }
-}
+#include "test_chisq.h" /* gammq: the chi-square p-value */
 #define N_CHI2_TESTS 4 /* Bonferroni: every chi-square test in this file */
 /* counts vs expected (expected summing to the number of samples); bins with expected < 5 pooled. */
 static void chi2_check(const double *expected, const double *observed, int n, const char *what) {

@@ -63,29 +63,7 @@ static uint32_t rng_u32(rng *r) {
 static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
 static rng rng_make(uint64_t seed) { rng r; r.s = seed * 2654435761ULL + 12345; rng_u32(&r); return r; }
 
-/* ---- chi-square p-value: regularized upper incomplete gamma Q(a, x) (Numerical Recipes) ---- */
-static double gammq(double a, double x) {
-  double gln = lgamma(a);
-  if (x <= 0) return 1.0;
-  if (x < a + 1.0) { /* series for P */
-    double ap = a, sum = 1.0 / a, del = sum;
-    int n;
-    for (n = 0; n < 100000; ++n) { ap += 1.0; del *= x / ap; sum += del; if (fabs(del) < fabs(sum) * 1e-15) break; }
-    return 1.0 - sum * exp(-x + a * log(x) - gln);
-  } else { /* continued fraction for Q */
-    double b = x + 1.0 - a, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
-    int i;
-    for (i = 1; i < 100000; ++i) {
-      double an = -i * (i - a), del;
-      b += 2.0;
-      d = an * d + b; if (fabs(d) < 1e-300) d = 1e-300;
-      c = b + an / c; if (fabs(c) < 1e-300) c = 1e-300;
-      d = 1.0 / d; del = d * c; h *= del;
-      if (fabs(del - 1.0) < 1e-15) break;
-    }
-    return exp(-x + a * log(x) - gln) * h;
-  }
-}
+#include "test_chisq.h" /* gammq: the chi-square p-value */
 
 /* ---- independent reference mapping (double precision libm) --------------------------------- */
 static void ref_uv_to_dir(double u, double v, double d[3]) { /* pbrt-v3, light space */

@@ -50,29 +50,7 @@ static uint32_t hash32(uint32_t x) {
 /* 24-bit uniform floats in [0,1) from an index and a stream */
 static float rnd(uint32_t i, uint32_t s) { return (float)(hash32(i * 2654435761u + s * 0x9e3779b9u + 12345u) >> 8) * (1.0f / 16777216.0f); }
 
-/* chi-square p-value: the regularized upper incomplete gamma Q(a, x) (Numerical Recipes) */
-static double gammq(double a, double x) {
-  double gln = lgamma(a);
-  if (x <= 0) return 1.0;
-  if (x < a + 1.0) {
-    double ap = a, sum = 1.0 / a, del = sum;
-    int n;
-    for (n = 0; n < 100000; ++n) { ap += 1.0; del *= x / ap; sum += del; if (fabs(del) < fabs(sum) * 1e-15) break; }
-    return 1.0 - sum * exp(-x + a * log(x) - gln);
-  } else {
-    double b = x + 1.0 - a, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
-    int i;
-    for (i = 1; i < 100000; ++i) {
-      double an = -i * (i - a), del;
-      b += 2.0;
-      d = an * d + b; if (fabs(d) < 1e-300) d = 1e-300;
-      c = b + an / c; if (fabs(c) < 1e-300) c = 1e-300;
-      d = 1.0 / d; del = d * c; h *= del;
-      if (fabs(del - 1.0) < 1e-15) break;
-    }
-    return exp(-x + a * log(x) - gln) * h;
-  }
-}
+#include "test_chisq.h" /* gammq: the chi-square p-value */
 /* chi-square of observed counts against expected probabilities (cells with expectation < 5 pooled) */
 static double chi2_p(const double *obs, const double *prob, int n, double total, int *dof_out) {
   double chi2 = 0.0, pe = 0.0, po = 0.0;

@@ -31,29 +31,7 @@ static float frand(void) {
 }
 static double lum(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
 
-/* ---- gamma Q for the chi-square p-value (Numerical Recipes) ---- */
-static double gammq(double a, double x) {
-  double gln = lgamma(a);
-  if (x <= 0) return 1.0;
-  if (x < a + 1.0) {
-    double ap = a, sum = 1.0 / a, del = sum;
-    int n;
-    for (n = 0; n < 100000; ++n) { ap += 1.0; del *= x / ap; sum += del; if (fabs(del) < fabs(sum) * 1e-15) break; }
-    return 1.0 - sum * exp(-x + a * log(x) - gln);
-  } else {
-    double b = x + 1.0 - a, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
-    int i;
-    for (i = 1; i < 100000; ++i) {
-      double an = -i * (i - a), del;
-      b += 2.0;
-      d = an * d + b; if (fabs(d) < 1e-300) d = 1e-300;
-      c = b + an / c; if (fabs(c) < 1e-300) c = 1e-300;
-      d = 1.0 / d; del = d * c; h *= del;
-      if (fabs(del - 1.0) < 1e-15) break;
-    }
-    return exp(-x + a * log(x) - gln) * h;
-  }
-}
+#include "test_chisq.h" /* gammq: the chi-square p-value */
 
 /* ---- a test map: a sky with an asymmetric gradient, optionally a sun (light space direction) ---- */
 #define MW 128
