@@ -240,8 +240,8 @@ int main(int argc, char **argv) {
     char path[600], err[256];
     el_image im;
     snprintf(path, sizeof path, "%s/%s.exr", dir, maps[mi]);
-    if (el_image_load(path, &im, err, sizeof err) != 0) {
-      snprintf(path, sizeof path, "data/envmaps/%s.exr", maps[mi]);
+    if (el_image_load(path, &im, err, sizeof err) != 0) { /* else the copies in data/ (city, studio) */
+      snprintf(path, sizeof path, "data/envmaps/%s.hdr", maps[mi]);
       if (el_image_load(path, &im, err, sizeof err) != 0) { printf("%s: %s\n", maps[mi], err); continue; }
     }
     have[mi] = el_envlight_init(&ls[mi], im.pixels, im.width, im.height, im.channels, NULL) == EL_SUCCESS;
