@@ -65,28 +65,7 @@ static float frand(void) { /* PCG32, 24-bit floats in [0, 1) */
   return (float)(x >> 8) * (1.0f / 16777216.0f);
 }
 
-static double gammq(double a, double x) { /* regularized upper incomplete gamma (Numerical Recipes) */
-  double gln = lgamma(a);
-  if (x <= 0) return 1.0;
-  if (x < a + 1.0) {
-    double ap = a, sum = 1.0 / a, del = sum;
-    int n;
-    for (n = 0; n < 100000; ++n) { ap += 1.0; del *= x / ap; sum += del; if (fabs(del) < fabs(sum) * 1e-15) break; }
-    return 1.0 - sum * exp(-x + a * log(x) - gln);
-  } else {
-    double b = x + 1.0 - a, c = 1.0 / 1e-300, d = 1.0 / b, h = d;
-    int i;
-    for (i = 1; i < 100000; ++i) {
-      double an = -i * (i - a), del;
-      b += 2.0;
-      d = an * d + b; if (fabs(d) < 1e-300) d = 1e-300;
-      c = b + an / c; if (fabs(c) < 1e-300) c = 1e-300;
-      d = 1.0 / d; del = d * c; h *= del;
-      if (fabs(del - 1.0) < 1e-15) break;
-    }
-    return exp(-x + a * log(x) - gln) * h;
-  }
-}
+#include "test_chisq.h" /* gammq: the chi-square p-value */
 
 static void rotation(float m[9]) { /* 37 degrees about (1, 2, 3) */
   double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
