@@ -482,6 +482,180 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    object itself const. After that every query is read-only. The light's own sampling tables
  *    (sample_li's) are not built by product sampling, nor the normal tables by importance BILINEAR. */
 
+/* >> declarations: hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS below) */
+
+/* The most hot spots a map can have (el_envlight_hotspots.spot[]). */
+#define EL_ENVLIGHT_HOTSPOT_MAX 8
+
+/* How hot spots are found (all zero: the defaults in brackets; NOTES ON HOT SPOTS 1). */
+typedef struct el_envlight_hotspot_options {
+  float min_radiance;   /* a bin is hot when its mean density is >= this x the map's mean (power / 4 pi) [100] */
+  float min_share;      /* a spot is kept when it holds >= this share of the map's sampling mass [0.05] */
+  float max_half_angle; /* ... and its cone's half-angle is <= this, in radians [0.2, 11.5 degrees] */
+  int max_spots;        /* at most this many spots, the largest shares first, 1..EL_ENVLIGHT_HOTSPOT_MAX [8] */
+} el_envlight_hotspot_options;
+
+/* One hot spot: a connected set of importance bins, described by a cone. */
+typedef struct el_envlight_hotspot {
+  float axis[3];    /* world space, unit: the mass-weighted mean direction of its bins */
+  float half_angle; /* radians: every bin of the spot lies within this angle of axis */
+  float share;      /* the probability with which sample_li lands in it (its share of the power, for a
+                       light without compensation) */
+  int bins;         /* importance bins in it */
+} el_envlight_hotspot;
+
+/* The hot spots of one light and the tables that sample "spot k" and "the rest" apart. PUBLIC: count,
+ * spot[], rest_share; the rest is private. Made by el_envlight_hotspots_init, freed by
+ * el_envlight_hotspots_free (safe on a zeroed struct). */
+typedef struct el_envlight_hotspots {
+  int count;                                  /* PUBLIC: 0 .. EL_ENVLIGHT_HOTSPOT_MAX */
+  el_envlight_hotspot spot[EL_ENVLIGHT_HOTSPOT_MAX]; /* PUBLIC: the largest share first */
+  float rest_share;                           /* PUBLIC: 1 - the spots' shares */
+  /* ---- private ---- */
+  const float *key;                           /* the light's pdf table it was made for */
+  int nu, nv;                                 /* its importance bins */
+  double share_d[EL_ENVLIGHT_HOTSPOT_MAX + 1]; /* spots' and rest's shares (index count = the rest) */
+  int rect[EL_ENVLIGHT_HOTSPOT_MAX][4];       /* first column (wraps), first row, columns, rows */
+  unsigned char *mask[EL_ENVLIGHT_HOTSPOT_MAX]; /* columns x rows: 1 = the bin belongs to the spot */
+  el_distribution2d dist[EL_ENVLIGHT_HOTSPOT_MAX + 1]; /* each spot's bins, then the rest (index count) */
+  el_distribution2d_fast rest_fast;           /* the rest's guide table (constant expected time) */
+  int rest_fast_ok;
+  int cells_u, cells_v;                       /* the rest x cosine part: cells of the rest's bins */
+  float *cell_cone;                           /* 6 arrays of a float per cell: the cone's centre x, y, z
+                                                 (light space), cos and sin of its radius; the rest's mass */
+  double *cell_mass;                          /* per cell: the rest's probability under sample_li */
+  el_distribution2d *cell_dist;               /* per cell: the rest's bins in it */
+} el_envlight_hotspots;
+
+/* Mixture weights: the probability of drawing from spot k (spot[k], k < count) and from the rest of the
+ * map (rest), normalised by their sum. All zero (or NULL), any NaN, infinite or negative weight, or a sum
+ * of 0 over the parts that have mass: the DEFAULT weights, each part's own share, which give
+ * sample_li's density exactly (then sample_li_mix is sample_li and pdf_li_mix is pdf_li, bit for bit). */
+typedef struct el_envlight_mix_weights {
+  float spot[EL_ENVLIGHT_HOTSPOT_MAX];
+  float rest;
+} el_envlight_mix_weights;
+
+/* Find the hot spots of l (builds its sampling tables if needed). opt may be NULL (the defaults).
+ * A constant light, importance mode BILINEAR, a black map or a map without a compact bright region: count
+ * 0 (success; the mixture is then sample_li itself). EL_ERROR_INVALID_ARGUMENT for NULL pointers or
+ * options out of range (negative, NaN, max_spots > EL_ENVLIGHT_HOTSPOT_MAX), EL_ERROR_OUT_OF_MEMORY, or
+ * the light's own table build result. On failure *h is zeroed. Extra memory: about 4 bytes per bin
+ * (the rest's distribution) when a spot is found, nothing otherwise. */
+EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_envlight *l,
+                                           const el_envlight_hotspot_options *opt);
+EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h);
+/* Weights that give the spots together the probability spot_share (clamped to [0, 1]), shared among
+ * them in proportion to their own shares, and the rest 1 - spot_share. A NaN spot_share, or no spot:
+ * the default weights (all zero). */
+EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w);
+/* Sample the mixture sum_k w_k p_k + w_rest p_rest, where p_k is sample_li's density restricted to spot k
+ * (renormalised) and p_rest the density restricted to the rest: wi (world, unit), rgb = le(wi) (may be
+ * NULL) and *pdf = el_envlight_pdf_li_mix(l, h, w, wi) bit for bit. u[0] picks the part and is reused
+ * (remapped) inside it. pdf 0: no sample (skip it). h must come from this light (else, or with default
+ * weights: sample_li itself). About 2x sample_li's cost plus pdf_li's. */
+EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                      const el_envlight_mix_weights *w, const float u[2], float wi[3],
+                                      float rgb[3], float *pdf);
+/* n samples at once (u[2i], u[2i+1] -> wi[3i..], rgb[3i..] (may be NULL), pdf[i]), bit for bit n calls
+ * of sample_li_mix; with default weights (or h unusable) el_envlight_sample_li_n itself. n <= 0: nothing. */
+EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_hotspots *h,
+                                        const el_envlight_mix_weights *w, int n, const float *u, float *wi,
+                                        float *rgb, float *pdf);
+/* The mixture with the rest drawn in proportion to the map times a cosine bound of the surface of world
+ * normal n (NOTES ON HOT SPOTS 4): spot k as in sample_li_mix, the rest's cells (32 x 16) picked by their
+ * mass times max(1e-3, an upper bound of n.w over the cell), then sample_li's density inside the cell.
+ * Default weights here mean each part's own share. No spot (or h unusable): sample_li_cos itself, and
+ * pdf_li_mix_cos is pdf_li_cos. A zero or NaN n: bound 1 (sample_li_mix's density). *pdf equals
+ * pdf_li_mix_cos(l, h, w, n, wi) bit for bit. Cost: O(cells) per call (512 bounds), sample and pdf. */
+EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
+                                          const el_envlight_mix_weights *w, const float n[3], const float u[2],
+                                          float wi[3], float rgb[3], float *pdf);
+EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
+                                        const el_envlight_mix_weights *w, const float n[3], const float dir[3]);
+/* The mixture's solid-angle density at dir: pdf_li(dir) x w_part / share_part for the part holding dir
+ * (0 for a part of weight 0). With default weights: pdf_li(dir), bit for bit. */
+EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                    const el_envlight_mix_weights *w, const float dir[3]);
+
+/* << declarations: hot spots */
+
+/* ----------------------------------------------------------------------------------------------------
+ * NOTES ON HOT SPOTS AND THE MIXTURE SAMPLER (issue 22; numbers: bench/bench_sun.c, gcc 12 -O3, this
+ * project's shared, loaded 2-core machine)
+ *
+ * 1. FINDING THEM. On the light's importance bins (sample_li's own distribution: probability m_b per
+ *    bin), a bin is a CORE bin when its density m_b / (solid angle of the bin) is at least min_radiance
+ *    times the map's mean 1 / (4 pi), a RIM bin when at least min_radiance / 8 (a one-texel sun's edge
+ *    neighbours hold 1/6 of its density in the cell-average map: its bilinear spill belongs to it).
+ *    Bins are grouped into connected components (8 neighbours, u wraps around the seam, a pole row's
+ *    bins also touch the bins half a turn away): a core with its rim; when that region's cone is too
+ *    wide, each core region alone. A component is a spot when its share sum(m_b) >= min_share and every
+ *    corner and edge midpoint of its bins lies within max_half_angle of its axis (the mass-weighted
+ *    mean direction); the largest max_spots are kept, sorted by share.
+ *    MEASURED (defaults: min_radiance 100, min_share 0.05, max_half_angle 11.5 deg; share / half-angle):
+ *    city: 1 spot, its sun, 0.245 / 2.1 deg (124 bins); forest: 1, 0.065 / 3.4 deg (sun through the
+ *    leaves); night: 3 lamps, 0.174 / 5.6, 0.153 / 2.2, 0.077 / 1.6 deg; studio: 4 lamps, 0.335 / 7.6,
+ *    0.260 / 6.6, 0.153 / 8.2, 0.117 / 2.9 deg; sunset: none (its sun holds 0.024 < min_share).
+ *    Generated 1024x512 maps: a sunrise (disc of 0.5 deg at 7.9 deg elevation) 0.750 / 1.2 deg; two
+ *    suns 0.537 / 0.9 and 0.395 / 1.0; a sun at the pole (the first row) 0.994 / 0.7 deg; across the
+ *    seam 0.923 / 1.0; one texel 0.899 / 0.6 deg; a smooth sky: none. The thresholds matter little
+ *    on suns: from min_radiance 10 to 1000 the spots of city, night (3 largest), the generated maps
+ *    keep their count and their shares change by <= 0.01; studio loses a lamp at 300 and all at 1000
+ *    (they are a few hundred times the mean, not a sun's 10^4x); forest keeps its one spot (3.4 deg at
+ *    10, 1.6 deg at 1000). COST: one pass over the bins plus a search per component, about 21 M
+ *    instructions at 1024x512 (callgrind).
+ * 2. THE MIXTURE. p(w) = sum_k a_k p_li(w) [w in S_k] / P_k + a_r p_li(w) [w in rest] / P_r, where P_k,
+ *    P_r are the shares (their sample_li probabilities) and a the normalised weights: sample_li's density
+ *    rescaled per part by a / P. a = P (the default) is p_li. Each part is sampled from its own integer
+ *    CDF over the same bins (distribution2d.h; the rest through a guide table), uniform inside the bin
+ *    like sample_li (the same direction tables); the returned pdf is the pdf query's (the part of a
+ *    direction is found with pdf_li's own bin search), so sample and query agree bit for bit. The
+ *    sampled density equals the stated one up to the integer CDFs' rounding of bin probabilities (about
+ *    2^-32 of the part) and directions rounded across a bin edge at a spot's border (within 2^-21 of a
+ *    bin, as sample_li). tests/test_envlight_sun.c: chi-square over the bins, unbiasedness against a
+ *    quadrature, default weights bit for bit.
+ * 3. WHAT IT BUYS: a point where the sun is hidden (bench_sun table 3: E = integral of L max(0, n.w) V,
+ *    V = 0 in the largest spot's cone; variance per sample, 2^20 samples; the spot's weight moved to 0
+ *    and the other parts keeping their proportions). Against sample_li (= default weights): sunrise
+ *    7.9x less (n up) and 6.7x (n towards the sun), two suns 2.3x / 2.2x, city 2.2x / 2.1x, studio 1.9x
+ *    / 1.7x, night 1.4x, forest 1.3x / 1.2x. Against sample_li_cos (product sampling, which keeps
+ *    drawing the hidden sun: 66% of its samples on sunrise for n up, 87% towards the sun): 2.8x / 6.5x
+ *    less on sunrise, 1.1x / 1.5x on two suns, 1.25x / 1.3x on city, but MORE on the maps whose rest is
+ *    far from uniform in cosine (forest 5x, night 3.5x, studio 2.5x more: the mixture's rest has no
+ *    cosine factor). A weight of 0.02 instead of 0 keeps 93-98% of the gain. The share of samples in the
+ *    sun's cone follows the weight exactly (10.0% for 0.1, 2.0% for 0.02).
+ *    PRODUCT SAMPLING RESTRICTED TO THE REST (sample_li_cos with the draws in the cone rejected, scaled
+ *    by the acceptance rate: what an exact "rest x product" part would reach; not implemented, it needs
+ *    the product sampler's cells without the spots' bins) gives, n up / towards the spot, 34x / 160x
+ *    less variance than sample_li_cos on sunrise, 45x / 18x on city, 6x / 6x forest, 2.7x / 23x night,
+ *    2.4x / 29x studio, 240x / 300x two suns (the second one below the horizon).
+ * 4. THE REST x COSINE MIXTURE (sample_li_mix_cos, pdf_li_mix_cos): the rest's bins grouped into 32 x 16
+ *    cells; per call every cell gets B = max(1e-3, cos(max(0, angle(n, centre) - radius))), an upper
+ *    bound of n.w over the cell (its cone: the farthest of 5 x 5 points plus a tenth of the cell's
+ *    angle; the floor keeps every cell with mass reachable, so light sampling alone stays unbiased);
+ *    a cell is picked with probability B x its rest mass / S(n), then sample_li's density inside it.
+ *    pdf = pdf_li x B / S(n) on the rest, as sample_li_mix on the spots. Shadowed point (table 3, the
+ *    spot's weight 0.02 / 0) against sample_li_cos: sunrise 16x / 20x less variance (n up), 111x / 165x
+ *    (n towards the sun); city 10x / 19x and 12x / 21x; two suns 1.7x and 3.0x; forest 0.96x / 1.3x and
+ *    1.6x / 2.0x; but night 0.76x-1.3x and studio 0.43x-0.76x (more variance: their other lamps stay lit
+ *    and are drawn without the cosine, and 32 x 16 cells bound the cosine loosely). COST: O(cells) per
+ *    sample and per pdf (512 bounds in a vectorisable loop, then a running sum): 7.3x (3.4 against
+ *    0.47 us) and, before the loop was vectorised, 9.2x sample_li_cos's time with radiance (sunrise, best
+ *    of 5 interleaved rounds, loaded machine); so at equal time it wins on sun maps (sunrise, city:
+ *    10-165x less variance), not on lamp maps. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
+ *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
+ * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
+ *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
+ *    those of the compensated density. COST: sample_li_mix with radiance 3.9-4.4x sample_li's time on
+ *    the sunrise map (292 against 66 ns; 1645 against 416 ns in a busier run; best of 5 interleaved
+ *    rounds, loaded machine): the part's search, the pdf query (pdf_li and the bin search) and le(wi).
+ *    MEMORY: the rest's distribution and guide table, 2.6 MB at 1024x512 (the light's own tables:
+ *    4.9 MB), and each spot's bins. Thread safety: h is read-only after init; it
+ *    refers to the light's tables, so free h before l; it is only used with the light it was made from
+ *    (checked: another light's h gives sample_li / pdf_li).
+ */
+
 /* >> declarations: portals (issue 23; NOTES ON PORTALS below) */
 
 /* At most this many portals per light. */
@@ -3707,6 +3881,647 @@ static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) 
   if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
   return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
 }
+
+/* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */
+
+/* the rest x cosine part's helpers (defined with the cells, below) */
+static float el_envlight__hot_bounds(const el_envlight_hotspots *h, const float *nl, float *bm);
+/* the cosine bound of a cell from ca = n . centre (the same float expression in the loop and the pdf) */
+static inline float el_envlight__hot_b(float ca, float cr, float sr) {
+  float sa = 1.0f - ca * ca, b = ca * cr + el_envlight__sqrt(sa > 0.0f ? sa : 0.0f) * sr;
+  b = ca >= cr ? 1.0f : b;       /* the normal's direction lies within the cone */
+  return b > 1e-3f ? b : 1e-3f;  /* a floor: every cell with rest mass stays reachable */
+}
+static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float nl[3]);
+static int el_envlight__hot_cell_of(const el_envlight_hotspots *h, int64_t b);
+
+/* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
+ * first half: keep the two in step), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN,
+ * infinite). The chi-square tests of tests/test_envlight_sun.c fail if they disagree. */
+static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
+  float d[3], r, pu, t;
+  size_t c;
+  uint32_t iu, iv;
+  if (!el_envlight__to_light_dir(l, dir, d)) return -1; /* as pdf_li: rescaled in world space if needed */
+  r = el_envlight__sqrt(d[0] * d[0] + d[1] * d[1]);
+  pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
+  pu = pu < 3.99999976f ? pu : 3.99999976f;
+  c = (size_t)(int64_t)(pu * l->u_cell_scale);
+  iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
+  t = 1.0f - d[2] / (r + fabsf(d[2]));
+  c = (size_t)(int64_t)(t * l->v_cell_scale);
+  iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+  return (int64_t)iv * (int64_t)l->dist.nu + (int64_t)iu;
+}
+
+/* Which part holds bin b: a spot index, or h->count for the rest. */
+static int el_envlight__hot_part(const el_envlight_hotspots *h, int64_t b) {
+  int k, iu = (int)(b % h->nu), iv = (int)(b / h->nu);
+  for (k = 0; k < h->count; ++k) {
+    const int *rc = h->rect[k];
+    int x = iu - rc[0], y = iv - rc[1];
+    if (x < 0) x += h->nu;
+    if (x < rc[2] && y >= 0 && y < rc[3] && h->mask[k][(size_t)y * (size_t)rc[2] + (size_t)x]) return k;
+  }
+  return h->count;
+}
+
+/* The normalised weights a[0..count] (count = the rest); 0 when they are the defaults. */
+static int el_envlight__hot_weights(const el_envlight_hotspots *h, const el_envlight_mix_weights *w, double a[EL_ENVLIGHT_HOTSPOT_MAX + 1]) {
+  double sum = 0.0;
+  int k;
+  if (!w) return 0;
+  for (k = 0; k <= h->count; ++k) {
+    float x = k < h->count ? w->spot[k] : w->rest;
+    if (!(x >= 0.0f && x <= FLT_MAX)) return 0; /* NaN, negative or infinite: the defaults */
+    a[k] = h->share_d[k] > 0.0 ? (double)x : 0.0; /* a part without mass cannot be drawn */
+    sum += a[k];
+  }
+  if (!(sum > 0.0)) return 0;
+  for (k = 0; k <= h->count; ++k) a[k] /= sum;
+  return 1;
+}
+
+/* h made for this light, with at least one spot and tables usable */
+static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotspots *h) {
+  return h && h->count > 0 && l->width > 0 && el_envlight__ensure(l) && h->key == l->pdf_table &&
+         h->nu == l->dist.nu && h->nv == l->dist.nv;
+}
+
+/* pdf_li_mix with usable h and normalised weights a */
+static float el_envlight__hot_pdf(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float dir[3]) {
+  float p;
+  int64_t b;
+  int k;
+  p = el_envlight_pdf_li(l, dir);
+  if (!(p > 0.0f)) return 0.0f;
+  b = el_envlight__hot_bin(l, dir);
+  if (b < 0) return 0.0f;
+  k = el_envlight__hot_part(h, b);
+  p = (float)((double)p * (a[k] / h->share_d[k]));
+  return p < FLT_MAX ? p : FLT_MAX;
+}
+
+EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                    const el_envlight_mix_weights *w, const float dir[3]) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) return el_envlight_pdf_li(l, dir);
+  return el_envlight__hot_pdf(l, h, a, dir);
+}
+
+EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
+                                      const el_envlight_mix_weights *w, const float u[2], float wi[3],
+                                      float rgb[3], float *pdf) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
+  float fu, fv, pb, uu;
+  int k, iu, iv;
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) {
+    el_envlight_sample_li(l, u, wi, rgb, pdf);
+    return;
+  }
+  /* pick the part with u[0] and remap it to [0, 1) within the part */
+  u0 = (double)el_envlight__clamp_u(u[0]);
+  for (k = 0; k < h->count; ++k) {
+    if (a[k] > 0.0 && u0 < c + a[k]) break;
+    c += a[k];
+  }
+  if (k == h->count && !(a[k] > 0.0)) { /* rounding past the last part of mass: the last one with weight */
+    for (k = h->count; k > 0 && !(a[k] > 0.0); --k) {}
+    c = 1.0 - a[k];
+  }
+  uu = (float)((u0 - c) / a[k]);
+  uu = el_envlight__clamp_u(uu);
+  if (k == h->count && h->rest_fast_ok) el_distribution2d_fast_sample_bins(&h->rest_fast, uu, u[1], &iu, &iv, &fu, &fv, &pb);
+  else el_distribution2d_sample_bins(&h->dist[k], uu, u[1], &iu, &iv, &fu, &fv, &pb);
+  if (k < h->count) {
+    iu += h->rect[k][0];
+    if (iu >= h->nu) iu -= h->nu;
+    iv += h->rect[k][1];
+  }
+  fu = fu > l->u_margin ? fu : l->u_margin;
+  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
+  fv = fv > l->v_margin ? fv : l->v_margin;
+  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
+  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
+  else {
+    float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
+    float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
+    el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
+    el_envlight__to_world(l, d, wi);
+  }
+  *pdf = el_envlight__hot_pdf(l, h, a, wi);
+  if (rgb) {
+    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
+}
+
+EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_hotspots *h,
+                                        const el_envlight_mix_weights *w, int n, const float *u, float *wi,
+                                        float *rgb, float *pdf) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  int i;
+  if (n <= 0) return;
+  if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) {
+    el_envlight_sample_li_n(l, n, u, wi, rgb, pdf);
+    return;
+  }
+  for (i = 0; i < n; ++i) el_envlight_sample_li_mix(l, h, w, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
+}
+
+/* the parts' weights for the cosine mixture: normalised weights, or the shares (defaults) */
+static void el_envlight__hot_weights_cos(const el_envlight_hotspots *h, const el_envlight_mix_weights *w, double *a) {
+  int k;
+  if (el_envlight__hot_weights(h, w, a)) return;
+  for (k = 0; k <= h->count; ++k) a[k] = h->share_d[k];
+}
+
+static float el_envlight__hot_pdf_cos(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float *nl,
+                                      float s, const float dir[3]) {
+  float p;
+  int64_t b;
+  int k, c;
+  double bnd = 1.0;
+  p = el_envlight_pdf_li(l, dir);
+  if (!(p > 0.0f)) return 0.0f;
+  b = el_envlight__hot_bin(l, dir);
+  if (b < 0) return 0.0f;
+  k = el_envlight__hot_part(h, b);
+  if (k < h->count || !h->cell_dist) {
+    p = (float)((double)p * (a[k] / h->share_d[k]));
+    return p < FLT_MAX ? p : FLT_MAX;
+  }
+  c = el_envlight__hot_cell_of(h, b);
+  if (nl) {
+    const float *q = h->cell_cone;
+    size_t nc = (size_t)h->cells_u * (size_t)h->cells_v, cc = (size_t)c;
+    bnd = el_envlight__hot_b(nl[0] * q[cc] + nl[1] * q[nc + cc] + nl[2] * q[2 * nc + cc], q[3 * nc + cc], q[4 * nc + cc]);
+  }
+  if (!(s > 0.0f)) return 0.0f;
+  p = (float)((double)p * a[k] * bnd / (double)s); /* pdf_li's density of the cell's rest bins x B_c / S(n) */
+  return p < FLT_MAX ? p : FLT_MAX;
+}
+
+EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
+                                        const el_envlight_mix_weights *w, const float n[3], const float dir[3]) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];
+  float nl[3], s = 0.0f;
+  int hn;
+  if (!el_envlight__hot_usable(l, h)) return el_envlight_pdf_li_cos(l, n, dir);
+  el_envlight__hot_weights_cos(h, w, a);
+  hn = el_envlight__hot_normal(l, n, nl);
+  if (h->cell_dist) s = el_envlight__hot_bounds(h, hn ? nl : NULL, NULL);
+  return el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, dir);
+}
+
+EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
+                                          const el_envlight_mix_weights *w, const float n[3], const float u[2],
+                                          float wi[3], float rgb[3], float *pdf) {
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
+  float fu, fv, pb, uu, nl[3], s = 0.0f, bm[32 * 16];
+  int k, iu, iv, hn, cell = 0;
+  if (!el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf); return; }
+  el_envlight__hot_weights_cos(h, w, a);
+  hn = el_envlight__hot_normal(l, n, nl);
+  if (h->cell_dist) s = el_envlight__hot_bounds(h, hn ? nl : NULL, bm);
+  u0 = (double)el_envlight__clamp_u(u[0]);
+  for (k = 0; k < h->count; ++k) {
+    if (a[k] > 0.0 && u0 < c + a[k]) break;
+    c += a[k];
+  }
+  if (k == h->count && !(a[k] > 0.0 && h->cell_dist && s > 0.0f)) {
+    for (k = h->count - 1; k > 0 && !(a[k] > 0.0); --k) {}
+    c = 0.0;
+    { int t; for (t = 0; t < k; ++t) c += a[t]; }
+    if (!(a[k] > 0.0)) { wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f; if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
+  }
+  uu = el_envlight__clamp_u((float)((u0 - c) / a[k]));
+  if (k < h->count) {
+    el_distribution2d_sample_bins(&h->dist[k], uu, u[1], &iu, &iv, &fu, &fv, &pb);
+    iu += h->rect[k][0];
+    if (iu >= h->nu) iu -= h->nu;
+    iv += h->rect[k][1];
+  } else { /* the rest: a cell by its bound x mass, then its bins */
+    int lo = 0, hi = h->cells_u * h->cells_v - 1, cu, cv;
+    float t = uu * s, prev;
+    while (lo < hi) { int mid = (lo + hi) / 2; if (bm[mid] > t) hi = mid; else lo = mid + 1; }
+    cell = lo;
+    while (cell > 0 && !(h->cell_mass[cell] > 0.0)) --cell; /* never a cell without mass */
+    while (!(h->cell_mass[cell] > 0.0) && cell + 1 < h->cells_u * h->cells_v) ++cell;
+    prev = cell > 0 ? bm[cell - 1] : 0.0f;
+    uu = el_envlight__clamp_u((t - prev) / (bm[cell] - prev > 0.0f ? bm[cell] - prev : 1.0f));
+    el_distribution2d_sample_bins(&h->cell_dist[cell], uu, u[1], &iu, &iv, &fu, &fv, &pb);
+    cu = cell % h->cells_u; cv = cell / h->cells_u;
+    iu += (int)((int64_t)cu * h->nu / h->cells_u);
+    iv += (int)((int64_t)cv * h->nv / h->cells_v);
+  }
+  fu = fu > l->u_margin ? fu : l->u_margin;
+  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
+  fv = fv > l->v_margin ? fv : l->v_margin;
+  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
+  else {
+    float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
+    float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
+    el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
+    el_envlight__to_world(l, d, wi);
+  }
+  *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
+  if (rgb) {
+    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
+}
+
+EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w) {
+  int k;
+  double s = 0.0;
+  if (!w) return;
+  memset(w, 0, sizeof *w);
+  if (!h || h->count <= 0 || spot_share != spot_share) return;
+  spot_share = spot_share > 0.0f ? (spot_share < 1.0f ? spot_share : 1.0f) : 0.0f;
+  for (k = 0; k < h->count; ++k) s += h->share_d[k];
+  if (!(s > 0.0)) return;
+  for (k = 0; k < h->count; ++k) w->spot[k] = (float)((double)spot_share * h->share_d[k] / s);
+  w->rest = 1.0f - spot_share;
+  if (!(h->share_d[h->count] > 0.0) && spot_share > 0.0f) w->rest = 0.0f;
+}
+
+EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h) {
+  int k;
+  if (!h) return;
+  if (h->rest_fast_ok) el_distribution2d_fast_free(&h->rest_fast); /* before the distribution it shares */
+  for (k = 0; k <= EL_ENVLIGHT_HOTSPOT_MAX; ++k) el_distribution2d_free(&h->dist[k]);
+  for (k = 0; k < EL_ENVLIGHT_HOTSPOT_MAX; ++k) EL_FREE(h->mask[k]);
+  if (h->cell_dist)
+    for (k = 0; k < h->cells_u * h->cells_v; ++k) el_distribution2d_free(&h->cell_dist[k]);
+  EL_FREE(h->cell_dist); EL_FREE(h->cell_cone); EL_FREE(h->cell_mass);
+  memset(h, 0, sizeof *h);
+}
+
+/* the light-space direction of bin point (u, v) in bin units */
+static void el_envlight__hot_dir(const el_envlight *l, double u, double v, double d[3]) {
+  double phi = 2.0 * EL_ENVLIGHT__PI * u / l->dist.nu, th = EL_ENVLIGHT__PI * v / l->dist.nv;
+  d[0] = sin(th) * cos(phi); d[1] = sin(th) * sin(phi); d[2] = cos(th);
+}
+
+/* the neighbours of bin (iu, iv): 8 around it (u wraps), and at a pole row the bins half a turn away */
+static int el_envlight__hot_neighbours(int nu, int nv, int iu, int iv, int64_t nb[11]) {
+  int n = 0, dx, dy;
+  for (dy = -1; dy <= 1; ++dy)
+    for (dx = -1; dx <= 1; ++dx) {
+      int x = iu + dx, y = iv + dy;
+      if ((dx == 0 && dy == 0) || y < 0 || y >= nv) continue;
+      x = (x % nu + nu) % nu;
+      nb[n++] = (int64_t)y * nu + x;
+    }
+  if (iv == 0 || iv == nv - 1)
+    for (dx = -1; dx <= 1; ++dx) nb[n++] = (int64_t)iv * nu + (((iu + nu / 2 + dx) % nu + nu) % nu);
+  return n;
+}
+
+/* state bits of a bin during the search */
+#define EL_ENVLIGHT__HOT_CORE 1u  /* density >= min_radiance x the mean */
+#define EL_ENVLIGHT__HOT_WARM 2u  /* density >= min_radiance / 8 x the mean (a core's rim) */
+#define EL_ENVLIGHT__HOT_SEEN 4u  /* visited by the first pass (core + rim) */
+#define EL_ENVLIGHT__HOT_CSEEN 8u /* visited by the core-only pass */
+#define EL_ENVLIGHT__HOT_BUILT 16u /* visited by the build pass */
+
+/* Breadth-first search from seed over bins with a bit of `accept`, marking `seen`; the component's
+ * bins go to queue. Returns their number. */
+static int64_t el_envlight__hot_grow(int nu, int nv, unsigned char *state, int64_t *queue, int64_t seed, unsigned accept, unsigned seen) {
+  int64_t head = 0, tail = 0;
+  state[seed] = (unsigned char)(state[seed] | seen);
+  queue[tail++] = seed;
+  while (head < tail) {
+    int64_t q = queue[head++], nbr[11];
+    int n = el_envlight__hot_neighbours(nu, nv, (int)(q % nu), (int)(q / nu), nbr), t;
+    for (t = 0; t < n; ++t)
+      if ((state[nbr[t]] & accept) && !(state[nbr[t]] & seen)) { state[nbr[t]] = (unsigned char)(state[nbr[t]] | seen); queue[tail++] = nbr[t]; }
+  }
+  return tail;
+}
+
+/* A component's share (of the light's total), axis (light space, unit) and half-angle (radians, over its
+ * bins' corners and edge midpoints). Returns 0 when its mass is spread too wide for a mean direction. */
+static int el_envlight__hot_cone(const el_envlight *l, const int64_t *queue, int64_t n, const double *rowk, double total,
+                                 double *share, double ax[3], double *half) {
+  double d[3], len, cmin = 1.0, s = 0.0;
+  int64_t t;
+  int nu = l->dist.nu;
+  ax[0] = ax[1] = ax[2] = 0.0;
+  for (t = 0; t < n; ++t) {
+    int64_t q = queue[t];
+    double m = (double)l->pdf_table[q] * rowk[q / nu];
+    el_envlight__hot_dir(l, (double)(q % nu) + 0.5, (double)(q / nu) + 0.5, d);
+    ax[0] += m * d[0]; ax[1] += m * d[1]; ax[2] += m * d[2];
+    s += m;
+  }
+  *share = s / total;
+  len = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+  *half = EL_ENVLIGHT__PI;
+  if (!(len > 0.5 * s)) return 0; /* mass spread over far more than a hemisphere: not compact */
+  ax[0] /= len; ax[1] /= len; ax[2] /= len;
+  for (t = 0; t < n; ++t) {
+    int64_t q = queue[t];
+    int pu, pv;
+    for (pv = 0; pv <= 2; ++pv)
+      for (pu = 0; pu <= 2; ++pu) {
+        double c;
+        el_envlight__hot_dir(l, (double)(q % nu) + 0.5 * pu, (double)(q / nu) + 0.5 * pv, d);
+        c = ax[0] * d[0] + ax[1] * d[1] + ax[2] * d[2];
+        if (c < cmin) cmin = c;
+      }
+  }
+  cmin = cmin < 1.0 ? (cmin > -1.0 ? cmin : -1.0) : 1.0;
+  *half = acos(cmin);
+  return 1;
+}
+
+/* The rest x cosine part's cells: cells_u x cells_v rectangles of bins, each with the rest's mass, a
+ * bounding cone (centre, cos and sin of its radius: the farthest of 5 x 5 points of the cell, plus a
+ * tenth of the cell's larger angle, since the cell's edges bulge between the points) and a distribution
+ * over its rest bins (f: the pdf table with the spots' bins zeroed). */
+static el_result el_envlight__hot_cells(el_envlight_hotspots *h, const el_envlight *l, const float *f, const double *rowk, double total) {
+  int cu, cv, nu = l->dist.nu, nv = l->dist.nv, i, j, a, b;
+  size_t nc;
+  h->cells_u = nu < 32 ? nu : 32;
+  h->cells_v = nv < 16 ? nv : 16;
+  nc = (size_t)h->cells_u * (size_t)h->cells_v;
+  h->cell_cone = (float *)EL_MALLOC(nc * 6 * sizeof(float));
+  h->cell_mass = (double *)EL_MALLOC(nc * sizeof(double));
+  h->cell_dist = (el_distribution2d *)EL_MALLOC(nc * sizeof(el_distribution2d));
+  if (!h->cell_cone || !h->cell_mass || !h->cell_dist) return EL_ERROR_OUT_OF_MEMORY;
+  memset(h->cell_dist, 0, nc * sizeof(el_distribution2d));
+  for (cv = 0; cv < h->cells_v; ++cv)
+    for (cu = 0; cu < h->cells_u; ++cu) {
+      int u0 = (int)((int64_t)cu * nu / h->cells_u), u1 = (int)((int64_t)(cu + 1) * nu / h->cells_u);
+      int v0 = (int)((int64_t)cv * nv / h->cells_v), v1 = (int)((int64_t)(cv + 1) * nv / h->cells_v);
+      size_t c = (size_t)cv * (size_t)h->cells_u + (size_t)cu;
+      double m = 0.0, ctr[3] = {0.0, 0.0, 0.0}, len, cmin = 1.0, d[3], rad, ext;
+      float *g = (float *)EL_MALLOC((size_t)(u1 - u0) * (size_t)(v1 - v0) * sizeof(float));
+      el_distribution_options dopt;
+      if (!g) return EL_ERROR_OUT_OF_MEMORY;
+      for (j = v0; j < v1; ++j)
+        for (i = u0; i < u1; ++i) {
+          float x = f[(size_t)j * (size_t)nu + (size_t)i];
+          g[(size_t)(j - v0) * (size_t)(u1 - u0) + (size_t)(i - u0)] = x;
+          m += (double)x * rowk[j];
+        }
+      h->cell_mass[c] = m / total;
+      h->cell_cone[5 * nc + c] = (float)(m / total);
+      if (m > 0.0) {
+        el_result r;
+        memset(&dopt, 0, sizeof dopt);
+        r = el_distribution2d_init(&h->cell_dist[c], g, u1 - u0, v1 - v0, &dopt);
+        if (r != EL_SUCCESS) { EL_FREE(g); return r; }
+      }
+      EL_FREE(g);
+      for (b = 0; b <= 4; ++b)
+        for (a = 0; a <= 4; ++a) {
+          el_envlight__hot_dir(l, u0 + (u1 - u0) * a / 4.0, v0 + (v1 - v0) * b / 4.0, d);
+          ctr[0] += d[0]; ctr[1] += d[1]; ctr[2] += d[2];
+        }
+      len = sqrt(ctr[0] * ctr[0] + ctr[1] * ctr[1] + ctr[2] * ctr[2]);
+      if (len > 0.0) { ctr[0] /= len; ctr[1] /= len; ctr[2] /= len; } else { ctr[0] = 0.0; ctr[1] = 0.0; ctr[2] = 1.0; }
+      for (b = 0; b <= 4; ++b)
+        for (a = 0; a <= 4; ++a) {
+          double cc;
+          el_envlight__hot_dir(l, u0 + (u1 - u0) * a / 4.0, v0 + (v1 - v0) * b / 4.0, d);
+          cc = ctr[0] * d[0] + ctr[1] * d[1] + ctr[2] * d[2];
+          if (cc < cmin) cmin = cc;
+        }
+      ext = EL_ENVLIGHT__PI * (u1 - u0 > v1 - v0 ? 2.0 * (u1 - u0) / nu : (double)(v1 - v0) / nv);
+      rad = acos(cmin < 1.0 ? (cmin > -1.0 ? cmin : -1.0) : 1.0) + 0.1 * ext;
+      if (rad > EL_ENVLIGHT__PI) rad = EL_ENVLIGHT__PI;
+      h->cell_cone[c] = (float)ctr[0]; h->cell_cone[nc + c] = (float)ctr[1]; h->cell_cone[2 * nc + c] = (float)ctr[2];
+      h->cell_cone[3 * nc + c] = (float)cos(rad); h->cell_cone[4 * nc + c] = (float)sin(rad);
+    }
+  return EL_SUCCESS;
+}
+
+/* The cosine bounds of every cell for the light-space normal nl (NULL: 1) times the cell's mass, summed
+ * into bm (cumulative; may be NULL); returns their sum S(n). Two loops: the bounds (vectorisable: the
+ * cones are stored as arrays), then the running sum. */
+static float el_envlight__hot_bounds(const el_envlight_hotspots *h, const float *nl, float *bm) {
+  int c, nc = h->cells_u * h->cells_v;
+  const float *q = h->cell_cone;
+  float s = 0.0f, tmp[32 * 16], *b = bm ? bm : tmp;
+  size_t n = (size_t)nc;
+  if (nl) {
+    float x = nl[0], y = nl[1], z = nl[2];
+    for (c = 0; c < nc; ++c) {
+      size_t i = (size_t)c;
+      b[c] = el_envlight__hot_b(x * q[i] + y * q[n + i] + z * q[2 * n + i], q[3 * n + i], q[4 * n + i]) * q[5 * n + i];
+    }
+  } else
+    for (c = 0; c < nc; ++c) b[c] = q[5 * n + (size_t)c];
+  for (c = 0; c < nc; ++c) { s += b[c]; b[c] = s; }
+  return s;
+}
+
+/* the light-space unit normal of a world normal; 0 for a zero, NaN or infinite one */
+static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float nl[3]) {
+  float len;
+  if (!n || !el_envlight__to_light_dir(l, n, nl)) return 0;
+  len = sqrtf(nl[0] * nl[0] + nl[1] * nl[1] + nl[2] * nl[2]);
+  if (!(len > 0.0f) || !(len <= FLT_MAX)) return 0;
+  nl[0] /= len; nl[1] /= len; nl[2] /= len;
+  return 1;
+}
+
+/* the cell of bin b */
+static int el_envlight__hot_cell_of(const el_envlight_hotspots *h, int64_t b) {
+  int iu = (int)(b % h->nu), iv = (int)(b / h->nu);
+  int cu = (int)(((int64_t)iu * h->cells_u + h->cells_u) / h->nu), cv = (int)(((int64_t)iv * h->cells_v + h->cells_v) / h->nv);
+  /* the cell whose range [c nu / C, (c+1) nu / C) holds iu: step back while its start is past iu */
+  while (cu > 0 && (int)((int64_t)cu * h->nu / h->cells_u) > iu) --cu;
+  while (cv > 0 && (int)((int64_t)cv * h->nv / h->cells_v) > iv) --cv;
+  if (cu >= h->cells_u) cu = h->cells_u - 1;
+  if (cv >= h->cells_v) cv = h->cells_v - 1;
+  return cv * h->cells_u + cu;
+}
+
+/* Keep a candidate among the max_spots largest shares >= min_share (sorted, largest first). */
+static void el_envlight__hot_keep(double share, float min_share, int64_t seed, unsigned accept, int max_spots, int *found,
+                                  double *cand_share, int64_t *cand_seed, unsigned *cand_accept) {
+  int s, ins;
+  if (share < (double)min_share) return;
+  if (*found == max_spots && !(share > cand_share[*found - 1])) return;
+  ins = *found < max_spots ? (*found)++ : *found - 1;
+  for (s = ins; s > 0 && cand_share[s - 1] < share; --s) {
+    cand_share[s] = cand_share[s - 1]; cand_seed[s] = cand_seed[s - 1]; cand_accept[s] = cand_accept[s - 1];
+  }
+  cand_share[s] = share; cand_seed[s] = seed; cand_accept[s] = accept;
+}
+
+EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_envlight *l,
+                                           const el_envlight_hotspot_options *opt) {
+  float min_rad = 100.0f, min_share = 0.05f, max_half = 0.2f;
+  int max_spots = EL_ENVLIGHT_HOTSPOT_MAX, nu, nv, k, found = 0;
+  int64_t nb, b, *queue = NULL, *queue2 = NULL;
+  unsigned char *state = NULL;
+  float *f = NULL;
+  double *rowk = NULL, total = 0.0;
+  int64_t cand_seed[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  double cand_share[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  unsigned cand_accept[EL_ENVLIGHT_HOTSPOT_MAX] = {0};
+  el_result r = EL_SUCCESS;
+  if (!h) return EL_ERROR_INVALID_ARGUMENT;
+  memset(h, 0, sizeof *h);
+  if (!l) return EL_ERROR_INVALID_ARGUMENT;
+  if (opt) {
+    if (opt->min_radiance != 0.0f) min_rad = opt->min_radiance;
+    if (opt->min_share != 0.0f) min_share = opt->min_share;
+    if (opt->max_half_angle != 0.0f) max_half = opt->max_half_angle;
+    if (opt->max_spots != 0) max_spots = opt->max_spots;
+    if (!(min_rad > 0.0f && min_rad <= FLT_MAX) || !(min_share > 0.0f && min_share <= 1.0f) ||
+        !(max_half > 0.0f && max_half <= (float)EL_ENVLIGHT__PI) || max_spots < 1 || max_spots > EL_ENVLIGHT_HOTSPOT_MAX)
+      return EL_ERROR_INVALID_ARGUMENT;
+  }
+  h->rest_share = 1.0f;
+  if (l->width == 0 || l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return EL_SUCCESS;
+  if (!el_envlight__ensure(l)) return l->sampling_result;
+  if (!l->pdf_table || !(el_distribution2d_integral(&l->dist) > 0.0f)) return EL_SUCCESS; /* black */
+  nu = l->dist.nu; nv = l->dist.nv;
+  nb = (int64_t)nu * (int64_t)nv;
+  state = (unsigned char *)EL_MALLOC((size_t)nb);
+  queue = (int64_t *)EL_MALLOC((size_t)nb * sizeof(int64_t));
+  queue2 = (int64_t *)EL_MALLOC((size_t)nb * sizeof(int64_t));
+  rowk = (double *)EL_MALLOC((size_t)nv * sizeof(double));
+  if (!state || !queue || !queue2 || !rowk) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+  { /* <<hot bins>>: bin b's probability m_b = pdf_table[b] 2 pi^2 / (nu nv); its density over its solid
+     * angle against the mean 1 / (4 pi): core when m_b 4 pi / area_b >= min_rad, rim when >= min_rad / 8 */
+    int j, i;
+    double mk = 2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI / ((double)nu * (double)nv);
+    for (j = 0; j < nv; ++j) {
+      double area = 2.0 * EL_ENVLIGHT__PI / nu * (cos(EL_ENVLIGHT__PI * j / nv) - cos(EL_ENVLIGHT__PI * (j + 1) / nv));
+      rowk[j] = mk;
+      for (i = 0; i < nu; ++i) {
+        double m = (double)l->pdf_table[(size_t)j * (size_t)nu + (size_t)i] * mk, ratio = m * 4.0 * EL_ENVLIGHT__PI / area;
+        total += m;
+        state[(int64_t)j * nu + i] = (unsigned char)(!(m > 0.0) ? 0u : ratio >= (double)min_rad ? EL_ENVLIGHT__HOT_CORE | EL_ENVLIGHT__HOT_WARM
+                                                 : ratio >= (double)min_rad / 8.0 ? EL_ENVLIGHT__HOT_WARM : 0u);
+      }
+    }
+  }
+  /* <<components>>: a core with its rim; when that is too wide or spread, the core alone (and every other
+   * core of the region alone). Keep the max_spots largest shares >= min_share within max_half. */
+  for (b = 0; b < nb; ++b) {
+    int64_t n1, t;
+    double share, ax[3], half;
+    if (!(state[b] & EL_ENVLIGHT__HOT_CORE) || (state[b] & EL_ENVLIGHT__HOT_SEEN)) continue;
+    n1 = el_envlight__hot_grow(nu, nv, state, queue, b, EL_ENVLIGHT__HOT_WARM, EL_ENVLIGHT__HOT_SEEN);
+    if (el_envlight__hot_cone(l, queue, n1, rowk, total, &share, ax, &half) && half <= (double)max_half) {
+      el_envlight__hot_keep(share, min_share, b, EL_ENVLIGHT__HOT_WARM, max_spots, &found, cand_share, cand_seed, cand_accept);
+      continue;
+    }
+    for (t = 0; t < n1; ++t) { /* too wide with its rim: each core of the region alone */
+      int64_t seed = queue[t], n2;
+      if (!(state[seed] & EL_ENVLIGHT__HOT_CORE) || (state[seed] & EL_ENVLIGHT__HOT_CSEEN)) continue;
+      n2 = el_envlight__hot_grow(nu, nv, state, queue2, seed, EL_ENVLIGHT__HOT_CORE, EL_ENVLIGHT__HOT_CSEEN);
+      if (el_envlight__hot_cone(l, queue2, n2, rowk, total, &share, ax, &half) && half <= (double)max_half)
+        el_envlight__hot_keep(share, min_share, seed, EL_ENVLIGHT__HOT_CORE, max_spots, &found, cand_share, cand_seed, cand_accept);
+    }
+  }
+  /* <<build the parts>>: each spot's rectangle, mask and distribution; the rest's distribution */
+  EL_FREE(queue2); queue2 = NULL; /* the peak of temporary memory: 1 + 8 + 4 bytes per bin from here */
+  {
+    double rest = 0.0;
+    size_t q;
+    f = (float *)EL_MALLOC((size_t)nb * sizeof(float));
+    if (!f) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+    memcpy(f, l->pdf_table, (size_t)nb * sizeof(float));
+    for (k = 0; k < found; ++k) {
+      int64_t tail, t2;
+      double share, ax[3], half;
+      int gap_start = 0, gap_len = 0, run = 0, x, i, y0 = nv, y1 = -1, cols, rows;
+      unsigned char *colused;
+      float *g;
+      el_distribution_options dopt;
+      tail = el_envlight__hot_grow(nu, nv, state, queue, cand_seed[k], cand_accept[k], EL_ENVLIGHT__HOT_BUILT);
+      /* columns used; the rectangle's columns are the complement of the longest circular gap */
+      colused = (unsigned char *)EL_MALLOC((size_t)nu);
+      if (!colused) { r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+      memset(colused, 0, (size_t)nu);
+      for (t2 = 0; t2 < tail; ++t2) {
+        int row = (int)(queue[t2] / nu);
+        colused[queue[t2] % nu] = 1;
+        if (row < y0) y0 = row;
+        if (row > y1) y1 = row;
+      }
+      for (i = 0; i < 2 * nu; ++i) { /* twice around: the longest run of unused columns */
+        if (!colused[i % nu]) { if (++run > gap_len && run <= nu) { gap_len = run; gap_start = (i - run + 1) % nu; } }
+        else run = 0;
+      }
+      EL_FREE(colused);
+      cols = nu - gap_len;
+      h->rect[k][0] = gap_len ? (gap_start + gap_len) % nu : 0;
+      h->rect[k][1] = y0;
+      h->rect[k][2] = cols;
+      h->rect[k][3] = rows = y1 - y0 + 1;
+      h->mask[k] = (unsigned char *)EL_MALLOC((size_t)cols * (size_t)rows);
+      g = (float *)EL_MALLOC((size_t)cols * (size_t)rows * sizeof(float));
+      if (!h->mask[k] || !g) { EL_FREE(g); r = EL_ERROR_OUT_OF_MEMORY; goto done; }
+      memset(h->mask[k], 0, (size_t)cols * (size_t)rows);
+      for (q = 0; q < (size_t)cols * (size_t)rows; ++q) g[q] = 0.0f;
+      for (t2 = 0; t2 < tail; ++t2) {
+        int64_t qq = queue[t2];
+        int iu = (int)(qq % nu), iv = (int)(qq / nu);
+        x = iu - h->rect[k][0];
+        if (x < 0) x += nu;
+        h->mask[k][(size_t)(iv - y0) * (size_t)cols + (size_t)x] = 1;
+        g[(size_t)(iv - y0) * (size_t)cols + (size_t)x] = l->pdf_table[qq];
+        f[qq] = 0.0f;
+      }
+      memset(&dopt, 0, sizeof dopt);
+      r = el_distribution2d_init(&h->dist[k], g, cols, rows, &dopt);
+      EL_FREE(g);
+      if (r != EL_SUCCESS) goto done;
+      el_envlight__hot_cone(l, queue, tail, rowk, total, &share, ax, &half);
+      {
+        float la[3], wa[3];
+        la[0] = (float)ax[0]; la[1] = (float)ax[1]; la[2] = (float)ax[2];
+        el_envlight__to_world(l, la, wa);
+        h->spot[k].axis[0] = wa[0]; h->spot[k].axis[1] = wa[1]; h->spot[k].axis[2] = wa[2];
+      }
+      h->spot[k].half_angle = (float)half;
+      h->spot[k].share = (float)share;
+      h->spot[k].bins = (int)tail;
+      h->share_d[k] = share;
+      h->count = k + 1;
+    }
+    if (found > 0) {
+      el_distribution_options dopt;
+      int anyrest = 0;
+      for (b = 0; b < nb; ++b) rest += (double)f[b] * rowk[b / nu];
+      rest /= total;
+      h->share_d[found] = rest > 0.0 ? rest : 0.0;
+      h->rest_share = (float)h->share_d[found];
+      memset(&dopt, 0, sizeof dopt);
+      for (q = 0; q < (size_t)nb; ++q) if (f[q] > 0.0f) { anyrest = 1; break; }
+      if (anyrest) {
+        r = el_distribution2d_init(&h->dist[found], f, nu, nv, &dopt);
+        if (r == EL_SUCCESS) {
+          r = el_distribution2d_fast_init(&h->rest_fast, &h->dist[found]);
+          h->rest_fast_ok = r == EL_SUCCESS;
+        }
+      } else { h->share_d[found] = 0.0; h->rest_share = 0.0f; }
+      if (r != EL_SUCCESS) goto done;
+      if (anyrest) r = el_envlight__hot_cells(h, l, f, rowk, total);
+      if (r != EL_SUCCESS) goto done;
+      h->key = l->pdf_table;
+      h->nu = nu; h->nv = nv;
+    }
+  }
+done:
+  EL_FREE(state); EL_FREE(queue); EL_FREE(queue2); EL_FREE(rowk); EL_FREE(f);
+  if (r != EL_SUCCESS) el_envlight_hotspots_free(h);
+  return r;
+}
+
+/* << hot spots */
 
 /* >> portals (issue 23; NOTES ON PORTALS below the declarations) */
 

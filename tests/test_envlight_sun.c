@@ -1,0 +1,590 @@
+/* test_envlight_sun.c: issue 22's hot spots and the mixture sampler (envlight.h, NOTES ON HOT SPOTS),
+ * through the public API, on maps generated here (128 x 64, and 512 x 256 for the chi-square of the
+ * direction-table path; a smooth sky plus):
+ *
+ *   1. detection: two suns, a sun at the pole, a sun across the seam, a sun of one texel, each found
+ *      where it was put (the cone holds the sun's true direction, is a few bins wide) with a share that
+ *      matches the frequency with which sample_li lands in the cone; no sun, a constant light, a black map
+ *      and importance BILINEAR: no spot;
+ *   2. default weights (all zero, NULL, NaN, negative, infinite, all-zero sum): sample_li_mix is
+ *      sample_li and pdf_li_mix is pdf_li, bit for bit; explicit weights equal to the shares give pdf_li
+ *      to 1e-6;
+ *   3. chi-square of sample_li_mix against pdf_li_mix over the importance bins (the expected count of a
+ *      bin is the integral of pdf_li_mix over it: pdf at the centre x sin(theta) x the bin's angles, exact
+ *      for a density c / sin(theta); on 512 x 256 over cells of 4 x 4 bins), on the hard maps, under a general rotation, for spot weights 1e-3,
+ *      0.3, 0.999 and 1, and for a compensated light, the CDF and alias samplers and importance TEXEL;
+ *      the sampled pdf equals pdf_li_mix(wi) bit for bit; the mixture puts exactly its weight on the spots;
+ *   4. unbiasedness: the mean of f / pdf for f = le x max(0, n.w), with arbitrary weights, against a
+ *      brute-force quadrature of the same integral (16 points per texel of le itself, 256 at the poles);
+ *      and for a shadowed point (f = 0 on the sun) with the sun's weight 0; for sample_li_mix and the
+ *      rest x cosine mixture (sample_li_mix_cos, also chi-square tested for normals up, sideways, down
+ *      and NaN);
+ *   5. hostile inputs: NaN / infinite u and directions, bad options, hot spots of another light.
+ */
+#define EL_IMPLEMENTATION
+#include "envlight.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+static int g_w = 128, g_h = 64; /* 512 x 256 once: the direction-table path of maps >= 256 x 128 */
+#define W g_w
+#define H g_h
+#define MAXWH (512 * 256)
+
+static int g_pass, g_fail;
+static void check(int ok, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void check(int ok, const char *fmt, ...) {
+  va_list ap;
+  printf("%s ", ok ? "PASS" : "FAIL");
+  va_start(ap, fmt);
+  vprintf(fmt, ap);
+  va_end(ap);
+  printf("\n");
+  if (ok) ++g_pass; else ++g_fail;
+}
+
+static uint64_t g_rng = 0x853c49e6748fea9bULL;
+static float frand(void) { /* PCG32, 24-bit floats in [0, 1) */
+  uint64_t old = g_rng;
+  uint32_t x, rot;
+  g_rng = old * 6364136223846793005ULL + 1442695040888963407ULL;
+  x = (uint32_t)(((old >> 18) ^ old) >> 27);
+  rot = (uint32_t)(old >> 59);
+  x = (x >> rot) | (x << ((32u - rot) & 31u));
+  return (float)(x >> 8) * (1.0f / 16777216.0f);
+}
+
+#include "test_chisq.h" /* gammq: the chi-square p-value */
+
+static void rotation(float m[9]) { /* 37 degrees about (1, 2, 3) */
+  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
+  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
+  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
+                 t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+  int i;
+  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
+}
+static void mul(const float m[9], const float a[3], float b[3]) {
+  b[0] = m[0] * a[0] + m[1] * a[1] + m[2] * a[2];
+  b[1] = m[3] * a[0] + m[4] * a[1] + m[5] * a[2];
+  b[2] = m[6] * a[0] + m[7] * a[1] + m[8] * a[2];
+}
+static void mul_t(const float m[9], const float a[3], float b[3]) {
+  b[0] = m[0] * a[0] + m[3] * a[1] + m[6] * a[2];
+  b[1] = m[1] * a[0] + m[4] * a[1] + m[7] * a[2];
+  b[2] = m[2] * a[0] + m[5] * a[1] + m[8] * a[2];
+}
+static void uv_dir(double u, double v, double d[3]) { /* pbrt-v3's mapping in light space, double libm */
+  double th = PI * v, ph = 2.0 * PI * u;
+  d[0] = sin(th) * cos(ph); d[1] = sin(th) * sin(ph); d[2] = cos(th);
+}
+static double angle_between(const double a[3], const float b[3]) {
+  double c = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / sqrt((double)b[0] * b[0] + (double)b[1] * b[1] + (double)b[2] * b[2]);
+  return acos(c > 1 ? 1 : (c < -1 ? -1 : c));
+}
+
+/* the maps: a smooth sky (brighter at the horizon, a dim ground) and suns of value `sun` on texels */
+enum { MAP_NONE, MAP_TWO, MAP_POLE, MAP_SEAM, MAP_ONE, MAP_COUNT };
+static const char *map_name[MAP_COUNT] = {"no sun", "two suns", "sun at the pole", "sun across the seam", "one-texel sun"};
+static void make_map(int kind, float *px) {
+  int x, y, c;
+  for (y = 0; y < H; ++y)
+    for (x = 0; x < W; ++x) {
+      double v = (y + 0.5) / H, sky = v < 0.5 ? 0.4 + 0.6 * v * 2 : 0.05, tint = 1.0 + 0.2 * sin(2 * PI * (x + 0.5) / W);
+      for (c = 0; c < 3; ++c) px[3 * (y * W + x) + c] = (float)(sky * tint * (c == 2 ? 1.2 : 1.0));
+    }
+#define SUN(X, Y, V) do { int xx_ = (X), yy_ = (Y); for (c = 0; c < 3; ++c) px[3 * (yy_ * W + xx_) + c] = (float)(V); } while (0)
+  if (kind == MAP_TWO) { SUN(30, 20, 3e4); SUN(31, 20, 3e4); SUN(30, 21, 3e4); SUN(31, 21, 3e4); SUN(90, 40, 2e4); SUN(91, 40, 2e4); SUN(90, 41, 2e4); SUN(91, 41, 2e4); }
+  if (kind == MAP_POLE) for (x = 0; x < W; ++x) SUN(x, 0, 5e5);
+  if (kind == MAP_SEAM) { SUN(W - 1, 25, 4e4); SUN(0, 25, 4e4); SUN(W - 1, 26, 4e4); SUN(0, 26, 4e4); }
+  if (kind == MAP_ONE) SUN(70, 12, 2e5);
+#undef SUN
+}
+/* where each map's suns are (texel centres; the pole: +z) */
+static int sun_dirs(int kind, double d[2][3]) {
+  if (kind == MAP_TWO) { uv_dir(31.0 / W, 21.0 / H, d[0]); uv_dir(91.0 / W, 41.0 / H, d[1]); return 2; }
+  if (kind == MAP_POLE) { d[0][0] = 0; d[0][1] = 0; d[0][2] = 1; return 1; }
+  if (kind == MAP_SEAM) { uv_dir(0.0, 26.0 / H, d[0]); return 1; }
+  if (kind == MAP_ONE) { uv_dir(70.5 / W, 12.5 / H, d[0]); return 1; }
+  return 0;
+}
+
+static int g_variant = 0; /* 0 defaults, 1 compensated, 2 the CDF sampler, 3 the alias sampler, 4 importance TEXEL */
+static const char *variant_name[5] = {"", " compensated", " CDF sampler", " alias sampler", " importance TEXEL"};
+static el_result make_light(el_envlight *l, const float *px, int rotated) {
+  el_envlight_options o;
+  memset(&o, 0, sizeof o);
+  o.compensated = g_variant == 1;
+  if (g_variant == 2) o.sampler = EL_ENVLIGHT_SAMPLER_CDF;
+  if (g_variant == 3) o.sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
+  if (g_variant == 4) o.importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
+  if (rotated) rotation(o.light_to_world);
+  return el_envlight_init(l, px, W, H, 3, &o);
+}
+
+/* ---- 1. detection ---- */
+static void test_detection(void) {
+  static float px[MAXWH * 3];
+  int kind, rot;
+  for (rot = 0; rot < 2; ++rot)
+    for (kind = 0; kind < MAP_COUNT; ++kind) {
+      el_envlight l;
+      el_envlight_hotspots h;
+      double d[2][3];
+      float m[9];
+      int ns = sun_dirs(kind, d), k, s, i, n = 100000;
+      make_map(kind, px);
+      if (make_light(&l, px, rot) != EL_SUCCESS) { check(0, "init %s", map_name[kind]); continue; }
+      rotation(m);
+      if (rot) for (s = 0; s < ns; ++s) { float a[3], b[3]; a[0] = (float)d[s][0]; a[1] = (float)d[s][1]; a[2] = (float)d[s][2]; mul(m, a, b); d[s][0] = b[0]; d[s][1] = b[1]; d[s][2] = b[2]; }
+      check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS, "hotspots_init %s%s", map_name[kind], rot ? " (rotated)" : "");
+      check(h.count == ns, "%s%s: %d spots found (%d put)", map_name[kind], rot ? " (rotated)" : "", h.count, ns);
+      for (k = 0; k < h.count && k < ns; ++k) {
+        double best = 10;
+        int inside = 0;
+        for (s = 0; s < ns; ++s) { double a = angle_between(d[s], h.spot[k].axis); if (a < best) best = a; }
+        /* the share against the frequency with which sample_li lands in the cone (which holds the spot) */
+        for (i = 0; i < n; ++i) {
+          float u[2], wi[3], pdf;
+          double c;
+          u[0] = frand(); u[1] = frand();
+          el_envlight_sample_li(&l, u, wi, NULL, &pdf);
+          c = wi[0] * h.spot[k].axis[0] + wi[1] * h.spot[k].axis[1] + wi[2] * h.spot[k].axis[2];
+          if (c >= cos(h.spot[k].half_angle) - 1e-6) ++inside;
+        }
+        check(best <= h.spot[k].half_angle + 1e-6 && h.spot[k].half_angle < 6.0 * PI / H,
+              "%s%s spot %d: share %.4f, cone %.2f deg (< 6 bins) holds the sun (%.2f deg off axis)",
+              map_name[kind], rot ? " (rotated)" : "", k, h.spot[k].share, h.spot[k].half_angle * 180 / PI, best * 180 / PI);
+        check(h.spot[k].share > 0.3 && (double)inside / n >= h.spot[k].share - 0.006 && (double)inside / n <= h.spot[k].share + 0.06,
+              "%s%s spot %d: sample_li lands in its cone %.4f of the time (share %.4f, the cone may hold a little more)",
+              map_name[kind], rot ? " (rotated)" : "", k, (double)inside / n, h.spot[k].share);
+      }
+      if (h.count >= 2) check(h.spot[0].share >= h.spot[1].share, "%s: spots sorted by share", map_name[kind]);
+      {
+        double tot = h.rest_share;
+        for (k = 0; k < h.count; ++k) tot += h.spot[k].share;
+        check(fabs(tot - 1) < 1e-5, "%s%s: shares + rest sum to 1 (%.7f)", map_name[kind], rot ? " (rotated)" : "", tot);
+      }
+      el_envlight_hotspots_free(&h);
+      el_envlight_free(&l);
+    }
+  { /* no spot: a constant light, a black map, importance BILINEAR (a sun, but not piecewise constant) */
+    el_envlight l;
+    el_envlight_hotspots h;
+    el_envlight_options o;
+    float rgb[3] = {1, 1, 1};
+    el_envlight_init_constant(&l, rgb, NULL);
+    check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS && h.count == 0 && h.rest_share == 1.0f, "constant light: no spot");
+    el_envlight_hotspots_free(&h); el_envlight_free(&l);
+    memset(px, 0, sizeof px);
+    el_envlight_init(&l, px, W, H, 3, NULL);
+    check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS && h.count == 0, "black map: no spot");
+    el_envlight_hotspots_free(&h); el_envlight_free(&l);
+    make_map(MAP_ONE, px);
+    memset(&o, 0, sizeof o);
+    o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+    el_envlight_init(&l, px, W, H, 3, &o);
+    check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS && h.count == 0, "importance BILINEAR: no spot (not supported)");
+    el_envlight_hotspots_free(&h); el_envlight_free(&l);
+  }
+}
+
+/* ---- 2. default weights ---- */
+static void test_defaults(void) {
+  static float px[MAXWH * 3];
+  el_envlight l;
+  el_envlight_hotspots h;
+  el_envlight_mix_weights w[6], ws;
+  const char *wname[6] = {"all zero", "NaN", "negative", "infinite", "NULL", "rest only on a map... (zero sum)"};
+  int i, t, bad_s = 0, bad_p = 0, k, rot;
+  for (rot = 0; rot < 2; ++rot) {
+    make_map(MAP_TWO, px);
+    make_light(&l, px, rot);
+    el_envlight_hotspots_init(&h, &l, NULL);
+    memset(w, 0, sizeof w);
+    w[1].spot[0] = NAN; w[1].rest = 1;
+    w[2].spot[1] = -0.5f; w[2].rest = 1;
+    w[3].rest = INFINITY;
+    w[5].spot[5] = 1.0f; /* a spot that does not exist: ignored, so the sum is 0 */
+    for (t = 0; t < 6; ++t) {
+      bad_s = bad_p = 0;
+      for (i = 0; i < 20000; ++i) {
+        float u[2], a[3], b[3], ra[3], rb[3], pa, pb, d[3];
+        const el_envlight_mix_weights *wp = t == 4 ? NULL : &w[t];
+        u[0] = frand(); u[1] = frand();
+        el_envlight_sample_li(&l, u, a, ra, &pa);
+        el_envlight_sample_li_mix(&l, &h, wp, u, b, rb, &pb);
+        if (memcmp(a, b, sizeof a) || memcmp(ra, rb, sizeof ra) || memcmp(&pa, &pb, sizeof pa)) ++bad_s;
+        d[0] = 2 * frand() - 1; d[1] = 2 * frand() - 1; d[2] = 2 * frand() - 1;
+        pa = el_envlight_pdf_li(&l, d); pb = el_envlight_pdf_li_mix(&l, &h, wp, d);
+        if (memcmp(&pa, &pb, sizeof pa)) ++bad_p;
+        pa = el_envlight_pdf_li(&l, a); pb = el_envlight_pdf_li_mix(&l, &h, wp, a);
+        if (memcmp(&pa, &pb, sizeof pa)) ++bad_p;
+      }
+      check(bad_s == 0 && bad_p == 0, "default weights (%s)%s: sample_li_mix == sample_li, pdf_li_mix == pdf_li bit for bit (%d, %d differ)",
+            wname[t], rot ? " rotated" : "", bad_s, bad_p);
+    }
+    /* explicit weights equal to the shares: pdf_li within 1e-6 */
+    memset(&ws, 0, sizeof ws);
+    for (k = 0; k < h.count; ++k) ws.spot[k] = h.spot[k].share;
+    ws.rest = h.rest_share;
+    {
+      double worst = 0;
+      for (i = 0; i < 40000; ++i) {
+        float u[2], a[3], pa, pb;
+        u[0] = frand(); u[1] = frand();
+        el_envlight_sample_li(&l, u, a, NULL, &pa);
+        pa = el_envlight_pdf_li(&l, a);
+        pb = el_envlight_pdf_li_mix(&l, &h, &ws, a);
+        if (fabs(pb / pa - 1) > worst) worst = fabs(pb / pa - 1);
+      }
+      check(worst < 1e-6, "weights = the shares%s: pdf_li_mix / pdf_li - 1 <= %.2g", rot ? " rotated" : "", worst);
+    }
+    { /* sample_li_mix_n: n calls of sample_li_mix, bit for bit (moved and default weights) */
+      float uu[2 * 37], wa[3 * 37], ra[3 * 37], pa[37], wb[3], rb[3], pb;
+      int differ = 0, pass;
+      for (pass = 0; pass < 2; ++pass) {
+        el_envlight_hotspots_weights(&h, pass ? 0.1f : NAN, &ws);
+        for (i = 0; i < 2 * 37; ++i) uu[i] = frand();
+        el_envlight_sample_li_mix_n(&l, &h, &ws, 37, uu, wa, ra, pa);
+        for (i = 0; i < 37; ++i) {
+          el_envlight_sample_li_mix(&l, &h, &ws, uu + 2 * i, wb, rb, &pb);
+          if (memcmp(wa + 3 * i, wb, sizeof wb) || memcmp(ra + 3 * i, rb, sizeof rb) || memcmp(pa + i, &pb, sizeof pb)) ++differ;
+        }
+      }
+      check(differ == 0, "sample_li_mix_n == sample_li_mix bit for bit%s (%d differ)", rot ? " rotated" : "", differ);
+    }
+    el_envlight_hotspots_weights(&h, NAN, &ws);
+    check(ws.rest == 0 && ws.spot[0] == 0, "hotspots_weights(NaN): the default weights (all zero)");
+    el_envlight_hotspots_free(&h);
+    el_envlight_free(&l);
+  }
+}
+
+/* ---- 3. chi-square over the importance bins ---- */
+static int g_chi2 = 0;
+static const float *g_cosn = NULL; /* non-NULL: the rest x cosine mixture for this world normal */
+static void mix_sample(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w, const float u[2], float wi[3], float rgb[3], float *pdf) {
+  if (g_cosn) el_envlight_sample_li_mix_cos(l, h, w, g_cosn, u, wi, rgb, pdf);
+  else el_envlight_sample_li_mix(l, h, w, u, wi, rgb, pdf);
+}
+static float mix_pdf(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w, const float d[3]) {
+  return g_cosn ? el_envlight_pdf_li_mix_cos(l, h, w, g_cosn, d) : el_envlight_pdf_li_mix(l, h, w, d);
+}
+#define CHI2_PLANNED 27
+static void chi2(const char *name, int kind, int rot, float spot_share) {
+  static float px[MAXWH * 3];
+  static double expect[MAXWH];
+  static int obs[MAXWH];
+  el_envlight l;
+  el_envlight_hotspots h;
+  el_envlight_mix_weights w;
+  float m[9];
+  int i, n = g_cosn ? 100000 : 200000, mismatch = 0, nonfinite = 0, dof = -1, zero_pdf_hits = 0, k;
+  double frac[2][16], fx2 = 0, fp;
+  double x2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / CHI2_PLANNED, spot_mass = 0, spot_obs = 0;
+  make_map(kind, px);
+  make_light(&l, px, rot);
+  rotation(m);
+  el_envlight_hotspots_init(&h, &l, NULL);
+  el_envlight_hotspots_weights(&h, spot_share, &w);
+  memset(obs, 0, sizeof obs);
+  memset(frac, 0, sizeof frac);
+  for (i = 0; i < W * H; ++i) { /* the integral of pdf_li_mix over bin i: pdf(centre) sin(theta_c) dtheta dphi */
+    int x = i % W, y = i / W;
+    double dd[3];
+    float a[3], b[3];
+    uv_dir((x + 0.5) / W, (y + 0.5) / H, dd);
+    a[0] = (float)dd[0]; a[1] = (float)dd[1]; a[2] = (float)dd[2];
+    if (rot) mul(m, a, b); else memcpy(b, a, sizeof a);
+    expect[i] = mix_pdf(&l, &h, &w, b) * sin(PI * (y + 0.5) / H) * (PI / H) * (2 * PI / W);
+    total += expect[i];
+  }
+  for (i = 0; i < n; ++i) {
+    float u[2], wi[3], rgb[3], pdf, q, d[3], len;
+    double uu, vv;
+    int x, y;
+    u[0] = frand(); u[1] = frand();
+    mix_sample(&l, &h, &w, u, wi, rgb, &pdf);
+    q = mix_pdf(&l, &h, &w, wi);
+    if (memcmp(&q, &pdf, sizeof q)) ++mismatch;
+    if (!isfinite(pdf) || !isfinite(rgb[0]) || !isfinite(wi[0]) || !(pdf > 0)) ++nonfinite;
+    if (rot) mul_t(m, wi, d); else memcpy(d, wi, sizeof d);
+    len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    uu = atan2(d[1], d[0]) / (2 * PI); if (uu < 0) uu += 1;
+    vv = acos(d[2] / len > 1 ? 1 : (d[2] / len < -1 ? -1 : d[2] / len)) / PI;
+    x = (int)(uu * W); y = (int)(vv * H);
+    if (x >= W) x = W - 1;
+    if (y >= H) y = H - 1;
+    obs[y * W + x]++;
+    { /* inside its bin the point is uniform in (u, v), as sample_li's */
+      int fx = (int)((uu * W - x) * 16), fy = (int)((vv * H - y) * 16);
+      frac[0][fx < 0 ? 0 : fx > 15 ? 15 : fx]++;
+      frac[1][fy < 0 ? 0 : fy > 15 ? 15 : fy]++;
+    }
+  }
+  { /* cells of agg x agg bins (128 x 64 cells; every bin alone on the 128 x 64 maps) */
+    static double ce[128 * 64];
+    static double co[128 * 64];
+    int agg = W / 128;
+    memset(ce, 0, sizeof ce); memset(co, 0, sizeof co);
+    for (i = 0; i < W * H; ++i) {
+      int c = (i / W / agg) * 128 + (i % W) / agg;
+      if (expect[i] == 0 && obs[i]) ++zero_pdf_hits;
+      ce[c] += expect[i]; co[c] += obs[i];
+    }
+    for (i = 0; i < 128 * 64; ++i) {
+      double e = ce[i] * n;
+      if (e < 5) { pool_e += e; pool_o += co[i]; continue; }
+      x2 += (co[i] - e) * (co[i] - e) / e; ++dof;
+    }
+  }
+  if (pool_e > 0) { x2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++dof; }
+  pval = dof > 0 ? gammq(0.5 * dof, 0.5 * x2) : 1.0;
+  ++g_chi2;
+  check(pval > alpha && fabs(total - 1) < 2e-3 && zero_pdf_hits == 0,
+        "chi2 %-22s%s%s%s spots %.3f: chi2 = %.1f, %d dof, p = %.3g (> %.2g), pdf sums to %.5f, %d hits in zero-pdf bins",
+        name, rot ? " rotated" : "        ", variant_name[g_variant], g_cosn ? " x cos" : "", spot_share, x2, dof, pval, alpha, total, zero_pdf_hits);
+  for (i = 0; i < 32; ++i) fx2 += (frac[i / 16][i % 16] - n / 16.0) * (frac[i / 16][i % 16] - n / 16.0) / (n / 16.0);
+  fp = gammq(0.5 * 30, 0.5 * fx2);
+  check(fp > alpha, "chi2 %-22s: uniform inside the bins in u and v (chi2 %.1f, 30 dof, p = %.3g)", name, fx2, fp);
+  check(mismatch == 0 && nonfinite == 0, "chi2 %-22s: sampled pdf == pdf_li_mix(wi) for all %d samples (%d differ, %d non-finite / 0)",
+        name, n, mismatch, nonfinite);
+  /* the spots get exactly their weight: the mass of the expected counts in spot bins, and the draws
+   * (hotspots_weights gives every spot the same factor weight / share) */
+  for (k = 0; k < 1 && h.count > 0; ++k) {
+    for (i = 0; i < W * H; ++i) {
+      int x = i % W, y = i / W;
+      double dd[3];
+      float a[3], b[3], pm, pl;
+      uv_dir((x + 0.5) / W, (y + 0.5) / H, dd);
+      a[0] = (float)dd[0]; a[1] = (float)dd[1]; a[2] = (float)dd[2];
+      if (rot) mul(m, a, b); else memcpy(b, a, sizeof a);
+      pm = mix_pdf(&l, &h, &w, b); pl = el_envlight_pdf_li(&l, b);
+      /* a spot bin: its mixture pdf / pdf_li is the spot's factor w / share */
+      if (pl > 0 && fabs(pm / pl - w.spot[k] / h.spot[k].share) < 1e-4 * (w.spot[k] / h.spot[k].share) && w.spot[k] / h.spot[k].share != w.rest / h.rest_share) {
+        spot_mass += expect[i]; spot_obs += obs[i];
+      }
+    }
+  }
+  if (h.count > 0 && spot_share != 1.0f && spot_share != 0.0f) {
+    double sd = sqrt(spot_share * (1 - spot_share) / n);
+    check(fabs(spot_mass - spot_share) < 2e-3 && fabs(spot_obs / n - spot_share) < 5 * sd + 1e-6,
+          "chi2 %-22s: the spots hold %.5f of the pdf and %.5f of the samples (weight %.5f)", name, spot_mass, spot_obs / n, spot_share);
+  }
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&l);
+}
+
+static void test_chi2(void) {
+  chi2("two suns", MAP_TWO, 0, 0.3f);
+  chi2("two suns", MAP_TWO, 1, 0.3f);
+  chi2("two suns", MAP_TWO, 0, 1e-3f);
+  chi2("two suns", MAP_TWO, 0, 0.999f);
+  chi2("sun at the pole", MAP_POLE, 0, 0.2f);
+  chi2("sun at the pole", MAP_POLE, 1, 0.05f);
+  chi2("sun across the seam", MAP_SEAM, 0, 0.1f);
+  chi2("sun across the seam", MAP_SEAM, 1, 0.9f);
+  chi2("one-texel sun", MAP_ONE, 0, 0.02f);
+  chi2("one-texel sun", MAP_ONE, 1, 0.5f);
+  chi2("one-texel sun", MAP_ONE, 0, 1.0f);
+  chi2("sun at the pole", MAP_POLE, 0, 0.0f);
+  for (g_variant = 1; g_variant <= 4; ++g_variant) chi2("two suns", MAP_TWO, g_variant & 1, 0.2f);
+  g_variant = 0;
+  g_w = 512; g_h = 256; /* sample_li's direction tables: the mixture builds its directions with them */
+  chi2("512x256 two suns", MAP_TWO, 0, 0.3f);
+  chi2("512x256 seam", MAP_SEAM, 1, 0.05f);
+  g_w = 128; g_h = 64;
+  { /* the rest x cosine mixture: normals up, sideways, down, towards a sun; a NaN normal */
+    static const float nup[3] = {0.3f, -0.2f, 0.93f}, nside[3] = {1, 0, 0}, ndown[3] = {0, 0.1f, -1}, nnan[3] = {NAN, 0, 1};
+    g_cosn = nup; chi2("two suns", MAP_TWO, 0, 0.3f); chi2("sun at the pole", MAP_POLE, 1, 0.05f);
+    g_cosn = nside; chi2("sun across the seam", MAP_SEAM, 1, 0.1f);
+    g_cosn = ndown; chi2("two suns", MAP_TWO, 1, 0.0f);
+    g_cosn = nnan; chi2("one-texel sun", MAP_ONE, 0, 0.2f);
+    g_cosn = NULL;
+  }
+}
+
+/* ---- 4. unbiasedness ---- */
+static double cosine_integral(const el_envlight *l, const float n[3], const double sun[3], double cone) {
+  /* brute force: 4 x 4 points per texel of le itself (16 x 16 in the two rows at each pole, where le x
+   * sin(theta) is far from linear: 4 x 4 was 0.9% off there), times the solid angle; 0 within `cone` of sun */
+  int x, y, a, b;
+  double s = 0;
+  for (y = 0; y < H; ++y) {
+    int q = y < 2 || y >= H - 2 ? 16 : 4;
+    for (b = 0; b < q; ++b) {
+      double v = (y + (b + 0.5) / q) / H, dw = sin(PI * v) * (PI / (q * H)) * (2 * PI / (q * W));
+      for (x = 0; x < W; ++x)
+        for (a = 0; a < q; ++a) {
+          double dd[3], c;
+          float d[3], rgb[3];
+          uv_dir((x + (a + 0.5) / q) / W, v, dd);
+          c = n[0] * dd[0] + n[1] * dd[1] + n[2] * dd[2];
+          if (c <= 0) continue;
+          if (sun && dd[0] * sun[0] + dd[1] * sun[1] + dd[2] * sun[2] >= cos(cone)) continue;
+          d[0] = (float)dd[0]; d[1] = (float)dd[1]; d[2] = (float)dd[2];
+          el_envlight_le(l, d, rgb);
+          s += rgb[1] * c * dw;
+        }
+    }
+  }
+  return s;
+}
+
+static void unbiased(int kind, float spot_share, int shadow, int cos_mix) {
+  static float px[MAXWH * 3];
+  el_envlight l;
+  el_envlight_hotspots h;
+  el_envlight_mix_weights w;
+  float n[3] = {0.3f, -0.2f, 0.93f};
+  double ref, sum = 0, sum2 = 0, mean, sd, sun[3], cone = 0;
+  int i, count = cos_mix ? 150000 : 400000;
+  make_map(kind, px);
+  make_light(&l, px, 0);
+  el_envlight_hotspots_init(&h, &l, NULL);
+  el_envlight_hotspots_weights(&h, spot_share, &w);
+  if (shadow) { /* the sun's cone and a margin of 2 bins are occluded */
+    sun[0] = h.spot[0].axis[0]; sun[1] = h.spot[0].axis[1]; sun[2] = h.spot[0].axis[2];
+    cone = h.spot[0].half_angle + 2 * PI / H;
+  }
+  ref = cosine_integral(&l, n, shadow ? sun : NULL, cone);
+  for (i = 0; i < count; ++i) {
+    float u[2], wi[3], rgb[3], pdf, c;
+    double f = 0;
+    u[0] = frand(); u[1] = frand();
+    if (cos_mix) el_envlight_sample_li_mix_cos(&l, &h, &w, n, u, wi, rgb, &pdf);
+    else el_envlight_sample_li_mix(&l, &h, &w, u, wi, rgb, &pdf);
+    c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+    if (pdf > 0 && c > 0 && !(shadow && wi[0] * sun[0] + wi[1] * sun[1] + wi[2] * sun[2] >= cos(cone))) f = rgb[1] * c / pdf;
+    sum += f; sum2 += f * f;
+  }
+  mean = sum / count;
+  sd = sqrt((sum2 / count - mean * mean) / count);
+  check(fabs(mean - ref) < 4.5 * sd + 2e-3 * ref,
+        "unbiased %-20s%s spots %.2f%s: mean of f/pdf %.5f, quadrature %.5f (%.1f sd)", map_name[kind], cos_mix ? " x cos" : "", spot_share,
+        shadow ? " (sun occluded)" : "", mean, ref, fabs(mean - ref) / (sd > 0 ? sd : 1));
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&l);
+}
+
+static void test_unbiased(void) {
+  unbiased(MAP_TWO, 0.37f, 0, 0);
+  unbiased(MAP_TWO, 0.9f, 0, 0);
+  unbiased(MAP_ONE, 0.05f, 0, 0);
+  unbiased(MAP_SEAM, 0.6f, 0, 0);
+  unbiased(MAP_ONE, 0.0f, 1, 0); /* the sun's weight 0 where it is occluded: still unbiased */
+  unbiased(MAP_TWO, 0.01f, 1, 0);
+  unbiased(MAP_TWO, 0.37f, 0, 1);
+  unbiased(MAP_POLE, 0.2f, 0, 1);
+  unbiased(MAP_POLE, 0.2f, 0, 0);
+  unbiased(MAP_ONE, 0.0f, 1, 1);
+  unbiased(MAP_SEAM, 0.02f, 1, 1);
+}
+
+/* ---- 5. hostile inputs ---- */
+static void test_hostile(void) {
+  static float px[MAXWH * 3], px2[MAXWH * 3];
+  el_envlight l, l2;
+  el_envlight_hotspots h, h2;
+  el_envlight_hotspot_options o;
+  el_envlight_mix_weights w;
+  int bad = 0, i, j, ok = 1;
+  float us[6] = {0.0f, 0.99999994f, 1.0f, -1.0f, NAN, INFINITY};
+  make_map(MAP_ONE, px);
+  make_light(&l, px, 0);
+  el_envlight_hotspots_init(&h, &l, NULL);
+  el_envlight_hotspots_weights(&h, 0.5f, &w);
+  for (i = 0; i < 6; ++i)
+    for (j = 0; j < 6; ++j) {
+      float u[2], wi[3], rgb[3], pdf;
+      u[0] = us[i]; u[1] = us[j];
+      el_envlight_sample_li_mix(&l, &h, &w, u, wi, rgb, &pdf);
+      if (!isfinite(pdf) || !isfinite(wi[0]) || !isfinite(wi[1]) || !isfinite(wi[2]) || !isfinite(rgb[0]) || !(pdf > 0)) ++bad;
+    }
+  check(bad == 0, "u at 0, 1, -1, NaN, Inf: finite samples with pdf > 0 (%d bad)", bad);
+  {
+    float dz[3] = {0, 0, 0}, dn[3] = {NAN, 0, 1}, di[3] = {INFINITY, 0, 0}, dt[3] = {1e-30f, 0, 1e-30f}, db[3] = {3e38f, 0, 3e38f}, d1[3] = {1, 0, 1};
+    check(el_envlight_pdf_li_mix(&l, &h, &w, dz) == 0 && el_envlight_pdf_li_mix(&l, &h, &w, dn) == 0 && el_envlight_pdf_li_mix(&l, &h, &w, di) == 0,
+          "pdf_li_mix of a zero, NaN or infinite direction: 0");
+    check(el_envlight_pdf_li_mix(&l, &h, &w, dt) == el_envlight_pdf_li_mix(&l, &h, &w, d1) &&
+          el_envlight_pdf_li_mix(&l, &h, &w, db) == el_envlight_pdf_li_mix(&l, &h, &w, d1),
+          "pdf_li_mix of tiny and huge directions: that of the direction");
+  }
+  /* options out of range */
+  memset(&o, 0, sizeof o); o.min_share = NAN;
+  ok &= el_envlight_hotspots_init(&h2, &l, &o) == EL_ERROR_INVALID_ARGUMENT && h2.count == 0;
+  memset(&o, 0, sizeof o); o.min_radiance = -1;
+  ok &= el_envlight_hotspots_init(&h2, &l, &o) == EL_ERROR_INVALID_ARGUMENT;
+  memset(&o, 0, sizeof o); o.max_half_angle = INFINITY;
+  ok &= el_envlight_hotspots_init(&h2, &l, &o) == EL_ERROR_INVALID_ARGUMENT;
+  memset(&o, 0, sizeof o); o.max_spots = EL_ENVLIGHT_HOTSPOT_MAX + 1;
+  ok &= el_envlight_hotspots_init(&h2, &l, &o) == EL_ERROR_INVALID_ARGUMENT;
+  memset(&o, 0, sizeof o); o.min_share = 2;
+  ok &= el_envlight_hotspots_init(&h2, &l, &o) == EL_ERROR_INVALID_ARGUMENT;
+  ok &= el_envlight_hotspots_init(NULL, &l, NULL) == EL_ERROR_INVALID_ARGUMENT;
+  ok &= el_envlight_hotspots_init(&h2, NULL, NULL) == EL_ERROR_INVALID_ARGUMENT;
+  check(ok, "bad options (NaN, negative, infinite, too many spots, share > 1) and NULL: EL_ERROR_INVALID_ARGUMENT");
+  el_envlight_hotspots_free(&h2);
+  el_envlight_hotspots_free(&h2); /* twice: safe */
+  /* the hot spots of another light: the mixture falls back to sample_li / pdf_li of this light */
+  make_map(MAP_TWO, px2);
+  make_light(&l2, px2, 0);
+  el_envlight_hotspots_init(&h2, &l2, NULL);
+  bad = 0;
+  for (i = 0; i < 2000; ++i) {
+    float u[2], a[3], b[3], pa, pb;
+    u[0] = frand(); u[1] = frand();
+    el_envlight_sample_li(&l, u, a, NULL, &pa);
+    el_envlight_sample_li_mix(&l, &h2, &w, u, b, NULL, &pb);
+    if (memcmp(a, b, sizeof a) || pa != pb || el_envlight_pdf_li_mix(&l, &h2, &w, a) != el_envlight_pdf_li(&l, a)) ++bad;
+  }
+  check(bad == 0, "hot spots made for another light: sample_li and pdf_li of this one (%d differ)", bad);
+  { /* a light whose whole mass is one spot (black sky): the rest's weight cannot be drawn */
+    el_envlight l3;
+    el_envlight_hotspots h3;
+    memset(px2, 0, sizeof px2);
+    px2[3 * (20 * W + 40)] = px2[3 * (20 * W + 40) + 1] = px2[3 * (20 * W + 40) + 2] = 100;
+    el_envlight_init(&l3, px2, W, H, 3, NULL);
+    memset(&o, 0, sizeof o);
+    o.min_radiance = 1; /* every bin with mass is hot */
+    el_envlight_hotspots_init(&h3, &l3, &o);
+    w.spot[0] = 0.5f; w.rest = 0.5f;
+    bad = 0;
+    for (i = 0; i < 2000; ++i) {
+      float u[2], a[3], pa;
+      u[0] = frand(); u[1] = frand();
+      el_envlight_sample_li_mix(&l3, &h3, &w, u, a, NULL, &pa);
+      if (!(pa > 0) || fabsf(pa - el_envlight_pdf_li(&l3, a)) > 1e-5f * pa) ++bad;
+    }
+    check(h3.count == 1 && h3.rest_share == 0 && bad == 0, "a black sky and one sun: %d spot, rest share %g, the rest's weight goes to the sun (%d bad)",
+          h3.count, h3.rest_share, bad);
+    el_envlight_hotspots_free(&h3);
+    el_envlight_free(&l3);
+  }
+  el_envlight_hotspots_free(&h2);
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&l2);
+  el_envlight_free(&l);
+}
+
+int main(void) {
+  test_detection();
+  test_defaults();
+  test_chi2();
+  test_unbiased();
+  test_hostile();
+  printf("%d passed, %d failed\n", g_pass, g_fail);
+  return g_fail ? 1 : 0;
+}
