@@ -31,7 +31,9 @@
  * PORTS pbrt-v3's InfiniteAreaLight (src/lights/infinite.h, infinite.cpp): the constructor's
  * distribution (a Distribution2D over the map's luminance times sin theta), Le, Sample_Li, Pdf_Li,
  * Sample_Le, Pdf_Le, Power and Preprocess, with pbrt-v3's mapping (u, v) = (phi / 2pi, theta / pi);
- * and pbrt-v4 ImageInfiniteLight's MIS-compensated distribution. NOTES after the declarations: the
+ * and pbrt-v4 ImageInfiniteLight's MIS-compensated distribution and equal-area square maps. Beyond
+ * pbrt: product sampling (map x cosine), hot spots (a sun) as a mixture, portals (windows; pbrt-v4's
+ * PortalImageInfiniteLight with a cheaper sampler). NOTES after the declarations: the
  * mapping and its orientation, where and why it departs from pbrt (the density, the poles, the integer
  * CDF), what it costs, memory, thread safety, input conventions.
  */
