@@ -7,7 +7,6 @@
 # each change.
 set -eu
 cd "$(dirname "$0")/.."
-sh scripts/setup.sh
 case "${1:-}" in
   1) t=lab_01_mipmap ;;
   2) t=lab_02_lookups ;;
@@ -16,6 +15,7 @@ case "${1:-}" in
   all) t="lab_01_mipmap lab_02_lookups lab_03_light lab_04_film" ;;
   *) echo "usage: sh scripts/lab.sh N   (N = 1, 2, 3 or 4: the chapter's lab in tutorials/labs/; or all)" >&2; exit 2 ;;
 esac
+sh scripts/setup.sh
 cmake -S . -B build-lab -DCMAKE_BUILD_TYPE=Debug -DEL_LAB_STUDENT=ON -DEL_BUILD_EXAMPLES=OFF -DEL_BUILD_BENCH=OFF >/dev/null
 cmake --build build-lab --target $t
 if [ "$1" = all ]; then r=lab_; else r=$t; fi
