@@ -3950,6 +3950,24 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
          h->nu == l->dist.nu && h->nv == l->dist.nv;
 }
 
+/* The world direction of bin (iu, iv) at fractions (fu, fv) of the light's own grid, as sample_li builds
+ * it: the fractions kept the margin inside the bin (as el_envlight__sample_bin keeps them), then the
+ * direction tables or the (u, v) mapping. pb: the bin's density as the tables want it (its pdf is
+ * recomputed by the caller). Both hot-spot samplers go through here. */
+static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3]) {
+  fu = fu > l->u_margin ? fu : l->u_margin;
+  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
+  fv = fv > l->v_margin ? fv : l->v_margin;
+  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
+  else {
+    float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
+    float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
+    el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
+    el_envlight__to_world(l, d, wi);
+  }
+}
+
 /* pdf_li_mix with usable h and normalised weights a */
 static float el_envlight__hot_pdf(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float dir[3]) {
   float p;
@@ -4000,18 +4018,8 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
     if (iu >= h->nu) iu -= h->nu;
     iv += h->rect[k][1];
   }
-  fu = fu > l->u_margin ? fu : l->u_margin;
-  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
-  fv = fv > l->v_margin ? fv : l->v_margin;
-  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
   /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
-  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
-  else {
-    float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
-    float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
-    el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
-    el_envlight__to_world(l, d, wi);
-  }
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi);
   *pdf = el_envlight__hot_pdf(l, h, a, wi);
   if (rgb) {
     if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
@@ -4118,17 +4126,7 @@ EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envligh
     iu += (int)((int64_t)cu * h->nu / h->cells_u);
     iv += (int)((int64_t)cv * h->nv / h->cells_v);
   }
-  fu = fu > l->u_margin ? fu : l->u_margin;
-  fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
-  fv = fv > l->v_margin ? fv : l->v_margin;
-  fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
-  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
-  else {
-    float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
-    float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
-    el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
-    el_envlight__to_world(l, d, wi);
-  }
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi);
   *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   if (rgb) {
     if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
