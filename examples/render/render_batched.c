@@ -35,7 +35,9 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
   const elr_scene *s = C->s;
   elr_v3 nc;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (as elr_estimate_direct) */
-  int lonly = C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_bsdf_cos_normal(b, wo, &nc), b);
+  /* (the normal as the light sample's: at a lowered sun-cache cell, sun.c's) */
+  const elr_sun_cell *sc = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
+  int lonly = !sc && C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_sun_cos_normal(s, sc, b, wo, &nc), b);
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
