@@ -17,7 +17,7 @@
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
  * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree),
- * --sun auto|off|on (issue 22, sun.c: a pilot learns where the map's hot spots are hidden; auto: on sun maps). */
+ * --sun auto|off|on (issue 22, sun.c: a pilot learns where the map's hot spots are hidden; auto: off for now). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>

@@ -587,11 +587,10 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
   const elr_scene *s = C->s;
   int i;
   *sun = NULL;
-  if (o->env_sun == 0 || !C->light_sampling || C->ls == ELR_LS_BSDF) return 0;
+  if (o->env_sun <= 0 || !C->light_sampling || C->ls == ELR_LS_BSDF) return 0; /* (-1, the default: off, el_render.h) */
   for (i = 0; i < s->nlight; i++) {
     const elr_light *l = &s->light[i];
     if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l) || !l->product || l->portal || !l->env_sample) continue;
-    if (o->env_sun < 0 && !s->env_sunny) return 0;
     if (elr_sun_build(C, l, fb, nthreads, sun) != 0) return -1;
     C->sun = *sun;
     if (st && *sun) {

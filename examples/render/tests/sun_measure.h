@@ -67,7 +67,7 @@ static int sm__cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return x < y ? -1 : x > y ? 1 : 0;
 }
-/* nseeds renders at spp of scene s with the sun cache (sun: the env_sun option) into r; 0 on success */
+/* nseeds renders at spp of scene s with the sun cache (sun: the env_sun option, 1 on, 0 off) into r; 0 on success */
 static int sm_run(elr_scene *s, int spp, int nseeds, int sun, int nthreads, const unsigned char *cls, int w, int h, sm_result *r) {
   double *s1, *s2;
   int k, i, np = w * h;

@@ -8,7 +8,7 @@
  * LESS NOISE in the shadow: the mean per-pixel variance of the shadowed pixels at equal samples at least
  * 1.5x lower (direct lighting; measured 1.9x, median pixel 2.9x) and 1.2x (path tracing; measured 1.35x),
  * the lit pixels' within 5% (they keep their density). DETERMINISTIC: the same image for 1 and 2 threads
- * and for the one-sample and wave loops. --stats: the hot spot and the sharing of the samples. A map
+ * and for the one-sample and wave loops; off by default. --stats: the hot spot and the sharing of the samples. A map
  * without a hot spot, or --sun off: no cache. A few seconds. */
 #include "render_test_util.h"
 #include "sun_measure.h"
@@ -77,6 +77,13 @@ static void determinism(const char *name) {
   if (elr_render(s, &o, &ref, NULL, err, sizeof err) != 0) { rt_check(0, "%s renders", name); elr_scene_free(s); return; }
   rt_check(same(s, ELR_LOOP_ONE, 2, &ref) && same(s, ELR_LOOP_WAVE, 1, &ref) && same(s, ELR_LOOP_WAVE, 2, &ref),
            "%s: with the cache, the same image for 1 and 2 threads, one-sample and wave loops", name);
+  { /* the default (-1) is off for now (el_render.h) */
+    elr_stats st;
+    elr_image im;
+    rt_render(s, 1, -1, -1, 1, 1, &im, &st);
+    rt_check(!st.sun_used, "%s: the default options build no cache", name);
+    elr_image_free(&im);
+  }
   elr_image_free(&ref);
   elr_scene_free(s);
 }
