@@ -82,13 +82,15 @@ struct elr_sun {
 };
 
 static uint64_t elr__sun_key(const elr_sun *S, elr_v3 p, elr_v3 n) {
-  double inv = 1.0 / S->cell;
-  int64_t ix = (int64_t)floor(p.x * inv), iy = (int64_t)floor(p.y * inv), iz = (int64_t)floor(p.z * inv);
+  double inv = 1.0 / S->cell, lim = (double)((1 << 19) - 1);
+  double fx = floor(p.x * inv), fy = floor(p.y * inv), fz = floor(p.z * inv);
   float ax = fabsf(n.x), ay = fabsf(n.y), az = fabsf(n.z);
   uint64_t bin = ax >= ay && ax >= az ? (n.x < 0) : ay >= az ? 2u + (n.y < 0) : 4u + (n.z < 0);
-  const int64_t lim = (1 << 19) - 1;
-  ix = ix < -lim ? -lim : ix > lim ? lim : ix; iy = iy < -lim ? -lim : iy > lim ? lim : iy; iz = iz < -lim ? -lim : iz > lim ? lim : iz;
-  return 1u + (bin | ((uint64_t)(ix + lim) << 3) | ((uint64_t)(iy + lim) << 23) | ((uint64_t)(iz + lim) << 43));
+  int64_t ix, iy, iz;
+  /* (clamped before the conversion: a far or non-finite point shares the border cells) */
+  fx = fx >= -lim ? (fx <= lim ? fx : lim) : -lim; fy = fy >= -lim ? (fy <= lim ? fy : lim) : -lim; fz = fz >= -lim ? (fz <= lim ? fz : lim) : -lim;
+  ix = (int64_t)fx; iy = (int64_t)fy; iz = (int64_t)fz;
+  return 1u + (bin | ((uint64_t)(ix + (int64_t)lim) << 3) | ((uint64_t)(iy + (int64_t)lim) << 23) | ((uint64_t)(iz + (int64_t)lim) << 43));
 }
 static uint64_t elr__sun_key_offset(uint64_t key, int dx, int dy, int dz) { /* the same class, a neighbour cell */
   uint64_t k = key - 1u;
