@@ -1,30 +1,37 @@
-/* sun.c: where the sun is hidden (issue 22). The environment's hot spots (envlight.h's
- * el_envlight_hotspots: a sun, a lamp) are sampled less where a pilot found them hidden, and the sky
- * that lights those places gets their samples. No pbrt counterpart (pbrt-v3 and -v4 sample the map
- * whole; Cycles cone-samples only its procedural sky's sun, with a fixed MIS weight).
+/* sun.c: where the sun is hidden (issue 22; render --sun on, off by default). The environment's hot spots
+ * (envlight.h's el_envlight_hotspots: a sun, a lamp) are sampled less where a pilot found them hidden,
+ * and the sky that lights those places gets their samples. No pbrt counterpart (pbrt-v3 and -v4 sample
+ * the map whole; Cycles cone-samples only its procedural sky's sun, with a fixed MIS weight).
  *
- * THE CACHE. Before the render, one pilot camera ray through the centre of every pixel; at its first hit
- * ELR_SUN_RAYS shadow rays towards each spot (directions drawn from the spot alone, fixed numbers: the
- * cache does not depend on the seed or the thread count). A spot counts as seen along a ray that is not
- * occluded and leaves on the camera's side of the geometric normal. The hits go into a hashed grid of
- * world-space cells (edge ELR_SUN_CELL times the median pixel footprint of the hits) split by the
- * normal's main axis and sign (a wall and the ground at its foot are apart); per cell and spot the
- * fraction v_k of its rays that saw the spot. Then each cell takes the largest v_k of its 27 neighbours
- * of the same normal class (a "dilation": a cell at the shadow's edge that the pilot found dark but
- * whose neighbour is lit is treated as lit, so the floor below rarely meets a sunlit point).
+ * THE CACHE. Before the render, one pilot camera ray through the centre of every pixel (on the render's
+ * threads); at its first hit ELR_SUN_RAYS shadow rays towards each spot (directions drawn from the spot
+ * alone, fixed numbers: the cache does not depend on the seed or the thread count). A spot counts as
+ * seen along a ray that is not occluded and leaves on the camera's side of the geometric normal. The
+ * hits go into a hashed grid of world-space cells (edge ELR_SUN_CELL times the median pixel footprint
+ * of the hits), split by the normal's main axis and sign (a wall and the ground at its foot are apart);
+ * per cell and spot the fraction v_k of its rays that saw the spot, then the largest v_k of the cell and
+ * its 26 neighbours of the same normal class (so a cell at the shadow's edge whose neighbour is lit is
+ * treated as lit). A spot is DARK in a cell when that is 0 (ELR_SUN_DARK_ONLY; partly lit cells keep the
+ * light's density: measured, scaling the weights by v_k cost the lit side of a sphere 2-4x).
  *
- * THE DENSITY at a vertex whose cell has some v_k < 1 (elsewhere, and at vertices the pilot never saw,
- * the renderer's density unchanged, bit for bit):
- *   the map alone (sample_li's vertices; on sun maps the diffuse ones): el_envlight_sample_li_mix with
- *     weights spot k: P_k max(v_k, e), the rest: P_rest (P: the parts' shares of sample_li), where e
- *     makes the spots' total ELR_SUN_FLOOR of the samples when every v_k is 0. v = 1 is sample_li.
- *   product sampling (n given): the one-sample mixture a p_cos + (1 - a) p_mixcos, a = sum P_k v_k /
- *     sum P_k, p_cos sample_li_cos's density, p_mixcos el_envlight_sample_li_mix_cos's with the weights
- *     above (the rest x the cosine).
- * The pdf queries (the BSDF sample's MIS weight, the path tracer's escaped ray) use the same cell, found
- * from the same vertex, so the light sample and its MIS partner agree on one density. Every part keeps a
- * positive weight, so the density is positive wherever sample_li's is: light sampling alone stays
- * unbiased, and a sun the pilot missed is still found (at floor's rate).
+ * THE DENSITY at a vertex whose cell has a dark spot (elsewhere, and at vertices the pilot never saw, the
+ * renderer's density unchanged, bit for bit): the spot's weight P_k e, the other parts their shares P
+ * (e makes the dark spots' total ELR_SUN_FLOOR of the samples), as
+ *   the rest x cosine (el_envlight_sample_li_mix_cos) where the vertex reflects only (elr_sun_cos_normal:
+ *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the normal rounded
+ *     to ~2 degrees; with several spots, some lit, the one-sample mixture a p_cos + (1 - a) p_mixcos,
+ *     a = the lit spots' share (p_cos: sample_li_cos's density);
+ *   el_envlight_sample_li_mix with those weights elsewhere (a peaked lobe, rough transmission).
+ * The light sample keeps its BSDF sample as MIS partner (elr_env_light_only is left out there: the
+ * cosine BSDF sample finds a smooth sky well; alone, the rest x cosine had 2.3x more variance than the
+ * map with MIS at a ground point behind a wall: bench_sun_render --shadow-point). The pdf queries (the
+ * BSDF sample's MIS weight, the path tracer's escaped ray: elr_path_state.prev_sun) find the same cell
+ * from the same vertex, so both agree on one density. Every part keeps a positive weight, so a sun the
+ * pilot missed is still found (at the floor's rate).
+ *
+ * COST: the rest x cosine sums 512 cell bounds per (weights, normal) (el_envlight_mix_cos_prepare); each
+ * thread keeps its last ELR_SUN_MEMOS tables. bench/bench_sun_render.c: 1.7-1.8x the render's CPU time
+ * at 16 spp on the bench scenes, for 1.3-1.9x less variance in the shadow (lit pixels unchanged).
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
