@@ -133,7 +133,7 @@ static elr_v3 elr__sun_side(const elr_hit *h, elr_v3 wo) { return elr_dot(h->ng,
 
 const elr_sun_cell *elr_sun_lookup(const elr_sun *S, const elr_hit *h, elr_v3 wo) {
   const elr_sun_cell *c;
-  if (!S) return NULL;
+  if (!S || !S->tab) return NULL; /* (no cell: the pilot saw no surface) */
   c = elr__sun_find(S, elr__sun_key(S, h->p, elr__sun_side(h, wo)));
   return c && c->lowered ? c : NULL;
 }

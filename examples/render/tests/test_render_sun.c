@@ -9,7 +9,8 @@
  * 1.5x lower (direct lighting; measured 1.9x, median pixel 2.9x) and 1.2x (path tracing; measured 1.35x),
  * the lit pixels' within 5% (they keep their density). DETERMINISTIC: the same image for 1 and 2 threads
  * and for the one-sample and wave loops; off by default. --stats: the hot spot and the sharing of the samples. A map
- * without a hot spot, or --sun off: no cache. A few seconds. */
+ * without a hot spot, or --sun off: no cache. Hostile: a camera that sees no surface (the pilot finds no
+ * cell), 1 x 1 pixel, a crop window: finite images. A few seconds. */
 #include "render_test_util.h"
 #include "sun_measure.h"
 
@@ -106,6 +107,36 @@ static void no_spot(void) {
   elr_scene_free(s);
 }
 
+/* hostile: the pilot sees no surface (the camera looks at the sky; the lit plane is behind it, seen by
+ * reflections only): the render works, with no cell; an image of 1 x 1 pixel; a crop window */
+static void hostile(void) {
+  char text[2048], err[512];
+  elr_scene *s;
+  elr_image im;
+  elr_stats st;
+  elr_render_options o;
+  int k;
+  static const char *cams[3] = {"LookAt 0 1 0  0 5 0.01  0 0 1\nCamera \"perspective\"\nFilm \"image\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\n",
+                                "LookAt 0 2 -4  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"image\" \"integer xresolution\" [ 1 ] \"integer yresolution\" [ 1 ]\n",
+                                "LookAt 0 2 -4  0 0 0  0 1 0\nCamera \"perspective\"\nFilm \"image\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ] \"float cropwindow\" [ 0.5 0.75 0.25 0.5 ]\n"};
+  for (k = 0; k < 3; k++) {
+    int ok, i;
+    snprintf(text, sizeof text, "%sWorldBegin\nAttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string mapname\" \"%s/envmaps/sunrise.hdr\"\nAttributeEnd\n"
+             "Material \"matte\"\nShape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -9 0 -9  9 0 -9  9 0 9  -9 0 9 ]\n"
+             "Shape \"sphere\" \"float radius\" 0.5\nWorldEnd\n", cams[k], EL_TEST_DATA_DIR);
+    s = rt_load("hostile.pbrt", text, err, sizeof err);
+    if (!s) { rt_check(0, "hostile scene %d loads: %s", k, err); continue; }
+    elr_render_options_default(&o);
+    o.spp = 4; o.quiet = 1; o.nthreads = 2; o.env_sun = 1;
+    ok = elr_render(s, &o, &im, &st, err, sizeof err) == 0;
+    for (i = 0; ok && i < im.width * im.height * 3; i++) ok = isfinite(im.rgb[i]) && im.rgb[i] >= 0.f;
+    rt_check(ok && st.sun_used, "--sun on, %s: renders, finite pixels (%lld pilot points, %lld cells)",
+             k == 0 ? "a camera that sees no surface" : k == 1 ? "1 x 1 pixel" : "a crop window", (long long)st.sun_pilot_points, (long long)st.sun_cells);
+    if (ok) elr_image_free(&im);
+    elr_scene_free(s);
+  }
+}
+
 int main(void) {
   rt_mkdir("sun");
   compare("sun_shadow_object.pbrt", 1.5);
@@ -113,5 +144,6 @@ int main(void) {
   determinism("sun_shadow_object.pbrt");
   determinism("sun_porch.pbrt");
   no_spot();
+  hostile();
   return rt_finish("test_render_sun");
 }
