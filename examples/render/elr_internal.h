@@ -205,6 +205,22 @@ typedef struct elr_light {
   float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
 } elr_light;
 
+/* LightSource "infinite" as the parser read it (pbrt-v4's LightSceneEntity: the parser describes, the
+ * scene builds): scene.c's elr_scene_make_lights reads its image and makes envlight's light of it, in the
+ * slot s->light[light] that the parser filled with the light's kind and options. */
+typedef struct elr_infinite_desc {
+  int light;                /* its index in s->light */
+  char *path;               /* "mapname" or "filename", resolved; NULL: a constant light */
+  int v4_filename;          /* given as pbrt-v4's "filename" (a square image is then an equal-area map) */
+  float scale[3];           /* L times scale */
+  float l2w[9];             /* light to world: the CTM's rotation */
+  float *portal;            /* pbrt-v4's "point3 portal": nportal rectangles of 4 world-space points */
+  int nportal;
+  char *file; int line;     /* the directive, for messages; */
+  char *filename_file; int filename_line; /* the "filename" parameter's place, */
+  char *portal_file; int portal_line;     /* and the portal's */
+} elr_infinite_desc;
+
 typedef struct elr_scene_desc {
   /* camera */
   elr_xform cam2world;
@@ -237,6 +253,7 @@ struct elr_scene {
   elr_light *light; int nlight, caplight;
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
+  elr_infinite_desc *envdesc; int nenvdesc, capenvdesc; /* parser.c's infinite lights, for elr_scene_make_lights */
   int warnings;
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
    * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */
@@ -271,10 +288,21 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+/* imageio.c: the scene's images (pbrt-v3's ReadImage): el_image_load with a size check (-1 with why), and
+ * the image as linear RGB times scale (NULL: out of memory, *bad = -1; or texel *bad is NaN, infinite or
+ * overflows when scaled, its value *bad_value) */
+struct el_image;
+int elr_image_read(const char *path, struct el_image *img, char *why, size_t n);
+float *elr_image_rgb(const struct el_image *img, int gamma, float scale, int64_t *bad, float *bad_value);
+/* parser.c's messages: "file:line: error: ..." into err (control characters of the scene's strings
+ * replaced), and warnings (elr_warn, above) */
+void elr_error(char *err, size_t errlen, const char *file, int line, const char *fmt, ...);
 /* loopsubdiv.c: pbrt-v3's LoopSubdivide of the control mesh (indices in [0, npoints), P: 3 npoints) into
  * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
 int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
                        char *err, size_t errlen);
+/* scene.c: the lights the parser described (elr_infinite_desc), then the Embree scene */
+int elr_scene_make_lights(elr_scene *s, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
@@ -469,7 +497,6 @@ float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 
  * each, pbrt-v4's vertex order); -1 with err naming the problem */
 int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
-int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
                       size_t errlen);
 int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map);
@@ -774,6 +801,8 @@ static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) 
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
+/* pbrt-v3's VisibilityTester::Unoccluded of a light sample taken at h (integrator.c: lights.c traces no rays) */
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
                          const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld);
 elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,

@@ -120,6 +120,14 @@ static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
   char *r = (char *)elr__alloc(P, n + 1);
   memcpy(r, s, n); r[n] = 0; return r;
 }
+/* a copy that outlives the parse (the scene's descriptions own it) */
+static char *elr__heap_strdup(elr__parser *P, const char *str) {
+  size_t n = strlen(str) + 1;
+  char *r = (char *)malloc(n);
+  if (!r) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+  memcpy(r, str, n);
+  return r;
+}
 
 /* An error at file:line. The file is given explicitly wherever the line is a directive's or a
  * parameter's: the lexer leaves an included file as soon as it peeks past its last token, so the
@@ -131,14 +139,24 @@ static char *elr__strdup(elr__parser *P, const char *s, size_t n) {
 static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) __attribute__((noreturn));
 static void elr__failf(elr__parser *P, const char *file, int line, const char *fmt, ...) __attribute__((noreturn));
 #endif
-static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) {
+static void elr__verror(char *err, size_t errlen, const char *file, int line, const char *fmt, va_list ap) {
   char msg[400];
   vsnprintf(msg, sizeof msg, fmt, ap);
   { /* a quoted string of the scene may hold control characters: keep them off the terminal */
     char *c;
     for (c = msg; *c; c++) if ((unsigned char)*c < 32 || *c == 127) *c = *c == '\n' || *c == '\t' ? ' ' : '?';
   }
-  snprintf(P->err, P->errlen, "%s:%d: error: %s", file ? file : "?", line, msg);
+  snprintf(err, errlen, "%s:%d: error: %s", file ? file : "?", line, msg);
+}
+/* the same message for what is built of the scene's descriptions after the parse (scene.c) */
+void elr_error(char *err, size_t errlen, const char *file, int line, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  elr__verror(err, errlen, file, line, fmt, ap);
+  va_end(ap);
+}
+static void elr__failv(elr__parser *P, const char *file, int line, const char *fmt, va_list ap) {
+  elr__verror(P->err, P->errlen, file, line, fmt, ap);
   longjmp(P->jb, 1);
 }
 static void elr__failf(elr__parser *P, const char *file, int line, const char *fmt, ...) {
@@ -676,43 +694,27 @@ static char *elr__resolve(elr__parser *P, const char *name) {
 }
 
 static void elr__load_image(elr__parser *P, const char *file, int line, el_image *img) {
-  char e[512];
+  char why[700];
   double t0 = elr_now();
-  if (el_image_load(file, img, e, sizeof e) != 0) elr__failf(P, P->dir_file, line, "%s: cannot read image: %s", P->dir_name, e);
+  int r = elr_image_read(file, img, why, sizeof why); /* imageio.c */
   P->s->t_images += elr_now() - t0;
-  if (img->width <= 0 || img->height <= 0 || img->width > 65536 || img->height > 65536) {
-    int w = img->width, h = img->height;
-    el_image_free(img);
-    elr__failf(P, P->dir_file, line, "%s: image \"%s\" has an absurd size (%d x %d; 1 to 65536 per side)", P->dir_name, file, w, h);
-  }
+  if (r != 0) elr__failf(P, P->dir_file, line, "%s: %s", P->dir_name, why);
 }
-/* channels -> linear RGB (3 floats per texel); 8-bit input with gamma: sRGB to linear. A NaN or
- * infinite texel (or one that overflows when scaled) is an error naming the file and the texel: it used
- * to become 0 silently. */
+/* the image as linear RGB (imageio.c's elr_image_rgb); a NaN or infinite texel (or one that overflows
+ * when scaled) is an error naming the file and the texel */
 static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale, const char *file) {
-  size_t n = (size_t)img->width * (size_t)img->height, i;
-  float *rgb = (float *)malloc(n * 3 * sizeof(float));
-  if (!rgb) { el_image_free(img); snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
-  for (i = 0; i < n; i++) {
-    int c;
-    for (c = 0; c < 3; c++) {
-      int src = img->channels >= 3 ? c : 0;
-      float v = img->pixels[i * (size_t)img->channels + (size_t)src];
-      if (img->is_8bit && gamma)
-        v = v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
-      if (!isfinite(v) || !isfinite(v * scale)) {
-        int x = (int)(i % (size_t)img->width), y = (int)(i / (size_t)img->width);
-        float bad = v;
-        free(rgb);
-        el_image_free(img);
-        if (!isfinite(bad))
-          elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) is %s", P->dir_name, file, x, y, bad != bad ? "NaN" : "infinite");
-        elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) times scale %g overflows", P->dir_name, file, x, y, scale);
-      }
-      rgb[i * 3 + (size_t)c] = v * scale;
-    }
-  }
-  return rgb;
+  int64_t bad;
+  float v = 0.f;
+  float *rgb = elr_image_rgb(img, gamma, scale, &bad, &v);
+  int w = img->width;
+  if (rgb) return rgb;
+  el_image_free(img);
+  if (bad < 0) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+  if (!isfinite(v))
+    elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) is %s", P->dir_name, file, (int)(bad % w), (int)(bad / w),
+               v != v ? "NaN" : "infinite");
+  elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) times scale %g overflows", P->dir_name, file, (int)(bad % w),
+             (int)(bad / w), scale);
 }
 
 /* >> directives */
@@ -985,11 +987,8 @@ static void elr__light(elr__parser *P, const char *type) {
     float m3[9];
     int i, j;
     elr_v3 L = elr__prgb(P, "L", elr_v(1, 1, 1));
-    char e[512];
     float scale3[3];
-    float *rgb = NULL;
-    char *path = NULL;
-    int w = 1, h = 1;
+    elr_infinite_desc *D;
     l->kind = ELR_LIGHT_INFINITE;
     l->nsamples = elr__pint(P, "samples", 1);
     elr__check_range(P, "samples", l->nsamples, 1, 1 << 16);
@@ -1053,52 +1052,19 @@ static void elr__light(elr__parser *P, const char *type) {
     if (map[0] && fn4[0])
       elr__failf(P, elr__find(P, "filename")->file, elr__find(P, "filename")->line,
                  "LightSource \"infinite\": both \"mapname\" (pbrt-v3, lat-long) and \"filename\" (pbrt-v4, equal-area) are given");
-    if (map[0] || fn4[0]) {
-      el_image img;
-      path = elr__resolve(P, map[0] ? map : fn4);
-      elr__load_image(P, path, P->dir_line, &img);
-      if (l->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) {
-        rgb = elr__to_rgb(P, &img, 0, 1.f, path); /* NaN / infinite: an error naming the file and texel */
-      } else { /* "zero": every value as the file holds it, for envlight to count and replace */
-        size_t n = (size_t)img.width * (size_t)img.height, k;
-        rgb = (float *)malloc(n * 3 * sizeof(float));
-        if (!rgb) { el_image_free(&img); snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
-        for (k = 0; k < 3 * n; k++) rgb[k] = img.pixels[(k / 3) * (size_t)img.channels + (img.channels >= 3 ? k % 3 : 0)];
-      }
-      w = img.width; h = img.height;
-      el_image_free(&img);
-      l->has_map = 1;
-      /* pbrt-v4 reads "filename" as a square equal-area octahedral map (ImageInfiniteLight) and refuses any
-       * other shape; here a non-square "filename" is read as pbrt-v3's lat-long map, with a warning */
-      if (fn4[0] && w == h) l->mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA;
-      else if (fn4[0])
-        elr_warn(s, elr__find(P, "filename")->file, elr__find(P, "filename")->line,
-                 "LightSource \"infinite\": \"%s\" is %dx%d, not square: pbrt-v4 wants a square equal-area map; read as a lat-long "
-                 "map (pbrt-v3's \"mapname\")", path, w, h);
-    } else {
-      rgb = NULL; /* a constant light */
-    }
-    {
-      double t0 = elr_now();
-      int r = elr_infinite_init(l, rgb, w, h, scale3, m3, e, sizeof e);
-      if (r == 0 && rgb && l->env && l->env->borrowed) l->env_pixels = rgb; /* read in place: freed with the light */
-      else free(rgb);
-      if (r != 0) {
-        if (path) elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": image \"%s\": %s", path, e);
-        elr__failf(P, P->dir_file, P->dir_line, "LightSource \"infinite\": %s", e);
-      }
-      s->t_images += elr_now() - t0;
-      /* one warning per kind of texel replaced (the light's policy above) */
-      if (l->env->negative_texels > 0) {
-        int mi = l->env->most_negative_index;
-        elr_warn(P->s, P->dir_file, P->dir_line,
-                 "LightSource \"infinite\": image \"%s\": %zu negative texels clamped to 0 (the most negative %.3g at texel (%d, %d);"
-                 " lossy EXR compression such as DWAB rings below 0; \"string badtexels\" \"error\" refuses them)",
-                 path ? path : "(constant L)", l->env->negative_texels, (double)l->env->most_negative, mi % w, mi / w);
-      }
-      if (l->env->nonfinite_texels > 0)
-        elr_warn(P->s, P->dir_file, P->dir_line, "LightSource \"infinite\": image \"%s\": %zu NaN or infinite texels set to 0 (\"string badtexels\" \"zero\")",
-                 path ? path : "(constant L)", l->env->nonfinite_texels);
+    /* the description scene.c's elr_scene_make_lights builds the light of (the image is read there) */
+    ELR_PUSH(P, s->envdesc, s->nenvdesc, s->capenvdesc, elr_infinite_desc);
+    D = &s->envdesc[s->nenvdesc - 1];
+    D->light = s->nlight - 1;
+    memcpy(D->scale, scale3, sizeof D->scale);
+    memcpy(D->l2w, m3, sizeof D->l2w);
+    D->file = elr__heap_strdup(P, P->dir_file ? P->dir_file : "?");
+    D->line = P->dir_line;
+    if (map[0] || fn4[0]) D->path = elr__heap_strdup(P, elr__resolve(P, map[0] ? map : fn4));
+    if (fn4[0]) {
+      D->v4_filename = 1;
+      D->filename_file = elr__heap_strdup(P, elr__find(P, "filename")->file);
+      D->filename_line = elr__find(P, "filename")->line;
     }
     {
       /* pbrt-v4's "point3 portal" [p0 p1 p2 p3]: a window the light shines through (world space, not
@@ -1110,17 +1076,18 @@ static void elr__light(elr__parser *P, const char *type) {
       l->portal_share = (float)elr__pfloat(P, "portalmapshare", ELR_PORTAL_MAP_SHARE);
       elr__check_range(P, "portalmapshare", l->portal_share, 0, 1);
       if (pp) {
-        float pts[12 * EL_ENVLIGHT_PORTAL_MAX];
         int np, k;
-        double t0 = elr_now();
         pp = elr__findt(P, "portal", "point3", -12);
         np = pp->n / 12;
         if (np < 1 || np > EL_ENVLIGHT_PORTAL_MAX)
           elr__failf(P, pp->file, pp->line, "LightSource \"infinite\": \"point3 portal\" takes 4 points per portal, 1 to %d portals; got %d values",
                      EL_ENVLIGHT_PORTAL_MAX, pp->n);
-        for (k = 0; k < 12 * np; k++) pts[k] = (float)pp->num[k];
-        if (elr_infinite_set_portals(l, pts, np, e, sizeof e) != 0) elr__failf(P, pp->file, pp->line, "LightSource \"infinite\": %s", e);
-        s->t_images += elr_now() - t0;
+        D->portal = (float *)malloc(sizeof(float) * 12 * (size_t)np);
+        if (!D->portal) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
+        for (k = 0; k < 12 * np; k++) D->portal[k] = (float)pp->num[k];
+        D->nportal = np;
+        D->portal_file = elr__heap_strdup(P, pp->file);
+        D->portal_line = pp->line;
       }
     }
   } else if (!strcmp(type, "point")) {

@@ -5,7 +5,8 @@
  * ELR_EMBREE_SPHERES=1; the disks as another user geometry. ObjectInstance: each instanced prototype is
  * an Embree scene of its own, built once, and each instance an RTC_GEOMETRY_TYPE_INSTANCE of it with the
  * instance's transform. elr_intersect makes the hit record through shapes.c (in world space, also for
- * instances), elr_occluded answers shadow rays. */
+ * instances), elr_occluded answers shadow rays. The lights are made here too, of the descriptions
+ * parser.c leaves (elr_scene_make_lights: the infinite lights' images and envlight's tables). */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include "image_io.h"
@@ -476,6 +477,102 @@ int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h) 
   return 1;
 }
 
+/* >> the lights the parser described (pbrt-v3's MakeLight and CreateInfiniteLight, called here after the
+ * parse as pbrt-v4's scene.cpp creates its lights from the parser's LightSceneEntity: parser.c describes,
+ * this builds, and lights.c calls neither) */
+static int elr__make_infinite(elr_scene *s, const elr_infinite_desc *D, char *err, size_t errlen) {
+  elr_light *l = &s->light[D->light];
+  const char *path = D->path;
+  float *rgb = NULL;
+  int w = 1, h = 1, r;
+  char e[700];
+  double t0;
+  if (path) {
+    el_image img;
+    t0 = elr_now();
+    r = elr_image_read(path, &img, e, sizeof e);
+    s->t_images += elr_now() - t0;
+    if (r != 0) { elr_error(err, errlen, D->file, D->line, "LightSource: %s", e); return -1; }
+    if (l->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) {
+      int64_t bad;
+      float v = 0.f;
+      rgb = elr_image_rgb(&img, 0, 1.f, &bad, &v); /* NaN / infinite: an error naming the file and texel */
+      if (!rgb) {
+        int iw = img.width;
+        el_image_free(&img);
+        if (bad < 0) { snprintf(err, errlen, "out of memory"); return -1; }
+        if (!isfinite(v))
+          elr_error(err, errlen, D->file, D->line, "LightSource: image \"%s\": texel (%d, %d) is %s", path, (int)(bad % iw), (int)(bad / iw),
+                    v != v ? "NaN" : "infinite");
+        else
+          elr_error(err, errlen, D->file, D->line, "LightSource: image \"%s\": texel (%d, %d) times scale %g overflows", path, (int)(bad % iw),
+                    (int)(bad / iw), 1.0);
+        return -1;
+      }
+    } else { /* "zero": every value as the file holds it, for envlight to count and replace */
+      size_t n = (size_t)img.width * (size_t)img.height, k;
+      rgb = (float *)malloc(n * 3 * sizeof(float));
+      if (!rgb) { el_image_free(&img); snprintf(err, errlen, "out of memory"); return -1; }
+      for (k = 0; k < 3 * n; k++) rgb[k] = img.pixels[(k / 3) * (size_t)img.channels + (img.channels >= 3 ? k % 3 : 0)];
+    }
+    w = img.width; h = img.height;
+    el_image_free(&img);
+    l->has_map = 1;
+    /* pbrt-v4 reads "filename" as a square equal-area octahedral map (ImageInfiniteLight) and refuses any
+     * other shape; here a non-square "filename" is read as pbrt-v3's lat-long map, with a warning */
+    if (D->v4_filename && w == h) l->mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA;
+    else if (D->v4_filename)
+      elr_warn(s, D->filename_file, D->filename_line,
+               "LightSource \"infinite\": \"%s\" is %dx%d, not square: pbrt-v4 wants a square equal-area map; read as a lat-long "
+               "map (pbrt-v3's \"mapname\")", path, w, h);
+  }
+  t0 = elr_now();
+  r = elr_infinite_init(l, rgb, w, h, D->scale, D->l2w, e, sizeof e);
+  if (r == 0 && rgb && l->env && l->env->borrowed) l->env_pixels = rgb; /* read in place: freed with the light */
+  else free(rgb);
+  if (r != 0) {
+    if (path) elr_error(err, errlen, D->file, D->line, "LightSource \"infinite\": image \"%s\": %s", path, e);
+    else elr_error(err, errlen, D->file, D->line, "LightSource \"infinite\": %s", e);
+    return -1;
+  }
+  s->t_images += elr_now() - t0;
+  /* one warning per kind of texel replaced (the light's "badtexels" policy) */
+  if (l->env->negative_texels > 0) {
+    int mi = l->env->most_negative_index;
+    elr_warn(s, D->file, D->line,
+             "LightSource \"infinite\": image \"%s\": %zu negative texels clamped to 0 (the most negative %.3g at texel (%d, %d);"
+             " lossy EXR compression such as DWAB rings below 0; \"string badtexels\" \"error\" refuses them)",
+             path ? path : "(constant L)", l->env->negative_texels, (double)l->env->most_negative, mi % w, mi / w);
+  }
+  if (l->env->nonfinite_texels > 0)
+    elr_warn(s, D->file, D->line, "LightSource \"infinite\": image \"%s\": %zu NaN or infinite texels set to 0 (\"string badtexels\" \"zero\")",
+             path ? path : "(constant L)", l->env->nonfinite_texels);
+  if (D->nportal > 0) {
+    t0 = elr_now();
+    if (elr_infinite_set_portals(l, D->portal, D->nportal, e, sizeof e) != 0) {
+      elr_error(err, errlen, D->portal_file, D->portal_line, "LightSource \"infinite\": %s", e);
+      return -1;
+    }
+    s->t_images += elr_now() - t0;
+  }
+  return 0;
+}
+int elr_scene_make_lights(elr_scene *s, char *err, size_t errlen) {
+  int i;
+  for (i = 0; i < s->nenvdesc; i++)
+    if (elr__make_infinite(s, &s->envdesc[i], err, errlen) != 0) return -1;
+  return 0;
+}
+static void elr__free_descs(elr_scene *s) {
+  int i;
+  for (i = 0; i < s->nenvdesc; i++) {
+    elr_infinite_desc *D = &s->envdesc[i];
+    free(D->path); free(D->portal); free(D->file); free(D->filename_file); free(D->portal_file);
+  }
+  free(s->envdesc);
+  s->envdesc = NULL; s->nenvdesc = s->capenvdesc = 0;
+}
+
 /* >> loading and freeing a scene (pbrt-v3 core/api.cpp: pbrtParseFile, then the scene made at WorldEnd) */
 static void elr__dirname(const char *path, char *dir, size_t n) {
   const char *sl = strrchr(path, '/');
@@ -490,7 +587,10 @@ int elr_scene_load_string(const char *text, const char *name, const char *base_d
   *out = NULL;
   if (!s) { snprintf(err, errlen, "out of memory"); return -1; }
   s->quiet = quiet;
-  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0) { elr_scene_free(s); return -1; }
+  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0 || elr_scene_make_lights(s, err, errlen) != 0) {
+    elr_scene_free(s);
+    return -1;
+  }
   s->t_parse = elr_now() - t0;
   if (elr_scene_build(s, err, errlen) != 0) { elr_scene_free(s); return -1; }
   *out = s;
@@ -525,6 +625,7 @@ void elr_scene_free(elr_scene *s) {
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
+  elr__free_descs(s);
   free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->disk); free(s->light); free(s->mat_textured); free(s->obj); free(s->inst);
   free(s);
 }
