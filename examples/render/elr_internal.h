@@ -727,8 +727,15 @@ static inline uint64_t elr_dim_hash(int dim, uint32_t seed) {
 }
 /* the scramble seed of dimension d (elr_dim_hash(d, S->sseed), kept for the first 72) */
 static inline uint64_t elr_sampler_dim_hash(const elr_sampler *S, int d) { return d >= 0 && d < 72 ? S->dhash[d] : elr_dim_hash(d, S->sseed); }
-/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension */
-float elr_sampler_hash_float(const elr_sampler *S, int dim);
+/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension. These
+ * hashes are the samplers' shared helpers, inline here so that sampler_*.c never call back into
+ * sampler.c (which dispatches to them: test_render_layout checks the direction) */
+static inline float elr_sampler_hash_float(const elr_sampler *S, int dim) {
+  uint64_t h = elr_mix64(S->seed ^ 0xd1b54a32d192ed03ULL);
+  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->px << 32) | (uint32_t)S->py));
+  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->sample << 32) | (uint32_t)dim));
+  return (float)(h >> 40) * 0x1p-24f;
+}
 /* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
 typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
 void elr_sampler_skip2d(elr_sampler *S);
