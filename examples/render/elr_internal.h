@@ -3,7 +3,7 @@
  * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
  * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
  * them as float[3] (elr_to3, elr_from3).
- *   vectors, transforms (transform.c)      scene description (parser.c, scene.c, ply.c, loopsubdiv.c)
+ *   vectors, transforms (transform.c)      scene description (parser.c and api*.c, scene.c, ply.c, loopsubdiv.c)
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
@@ -73,7 +73,7 @@ elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 
-/* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
+/* >> scene description (parser.c, paramset.c and api*.c read it; scene.c builds the lights and the Embree scene, and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; int nonneg; } elr_filter_desc; /* nonneg: "bool nonnegative" */
@@ -253,7 +253,7 @@ struct elr_scene {
   elr_light *light; int nlight, caplight;
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
-  elr_infinite_desc *envdesc; int nenvdesc, capenvdesc; /* parser.c's infinite lights, for elr_scene_make_lights */
+  elr_infinite_desc *envdesc; int nenvdesc, capenvdesc; /* api_lights.c's infinite lights, for elr_scene_make_lights */
   int warnings;
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
    * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */

@@ -6,7 +6,7 @@
  * an Embree scene of its own, built once, and each instance an RTC_GEOMETRY_TYPE_INSTANCE of it with the
  * instance's transform. elr_intersect makes the hit record through shapes.c (in world space, also for
  * instances), elr_occluded answers shadow rays. The lights are made here too, of the descriptions
- * parser.c leaves (elr_scene_make_lights: the infinite lights' images and envlight's tables). */
+ * api_lights.c leaves (elr_scene_make_lights: the infinite lights' images and envlight's tables). */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include "image_io.h"
@@ -478,7 +478,7 @@ int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h) 
 }
 
 /* >> the lights the parser described (pbrt-v3's MakeLight and CreateInfiniteLight, called here after the
- * parse as pbrt-v4's scene.cpp creates its lights from the parser's LightSceneEntity: parser.c describes,
+ * parse as pbrt-v4's scene.cpp creates its lights from the parser's LightSceneEntity: api_lights.c describes,
  * this builds, and lights.c calls neither) */
 static int elr__make_infinite(elr_scene *s, const elr_infinite_desc *D, char *err, size_t errlen) {
   elr_light *l = &s->light[D->light];
