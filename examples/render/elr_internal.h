@@ -7,7 +7,7 @@
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
- *   integrators (integrator*.c, render_batched.c) */
+ *   integrators (integrator*.c, render_wave.c) */
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
@@ -657,7 +657,7 @@ typedef struct elr_sampler_desc {
 } elr_sampler_desc;
 int elr_sampler_tables_init(elr_sampler_tables *T, const elr_sampler_desc *d, const int sample_bounds[4], uint64_t seed);
 void elr_sampler_tables_free(elr_sampler_tables *T);
-/* whether every draw render_batched.c makes ahead gives the same number in any order (pixel samplers
+/* whether every draw the wave loop makes ahead gives the same number in any order (pixel samplers
  * only within their `dimensions`) */
 int elr_sampler_order_free(const elr_sampler_desc *d);
 
@@ -736,7 +736,7 @@ static inline float elr_sampler_hash_float(const elr_sampler *S, int dim) {
   h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->sample << 32) | (uint32_t)dim));
   return (float)(h >> 40) * 0x1p-24f;
 }
-/* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
+/* for draws made ahead (render_wave.c): a 2D draw skipped, and a camera sample's place saved and restored */
 typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
 void elr_sampler_skip2d(elr_sampler *S);
 void elr_sampler_save(const elr_sampler *S, elr_sampler_pos *p);
@@ -771,10 +771,10 @@ typedef struct elr_ctx {
   int direct_one;         /* directlighting: strategy "one" (one light chosen per vertex) */
   elr_light_distrib ld;   /* which light next-event estimation samples (built for the path tracer and
                              strategy "one" when more than one light emits) */
-  /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
+  /* render_wave.c: the one emitting light, a sampled environment, whose light samples a wave draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
-  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_BATCHED and ELR_LOOP_WAVE need batch_light) */
+  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_WAVE needs batch_light) */
   int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
 } elr_ctx;
 
@@ -830,7 +830,7 @@ elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, 
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
-/* render_batched.c and render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
+/* render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
  * hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first light-sampling
  * draw there. */
 typedef struct elr_first {
@@ -847,8 +847,8 @@ typedef struct elr_first {
   elr_bsdf b;
   elr_v3 fb, wb, Lb;
   float bpdf, bpdf_env;
-  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading (render_batched.c),
-   * else their answers, traced by the wave loop (1: occluded) */
+  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading, else their
+   * answers, traced by the wave loop (1: occluded) */
   int occ_l, occ_b;
   /* the light's further samples (its "samples" count, or splitting) drawn ahead the same way: their light
    * sample, BSDF sample and shadow rays' answers (the wave loop); the others, from nmore + 1 on, drawn in
@@ -859,8 +859,6 @@ typedef struct elr_first {
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */
 elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
-/* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
-void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
 
 /* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
 typedef struct elr_wave elr_wave;

@@ -13,7 +13,7 @@
  *
  * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
  * loop (render.c) calls the integrators of integrator_direct.c and integrator_path.c per camera
- * sample; render_batched.c is the faster arrangement of the same computation for scenes lit by the
+ * sample; render_wave.c is the faster arrangement of the same computation for scenes lit by the
  * environment alone. The light interface (lights.c) hides which kind of light is sampled, except in
  * EstimateDirect's BSDF-sampled term: for an area light it needs the ray's hit (is it this light?),
  * where the environment only needs to know that nothing is in the way. */

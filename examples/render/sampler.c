@@ -219,7 +219,7 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
   *fx = u[0] + (float)x; *fy = u[1] + (float)y;
 }
 
-/* >> for draws made ahead (render_batched.c) */
+/* >> for draws made ahead (render_wave.c) */
 /* the sampler's state after a 2D draw, without the draw's work */
 void elr_sampler_skip2d(elr_sampler *S) {
   float u[2];
