@@ -16,22 +16,28 @@
 
 /* >> arena */
 typedef struct elr__block { struct elr__block *next; } elr__block;
+
 /* >> tokens */
 enum { T_EOF = 0, T_WORD, T_STRING, T_NUM, T_LBR, T_RBR };
+
 typedef struct elr__tok { int kind, line; const char *s; size_t len; double num; } elr__tok;
+
 typedef struct elr__lexer {
   const char *text, *p, *end;
   const char *file; /* name used in messages */
   int line;
 } elr__lexer;
+
 typedef struct elr__param {
   char type[64], name[128];
   double *num; char **str; int n, isstr, used, line;
   const char *file;
 } elr__param;
+
 #define ELR_MAX_PARAMS 64
 #define ELR_MAX_INCLUDE 32
 #define ELR_MAX_STACK 1024
+
 typedef struct elr__gstate {
   int material;
   int *ftex_names; /* unused: named textures are stored globally with their scope below */
@@ -41,13 +47,17 @@ typedef struct elr__gstate {
   int end_only;    /* ActiveTransform EndTime: transformations go to the end time, which is not rendered */
   int area;        /* AreaLightSource: 1 + its index in elr__parser.areas, 0 for none */
 } elr__gstate;
+
 /* an AreaLightSource "diffuse" directive: what each shape after it in its attribute block emits */
 typedef struct elr__area { elr_v3 L; int twosided, nsamples; } elr__area;
+
 typedef struct elr__named { char *name; int index; int is_float; int prev; /* the entry it shadows, or -1 */ } elr__named;
+
 /* A hash index over a list of names (open addressing; a slot holds the latest entry of its name, -1
  * empty, -2 removed): a list of 100000 named textures, materials or coordinate systems took 25-75 s to
  * parse with linear lookups. */
 typedef struct elr__hmap { int *s; int cap, used; } elr__hmap;
+
 typedef struct elr__parser {
   elr_scene *s;
   jmp_buf jb;
@@ -83,11 +93,13 @@ typedef struct elr__parser {
   char **warned; int nwarned, capwarned;
   int cur_object; /* the ObjectBegin block being read (its elr_object), or -1 */
 } elr__parser;
+
 /* World-space coordinates the renderer can trace: Embree refuses (asserts on) a ray whose origin has a
  * component beyond 1.8e18, and squared distances in float overflow near 1e19. Camera positions, light
  * positions and geometry must stay within |x| <= ELR_MAX_COORD; a transformation whose matrix or inverse
  * is not finite (Scale 1e-200 twice, Translate 1e300) is refused at the directive that made it. */
 #define ELR_MAX_COORD 1e15
+
 /* >> scene growth */
 #define ELR_PUSH(P, arr, n, cap, T)                                                              \
   do {                                                                                           \
