@@ -10,7 +10,8 @@ one .c file), draws an edge a -> b where file a uses a function or datum that fi
     README.md's file map: the parser describes, scene.c builds, the lights and the samplers' shared
     helpers are called, never calling back), or
   - one of the rules below is broken: lights.c calls into the scene, the parser or an integrator, or
-    the parser's files call into the lights or the scene (they describe; scene.c builds).
+    the parser's files call into the lights or the scene (they describe; scene.c builds), or a file of
+    the parser calls one that comes after it in ORDERS (parser.c < paramset.c < api_*.c < api.c).
 Before looking at the library it checks itself on two made-up symbol tables, one with a circle and one
 without, so that a detector that sees nothing fails too.
 """
@@ -24,6 +25,11 @@ RULES = [
      "the lights are called by the integrators and built by scene.c; they trace no rays"),
     ("parser*|paramset*|api*", "lights|scene", "the parser describes the scene; scene.c builds it"),
     ("sampler_*", "sampler", "the samplers' shared helpers are inline or in lowdiscrepancy.c; sampler.c dispatches to them"),
+]
+
+# files that call only the files before them in the list (parser.c's opening comment: the parser's files)
+ORDERS = [
+    ["parser", "paramset", "api_options", "api_lights", "api_shapes", "api_materials", "api"],
 ]
 
 
@@ -116,6 +122,12 @@ def problems(edges):
             for b in sorted(edges[a]):
                 if matches(a, frm) and matches(b, tos):
                     msgs.append("rule: %s -> %s (%s): %s" % (a, b, why, " ".join(sorted(edges[a][b]))))
+    for order in ORDERS:
+        for i, a in enumerate(order):
+            for b in sorted(edges.get(a, {})):
+                if b in order[i:]:
+                    msgs.append("order: %s -> %s (%s calls only the files before it in %s): %s"
+                                % (a, b, a, " < ".join(order), " ".join(sorted(edges[a][b]))))
     return msgs
 
 
@@ -123,8 +135,9 @@ def self_test():
     bad = "x/a.c.o:\n0000 T f\n U g\n\nb.c.o:\n0000 T g\n U h\n\nc.c.o:\n0000 T h\n U f\n"
     good = "a.c.o:\n0000 T f\n U g\n\nb.c.o:\n0000 T g\n U h\n\nc.c.o:\n0000 T h\n U printf\n"
     rule = "lights.c.o:\n0000 T elr_light_le\n U elr_occluded\n\nscene.c.o:\n0000 T elr_occluded\n"
+    order = "parser.c.o:\n0000 T elr__next\n U elr__pfloat\n\nparamset.c.o:\n0000 T elr__pfloat\n"
     ok = (problems(graph(parse_nm(bad))) and circles(graph(parse_nm(bad))) == [["a", "b", "c"]]
-          and not problems(graph(parse_nm(good))) and problems(graph(parse_nm(rule))))
+          and not problems(graph(parse_nm(good))) and problems(graph(parse_nm(rule))) and problems(graph(parse_nm(order))))
     if not ok:
         print("check_layout.py: its self-test failed (a circle or a broken rule was not seen, or one was seen where there is none)")
         sys.exit(1)
