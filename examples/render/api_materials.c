@@ -1,33 +1,8 @@
 /* api_materials.c: Material, MakeNamedMaterial's material and Texture (pbrt-v3 core/api.cpp's MakeMaterial,
  * MakeFloatTexture and MakeSpectrumTexture, with the parameters of materials/ and textures/):
- * matte, mirror, plastic, glass, metal, uber, substrate; constant, checkerboard, imagemap (its image read
- * here into a MIP map: mipmap.h), scale, mix. */
+ * matte, mirror, plastic, glass, metal, uber, substrate; constant, checkerboard, imagemap (described:
+ * scene.c's elr_scene_make_textures reads its image into a MIP map after the parse), scale, mix. */
 #include "parser.h"
-#include "image_io.h"
-
-static void elr__load_image(elr__parser *P, const char *file, int line, el_image *img) {
-  char why[700];
-  double t0 = elr_now();
-  int r = elr_image_read(file, img, why, sizeof why); /* imageio.c */
-  P->s->t_images += elr_now() - t0;
-  if (r != 0) elr__failf(P, P->dir_file, line, "%s: %s", P->dir_name, why);
-}
-/* the image as linear RGB (imageio.c's elr_image_rgb); a NaN or infinite texel (or one that overflows
- * when scaled) is an error naming the file and the texel */
-static float *elr__to_rgb(elr__parser *P, el_image *img, int gamma, float scale, const char *file) {
-  int64_t bad;
-  float v = 0.f;
-  float *rgb = elr_image_rgb(img, gamma, scale, &bad, &v);
-  int w = img->width;
-  if (rgb) return rgb;
-  el_image_free(img);
-  if (bad < 0) { snprintf(P->err, P->errlen, "out of memory"); longjmp(P->jb, 1); }
-  if (!isfinite(v))
-    elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) is %s", P->dir_name, file, (int)(bad % w), (int)(bad / w),
-               v != v ? "NaN" : "infinite");
-  elr__failf(P, P->dir_file, P->dir_line, "%s: image \"%s\": texel (%d, %d) times scale %g overflows", P->dir_name, file, (int)(bad % w),
-             (int)(bad / w), scale);
-}
 
 /* glass's and uber's index of refraction: pbrt-v3's "eta", else "index" (1.5); a number must be one
  * the Fresnel and refraction maths can use (textures are kept in [1e-3, 1e3] where evaluated) */
@@ -194,14 +169,11 @@ void elr__texture(elr__parser *P, const char *name, const char *vtype, const cha
     const char *wrap = elr__pstring(P, "wrap", "repeat");
     float scale = (float)elr__pfloat(P, "scale", 1.0);
     float maxan = (float)elr__pfloat(P, "maxanisotropy", 8.0);
-    el_mipmap_options mo;
     el_mipmap_filter filter = EL_MIPMAP_FILTER_EWA;
     el_mipmap_wrap wr;
     int gamma;
     size_t fl = strlen(fn);
-    el_image img;
-    float *rgb;
-    char *path;
+    elr_imagemap_desc *D;
     if (elr__find(P, "filter")) {
       const char *f = elr__pstring(P, "filter", "bilinear");
       if (!strcmp(f, "ewa") || !strcmp(f, "EWA")) filter = EL_MIPMAP_FILTER_EWA;
@@ -218,44 +190,17 @@ void elr__texture(elr__parser *P, const char *name, const char *vtype, const cha
     elr__check_range(P, "maxanisotropy", maxan, 1.0, 1024.0); /* mipmap.h's limit */
     if (!fn[0]) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": imagemap needs \"string filename\"", name);
     gamma = elr__pbool(P, "gamma", (fl > 4 && (!strcmp(fn + fl - 4, ".png") || !strcmp(fn + fl - 4, ".tga"))));
-    path = elr__resolve(P, fn);
-    elr__load_image(P, path, P->dir_line, &img);
-    rgb = elr__to_rgb(P, &img, gamma, scale, path);
-    if (is_float) { /* pbrt-v3 converts to float by luminance */
-      size_t i, n = (size_t)img.width * (size_t)img.height;
-      for (i = 0; i < n; i++) {
-        float y = 0.212671f * rgb[3 * i] + 0.715160f * rgb[3 * i + 1] + 0.072169f * rgb[3 * i + 2];
-        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = y;
-      }
-    }
-    { /* <<Flip image in y; texture coordinate space has (0,0) at the lower left corner>> (pbrt-v3) */
-      int y, W = img.width, H = img.height;
-      size_t row = (size_t)W * 3, k;
-      for (y = 0; y < H / 2; y++)
-        for (k = 0; k < row; k++) {
-          float tmp = rgb[(size_t)y * row + k];
-          rgb[(size_t)y * row + k] = rgb[(size_t)(H - 1 - y) * row + k];
-          rgb[(size_t)(H - 1 - y) * row + k] = tmp;
-        }
-    }
     t.kind = ELR_TEX_IMAGE;
-    {
-      double t0 = elr_now();
-      el_result r = EL_ERROR_OUT_OF_MEMORY;
-      /* pbrt-v3's ImageTexture: a MIPMap of the image (mipmap.h; the texture owns it) */
-      memset(&mo, 0, sizeof mo);
-      mo.wrap_u = mo.wrap_v = wr;
-      mo.filter = filter;
-      mo.max_anisotropy = maxan;
-      t.mip = (el_mipmap *)calloc(1, sizeof *t.mip);
-      if (t.mip) r = el_mipmap_init(t.mip, rgb, img.width, img.height, 3, &mo);
-      if (r != EL_SUCCESS) { free(t.mip); t.mip = NULL; }
-      free(rgb);
-      s->t_images += elr_now() - t0;
-      s->bytes_textures += (size_t)img.width * (size_t)img.height * 3 * sizeof(float);
-      el_image_free(&img);
-      if (r != EL_SUCCESS) elr__failf(P, P->dir_file, P->dir_line, "Texture \"%s\": MIP map: %s", name, el_result_string(r));
-    }
+    /* the description scene.c's elr_scene_make_textures reads the image of and makes the MIP map of */
+    ELR_PUSH(P, s->texdesc, s->ntexdesc, s->captexdesc, elr_imagemap_desc);
+    D = &s->texdesc[s->ntexdesc - 1];
+    D->tex = s->ntex; /* the slot the texture takes below */
+    D->gamma = gamma; D->is_float = is_float; D->scale = scale; D->maxaniso = maxan;
+    D->filter = (int)filter; D->wrap = (int)wr;
+    D->line = P->dir_line;
+    D->file = elr__heap_strdup(P, P->dir_file ? P->dir_file : "?");
+    D->name = elr__heap_strdup(P, name);
+    D->path = elr__heap_strdup(P, elr__resolve(P, fn));
   } else {
     char key[200];
     snprintf(key, sizeof key, "Texture %.180s", cls);

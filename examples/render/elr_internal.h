@@ -221,6 +221,17 @@ typedef struct elr_infinite_desc {
   char *portal_file; int portal_line;     /* and the portal's */
 } elr_infinite_desc;
 
+/* Texture "imagemap" as the parser read it: scene.c's elr_scene_make_textures reads the image and makes
+ * the MIP map of texture s->tex[tex] (pbrt-v3's ImageTexture constructor, after the parse) */
+typedef struct elr_imagemap_desc {
+  int tex;                  /* its index in s->tex */
+  char *path, *name;        /* the image (resolved) and the texture's name, for messages */
+  int gamma, is_float;      /* sRGB-decode 8-bit images; a float texture (luminance) */
+  float scale, maxaniso;
+  int filter, wrap;         /* el_mipmap_filter, el_mipmap_wrap */
+  char *file; int line;     /* the directive */
+} elr_imagemap_desc;
+
 typedef struct elr_scene_desc {
   /* camera */
   elr_xform cam2world;
@@ -254,6 +265,7 @@ struct elr_scene {
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
   elr_infinite_desc *envdesc; int nenvdesc, capenvdesc; /* api_lights.c's infinite lights, for elr_scene_make_lights */
+  elr_imagemap_desc *texdesc; int ntexdesc, captexdesc; /* api_materials.c's image textures, for elr_scene_make_textures */
   int warnings;
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
    * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */
@@ -301,8 +313,10 @@ void elr_error(char *err, size_t errlen, const char *file, int line, const char 
  * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
 int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
                        char *err, size_t errlen);
-/* scene.c: the lights the parser described (elr_infinite_desc), then the Embree scene */
+/* scene.c: the lights and image textures the parser described (elr_infinite_desc, elr_imagemap_desc), then
+ * the Embree scene */
 int elr_scene_make_lights(elr_scene *s, char *err, size_t errlen);
+int elr_scene_make_textures(elr_scene *s, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 

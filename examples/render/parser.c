@@ -12,7 +12,8 @@
  *   api.c             the directives, the CTM, the graphics state;        core/api.cpp's pbrtTranslate ...
  *                     elr_parse                                           pbrtParseFile
  * The parser describes: shapes, materials and textures are added to the scene as they are read; an
- * infinite light is an elr_infinite_desc that scene.c builds (the lights never call back).
+ * image texture is an elr_imagemap_desc and an infinite light an elr_infinite_desc that scene.c builds
+ * after the parse (reading their images), so that no parser file calls the library or lights.c.
  *
  * Errors abort the parse with "file:line: message" (longjmp to elr_parse; every allocation of the parse
  * lives in an arena freed there, scene pieces belong to the scene). Unsupported directives and

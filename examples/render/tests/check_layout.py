@@ -10,8 +10,9 @@ one .c file), draws an edge a -> b where file a uses a function or datum that fi
     README.md's file map: the parser describes, scene.c builds, the lights and the samplers' shared
     helpers are called, never calling back), or
   - one of the rules below is broken: lights.c calls into the scene, the parser or an integrator, or
-    the parser's files call into the lights or the scene (they describe; scene.c builds), or a file of
-    the parser calls one that comes after it in ORDERS (parser.c < paramset.c < api_*.c < api.c).
+    the parser's files call into the lights, the scene, the library or the image reader (they describe;
+    scene.c builds), or a file of the parser calls one that comes after it in ORDERS (parser.c <
+    paramset.c < api_*.c < api.c).
 Before looking at the library it checks itself on two made-up symbol tables, one with a circle and one
 without, so that a detector that sees nothing fails too.
 """
@@ -23,7 +24,8 @@ import sys
 RULES = [
     ("lights", "scene|parser*|paramset*|api*|integrator*|render*",
      "the lights are called by the integrators and built by scene.c; they trace no rays"),
-    ("parser*|paramset*|api*", "lights|scene", "the parser describes the scene; scene.c builds it"),
+    ("parser*|paramset*|api*", "lights|scene|envlight_impl|imageio",
+     "the parser describes the scene; scene.c builds it (reads the images, makes the lights and MIP maps)"),
     ("sampler_*", "sampler", "the samplers' shared helpers are inline or in lowdiscrepancy.c; sampler.c dispatches to them"),
 ]
 

@@ -354,10 +354,12 @@ static void errors(void) {
   expect_error("int.pbrt", "Film \"image\" \"integer xresolution\" 10.5\nWorldBegin\nWorldEnd\n", "int.pbrt:1:", "not an integer");
   expect_error("include.pbrt", "WorldBegin\n\nInclude \"nothere.pbrt\"\nWorldEnd\n", "include.pbrt:3:", "nothere.pbrt");
   expect_error("image.pbrt", "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"missing.hdr\"\nWorldEnd\n", "image.pbrt:2:", "missing.hdr");
-  /* the environment's image is read after the parse (scene.c builds the light the parser described): its
-   * error still names the included file and line the LightSource came from */
+  /* the environment's and the image textures' images are read after the parse (scene.c builds what the
+   * parser described): their errors still name the included file and line of the directive */
   rt_write("light_inc.pbrt", "# the light\nLightSource \"infinite\" \"string mapname\" \"missing2.hdr\"\n");
   expect_error("incimage.pbrt", "WorldBegin\nInclude \"light_inc.pbrt\"\nShape \"sphere\"\nWorldEnd\n", "light_inc.pbrt:2:", "missing2.hdr");
+  rt_write("tex_inc.pbrt", "\n\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"missing3.png\"\n");
+  expect_error("inctex.pbrt", "WorldBegin\nInclude \"tex_inc.pbrt\"\nWorldEnd\n", "tex_inc.pbrt:3:", "missing3.png");
   expect_error("res.pbrt", "Film \"image\" \"integer xresolution\" 1000000000\nWorldBegin\nWorldEnd\n", "res.pbrt:1:", "out of range");
   expect_error("spp.pbrt", "Sampler \"halton\" \"integer pixelsamples\" -4\nWorldBegin\nWorldEnd\n", "spp.pbrt:1:", "out of range");
   expect_error("nan.pbrt", "WorldBegin\nTranslate 1 nan 2\nWorldEnd\n", "nan.pbrt:2:", "expected a number");
