@@ -65,9 +65,9 @@ int elr_sampler_kind_from_name(const char *name);
 #define ELR_DEFAULT_SAMPLER ELR_SAMPLER_ZEROTWO
 #define ELR_DEFAULT_SPP 16
 
-/* the per-tile loops: one sample at a time (the reference), a pixel's light samples drawn together
- * (render_batched.c), waves of samples (render_wave.c) */
-enum { ELR_LOOP_ONE = 0, ELR_LOOP_BATCHED = 1, ELR_LOOP_WAVE = 2 };
+/* the per-tile loops: one sample at a time (the reference), waves of samples (render_wave.c, the fast
+ * one). 1 was the batched loop (a pixel's light samples drawn together), folded into the wave loop. */
+enum { ELR_LOOP_ONE = 0, ELR_LOOP_WAVE = 2 };
 enum { ELR_SPLIT_OFF = 0, ELR_SPLIT_AUTO = 1 };
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
@@ -82,9 +82,10 @@ typedef struct elr_render_options {
                          paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   int env_sampling;   /* -1: the infinite lights' "sampling"; 1 product sampling (map x cosine), 0 the map alone */
   int tile_size;      /* 0: 16 */
-  int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
-                         1: one at a time inside each sample's shading; the same image either way */
-  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the batched and wave loops only where
+  int no_batch;       /* 0: the wave loop where it applies (its environment light samples drawn together),
+                         1: the reference loop (one at a time inside each sample's shading); the same image
+                         except for the path tracer with a pixel sampler (render.c) */
+  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the wave loop only where
                          render.c can use them: the environment the only light that emits, and sampled) */
   int split;          /* -1: the scene's ("splitting", default auto); ELR_SPLIT_OFF: each light's "samples";
                          ELR_SPLIT_AUTO: chosen by a pilot (render.c); N >= 2: N light and BSDF sample pairs per
@@ -135,7 +136,7 @@ typedef struct elr_stats {
   uint64_t env_product_samples, env_map_samples; /* environment light samples by product sampling, by the map alone */
   uint64_t env_light_only_samples;               /* of the product ones: taken alone, without a BSDF sample */
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
-  int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
+  int light_samples_batched; /* the wave loop drew the environment's light samples together (el_envlight_sample_li_n) */
   int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */
   double t_embree_loop;      /* the wave loop: seconds inside Embree, summed over the threads (0 for the other loops) */
   int split, split_auto;     /* light and BSDF sample pairs per camera sample given by splitting (1: none); chosen by the pilot */

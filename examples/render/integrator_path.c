@@ -18,7 +18,7 @@
 #include <string.h>
 
 /* pbrt-v3's PathIntegrator::Li along the path state p: a camera ray (elr_path_begin) or the rest of a
- * path whose first vertex render_batched.c shaded. */
+ * path already under way (its state after a first vertex shaded elsewhere). */
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts) {
   const elr_scene *s = C->s;
   elr_v3 L = p->L, beta = p->beta;

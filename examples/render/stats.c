@@ -36,9 +36,9 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   if (st->nothing_emits) fprintf(f, "  light sampling     no: nothing emits (the image is black; no ray traced)\n");
   else
     fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
-            st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+            st->light_samples_batched ? "; a wave's environment samples drawn together" : "");
   if (!st->nothing_emits) {
-    static const char *loops[3] = {"one sample at a time (the reference)", "a pixel's light samples together (render_batched.c)",
+    static const char *loops[3] = {"one sample at a time (the reference)", "?" /* (the batched loop, gone) */,
                                    "waves of up to 256 camera samples (render_wave.c)"};
     static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
     fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
