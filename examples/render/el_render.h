@@ -97,7 +97,7 @@ typedef struct elr_render_options {
                            under a sun map, the product around the mirror direction otherwise (0: never; issue 20) */
   float env_light_alpha; /* < 0: ELR_ENV_LIGHT_ALPHA; else with product sampling, directlighting vertices whose lobes
                             are diffuse or of alpha >= it take the light sample alone (no BSDF sample; inf: never) */
-  int env_sun;          /* issue 22 (sun.c): 1 on for a product-sampled map with hot spots: a pilot learns where they are
+  int env_sun;          /* issue 22 (sun.c): 1 on for a product-sampled sun map (elr__sun_share) with hot spots: a pilot learns where they are
                            hidden and the light samples there go to the rest of the map x cosine (1.3-1.9x less variance
                            in the sun's shadow at equal samples, but 1.3-1.8x the render's CPU time on the bench scenes:
                            bench/bench_sun_render.c); 0 and -1 (the default, until its per-sample cost is down) off */

@@ -589,6 +589,10 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
   for (i = 0; i < s->nlight; i++) {
     const elr_light *l = &s->light[i];
     if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l) || !l->product || l->portal || !l->env_sample) continue;
+    /* only under a sun (elr__sun_share): on studio.hdr's lamps the cache gave 2.4x MORE variance in the
+     * largest lamp's shadow (its other lamps stay lit and the rest x cosine draws them without the cosine:
+     * envlight.h's NOTES ON HOT SPOTS 4), bench/bench_sun_render.c on scenes/bench_studio.pbrt */
+    if (!s->env_sunny) return 0;
     if (elr_sun_build(C, l, fb, nthreads, sun) != 0) return -1;
     C->sun = *sun;
     if (st && *sun) {

@@ -9,7 +9,7 @@
  * 1.5x lower (direct lighting; measured 1.9x, median pixel 2.9x) and 1.2x (path tracing; measured 1.35x),
  * the lit pixels' within 5% (they keep their density). DETERMINISTIC: the same image for 1 and 2 threads
  * and for the one-sample and wave loops; off by default. --stats: the hot spot and the sharing of the samples. A map
- * without a hot spot, or --sun off: no cache. Hostile: a camera that sees no surface (the pilot finds no
+ * without a hot spot, a map of lamps without a sun (studio.hdr), or --sun off: no cache. Hostile: a camera that sees no surface (the pilot finds no
  * cell), 1 x 1 pixel, a crop window: finite images. A few seconds. */
 #include "render_test_util.h"
 #include "sun_measure.h"
@@ -103,6 +103,14 @@ static void no_spot(void) {
   elr_render_options_default(&o);
   o.spp = 2; o.quiet = 1; o.nthreads = 1; o.env_sun = 1;
   rt_check(elr_render(s, &o, &im, &st, err, sizeof err) == 0 && !st.sun_used, "a map without a hot spot (overcast), --sun on: no cache");
+  elr_image_free(&im);
+  elr_scene_free(s);
+  snprintf(text, sizeof text, "Camera \"perspective\"\nFilm \"image\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
+           "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"%s/envmaps/studio.hdr\"\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -1 -1 2  1 -1 2  1 1 2  -1 1 2 ]\nWorldEnd\n", EL_TEST_DATA_DIR);
+  s = rt_load("studio.pbrt", text, err, sizeof err);
+  if (!s) { rt_check(0, "studio scene loads: %s", err); return; }
+  rt_check(elr_render(s, &o, &im, &st, err, sizeof err) == 0 && !st.sun_used, "lamps without a sun (studio.hdr: 4 hot spots), --sun on: no cache");
   elr_image_free(&im);
   elr_scene_free(s);
 }
