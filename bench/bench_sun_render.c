@@ -5,6 +5,8 @@
  *                    threads (2), scenes (scenes/sun_shadow_object.pbrt: direct lighting; scenes/sun_porch.pbrt:
  *                    path tracing, maxdepth 3; scenes/bench_city.pbrt: city.hdr's sun, direct lighting).
  *                    Run from the repository's root.
+ *   bench_sun_render --csv [SPP [SEEDS [THREADS [SCENE ...]]]]   the same as CSV rows
+ *                    (kind,option,scene,class,spp,pixels,mean,variance,cpu_s; option off / on)
  *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
  *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below
  *   bench_sun_render --picture [OUT.png]   where 2000 light samples of a shadowed ground point land, without
@@ -205,11 +207,15 @@ int main(int argc, char **argv) {
   if (argc > 1 && !strcmp(argv[1], "--shadow-point")) return shadow_point();
   if (argc > 1 && !strcmp(argv[1], "--picture")) return picture(argc > 2 ? argv[2] : "out/03-sun-samples.png");
   static const char *defaults[3] = {"scenes/sun_shadow_object.pbrt", "scenes/sun_porch.pbrt", "scenes/bench_city.pbrt"};
+  int csv = argc > 1 && !strcmp(argv[1], "--csv");
+  if (csv) { argc--; argv++; }
+  {
   int spp = argc > 1 ? atoi(argv[1]) : 16, ns = argc > 2 ? atoi(argv[2]) : 16, nt = argc > 3 ? atoi(argv[3]) : 2;
   const char **scenes = argc > 4 ? (const char **)(argv + 4) : defaults;
   int nsc = argc > 4 ? argc - 4 : 3, i, c;
   if (spp < 1 || ns < 2 || ns > 1024 || nt < 1) { fprintf(stderr, "usage: bench_sun_render [SPP [SEEDS>=2 [THREADS [SCENE ...]]]]\n"); return 1; }
-  printf("bench_sun_render: %d spp, %d seeds, %d threads\n", spp, ns, nt);
+  if (csv) printf("kind,option,scene,class,spp,pixels,mean,variance,cpu_s\n");
+  else printf("bench_sun_render: %d spp, %d seeds, %d threads\n", spp, ns, nt);
   for (i = 0; i < nsc; i++) {
     elr_scene *s = NULL;
     char err[512];
@@ -237,6 +243,15 @@ int main(int argc, char **argv) {
     if (!cls) { printf("%s: no hot spot\n", scenes[i]); elr_scene_free(s); continue; }
     if (sm_run(s, spp, ns, 0, nt, cls, w, h, &off) || sm_run(s, spp, ns, 1, nt, cls, w, h, &on)) return 1;
     toff = off.cpu / ns; ton = on.cpu / ns + on.st.t_sun_cpu;
+    if (csv) {
+      for (c = 1; c <= 2; c++) {
+        printf("sun_cache,off,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, off.n[c], off.mean[c], off.var[c], toff);
+        printf("sun_cache,on,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, on.n[c], on.mean[c], on.var[c], ton);
+      }
+      sm_free(&off); sm_free(&on); free(cls);
+      elr_scene_free(s);
+      continue;
+    }
     printf("%s (%dx%d, %s): cpu per render off %.3f s, on %.3f s (pilot %.3f s CPU); %.1f%% of the sun's light samples at lowered "
            "vertices, %.1f%% in a spot's cone (off: see --stats)\n",
            scenes[i], w, h, on.st.integrator_path ? "path" : "directlighting", toff, ton, on.st.t_sun_cpu,
@@ -281,6 +296,7 @@ int main(int argc, char **argv) {
     }
     sm_free(&off); sm_free(&on); free(cls);
     elr_scene_free(s);
+  }
   }
   return 0;
 }
