@@ -119,6 +119,7 @@ typedef struct elr_light_stats {
   size_t env_portal_bytes;
   float env_portal_share; /* "float portalmapshare": the map's share where a portal is seen */
   uint64_t env_portal_used, env_portal_fallback; /* light samples through the portals, and by the map behind them */
+  int env_portal_compensated; /* the portals' density is MIS-compensated (max(lum - mean, 0)) */
 } elr_light_stats;
 
 typedef struct elr_stats {

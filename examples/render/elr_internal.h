@@ -203,6 +203,8 @@ typedef struct elr_light {
    * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
   el_envlight_portal *portal;
   float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
+  float *portal_points;    /* the portals' points (portal_count x 12 floats), to rebuild the tables when a */
+  int portal_count, portal_compensated; /* render asks for another compensation (--compensated): the one built */
 } elr_light;
 
 typedef struct elr_scene_desc {

@@ -329,9 +329,6 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
-    /* a portal light's density depends on the shading point: the batched and wave loops, which draw
-     * the map's samples ahead of the points, do not apply (the reference loop below) */
-    if (C->batch_light && C->batch_light->portal) C->batch_light = NULL;
   }
   /* the per-tile loop: the batched and wave loops need batch_light; the default is the wave loop
    * (bench_render --loops measures them), except for the path tracer with a pixel sampler (stratified,
@@ -346,7 +343,9 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
                                                                                               : ELR_LOOP_WAVE;
     /* product sampling has no n-at-once form (el_envlight_sample_li_cos takes each sample's normal):
      * the wave loop draws them one after another; the batched loop, made for sample_li_n, is not used */
-    if (C->batch_light->product && C->loop == ELR_LOOP_BATCHED) C->loop = ELR_LOOP_ONE;
+    /* (nor for portals, whose density depends on the shading point: the wave loop samples them at each
+     * vertex, el_envlight_portal_sample_li) */
+    if ((C->batch_light->product || C->batch_light->portal) && C->loop == ELR_LOOP_BATCHED) C->loop = ELR_LOOP_ONE;
   }
   C->wave_api = o->wave_api >= ELR_WAVE_API_SINGLE && o->wave_api <= ELR_WAVE_API_SOA ? o->wave_api : ELR_WAVE_API_DEFAULT;
   return 0;
@@ -363,7 +362,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->env_product_samples = T->env_product; st->env_map_samples = T->env_map; st->env_light_only_samples = T->env_light_only;
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
-  st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product;
+  st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product && !C->batch_light->portal;
   st->loop = C->loop; st->wave_api = C->wave_api; st->t_embree_loop = T->t_embree;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
@@ -412,6 +411,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     }
     if (l->kind == ELR_LIGHT_INFINITE && l->portal) {
       ls->env_portals = l->portal->count; ls->env_portal_bytes = el_envlight_portal_bytes(l->portal); ls->env_portal_share = l->portal->map_share;
+      ls->env_portal_compensated = l->portal->compensated;
       ls->env_portal_used = T->portal_used; ls->env_portal_fallback = T->portal_fallback; /* (the one emitting light with portals) */
     }
     if (l->kind == ELR_LIGHT_AREA) {

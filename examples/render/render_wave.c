@@ -72,6 +72,8 @@ struct elr_wave {
   float u[2 * ELR_WAVE], wi[3 * ELR_WAVE], Le[3 * ELR_WAVE], pdf[ELR_WAVE];
   elr_v3 normal[ELR_WAVE]; /* product sampling: each light sample's normal (elr_bsdf_cos_normal), */
   int has_n[ELR_WAVE];     /* or 0: the map alone */
+  elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
+  elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
   elr_wave_rays rays, shadows;
 };
 
@@ -105,11 +107,21 @@ void elr_wave_free(elr_wave *W) {
 
 /* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
  * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
- * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does) */
-static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, float *wi, float *Le,
-                             float *pdf) {
+ * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does); with portals
+ * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct) */
+static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, const elr_v3 *pos,
+                             float *wi, float *Le, float *pdf, elr_tstats *ts) {
   int i, k, nm = 0, idx[ELR_WAVE];
   float um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
+  if (l->portal) {
+    for (i = 0; i < n; i++) {
+      float pp[3];
+      elr_to3(pos[i], pp);
+      if (el_envlight_portal_sample_li(l->portal, l->env_sample, pp, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i])) ts->portal_used++;
+      else ts->portal_fallback++;
+    }
+    return;
+  }
   if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
   for (i = 0; i < n; i++) {
     if (has_n[i]) {
@@ -161,6 +173,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
         W->has_n[n] = elr_bsdf_cos_normal(&q->b, wo, &W->normal[n]);
+        W->lpos[n] = W->h[j].p;
         lonly = elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
         W->light[np] = n++;
@@ -181,7 +194,8 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     float d[3], L3[3];
     if (!p->bray) continue;
     elr_to3(p->wb, d);
-    if (C->batch_light->product) {
+    if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+    else if (C->batch_light->product) {
       elr_v3 nc;
       int has = elr_bsdf_cos_normal(&W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
       p->bpdf_env = elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
@@ -191,7 +205,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     el_envlight_le(env, d, L3);
     p->Lb = elr_from3(L3);
   }
-  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->wi, W->Le, W->pdf);
+  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, ts);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
   for (k = 0; k < np; k++) {
@@ -282,6 +296,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_sampler_get2d(S, &W->u[2 * n]);
         elr_sampler_get2d(S, us);
         W->has_n[n] = elr_bsdf_cos_normal(b, wo, &W->normal[n]);
+        W->lpos[n] = h->p;
         if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
       }
@@ -291,11 +306,13 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_sampler_save(S, &W->pos[j]);
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
-    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne);
+    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, ts);
     for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
       int e = W->escaped[j];
       if (e < 0) continue;
-      if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
+      if (l->portal) /* (at the vertex the ray left, as elr_path_li's prev_p) */
+        W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
+      else if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
       else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) /* (only where the weight is
         * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
         W->pdf[e] = elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
@@ -355,6 +372,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
       p->specular = spec; p->prev_pdf = pdf;
       p->prev_has_n = elr_bsdf_cos_normal(b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
         W->alive[j] = 0; nalive--; continue;
