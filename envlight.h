@@ -664,8 +664,9 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
 #define EL_ENVLIGHT_PORTAL_MAX 16
 
 typedef struct el_envlight_portal_options {
-  int resolution;  /* rectified image texels per axis, 4..4096; 0: the map's height within 64..2048 (a
-                      rectified texel about a map texel at the window's centre: a sun stays sharp) */
+  int resolution;  /* rectified image texels per axis, 4..4096; 0: twice the map's height within 64..2048
+                      (about 2 x 2 rectified texels per map texel at the window's centre: a sun, which
+                      le() spreads bilinearly over 2 x 2 map texels, stays sharp) */
   int supersample; /* importance lookups per texel and axis, 1..16; 0: 2 */
   int compensated; /* 1: density max(lum - mean, 0) (the mean over the portal's hemisphere): MIS only */
   float map_share; /* 0..1: the share of samples drawn by the map's own sample_li where a portal is seen
@@ -4526,6 +4527,14 @@ done:
 /* >> portals (issue 23; NOTES ON PORTALS below the declarations) */
 
 #define EL_ENVLIGHT__PORTAL_UNITS 1099511627776.0 /* 2^40: the quantised mass of the largest portal image */
+/* A hint, no effect on any result: the binary searches below start loading the table entries of both
+ * possible next steps, so that one step's cache misses overlap the current step's (the plain search
+ * waits for one miss after another) */
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__PORTAL_PREFETCH(a) __builtin_prefetch(a)
+#else
+#define EL_ENVLIGHT__PORTAL_PREFETCH(a) ((void)(a))
+#endif
 
 /* atan2(x, z) / pi for z > 0, in (-1/2, 1/2) (the rectified angle of a direction, in turns of pi). */
 static double el_envlight__portal_angle(double x, double z) {
@@ -4659,7 +4668,7 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
     memcpy(p->error, "portal count outside 1..16", 27);
     return EL_ERROR_INVALID_ARGUMENT;
   }
-  R = o.resolution ? o.resolution : (light->height < 64 ? 64 : light->height > 2048 ? 2048 : light->height);
+  R = o.resolution ? o.resolution : (light->height < 32 ? 64 : light->height > 1024 ? 2048 : 2 * light->height);
   ss = o.supersample ? o.supersample : 2;
   if (R < 4 || R > 4096 || ss < 1 || ss > 16 || !(o.map_share >= 0.0f && o.map_share <= 1.0f)) {
     memcpy(p->error, "resolution outside 4..4096, supersample outside 1..16 or map_share outside 0..1", 80);
@@ -4888,8 +4897,23 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   lo = (int)w[k].y0; if (lo > R - 1) lo = R - 1;
   hi = (int)w[k].y1; if ((double)hi < w[k].y1) hi++; /* ceil */
   if (hi > R) hi = R;
+  { /* the first step's row and both of the next step's */
+    int mid = (lo + hi) >> 1, g[3], q;
+    g[0] = mid; g[1] = (lo + mid) >> 1; g[2] = (mid + hi) >> 1;
+    for (q = 0; q < 3; ++q) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ib);
+    }
+  }
   while (hi - lo > 1) {
-    int mid = (lo + hi) >> 1;
+    int mid = (lo + hi) >> 1, q, g[4];
+    /* (the rows of the four possible steps after the next: the next step's were asked for last time) */
+    g[0] = (lo + ((lo + mid) >> 1)) >> 1; g[1] = (((lo + mid) >> 1) + mid) >> 1;
+    g[2] = (mid + ((mid + hi) >> 1)) >> 1; g[3] = (((mid + hi) >> 1) + hi) >> 1;
+    for (q = 0; q < 4; ++q) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ib);
+    }
     if (el_envlight__portal_k(S, R, &w[k], mid) <= t) lo = mid;
     else hi = mid;
   }
@@ -4912,7 +4936,9 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   {
     int a = w[k].ia, b = w[k].ib + 1;
     while (b - a > 1) {
-      int mid = (a + b) >> 1;
+      int mid = (a + b) >> 1, m0 = (a + mid) >> 1, m1 = (mid + b) >> 1;
+      EL_ENVLIGHT__PORTAL_PREFETCH(r0 + m0); EL_ENVLIGHT__PORTAL_PREFETCH(r1 + m0); /* (both next steps) */
+      EL_ENVLIGHT__PORTAL_PREFETCH(r0 + m1); EL_ENVLIGHT__PORTAL_PREFETCH(r1 + m1);
       if ((double)(r1[mid] - r0[mid]) <= t) a = mid;
       else b = mid;
     }

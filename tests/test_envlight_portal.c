@@ -326,7 +326,7 @@ static void test_pdf_zero_and_fallback(void) {
   check(!el_envlight_portal_sees(&P, pos), "on the plane: sees no portal", 0, 0);
   pos[0] = NAN;
   check(!el_envlight_portal_sees(&P, pos), "NaN point: sees no portal", 0, 0);
-  check(el_envlight_portal_bytes(&P) == 65u * 65u * 8u && P.res == 64, "8 bytes per rectified texel; the default resolution is the map height (64)", (double)el_envlight_portal_bytes(&P), 0);
+  check(el_envlight_portal_bytes(&P) == 129u * 129u * 8u && P.res == 128, "8 bytes per rectified texel; the default resolution is twice the map height (128)", (double)el_envlight_portal_bytes(&P), 0);
   el_envlight_portal_free(&P);
   el_envlight_free(&L);
 }
