@@ -124,6 +124,11 @@ static void run_case(const char *name, const el_envlight *light, const float *pt
   check(r == EL_SUCCESS, what, (double)r, 0);
   if (r != EL_SUCCESS) return;
   for (k = 0; k < count; ++k) tp_make(&T[k], pts + 12 * k, pos);
+  if (opt && opt->map_share_outside) { /* the share only behind some portal's plane (the test's own frame) */
+    int behind = 0;
+    for (k = 0; k < count; ++k) behind |= !T[k].seen;
+    if (!behind) share = 0;
+  }
   memset(obs, 0, sizeof obs);
   /* expected probabilities per bin: midpoint quadrature of pdf * dw/dab */
   for (k = 0; k < count; ++k)
@@ -279,6 +284,12 @@ static void test_cases(void) {
     el_envlight_portal_options p3 = po;
     p3.map_share = 0.25f;
     run_case("two windows, map share 0.25 (defensive mixture)", &L, pts, 2, pos, &p3, 100000);
+    p3.map_share_outside = 1; /* in front of both portals: the pure portal density */
+    run_case("two windows, map share 0.25 outside only, a point inside", &L, pts, 2, pos, &p3, 100000);
+    {
+      float out[3] = {2.5f, 0.3f, 0.8f}; /* behind window 1's plane, in front of window 2's: the mixture */
+      run_case("two windows, map share 0.25 outside only, a point behind window 1", &L, pts, 2, out, &p3, 100000);
+    }
   }
   el_envlight_free(&L);
 }

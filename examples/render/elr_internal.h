@@ -21,7 +21,7 @@
 #ifndef ELR_PI
 #define ELR_PI 3.14159265358979323846f
 /* LightSource "infinite" "float portalmapshare" default (bench/bench_portal_render.c measures it) */
-#define ELR_PORTAL_MAP_SHARE 0.1
+#define ELR_PORTAL_MAP_SHARE 0.5
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f

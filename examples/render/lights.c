@@ -338,6 +338,7 @@ static int elr__portal_build(elr_light *l, int compensated, char *err, size_t er
     memset(&po, 0, sizeof po);
     po.compensated = compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
     po.map_share = l->portal_share;
+    po.map_share_outside = 1; /* (the share only behind some portal's plane: a room's inside keeps the pure portal density) */
     r = el_envlight_portal_init(P, l->env, l->portal_points, l->portal_count, &po);
   }
   if (r != EL_SUCCESS) {
