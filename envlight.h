@@ -708,7 +708,8 @@ EL_DEF void el_envlight_portal_free(el_envlight_portal *p);
  * when the portals were used, 0 when pos sees no portal (it lies behind every portal's plane or on it)
  * and the map's own sample_li was used instead. With options.map_share s > 0, where pos sees a portal
  * a share s of the samples comes from the map's sample_li and the pdf is the mixture's,
- * (1 - s) portal + s map (then directions outside the portals keep the map's share). */
+ * (1 - s) portal + s map (then directions outside the portals keep the map's share); with
+ * options.map_share_outside only where pos also lies on or behind some portal's plane. */
 EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
                                         const float u[2], float wi[3], float rgb[3], float *pdf);
 /* The density with which sample_li picks wi at pos: 0 for a direction through no portal (when pos sees
@@ -745,17 +746,20 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    window's rows and the position in the row by linear inversion; then the column by a binary search
  *    over the row's prefix (2 reads per step). pdf = q_texel R^2 / (window mass) / (dw/d(a,b)), the exact
  *    density of those steps. Several portals: one is picked by the windows' masses with the same u.
- *    No rectified RGB image: radiance is le() of the map. COST (bench/bench_portal.c, 4 floor points
- *    of a room, gcc -O3, a shared loaded 2-core machine): 267-313 ns per sample with the radiance and
- *    the pdf, against 1280-1480 ns for a plain port of pbrt-v4's sampler (bisection over a double
- *    SAT) at the same resolution: 4.7-4.9x less; at equal variance on a smooth sky (the same density:
- *    relative variance 0.039 both; the map's sample_li: 50). MEMORY: 8 bytes per rectified texel
- *    (pbrt-v4: 24); the default resolution is the map's height (city, 1024x512: 512^2, 2 MB per
- *    portal, built in about 100 ms), because a sun must stay sharp: 256^2 left 2x the variance of
- *    the irradiance and 2x of a rendered room's pixels. The renderer (bench/bench_portal_render.c):
- *    time to unit variance 112x better on an overcast sky, 4.3x on city with its sun shining in
- *    (path traced, depth 3: the rest is indirect light from the sunlit floor); direct light alone
- *    (depth 1) 1600x and 11x.
+ *    No rectified RGB image: radiance is le() of the map. The searches prefetch the rows of the steps
+ *    ahead (at 1024^2 most steps miss the cache). COST (bench/bench_portal.c, 4 floor points of a room,
+ *    gcc -O3, a shared 2-core machine): 206-236 ns per sample with the radiance and the pdf, against
+ *    1006-1175 ns for a plain port of pbrt-v4's sampler (bisection over a double SAT) at the same
+ *    resolution: 4.9x less; at equal variance (the same density: relative variance 0.039 both on a
+ *    smooth sky, 0.045 / 0.047 on city; the map's sample_li: 50 / 25). MEMORY: 8 bytes per rectified
+ *    texel (pbrt-v4: 24); the default resolution is twice the map's height (city, 1024x512: 1024^2,
+ *    8 MB per portal, built in about 0.3 s), because le() spreads a sun bilinearly over 2 x 2 map
+ *    texels and a density constant per rectified texel follows that only with about 2 x 2 rectified
+ *    texels per map texel: at the map's height the irradiance's variance was 3.6x higher (0.165) and
+ *    the rendered room's gain 5.3x instead of 8x. The renderer (bench/bench_portal_render.c, path
+ *    traced, depth 3): time to unit variance 8.0x better on city with its sun shining in (the rest is
+ *    indirect light from the sunlit floor, which paths find by BSDF sampling), 166x on an overcast
+ *    sky; direct light alone (depth 1) 37x and 1800x.
  * 4. FALLBACK: a point on or behind every portal's plane (or seeing windows of zero mass) uses the map's
  *    sample_li / pdf_li, so the strategy stays unbiased everywhere; sample_li returns which was used.
  *    Directions through no portal have pdf 0 (as pbrt-v4): the caller's BSDF samples must find them.
@@ -4920,21 +4924,21 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   hi = (int)w[k].y1; if ((double)hi < w[k].y1) hi++; /* ceil */
   if (hi > R) hi = R;
   { /* the first step's row and both of the next step's */
-    int mid = (lo + hi) >> 1, g[3], q;
+    int mid = (lo + hi) >> 1, g[3], gi;
     g[0] = mid; g[1] = (lo + mid) >> 1; g[2] = (mid + hi) >> 1;
-    for (q = 0; q < 3; ++q) {
-      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ia);
-      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ib);
+    for (gi = 0; gi < 3; ++gi) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ib);
     }
   }
   while (hi - lo > 1) {
-    int mid = (lo + hi) >> 1, q, g[4];
+    int mid = (lo + hi) >> 1, gi, g[4];
     /* (the rows of the four possible steps after the next: the next step's were asked for last time) */
     g[0] = (lo + ((lo + mid) >> 1)) >> 1; g[1] = (((lo + mid) >> 1) + mid) >> 1;
     g[2] = (mid + ((mid + hi) >> 1)) >> 1; g[3] = (((mid + hi) >> 1) + hi) >> 1;
-    for (q = 0; q < 4; ++q) {
-      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ia);
-      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[q] * stride + w[k].ib);
+    for (gi = 0; gi < 4; ++gi) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ib);
     }
     if (el_envlight__portal_k(S, R, &w[k], mid) <= t) lo = mid;
     else hi = mid;
