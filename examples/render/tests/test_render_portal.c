@@ -2,7 +2,7 @@
  * one window by the CC0 city map (its sun shines in) and by a generated overcast sky: the image with the
  * portal agrees with the image without it within noise (unbiased: the means of the lit floor and of
  * the whole image, over 4 seeds each), and its pixels' error against a high-spp reference is smaller;
- * --stats reports the strategy; the wave loop samples the portals as the reference loop (bit for bit with
+ * (path, and direct lighting on city); --stats reports the strategy; the wave loop samples the portals as the reference loop (bit for bit with
  * halton, within noise with a pixel sampler); --compensated rebuilds the portal's tables compensated; a
  * portal that is not a rectangle, or on a light without a map, is an error naming the problem. Small
  * images, a few seconds. */
@@ -187,6 +187,9 @@ int main(void) {
   rt_mkdir("portal");
   compare("city.hdr");
   compare("overcast.pfm");
+  g_integrator = "directlighting"; /* (the direct-lighting integrator: its wave loop's first vertex too) */
+  compare("city.hdr");
+  g_integrator = "path";
   loops("city.hdr", "path");
   loops("city.hdr", "directlighting");
   compensated("city.hdr");
