@@ -1,7 +1,8 @@
 /* lights.c: the lights and the one interface the integrators see them through (the book's chapter 12,
  * Light Sources, and section 14.2, Sampling Light Sources).
  *
- * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample) and
+ * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample is
+ * integrator.c's elr_light_unoccluded: the lights trace no rays) and
  * lights/point.cpp (PointLight), lights/distant.cpp (DistantLight), lights/infinite.cpp
  * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li_cos and
  * el_envlight_pdf_li_cos, the product of the map and the clamped cosine of the shading point's normal,
@@ -133,24 +134,6 @@ double elr_light_power(const elr_scene *s, const elr_light *l) {
     return pi * r * r * (0.212671 * in[0] + 0.715160 * in[1] + 0.072169 * in[2]);
   }
   }
-}
-
-/* pbrt-v3's VisibilityTester::Unoccluded for a light sample taken at h: the shadow ray from h's
- * offset origin towards the light, ending just before a point light or the sampled point of an area
- * light, and past the scene for the others. For an area light the ray aims at the point from the offset
- * origin (pbrt-v3's SpawnRayTo): along wi, a ray that meets the light's surface at a grazing angle
- * would enter it before the point (the origin's offset, 2e-5 of the coordinates, moves the entry by
- * that over the cosine: 0.3% of a sphere light's samples were lost so, at 3 radii, before this). */
-int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls) {
-  elr_v3 o = elr_spawn_origin(h, ls->wi), d;
-  float dist;
-  if (ls->at_point != 2) {
-    float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
-    return !elr_occluded(s, o, ls->wi, tmax);
-  }
-  d = elr_sub(ls->p_light, o);
-  dist = elr_len(d);
-  return !(dist > 0.f) || !elr_occluded(s, o, elr_mul(d, 1.f / dist), dist * (1.f - 1e-4f));
 }
 
 /* >> infinite light (pbrt-v3 lights/infinite.cpp: envlight.h's el_envlight) */

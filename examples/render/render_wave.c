@@ -6,13 +6,13 @@
  * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
  *
  * The same computation as the one-sample-at-a-time loop of render.c (integrator_direct.c,
- * integrator_path.c), in another order, for the scenes that render_batched.c takes too: the
- * environment is the only light that emits, and it is sampled (elr_render decides: elr_ctx.batch_light,
+ * integrator_path.c), in another order, for the scenes where the environment is the only light
+ * that emits, and it is sampled (elr_render decides: elr_ctx.batch_light,
  * elr_ctx.loop). A wave is up to ELR_WAVE camera samples of consecutive pixels of the tile (each pixel's
  * samples together, one sampler per pixel: the sampler gives every (pixel, sample, dimension) its
  * number whichever order they are asked in).
  *
- * Direct lighting: the first vertex as render_batched.c computes it ahead (elr_first), with the
+ * Direct lighting: the first vertex computed ahead (elr_first), with the
  *   wave's camera rays, light samples and shadow rays (light and BSDF sampled) each in one call; then
  *   elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
  *   vertex (specular reflection and transmission, a light's further "samples").
@@ -34,6 +34,87 @@
 #ifndef ELR_WAVE
 #define ELR_WAVE 256 /* camera samples in a wave at most */
 #endif
+
+/* >> a first vertex computed ahead (elr_first): its shading in the reference's order (moved here from
+ * render_batched.c, the batched loop, when the wave loop replaced it) */
+/* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
+ * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
+ * ahead in f */
+static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_first *f,
+                                       int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
+  const elr_scene *s = C->s;
+  elr_v3 nc;
+  /* issue 20: the product light sample alone where the lobes are diffuse or broad (as elr_estimate_direct) */
+  int lonly = C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_bsdf_cos_normal(b, wo, &nc), b);
+  /* <<Sample light source with multiple importance sampling>> */
+  if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
+    elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
+    if (!elr_isblack(fl)) {
+      ts->shadow++;
+      if (!(f->occ_l >= 0 ? f->occ_l : elr_occluded(s, elr_spawn_origin(h, f->wi), f->wi, INFINITY))) {
+        float w = 1.f;
+        if (C->ls == ELR_LS_MIS && !lonly) w = elr_power_heuristic(f->pdf, elr_bsdf_pdf(b, wo, f->wi));
+        *Ld = elr_add(*Ld, elr_mul(elr_vmul(fl, f->L), w / f->pdf));
+      }
+    }
+  }
+  /* <<Sample BSDF with multiple importance sampling>> (f->bray: the conditions of elr_estimate_direct) */
+  if (sample_bsdf && f->bray) {
+    elr_v3 fb = elr_mul(f->fb, fabsf(elr_dot(f->wb, b->ns)));
+    ts->bsdfl++;
+    if (!(f->occ_b >= 0 ? f->occ_b : elr_occluded(s, elr_spawn_origin(h, f->wb), f->wb, INFINITY))) {
+      float w = C->ls == ELR_LS_MIS ? elr_power_heuristic(f->bpdf, f->bpdf_env) : 1.f;
+      *Ld = elr_add(*Ld, elr_mul(elr_vmul(fb, f->Lb), w / f->bpdf));
+    }
+  }
+}
+
+/* elr_uniform_sample_all_lights at a first vertex: the environment is the only light that emits (the
+ * others contribute nothing), and its first sample was drawn ahead. */
+static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo,
+                                       const elr_first *f, int use_counts, int sample_bsdf, elr_tstats *ts) {
+  const elr_light *l = C->batch_light;
+  int n = use_counts ? l->nsamples : 1, k;
+  elr_v3 L = elr_v(0, 0, 0), Ld = elr_v(0, 0, 0);
+  float ul[2], us[2];
+  elr_sampler_skip2d(S);                                  /* the light draw, made ahead */
+  if (f->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us); /* the BSDF draw (made ahead with its sample) */
+  elr__estimate_direct_ahead(C, h, b, wo, f, sample_bsdf, ts, &Ld);
+  for (k = 1; k < n; k++) { /* the light's further samples: drawn ahead too (the wave loop's splitting), or as the
+                              * reference draws them */
+    if (k - 1 < f->nmore) {
+      const elr_first *q = &f->more[k - 1];
+      elr_sampler_skip2d(S);
+      if (q->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us);
+      elr__estimate_direct_ahead(C, h, b, wo, q, sample_bsdf, ts, &Ld);
+      continue;
+    }
+    elr_sampler_get2d(S, ul);
+    elr_sampler_get2d(S, us);
+    elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
+  }
+  return elr_add(L, elr_mul(Ld, 1.f / (float)n));
+}
+
+/* elr_direct_li's first iteration with the vertex computed ahead, then the reference from the second
+ * (the wave loop's direct lighting, with the shadow rays' answers in f) */
+elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts) {
+  elr_path_state p;
+  elr_v3 wo;
+  elr_path_begin(&p, r);
+  if (!f->hit) return elr_add(p.L, elr_vmul(p.beta, elr_infinite_le(C->s, r->d)));
+  wo = elr_mul(r->d, -1.f);
+  if (f->h->light >= 0) p.L = elr_add(p.L, elr_vmul(p.beta, elr_hit_le(C->s, f->h, wo)));
+  if (C->light_sampling && (f->b.has_diffuse || f->b.has_glossy)) /* (strategy "one" with one light: "all" with 1 sample) */
+    p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &f->b, wo, f, !C->direct_one, 1, ts)));
+  if (1 < C->maxdepth && (f->b.spec_r || f->b.spec_t)) {
+    elr_path_state next[2];
+    int n = elr_direct_specular(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, p.beta, 0, 1, next, ts);
+    /* the reference's state after its first vertex: the first branch followed, the second waiting */
+    if (n >= 1) { next[0].L = p.L; return elr_direct_li_branches(C, S, &next[0], &next[1], n - 1, n - 1, ts); }
+  }
+  return p.L;
+}
 
 /* the wave's Embree calls, timed (a few calls per wave: the clock costs nothing next to them) */
 static void elr__intersect(const elr_ctx *C, elr_wave_rays *w, int coherent, elr_tstats *ts) {
@@ -141,8 +222,9 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
 }
 
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
- * in W->rays, traced): render_batched.c's phases 1 and 2 for the whole wave, for each of the light's
- * W->npair sample pairs (its "samples" count, or splitting's), then all their shadow rays */
+ * in W->rays, traced): the hits' BSDF samples, light samples and environment lookups for the whole
+ * wave, for each of the light's W->npair sample pairs (its "samples" count, or splitting's), then all
+ * their shadow rays */
 static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
   int j, k, n = 0, np = 0, nm = 0;
