@@ -5,16 +5,18 @@
  *                       the light sampling of the no-portal render ("product", the renderer's default,
  *                       or "map"), the number of seeds per render (4, at most 64), the portal light's
  *                       "float portalmapshare" (the renderer's default when absent); LOOP=n in the
- *                       environment: the no-portal render's loop (ELR_LOOP_*; the portal's is always 0)
+ *                       environment: both renders' loop (ELR_LOOP_*: 0 one at a time, 2 the wave
+ *                       loop, the default for both)
  *
  * For each case (a room with one window under data/envmaps/city.hdr, its sun shining in; the same
  * under data/envmaps/overcast.pfm; a room with two windows and a sphere outside under city.hdr): a
- * reference at 16x SPP with the portal, then SEEDS seeds with and without the portal at SPP. Printed: the
- * image means (unbiased: they agree within their noise), the CPU seconds of one render loop, the
- * variance of a pixel (over the seeds, the mean over pixels), the least CPU time of a render over the seeds
- * and the time to unit variance, variance x
- * CPU time, as its ratio (no portal / portal: the gain); then the same with the MSE against the
- * reference (which also holds what does not change with the seed: a conservative gain). 80 x 60 pixels, 2 threads. Run from the build directory or the repository's root. */
+ * reference at 16x SPP with the portal, then SEEDS seeds with and without the portal at SPP, the two
+ * renders interleaved. Printed: the image means (unbiased: they agree within their noise), the least CPU
+ * seconds of a render loop over the seeds (the same work each time: the least is the one the machine's
+ * load disturbed least), the variance of a pixel (over the seeds, the mean over pixels) and the time to
+ * unit variance, variance x CPU time, as its ratio (no portal / portal: the gain); then the same with
+ * the MSE against the reference (which also holds what does not change with the seed: a conservative
+ * gain). 80 x 60 pixels, 2 threads. Run from the build directory or the repository's root. */
 #include "../examples/render/el_render.h"
 
 #include <math.h>
