@@ -4,6 +4,9 @@
  * el_envlight_sample_li_n call, its environment lookups in one pass, so that their cache misses overlap.
  * With product sampling (the default, el_envlight_sample_li_cos: a normal per sample, no n-at-once
  * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
+ * pbrt-v3 has no such loop; the model is pbrt-v4's WavefrontPathIntegrator (src/pbrt/wavefront/
+ * integrator.cpp, surfscatter.cpp), whose stages each run over a queue of many paths (over the whole
+ * image, on the GPU or the CPU): here over a tile's wave on one thread, with Embree's packets.
  *
  * The same computation as the one-sample-at-a-time loop of render.c (integrator_direct.c,
  * integrator_path.c), in another order, for the scenes where the environment is the only light
