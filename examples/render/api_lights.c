@@ -103,8 +103,8 @@ void elr__light(elr__parser *P, const char *type) {
        * the light's CTM, as pbrt-v4's cameraTransform.RenderFromWorld(p)); envlight also takes several
        * rectangles, 4 points each */
       elr__param *pp = elr__find(P, "portal");
-      /* envlight's extension: the share of light samples drawn from the map where a portal is seen (a
-       * defensive mixture for points outside the room in front of a portal's plane; 0: pbrt-v4's) */
+      /* envlight's extension: the share of light samples drawn from the map where a portal is seen from
+       * behind another portal's plane (a defensive mixture for points outside the room; 0: pbrt-v4's) */
       l->portal_share = (float)elr__pfloat(P, "portalmapshare", ELR_PORTAL_MAP_SHARE);
       elr__check_range(P, "portalmapshare", l->portal_share, 0, 1);
       if (pp) {

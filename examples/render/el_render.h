@@ -1,7 +1,7 @@
 /* el_render.h: the pieces of `render`, a pbrt-v3-format scene renderer on Embree (examples/render).
  *
  * Not part of the envlight library: an application of it. The renderer reads a pbrt-v3 scene file
- * (parser.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
+ * (parser.c, paramset.c, api*.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
  * and instances (scene.c, shapes.c, loopsubdiv.c), shades with pbrt-v3's matte / mirror / plastic / glass /
  * metal / uber / substrate materials and its textures (materials.c, textures.c, reflection.c), lights with
  * the infinite area light of envlight.h plus point, distant and diffuse area lights (lights.c, chosen
@@ -126,6 +126,7 @@ typedef struct elr_light_stats {
   size_t env_portal_bytes;
   float env_portal_share; /* "float portalmapshare": the map's share where a portal is seen */
   uint64_t env_portal_used, env_portal_fallback; /* light samples through the portals, and by the map behind them */
+  int env_portal_compensated; /* the portals' density is MIS-compensated (max(lum - mean, 0)) */
 } elr_light_stats;
 
 typedef struct elr_stats {

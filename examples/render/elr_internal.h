@@ -21,7 +21,7 @@
 #ifndef ELR_PI
 #define ELR_PI 3.14159265358979323846f
 /* LightSource "infinite" "float portalmapshare" default (bench/bench_portal_render.c measures it) */
-#define ELR_PORTAL_MAP_SHARE 0.1
+#define ELR_PORTAL_MAP_SHARE 0.5
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
@@ -204,6 +204,8 @@ typedef struct elr_light {
    * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
   el_envlight_portal *portal;
   float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
+  float *portal_points;    /* the portals' points (portal_count x 12 floats), to rebuild the tables when a */
+  int portal_count, portal_compensated; /* render asks for another compensation (--compensated): the one built */
 } elr_light;
 
 /* LightSource "infinite" as the parser read it (pbrt-v4's LightSceneEntity: the parser describes, the

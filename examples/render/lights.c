@@ -208,6 +208,7 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
  * alone; with product sampling the product tables are built (el_envlight_prepare_product), and the
  * map's own tables only when need_map (some surface transmits through a non-specular lobe: its vertices
  * sample the map alone). Returns -1 when the distribution cannot be built. */
+static int elr__portal_build(elr_light *l, int compensated, char *err, size_t errlen);
 int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map) {
   if (compensated < 0) compensated = l->compensated;
   if (importance < 0) importance = l->importance;
@@ -239,6 +240,12 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
     l->env_sample = l->env_alt;
   }
   l->product = product < 0 ? l->sampling == ELR_ENVLS_PRODUCT : product;
+  /* the portals' tables with the compensation this render asks for (--compensated: pbrt-v4's portal
+   * light has none; envlight's portal density max(lum - mean, 0) is the MIS partner of the BSDF) */
+  if (l->portal && l->portal_compensated != compensated) {
+    char err[256];
+    if (elr__portal_build(l, compensated, err, sizeof err) != 0) return -1;
+  }
   if (l->portal) l->product = 0; /* the portals sample every vertex; the map's own tables behind them */
   if (l->product && el_envlight_prepare_product(l->env_sample, NULL) != EL_SUCCESS) return -1;
   if (l->product && !need_map) return 0;
@@ -304,18 +311,18 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
 #endif
 }
 
-int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen) {
+/* the portal tables of l's points (l->portal_points) with compensation 0/1, replacing any built */
+static int elr__portal_build(elr_light *l, int compensated, char *err, size_t errlen) {
   el_result r;
-  el_envlight_portal *P;
-  if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
-  P = (el_envlight_portal *)calloc(1, sizeof *P);
+  el_envlight_portal *P = (el_envlight_portal *)calloc(1, sizeof *P);
   if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
   {
     el_envlight_portal_options po;
     memset(&po, 0, sizeof po);
-    po.compensated = l->compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
+    po.compensated = compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
     po.map_share = l->portal_share;
-    r = el_envlight_portal_init(P, l->env, pts, count, &po);
+    po.map_share_outside = 1; /* (the share only behind some portal's plane: a room's inside keeps the pure portal density) */
+    r = el_envlight_portal_init(P, l->env, l->portal_points, l->portal_count, &po);
   }
   if (r != EL_SUCCESS) {
     snprintf(err, errlen, "\"point3 portal\": %s (%s)", P->error, el_result_string(r));
@@ -323,12 +330,26 @@ int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *er
     free(P);
     return -1;
   }
+  if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); }
   l->portal = P;
+  l->portal_compensated = compensated;
   return 0;
+}
+
+int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen) {
+  if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
+  free(l->portal_points);
+  l->portal_points = (float *)malloc((size_t)(count > 0 ? count : 1) * 12 * sizeof(float));
+  if (!l->portal_points) { snprintf(err, errlen, "out of memory"); return -1; }
+  if (count > 0) memcpy(l->portal_points, pts, (size_t)count * 12 * sizeof(float));
+  l->portal_count = count;
+  return elr__portal_build(l, l->compensated, err, errlen);
 }
 
 void elr_light_free(elr_light *l) {
   if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); l->portal = NULL; }
+  free(l->portal_points);
+  l->portal_points = NULL;
   free(l->tri_cdf);
   l->tri_cdf = NULL;
   if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }

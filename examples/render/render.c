@@ -329,9 +329,6 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     int nemit = 0;
     for (i = 0; i < s->nlight; i++) if (elr_light_emits(&s->light[i])) { nemit++; C->batch_light = &s->light[i]; }
     if (nemit != 1) C->batch_light = NULL;
-    /* a portal light's density depends on the shading point: the wave loop, which draws
-     * the map's samples ahead of the points, do not apply (the reference loop below) */
-    if (C->batch_light && C->batch_light->portal) C->batch_light = NULL;
   }
   /* the per-tile loop: the wave loop needs batch_light and is the default there (bench_render --loops
    * measures both), except for the path tracer with a pixel sampler (stratified, 02sequence) and product
@@ -347,6 +344,8 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_WAVE       ? o->loop
               : C->path && pixel_sampler && C->batch_light->product ? ELR_LOOP_ONE
                                                                     : ELR_LOOP_WAVE;
+    /* (portals, whose density depends on the shading point, are sampled by the wave loop at each
+     * vertex, el_envlight_portal_sample_li; with a pixel sampler like the map alone: test_render_portal) */
   }
   C->wave_api = o->wave_api >= ELR_WAVE_API_SINGLE && o->wave_api <= ELR_WAVE_API_SOA ? o->wave_api : ELR_WAVE_API_DEFAULT;
   return 0;
@@ -363,7 +362,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
   st->env_product_samples = T->env_product; st->env_map_samples = T->env_map; st->env_light_only_samples = T->env_light_only;
   st->bsdf_light_rays = T->bsdfl; st->samples = T->samples;
   st->distribution_built = env_sampled; st->light_sampling_used = C->light_sampling;
-  st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product;
+  st->light_samples_batched = C->batch_light != NULL && C->loop != ELR_LOOP_ONE && !C->batch_light->product && !C->batch_light->portal;
   st->loop = C->loop; st->wave_api = C->wave_api; st->t_embree_loop = T->t_embree;
   st->nthreads = nthreads; st->spp = C->spp; st->width = out->width; st->height = out->height;
   st->maxdepth = C->maxdepth; st->integrator_path = C->path; st->sampler = C->sampler.kind;
@@ -412,6 +411,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
     }
     if (l->kind == ELR_LIGHT_INFINITE && l->portal) {
       ls->env_portals = l->portal->count; ls->env_portal_bytes = el_envlight_portal_bytes(l->portal); ls->env_portal_share = l->portal->map_share;
+      ls->env_portal_compensated = l->portal->compensated;
       ls->env_portal_used = T->portal_used; ls->env_portal_fallback = T->portal_fallback; /* (the one emitting light with portals) */
     }
     if (l->kind == ELR_LIGHT_AREA) {

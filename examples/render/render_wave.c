@@ -4,6 +4,9 @@
  * el_envlight_sample_li_n call, its environment lookups in one pass, so that their cache misses overlap.
  * With product sampling (the default, el_envlight_sample_li_cos: a normal per sample, no n-at-once
  * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
+ * pbrt-v3 has no such loop; the model is pbrt-v4's WavefrontPathIntegrator (src/pbrt/wavefront/
+ * integrator.cpp, surfscatter.cpp), whose stages each run over a queue of many paths (over the whole
+ * image, on the GPU or the CPU): here over a tile's wave on one thread, with Embree's packets.
  *
  * The same computation as the one-sample-at-a-time loop of render.c (integrator_direct.c,
  * integrator_path.c), in another order, for the scenes where the environment is the only light
@@ -157,6 +160,8 @@ struct elr_wave {
   int has_n[ELR_WAVE];     /* or 0: the map alone */
   const elr_sun_cell *sc[ELR_WAVE];  /* sun.c: each light sample's sun-cache cell (NULL: the light's own density) */
   const elr_sun_cell *vsc[ELR_WAVE]; /* and each camera sample's vertex's */
+  elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
+  elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
   elr_wave_rays rays, shadows;
 };
 
@@ -190,11 +195,22 @@ void elr_wave_free(elr_wave *W) {
 
 /* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
  * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
- * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does) */
-static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, float *wi, float *Le,
-                             float *pdf, const elr_sun *sun, const elr_sun_cell *const *sc, elr_tstats *ts) {
+ * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does); with portals
+ * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct);
+ * at a vertex whose sun-cache cell lowers a hot spot (sc[i], sun.c) elr_sun_sample */
+static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, const elr_v3 *pos,
+                             float *wi, float *Le, float *pdf, const elr_sun *sun, const elr_sun_cell *const *sc, elr_tstats *ts) {
   int i, k, nm = 0, idx[ELR_WAVE];
   float um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
+  if (l->portal) {
+    for (i = 0; i < n; i++) {
+      float pp[3];
+      elr_to3(pos[i], pp);
+      if (el_envlight_portal_sample_li(l->portal, l->env_sample, pp, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i])) ts->portal_used++;
+      else ts->portal_fallback++;
+    }
+    return;
+  }
   if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
   if (sun) { /* (sun.c: the vertices whose cell lowers a hot spot's weight, then the rest as below; --stats) */
     nm = 0;
@@ -257,6 +273,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       if (C->ls != ELR_LS_BSDF) {
         W->sc[n] = W->vsc[j];
         W->has_n[n] = elr_sun_cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
+        W->lpos[n] = W->h[j].p;
         lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
         W->light[np] = n++;
@@ -277,7 +294,8 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     float d[3], L3[3];
     if (!p->bray) continue;
     elr_to3(p->wb, d);
-    if (C->batch_light->product) {
+    if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+    else if (C->batch_light->product) {
       elr_v3 nc;
       const elr_sun_cell *c = W->vsc[W->pair_of[k]];
       int has = elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
@@ -288,7 +306,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     el_envlight_le(env, d, L3);
     p->Lb = elr_from3(L3);
   }
-  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->wi, W->Le, W->pdf, C->sun, W->sc, ts);
+  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, C->sun, W->sc, ts);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
   for (k = 0; k < np; k++) {
@@ -380,6 +398,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_sampler_get2d(S, us);
         W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
         W->has_n[n] = elr_sun_cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
+        W->lpos[n] = h->p;
         if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
       }
@@ -389,11 +408,13 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_sampler_save(S, &W->pos[j]);
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
-    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, C->sun, W->sc, ts);
+    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, C->sun, W->sc, ts);
     for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
       int e = W->escaped[j];
       if (e < 0) continue;
-      if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
+      if (l->portal) /* (at the vertex the ray left, as elr_path_li's prev_p) */
+        W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
+      else if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
       else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) /* (only where the weight is
         * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
         W->pdf[e] = W->p[j].prev_sun ? elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e])
@@ -455,6 +476,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       p->specular = spec; p->prev_pdf = pdf;
       p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL; /* its sun-cache cell, */
       p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
         W->alive[j] = 0; nalive--; continue;

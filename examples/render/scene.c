@@ -246,34 +246,37 @@ static void elr__rayhit_init(struct RTCRayHit *rh, elr_v3 o, elr_v3 d, float tma
   elr__ray_init(&rh->ray, o, d, tmax);
   rh->hit.geomID = RTC_INVALID_GEOMETRY_ID; rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
+/* one ray through the scene's top level (rtcIntersect1 / rtcOccluded1), Embree 3's context or Embree 4's none */
+static void elr__intersect1(const elr_scene *s, struct RTCRayHit *rh) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcIntersect1((RTCScene)s->rtscene, rh, NULL);
+#else
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1((RTCScene)s->rtscene, &ctx, rh);
+#endif
+}
+static void elr__occluded1(const elr_scene *s, struct RTCRay *r) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcOccluded1((RTCScene)s->rtscene, r, NULL);
+#else
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcOccluded1((RTCScene)s->rtscene, &ctx, r);
+#endif
+}
 
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom) {
   struct RTCRayHit rh;
   elr__rayhit_init(&rh, o, d, INFINITY);
-#if RTC_VERSION_MAJOR >= 4
-  rtcIntersect1((RTCScene)s->rtscene, &rh, NULL);
-#else
-  {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect1((RTCScene)s->rtscene, &ctx, &rh);
-  }
-#endif
+  elr__intersect1(s, &rh);
   *t = rh.ray.tfar; *geom = rh.hit.geomID;
 }
 
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax) {
   struct RTCRay r;
   elr__ray_init(&r, o, d, tmax);
-#if RTC_VERSION_MAJOR >= 4
-  rtcOccluded1((RTCScene)s->rtscene, &r, NULL);
-#else
-  {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcOccluded1((RTCScene)s->rtscene, &ctx, &r);
-  }
-#endif
+  elr__occluded1(s, &r);
   return r.tfar < 0.f;
 }
 
@@ -320,15 +323,7 @@ static void elr__hit_record(const elr_scene *s, elr_v3 o, elr_v3 d, unsigned geo
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h) {
   struct RTCRayHit rh;
   elr__rayhit_init(&rh, o, d, tmax);
-#if RTC_VERSION_MAJOR >= 4
-  rtcIntersect1((RTCScene)s->rtscene, &rh, NULL);
-#else
-  {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect1((RTCScene)s->rtscene, &ctx, &rh);
-  }
-#endif
+  elr__intersect1(s, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
   elr__hit_record(s, o, d, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, h);
   return 1;

@@ -86,9 +86,9 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       }
       if (l->kind == 0 && l->env_portals) {
         double n = (double)(l->env_portal_used + l->env_portal_fallback);
-        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
+        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f behind a portal's plane%s), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
                 l->env_portals, l->env_portals == 1 ? "" : "s", (double)l->env_portal_bytes / 1024.0, l->env_portal_share,
-                n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
+                l->env_portal_compensated ? ", compensated" : "", n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
       }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
       if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");

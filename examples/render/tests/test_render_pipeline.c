@@ -151,8 +151,8 @@ int main(void) {
    * drawing each inside its own sample's shading (no_batch: the reference loop), bit for bit: every
    * sampler, both integrators,
    * light-only sampling, textures (ray differentials), a mirror (its bounce must not take the first
-   * vertex's light sample), sample counts that are not a multiple of the batch of 32, an environment
-   * with several samples per vertex (the batched first sample, then the others one at a time), and the
+   * vertex's light sample), sample counts that fill no wave (up to 256 camera samples) evenly, an environment
+   * with several samples per vertex (the first drawn with the wave, then the others one at a time), and the
    * cases that turn batching off (a second emitting light; stratified strata or 02sequence dimensions
    * that cover fewer draws). Batching draws the map's own samples (product sampling has no n-at-once
    * form): the environment is sampled by the map alone here. The path tracer with a pixel sampler ("2")
