@@ -347,6 +347,7 @@ int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *er
 }
 
 void elr_light_free(elr_light *l) {
+  if (l->sun_hs) { el_envlight_hotspots_free(l->sun_hs); free(l->sun_hs); l->sun_hs = NULL; }
   if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); l->portal = NULL; }
   free(l->portal_points);
   l->portal_points = NULL;
