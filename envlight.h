@@ -663,8 +663,11 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    of 5 interleaved rounds, loaded machine); so at equal time it wins on sun maps (sunrise, city:
  *    10-165x less variance), not on lamp maps. el_envlight_mix_cos_prepare does the 512 bounds once per (w, n)
  *    and the _table calls reuse them (a shading point's sample and its BSDF sample's pdf, points sharing a
- *    normal: issue 22's renderer keeps 8 per thread, 4.6x -> 1.8x its render time with the cache on
- *    scenes/sun_shadow_object.pbrt). MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
+ *    normal: issue 22's renderer first kept 8 per thread, 4.6x -> 1.8x its render time with the cache on
+ *    scenes/sun_shadow_object.pbrt; now one per shadowed cell of its cache, shared, 1.3x). The pdfs of
+ *    the mixtures find pdf_li's bin once (el_envlight__hot_pdf_li_bin: its search and hot_bin's were a
+ *    third of the pdf's instructions). What is left is memory: a sample reads a cell's distribution,
+ *    then the pdf table, the direction table and the texels at random places. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
  *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are

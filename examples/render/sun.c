@@ -18,8 +18,9 @@
  * renderer's density unchanged, bit for bit): the spot's weight P_k e, the other parts their shares P
  * (e makes the dark spots' total ELR_SUN_FLOOR of the samples), as
  *   the rest x cosine (el_envlight_sample_li_mix_cos) where the vertex reflects only (elr_sun_cos_normal:
- *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the normal rounded
- *     to ~2 degrees; with several spots, some lit, the one-sample mixture a p_cos + (1 - a) p_mixcos,
+ *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the CELL's normal
+ *     (the mean of its pilot normals, rounded to ~5 degrees: one table per cell, see elr__sun_tables);
+ *     with several spots, some lit, the one-sample mixture a p_cos + (1 - a) p_mixcos,
  *     a = the lit spots' share (p_cos: sample_li_cos's density);
  *   el_envlight_sample_li_mix with those weights elsewhere (a peaked lobe, rough transmission).
  * The light sample keeps its BSDF sample as MIS partner (elr_env_light_only is left out there: the
@@ -29,9 +30,15 @@
  * from the same vertex, so both agree on one density. Every part keeps a positive weight, so a sun the
  * pilot missed is still found (at the floor's rate).
  *
- * COST: the rest x cosine sums 512 cell bounds per (weights, normal) (el_envlight_mix_cos_prepare); each
- * thread keeps its last ELR_SUN_MEMOS tables. bench/bench_sun_render.c: 1.7-1.8x the render's CPU time
- * at 16 spp on the bench scenes, for 1.3-1.9x less variance in the shadow (lit pixels unchanged).
+ * COST (issue 22's second step): the rest x cosine tables (el_envlight_mix_cos_prepare, 512 cell bounds)
+ * are made once per lowered cell after the pilot and shared read-only (a per-thread memo of 8 was 1.8x);
+ * the hash keeps only lowered cells; the light's hot spots are found once per light (elr_light.sun_hs).
+ * Callgrind, 16 spp, the render loop and the pilot against --sun off: 1.15x (sun_shadow_object), 1.24x
+ * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time is 1.3-1.45x: what is left is
+ * memory (a light sample in a dark cell reads a cell's distribution, the pdf table, the direction table
+ * and the texels at random places: perf shows el_distribution2d_sample_bins waiting on its row's loads).
+ * bench/bench_sun_render.c: 1.3-1.9x less variance in the shadow at equal samples, lit pixels unchanged;
+ * at equal time 0.9-1.45x in the shadow, 0.7x lit: off by default.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
