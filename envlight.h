@@ -2863,7 +2863,8 @@ struct el_envlight__warp {
   size_t warp_bytes;
   /* the normal tables (cos_state) */
   int m;                 /* octahedral bins per axis */
-  uint16_t *cos_tab;     /* m * m cell tables */
+  uint16_t *cos_tab;     /* m * m sparse cell tables (el_envlight__cell_table_sparse), one after another */
+  uint32_t *cos_off;     /* m * m: where each bin's table starts in cos_tab */
   size_t cos_bytes;
   /* product sampling's patches (issue 20; a product table set uses w, h, ku, kv, a0, b0, cu_of, cv_of,
      coff, sin_row, V, mass, plain and the normal tables above, and these two instead of S, cond, marg) */
@@ -2915,6 +2916,54 @@ static void el_envlight__cell_table(const struct el_envlight__warp *W, const dou
   }
 }
 
+/* A sparse cell table (the normal tables, issue 20): the cell rows' CDF (kv + 1 entries, padded to an
+ * even count P), kv row offsets (uint32, read with memcpy) from the table's start, then per row its span
+ * of cells with weight, a_s (first cell) and L (cells, wrapping at the seam: the complement of the
+ * longest circular run of zero weights), and its CDF over those L cells (L + 1 entries). Below a normal's
+ * horizon the weights are 0, so a row holds about half its cells. Returns the entries used (at most
+ * el_envlight__sparse_max). tmp: ku + kv + 2 uint32; rows: kv + ku doubles. */
+static size_t el_envlight__sparse_max(const struct el_envlight__warp *W) {
+  return (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv + (size_t)W->kv * ((size_t)W->ku + 3);
+}
+static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
+  int a, b, ku = W->ku, kv = W->kv;
+  size_t pos = (size_t)((kv + 2) & ~1) + 2 * (size_t)kv;
+  double *span = rows + kv;
+  for (b = 0; b < kv; ++b) {
+    double sum = 0.0;
+    for (a = 0; a < ku; ++a) sum += wgt[(size_t)b * (size_t)ku + (size_t)a];
+    rows[b] = sum;
+  }
+  el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
+  for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
+  for (b = 0; b < kv; ++b) {
+    const double *w = wgt + (size_t)b * (size_t)ku;
+    int run = 0, best = 0, best_end = -1, as, len, k;
+    uint32_t off = (uint32_t)pos;
+    for (k = 0; k < 2 * ku; ++k) { /* the longest circular run of zeros (at most ku) */
+      run = w[k % ku] > 0.0 ? 0 : run + 1;
+      if (run > best && run <= ku) { best = run; best_end = k; }
+    }
+    len = ku - best;
+    as = len == 0 || best == 0 ? 0 : (best_end + 1) % ku;
+    for (k = 0; k < len; ++k) span[k] = w[(as + k) % ku];
+    if (len > 0) el_envlight__int_cdf(span, len, EL_ENVLIGHT__CELL_UNITS, tmp);
+    else tmp[0] = 0;
+    memcpy(tab + (size_t)((kv + 2) & ~1) + 2 * (size_t)b, &off, sizeof off);
+    tab[pos] = (uint16_t)as; tab[pos + 1] = (uint16_t)len;
+    for (k = 0; k <= len; ++k) tab[pos + 2 + (size_t)k] = (uint16_t)tmp[k];
+    pos += (size_t)len + 3;
+  }
+  return pos;
+}
+
+/* Row b of a sparse cell table: [a_s, L, CDF over L + 1 entries] */
+static inline const uint16_t *el_envlight__sparse_row(const struct el_envlight__warp *W, const uint16_t *tab, int b) {
+  uint32_t off;
+  memcpy(&off, tab + (size_t)((W->kv + 2) & ~1) + 2 * (size_t)b, sizeof off);
+  return tab + off;
+}
+
 /* Last i in [0, n - 1] with c[i] <= k (c[0] = 0 <= k), uint16 entries: a branch-free binary search. */
 static inline int el_envlight__search16(const uint16_t *c, int n, uint32_t k) {
   int lo = 0;
@@ -2939,7 +2988,7 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
   EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
-  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab);
+  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off);
   EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
@@ -3315,18 +3364,20 @@ static void el_envlight__oct_decode(double x, double y, double n[3]) {
 }
 
 /* max of n.w over the lat-long cell [phi0, phi1] x [theta0, theta1] (light space), exactly: over phi
- * the best is the normal's own phi if inside, else the nearer edge; then a sin(theta) + b cos(theta)
- * peaks at atan2(a, b) if inside, else at an edge. cs: cos, sin of phi0, of phi1, cos, sin of theta0,
- * of theta1, and 1 when phi1 - phi0 > pi (then "inside" is "not in the complement", narrower than pi). */
-static double el_envlight__cell_maxcos(const double n[3], const double cs[9]) {
-  double a, b, f0, f1, best, c0 = cs[0] * n[1] - cs[1] * n[0], c1 = n[0] * cs[3] - n[1] * cs[2];
-  int inside = cs[8] > 0.0 ? !(c1 < 0.0 && c0 < 0.0) : (c0 >= 0.0 && c1 >= 0.0);
-  if (inside) a = sqrt(n[0] * n[0] + n[1] * n[1]);
-  else { double d0 = n[0] * cs[0] + n[1] * cs[1], d1 = n[0] * cs[2] + n[1] * cs[3]; a = d0 > d1 ? d0 : d1; }
-  b = n[2];
-  f0 = a * cs[5] + b * cs[4]; f1 = a * cs[7] + b * cs[6];
-  best = f0 > f1 ? f0 : f1;
-  if (a * cs[4] - b * cs[5] > 0.0 && a * cs[6] - b * cs[7] < 0.0) best = sqrt(a * a + b * b); /* the peak is inside */
+ * the best is the normal's own phi if inside, else the nearer edge (el_envlight__col_maxcos: a, the best
+ * horizontal component, per cell column); then a sin(theta) + b cos(theta) peaks at atan2(a, b) if
+ * inside, else at an edge (el_envlight__row_maxcos, per cell). cp: cos, sin of phi0, of phi1, and 1 when
+ * phi1 - phi0 > pi (then "inside" is "not in the complement", narrower than pi); ct: cos, sin of theta0,
+ * of theta1. */
+static double el_envlight__col_maxcos(const double n[3], const double cp[5]) {
+  double c0 = cp[0] * n[1] - cp[1] * n[0], c1 = n[0] * cp[3] - n[1] * cp[2];
+  int inside = cp[4] > 0.0 ? !(c1 < 0.0 && c0 < 0.0) : (c0 >= 0.0 && c1 >= 0.0);
+  if (inside) return sqrt(n[0] * n[0] + n[1] * n[1]);
+  else { double d0 = n[0] * cp[0] + n[1] * cp[1], d1 = n[0] * cp[2] + n[1] * cp[3]; return d0 > d1 ? d0 : d1; }
+}
+static inline double el_envlight__row_maxcos(double a, double b, const double ct[4]) {
+  double f0 = a * ct[1] + b * ct[0], f1 = a * ct[3] + b * ct[2], best = f0 > f1 ? f0 : f1;
+  if (a * ct[0] - b * ct[1] > 0.0 && a * ct[2] - b * ct[3] < 0.0) best = sqrt(a * a + b * b); /* the peak is inside */
   return best;
 }
 
@@ -3334,23 +3385,34 @@ static double el_envlight__cell_maxcos(const double n[3], const double cs[9]) {
  * angular radius covering every normal the float encoder puts in the bin (the farthest point of the
  * bin's boundary, sampled 32 times per edge, plus the largest gap between samples, plus 1e-4), then per
  * cell the bound cos(max(0, angle(c, cell) - radius)) (1 when the cell is within the radius, 0 when it
- * is 90 degrees beyond), times the cell's mass, into a cell table. */
+ * is 90 degrees beyond), times the cell's mass, into a cell table. The phi part of the maximum is per
+ * cell column, the theta part per cell (issue 20: a third of the build's instructions). */
 static el_result el_envlight__cos_build(struct el_envlight__warp *W, int m) {
-  int ku = W->ku, kv = W->kv, K = ku * kv, bin, k, e, q;
-  double *geo = (double *)EL_MALLOC((size_t)K * 9 * sizeof(double)), *wgt = (double *)EL_MALLOC(((size_t)K + (size_t)kv) * sizeof(double));
+  int ku = W->ku, kv = W->kv, K = ku * kv, bin, k, e, q, a, b;
+  double *geo = (double *)EL_MALLOC(((size_t)ku * 6 + (size_t)kv * 4) * sizeof(double)), *wgt = (double *)EL_MALLOC(((size_t)K + (size_t)kv + (size_t)ku) * sizeof(double));
+  double *gcol = geo, *grow = geo + (size_t)ku * 5, *acol = grow + (size_t)kv * 4;
   uint32_t *tmp = (uint32_t *)EL_MALLOC(((size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
-  if ((size_t)m * (size_t)m > ((size_t)-1) / sizeof(uint16_t) / W->table_len) { EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); return EL_ERROR_SIZE_OVERFLOW; }
-  W->cos_tab = (uint16_t *)EL_MALLOC((size_t)m * (size_t)m * W->table_len * sizeof(uint16_t));
-  if (!geo || !wgt || !tmp || !W->cos_tab) { EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); EL_FREE(W->cos_tab); W->cos_tab = NULL; return EL_ERROR_OUT_OF_MEMORY; }
+  size_t smax = el_envlight__sparse_max(W), used = 0;
+  if ((size_t)m * (size_t)m > ((size_t)-1) / sizeof(uint16_t) / smax || (size_t)m * (size_t)m * smax > 0xffffffffu) { EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); return EL_ERROR_SIZE_OVERFLOW; }
+  /* the worst case, shrunk to what the bins use at the end */
+  W->cos_tab = (uint16_t *)EL_MALLOC((size_t)m * (size_t)m * smax * sizeof(uint16_t));
+  W->cos_off = (uint32_t *)EL_MALLOC((size_t)m * (size_t)m * sizeof(uint32_t));
+  if (!geo || !wgt || !tmp || !W->cos_tab || !W->cos_off) {
+    EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); W->cos_tab = NULL; W->cos_off = NULL;
+    return EL_ERROR_OUT_OF_MEMORY;
+  }
   W->m = m;
-  for (k = 0; k < K; ++k) { /* the cells' edges: phi at patch-column bounds (texel centres), theta at vertex rows */
-    int a = k % ku, b = k / ku, r0 = W->b0[b], r1 = W->b0[b + 1];
+  for (a = 0; a < ku; ++a) { /* the cells' edges: phi at patch-column bounds (texel centres), theta at vertex rows */
     double p0 = 2.0 * EL_ENVLIGHT__PI * (W->a0[a] + 0.5) / W->w, p1 = 2.0 * EL_ENVLIGHT__PI * (W->a0[a + 1] + 0.5) / W->w;
-    double v0 = r0 == 0 ? 0.0 : (r0 - 0.5) / W->h, v1 = r1 == W->h + 1 ? 1.0 : (r1 - 0.5) / W->h;
-    double *g = geo + 9 * (size_t)k;
+    double *g = gcol + 5 * (size_t)a;
     g[0] = cos(p0); g[1] = sin(p0); g[2] = cos(p1); g[3] = sin(p1);
-    g[8] = p1 - p0 > EL_ENVLIGHT__PI ? 1.0 : 0.0;
-    g[4] = cos(EL_ENVLIGHT__PI * v0); g[5] = sin(EL_ENVLIGHT__PI * v0); g[6] = cos(EL_ENVLIGHT__PI * v1); g[7] = sin(EL_ENVLIGHT__PI * v1);
+    g[4] = p1 - p0 > EL_ENVLIGHT__PI ? 1.0 : 0.0;
+  }
+  for (b = 0; b < kv; ++b) {
+    int r0 = W->b0[b], r1 = W->b0[b + 1];
+    double v0 = r0 == 0 ? 0.0 : (r0 - 0.5) / W->h, v1 = r1 == W->h + 1 ? 1.0 : (r1 - 0.5) / W->h;
+    double *g = grow + 4 * (size_t)b;
+    g[0] = cos(EL_ENVLIGHT__PI * v0); g[1] = sin(EL_ENVLIGHT__PI * v0); g[2] = cos(EL_ENVLIGHT__PI * v1); g[3] = sin(EL_ENVLIGHT__PI * v1);
   }
   for (bin = 0; bin < m * m; ++bin) {
     int bi = bin % m, bj = bin / m;
@@ -3375,20 +3437,27 @@ static el_result el_envlight__cos_build(struct el_envlight__warp *W, int m) {
     { double dp = prev[0] * first[0] + prev[1] * first[1] + prev[2] * first[2]; if (dp < gmin) gmin = dp; }
     rad = acos(dmin > -1.0 ? dmin : -1.0) + acos(gmin < 1.0 ? gmin : 1.0) + 1e-4;
     cr = cos(rad); sr = sin(rad);
-    for (k = 0; k < K; ++k) {
-      double mc = el_envlight__cell_maxcos(c, geo + 9 * (size_t)k), bound;
-      if (rad >= EL_ENVLIGHT__PI) bound = 1.0;
-      else if (mc >= cr) bound = 1.0;
-      else { /* cos(angle - rad) = mc cos(rad) + sin(angle) sin(rad) */
-        double sa = 1.0 - mc * mc;
-        bound = mc * cr + sqrt(sa > 0.0 ? sa : 0.0) * sr;
-        bound = bound > 0.0 ? bound : 0.0;
+    for (a = 0; a < ku; ++a) acol[a] = el_envlight__col_maxcos(c, gcol + 5 * (size_t)a);
+    for (b = 0, k = 0; b < kv; ++b)
+      for (a = 0; a < ku; ++a, ++k) {
+        double mc, bound;
+        if (!(W->mass[k] > 0.0)) { wgt[k] = 0.0; continue; } /* no mass: no bound needed */
+        mc = el_envlight__row_maxcos(acol[a], c[2], grow + 4 * (size_t)b);
+        if (rad >= EL_ENVLIGHT__PI) bound = 1.0;
+        else if (mc >= cr) bound = 1.0;
+        else { /* cos(angle - rad) = mc cos(rad) + sin(angle) sin(rad) */
+          double sa = 1.0 - mc * mc;
+          bound = mc * cr + sqrt(sa > 0.0 ? sa : 0.0) * sr;
+          bound = bound > 0.0 ? bound : 0.0;
+        }
+        wgt[k] = W->mass[k] * bound;
       }
-      wgt[k] = W->mass[k] * bound;
-    }
-    el_envlight__cell_table(W, wgt, W->cos_tab + (size_t)bin * W->table_len, tmp, wgt + K);
+    W->cos_off[bin] = (uint32_t)used;
+    used += el_envlight__cell_table_sparse(W, wgt, W->cos_tab + used, tmp, wgt + K);
+    used += used & 1; /* each table starts at an even entry (its offsets are 4-byte words) */
   }
-  W->cos_bytes = (size_t)m * (size_t)m * W->table_len * sizeof(uint16_t);
+  { uint16_t *t = (uint16_t *)EL_REALLOC(W->cos_tab, (used > 0 ? used : 1) * sizeof(uint16_t)); if (t) W->cos_tab = t; }
+  W->cos_bytes = used * sizeof(uint16_t) + (size_t)m * (size_t)m * sizeof(uint32_t);
   EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp);
   return EL_SUCCESS;
 }
@@ -3573,12 +3642,12 @@ fail:
   return res;
 }
 
-/* The product tables' once-scheme (cos_state; the same scheme as the sampling tables). NULL: failed. */
-static const struct el_envlight__warp *el_envlight__prod_ensure(const el_envlight *cl, int ku, int kv, int m) {
+/* The product tables' once-scheme (cos_state; the same scheme as the sampling tables). NULL: failed.
+ * The built case is inlined into the queries (el_envlight__prod_ensure); the build stays out of line. */
+static const struct el_envlight__warp *el_envlight__prod_ensure_slow(const el_envlight *cl, int ku, int kv, int m) {
   el_envlight *l = (el_envlight *)cl;
 #if EL_ENVLIGHT__ATOMICS
   int expected = 0;
-  if (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2) return l->prod;
   if (__atomic_compare_exchange_n(&l->cos_state, &expected, 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
     struct el_envlight__warp *W = NULL;
     el_result r = el_envlight__prod_build(l, ku, kv, m, &W);
@@ -3599,6 +3668,14 @@ static const struct el_envlight__warp *el_envlight__prod_ensure(const el_envligh
   return l->cos_state == 2 ? l->prod : NULL;
 #endif
 }
+static inline const struct el_envlight__warp *el_envlight__prod_ensure(const el_envlight *l, int ku, int kv, int m) {
+#if EL_ENVLIGHT__ATOMICS
+  if (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2) return l->prod;
+#else
+  if (l->cos_state == 2) return l->prod;
+#endif
+  return el_envlight__prod_ensure_slow(l, ku, kv, m);
+}
 
 /* The cell table for world normal n (its octahedral bin's), or NULL for a zero, NaN or infinite n. A
  * huge or tiny n is scaled in world space first, so the bin depends only on n's direction. */
@@ -3613,82 +3690,117 @@ static inline const uint16_t *el_envlight__prod_table(const el_envlight *l, cons
   i = (int)(x * (float)mm); j = (int)(y * (float)mm);
   i = i < mm - 1 ? (i > 0 ? i : 0) : mm - 1;
   j = j < mm - 1 ? (j > 0 ? j : 0) : mm - 1;
-  return W->cos_tab + ((size_t)j * (size_t)mm + (size_t)i) * W->table_len;
+  return W->cos_tab + W->cos_off[(size_t)j * (size_t)mm + (size_t)i];
+}
+
+/* Where the pdf finds a light-space direction (any length): le()'s (u, v), the patch (column i, vertex
+ * row r), s in it, Y = v gh + 0.5, vp, sin theta's r (rr) and the squared length. 0: a zero or NaN d. */
+typedef struct el_envlight__ploc { float u, v, vp, rr, len2, s, Y; int i, r; } el_envlight__ploc;
+static inline int el_envlight__prod_locate(const struct el_envlight__warp *W, const float dir[3], el_envlight__ploc *q) {
+  float dd[3], r2, len2, X, Y, s;
+  int gw = W->w, gh = W->h, i, r;
+  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
+  r2 = dd[0] * dd[0] + dd[1] * dd[1];
+  len2 = r2 + dd[2] * dd[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
+    if (!el_envlight__rescale(dd)) return 0;
+    r2 = dd[0] * dd[0] + dd[1] * dd[1];
+    len2 = r2 + dd[2] * dd[2];
+  }
+  q->len2 = len2;
+  q->rr = el_envlight__sqrt(r2);
+  q->u = el_envlight__phi_turns(dd[1], dd[0]);
+  el_envlight__theta_vp(q->rr, dd[2], &q->v, &q->vp);
+  X = q->u * (float)gw - 0.5f;
+  if (X < 0.0f) X += (float)gw;
+  i = (int)X;
+  if (i > gw - 1) i = gw - 1;
+  s = X - (float)i;
+  q->s = s < 1.0f ? (s > 0.0f ? s : 0.0f) : 1.0f;
+  Y = q->v * (float)gh + 0.5f;
+  r = (int)Y;
+  if (r > gh) r = gh;
+  q->Y = Y; q->i = i; q->r = r;
+  return 1;
+}
+
+/* The density at a located point of patch (q->i, q->r) whose cell has integer width wc (cell row x cell)
+ * and patch width wr (patch row x patch): P / (mean(corners) du dv 2 pi^2) x bil(s, t) / sin(theta).
+ * The sampler calls it with the widths it picked from, the pdf with the widths it reads: the same bits. */
+static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, const el_envlight__ploc *q, uint32_t wc, uint32_t wr) {
+  int gw = W->w, gh = W->h, i = q->i, r = q->r, i1 = i + 1 < gw ? i + 1 : 0;
+  const float *V = W->V + (size_t)r * (size_t)gw;
+  float v00 = V[i], v01 = V[i1], v10 = V[(size_t)gw + (size_t)i], v11 = V[(size_t)gw + (size_t)i1], s = q->s, t;
+  float sum = (v00 + v01) + (v10 + v11), e0 = v00 + s * (v01 - v00), e1 = v10 + s * (v11 - v10), len, p;
+  p = (float)wc * (float)wr * W->dens_k * 4.0f / sum; /* P / (mean du dv 2 pi^2) */
+  len = el_envlight__sqrt(q->len2);
+  /* bil / sin(theta). In the pole rows one edge is 0 and t = 2 gh vp (or 1 - t), dv halves: bil / sin =
+   * 2 gh e (vp / sin theta) x 2, with vp / sin -> 1 / pi at the pole itself */
+  if (r == 0 || r == gh) {
+    float ratio = q->rr > 0.0f ? q->vp * len / q->rr : 0.318309886f;
+    p *= 4.0f * (float)gh * (r == 0 ? e1 : e0) * ratio;
+  } else {
+    t = q->Y - (float)r;
+    t = t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
+    p *= (e0 + t * (e1 - e0)) * len / q->rr;
+  }
+  return p < FLT_MAX ? p : FLT_MAX;
 }
 
 /* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
  * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
  * be NULL) gets the (u, v) at which le() looks d up. */
 static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
-  float dd[3], r2, len2, rr, len, u, v, vp, X, Y, s, t, v00, v01, v10, v11, e0, e1, sum, p;
-  int gw = W->w, gh = W->h, i, i1, r, a, b;
+  el_envlight__ploc q;
+  int i, r, a, b, k;
   const uint16_t *row, *pc, *pr;
-  const float *V;
   uint32_t wc, wr;
   if (uv) uv[0] = uv[1] = 0.0f;
-  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
-  r2 = dd[0] * dd[0] + dd[1] * dd[1];
-  len2 = r2 + dd[2] * dd[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(dd)) return 0.0f;
-    r2 = dd[0] * dd[0] + dd[1] * dd[1];
-    len2 = r2 + dd[2] * dd[2];
-  }
-  rr = el_envlight__sqrt(r2);
-  u = el_envlight__phi_turns(dd[1], dd[0]);
-  el_envlight__theta_vp(rr, dd[2], &v, &vp);
-  if (uv) { uv[0] = u; uv[1] = v; }
-  X = u * (float)gw - 0.5f;
-  if (X < 0.0f) X += (float)gw;
-  i = (int)X;
-  if (i > gw - 1) i = gw - 1;
-  s = X - (float)i;
-  s = s < 1.0f ? (s > 0.0f ? s : 0.0f) : 1.0f;
-  Y = v * (float)gh + 0.5f;
-  r = (int)Y;
-  if (r > gh) r = gh;
+  if (!el_envlight__prod_locate(W, dir, &q)) return 0.0f;
+  if (uv) { uv[0] = q.u; uv[1] = q.v; }
+  i = q.i; r = q.r;
   a = W->cu_of[i]; b = W->cv_of[r];
-  row = tab + W->marg_len + (size_t)b * (size_t)W->row_len;
-  wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[a + 1] - row[a]);
+  row = el_envlight__sparse_row(W, tab, b);
+  k = a - (int)row[0]; /* the cell's place in its row's span */
+  k += k < 0 ? W->ku : 0;
+  wc = k < (int)row[1] ? (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[k + 3] - row[k + 2]) : 0u;
   pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a] + (size_t)(i - W->a0[a]);
-  pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
+  pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
   wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
   if (wc == 0 || wr == 0) return 0.0f;
-  i1 = i + 1 < gw ? i + 1 : 0;
-  V = W->V + (size_t)r * (size_t)gw;
-  v00 = V[i]; v01 = V[i1]; v10 = V[(size_t)gw + (size_t)i]; v11 = V[(size_t)gw + (size_t)i1];
-  sum = (v00 + v01) + (v10 + v11);
-  e0 = v00 + s * (v01 - v00);
-  e1 = v10 + s * (v11 - v10);
-  p = (float)wc * (float)wr * W->dens_k * 4.0f / sum; /* P / (mean du dv 2 pi^2) */
-  len = el_envlight__sqrt(len2);
-  /* bil / sin(theta). In the pole rows one edge is 0 and t = 2 gh vp (or 1 - t), dv halves: bil / sin =
-   * 2 gh e (vp / sin theta) x 2, with vp / sin -> 1 / pi at the pole itself */
-  if (r == 0 || r == gh) {
-    float ratio = rr > 0.0f ? vp * len / rr : 0.318309886f;
-    p *= 4.0f * (float)gh * (r == 0 ? e1 : e0) * ratio;
-  } else {
-    t = Y - (float)r;
-    t = t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
-    p *= (e0 + t * (e1 - e0)) * len / rr;
-  }
-  return p < FLT_MAX ? p : FLT_MAX;
+  return el_envlight__prod_eval(W, &q, wc, wr);
 }
 
 /* <<Sample the product>>: cell, patch row, patch, then (s, t) from the bilinear; wi and the pdf as
- * pdf_li_cos computes it at wi. */
+ * pdf_li_cos computes it at wi: the direction located again (the atans), and when it lands in the
+ * patch it came from (all but a measure-zero set), the density from the widths already read. */
 static void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, v00, v01, v10, v11, p;
   int a, b, gw = W->w, gh = W->h, r, i, i1, n;
+  uint32_t wc, wr;
   const uint16_t *pr, *pc;
   const float *V;
-  el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
+  el_envlight__ploc loc;
+  { /* <<Pick a cell>> from the sparse table: the cell row, then a cell of its span */
+    float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(uu[0]) * (float)EL_ENVLIGHT__CELL_UNITS;
+    const uint16_t *row, *c;
+    b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
+    f1 = (x1 - (float)tab[b]) / (float)(tab[b + 1] - tab[b]);
+    row = el_envlight__sparse_row(W, tab, b);
+    c = row + 2;
+    a = el_envlight__search16(c, (int)row[1], (uint32_t)x0);
+    f0 = (x0 - (float)c[a]) / (float)(c[a + 1] - c[a]);
+    wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(c[a + 1] - c[a]);
+    a += (int)row[0];
+    a -= a >= W->ku ? W->ku : 0;
+  }
   /* the patch row: the cell's CDF over its rows, with f1 */
   n = W->b0[b + 1] - W->b0[b];
   pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
   x = el_envlight__clamp01(f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
   r = el_envlight__search16(pr, n, (uint32_t)x);
   q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
+  wr = (uint32_t)(pr[r + 1] - pr[r]);
   r += W->b0[b];
   /* the patch: the row's CDF over the cell column, with f0 */
   n = W->a0[a + 1] - W->a0[a];
@@ -3696,6 +3808,7 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   x = el_envlight__clamp01(f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
   i = el_envlight__search16(pc, n, (uint32_t)x);
   s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
+  wr *= (uint32_t)(pc[i + 1] - pc[i]);
   i += W->a0[a];
   /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
   i1 = i + 1 < gw ? i + 1 : 0;
@@ -3719,7 +3832,10 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
     el_envlight__uvp_to_dir(u, v, vp, d);
     el_envlight__to_world(l, d, wi);
     if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li_cos brings wi back */
-    p = el_envlight__prod_pdf_light(W, tab, d, uv);
+    if (el_envlight__prod_locate(W, d, &loc) && loc.i == i && loc.r == r) { /* the pdf's own path, its reads skipped */
+      p = el_envlight__prod_eval(W, &loc, wc, wr);
+      uv[0] = loc.u; uv[1] = loc.v;
+    } else p = el_envlight__prod_pdf_light(W, tab, d, uv);
     if (p > 0.0f) break;
     /* the round trip left the patch for one without mass (near a pole under a general rotation, where
      * 1e-7 of direction is a large step in phi): the patch's centre instead, as issue 24 did */
