@@ -3528,7 +3528,6 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
   W->cu_of = (int *)EL_MALLOC((size_t)gw * sizeof(int));
   W->cv_of = (int *)EL_MALLOC(((size_t)gh + 1) * sizeof(int));
   W->mass = (double *)EL_MALLOC((size_t)ku * (size_t)kv * sizeof(double));
-  W->plain = (uint16_t *)EL_MALLOC(W->table_len * sizeof(uint16_t));
   wgt = (double *)EL_MALLOC((big + (size_t)ku * (size_t)kv) * sizeof(double));
   rs = (double *)EL_MALLOC(((size_t)gh + 1) * (size_t)ku * sizeof(double));
   tmp = (uint32_t *)EL_MALLOC((big + (size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
@@ -3537,7 +3536,7 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
     rowmax = (float *)EL_MALLOC((size_t)gw * sizeof(float));
   }
   if (!W->sin_row || !W->V || !W->coff || !W->pcol || !W->prow || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
-      !W->plain || !wgt || !rs || !tmp || (W->coarse && (!bins || !rowmax))) {
+      !wgt || !rs || !tmp || (W->coarse && (!bins || !rowmax))) {
     res = EL_ERROR_OUT_OF_MEMORY;
     goto fail;
   }
@@ -3626,14 +3625,14 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
       total += s;
     }
   W->all_zero = !(total > 0.0);
-  el_envlight__cell_table(W, W->mass, W->plain, tmp, wgt);
   EL_FREE(wgt); EL_FREE(rs); EL_FREE(tmp); EL_FREE(bins); EL_FREE(rowmax);
   wgt = NULL; rs = NULL; tmp = NULL; bins = NULL; rowmax = NULL;
+  if (!W->coarse) { EL_FREE(W->V); W->V = NULL; nv = 0; } /* queries recompute the corners from the texels (issue 20: -2.1 MB) */
   res = el_envlight__cos_build(W, m);
   if (res != EL_SUCCESS) goto fail;
+  EL_FREE(W->mass); W->mass = NULL; /* only the build needs the cells' masses (and no plain table) */
   W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(float) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
-                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int) +
-                  (size_t)ku * (size_t)kv * sizeof(double) + W->table_len * sizeof(uint16_t);
+                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int);
   *out = W;
   return EL_SUCCESS;
 fail:
@@ -3693,6 +3692,23 @@ static inline const uint16_t *el_envlight__prod_table(const el_envlight *l, cons
   return W->cos_tab + W->cos_off[(size_t)j * (size_t)mm + (size_t)i];
 }
 
+/* The corners V[r][i], V[r][i + 1], V[r + 1][i], V[r + 1][i + 1] of patch (i, r): vertex row k is texel row
+ * k - 1 (its luminance less the offset, times its sin: el_envlight__vertex_of, recomputed from the
+ * texels, the same bits as the build's), rows 0 and h + 1 are the poles' 0. A coarse grid (maps over the
+ * size cap) keeps its max-filtered values in W->V instead. */
+static inline void el_envlight__prod_corners(const el_envlight *l, const struct el_envlight__warp *W, int i, int r, float c[4]) {
+  int gw = W->w, i1 = i + 1 < gw ? i + 1 : 0;
+  if (W->V) {
+    const float *V = W->V + (size_t)r * (size_t)gw;
+    c[0] = V[i]; c[1] = V[i1]; c[2] = V[(size_t)gw + (size_t)i]; c[3] = V[(size_t)gw + (size_t)i1];
+    return;
+  }
+  if (r > 0) { c[0] = el_envlight__vertex_of(l, W, i, r - 1); c[1] = el_envlight__vertex_of(l, W, i1, r - 1); }
+  else c[0] = c[1] = 0.0f;
+  if (r < W->h) { c[2] = el_envlight__vertex_of(l, W, i, r); c[3] = el_envlight__vertex_of(l, W, i1, r); }
+  else c[2] = c[3] = 0.0f;
+}
+
 /* Where the pdf finds a light-space direction (any length): le()'s (u, v), the patch (column i, vertex
  * row r), s in it, Y = v gh + 0.5, vp, sin theta's r (rr) and the squared length. 0: a zero or NaN d. */
 typedef struct el_envlight__ploc { float u, v, vp, rr, len2, s, Y; int i, r; } el_envlight__ploc;
@@ -3727,10 +3743,9 @@ static inline int el_envlight__prod_locate(const struct el_envlight__warp *W, co
 /* The density at a located point of patch (q->i, q->r) whose cell has integer width wc (cell row x cell)
  * and patch width wr (patch row x patch): P / (mean(corners) du dv 2 pi^2) x bil(s, t) / sin(theta).
  * The sampler calls it with the widths it picked from, the pdf with the widths it reads: the same bits. */
-static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, const el_envlight__ploc *q, uint32_t wc, uint32_t wr) {
-  int gw = W->w, gh = W->h, i = q->i, r = q->r, i1 = i + 1 < gw ? i + 1 : 0;
-  const float *V = W->V + (size_t)r * (size_t)gw;
-  float v00 = V[i], v01 = V[i1], v10 = V[(size_t)gw + (size_t)i], v11 = V[(size_t)gw + (size_t)i1], s = q->s, t;
+static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, const el_envlight__ploc *q, uint32_t wc, uint32_t wr, const float c[4]) {
+  int gh = W->h, r = q->r;
+  float v00 = c[0], v01 = c[1], v10 = c[2], v11 = c[3], s = q->s, t;
   float sum = (v00 + v01) + (v10 + v11), e0 = v00 + s * (v01 - v00), e1 = v10 + s * (v11 - v10), len, p;
   p = (float)wc * (float)wr * W->dens_k * 4.0f / sum; /* P / (mean du dv 2 pi^2) */
   len = el_envlight__sqrt(q->len2);
@@ -3750,8 +3765,9 @@ static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, co
 /* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
  * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
  * be NULL) gets the (u, v) at which le() looks d up. */
-static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
+static float el_envlight__prod_pdf_light(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
   el_envlight__ploc q;
+  float c[4];
   int i, r, a, b, k;
   const uint16_t *row, *pc, *pr;
   uint32_t wc, wr;
@@ -3768,29 +3784,29 @@ static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, cons
   pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
   wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
   if (wc == 0 || wr == 0) return 0.0f;
-  return el_envlight__prod_eval(W, &q, wc, wr);
+  el_envlight__prod_corners(l, W, i, r, c);
+  return el_envlight__prod_eval(W, &q, wc, wr, c);
 }
 
 /* <<Sample the product>>: cell, patch row, patch, then (s, t) from the bilinear; wi and the pdf as
  * pdf_li_cos computes it at wi: the direction located again (the atans), and when it lands in the
  * patch it came from (all but a measure-zero set), the density from the widths already read. */
 static void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, v00, v01, v10, v11, p;
-  int a, b, gw = W->w, gh = W->h, r, i, i1, n;
+  float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, c[4], p;
+  int a, b, gh = W->h, r, i, n;
   uint32_t wc, wr;
   const uint16_t *pr, *pc;
-  const float *V;
   el_envlight__ploc loc;
   { /* <<Pick a cell>> from the sparse table: the cell row, then a cell of its span */
     float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(uu[0]) * (float)EL_ENVLIGHT__CELL_UNITS;
-    const uint16_t *row, *c;
+    const uint16_t *row, *cc;
     b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
     f1 = (x1 - (float)tab[b]) / (float)(tab[b + 1] - tab[b]);
     row = el_envlight__sparse_row(W, tab, b);
-    c = row + 2;
-    a = el_envlight__search16(c, (int)row[1], (uint32_t)x0);
-    f0 = (x0 - (float)c[a]) / (float)(c[a + 1] - c[a]);
-    wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(c[a + 1] - c[a]);
+    cc = row + 2;
+    a = el_envlight__search16(cc, (int)row[1], (uint32_t)x0);
+    f0 = (x0 - (float)cc[a]) / (float)(cc[a + 1] - cc[a]);
+    wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(cc[a + 1] - cc[a]);
     a += (int)row[0];
     a -= a >= W->ku ? W->ku : 0;
   }
@@ -3811,11 +3827,9 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   wr *= (uint32_t)(pc[i + 1] - pc[i]);
   i += W->a0[a];
   /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
-  i1 = i + 1 < gw ? i + 1 : 0;
-  V = W->V + (size_t)r * (size_t)gw;
-  v00 = V[i]; v01 = V[i1]; v10 = V[(size_t)gw + (size_t)i]; v11 = V[(size_t)gw + (size_t)i1];
-  t = el_envlight__lin_invf(v00 + v01, v10 + v11, q);
-  s = el_envlight__lin_invf(v00 + t * (v10 - v00), v01 + t * (v11 - v01), s);
+  el_envlight__prod_corners(l, W, i, r, c);
+  t = el_envlight__lin_invf(c[0] + c[1], c[2] + c[3], q);
+  s = el_envlight__lin_invf(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), s);
   /* 2^-12 of a patch inside its edges: a q of exactly 0 or 1 (x on a unit) would put the point on the
    * edge, where the pdf may read the neighbour (after a general rotation's round trip, ~1e-7 rad): pdf 0
    * next to a patch without mass. The density there is within 2^-12 of the edge's: no measurable bias */
@@ -3833,9 +3847,9 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
     el_envlight__to_world(l, d, wi);
     if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li_cos brings wi back */
     if (el_envlight__prod_locate(W, d, &loc) && loc.i == i && loc.r == r) { /* the pdf's own path, its reads skipped */
-      p = el_envlight__prod_eval(W, &loc, wc, wr);
+      p = el_envlight__prod_eval(W, &loc, wc, wr, c);
       uv[0] = loc.u; uv[1] = loc.v;
-    } else p = el_envlight__prod_pdf_light(W, tab, d, uv);
+    } else p = el_envlight__prod_pdf_light(l, W, tab, d, uv);
     if (p > 0.0f) break;
     /* the round trip left the patch for one without mass (near a pole under a general rotation, where
      * 1e-7 of direction is a large step in phi): the patch's centre instead, as issue 24 did */
@@ -3977,7 +3991,7 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   tab = el_envlight__prod_table(l, W, n);
   if (!tab || tab[W->kv] == 0) return 0.0f;
   if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f; /* rescaled in world space first (issue 24) */
-  return el_envlight__prod_pdf_light(W, tab, d, NULL);
+  return el_envlight__prod_pdf_light(l, W, tab, d, NULL);
 }
 
 EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
