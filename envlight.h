@@ -2938,15 +2938,20 @@ static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, 
   for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
   for (b = 0; b < kv; ++b) {
     const double *w = wgt + (size_t)b * (size_t)ku;
-    int run = 0, best = 0, best_end = -1, as, len, k;
+    int run = 0, best = 0, best_end = -1, lead = 0, as, len, k, kk;
     uint32_t off = (uint32_t)pos;
-    for (k = 0; k < 2 * ku; ++k) { /* the longest circular run of zeros (at most ku) */
-      run = w[k % ku] > 0.0 ? 0 : run + 1;
-      if (run > best && run <= ku) { best = run; best_end = k; }
+    /* the longest circular run of zeros: the longest inside the row, or the trailing run joined to the
+     * leading one across the seam */
+    while (lead < ku && !(w[lead] > 0.0)) ++lead;
+    for (k = lead; k < ku; ++k) {
+      run = w[k] > 0.0 ? 0 : run + 1;
+      if (run > best) { best = run; best_end = k; }
     }
+    if (lead == ku) best = ku; /* all zero */
+    else if (run + lead > best) { best = run + lead; best_end = lead - 1 >= 0 ? lead - 1 : ku - 1; }
     len = ku - best;
-    as = len == 0 || best == 0 ? 0 : (best_end + 1) % ku;
-    for (k = 0; k < len; ++k) span[k] = w[(as + k) % ku];
+    as = len == 0 || best == 0 ? 0 : (best_end + 1 < ku ? best_end + 1 : 0);
+    for (k = 0, kk = as; k < len; ++k, kk = kk + 1 < ku ? kk + 1 : 0) span[k] = w[kk];
     if (len > 0) el_envlight__int_cdf(span, len, EL_ENVLIGHT__CELL_UNITS, tmp);
     else tmp[0] = 0;
     memcpy(tab + (size_t)((kv + 2) & ~1) + 2 * (size_t)b, &off, sizeof off);
