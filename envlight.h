@@ -2846,6 +2846,7 @@ struct el_envlight__warp {
   int fell_back;         /* compensated, but no vertex exceeds the mean: the plain density */
   float *sin_row;        /* h: sin(pi v_k) of texel row k - 1 */
   float *V;              /* (h + 2) x w: the vertex values; rows 0 and h + 1 (the poles) are 0 */
+  uint16_t *V16;         /* product sampling: V as bfloat16 (the top half of the float, rounded up) */
   double *S;             /* (h + 2) x ku: vertex row k's integral over cell column a, in u */
   float *cond;           /* (h + 2) x (w + ku): vertex row k's integer CDF over the patches of each cell
                             column, as floats (integers <= 2^24: exact); all 0 in the pole rows */
@@ -2993,7 +2994,7 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
   EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
-  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off);
+  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16);
   EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
@@ -3494,6 +3495,22 @@ static inline float el_envlight__lin_invf(float a, float b, float q) {
   return t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
 }
 
+/* bfloat16 (the upper 16 bits of a float) of v >= 0, rounded up (a positive value stays positive; the
+ * largest finite bfloat16 for values beyond it), and back */
+static uint16_t el_envlight__bf16_up(float v) {
+  uint32_t b;
+  memcpy(&b, &v, sizeof b);
+  if (b & 0xffffu) b += 0x10000u;
+  b >>= 16;
+  return (uint16_t)(b >= 0x7f80u ? 0x7f7fu : b);
+}
+static inline float el_envlight__bf16(uint16_t h) {
+  uint32_t b = (uint32_t)h << 16;
+  float v;
+  memcpy(&v, &b, sizeof v);
+  return v;
+}
+
 /* <<Build the product tables>>: vertex grid, cells, patch CDFs, cell masses, plain and normal tables. */
 static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
   struct el_envlight__warp *W;
@@ -3501,7 +3518,7 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
   double *wgt = NULL, *rs = NULL, total = 0.0;
   float *bins = NULL, *rowmax = NULL;
   uint32_t *tmp = NULL;
-  size_t nv, np, nr, big;
+  size_t nv, np, nr, big, kk;
   el_result res;
   *out = NULL;
   W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
@@ -3598,6 +3615,10 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
       }
     }
   }
+  /* the vertex values as the queries read them: bfloat16, rounded up */
+  W->V16 = (uint16_t *)EL_MALLOC(nv * sizeof(uint16_t));
+  if (!W->V16) { res = EL_ERROR_OUT_OF_MEMORY; goto fail; }
+  for (kk = 0; kk < nv; ++kk) { W->V16[kk] = el_envlight__bf16_up(W->V[kk]); W->V[kk] = el_envlight__bf16(W->V16[kk]); }
   /* patch (i, r): corners V[r][i], V[r][i+1], V[r+1][i], V[r+1][i+1]; mass = their mean x dv (dv 1 / gh, half
    * at the pole rows; du = 1 / gw is common). pcol: each cell column's patches per patch row. */
   for (r = 0; r <= gh; ++r) {
@@ -3632,11 +3653,11 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
   W->all_zero = !(total > 0.0);
   EL_FREE(wgt); EL_FREE(rs); EL_FREE(tmp); EL_FREE(bins); EL_FREE(rowmax);
   wgt = NULL; rs = NULL; tmp = NULL; bins = NULL; rowmax = NULL;
-  if (!W->coarse) { EL_FREE(W->V); W->V = NULL; nv = 0; } /* queries recompute the corners from the texels (issue 20: -2.1 MB) */
+  EL_FREE(W->V); W->V = NULL; /* the queries read V16 */
   res = el_envlight__cos_build(W, m);
   if (res != EL_SUCCESS) goto fail;
   EL_FREE(W->mass); W->mass = NULL; /* only the build needs the cells' masses (and no plain table) */
-  W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(float) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
+  W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(uint16_t) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
                   nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int);
   *out = W;
   return EL_SUCCESS;
@@ -3697,21 +3718,13 @@ static inline const uint16_t *el_envlight__prod_table(const el_envlight *l, cons
   return W->cos_tab + W->cos_off[(size_t)j * (size_t)mm + (size_t)i];
 }
 
-/* The corners V[r][i], V[r][i + 1], V[r + 1][i], V[r + 1][i + 1] of patch (i, r): vertex row k is texel row
- * k - 1 (its luminance less the offset, times its sin: el_envlight__vertex_of, recomputed from the
- * texels, the same bits as the build's), rows 0 and h + 1 are the poles' 0. A coarse grid (maps over the
- * size cap) keeps its max-filtered values in W->V instead. */
-static inline void el_envlight__prod_corners(const el_envlight *l, const struct el_envlight__warp *W, int i, int r, float c[4]) {
+/* The corners V[r][i], V[r][i + 1], V[r + 1][i], V[r + 1][i + 1] of patch (i, r) (bfloat16: issue 20, half
+ * the memory of floats; the tables were built from the same rounded values). */
+static inline void el_envlight__prod_corners(const struct el_envlight__warp *W, int i, int r, float c[4]) {
   int gw = W->w, i1 = i + 1 < gw ? i + 1 : 0;
-  if (W->V) {
-    const float *V = W->V + (size_t)r * (size_t)gw;
-    c[0] = V[i]; c[1] = V[i1]; c[2] = V[(size_t)gw + (size_t)i]; c[3] = V[(size_t)gw + (size_t)i1];
-    return;
-  }
-  if (r > 0) { c[0] = el_envlight__vertex_of(l, W, i, r - 1); c[1] = el_envlight__vertex_of(l, W, i1, r - 1); }
-  else c[0] = c[1] = 0.0f;
-  if (r < W->h) { c[2] = el_envlight__vertex_of(l, W, i, r); c[3] = el_envlight__vertex_of(l, W, i1, r); }
-  else c[2] = c[3] = 0.0f;
+  const uint16_t *V = W->V16 + (size_t)r * (size_t)gw;
+  c[0] = el_envlight__bf16(V[i]); c[1] = el_envlight__bf16(V[i1]);
+  c[2] = el_envlight__bf16(V[(size_t)gw + (size_t)i]); c[3] = el_envlight__bf16(V[(size_t)gw + (size_t)i1]);
 }
 
 /* Where the pdf finds a light-space direction (any length): le()'s (u, v), the patch (column i, vertex
@@ -3770,7 +3783,7 @@ static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, co
 /* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
  * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
  * be NULL) gets the (u, v) at which le() looks d up. */
-static float el_envlight__prod_pdf_light(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
+static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
   el_envlight__ploc q;
   float c[4];
   int i, r, a, b, k;
@@ -3789,7 +3802,7 @@ static float el_envlight__prod_pdf_light(const el_envlight *l, const struct el_e
   pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
   wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
   if (wc == 0 || wr == 0) return 0.0f;
-  el_envlight__prod_corners(l, W, i, r, c);
+  el_envlight__prod_corners(W, i, r, c);
   return el_envlight__prod_eval(W, &q, wc, wr, c);
 }
 
@@ -3832,7 +3845,7 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   wr *= (uint32_t)(pc[i + 1] - pc[i]);
   i += W->a0[a];
   /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
-  el_envlight__prod_corners(l, W, i, r, c);
+  el_envlight__prod_corners(W, i, r, c);
   t = el_envlight__lin_invf(c[0] + c[1], c[2] + c[3], q);
   s = el_envlight__lin_invf(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), s);
   /* 2^-12 of a patch inside its edges: a q of exactly 0 or 1 (x on a unit) would put the point on the
@@ -3854,7 +3867,7 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
     if (el_envlight__prod_locate(W, d, &loc) && loc.i == i && loc.r == r) { /* the pdf's own path, its reads skipped */
       p = el_envlight__prod_eval(W, &loc, wc, wr, c);
       uv[0] = loc.u; uv[1] = loc.v;
-    } else p = el_envlight__prod_pdf_light(l, W, tab, d, uv);
+    } else p = el_envlight__prod_pdf_light(W, tab, d, uv);
     if (p > 0.0f) break;
     /* the round trip left the patch for one without mass (near a pole under a general rotation, where
      * 1e-7 of direction is a large step in phi): the patch's centre instead, as issue 24 did */
@@ -3996,7 +4009,7 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   tab = el_envlight__prod_table(l, W, n);
   if (!tab || tab[W->kv] == 0) return 0.0f;
   if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f; /* rescaled in world space first (issue 24) */
-  return el_envlight__prod_pdf_light(l, W, tab, d, NULL);
+  return el_envlight__prod_pdf_light(W, tab, d, NULL);
 }
 
 EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {

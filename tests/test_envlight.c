@@ -1481,7 +1481,7 @@ static float ps_pdf_tested(const psrc *s, const float wi[3]) {
  * Also: every sample's pdf is finite and > 0 and equals the pdf function at its direction bit for bit,
  * and its radiance equals le(wi) bit for bit. Returns the p-value (1 when the test could not run). */
 static int g_prod_tests = 0;
-#define PROD_TESTS_PLANNED 28
+#define PROD_TESTS_PLANNED 31
 /* sub x sub midpoints per patch for the expectation (1: exact for a density bilinear in the map's
  * patches; maps over the product's size cap are bilinear in coarser patches: 4 there) */
 static int g_chi2_sub = 1;
@@ -1698,6 +1698,18 @@ static float *map_black_half(void) { /* the upper half black, the lower half a r
   for (k = PW * PH / 2; k < PW * PH; ++k) px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = 1.0f + (float)(k % PW) / 8.0f;
   return px;
 }
+static float *map_stripes(void) { /* 128 x 64: lit bands of columns, one across the seam (122..5), one at
+  40..50, a bright column at 90, black between them (issue 20's sparse normal tables: each cell row keeps
+  the span of its cells with weight, which wraps at the seam and holds black cells inside it) */
+  float *px = (float *)calloc(128 * 64 * 3, sizeof(float));
+  int k;
+  for (k = 0; k < 128 * 64; ++k) {
+    int x = k % 128, y = k / 128;
+    float v = (x >= 122 || x <= 5) ? 2.0f + (float)(y % 7) : (x >= 40 && x <= 50) ? 1.0f : x == 90 ? 300.0f : 0.0f;
+    px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = v;
+  }
+  return px;
+}
 static float *map_pole_rows(void) { /* bright first and last rows */
   float *px = (float *)malloc(PW * PH * 3 * sizeof(float));
   int k;
@@ -1737,6 +1749,14 @@ static void test_product_chi2(const el_image *studio, const el_image *city) {
   chi2_product_case("pole rows 64x32", poles, PW, PH, 0, 0, UP, 32, 16, n, 111);
   chi2_product_case("pole rows 64x32", poles, PW, PH, 2, 1, NEAR_POLE, 32, 16, n, 112);
   chi2_product_case("1x48", col, 1, 48, 0, 0, TILT, 1, 24, n, 113);
+  { /* spans of cells with weight that wrap at the seam and hold black cells (sparse normal tables) */
+    static const double BACK[3] = {-0.6, 0.8, 0.0}, SEAM_UP[3] = {0.6, 0.0, 0.8};
+    float *stripes = map_stripes();
+    chi2_product_case("stripes 128x64", stripes, 128, 64, 0, 0, SEAM, 64, 32, n, 142);
+    chi2_product_case("stripes 128x64", stripes, 128, 64, 1, 0, BACK, 64, 32, n, 143);
+    chi2_product_case("stripes 128x64", stripes, 128, 64, 0, 1, SEAM_UP, 64, 32, n, 144);
+    free(stripes);
+  }
   chi2_product_case("64x1", row, 64, 1, 1, 0, SIDE, 32, 2, n, 114);
   { /* sizes the cells do not divide: 300x100 (64 cells over 300 patch columns), 60x21 (fewer patches than cells) */
     float *odd = (float *)malloc(300 * 100 * 3 * sizeof(float));
