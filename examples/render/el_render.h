@@ -92,7 +92,8 @@ typedef struct elr_render_options {
   int wave_api;       /* -1: the wave loop's default; else how it traces (ELR_WAVE_API_* of elr_internal.h:
                          0 rtcIntersect1, 1 packets of 16, 2 rtcIntersect1M streams, 3 rtcIntersectNp) */
   float env_lobe_alpha; /* < 0: ELR_ENV_LOBE_ALPHA; else with product sampling, vertices whose glossy lobe has a
-                           Trowbridge-Reitz alpha below it sample the environment's map alone (0: never; issue 20) */
+                           Trowbridge-Reitz alpha below it and no diffuse lobe sample the environment's map alone
+                           under a sun map, the product around the mirror direction otherwise (0: never; issue 20) */
   float env_light_alpha; /* < 0: ELR_ENV_LIGHT_ALPHA; else with product sampling, directlighting vertices whose lobes
                             are diffuse or of alpha >= it take the light sample alone (no BSDF sample; inf: never) */
 } elr_render_options;
@@ -110,7 +111,8 @@ typedef struct elr_light_stats {
   size_t bytes;         /* those tables */
   double seconds;       /* and their build time */
   int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
-  float env_lobe_alpha; /* environment, product sampling: vertices with a glossy lobe of alpha below it took the map */
+  float env_lobe_alpha; /* environment, product sampling: vertices with a glossy lobe of alpha below it (no diffuse
+                           lobe) took the map under a sun, the product around the mirror direction otherwise */
   float env_light_alpha; /* and directlighting vertices with no lobe narrower than it, the light sample alone */
   float env_sun_share;   /* the share of the map's power above 100x its mean radiance (> 0.5: diffuse lobes take the map) */
   int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */

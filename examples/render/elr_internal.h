@@ -156,7 +156,8 @@ typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ 
  * clamped cosine (el_envlight_sample_li_cos), or the map alone (el_envlight_sample_li, pbrt-v3's) */
 enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
 /* issue 20's per-lobe choice: with product sampling, a vertex whose glossy lobe has a Trowbridge-Reitz
- * alpha below this samples the map alone (elr_bsdf_cos_normal; measured with bench/lobes.py) */
+ * alpha below this and no diffuse lobe (metal) samples the map alone under a sun map, the product around
+ * wo's mirror direction otherwise (elr_bsdf_cos_normal; measured with bench/lobes.py) */
 #define ELR_ENV_LOBE_ALPHA 0.1f
 /* and a vertex whose lobes are diffuse or glossy with alpha at least this is estimated, by directlighting,
  * with the product light sample alone (no BSDF sample: elr_env_light_only) */
@@ -239,7 +240,8 @@ struct elr_scene {
   elr_instance *inst; int ninst, capinst;
   int warnings;
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
-   * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */
+   * alpha below this and no diffuse lobe sample the map alone under a sun (elr_bsdf.env_map), else the
+   * product around wo's mirror direction (elr_bsdf.env_mirror); 0 never (set by elr_render) */
   float env_lobe_alpha;
   /* and vertices whose glossy lobes (if any) all have alpha >= this take directlighting's product light
    * sample alone, without the BSDF sample (elr_bsdf.env_light_only; INFINITY never) */
@@ -382,6 +384,8 @@ typedef struct elr_bsdf {
   int has_diffuse, has_glossy, has_specular, ncomp;
   int spec_r, spec_t, nlobes;
   float eta;
+  int env_mirror; /* a peaked glossy lobe under a map without a sun: product sampling around wo's mirror direction
+                     (elr_bsdf_cos_normal), with MIS against the BSDF sample */
   int env_map; /* a glossy lobe peaked enough that the environment's map alone samples this vertex (elr_bsdf_cos_normal) */
   int env_light_only; /* no lobe narrower than the scene's env_light_alpha: directlighting's product light sample
                          alone estimates the environment here (elr_env_light_only) */
@@ -405,13 +409,19 @@ elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, in
  * transmits (rough glass): its light comes from both sides. Light sample and BSDF sample's MIS weight
  * use the same normal, and the path tracer keeps it for its continuation ray (elr_path_state.prev_n).
  * Returns 0 too where a glossy lobe is peaked (b->env_map, set by elr_bsdf_init: its Trowbridge-Reitz
- * alpha below the scene's env_lobe_alpha): there the product of the map and the cosine follows the
- * lobe no better than the map does and costs more (issue 20, bench/lobes.py). */
+ * alpha below the scene's env_lobe_alpha, no diffuse lobe): there the product of the map and the cosine follows the
+ * lobe no better than the map does and costs more (issue 20, bench/lobes.py); that is, under a sun map
+ * (elr_scene.env_sunny). Under other maps such a lobe (b->env_mirror, no diffuse lobe) gets wo's mirror
+ * direction about ns in place of the normal: the product of the map and the clamped cosine around the
+ * mirror direction, a broad proxy of the lobe that MIS with the BSDF sample (which covers the whole
+ * lobe) keeps unbiased; never taken alone (elr_env_light_only is 0 there: that needs the normal's
+ * cosine, positive wherever f is). */
 static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
   int i;
   if (b->env_map) return 0; /* issue 20's per-lobe choice: a peaked glossy lobe (elr_bsdf_lobe_alpha) */
   for (i = 0; i < b->nlobes; i++)
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
+  if (b->env_mirror) { *n = elr_sub(elr_mul(b->ns, 2.f * elr_dot(wo, b->ns)), wo); return 1; } /* (any length: only its direction counts) */
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
   return 1;
 }

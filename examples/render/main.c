@@ -11,8 +11,9 @@
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
  * --env-sampling product|map (the environment sampled by the map x the surface's cosine, or the map alone),
- * --env-lobe-alpha A (with product sampling, vertices with a glossy lobe of Trowbridge-Reitz alpha below A
- * sample the map alone; 0 never; default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
+ * --env-lobe-alpha A (with product sampling, vertices with a glossy lobe of Trowbridge-Reitz alpha below A and no
+ * diffuse lobe sample the map alone under a sun map, the product around the mirror direction otherwise; 0 never;
+ * default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),

@@ -103,9 +103,10 @@ void elr_stats_print(const elr_stats *st, void *fp) {
     for (i = 0; i < st->nlight_stats; i++)
       if (st->light[i].env_product) { a = st->light[i].env_lobe_alpha; b = st->light[i].env_light_alpha; sun = st->light[i].env_sun_share; }
     fprintf(f, "  env strategies     %llu light samples by product sampling (%llu of them alone, without a BSDF sample: lobes "
-               "diffuse or of alpha >= %g), %llu by the map alone (glossy lobes of alpha < %g, rough transmission%s); "
+               "diffuse or of alpha >= %g; around the mirror direction for metal of alpha < %g without a sun), %llu by the map "
+               "alone (metal of alpha < %g under a sun, rough transmission%s); "
                "the map's sun share %.3f\n",
-            (unsigned long long)st->env_product_samples, (unsigned long long)st->env_light_only_samples, (double)b,
+            (unsigned long long)st->env_product_samples, (unsigned long long)st->env_light_only_samples, (double)b, (double)a,
             (unsigned long long)st->env_map_samples, (double)a, sun > ELR_ENV_SUN_SHARE ? ", diffuse lobes under a sun" : "", (double)sun);
   }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
