@@ -333,16 +333,16 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 970
- * instructions (1090 with rgb), the pdf included. Builds its tables on first use (7.3 MB for a
- * 1024x512 map, at most about 17 MB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 900
+ * instructions (1030 with rgb), the pdf included. Builds its tables on first use (4.9 MiB for a
+ * 1024x512 map, at most 11 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
  * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
- * zero, NaN or infinite n, gives 0. About 380 instructions. Builds the tables on first use. */
+ * zero, NaN or infinite n, gives 0. About 410 instructions. Builds the tables on first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
  * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
@@ -401,7 +401,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    general rotation must find the same patch). The density is P(cell | n) x the patch's integer
  *    share x bil(s, t) / mean(corners): the warp's bilinear interpolant up to the units' rounding (the
  *    same variance per sample as before, measured). A sample costs a table lookup, four small binary
- *    searches, two linear inversions and the direction; the pdf an atan pair and the same tables.
+ *    searches, two linear inversions, the direction and the atan pair that locates it again (its pdf
+ *    then from the widths it picked); the pdf the atan pair and the same tables.
  *    WHERE IT CANNOT STAY ABOVE THE SURFACE: in cells that straddle the horizon of the bin's normals
  *    (the cells' size plus the bins' radius); such samples come back with n.wi <= 0 and contribute
  *    nothing. Their share is the share of the bound's mass in those cells, so it depends on how bright
@@ -430,32 +431,54 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    (17 MB of tables); a tighter per-bin bound (the maximum over 81 normals of the bin, not
  *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
- *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
+ *    "exact". The default is the best variance at a fixed cost per sample, for 2.9 MB of normal tables.
  *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random
- *    normal per call, the loop's own 9 subtracted): sample_li_cos 966 instructions (1094 with the
- *    radiance; before issue 20: 1179, 1310), pdf_li_cos 377 (419); sample_li 97 (261 with the radiance),
- *    pdf_li 76. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <= 150 and
- *    <= 1.5x pdf_li) are NOT met: the sample includes its own pdf (it runs pdf_li_cos's code on the
- *    sampled direction, about 260 instructions, so that the two agree bit for bit), and the pdf needs
- *    (u, v) to the bilinear's precision (two atan polynomials) plus the normal's bin. Time per estimate
- *    (table 4, light sampling alone, loaded machine, old and new back to back): 707 -> 405 ns on city,
- *    673 -> 379 on forest (sample_li: 160), so 1.7-1.8x less time-to-unit-variance (variance x time:
- *    city 23.7 -> 13.6, sample_li 414). TRIED AND DROPPED for issue 20: the light's own piecewise-
- *    constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340 instructions
- *    estimated) has 2.4x the variance on city (0.080 against 0.033, bench_product "table 32^2 64x32":
- *    20x on the normal facing up, where the sun's texel dominates and its density is flat while le is
- *    bilinear); an SSE2 count in place of the binary searches: more instructions (1049 against 953), not fewer.
- *    Not tried: a batched call for n normals, Conty and Lecocq's per-point 12x12 coarse level (its
- *    variance at 16x8 cells, above, is 2x the tables'), a diamond-angle patch parametrisation whose pdf
- *    needs no atan (the likely way to the targets).
- *    MEMORY: the vertex grid (4 bytes per vertex), the patch CDFs (2 bytes per patch) and the normal
- *    tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB: 7.3 MB at 1024x512 (8.7 before; the target 4 MB
- *    is not met: the normal tables alone are 4.3 MB). Maps over 2048x1024 use a coarse grid of that size
- *    (each coarse vertex the largest lum of the texels of its 3 x 3 coarse bins, so the density stays > 0
- *    wherever le is): at most about 17 MB for any map (before: 1.09 GB at 16384x8192). BUILD: 300 M
- *    instructions at 1024x512 (the normal tables 2.1 M bin-cell pairs: about 250 M), 29-53 ms on this
- *    loaded machine (target 20 ms: not met). el_envlight_product_options trade them: 32x16 cells and 16^2
- *    bins need 0.3 MB of tables and a sixteenth of their build, for 3x the variance.
+ *    normal per call, the loop's own 9 subtracted): sample_li_cos 902 instructions (1029 with the
+ *    radiance; 951 under a general rotation), pdf_li_cos 408 (436); sample_li 97 (265 with the
+ *    radiance), pdf_li 76. Before this round of issue 20: 988 (1116; 1034), 408 (432); before issue 20:
+ *    1179, 1310 and 444. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <=
+ *    150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about the pdf plus the pick. The
+ *    pdf (408) is the normal's bin (to light space, octahedral encoding: about 60), wi to light space
+ *    (27), (u, v) to the bilinear's precision (the two atan polynomials le() itself uses, so that rgb is
+ *    le(wi) bit for bit: about 110), the four table widths (about 50), the corners and the density
+ *    (about 60) and the calls; the sample adds the pick (four binary searches over 32, ~37, ~16 and 16
+ *    entries: about 190), two linear inversions, the direction (sinpi, cospi) and the atan pair again
+ *    (bit-for-bit agreement with pdf_li_cos needs the direction located as the pdf locates it).
+ *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
+ *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
+ *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
+ *    2.56 x 84 ns), studio 6.62 (0.0396 x 167 ns; before 6.80: 0.0396 x 172; sample_li 124): 33x and 19x
+ *    sample_li's efficiency. With a new random normal per call (renderer-like, cache-cold normal
+ *    tables): about 250-300 ns per sample, as before this round within the machine's noise.
+ *    ISSUE 20, WHAT WAS TRIED (each measured; kept if it paid in time-to-unit-variance):
+ *    kept: the built check inlined (-25 instructions per call); the sample's pdf from the widths it
+ *    picked once the direction, located again, lands in the same patch (-70; the same bits as
+ *    pdf_li_cos: the same evaluation of the same values); sparse normal tables (each cell row only the
+ *    span of cells with weight, wrapping at the seam: 4.3 -> 2.9 MB, +14 instructions in the pdf, +23 in the sample); the
+ *    vertex grid in bfloat16 rounded up (the patch CDFs built from the rounded values: -1 MB, and the
+ *    fastest per sample: half the cache footprint); the bounds' phi part per cell column (build 20 ->
+ *    16 ms, bit-identical tables). Dropped: the corners recomputed from the texels instead of a stored
+ *    grid (meets 4 MiB: 3.85 MiB, the same bits, but +54 / +73 instructions and 18% more time per
+ *    sample with random normals: the texels are 6 MB against the grid's 1-2); a branch-free binary
+ *    search with fixed steps (-13 instructions per sample: not worth its code); the light's own
+ *    piecewise-constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340
+ *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
+ *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
+ *    place of the binary searches (1049 instructions against 953). Not tried: alias or guide tables (they
+ *    would replace the ~190 instructions of searches but need memory per normal bin beyond the 4 MiB
+ *    target, and alias tables break the stratification), a batched call for n normals (no instruction
+ *    saving without SIMD across samples: the work is table lookups), Conty and Lecocq's per-point 12x12
+ *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
+ *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
+ *    density would no longer be le's, and the atans are about a quarter of the pdf).
+ *    MEMORY: the vertex grid (2 bytes per vertex, bfloat16), the patch CDFs (2 bytes per patch) and the
+ *    sparse normal tables (2.9 MB for 32^2 bins x 64 x 32 cells; dense they were 4.3): 5,093,916 bytes =
+ *    4.86 MiB at 1024x512 (7.3 MiB before this round, 8.7 before issue 20; the target 4 MiB is not met
+ *    with the default options: 32x16 cells and 16^2 bins give 2.4 MB, for 3x the variance). Maps over
+ *    2048x1024 use a coarse grid of that size (each coarse vertex the largest lum of the texels of its 3
+ *    x 3 coarse bins, so the density stays > 0 wherever le is): at most 11.0 MiB for any map (16.4 before,
+ *    1.09 GB before issue 20). BUILD: 262 M instructions at 1024x512 with init (310 M before), 17.7 ms
+ *    (best of 5, CPU time, 2-core machine at load 8; 20 before, target 20 ms); 4096x2048: 82 ms.
  *
  * 3. EXACTNESS. pdf_li_cos(n, wi) of a sampled wi equals the returned pdf bit for bit, and rgb equals
  *    le(wi) bit for bit (signed-permutation matrices and general rotations alike: the sampler brings
