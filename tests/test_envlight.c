@@ -2051,6 +2051,41 @@ static void *prod_thread_fn(void *p) {
   }
   return NULL;
 }
+/* Texels at the ends of the float range (a denormal 1e-44, 1e-38 near FLT_MIN, a 1e30 sun, 3e38 near
+ * FLT_MAX) on a black map: product sampling stores its vertex grid in bfloat16 rounded up (issue 20), so
+ * every lit texel must keep a density > 0 towards it (a truncation would drop the denormal), and samples
+ * must keep their pdf == pdf_li_cos. */
+static void test_product_tiny_values(void) {
+  static const int TX[4][2] = {{10, 5}, {30, 20}, {50, 12}, {20, 27}};
+  static const float TV[4] = {1e-44f, 1e-38f, 1e30f, 3e38f};
+  float *px = (float *)calloc(PW * PH * 3, sizeof(float)), m[9];
+  el_envlight l;
+  int k, c, ok = 1, rt = 1;
+  for (k = 0; k < 4; ++k)
+    for (c = 0; c < 3; ++c) px[(TX[k][1] * PW + TX[k][0]) * 3 + c] = TV[k];
+  identity(m);
+  if (make_light_imp(&l, px, PW, PH, m, 0, 0) != EL_SUCCESS) { check(0, "tiny values: init failed"); free(px); return; }
+  for (k = 0; k < 4; ++k) {
+    double d[3];
+    float n[3], wi[3], rgb[3], p, q;
+    int j;
+    ref_uv_to_dir((TX[k][0] + 0.5) / PW, (TX[k][1] + 0.5) / PH, d);
+    for (c = 0; c < 3; ++c) n[c] = (float)d[c];
+    if (!(el_envlight_pdf_li_cos(&l, n, n) > 0.0f)) ok = 0; /* towards the texel, from a surface facing it */
+    for (j = 0; j < 64; ++j) {
+      float uu[2];
+      uu[0] = ((float)j + 0.5f) / 64.0f; uu[1] = (float)((j * 37) % 64 + 0.5f) / 64.0f;
+      el_envlight_sample_li_cos(&l, n, uu, wi, rgb, &p);
+      q = el_envlight_pdf_li_cos(&l, n, wi);
+      if (!(p > 0.0f) || p != q || !(p < INFINITY)) rt = 0;
+    }
+  }
+  check(ok, "product sampling, texels of 1e-44 (denormal), 1e-38, 1e30 and 3e38 on a black map: pdf_li_cos > 0 towards each");
+  check(rt, "product sampling on that map: 256 samples with pdf > 0, finite, == pdf_li_cos bit for bit");
+  el_envlight_free(&l);
+  free(px);
+}
+
 static void test_product_hard(const el_image *city) {
   el_envlight l;
   float *sunmap = map_sun();
@@ -2256,6 +2291,7 @@ int main(void) {
   test_product_coarse();
   test_product_unbiased(&studio, &city);
   test_product_hard(&city);
+  test_product_tiny_values();
   el_image_free(&studio);
   el_image_free(&city);
   printf("test_envlight: %d passed, %d failed\n", g_pass, g_fail);
