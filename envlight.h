@@ -600,6 +600,22 @@ EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envligh
                                           float wi[3], float rgb[3], float *pdf);
 EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
                                         const el_envlight_mix_weights *w, const float n[3], const float dir[3]);
+/* The per-call work of sample_li_mix_cos and pdf_li_mix_cos for one (w, n), done once (issue 22's renderer:
+ * a shading point's light sample and its BSDF sample's pdf, and points that share a normal): prepare fills
+ * t (about 2.2 KB, no allocation), then the _table calls give exactly what sample_li_mix_cos and
+ * pdf_li_mix_cos give with that w and n, bit for bit (they are those calls' own second halves). */
+typedef struct el_envlight_mix_cos_table {
+  int usable, hn;                            /* h usable with l; the normal was usable (nl) */
+  float n[3], nl[3], s;                      /* the world normal; in light space; the bounds' sum S(n) */
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];     /* the normalised weights */
+  float bm[32 * 16];                         /* the cells' running sums of bound x mass */
+} el_envlight_mix_cos_table;
+EL_DEF void el_envlight_mix_cos_prepare(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w,
+                                        const float n[3], el_envlight_mix_cos_table *t);
+EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *t,
+                                                const float u[2], float wi[3], float rgb[3], float *pdf);
+EL_DEF float el_envlight_pdf_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *t,
+                                              const float dir[3]);
 /* The mixture's solid-angle density at dir: pdf_li(dir) x w_part / share_part for the part holding dir
  * (0 for a part of weight 0). With default weights: pdf_li(dir), bit for bit. */
 EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
@@ -670,7 +686,10 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    sample and per pdf (512 bounds in a vectorisable loop, then a running sum): 7.3x (3.4 against
  *    0.47 us) and, before the loop was vectorised, 9.2x sample_li_cos's time with radiance (sunrise, best
  *    of 5 interleaved rounds, loaded machine); so at equal time it wins on sun maps (sunrise, city:
- *    10-165x less variance), not on lamp maps. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
+ *    10-165x less variance), not on lamp maps. el_envlight_mix_cos_prepare does the 512 bounds once per (w, n)
+ *    and the _table calls reuse them (a shading point's sample and its BSDF sample's pdf, points sharing a
+ *    normal: issue 22's renderer keeps 8 per thread, 4.6x -> 1.8x its render time with the cache on
+ *    scenes/sun_shadow_object.pbrt). MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
  *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
@@ -689,19 +708,24 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
 #define EL_ENVLIGHT_PORTAL_MAX 16
 
 typedef struct el_envlight_portal_options {
-  int resolution;  /* rectified image texels per axis, 4..4096; 0: the map's height within 64..2048 (a
-                      rectified texel about a map texel at the window's centre: a sun stays sharp) */
+  int resolution;  /* rectified image texels per axis, 4..4096; 0: twice the map's height within 64..2048
+                      (about 2 x 2 rectified texels per map texel at the window's centre: a sun, which
+                      le() spreads bilinearly over 2 x 2 map texels, stays sharp) */
   int supersample; /* importance lookups per texel and axis, 1..16; 0: 2 */
   int compensated; /* 1: density max(lum - mean, 0) (the mean over the portal's hemisphere): MIS only */
   float map_share; /* 0..1: the share of samples drawn by the map's own sample_li where a portal is seen
                       (a defensive mixture: a point outside the room that sees a portal's back still
                       finds the sun). 0: pbrt-v4's pure portal density */
+  int map_share_outside; /* 1: map_share only at points on or behind some portal's plane (outside a convex
+                            room whose windows are the portals: the sphere outside a second window);
+                            points in front of every portal's plane get the pure portal density.
+                            0: map_share wherever a portal is seen */
 } el_envlight_portal_options;
 
 /* One or more planar rectangular portals (windows) of a light, in world space, with pbrt-v4's vertex
  * order and frame: x along p3 - p0, y along p1 - p0, z = x cross y points from the room to the outside
  * (a shading point sees the portal when the portal lies on the +z side of it). PUBLIC (read, never
- * write): count, res, map_share, bad_index and error; the rest is private. */
+ * write): count, res, map_share, map_share_outside, bad_index and error; the rest is private. */
 typedef struct el_envlight_portal {
   int count, res;                           /* PUBLIC: portals, rectified texels per axis */
   double frame[EL_ENVLIGHT_PORTAL_MAX][12]; /* per portal: p0, x, y, z (unit) */
@@ -709,6 +733,7 @@ typedef struct el_envlight_portal {
   uint64_t *sat;                            /* count x (res+1)^2 integer summed-area tables */
   int compensated, fell_back;               /* fell_back: the compensated density was empty: plain one */
   float map_share;                          /* options.map_share */
+  int map_share_outside;                    /* options.map_share_outside */
   int bad_index;                            /* after a failed init: the portal at fault, else -1 */
   char error[128];                          /* after a failed init: what is wrong, else "" */
 } el_envlight_portal;
@@ -727,7 +752,8 @@ EL_DEF void el_envlight_portal_free(el_envlight_portal *p);
  * when the portals were used, 0 when pos sees no portal (it lies behind every portal's plane or on it)
  * and the map's own sample_li was used instead. With options.map_share s > 0, where pos sees a portal
  * a share s of the samples comes from the map's sample_li and the pdf is the mixture's,
- * (1 - s) portal + s map (then directions outside the portals keep the map's share). */
+ * (1 - s) portal + s map (then directions outside the portals keep the map's share); with
+ * options.map_share_outside only where pos also lies on or behind some portal's plane. */
 EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
                                         const float u[2], float wi[3], float rgb[3], float *pdf);
 /* The density with which sample_li picks wi at pos: 0 for a direction through no portal (when pos sees
@@ -764,17 +790,20 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    window's rows and the position in the row by linear inversion; then the column by a binary search
  *    over the row's prefix (2 reads per step). pdf = q_texel R^2 / (window mass) / (dw/d(a,b)), the exact
  *    density of those steps. Several portals: one is picked by the windows' masses with the same u.
- *    No rectified RGB image: radiance is le() of the map. COST (bench/bench_portal.c, 4 floor points
- *    of a room, gcc -O3, a shared loaded 2-core machine): 267-313 ns per sample with the radiance and
- *    the pdf, against 1280-1480 ns for a plain port of pbrt-v4's sampler (bisection over a double
- *    SAT) at the same resolution: 4.7-4.9x less; at equal variance on a smooth sky (the same density:
- *    relative variance 0.039 both; the map's sample_li: 50). MEMORY: 8 bytes per rectified texel
- *    (pbrt-v4: 24); the default resolution is the map's height (city, 1024x512: 512^2, 2 MB per
- *    portal, built in about 100 ms), because a sun must stay sharp: 256^2 left 2x the variance of
- *    the irradiance and 2x of a rendered room's pixels. The renderer (bench/bench_portal_render.c):
- *    time to unit variance 112x better on an overcast sky, 4.3x on city with its sun shining in
- *    (path traced, depth 3: the rest is indirect light from the sunlit floor); direct light alone
- *    (depth 1) 1600x and 11x.
+ *    No rectified RGB image: radiance is le() of the map. The searches prefetch the rows of the steps
+ *    ahead (at 1024^2 most steps miss the cache). COST (bench/bench_portal.c, 4 floor points of a room,
+ *    gcc -O3, a shared 2-core machine): 206-236 ns per sample with the radiance and the pdf, against
+ *    1006-1175 ns for a plain port of pbrt-v4's sampler (bisection over a double SAT) at the same
+ *    resolution: 4.9x less; at equal variance (the same density: relative variance 0.039 both on a
+ *    smooth sky, 0.045 / 0.047 on city; the map's sample_li: 50 / 25). MEMORY: 8 bytes per rectified
+ *    texel (pbrt-v4: 24); the default resolution is twice the map's height (city, 1024x512: 1024^2,
+ *    8 MB per portal, built in about 0.3 s), because le() spreads a sun bilinearly over 2 x 2 map
+ *    texels and a density constant per rectified texel follows that only with about 2 x 2 rectified
+ *    texels per map texel: at the map's height the irradiance's variance was 3.6x higher (0.165) and
+ *    the rendered room's gain 5.3x instead of 8x. The renderer (bench/bench_portal_render.c, path
+ *    traced, depth 3): time to unit variance 8.0x better on city with its sun shining in (the rest is
+ *    indirect light from the sunlit floor, which paths find by BSDF sampling), 166x on an overcast
+ *    sky; direct light alone (depth 1) 37x and 1800x.
  * 4. FALLBACK: a point on or behind every portal's plane (or seeing windows of zero mass) uses the map's
  *    sample_li / pdf_li, so the strategy stays unbiased everywhere; sample_li returns which was used.
  *    Directions through no portal have pdf 0 (as pbrt-v4): the caller's BSDF samples must find them.
@@ -784,6 +813,11 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    see its back; its sun is then sought only through the room. A share s of the samples from the
  *    map's sample_li, pdf (1 - s) portal + s map, keeps such points well sampled (the renderer uses
  *    0.1: a sphere outside a window read 1% dark at 8 seeds without it, -3.6 sd; with it 0.07 sd).
+ *    options.map_share_outside keeps the share to points on or behind some portal's plane (outside a
+ *    convex room whose windows are the portals), so that the room's inside keeps the pure portal
+ *    density: in the renderer's one-window rooms the share everywhere cost 25% of the time to unit
+ *    variance (its map pdf per sample, its samples that hit the walls); a point outside beyond a
+ *    windowless wall then finds its sun by the caller's BSDF samples alone (unbiased, noisier).
  * 6. INPUTS: a NaN, infinite or zero u is clamped as sample_li's; a NaN or zero wi has pdf 0; a NaN pos
  *    sees no portal. Queries are read-only and thread-safe (the fallback builds the light's tables lazily,
  *    as sample_li does). */
@@ -4301,16 +4335,42 @@ EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_
   return el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, dir);
 }
 
+EL_DEF void el_envlight_mix_cos_prepare(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w,
+                                        const float n[3], el_envlight_mix_cos_table *t) {
+  int k;
+  t->n[0] = n ? n[0] : 0.0f; t->n[1] = n ? n[1] : 0.0f; t->n[2] = n ? n[2] : 0.0f;
+  t->usable = el_envlight__hot_usable(l, h);
+  t->hn = 0; t->s = 0.0f; t->nl[0] = t->nl[1] = t->nl[2] = 0.0f;
+  for (k = 0; k <= EL_ENVLIGHT_HOTSPOT_MAX; ++k) t->a[k] = 0.0;
+  if (!t->usable) return;
+  el_envlight__hot_weights_cos(h, w, t->a);
+  t->hn = el_envlight__hot_normal(l, t->n, t->nl);
+  if (h->cell_dist) t->s = el_envlight__hot_bounds(h, t->hn ? t->nl : NULL, t->bm);
+}
+
+EL_DEF float el_envlight_pdf_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *tab,
+                                              const float dir[3]) {
+  if (!tab->usable || !el_envlight__hot_usable(l, h)) return el_envlight_pdf_li_cos(l, tab->n, dir);
+  return el_envlight__hot_pdf_cos(l, h, tab->a, tab->hn ? tab->nl : NULL, tab->s, dir);
+}
+
 EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
                                           const el_envlight_mix_weights *w, const float n[3], const float u[2],
                                           float wi[3], float rgb[3], float *pdf) {
-  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
-  float fu, fv, pb, uu, nl[3], s = 0.0f, bm[32 * 16];
-  int k, iu, iv, hn, cell = 0;
+  el_envlight_mix_cos_table t;
   if (!el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf); return; }
-  el_envlight__hot_weights_cos(h, w, a);
-  hn = el_envlight__hot_normal(l, n, nl);
-  if (h->cell_dist) s = el_envlight__hot_bounds(h, hn ? nl : NULL, bm);
+  el_envlight_mix_cos_prepare(l, h, w, n, &t);
+  el_envlight_sample_li_mix_cos_table(l, h, &t, u, wi, rgb, pdf);
+}
+
+EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *tab,
+                                                const float u[2], float wi[3], float rgb[3], float *pdf) {
+  const double *a = tab->a;
+  const float *nl = tab->nl, *bm = tab->bm, s = tab->s;
+  double c = 0.0, u0;
+  float fu, fv, pb, uu;
+  int k, iu, iv, hn = tab->hn, cell = 0;
+  if (!tab->usable || !el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, tab->n, u, wi, rgb, pdf); return; }
   u0 = (double)el_envlight__clamp_u(u[0]);
   for (k = 0; k < h->count; ++k) {
     if (a[k] > 0.0 && u0 < c + a[k]) break;
@@ -4742,6 +4802,14 @@ done:
 /* >> portals (issue 23; NOTES ON PORTALS below the declarations) */
 
 #define EL_ENVLIGHT__PORTAL_UNITS 1099511627776.0 /* 2^40: the quantised mass of the largest portal image */
+/* A hint, no effect on any result: the binary searches below start loading the table entries of both
+ * possible next steps, so that one step's cache misses overlap the current step's (the plain search
+ * waits for one miss after another) */
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__PORTAL_PREFETCH(a) __builtin_prefetch(a)
+#else
+#define EL_ENVLIGHT__PORTAL_PREFETCH(a) ((void)(a))
+#endif
 
 /* atan2(x, z) / pi for z > 0, in (-1/2, 1/2) (the rectified angle of a direction, in turns of pi). */
 static double el_envlight__portal_angle(double x, double z) {
@@ -4759,6 +4827,7 @@ typedef struct el_envlight__pwin {
   int ia, ib;        /* floor of x0, x1 (<= R - 1) */
   double fa, fb;     /* x0 - ia, x1 - ib */
   double k0, mass;   /* K at y0 (the prefix of the rows below y0), the window's mass */
+  int behind;        /* the point is on or behind the portal's plane (or NaN) */
 } el_envlight__pwin;
 
 /* K(j): the mass of rows < j between columns x0 and x1 (4 table reads, two adjacent pairs). */
@@ -4782,7 +4851,8 @@ static int el_envlight__portal_window(const el_envlight_portal *p, int k, const 
   double r[3], x0, y0, z, R = (double)p->res;
   r[0] = f[0] - pos[0]; r[1] = f[1] - pos[1]; r[2] = f[2] - pos[2];
   z = r[0] * f[9] + r[1] * f[10] + r[2] * f[11];
-  if (!(z > 1e-9 * (fabs(f[0]) + fabs(f[1]) + fabs(f[2]) + p->size[k][0] + p->size[k][1]))) return 0;
+  w->behind = !(z > 1e-9 * (fabs(f[0]) + fabs(f[1]) + fabs(f[2]) + p->size[k][0] + p->size[k][1]));
+  if (w->behind) return 0;
   x0 = r[0] * f[3] + r[1] * f[4] + r[2] * f[5];
   y0 = r[0] * f[6] + r[1] * f[7] + r[2] * f[8];
   w->x0 = (el_envlight__portal_angle(x0, z) + 0.5) * R;
@@ -4819,6 +4889,15 @@ static double el_envlight__portal_windows(const el_envlight_portal *p, const flo
     }
   }
   return total;
+}
+
+/* The map's share at a point whose windows are w (options.map_share and map_share_outside). */
+static double el_envlight__portal_share(const el_envlight_portal *p, const el_envlight__pwin *w) {
+  int k;
+  if (!p->map_share_outside) return (double)p->map_share;
+  for (k = 0; k < p->count; ++k)
+    if (w[k].behind) return (double)p->map_share;
+  return 0.0;
 }
 
 /* Rectified (a - 1/2, b - 1/2) -> local unit direction; returns dw/d(a,b). */
@@ -4875,7 +4954,7 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
     memcpy(p->error, "portal count outside 1..16", 27);
     return EL_ERROR_INVALID_ARGUMENT;
   }
-  R = o.resolution ? o.resolution : (light->height < 64 ? 64 : light->height > 2048 ? 2048 : light->height);
+  R = o.resolution ? o.resolution : (light->height < 32 ? 64 : light->height > 1024 ? 2048 : 2 * light->height);
   ss = o.supersample ? o.supersample : 2;
   if (R < 4 || R > 4096 || ss < 1 || ss > 16 || !(o.map_share >= 0.0f && o.map_share <= 1.0f)) {
     memcpy(p->error, "resolution outside 4..4096, supersample outside 1..16 or map_share outside 0..1", 80);
@@ -4927,6 +5006,7 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
   p->res = R;
   p->compensated = o.compensated ? 1 : 0;
   p->map_share = o.map_share;
+  p->map_share_outside = o.map_share_outside ? 1 : 0;
   n = (size_t)(R + 1) * (size_t)(R + 1);
   p->sat = (uint64_t *)EL_MALLOC(n * (size_t)count * sizeof(uint64_t));
   f = (double *)EL_MALLOC((size_t)R * (size_t)R * (size_t)count * sizeof(double));
@@ -5073,7 +5153,7 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
     el_envlight_sample_li(light, u, wi, rgb, pdf);
     return 0;
   }
-  share = (double)p->map_share;
+  share = el_envlight__portal_share(p, w);
   if (share > 0.0) { /* <<Defensive mixture>>: u1 picks the map or the portals, then is stretched back */
     double D[3];
     if ((double)u1 < share) {
@@ -5104,8 +5184,23 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   lo = (int)w[k].y0; if (lo > R - 1) lo = R - 1;
   hi = (int)w[k].y1; if ((double)hi < w[k].y1) hi++; /* ceil */
   if (hi > R) hi = R;
+  { /* the first step's row and both of the next step's */
+    int mid = (lo + hi) >> 1, g[3], gi;
+    g[0] = mid; g[1] = (lo + mid) >> 1; g[2] = (mid + hi) >> 1;
+    for (gi = 0; gi < 3; ++gi) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ib);
+    }
+  }
   while (hi - lo > 1) {
-    int mid = (lo + hi) >> 1;
+    int mid = (lo + hi) >> 1, gi, g[4];
+    /* (the rows of the four possible steps after the next: the next step's were asked for last time) */
+    g[0] = (lo + ((lo + mid) >> 1)) >> 1; g[1] = (((lo + mid) >> 1) + mid) >> 1;
+    g[2] = (mid + ((mid + hi) >> 1)) >> 1; g[3] = (((mid + hi) >> 1) + hi) >> 1;
+    for (gi = 0; gi < 4; ++gi) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ib);
+    }
     if (el_envlight__portal_k(S, R, &w[k], mid) <= t) lo = mid;
     else hi = mid;
   }
@@ -5128,7 +5223,9 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   {
     int a = w[k].ia, b = w[k].ib + 1;
     while (b - a > 1) {
-      int mid = (a + b) >> 1;
+      int mid = (a + b) >> 1, m0 = (a + mid) >> 1, m1 = (mid + b) >> 1;
+      EL_ENVLIGHT__PORTAL_PREFETCH(r0 + m0); EL_ENVLIGHT__PORTAL_PREFETCH(r1 + m0); /* (both next steps) */
+      EL_ENVLIGHT__PORTAL_PREFETCH(r0 + m1); EL_ENVLIGHT__PORTAL_PREFETCH(r1 + m1);
       if ((double)(r1[mid] - r0[mid]) <= t) a = mid;
       else b = mid;
     }
@@ -5165,12 +5262,13 @@ EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_env
                                        const float wi[3]) {
   el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
   int seen[EL_ENVLIGHT_PORTAL_MAX];
-  double total, D[3], pp;
+  double total, D[3], pp, share;
   total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
   if (!(total > 0.0)) return el_envlight_pdf_li(light, wi);
   if (!el_envlight__portal_unit(wi, D)) return 0.0f;
   pp = el_envlight__portal_density(p, w, seen, total, D);
-  if (p->map_share > 0.0f) pp = (1.0 - (double)p->map_share) * pp + (double)p->map_share * (double)el_envlight_pdf_li(light, wi);
+  share = el_envlight__portal_share(p, w);
+  if (share > 0.0) pp = (1.0 - share) * pp + share * (double)el_envlight_pdf_li(light, wi);
   return (float)pp;
 }
 

@@ -1,7 +1,7 @@
 /* el_render.h: the pieces of `render`, a pbrt-v3-format scene renderer on Embree (examples/render).
  *
  * Not part of the envlight library: an application of it. The renderer reads a pbrt-v3 scene file
- * (parser.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
+ * (parser.c, paramset.c, api*.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
  * and instances (scene.c, shapes.c, loopsubdiv.c), shades with pbrt-v3's matte / mirror / plastic / glass /
  * metal / uber / substrate materials and its textures (materials.c, textures.c, reflection.c), lights with
  * the infinite area light of envlight.h plus point, distant and diffuse area lights (lights.c, chosen
@@ -65,9 +65,9 @@ int elr_sampler_kind_from_name(const char *name);
 #define ELR_DEFAULT_SAMPLER ELR_SAMPLER_ZEROTWO
 #define ELR_DEFAULT_SPP 16
 
-/* the per-tile loops: one sample at a time (the reference), a pixel's light samples drawn together
- * (render_batched.c), waves of samples (render_wave.c) */
-enum { ELR_LOOP_ONE = 0, ELR_LOOP_BATCHED = 1, ELR_LOOP_WAVE = 2 };
+/* the per-tile loops: one sample at a time (the reference), waves of samples (render_wave.c, the fast
+ * one). 1 was the batched loop (a pixel's light samples drawn together), folded into the wave loop. */
+enum { ELR_LOOP_ONE = 0, ELR_LOOP_WAVE = 2 };
 enum { ELR_SPLIT_OFF = 0, ELR_SPLIT_AUTO = 1 };
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
@@ -82,9 +82,10 @@ typedef struct elr_render_options {
                          paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   int env_sampling;   /* -1: the infinite lights' "sampling"; 1 product sampling (map x cosine), 0 the map alone */
   int tile_size;      /* 0: 16 */
-  int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
-                         1: one at a time inside each sample's shading; the same image either way */
-  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the batched and wave loops only where
+  int no_batch;       /* 0: the wave loop where it applies (its environment light samples drawn together),
+                         1: the reference loop (one at a time inside each sample's shading); the same image
+                         except for the path tracer with a pixel sampler (render.c) */
+  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the wave loop only where
                          render.c can use them: the environment the only light that emits, and sampled) */
   int split;          /* -1: the scene's ("splitting", default auto); ELR_SPLIT_OFF: each light's "samples";
                          ELR_SPLIT_AUTO: chosen by a pilot (render.c); N >= 2: N light and BSDF sample pairs per
@@ -96,6 +97,10 @@ typedef struct elr_render_options {
                            under a sun map, the product around the mirror direction otherwise (0: never; issue 20) */
   float env_light_alpha; /* < 0: ELR_ENV_LIGHT_ALPHA; else with product sampling, directlighting vertices whose lobes
                             are diffuse or of alpha >= it take the light sample alone (no BSDF sample; inf: never) */
+  int env_sun;          /* issue 22 (sun.c): 1 on for a product-sampled sun map (elr__sun_share) with hot spots: a pilot learns where they are
+                           hidden and the light samples there go to the rest of the map x cosine (1.3-1.9x less variance
+                           in the sun's shadow at equal samples, but 1.3-1.8x the render's CPU time on the bench scenes:
+                           bench/bench_sun_render.c); 0 and -1 (the default, until its per-sample cost is down) off */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
 
@@ -121,6 +126,7 @@ typedef struct elr_light_stats {
   size_t env_portal_bytes;
   float env_portal_share; /* "float portalmapshare": the map's share where a portal is seen */
   uint64_t env_portal_used, env_portal_fallback; /* light samples through the portals, and by the map behind them */
+  int env_portal_compensated; /* the portals' density is MIS-compensated (max(lum - mean, 0)) */
 } elr_light_stats;
 
 typedef struct elr_stats {
@@ -131,7 +137,7 @@ typedef struct elr_stats {
   uint64_t env_product_samples, env_map_samples; /* environment light samples by product sampling, by the map alone */
   uint64_t env_light_only_samples;               /* of the product ones: taken alone, without a BSDF sample */
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
-  int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
+  int light_samples_batched; /* the wave loop drew the environment's light samples together (el_envlight_sample_li_n) */
   int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */
   double t_embree_loop;      /* the wave loop: seconds inside Embree, summed over the threads (0 for the other loops) */
   int split, split_auto;     /* light and BSDF sample pairs per camera sample given by splitting (1: none); chosen by the pilot */
@@ -150,6 +156,14 @@ typedef struct elr_stats {
   double t_light_distribution, t_area_lights;
   int nlight_stats;             /* the first ELR_STATS_LIGHTS lights */
   elr_light_stats light[ELR_STATS_LIGHTS];
+  /* issue 22: the sun cache (sun.c); sun_used 0: none was built */
+  int sun_used, sun_spots;
+  float sun_spot_axis[8][3], sun_spot_half_angle[8], sun_spot_share[8]; /* the hot spots (radians; sample_li's share) */
+  float sun_cell, sun_floor;  /* the cells' edge (world units); the spots' share of the samples where none is seen */
+  int64_t sun_pilot_points, sun_pilot_rays, sun_cells, sun_cells_lowered, sun_cells_dark;
+  double t_sun, t_sun_cpu;    /* the pilot's wall and CPU time (in t_total, not in t_render) */
+  uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* the sun light's samples; at lowered cells; at cells where
+                                                              no spot was seen; landing in a spot's cone */
 } elr_stats;
 
 typedef struct elr_image { int width, height; float *rgb; } elr_image; /* linear RGB, top row first */

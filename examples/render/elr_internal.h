@@ -3,11 +3,11 @@
  * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
  * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
  * them as float[3] (elr_to3, elr_from3).
- *   vectors, transforms (transform.c)      scene description (parser.c, scene.c, ply.c, loopsubdiv.c)
+ *   vectors, transforms (transform.c)      scene description (parser.c and api*.c, scene.c, ply.c, loopsubdiv.c)
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
- *   integrators (integrator*.c, render_batched.c) */
+ *   integrators (integrator*.c, render_wave.c) */
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
@@ -21,7 +21,7 @@
 #ifndef ELR_PI
 #define ELR_PI 3.14159265358979323846f
 /* LightSource "infinite" "float portalmapshare" default (bench/bench_portal_render.c measures it) */
-#define ELR_PORTAL_MAP_SHARE 0.1
+#define ELR_PORTAL_MAP_SHARE 0.5
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
@@ -73,7 +73,7 @@ elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 
-/* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
+/* >> scene description (parser.c, paramset.c and api*.c read it; scene.c builds the lights and the Embree scene, and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; int nonneg; } elr_filter_desc; /* nonneg: "bool nonnegative" */
@@ -204,7 +204,36 @@ typedef struct elr_light {
    * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
   el_envlight_portal *portal;
   float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
+  float *portal_points;    /* the portals' points (portal_count x 12 floats), to rebuild the tables when a */
+  int portal_count, portal_compensated; /* render asks for another compensation (--compensated): the one built */
 } elr_light;
+
+/* LightSource "infinite" as the parser read it (pbrt-v4's LightSceneEntity: the parser describes, the
+ * scene builds): scene.c's elr_scene_make_lights reads its image and makes envlight's light of it, in the
+ * slot s->light[light] that the parser filled with the light's kind and options. */
+typedef struct elr_infinite_desc {
+  int light;                /* its index in s->light */
+  char *path;               /* "mapname" or "filename", resolved; NULL: a constant light */
+  int v4_filename;          /* given as pbrt-v4's "filename" (a square image is then an equal-area map) */
+  float scale[3];           /* L times scale */
+  float l2w[9];             /* light to world: the CTM's rotation */
+  float *portal;            /* pbrt-v4's "point3 portal": nportal rectangles of 4 world-space points */
+  int nportal;
+  char *file; int line;     /* the directive, for messages; */
+  char *filename_file; int filename_line; /* the "filename" parameter's place, */
+  char *portal_file; int portal_line;     /* and the portal's */
+} elr_infinite_desc;
+
+/* Texture "imagemap" as the parser read it: scene.c's elr_scene_make_textures reads the image and makes
+ * the MIP map of texture s->tex[tex] (pbrt-v3's ImageTexture constructor, after the parse) */
+typedef struct elr_imagemap_desc {
+  int tex;                  /* its index in s->tex */
+  char *path, *name;        /* the image (resolved) and the texture's name, for messages */
+  int gamma, is_float;      /* sRGB-decode 8-bit images; a float texture (luminance) */
+  float scale, maxaniso;
+  int filter, wrap;         /* el_mipmap_filter, el_mipmap_wrap */
+  char *file; int line;     /* the directive */
+} elr_imagemap_desc;
 
 typedef struct elr_scene_desc {
   /* camera */
@@ -238,6 +267,8 @@ struct elr_scene {
   elr_light *light; int nlight, caplight;
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
+  elr_infinite_desc *envdesc; int nenvdesc, capenvdesc; /* api_lights.c's infinite lights, for elr_scene_make_lights */
+  elr_imagemap_desc *texdesc; int ntexdesc, captexdesc; /* api_materials.c's image textures, for elr_scene_make_textures */
   int warnings;
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
    * alpha below this and no diffuse lobe sample the map alone under a sun (elr_bsdf.env_map), else the
@@ -273,10 +304,23 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+/* imageio.c: the scene's images (pbrt-v3's ReadImage): el_image_load with a size check (-1 with why), and
+ * the image as linear RGB times scale (NULL: out of memory, *bad = -1; or texel *bad is NaN, infinite or
+ * overflows when scaled, its value *bad_value) */
+struct el_image;
+int elr_image_read(const char *path, struct el_image *img, char *why, size_t n);
+float *elr_image_rgb(const struct el_image *img, int gamma, float scale, int64_t *bad, float *bad_value);
+/* parser.c's messages: "file:line: error: ..." into err (control characters of the scene's strings
+ * replaced), and warnings (elr_warn, above) */
+void elr_error(char *err, size_t errlen, const char *file, int line, const char *fmt, ...);
 /* loopsubdiv.c: pbrt-v3's LoopSubdivide of the control mesh (indices in [0, npoints), P: 3 npoints) into
  * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
 int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
                        char *err, size_t errlen);
+/* scene.c: the lights and image textures the parser described (elr_infinite_desc, elr_imagemap_desc), then
+ * the Embree scene */
+int elr_scene_make_lights(elr_scene *s, char *err, size_t errlen);
+int elr_scene_make_textures(elr_scene *s, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
@@ -479,7 +523,6 @@ float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 
  * each, pbrt-v4's vertex order); -1 with err naming the problem */
 int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
-int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
                       size_t errlen);
 int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map);
@@ -640,7 +683,7 @@ typedef struct elr_sampler_desc {
 } elr_sampler_desc;
 int elr_sampler_tables_init(elr_sampler_tables *T, const elr_sampler_desc *d, const int sample_bounds[4], uint64_t seed);
 void elr_sampler_tables_free(elr_sampler_tables *T);
-/* whether every draw render_batched.c makes ahead gives the same number in any order (pixel samplers
+/* whether every draw the wave loop makes ahead gives the same number in any order (pixel samplers
  * only within their `dimensions`) */
 int elr_sampler_order_free(const elr_sampler_desc *d);
 
@@ -710,9 +753,16 @@ static inline uint64_t elr_dim_hash(int dim, uint32_t seed) {
 }
 /* the scramble seed of dimension d (elr_dim_hash(d, S->sseed), kept for the first 72) */
 static inline uint64_t elr_sampler_dim_hash(const elr_sampler *S, int d) { return d >= 0 && d < 72 ? S->dhash[d] : elr_dim_hash(d, S->sseed); }
-/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension */
-float elr_sampler_hash_float(const elr_sampler *S, int dim);
-/* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
+/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension. These
+ * hashes are the samplers' shared helpers, inline here so that sampler_*.c never call back into
+ * sampler.c (which dispatches to them: test_render_layout checks the direction) */
+static inline float elr_sampler_hash_float(const elr_sampler *S, int dim) {
+  uint64_t h = elr_mix64(S->seed ^ 0xd1b54a32d192ed03ULL);
+  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->px << 32) | (uint32_t)S->py));
+  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->sample << 32) | (uint32_t)dim));
+  return (float)(h >> 40) * 0x1p-24f;
+}
+/* for draws made ahead (render_wave.c): a 2D draw skipped, and a camera sample's place saved and restored */
 typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
 void elr_sampler_skip2d(elr_sampler *S);
 void elr_sampler_save(const elr_sampler *S, elr_sampler_pos *p);
@@ -732,6 +782,9 @@ typedef struct elr_tstats { /* one thread's counts */
   uint64_t env_light_only;       /* of the product ones: without a BSDF sample (elr_env_light_only) */
   uint64_t portal_used, portal_fallback; /* light samples through portals, and behind them (the map's) */
   double t_embree; /* the wave loop: seconds inside its Embree calls */
+  uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* sun.c (--stats): environment light samples at vertices the
+                        sun cache knows, of them where it lowered the spots' weight (and where it saw no spot), and of
+                        the looked-up ones those that landed in a spot's cone */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
@@ -747,11 +800,12 @@ typedef struct elr_ctx {
   int direct_one;         /* directlighting: strategy "one" (one light chosen per vertex) */
   elr_light_distrib ld;   /* which light next-event estimation samples (built for the path tracer and
                              strategy "one" when more than one light emits) */
-  /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
+  /* render_wave.c: the one emitting light, a sampled environment, whose light samples a wave draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
-  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_BATCHED and ELR_LOOP_WAVE need batch_light) */
+  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_WAVE needs batch_light) */
   int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
+  const struct elr_sun *sun; /* sun.c: where the environment's hot spots are hidden (NULL: not learnt) */
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
@@ -777,13 +831,16 @@ typedef struct elr_path_state {
   int prev_has_n;  /* the last vertex's product-sampling normal (elr_bsdf_cos_normal) exists: prev_n */
   elr_v3 prev_n;
   float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
+  const struct elr_sun_cell *prev_sun; /* sun.c: the last vertex's sun-cache cell (NULL: the light's own density) */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
-  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f;
+  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f; p->prev_sun = NULL;
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
+/* pbrt-v3's VisibilityTester::Unoccluded of a light sample taken at h (integrator.c: lights.c traces no rays) */
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
                          const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld);
 elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
@@ -804,7 +861,7 @@ elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, 
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
-/* render_batched.c and render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
+/* render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
  * hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first light-sampling
  * draw there. */
 typedef struct elr_first {
@@ -821,8 +878,8 @@ typedef struct elr_first {
   elr_bsdf b;
   elr_v3 fb, wb, Lb;
   float bpdf, bpdf_env;
-  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading (render_batched.c),
-   * else their answers, traced by the wave loop (1: occluded) */
+  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading, else their
+   * answers, traced by the wave loop (1: occluded) */
   int occ_l, occ_b;
   /* the light's further samples (its "samples" count, or splitting) drawn ahead the same way: their light
    * sample, BSDF sample and shadow rays' answers (the wave loop); the others, from nmore + 1 on, drawn in
@@ -833,13 +890,43 @@ typedef struct elr_first {
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */
 elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
-/* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
-void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
 
 /* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
 typedef struct elr_wave elr_wave;
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile); /* NULL: out of memory */
 void elr_wave_free(elr_wave *W);
 void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1, int y1, el_film_tile *tile, elr_tstats *ts);
+
+/* >> sun.c: where the environment's hot spots are hidden (issue 22): a pilot's cache of their visibility
+ * over world-space cells, and the light density that moves a hidden spot's samples to the rest */
+typedef struct elr_sun elr_sun;
+typedef struct elr_sun_cell elr_sun_cell;
+#define ELR_SUN_INFO_SPOTS EL_ENVLIGHT_HOTSPOT_MAX
+typedef struct elr_sun_info {
+  int spots;                                /* hot spots found (el_envlight_hotspots_init's defaults) */
+  el_envlight_hotspot spot[ELR_SUN_INFO_SPOTS];
+  float cell, floor;                        /* the cells' edge (world units); the spots' share where none is seen */
+  int64_t pilot_points, pilot_rays, cells, cells_lowered, cells_dark; /* dark: no spot seen */
+  double seconds, cpu_seconds;              /* the pilot and the table: wall time, CPU time (all threads) */
+} elr_sun_info;
+/* 0 and *out set (NULL when the light has no hot spot), -1 out of memory. The pilot runs on nthreads threads
+ * (the same cache for any number). */
+int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nthreads, elr_sun **out);
+void elr_sun_free(elr_sun *S);
+const elr_sun_info *elr_sun_get_info(const elr_sun *S);
+const elr_light *elr_sun_light(const elr_sun *S);
+/* the cell of hit h seen from wo when it lowers a spot's weight; NULL: the light's own density there */
+const elr_sun_cell *elr_sun_lookup(const elr_sun *S, const elr_hit *h, elr_v3 wo);
+/* the light sample and the pdf at a vertex of cell c (n: product sampling's normal, or NULL: the map alone) */
+void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], float wi[3], float L[3], float *pdf);
+float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float wi[3]);
+int elr_sun_in_spot(const elr_sun *S, const float wi[3]);
+/* elr_bsdf_cos_normal at a vertex of cell c (NULL: the same): at a lowered cell also where only the sun map's
+ * choice for diffuse lobes asked for the map alone (sun.c) */
+int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n);
+float elr_sun_cell_alpha(const elr_sun_cell *c); /* sum P_k v_k / sum P_k of the cell (NULL: 1) */
+void elr_sun_count(const elr_sun *S, const elr_sun_cell *c, const float wi[3], float pdf, elr_tstats *ts); /* --stats */
+/* elr_light_sample_li for the sun's light at a vertex of cell c (not NULL), counted for --stats */
+void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], elr_light_sample *ls, elr_tstats *ts);
 
 #endif

@@ -9,10 +9,11 @@
  *   elr_specular_transmit           SpecularTransmit: the refracted bounce and its ray differentials
  *   elr_direct_specular             both, at a vertex of the direct-lighting integrator
  *   elr_infinite_le                 the radiance of the lights at infinity along a ray that leaves
+ *   elr_light_unoccluded            VisibilityTester::Unoccluded: a light sample's shadow ray
  *
  * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
  * loop (render.c) calls the integrators of integrator_direct.c and integrator_path.c per camera
- * sample; render_batched.c is the faster arrangement of the same computation for scenes lit by the
+ * sample; render_wave.c is the faster arrangement of the same computation for scenes lit by the
  * environment alone. The light interface (lights.c) hides which kind of light is sampled, except in
  * EstimateDirect's BSDF-sampled term: for an area light it needs the ray's hit (is it this light?),
  * where the environment only needs to know that nothing is in the way. */
@@ -28,6 +29,25 @@ elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d) {
   return L;
 }
 
+/* pbrt-v3's VisibilityTester::Unoccluded for a light sample taken at h: the shadow ray from h's offset
+ * origin towards the light, ending just before a point light or the sampled point of an area light, and
+ * past the scene for the others. It lives here, with the integrators that trace it, so that lights.c
+ * never calls into the scene (test_render_layout checks it). For an area light the ray aims at the point
+ * from the offset origin (pbrt-v3's SpawnRayTo): along wi, a ray that meets the light's surface at a
+ * grazing angle would enter it before the point (the origin's offset, 2e-5 of the coordinates, moves the
+ * entry by that over the cosine: 0.3% of a sphere light's samples were lost so, at 3 radii, before this). */
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls) {
+  elr_v3 o = elr_spawn_origin(h, ls->wi), d;
+  float dist;
+  if (ls->at_point != 2) {
+    float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
+    return !elr_occluded(s, o, ls->wi, tmax);
+  }
+  d = elr_sub(ls->p_light, o);
+  dist = elr_len(d);
+  return !(dist > 0.f) || !elr_occluded(s, o, elr_mul(d, 1.f / dist), dist * (1.f - 1e-4f));
+}
+
 /* pbrt-v3's EstimateDirect at hit h (BSDF b, outgoing direction wo) for light l, with the 2D numbers
  * ul (the light sample) and us (the BSDF sample). Adds the light-sampled term, then the BSDF-sampled
  * term to *Ld. C->ls chooses the strategies (MIS, light only, BSDF only); delta lights take light
@@ -41,15 +61,22 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   int delta = elr_light_is_delta(l);
   /* the normal of the environment's product sampling at this vertex (NULL: the BSDF transmits); the
    * BSDF sample's MIS weight below uses the same one, so both pdfs are the same density */
+  /* (issue 22, sun.c: where the pilot found the map's hot spots hidden, a density that draws them less) */
+  int sunl = C->sun && l == elr_sun_light(C->sun);
+  const elr_sun_cell *sc = sunl ? elr_sun_lookup(C->sun, h, wo) : NULL;
   elr_v3 nc;
-  const elr_v3 *n = elr_bsdf_cos_normal(b, wo, &nc) ? &nc : NULL;
+  const elr_v3 *n = elr_sun_cos_normal(s, sc, b, wo, &nc) ? &nc : NULL;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
-  int lonly = elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b);
+  int lonly = !sc && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c: MIS kept) */
   /* <<Sample light source with multiple importance sampling>> */
   if (delta || C->ls != ELR_LS_BSDF) {
     elr_light_sample ls;
     if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
-    elr_light_sample_li(l, s, h->p, n, ul, &ls);
+    if (sc) elr_sun_light_sample(C->sun, sc, n, ul, &ls, ts);
+    else {
+      elr_light_sample_li(l, s, h->p, n, ul, &ls);
+      if (sunl) { float d[3]; elr_to3(ls.wi, d); elr_sun_count(C->sun, NULL, d, ls.pdf, ts); }
+    }
     if (ls.portal >= 0) { if (ls.portal) ts->portal_used++; else ts->portal_fallback++; }
     if (ls.pdf > 0.f) {
       /* <<Compute BSDF value for light sample>> */
@@ -94,7 +121,11 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
        * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
       if (!elr_occluded(s, elr_spawn_origin(h, wi), wi, INFINITY)) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li_at(l, h->p, n, wi));
+        if (C->ls == ELR_LS_MIS) {
+          float d[3];
+          elr_to3(wi, d);
+          w = elr_power_heuristic(pdf, sc ? elr_sun_pdf(C->sun, sc, n, d) : elr_light_pdf_li_at(l, h->p, n, wi));
+        }
         /* <<Add light contribution from material sampling>> */
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, elr_light_le(l, wi)), w / pdf));
       }

@@ -36,9 +36,9 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   if (st->nothing_emits) fprintf(f, "  light sampling     no: nothing emits (the image is black; no ray traced)\n");
   else
     fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
-            st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+            st->light_samples_batched ? "; a wave's environment samples drawn together" : "");
   if (!st->nothing_emits) {
-    static const char *loops[3] = {"one sample at a time (the reference)", "a pixel's light samples together (render_batched.c)",
+    static const char *loops[3] = {"one sample at a time (the reference)", "?" /* (the batched loop, gone) */,
                                    "waves of up to 256 camera samples (render_wave.c)"};
     static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
     fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
@@ -86,9 +86,9 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       }
       if (l->kind == 0 && l->env_portals) {
         double n = (double)(l->env_portal_used + l->env_portal_fallback);
-        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
+        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f behind a portal's plane%s), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
                 l->env_portals, l->env_portals == 1 ? "" : "s", (double)l->env_portal_bytes / 1024.0, l->env_portal_share,
-                n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
+                l->env_portal_compensated ? ", compensated" : "", n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
       }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
       if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");
@@ -108,6 +108,22 @@ void elr_stats_print(const elr_stats *st, void *fp) {
                "the map's sun share %.3f\n",
             (unsigned long long)st->env_product_samples, (unsigned long long)st->env_light_only_samples, (double)b, (double)a,
             (unsigned long long)st->env_map_samples, (double)a, sun > ELR_ENV_SUN_SHARE ? ", diffuse lobes under a sun" : "", (double)sun);
+  }
+  if (st->sun_used) { /* issue 22 (sun.c) */
+    double n = (double)st->sun_looked;
+    int k;
+    fprintf(f, "  sun cache          %d hot spot%s:", st->sun_spots, st->sun_spots == 1 ? "" : "s");
+    for (k = 0; k < st->sun_spots && k < 8; k++)
+      fprintf(f, " (axis %.3f %.3f %.3f, half-angle %.2f deg, share %.3f)", (double)st->sun_spot_axis[k][0], (double)st->sun_spot_axis[k][1],
+              (double)st->sun_spot_axis[k][2], (double)st->sun_spot_half_angle[k] * 57.29577951308232, (double)st->sun_spot_share[k]);
+    fprintf(f, "; pilot %lld points, %lld rays, %.3f s; %lld cells of %.4g, %lld lowered (%lld where no spot was seen), floor %.2f\n",
+            (long long)st->sun_pilot_points, (long long)st->sun_pilot_rays, st->t_sun, (long long)st->sun_cells, (double)st->sun_cell,
+            (long long)st->sun_cells_lowered, (long long)st->sun_cells_dark, (double)st->sun_floor);
+    fprintf(f, "  sun sharing        %llu light samples of the sun's light: %.1f%% at vertices where the cache lowered the spots "
+               "(%.1f%% where it saw none: shadowed), %.1f%% elsewhere; %.1f%% of all landed in a spot's cone (sun), %.1f%% in the rest (sky)\n",
+            (unsigned long long)st->sun_looked, n > 0 ? 100.0 * (double)st->sun_lowered / n : 0.0, n > 0 ? 100.0 * (double)st->sun_dark / n : 0.0,
+            n > 0 ? 100.0 * (1.0 - (double)st->sun_lowered / n) : 0.0, n > 0 ? 100.0 * (double)st->sun_to_spot / n : 0.0,
+            n > 0 ? 100.0 * (1.0 - (double)st->sun_to_spot / n) : 0.0);
   }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
           st->splats_allocated ? "allocated" : "not allocated (nothing splats)");

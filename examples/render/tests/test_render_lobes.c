@@ -190,6 +190,19 @@ static void blocks(const elr_image *img, double *b /* 17: 16 blocks + mean */) {
       for (c = 0; c < 3; c++) { double v = img->rgb[3 * (y * RES + x) + c]; b[(y / 4) * 4 + x / 4] += v / 48.0; b[16] += v / (RES * RES * 3); }
 }
 
+/* Welch's statistic of value i between two renders' NSEED seeds: a[j * stride + i] and b[j * stride + i] for seed j */
+static double welch_z(const double *a, const double *b, int stride, int i) {
+  const double *x[2];
+  double m[2] = {0, 0}, v[2] = {0, 0};
+  int j, k;
+  x[0] = a; x[1] = b;
+  for (k = 0; k < 2; k++) {
+    for (j = 0; j < NSEED; j++) m[k] += x[k][j * stride + i] / NSEED;
+    for (j = 0; j < NSEED; j++) v[k] += (x[k][j * stride + i] - m[k]) * (x[k][j * stride + i] - m[k]) / (NSEED - 1);
+  }
+  return (m[0] - m[1]) / sqrt(v[0] / NSEED + v[1] / NSEED + 1e-30);
+}
+
 /* 2. the default against the map alone */
 static void unbiased(const char *integ, float lobe_a, float light_a, float metal_alpha) {
   char err[512];
@@ -209,12 +222,7 @@ static void unbiased(const char *integ, float lobe_a, float light_a, float metal
       elr_image_free(&img);
     }
   for (i = 0; i < 17 && ok; i++) {
-    double m[2] = {0, 0}, v[2] = {0, 0}, z;
-    for (k = 0; k < 2; k++) {
-      for (j = 0; j < NSEED; j++) m[k] += b[k][j][i] / NSEED;
-      for (j = 0; j < NSEED; j++) v[k] += (b[k][j][i] - m[k]) * (b[k][j][i] - m[k]) / (NSEED - 1);
-    }
-    z = (m[0] - m[1]) / sqrt(v[0] / NSEED + v[1] / NSEED + 1e-30);
+    double z = welch_z(&b[0][0][0], &b[1][0][0], 17, i);
     if (fabs(z) > worst) worst = fabs(z);
     if (i == 16) zmean = z;
   }
@@ -256,12 +264,7 @@ static void unbiased_mirror(void) {
       elr_image_free(&img);
     }
   for (i = 0; i < 9 && ok; i++) {
-    double m[2] = {0, 0}, v[2] = {0, 0}, z;
-    for (k = 0; k < 2; k++) {
-      for (j = 0; j < NSEED; j++) m[k] += b[k][j][i] / NSEED;
-      for (j = 0; j < NSEED; j++) v[k] += (b[k][j][i] - m[k]) * (b[k][j][i] - m[k]) / (NSEED - 1);
-    }
-    z = (m[0] - m[1]) / sqrt(v[0] / NSEED + v[1] / NSEED + 1e-30);
+    double z = welch_z(&b[0][0][0], &b[1][0][0], 9, i);
     if (fabs(z) > worst) worst = fabs(z);
     if (i == 8) zmean = z;
   }

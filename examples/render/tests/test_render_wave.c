@@ -149,10 +149,10 @@ int main(void) {
     static const struct { const char *sampler, *integrator; int loop; } cases[] = {
       {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"directlighting\"", ELR_LOOP_WAVE},
       {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "Integrator \"path\"", ELR_LOOP_WAVE},
-      /* a pixel sampler's path tracer: the batched loop for the map alone, the reference loop with product
-       * sampling (the batched loop needs sample_li_n) */
+      /* a pixel sampler's path tracer: the reference loop with product sampling (it keeps the reference's
+       * image), the wave loop for the map alone (where the batched loop ran, before the wave loop replaced it) */
       {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"path\"", ELR_LOOP_ONE},
-      {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"path\"", ELR_LOOP_BATCHED},
+      {"Sampler \"stratified\" \"integer xsamples\" 2 \"integer ysamples\" 2", "Integrator \"path\"", ELR_LOOP_WAVE},
     };
     int c;
     for (c = 0; c < 4; c++) {
