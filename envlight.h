@@ -455,11 +455,12 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    kept: the built check inlined (-25 instructions per call); the sample's pdf from the widths it
  *    picked once the direction, located again, lands in the same patch (-70; the same bits as
  *    pdf_li_cos: the same evaluation of the same values); sparse normal tables (each cell row only the
- *    span of cells with weight, wrapping at the seam: 4.3 -> 2.9 MB, +14 instructions in the pdf, +23 in the sample); the
- *    vertex grid in bfloat16 rounded up (the patch CDFs built from the rounded values: -1 MB, and the
- *    fastest per sample: half the cache footprint); the bounds' phi part per cell column and two cells
- *    at a time (build 20.4 -> 15.7 ms, bit-identical tables). Dropped: the corners recomputed from the texels instead of a stored
- *    grid (meets 4 MiB: 3.85 MiB, the same bits, but +54 / +73 instructions and 18% more time per
+ *    span of cells with weight, wrapping at the seam: 4.3 -> 2.9 MB, +14 instructions in the pdf, +23
+ *    in the sample); the vertex grid in bfloat16 rounded up (the patch CDFs built from the rounded
+ *    values: -1 MB, and the fastest per sample: half the cache footprint); the bounds' phi part per cell
+ *    column and two cells at a time (build 20.4 -> 15.7 ms, bit-identical tables). Dropped: the corners
+ *    recomputed from the texels instead of a stored grid (meets 4 MiB: 3.85 MiB, the same bits, but
+ *    +54 / +73 instructions and 18% more time per
  *    sample with random normals: the texels are 6 MB against the grid's 1-2); a branch-free binary
  *    search with fixed steps (-13 instructions per sample: not worth its code); the light's own
  *    piecewise-constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340
