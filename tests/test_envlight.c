@@ -50,20 +50,8 @@ static void check(int ok, const char *fmt, ...) {
   if (ok) ++g_pass; else ++g_fail;
 }
 
-/* ---- random numbers: PCG32, 24-bit floats in [0,1) ------------------------------------------ */
-typedef struct { uint64_t s; } rng;
-static uint32_t rng_u32(rng *r) {
-  uint64_t old = r->s;
-  uint32_t x, rot;
-  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  return (x >> rot) | (x << ((32 - rot) & 31));
-}
-static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
-static rng rng_make(uint64_t seed) { rng r; r.s = seed * 2654435761ULL + 12345; rng_u32(&r); return r; }
-
-#include "test_chisq.h" /* gammq: the chi-square p-value */
+#include "test_rng.h"   /* rng, rng_make, rng_f: PCG32, 24-bit floats in [0,1) */
+#include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
 
 /* ---- independent reference mapping (double precision libm) --------------------------------- */
 static void ref_uv_to_dir(double u, double v, double d[3]) { /* pbrt-v3, light space */
@@ -353,7 +341,7 @@ static void chi2_light(const char *name, el_envlight *l, const float m[9], int g
   int nu = l->imp_w, nv = l->imp_h, i, j, cells = gu * gv, pooled_cells = 0, dof;
   double *expect = (double *)calloc((size_t)cells, sizeof(double));
   double *obs = (double *)calloc((size_t)cells, sizeof(double));
-  double chi2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / CHI2_TESTS_PLANNED;
+  double chi2, total = 0, pval, alpha = 0.01 / CHI2_TESTS_PLANNED;
   int impossible = 0, mismatch = 0, nonfinite = 0;
   rng r = rng_make(seed);
   el_envlight_prepare_sampling(l);
@@ -387,14 +375,7 @@ static void chi2_light(const char *name, el_envlight *l, const float m[9], int g
     if (cv >= gv) cv = gv - 1;
     obs[cv * gu + cu] += 1;
   }
-  for (i = 0; i < cells; ++i) {
-    double e = expect[i] / total * n;
-    if (expect[i] == 0) { if (obs[i] > 0) ++impossible; continue; }
-    if (e < 5) { pool_e += e; pool_o += obs[i]; continue; }
-    chi2 += (obs[i] - e) * (obs[i] - e) / e;
-    ++pooled_cells;
-  }
-  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++pooled_cells; }
+  chi2 = chisq_pooled(expect, obs, (size_t)cells, total, n, &impossible, &pooled_cells);
   dof = pooled_cells - 1;
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
   ++g_chi2_tests;
@@ -1489,7 +1470,7 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
                            uint64_t seed, int expect_pass) {
   int cells = gu * gv, i, r, pooled = 0, dof, impossible = 0, mismatch = 0, nonfinite = 0, rgb_mismatch = 0, zero = 0;
   double *expect = (double *)calloc((size_t)cells, sizeof(double)), *obs = (double *)calloc((size_t)cells, sizeof(double));
-  double chi2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / PROD_TESTS_PLANNED;
+  double chi2, total = 0, pval, alpha = 0.01 / PROD_TESTS_PLANNED;
   rng g = rng_make(seed);
   for (r = 0; r <= h; ++r) {
     double v0 = r == 0 ? 0.0 : (r - 0.5) / h, v1 = r == h ? 1.0 : (r + 0.5) / h, v = 0.5 * (v0 + v1);
@@ -1530,14 +1511,7 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
     pr = (int)(v * h + 0.5); if (pr > h) pr = h;
     obs[(pr * gv / (h + 1)) * gu + pi * gu / w] += 1;
   }
-  for (i = 0; i < cells; ++i) {
-    double e = expect[i] / total * n;
-    if (expect[i] == 0) { if (obs[i] > 0) ++impossible; continue; }
-    if (e < 5) { pool_e += e; pool_o += obs[i]; continue; }
-    chi2 += (obs[i] - e) * (obs[i] - e) / e;
-    ++pooled;
-  }
-  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++pooled; }
+  chi2 = chisq_pooled(expect, obs, (size_t)cells, total, n, &impossible, &pooled);
   dof = pooled - 1;
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
   if (expect_pass) {
@@ -1565,7 +1539,7 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
 static void chi2_fractions(const char *name, const psrc *s, const float m[9], int w, int h, int n, uint64_t seed) {
   size_t cells = (size_t)(h + 1) * w * 16, k;
   double *expect = (double *)calloc(cells, sizeof(double)), *obs = (double *)calloc(cells, sizeof(double));
-  double chi2 = 0, total = 0, pval, pool_e = 0, pool_o = 0;
+  double chi2, total = 0, pval;
   int i, r, a, b, dof, used = 0;
   rng g = rng_make(seed);
   for (r = 0; r <= h; ++r) {
@@ -1604,13 +1578,7 @@ static void chi2_fractions(const char *name, const psrc *s, const float m[9], in
     a = a < 0 ? 0 : a > 3 ? 3 : a; b = b < 0 ? 0 : b > 3 ? 3 : b;
     obs[(((size_t)pr * w + pi) * 4 + b) * 4 + a] += 1;
   }
-  for (k = 0; k < cells; ++k) {
-    double e = expect[k] / total * n;
-    if (e < 5) { pool_e += e; pool_o += obs[k]; continue; }
-    chi2 += (obs[k] - e) * (obs[k] - e) / e;
-    ++used;
-  }
-  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++used; }
+  chi2 = chisq_pooled(expect, obs, cells, total, n, NULL, &used); /* zero-pdf cells pooled */
   dof = used - 1;
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
   ++g_prod_tests;

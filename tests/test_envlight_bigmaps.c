@@ -43,24 +43,16 @@ static void check(int ok, const char *fmt, ...) {
   if (ok) ++g_pass; else ++g_fail;
 }
 
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
-  return x;
-}
+#include "test_rng.h" /* hash32 */
 /* 24-bit uniform floats in [0,1) from an index and a stream */
 static float rnd(uint32_t i, uint32_t s) { return (float)(hash32(i * 2654435761u + s * 0x9e3779b9u + 12345u) >> 8) * (1.0f / 16777216.0f); }
 
-#include "test_chisq.h" /* gammq: the chi-square p-value */
+#include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
 /* chi-square of observed counts against expected probabilities (cells with expectation < 5 pooled) */
 static double chi2_p(const double *obs, const double *prob, int n, double total, int *dof_out) {
-  double chi2 = 0.0, pe = 0.0, po = 0.0;
-  int i, dof = -1;
-  for (i = 0; i < n; ++i) {
-    double e = prob[i] * total;
-    if (e < 5.0) { pe += e; po += obs[i]; continue; }
-    chi2 += (obs[i] - e) * (obs[i] - e) / e; ++dof;
-  }
-  if (pe > 0.0) { chi2 += (po - pe) * (po - pe) / pe; ++dof; }
+  int dof;
+  double chi2 = chisq_pooled(prob, obs, (size_t)n, 1.0, total, NULL, &dof);
+  dof -= 1;
   *dof_out = dof;
   return dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
 }
