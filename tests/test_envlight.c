@@ -36,19 +36,7 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-static int g_pass = 0, g_fail = 0;
-
-static void check(int ok, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-#include <stdarg.h>
-static void check(int ok, const char *fmt, ...) {
-  va_list ap;
-  printf("%s ", ok ? "PASS" : "FAIL");
-  va_start(ap, fmt);
-  vprintf(fmt, ap);
-  va_end(ap);
-  printf("\n");
-  if (ok) ++g_pass; else ++g_fail;
-}
+#include "test_check.h" /* check: a PASS / FAIL line, counted in g_pass / g_fail */
 
 #include "test_rng.h"   /* rng, rng_make, rng_f: PCG32, 24-bit floats in [0,1) */
 #include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */

@@ -38,21 +38,7 @@
 #define EL_TEST_DATA_DIR "data"
 #endif
 
-static int g_pass, g_fail;
-static void check(int ok, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-static void check(int ok, const char *fmt, ...) {
-  va_list ap;
-  printf("%s ", ok ? "PASS" : "FAIL");
-  va_start(ap, fmt);
-  vprintf(fmt, ap);
-  va_end(ap);
-  printf("\n");
-  if (ok) ++g_pass; else ++g_fail;
-}
+#include "test_check.h" /* check: a PASS / FAIL line, counted in g_pass / g_fail */
 
 #include "test_rng.h" /* rng_f: PCG32, 24-bit floats in [0, 1) */
 static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
