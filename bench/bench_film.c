@@ -38,11 +38,7 @@ static float frand(void) {
   g_rng = g_rng * 1664525u + 1013904223u;
   return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
 }
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench_common.h" /* wall_now, cpu_now, cmp_double */
 
 static el_film make_film(int w, int h, int type, int exact) {
   el_film f;
@@ -195,15 +191,6 @@ static float zone(float x, float y) {
   double dx = x - ZW / 2.0, dy = y - ZW / 2.0;
   return (float)(0.5 + 0.5 * cos(zone_k() * (dx * dx + dy * dy)));
 }
-static double cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
 static void zone_image(int type, int exact, int n, float *out) { /* n x n strata per pixel */
   el_film f = make_film(ZW, ZW, type, exact);
   int b[4], x, y, i, j;
@@ -342,8 +329,8 @@ int main(int argc, char **argv) {
       char op[64];
       make_samples(&f);
       run_adds(&f, 20000); /* warm up */
-      t0 = now();
-      do { run_adds(&f, n); reps++; t1 = now(); } while (t1 - t0 < 0.3);
+      t0 = wall_now();
+      do { run_adds(&f, n); reps++; t1 = wall_now(); } while (t1 - t0 < 0.3);
       el_film_free(&f);
       /* noise: 4 random samples per pixel */
       {
@@ -384,8 +371,8 @@ int main(int argc, char **argv) {
       char op[64];
       memset(&o, 0, sizeof o);
       o.tonemap = (el_film_tonemap)t;
-      t0 = now();
-      do { el_film_to_srgb8(rgb, PW, PW, &o, out); reps++; t1 = now(); } while (t1 - t0 < 0.2);
+      t0 = wall_now();
+      do { el_film_to_srgb8(rgb, PW, PW, &o, out); reps++; t1 = wall_now(); } while (t1 - t0 < 0.2);
       snprintf(op, sizeof op, "srgb8_%s", tonemap_name[t]);
       if (use_cg) ir = instr_per_call(argv[0], op, 100) / NS;
       printf("%-12s %10.2f %11.1f\n", tonemap_name[t], 1e9 * (t1 - t0) / ((double)reps * PW * PW), ir);

@@ -24,7 +24,6 @@
 #include "../envlight.h"
 #include "../examples/common/image_io.h"
 #include "../examples/common/picture.h"
-#include <sys/stat.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -33,11 +32,7 @@
 #include <time.h>
 
 static const double PI = 3.14159265358979323846;
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_common.h" /* process_now, make_parent_dir */
 static double lum(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
 static unsigned long long g_rng = 88172645463325252ULL;
 static float frand(void) {
@@ -308,11 +303,7 @@ static int picture(const char *out, const char *path) {
     el_draw_label(im, W, H, 8, 34, "THE WINDOW SEEN FROM A POINT ON THE FLOOR: BLUE");
     printf("%s: %d of %d samples through the window\n", panel == 0 ? "el_envlight_sample_li" : "el_envlight_portal_sample_li", nthrough, ns);
   }
-  {
-    char dir[512];
-    const char *slash = strrchr(out, '/');
-    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
-  }
+  make_parent_dir(out);
   if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   printf("wrote %s\n", out);
   free(pix);
@@ -373,19 +364,19 @@ int main(int argc, char **argv) {
     memset(&po, 0, sizeof po);
     po.resolution = R;
     po.supersample = SS;
-    t0 = now();
+    t0 = process_now();
     if (el_envlight_portal_init(&EP, &L, rm.portal, 1, &po) != EL_SUCCESS) { fprintf(stderr, "bench_portal: %s\n", EP.error); return 1; }
-    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (now() - t0), EP.res, EP.res, SS ? SS : 2);
+    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (process_now() - t0), EP.res, EP.res, SS ? SS : 2);
     R = EP.res;
-    t0 = now();
+    t0 = process_now();
     pbrt_init(&PP, &L, rm.portal, R);
-    printf("pbrt-v4 port %.1f ms\n", 1e3 * (now() - t0));
+    printf("pbrt-v4 port %.1f ms\n", 1e3 * (process_now() - t0));
   }
   el_envlight_prepare_sampling(&L);
   for (s = 0; s < NSTRAT; ++s) { best[s] = 1e30; worst[s] = 0; var[s] = 0; }
   for (rep = 0; rep < 5; ++rep)
     for (s = 0; s < NSTRAT; ++s) {
-      double t0 = now(), sinkt = 0, tt;
+      double t0 = process_now(), sinkt = 0, tt;
       for (k = 0; k < 4; ++k) {
         double sum = 0, sum2 = 0;
         g_rng = 88172645463325252ULL + (unsigned long long)(k * 7 + rep * 131);
@@ -408,7 +399,7 @@ int main(int argc, char **argv) {
           if (k == 0) printf("  %-38s point 0: E = %.5g\n", names[s], m);
         }
       }
-      tt = (now() - t0) / (4.0 * N) * 1e9;
+      tt = (process_now() - t0) / (4.0 * N) * 1e9;
       if (tt < best[s]) best[s] = tt;
       if (tt > worst[s]) worst[s] = tt;
       if (sinkt < 0) printf("?");

@@ -69,21 +69,7 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-typedef struct { uint64_t s; } rng;
-static uint32_t rng_u32(rng *r) {
-  uint64_t old = r->s;
-  uint32_t x, rot;
-  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  return (x >> rot) | (x << ((32 - rot) & 31));
-}
-static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+#include "bench_common.h" /* rng, rng_f (PCG32), process_now, make_parent_dir */
 static double lum3(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -171,7 +157,7 @@ static double bin_pmf(const el_envlight *l, int i, int j) {
 }
 static void cells_init(cells *c, const el_envlight *l, int ku, int kv) {
   int nu = l->dist.nu, nv = l->dist.nv, a, b, i, j;
-  double t = now();
+  double t = process_now();
   float *f;
   c->ku = ku; c->kv = kv; c->nu = nu; c->nv = nv;
   c->x0 = (int *)malloc((ku + 1) * sizeof(int)); c->y0 = (int *)malloc((kv + 1) * sizeof(int));
@@ -199,7 +185,7 @@ static void cells_init(cells *c, const el_envlight *l, int ku, int kv) {
       c->bytes += el_distribution2d_bytes(&c->cell[b * ku + a]);
     }
   free(f);
-  c->build_s = now() - t;
+  c->build_s = process_now() - t;
 }
 static void cells_free(cells *c) {
   int k;
@@ -222,7 +208,7 @@ typedef struct {
 static void ntables_init(ntables *t, const void *cs, int ku, int kv, const double *mass, bounds_fn bf, int m) {
   int b, k, K = ku * kv;
   float *f = (float *)malloc(K * sizeof(float));
-  double t0 = now();
+  double t0 = process_now();
   t->m = m; t->ku = ku; t->kv = kv;
   t->tab = (el_distribution2d *)calloc((size_t)m * m, sizeof(el_distribution2d));
   t->bytes = 0;
@@ -252,7 +238,7 @@ static void ntables_init(ntables *t, const void *cs, int ku, int kv, const doubl
     t->bytes += el_distribution2d_bytes(&t->tab[b]);
   }
   free(f);
-  t->build_s = now() - t0;
+  t->build_s = process_now() - t0;
 }
 static void ntables_free(ntables *t) {
   int b;
@@ -283,7 +269,7 @@ static double wlin(double a, double b, double q) { /* t in [0,1] with int_0^t ((
 }
 static void warp_init(warp *W, const el_envlight *l, const el_image *im, int ku, int kv) {
   int w = im->width, h = im->height, k, i, a, b;
-  double t0 = now();
+  double t0 = process_now();
   W->w = w; W->h = h; W->ku = ku; W->kv = kv;
   W->V = (double *)calloc((size_t)(h + 2) * w, sizeof(double));
   W->vk = (double *)malloc((h + 2) * sizeof(double));
@@ -317,7 +303,7 @@ static void warp_init(warp *W, const el_envlight *l, const el_image *im, int ku,
       W->total += m;
     }
   W->bytes = ((size_t)(h + 2) * (w + ku) + (size_t)(h + 2) * ku * 2) * 4;
-  W->build_s = now() - t0;
+  W->build_s = process_now() - t0;
 }
 static void warp_free(warp *W) {
   free(W->V); free(W->vk); free(W->S); free(W->mass); free(W->a0); free(W->b0); free(W->cu_of); free(W->cv_of);
@@ -523,7 +509,7 @@ static double run(strategy *s, el_envlight *l, const double n[3], double E, int 
   r.s = seed;
   frame(n, b1, b2);
   if (s->kind == ST_EXACT) exact_prepare(s, n);
-  t = now();
+  t = process_now();
   for (i = 0; i < ns; ++i) {
     float u[2], L[3], w[3];
     double d[3], p, c, f = 0;
@@ -550,7 +536,7 @@ static double run(strategy *s, el_envlight *l, const double n[3], double E, int 
     }
     sum += f; sum2 += f * f;
   }
-  *ns_per = (now() - t) / ns * 1e9;
+  *ns_per = (process_now() - t) / ns * 1e9;
   *below = (double)nb / ns;
   {
     double m = sum / ns, var = fmax(0.0, sum2 / ns - m * m);
@@ -654,7 +640,6 @@ static void do_map(const char *path, int nsamp, const char *only) {
 }
 
 /* ---- the picture: where 2000 samples of one shading point land, plain versus product ---- */
-#include <sys/stat.h>
 static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
   double t = x / (1 + x);
   t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
@@ -728,11 +713,7 @@ static int picture(const char *out, const char *path) {
     el_draw_label(im, W, H, 8, 34, "THE NORMAL: WHITE CROSS. ITS HORIZON: BLUE");
     printf("%s: %d of %d samples below the horizon\n", panel == 0 ? "sample_li" : "sample_li_cos", below, ns);
   }
-  {
-    char dir[512];
-    const char *slash = strrchr(out, '/');
-    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
-  }
+  make_parent_dir(out);
   if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   printf("wrote %s\n", out);
   free(pix);
@@ -742,7 +723,6 @@ static int picture(const char *out, const char *path) {
 }
 
 /* ---- --library: the library's sampler as shipped (issue 20's numbers) ---- */
-static int cmp_double(const void *a, const void *b) { double x = *(const double *)a, y = *(const double *)b; return x < y ? -1 : x > y; }
 static void library_map(const char *path, int nsamp) {
   el_image img;
   char err[512];
@@ -754,9 +734,9 @@ static void library_map(const char *path, int nsamp) {
   for (k = 0; k < 5; ++k) { /* builds on fresh lights */
     double t0;
     if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
-    t0 = now();
+    t0 = process_now();
     el_envlight_prepare_product(&l, NULL);
-    ms[k] = (now() - t0) * 1e3;
+    ms[k] = (process_now() - t0) * 1e3;
     bytes = el_envlight_product_bytes(&l);
     el_envlight_free(&l);
   }
@@ -790,7 +770,7 @@ static void library_map(const char *path, int nsamp) {
       int rep;
       rng g;
       for (rep = 0; rep < 3; ++rep) {
-        double t0 = now();
+        double t0 = process_now();
         g.s = 0x9e3779b97f4a7c15ull * (uint64_t)(k + 1);
         s1 = s2 = 0;
         for (j = 0; j < nsamp; ++j) {
@@ -801,7 +781,7 @@ static void library_map(const char *path, int nsamp) {
           c = wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2];
           if (pdf > 0 && c > 0) { double f = lum3(rgb) * c / pdf; s1 += f; s2 += f * f; }
         }
-        t0 = now() - t0;
+        t0 = process_now() - t0;
         if (t0 < tbest) tbest = t0;
       }
       { double m = s1 / nsamp; rv[strat] = (s2 / nsamp - m * m) / (E[k] * E[k]); }
