@@ -545,12 +545,32 @@ static double run(strategy *s, el_envlight *l, const double n[3], double E, int 
   }
 }
 
+/* the normals NNAME (light space): up, down, sideways, the brightest texel and away from it; returns
+ * the brightest texel's luminance */
+static double six_normals(const el_image *img, double N[NN][3]) {
+  double best = -1;
+  int x, y, k;
+  memset(N, 0, NN * sizeof N[0]);
+  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
+  for (y = 0; y < img->height; ++y)
+    for (x = 0; x < img->width; ++x) {
+      double v = lum3(img->pixels + 3 * ((size_t)y * img->width + x));
+      if (v > best) {
+        double uu = (x + 0.5) / img->width, vv = (y + 0.5) / img->height;
+        best = v;
+        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
+      }
+    }
+  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  return best;
+}
+
 static void do_map(const char *path, int nsamp, const char *only) {
   el_image img;
   char err[512];
   el_envlight l;
-  double N[NN][3], E[NN], best = -1;
-  int x, y, k, q, ns = 0, m, ci, wi;
+  double N[NN][3], E[NN], best;
+  int k, q, ns = 0, m, ci, wi;
   static const int CK[][2] = {{16, 8}, {32, 16}, {64, 32}};
   static int MS[3] = {8, 16, 32};
   static char names[64][40];
@@ -561,19 +581,7 @@ static void do_map(const char *path, int nsamp, const char *only) {
   if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
   if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
   el_envlight_prepare_sampling(&l);
-  /* normals: up, down, sideways, the brightest texel and away from it (light space) */
-  memset(N, 0, sizeof N);
-  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
-  for (y = 0; y < img.height; ++y)
-    for (x = 0; x < img.width; ++x) {
-      double v = lum3(img.pixels + 3 * ((size_t)y * img.width + x));
-      if (v > best) {
-        double uu = (x + 0.5) / img.width, vv = (y + 0.5) / img.height;
-        best = v;
-        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
-      }
-    }
-  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  best = six_normals(&img, N);
   quadrature(&img, N, NN, E);
   printf("\n%s (%dx%d), brightest texel %.3g at theta %.0f deg; E:", path, img.width, img.height, best, acos(N[4][2]) * 180 / PI);
   for (k = 0; k < NN; ++k) printf(" %s %.3g", NNAME[k], E[k]);
@@ -727,8 +735,8 @@ static void library_map(const char *path, int nsamp) {
   el_image img;
   char err[512];
   el_envlight l;
-  double N[NN][3], E[NN], best = -1, ms[5], gv[2] = {0, 0}, gt[2] = {0, 0};
-  int x, y, k, j;
+  double N[NN][3], E[NN], ms[5], gv[2] = {0, 0}, gt[2] = {0, 0};
+  int k, j;
   size_t bytes = 0;
   if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
   for (k = 0; k < 5; ++k) { /* builds on fresh lights */
@@ -744,18 +752,7 @@ static void library_map(const char *path, int nsamp) {
   if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
   el_envlight_prepare_product(&l, NULL);
   el_envlight_prepare_sampling(&l);
-  memset(N, 0, sizeof N);
-  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
-  for (y = 0; y < img.height; ++y)
-    for (x = 0; x < img.width; ++x) {
-      double v = lum3(img.pixels + 3 * ((size_t)y * img.width + x));
-      if (v > best) {
-        double uu = (x + 0.5) / img.width, vv = (y + 0.5) / img.height;
-        best = v;
-        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
-      }
-    }
-  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  six_normals(&img, N);
   quadrature(&img, N, NN, E);
   printf("\n%s (%dx%d): product tables %.2f MiB (%zu bytes), build %.1f ms best, %.1f median of 5\n", path, img.width, img.height,
          bytes / 1048576.0, bytes, ms[0], ms[2]);
