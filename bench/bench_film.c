@@ -33,12 +33,8 @@
 static const char *filter_name[5] = {"box", "triangle", "gaussian", "mitchell", "lanczos"};
 static const char *tonemap_name[4] = {"clamp", "exponential", "reinhard", "aces"};
 
-static unsigned g_rng = 2024u;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
-#include "bench_common.h" /* wall_now, cpu_now, cmp_double */
+#include "bench_common.h" /* wall_now, cpu_now, cmp_double, lcg_f */
+static lcg g_rng = {2024u};
 
 static el_film make_film(int w, int h, int type, int exact) {
   el_film f;
@@ -91,11 +87,11 @@ static void make_samples(const el_film *f) {
   int b[4], i;
   el_film_sample_bounds(f, b);
   for (i = 0; i < NS; i++) {
-    g_samples[5 * i] = b[0] + (b[2] - b[0]) * frand();
-    g_samples[5 * i + 1] = b[1] + (b[3] - b[1]) * frand();
-    g_samples[5 * i + 2] = frand();
-    g_samples[5 * i + 3] = frand();
-    g_samples[5 * i + 4] = frand();
+    g_samples[5 * i] = b[0] + (b[2] - b[0]) * lcg_f(&g_rng);
+    g_samples[5 * i + 1] = b[1] + (b[3] - b[1]) * lcg_f(&g_rng);
+    g_samples[5 * i + 2] = lcg_f(&g_rng);
+    g_samples[5 * i + 3] = lcg_f(&g_rng);
+    g_samples[5 * i + 4] = lcg_f(&g_rng);
   }
 }
 
@@ -142,7 +138,7 @@ static int callgrind_mode(const char *op, long n) {
     int i;
     memset(&o, 0, sizeof o);
     o.tonemap = (el_film_tonemap)type;
-    for (i = 0; i < 3 * NS; i++) rgb[i] = 4.0f * frand() * frand();
+    for (i = 0; i < 3 * NS; i++) rgb[i] = 4.0f * lcg_f(&g_rng) * lcg_f(&g_rng);
     for (k = 0; k < n; k++) el_film_to_srgb8(rgb, 64, NS / 64, &o, out);
     free(rgb);
     free(out);
@@ -199,7 +195,7 @@ static void zone_image(int type, int exact, int n, float *out) { /* n x n strata
     for (x = b[0]; x < b[2]; x++)
       for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
-          float px = x + (i + frand()) / n, py = y + (j + frand()) / n, c[3];
+          float px = x + (i + lcg_f(&g_rng)) / n, py = y + (j + lcg_f(&g_rng)) / n, c[3];
           c[0] = c[1] = c[2] = zone(px, py);
           el_film_add_sample(&f, px, py, c, 1.0f);
         }
@@ -226,7 +222,7 @@ static int csv_mode(int quick) {
       for (e = 0; e < 2; e++) {
         double sa = 0, sd = 0;
         int na = 0, nd = 0;
-        g_rng = 7u + (unsigned)k; /* the same samples for every filter */
+        g_rng.s = 7u + (unsigned)k; /* the same samples for every filter */
         zone_image(t, e, strata[k], img);
         for (i = 0; i < ZW * ZW; i++) {
           double x = i % ZW + 0.5, y = i / ZW + 0.5, dx = x - ZW / 2.0, dy = y - ZW / 2.0;
@@ -337,9 +333,9 @@ int main(int argc, char **argv) {
         el_film g = make_film(CW, CW, t, e);
         int b[4], k;
         el_film_sample_bounds(&g, b);
-        g_rng = 99u; /* the same samples for the table and the exact film */
+        g_rng.s = 99u; /* the same samples for the table and the exact film */
         for (k = 0; k < 4 * (b[2] - b[0]) * (b[3] - b[1]); k++) {
-          float px = b[0] + (b[2] - b[0]) * frand(), py = b[1] + (b[3] - b[1]) * frand(), c[3];
+          float px = b[0] + (b[2] - b[0]) * lcg_f(&g_rng), py = b[1] + (b[3] - b[1]) * lcg_f(&g_rng), c[3];
           c[0] = c[1] = c[2] = chart(px, py);
           el_film_add_sample(&g, px, py, c, 1.0f);
         }
@@ -364,7 +360,7 @@ int main(int argc, char **argv) {
     float *rgb = (float *)malloc(sizeof(float) * 3 * PW * PW);
     unsigned char *out = (unsigned char *)malloc(3 * PW * PW);
     el_film_output_options o;
-    for (i = 0; i < 3 * PW * PW; i++) rgb[i] = 4.0f * frand() * frand();
+    for (i = 0; i < 3 * PW * PW; i++) rgb[i] = 4.0f * lcg_f(&g_rng) * lcg_f(&g_rng);
     for (t = 0; t < 4; t++) {
       double t0, t1, ir = -1;
       long reps = 0;

@@ -7,7 +7,11 @@
  *   rng_u32(&r)                   the next 32 bits;
  *   rng_f(&r)                     the next float in [0, 1): the top 24 bits, so exact and never 1;
  *   hash32(i)                     a 32-bit integer hash (Wellons' lowbias32), for random numbers
- *                                 indexed by sample (the same number whatever the order of the draws).
+ *                                 indexed by sample (the same number whatever the order of the draws);
+ *   lcg g = {seed}; lcg_f(&g)     the film tests' and bench's linear congruential generator (Numerical
+ *                                 Recipes' constants, 32-bit unsigned; lcg_next: the next state), floats
+ *                                 in [0, 1) from its top 24 bits;
+ *   xorshift32 x = {seed}; xorshift32_f(&x)  the MIP map tests' Marsaglia xorshift (13, 17, 5), likewise.
  *
  * The streams are fixed: tests that check numbers drawn from a given seed rely on them. */
 #ifndef EL_TEST_RNG_H
@@ -35,6 +39,18 @@ static inline rng rng_make(uint64_t seed) {
 static inline uint32_t hash32(uint32_t x) {
   x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
   return x;
+}
+
+typedef struct { unsigned s; } lcg;
+static inline unsigned lcg_next(lcg *r) { return r->s = r->s * 1664525u + 1013904223u; }
+static inline float lcg_f(lcg *r) { return (float)(lcg_next(r) >> 8) * (1.0f / 16777216.0f); }
+
+typedef struct { unsigned s; } xorshift32;
+static inline float xorshift32_f(xorshift32 *r) {
+  r->s ^= r->s << 13;
+  r->s ^= r->s >> 17;
+  r->s ^= r->s << 5;
+  return (float)(r->s >> 8) * (1.0f / 16777216.0f);
 }
 
 #endif
