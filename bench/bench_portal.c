@@ -218,22 +218,6 @@ static int through(const room *r, const float pos[3], const float wi[3]) {
 static const char *names[NSTRAT] = {"map sample_li (no portal)", "pbrt-v4 port (bisection, double SAT)", "envlight portal (integer SAT)"};
 
 /* ---- the picture: where the samples of one floor point land, map sampling against the portal ---- */
-static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
-  double t = x / (1 + x);
-  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
-  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
-}
-static void dot(unsigned char *img, int W, int H, int x, int y, int r, unsigned char cr, unsigned char cg, unsigned char cb) {
-  int dx, dy;
-  for (dy = -r; dy <= r; ++dy)
-    for (dx = -r; dx <= r; ++dx) {
-      int xx = ((x + dx) % W + W) % W, yy = y + dy;
-      unsigned char *q;
-      if (yy < 0 || yy >= H) continue;
-      q = img + 3 * ((size_t)yy * (size_t)W + (size_t)xx);
-      q[0] = cr; q[1] = cg; q[2] = cb;
-    }
-}
 /* world direction -> pixel of the lat-long map (light space: the transpose of light_to_world) */
 static void to_pixel(const float m[9], const float w[3], int W, int H, int *x, int *y) {
   float d[3], u, v;
@@ -273,7 +257,7 @@ static int picture(const char *out, const char *path) {
       for (x = 0; x < W; ++x) {
         const float *t = img.pixels + 3 * ((size_t)y * (size_t)W + (size_t)x);
         unsigned char *q = im + 3 * ((size_t)y * (size_t)W + (size_t)x);
-        q[0] = to8(0.5 * t[0]); q[1] = to8(0.5 * t[1]); q[2] = to8(0.5 * t[2]);
+        q[0] = picture_to8(0.5 * t[0]); q[1] = picture_to8(0.5 * t[1]); q[2] = picture_to8(0.5 * t[2]);
       }
     for (k = 0; k < 4; ++k) /* the window's outline seen from the point */
       for (i = 0; i <= 400; ++i) {
@@ -282,7 +266,7 @@ static int picture(const char *out, const char *path) {
         int c;
         for (c = 0; c < 3; ++c) w[c] = a[c] + (b[c] - a[c]) * (float)i / 400.0f - pos[c];
         to_pixel(lo.light_to_world, w, W, H, &x, &y);
-        dot(im, W, H, x, y, 0, 80, 220, 255);
+        picture_dot(im, W, H, x, y, 0, 80, 220, 255);
       }
     for (i = 0; i < ns; ++i) {
       float u[2], wi[3], rgb[3], pdf;
@@ -294,8 +278,8 @@ static int picture(const char *out, const char *path) {
       ok = through(&rm, pos, wi);
       nthrough += ok;
       to_pixel(lo.light_to_world, wi, W, H, &x, &y);
-      if (ok) dot(im, W, H, x, y, 1, 255, 230, 40);
-      else dot(im, W, H, x, y, 1, 255, 40, 40);
+      if (ok) picture_dot(im, W, H, x, y, 1, 255, 230, 40);
+      else picture_dot(im, W, H, x, y, 1, 255, 40, 40);
     }
     snprintf(label, sizeof label, "%s: %d OF %d SAMPLES THROUGH THE WINDOW (YELLOW)", panel == 0 ? "MAP (SAMPLE LI)" : "PORTAL (PORTAL SAMPLE LI)",
              nthrough, ns);

@@ -648,22 +648,6 @@ static void do_map(const char *path, int nsamp, const char *only) {
 }
 
 /* ---- the picture: where 2000 samples of one shading point land, plain versus product ---- */
-static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
-  double t = x / (1 + x);
-  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
-  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
-}
-static void dot(unsigned char *img, int W, int H, int x, int y, unsigned char r, unsigned char g, unsigned char b) {
-  int dx, dy;
-  for (dy = -1; dy <= 1; ++dy)
-    for (dx = -1; dx <= 1; ++dx) {
-      int xx = ((x + dx) % W + W) % W, yy = y + dy;
-      unsigned char *p;
-      if (yy < 0 || yy >= H) continue;
-      p = img + 3 * ((size_t)yy * W + xx);
-      p[0] = r; p[1] = g; p[2] = b;
-    }
-}
 static int picture(const char *out, const char *path) {
   el_image img;
   char err[512], label[128];
@@ -686,7 +670,7 @@ static int picture(const char *out, const char *path) {
       for (x = 0; x < W; ++x) {
         const float *t = img.pixels + 3 * ((size_t)y * W + x);
         unsigned char *p = im + 3 * ((size_t)y * W + x);
-        p[0] = to8(0.5 * t[0]); p[1] = to8(0.5 * t[1]); p[2] = to8(0.5 * t[2]);
+        p[0] = picture_to8(0.5 * t[0]); p[1] = picture_to8(0.5 * t[1]); p[2] = picture_to8(0.5 * t[2]);
       }
     for (x = 0; x < W; ++x) /* the normal's horizon: n.w = 0 along each column, found by bisection on theta */
       for (i = 0; i < 2; ++i) {
@@ -694,11 +678,11 @@ static int picture(const char *out, const char *path) {
         double th = atan2(-b, a); /* a sin(th) + b cos(th) = 0 */
         if (i) th += PI;
         th -= 2 * PI * floor(th / (2 * PI));
-        if (th <= PI) dot(im, W, H, x, (int)(th / PI * H), 80, 220, 255);
+        if (th <= PI) picture_dot(im, W, H, x, (int)(th / PI * H), 1, 80, 220, 255);
       }
     for (i = -6; i <= 6; ++i) { /* the normal: a white cross */
-      dot(im, W, H, (int)(u0 * W) + i, (int)(v0 * H), 255, 255, 255);
-      dot(im, W, H, (int)(u0 * W), (int)(v0 * H) + i, 255, 255, 255);
+      picture_dot(im, W, H, (int)(u0 * W) + i, (int)(v0 * H), 1, 255, 255, 255);
+      picture_dot(im, W, H, (int)(u0 * W), (int)(v0 * H) + i, 1, 255, 255, 255);
     }
     below = 0;
     for (i = 0; i < ns; ++i) {
@@ -712,8 +696,8 @@ static int picture(const char *out, const char *path) {
       vv = acos(fmax(-1.0, fmin(1.0, wi[2]))) / PI;
       c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
       if (c <= 0) ++below;
-      if (c > 0) dot(im, W, H, (int)(uu * W), (int)(vv * H), 255, 230, 40);
-      else dot(im, W, H, (int)(uu * W), (int)(vv * H), 255, 40, 40);
+      if (c > 0) picture_dot(im, W, H, (int)(uu * W), (int)(vv * H), 1, 255, 230, 40);
+      else picture_dot(im, W, H, (int)(uu * W), (int)(vv * H), 1, 255, 40, 40);
     }
     snprintf(label, sizeof label, "%s: %d SAMPLES, %d BELOW THE HORIZON (RED)",
              panel == 0 ? "PLAIN (SAMPLE LI)" : "PRODUCT (SAMPLE LI COS)", ns, below);
