@@ -36,7 +36,7 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-#include "test_check.h" /* check: a PASS / FAIL line, counted in g_pass / g_fail */
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
 #include "test_rng.h"   /* rng, rng_make, rng_f: PCG32, 24-bit floats in [0,1) */
 #include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
@@ -65,16 +65,6 @@ static void mat_mul_t(const float m[9], const double a[3], double b[3]) {
   for (i = 0; i < 3; ++i) b[i] = m[i] * a[0] + m[3 + i] * a[1] + m[6 + i] * a[2];
 }
 static void identity(float m[9]) { int i; for (i = 0; i < 9; ++i) m[i] = (i % 4 == 0) ? 1.0f : 0.0f; }
-/* a rotation: 37 degrees about the normalised axis (1, 2, 3) (Rodrigues, in double) */
-static void some_rotation(float m[9]) {
-  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
-  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y,
-                 t * x * y + s * z, t * y * y + c, t * y * z - s * x,
-                 t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-  int i;
-  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
-}
 
 /* Our own bilinear reconstruction (pbrt's s*w - 0.5, Repeat in u, Clamp in v), in double. */
 typedef struct { const float *px; int w, h; } image;
@@ -382,7 +372,7 @@ static void chi2_map(const char *name, const float *px, int w, int h, int gu, in
   float m[9];
   char label[128];
   el_result res;
-  if (rotate) some_rotation(m); else identity(m);
+  if (rotate) rotation37(m); else identity(m);
   res = make_light(&l, px, w, h, m, comp, sampler);
   snprintf(label, sizeof label, "%s%s%s%s", name, comp ? " compensated" : "", rotate ? " rotated" : "",
            sampler == EL_ENVLIGHT_SAMPLER_CDF ? " CDF" : sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? " alias" : "");
@@ -477,7 +467,7 @@ static void test_pdf_integral(const el_image *studio) {
   el_envlight l;
   float m[9];
   int comp;
-  some_rotation(m);
+  rotation37(m);
   for (comp = 0; comp < 2; ++comp) {
     int i, j, nu = 3000, nv = 1400;
     double s = 0;
@@ -614,7 +604,7 @@ static void unbiased_case(const char *name, const float *px, int w, int h, int q
   float m[9];
   int k, ok = 1;
   el_result res;
-  if (rotate) some_rotation(m); else identity(m);
+  if (rotate) rotation37(m); else identity(m);
   im.px = px; im.w = w; im.h = h;
   quadrature(&im, qs, NORMALS, NNORM, E);
   memset(&o, 0, sizeof o);
@@ -949,7 +939,7 @@ static void test_hard_cases(void) {
     res = el_envlight_init(&l, px, 2, 2, 3, &o);
     check(res == EL_SUCCESS, "a reflection (det -1) is accepted");
     el_envlight_free(&l);
-    some_rotation(m);
+    rotation37(m);
     memcpy(o.light_to_world, m, sizeof m);
     o.light_to_world[0] += 3e-5f; /* float noise of a user's matrix: accepted and re-orthonormalised */
     res = el_envlight_init(&l, px, 2, 2, 3, &o);
@@ -1212,7 +1202,7 @@ static void test_table_directions(const el_image *city) {
       }
       if (mi == 0) identity(m);
       else if (mi == 1) el_envlight_yup_matrix(m);
-      else some_rotation(m);
+      else rotation37(m);
       make_light(&l, pix, w, h, m, 0, smp ? EL_ENVLIGHT_SAMPLER_GUIDE : EL_ENVLIGHT_SAMPLER_CDF);
       el_envlight_prepare_sampling(&l);
       for (i = 0; i < n; ++i) {
@@ -1323,7 +1313,7 @@ static void test_direction_scale(const el_image *city) {
   for (mi = 0; mi < 3; ++mi) {
     el_envlight l;
     float m[9], d0[3] = {1.0f, -0.75f, 0.5f}, L0[3], p0, x0[3] = {1.0f, 0.0f, 0.0f}, Lx[3], px0;
-    if (mi == 0) identity(m); else if (mi == 1) el_envlight_yup_matrix(m); else some_rotation(m);
+    if (mi == 0) identity(m); else if (mi == 1) el_envlight_yup_matrix(m); else rotation37(m);
     make_light(&l, city->pixels, city->width, city->height, m, 0, 0);
     el_envlight_le(&l, d0, L0);
     p0 = el_envlight_pdf_li(&l, d0);
@@ -1385,7 +1375,7 @@ static void test_pdf_round_trip(const el_image *city) {
           if (mi == 0) identity(m);
           else if (mi == 1) el_envlight_yup_matrix(m);
           else if (mi == 2) el_envlight_zup_matrix(m);
-          else some_rotation(m);
+          else rotation37(m);
           memset(&o, 0, sizeof o);
           memcpy(o.light_to_world, m, sizeof m);
           o.sampler = smp;
@@ -1609,7 +1599,7 @@ static void chi2_product_case(const char *name, const float *px, int w, int h, i
   float m[9];
   psrc s;
   char label[160];
-  if (matrix == 1) some_rotation(m);
+  if (matrix == 1) rotation37(m);
   else if (matrix == 2) el_envlight_yup_matrix(m);
   else if (matrix == 3) el_envlight_zup_matrix(m);
   else identity(m);
@@ -1629,7 +1619,7 @@ static void chi2_bilinear_case(const char *name, const float *px, int w, int h, 
   float m[9];
   psrc s;
   char label[160];
-  if (matrix == 1) some_rotation(m); else identity(m);
+  if (matrix == 1) rotation37(m); else identity(m);
   if (make_light_imp(&l, px, w, h, m, comp, EL_ENVLIGHT_IMPORTANCE_BILINEAR) != EL_SUCCESS) { check(0, "chi2 %s: init failed", name); return; }
   memset(&s, 0, sizeof s);
   s.l = s.pdf_light = &l;
@@ -1888,7 +1878,7 @@ static void test_product_coverage(const el_image *studio) {
       float m[9];
       int k, i, j, bad = 0, tried = 0, NU = 240, NV = 120;
       rng g = rng_make(500 + mi);
-      if (rot) some_rotation(m); else identity(m);
+      if (rot) rotation37(m); else identity(m);
       make_light_imp(&l, maps[mi], sizes[mi][0], sizes[mi][1], m, 0, 0);
       for (k = 0; k < 12; ++k) { /* normals: the poles, the seam, and random ones */
         float n[3];
@@ -1936,7 +1926,7 @@ static void test_product_unbiased(const el_image *studio, const el_image *city) 
       float m[9];
       double E[NNORM], worst = 0, worst_bad = 0;
       int k, i, nsamp = 60000, comp = mode == 2, imp = mode == 3 ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
-      if (mode == 1 || mode == 2) some_rotation(m); else identity(m);
+      if (mode == 1 || mode == 2) rotation37(m); else identity(m);
       ref.px = half[mapi]; ref.w = 512; ref.h = 256;
       quadrature(&ref, 2, NORMALS, NNORM, E);
       make_light_imp(&l, half[mapi], 512, 256, m, comp, imp);
@@ -2055,7 +2045,7 @@ static void test_product_hard(const el_image *city) {
     float p0, pz, pn, pi, ds[3], m[9];
     int mi;
     for (mi = 0; mi < 2; ++mi) {
-      if (mi == 0) identity(m); else some_rotation(m);
+      if (mi == 0) identity(m); else rotation37(m);
       make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
       p0 = el_envlight_pdf_li_cos(&l, nu, dir);
       ok = p0 > 0;

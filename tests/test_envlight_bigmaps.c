@@ -30,7 +30,7 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-#include "test_check.h" /* check: a PASS / FAIL line, counted in g_pass / g_fail */
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
 #include "test_rng.h" /* hash32 */
 /* 24-bit uniform floats in [0,1) from an index and a stream */
@@ -511,14 +511,7 @@ static void test_ea_misc(void) {
 
 int main(void) {
   float rot[9];
-  {
-    double ax[3] = {1, 2, 3}, nn = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-    double x = ax[0] / nn, y = ax[1] / nn, z = ax[2] / nn;
-    double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                   t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-    int i;
-    for (i = 0; i < 9; ++i) rot[i] = (float)r[i];
-  }
+  rotation37(rot);
   test_cap_defaults();
   test_cap_density();
   test_no_copy();

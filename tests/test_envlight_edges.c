@@ -38,19 +38,11 @@
 #define EL_TEST_DATA_DIR "data"
 #endif
 
-#include "test_check.h" /* check: a PASS / FAIL line, counted in g_pass / g_fail */
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
 #include "test_rng.h" /* rng_f: PCG32, 24-bit floats in [0, 1) */
 static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
 
-static void rotation(float m[9]) { /* 37 degrees about (1, 2, 3) */
-  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * 3.14159265358979323846 / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
-  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                 t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-  int i;
-  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
-}
 
 static int load(const char *name, el_image *img) {
   char path[512], err[256];
@@ -62,7 +54,7 @@ static int load(const char *name, el_image *img) {
 static int init(el_envlight *l, const float *px, int w, int h, int general, int importance, int compensated) {
   el_envlight_options o;
   memset(&o, 0, sizeof o);
-  if (general) rotation(o.light_to_world);
+  if (general) rotation37(o.light_to_world);
   o.importance = importance;
   o.compensated = compensated;
   return el_envlight_init(l, px, w, h, 3, &o) == EL_SUCCESS;

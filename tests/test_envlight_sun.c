@@ -38,21 +38,13 @@ static int g_w = 128, g_h = 64; /* 512 x 256 once: the direction-table path of m
 #define H g_h
 #define MAXWH (512 * 256)
 
-#include "test_check.h" /* check: a PASS / FAIL line, counted in g_pass / g_fail */
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
 #include "test_rng.h" /* rng_f: PCG32, 24-bit floats in [0, 1) */
 static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
 
 #include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
 
-static void rotation(float m[9]) { /* 37 degrees about (1, 2, 3) */
-  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
-  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                 t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-  int i;
-  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
-}
 static void mul(const float m[9], const float a[3], float b[3]) {
   b[0] = m[0] * a[0] + m[1] * a[1] + m[2] * a[2];
   b[1] = m[3] * a[0] + m[4] * a[1] + m[5] * a[2];
@@ -107,7 +99,7 @@ static el_result make_light(el_envlight *l, const float *px, int rotated) {
   if (g_variant == 2) o.sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (g_variant == 3) o.sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
   if (g_variant == 4) o.importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
-  if (rotated) rotation(o.light_to_world);
+  if (rotated) rotation37(o.light_to_world);
   return el_envlight_init(l, px, W, H, 3, &o);
 }
 
@@ -124,7 +116,7 @@ static void test_detection(void) {
       int ns = sun_dirs(kind, d), k, s, i, n = 100000;
       make_map(kind, px);
       if (make_light(&l, px, rot) != EL_SUCCESS) { check(0, "init %s", map_name[kind]); continue; }
-      rotation(m);
+      rotation37(m);
       if (rot) for (s = 0; s < ns; ++s) { float a[3], b[3]; a[0] = (float)d[s][0]; a[1] = (float)d[s][1]; a[2] = (float)d[s][2]; mul(m, a, b); d[s][0] = b[0]; d[s][1] = b[1]; d[s][2] = b[2]; }
       check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS, "hotspots_init %s%s", map_name[kind], rot ? " (rotated)" : "");
       check(h.count == ns, "%s%s: %d spots found (%d put)", map_name[kind], rot ? " (rotated)" : "", h.count, ns);
@@ -274,7 +266,7 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
   double x2 = 0, total = 0, pval, alpha = 0.01 / CHI2_PLANNED, spot_mass = 0, spot_obs = 0;
   make_map(kind, px);
   make_light(&l, px, rot);
-  rotation(m);
+  rotation37(m);
   el_envlight_hotspots_init(&h, &l, NULL);
   el_envlight_hotspots_weights(&h, spot_share, &w);
   memset(obs, 0, sizeof obs);
