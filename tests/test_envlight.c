@@ -91,13 +91,20 @@ static int load_map(const char *name, el_image *img) {
   return 0;
 }
 
-static el_result make_light(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int sampler) {
+/* a light of RGB texels px (w x h) under the matrix m (NULL: identity), compensated or not, with a sampler
+ * and an importance (0: the defaults) */
+static el_result make_light_with(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int sampler,
+                                 int imp) {
   el_envlight_options o;
   memset(&o, 0, sizeof o);
   if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
   o.compensated = comp;
   o.sampler = sampler;
+  o.importance = imp;
   return el_envlight_init(l, px, w, h, 3, &o);
+}
+static el_result make_light(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int sampler) {
+  return make_light_with(l, px, w, h, m, comp, sampler, 0);
 }
 
 /* ======================================================================================== */
@@ -1567,12 +1574,7 @@ static void chi2_fractions(const char *name, const psrc *s, const float m[9], in
 }
 
 static el_result make_light_imp(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int imp) {
-  el_envlight_options o;
-  memset(&o, 0, sizeof o);
-  if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
-  o.compensated = comp;
-  o.importance = imp;
-  return el_envlight_init(l, px, w, h, 3, &o);
+  return make_light_with(l, px, w, h, m, comp, 0, imp);
 }
 /* a box-filtered copy of an image at w / f x h / f (keeps the tests fast on the 1024x512 maps) */
 static float *shrink(const el_image *im, int f) {
