@@ -66,6 +66,7 @@ struct elr_wave {
   elr_v3 fl[ELR_WAVE];
   int lonly[ELR_WAVE], fast[ELR_WAVE];
   elr_v3 Ld[ELR_WAVE];
+  float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
   elr_path_state p[ELR_WAVE];
   int alive[ELR_WAVE], ray[ELR_WAVE], light[ELR_WAVE], shadow[ELR_WAVE], escaped[ELR_WAVE], bshadow[ELR_WAVE];
@@ -458,9 +459,8 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
     elr__intersect(C, &W->rays, 1, ts);
     if (C->path) elr__path_wave(C, W, m, ts);
     else elr__direct_wave(C, W, m, ts);
-    /* <<Add camera ray's contribution to image>>, in the reference's order */
+    /* <<Add camera ray's contribution to image>>, in the reference's order (one film call for the wave) */
     for (j = 0; j < m; j++) {
-      float rgb[3];
       elr_v3 L;
       if (C->path) L = W->p[j].L;
       else if (W->fast[j]) { /* elr_direct_first's sums: p.L + beta (0 + Ld / n) */
@@ -472,9 +472,9 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
         elr_sampler_restore(S, &W->pos[j]); /* the sampler back at sample j, after its film draw */
         L = elr_direct_first(C, S, &W->cam[j], &W->f[j], ts);
       }
-      elr_to3(L, rgb);
-      el_film_tile_add_sample(tile, W->fx[j], W->fy[j], rgb, 1.f);
+      elr_to3(L, &W->rgb[3 * j]);
       ts->samples++;
     }
+    el_film_tile_add_samples(tile, m, W->fx, W->fy, W->rgb, NULL);
   }
 }
