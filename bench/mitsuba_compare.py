@@ -24,18 +24,30 @@ The default run (variance mode; issues 13 and 14)
   Tables: (a) issue 13's equal-spp ratio, ours / Mitsuba with matched samplers (our random against
   independent, our low-discrepancy sampler against multijitter), one light + one BSDF sample
   (target <= 0.5); (b) issue 14's equal-time ratio: cost = relative variance x CPU s of our best
-  configuration over Mitsuba's best at each spp (target <= 0.5).
-    python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--our-sampler 02sequence]
-                                     [--map-too] [--no-stratified-splitting] [--threads 2]
+  configuration over Mitsuba's best at each spp (target <= 0.5); (c) issue 21's CPU per camera sample,
+  ours / Mitsuba at equal spp with one light + one BSDF sample (target <= 1), beside (b) again (issue
+  21's equal-time target <= 0.5); (d) with --regions or --mask, (a) and (b) for the lit and the
+  shadowed pixels apart (issue 22).
+    python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--var-spp 64,256]
+                                     [--our-sampler 02sequence] [--map-too] [--no-stratified-splitting]
+                                     [--threads 2] [--maxdepth 5] [--regions | --mask FILE]
+  --regions: pixel_classes() ray-casts the parsed scene in numpy (neither renderer's code) at 4x4
+  positions per pixel and casts a shadow ray towards the map's brightest texel (sun_direction()): "lit"
+  pixels see the sun from every position, "shadowed" from none (background, silhouettes and penumbrae
+  are in neither; bench_city at 320x240: 32676 lit, 20781 shadowed). --mask FILE: the same two classes
+  from a PGM (P2/P5) or PFM of the compared resolution (> 0.5 of its maximum: shadowed), read_mask().
+  Other scripts can import pixel_classes, read_mask, relvar_by_class, scene_variant and parse_pbrt.
   --quick: 160x120, 16 and 64 spp, 2 seeds, fewer configurations (about 2 CPU minutes).
   --sampler-variance: our seven samplers alone (directlighting, both maps), the table of the render
   README's "Samplers" section.
   Mitsuba is installed from PyPI (pip install mitsuba numpy) when it is missing; its llvm variants
   need libLLVM (Debian: apt-get install libllvm19), else scalar_rgb is used.
-  Measured (2026-12-02, --var-res 160 120 --seeds 2 --our-sampler 02sequence --map-too
-  --no-stratified-splitting, 17 minutes on the shared 2-core machine): examples/render/README.md,
-  "Against Mitsuba 3": (a) 0.50-0.52 / 0.59-0.87 on the sun map (random / low discrepancy; direct /
-  path), 0.17-0.24 on the smooth map; (b) 1.2-1.96 on the sun map, 0.38-0.54 on the smooth map.
+  Measured (2026-12-02, --var-res 320 240 --var-spp 64,256 --seeds 3 --regions --no-stratified-splitting,
+  25 minutes on the shared 2-core machine at load average 3-10; examples/render/README.md, "Against
+  Mitsuba 3"): (c) our CPU per camera sample 2.0-2.2x Mitsuba's (direct), 1.5-1.7x (path, sun map),
+  2.1-2.2x (path, smooth map); (a) zsobol / multijitter 1.41-1.52 (sun, direct), 1.19-1.21 (sun, path),
+  0.13-0.21 (smooth); (b) 3.1 (sun, direct), 1.8-2.0 (sun, path), 0.23-0.25 (smooth, direct), 0.43-0.46
+  (smooth, path).
 
 The older measure (--reference; issue 5)
   Accuracy against time for direct lighting of a diffuse sphere on a plane under the city map
@@ -591,19 +603,26 @@ def read_mask(path, w, h):
             v = np.array(data[pos:].split()[:mw * mh], dtype=np.float64)
         else:
             pos += 1
+            if len(data) - pos < mw * mh * (2 if maxval > 255 else 1):
+                die("%s: truncated PGM" % path)
             v = np.frombuffer(data, dtype=">u2" if maxval > 255 else np.uint8, count=mw * mh, offset=pos).astype(np.float64)
         if v.size != mw * mh:
             die("%s: truncated PGM" % path)
         img = v.reshape(mh, mw) / max(maxval, 1)
     elif magic in (b"Pf", b"PF"):
         lines, pos = [], 0
-        for _ in range(3):
-            e = data.index(b"\n", pos)
-            lines.append(data[pos:e].decode().strip())
-            pos = e + 1
-        mw, mh = map(int, lines[1].split())
-        sc_ = float(lines[2])
+        try:
+            for _ in range(3):
+                e = data.index(b"\n", pos)
+                lines.append(data[pos:e].decode().strip())
+                pos = e + 1
+            mw, mh = map(int, lines[1].split())
+            sc_ = float(lines[2])
+        except ValueError:
+            die("%s: not a PFM header" % path)
         nc = 1 if magic == b"Pf" else 3
+        if len(data) - pos < mw * mh * nc * 4:
+            die("%s: truncated PFM" % path)
         v = np.frombuffer(data, dtype="<f4" if sc_ < 0 else ">f4", count=mw * mh * nc, offset=pos)
         img = v.reshape(mh, mw, nc)[::-1, :, 0].astype(np.float64)
     else:
