@@ -221,23 +221,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       np++;
     }
   }
-  /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the BSDF
-   * samples' directions, then the light samples */
-  for (k = 0; k < np; k++) {
-    elr_first *p = W->pair[k];
-    float d[3], L3[3];
-    if (!p->bray) continue;
-    elr_to3(p->wb, d);
-    if (C->batch_light->product) {
-      elr_v3 nc;
-      int has = elr_bsdf_cos_normal(&W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
-      p->bpdf_env = elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
-    } else {
-      p->bpdf_env = el_envlight_pdf_li(env_sample, d);
-    }
-    el_envlight_le(env, d, L3);
-    p->Lb = elr_from3(L3);
-  }
+  /* the light samples */
   elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->wi, W->Le, W->pdf);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
@@ -263,6 +247,23 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *p = W->pair[k];
     p->occ_l = W->shadow[k] >= 0 ? W->shadows.tfar[W->shadow[k]] < 0.f : 0;
     p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
+  }
+  /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the directions
+   * of the BSDF samples whose rays escaped (the others' are never read) */
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k];
+    float d[3], L3[3];
+    if (!p->bray || p->occ_b) continue;
+    elr_to3(p->wb, d);
+    if (C->batch_light->product) {
+      elr_v3 nc;
+      int has = elr_bsdf_cos_normal(&W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      p->bpdf_env = elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
+    } else {
+      p->bpdf_env = el_envlight_pdf_li(env_sample, d);
+    }
+    el_envlight_le(env, d, L3);
+    p->Lb = elr_from3(L3);
   }
   elr__direct_shade(C, W, np, ts);
 }
