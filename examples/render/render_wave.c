@@ -116,7 +116,8 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
                              float *pdf) {
   int i, k, nm = 0, idx[ELR_WAVE];
   float um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
-  if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
+  for (i = 0; i < n && !has_n[i]; i++) {}
+  if (!l->product || i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; } /* (the map alone for all) */
   for (i = 0; i < n; i++) {
     if (has_n[i]) {
       float nn[3];
