@@ -664,19 +664,24 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
 #define EL_ENVLIGHT_PORTAL_MAX 16
 
 typedef struct el_envlight_portal_options {
-  int resolution;  /* rectified image texels per axis, 4..4096; 0: the map's height within 64..2048 (a
-                      rectified texel about a map texel at the window's centre: a sun stays sharp) */
+  int resolution;  /* rectified image texels per axis, 4..4096; 0: twice the map's height within 64..2048
+                      (about 2 x 2 rectified texels per map texel at the window's centre: a sun, which
+                      le() spreads bilinearly over 2 x 2 map texels, stays sharp) */
   int supersample; /* importance lookups per texel and axis, 1..16; 0: 2 */
   int compensated; /* 1: density max(lum - mean, 0) (the mean over the portal's hemisphere): MIS only */
   float map_share; /* 0..1: the share of samples drawn by the map's own sample_li where a portal is seen
                       (a defensive mixture: a point outside the room that sees a portal's back still
                       finds the sun). 0: pbrt-v4's pure portal density */
+  int map_share_outside; /* 1: map_share only at points on or behind some portal's plane (outside a convex
+                            room whose windows are the portals: the sphere outside a second window);
+                            points in front of every portal's plane get the pure portal density.
+                            0: map_share wherever a portal is seen */
 } el_envlight_portal_options;
 
 /* One or more planar rectangular portals (windows) of a light, in world space, with pbrt-v4's vertex
  * order and frame: x along p3 - p0, y along p1 - p0, z = x cross y points from the room to the outside
  * (a shading point sees the portal when the portal lies on the +z side of it). PUBLIC (read, never
- * write): count, res, map_share, bad_index and error; the rest is private. */
+ * write): count, res, map_share, map_share_outside, bad_index and error; the rest is private. */
 typedef struct el_envlight_portal {
   int count, res;                           /* PUBLIC: portals, rectified texels per axis */
   double frame[EL_ENVLIGHT_PORTAL_MAX][12]; /* per portal: p0, x, y, z (unit) */
@@ -684,6 +689,7 @@ typedef struct el_envlight_portal {
   uint64_t *sat;                            /* count x (res+1)^2 integer summed-area tables */
   int compensated, fell_back;               /* fell_back: the compensated density was empty: plain one */
   float map_share;                          /* options.map_share */
+  int map_share_outside;                    /* options.map_share_outside */
   int bad_index;                            /* after a failed init: the portal at fault, else -1 */
   char error[128];                          /* after a failed init: what is wrong, else "" */
 } el_envlight_portal;
@@ -702,7 +708,8 @@ EL_DEF void el_envlight_portal_free(el_envlight_portal *p);
  * when the portals were used, 0 when pos sees no portal (it lies behind every portal's plane or on it)
  * and the map's own sample_li was used instead. With options.map_share s > 0, where pos sees a portal
  * a share s of the samples comes from the map's sample_li and the pdf is the mixture's,
- * (1 - s) portal + s map (then directions outside the portals keep the map's share). */
+ * (1 - s) portal + s map (then directions outside the portals keep the map's share); with
+ * options.map_share_outside only where pos also lies on or behind some portal's plane. */
 EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_envlight *light, const float pos[3],
                                         const float u[2], float wi[3], float rgb[3], float *pdf);
 /* The density with which sample_li picks wi at pos: 0 for a direction through no portal (when pos sees
@@ -739,17 +746,20 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    window's rows and the position in the row by linear inversion; then the column by a binary search
  *    over the row's prefix (2 reads per step). pdf = q_texel R^2 / (window mass) / (dw/d(a,b)), the exact
  *    density of those steps. Several portals: one is picked by the windows' masses with the same u.
- *    No rectified RGB image: radiance is le() of the map. COST (bench/bench_portal.c, 4 floor points
- *    of a room, gcc -O3, a shared loaded 2-core machine): 267-313 ns per sample with the radiance and
- *    the pdf, against 1280-1480 ns for a plain port of pbrt-v4's sampler (bisection over a double
- *    SAT) at the same resolution: 4.7-4.9x less; at equal variance on a smooth sky (the same density:
- *    relative variance 0.039 both; the map's sample_li: 50). MEMORY: 8 bytes per rectified texel
- *    (pbrt-v4: 24); the default resolution is the map's height (city, 1024x512: 512^2, 2 MB per
- *    portal, built in about 100 ms), because a sun must stay sharp: 256^2 left 2x the variance of
- *    the irradiance and 2x of a rendered room's pixels. The renderer (bench/bench_portal_render.c):
- *    time to unit variance 112x better on an overcast sky, 4.3x on city with its sun shining in
- *    (path traced, depth 3: the rest is indirect light from the sunlit floor); direct light alone
- *    (depth 1) 1600x and 11x.
+ *    No rectified RGB image: radiance is le() of the map. The searches prefetch the rows of the steps
+ *    ahead (at 1024^2 most steps miss the cache). COST (bench/bench_portal.c, 4 floor points of a room,
+ *    gcc -O3, a shared 2-core machine): 206-236 ns per sample with the radiance and the pdf, against
+ *    1006-1175 ns for a plain port of pbrt-v4's sampler (bisection over a double SAT) at the same
+ *    resolution: 4.9x less; at equal variance (the same density: relative variance 0.039 both on a
+ *    smooth sky, 0.045 / 0.047 on city; the map's sample_li: 50 / 25). MEMORY: 8 bytes per rectified
+ *    texel (pbrt-v4: 24); the default resolution is twice the map's height (city, 1024x512: 1024^2,
+ *    8 MB per portal, built in about 0.3 s), because le() spreads a sun bilinearly over 2 x 2 map
+ *    texels and a density constant per rectified texel follows that only with about 2 x 2 rectified
+ *    texels per map texel: at the map's height the irradiance's variance was 3.6x higher (0.165) and
+ *    the rendered room's gain 5.3x instead of 8x. The renderer (bench/bench_portal_render.c, path
+ *    traced, depth 3): time to unit variance 8.0x better on city with its sun shining in (the rest is
+ *    indirect light from the sunlit floor, which paths find by BSDF sampling), 166x on an overcast
+ *    sky; direct light alone (depth 1) 37x and 1800x.
  * 4. FALLBACK: a point on or behind every portal's plane (or seeing windows of zero mass) uses the map's
  *    sample_li / pdf_li, so the strategy stays unbiased everywhere; sample_li returns which was used.
  *    Directions through no portal have pdf 0 (as pbrt-v4): the caller's BSDF samples must find them.
@@ -759,9 +769,37 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    see its back; its sun is then sought only through the room. A share s of the samples from the
  *    map's sample_li, pdf (1 - s) portal + s map, keeps such points well sampled (the renderer uses
  *    0.1: a sphere outside a window read 1% dark at 8 seeds without it, -3.6 sd; with it 0.07 sd).
+ *    options.map_share_outside keeps the share to points on or behind some portal's plane (outside a
+ *    convex room whose windows are the portals), so that the room's inside keeps the pure portal
+ *    density: in the renderer's one-window rooms the share everywhere cost 25% of the time to unit
+ *    variance (its map pdf per sample, its samples that hit the walls); a point outside beyond a
+ *    windowless wall then finds its sun by the caller's BSDF samples alone (unbiased, noisier).
  * 6. INPUTS: a NaN, infinite or zero u is clamped as sample_li's; a NaN or zero wi has pdf 0; a NaN pos
  *    sees no portal. Queries are read-only and thread-safe (the fallback builds the light's tables lazily,
  *    as sample_li does). */
+
+/* ----------------------------------------------------------------------------------------------------
+ * NOTES ON GLOSSY LOBES (issue 20's "every lobe"; measured in examples/render with bench/lobes.py: time
+ * to unit variance of direct lighting, light and BSDF sample with MIS, against sample_li's map alone)
+ *
+ * sample_li_cos follows L(w) max(0, n.w): the integrand of a diffuse lobe. For a glossy Trowbridge-Reitz
+ * lobe of alpha below about 0.1 (near-specular metal) pass wo's MIRROR DIRECTION r = 2 (wo.n) n - wo in
+ * place of n, to sample_li_cos and to pdf_li_cos alike (the BSDF sample's MIS weight): the product then
+ * follows L(w) max(0, r.w), a broad proxy of the lobe around its peak. It is no bound of the lobe (the
+ * lobe's tail past 90 degrees of r has pdf 0), so use it only with MIS against the BSDF sample, which
+ * covers the whole lobe. Measured on a metal of alpha 0.02: 3.4x the map alone's efficiency under
+ * studio.hdr (around n: 2.4x), 6.1x at alpha 0.06 (around n: 3.9x); at alpha 0.2 n is better (5.5x
+ * against 4.5x). Under a map with a sun (city.hdr: its brightest 1e-5 of the sphere holds 22% of the
+ * power) neither pays: the variance is the map alone's, the product sample costs more (0.64-0.73x), so
+ * the renderer keeps sample_li there. A lobe with a diffuse part (plastic) keeps n at every alpha (alpha
+ * 0.05: 1.8x on city, 6.6x on studio; the mirror 0.5x). Broad lobes (alpha 0.3 and more beside a diffuse
+ * part, 0.6 and more without) do best with the product light sample alone, no BSDF sample (weight 1).
+ * TRIED AND DROPPED: the product of the map with the lobe itself at one shading point, as a k x k grid
+ * over the lobe's sampling square (cells of equal GGX probability weighted by le() at their centres,
+ * used as the BSDF sample, MIS with the renderer's light sample): 0.8-1.5x less variance than the choice
+ * above (studio: the mirror's proxy; city: the map alone) for k^2 = 16-64 lookups per point (about 10,000
+ * instructions at k = 4), so 0.16-0.47x of its efficiency.
+ */
 
 #ifdef __cplusplus
 }
@@ -4526,6 +4564,14 @@ done:
 /* >> portals (issue 23; NOTES ON PORTALS below the declarations) */
 
 #define EL_ENVLIGHT__PORTAL_UNITS 1099511627776.0 /* 2^40: the quantised mass of the largest portal image */
+/* A hint, no effect on any result: the binary searches below start loading the table entries of both
+ * possible next steps, so that one step's cache misses overlap the current step's (the plain search
+ * waits for one miss after another) */
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__PORTAL_PREFETCH(a) __builtin_prefetch(a)
+#else
+#define EL_ENVLIGHT__PORTAL_PREFETCH(a) ((void)(a))
+#endif
 
 /* atan2(x, z) / pi for z > 0, in (-1/2, 1/2) (the rectified angle of a direction, in turns of pi). */
 static double el_envlight__portal_angle(double x, double z) {
@@ -4543,6 +4589,7 @@ typedef struct el_envlight__pwin {
   int ia, ib;        /* floor of x0, x1 (<= R - 1) */
   double fa, fb;     /* x0 - ia, x1 - ib */
   double k0, mass;   /* K at y0 (the prefix of the rows below y0), the window's mass */
+  int behind;        /* the point is on or behind the portal's plane (or NaN) */
 } el_envlight__pwin;
 
 /* K(j): the mass of rows < j between columns x0 and x1 (4 table reads, two adjacent pairs). */
@@ -4566,7 +4613,8 @@ static int el_envlight__portal_window(const el_envlight_portal *p, int k, const 
   double r[3], x0, y0, z, R = (double)p->res;
   r[0] = f[0] - pos[0]; r[1] = f[1] - pos[1]; r[2] = f[2] - pos[2];
   z = r[0] * f[9] + r[1] * f[10] + r[2] * f[11];
-  if (!(z > 1e-9 * (fabs(f[0]) + fabs(f[1]) + fabs(f[2]) + p->size[k][0] + p->size[k][1]))) return 0;
+  w->behind = !(z > 1e-9 * (fabs(f[0]) + fabs(f[1]) + fabs(f[2]) + p->size[k][0] + p->size[k][1]));
+  if (w->behind) return 0;
   x0 = r[0] * f[3] + r[1] * f[4] + r[2] * f[5];
   y0 = r[0] * f[6] + r[1] * f[7] + r[2] * f[8];
   w->x0 = (el_envlight__portal_angle(x0, z) + 0.5) * R;
@@ -4603,6 +4651,15 @@ static double el_envlight__portal_windows(const el_envlight_portal *p, const flo
     }
   }
   return total;
+}
+
+/* The map's share at a point whose windows are w (options.map_share and map_share_outside). */
+static double el_envlight__portal_share(const el_envlight_portal *p, const el_envlight__pwin *w) {
+  int k;
+  if (!p->map_share_outside) return (double)p->map_share;
+  for (k = 0; k < p->count; ++k)
+    if (w[k].behind) return (double)p->map_share;
+  return 0.0;
 }
 
 /* Rectified (a - 1/2, b - 1/2) -> local unit direction; returns dw/d(a,b). */
@@ -4659,7 +4716,7 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
     memcpy(p->error, "portal count outside 1..16", 27);
     return EL_ERROR_INVALID_ARGUMENT;
   }
-  R = o.resolution ? o.resolution : (light->height < 64 ? 64 : light->height > 2048 ? 2048 : light->height);
+  R = o.resolution ? o.resolution : (light->height < 32 ? 64 : light->height > 1024 ? 2048 : 2 * light->height);
   ss = o.supersample ? o.supersample : 2;
   if (R < 4 || R > 4096 || ss < 1 || ss > 16 || !(o.map_share >= 0.0f && o.map_share <= 1.0f)) {
     memcpy(p->error, "resolution outside 4..4096, supersample outside 1..16 or map_share outside 0..1", 80);
@@ -4711,6 +4768,7 @@ EL_DEF el_result el_envlight_portal_init(el_envlight_portal *p, const el_envligh
   p->res = R;
   p->compensated = o.compensated ? 1 : 0;
   p->map_share = o.map_share;
+  p->map_share_outside = o.map_share_outside ? 1 : 0;
   n = (size_t)(R + 1) * (size_t)(R + 1);
   p->sat = (uint64_t *)EL_MALLOC(n * (size_t)count * sizeof(uint64_t));
   f = (double *)EL_MALLOC((size_t)R * (size_t)R * (size_t)count * sizeof(double));
@@ -4857,7 +4915,7 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
     el_envlight_sample_li(light, u, wi, rgb, pdf);
     return 0;
   }
-  share = (double)p->map_share;
+  share = el_envlight__portal_share(p, w);
   if (share > 0.0) { /* <<Defensive mixture>>: u1 picks the map or the portals, then is stretched back */
     double D[3];
     if ((double)u1 < share) {
@@ -4888,8 +4946,23 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   lo = (int)w[k].y0; if (lo > R - 1) lo = R - 1;
   hi = (int)w[k].y1; if ((double)hi < w[k].y1) hi++; /* ceil */
   if (hi > R) hi = R;
+  { /* the first step's row and both of the next step's */
+    int mid = (lo + hi) >> 1, g[3], gi;
+    g[0] = mid; g[1] = (lo + mid) >> 1; g[2] = (mid + hi) >> 1;
+    for (gi = 0; gi < 3; ++gi) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ib);
+    }
+  }
   while (hi - lo > 1) {
-    int mid = (lo + hi) >> 1;
+    int mid = (lo + hi) >> 1, gi, g[4];
+    /* (the rows of the four possible steps after the next: the next step's were asked for last time) */
+    g[0] = (lo + ((lo + mid) >> 1)) >> 1; g[1] = (((lo + mid) >> 1) + mid) >> 1;
+    g[2] = (mid + ((mid + hi) >> 1)) >> 1; g[3] = (((mid + hi) >> 1) + hi) >> 1;
+    for (gi = 0; gi < 4; ++gi) {
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ia);
+      EL_ENVLIGHT__PORTAL_PREFETCH(S + (size_t)g[gi] * stride + w[k].ib);
+    }
     if (el_envlight__portal_k(S, R, &w[k], mid) <= t) lo = mid;
     else hi = mid;
   }
@@ -4912,7 +4985,9 @@ EL_DEF int el_envlight_portal_sample_li(const el_envlight_portal *p, const el_en
   {
     int a = w[k].ia, b = w[k].ib + 1;
     while (b - a > 1) {
-      int mid = (a + b) >> 1;
+      int mid = (a + b) >> 1, m0 = (a + mid) >> 1, m1 = (mid + b) >> 1;
+      EL_ENVLIGHT__PORTAL_PREFETCH(r0 + m0); EL_ENVLIGHT__PORTAL_PREFETCH(r1 + m0); /* (both next steps) */
+      EL_ENVLIGHT__PORTAL_PREFETCH(r0 + m1); EL_ENVLIGHT__PORTAL_PREFETCH(r1 + m1);
       if ((double)(r1[mid] - r0[mid]) <= t) a = mid;
       else b = mid;
     }
@@ -4949,12 +5024,13 @@ EL_DEF float el_envlight_portal_pdf_li(const el_envlight_portal *p, const el_env
                                        const float wi[3]) {
   el_envlight__pwin w[EL_ENVLIGHT_PORTAL_MAX];
   int seen[EL_ENVLIGHT_PORTAL_MAX];
-  double total, D[3], pp;
+  double total, D[3], pp, share;
   total = (p && p->sat && pos) ? el_envlight__portal_windows(p, pos, w, seen) : 0.0;
   if (!(total > 0.0)) return el_envlight_pdf_li(light, wi);
   if (!el_envlight__portal_unit(wi, D)) return 0.0f;
   pp = el_envlight__portal_density(p, w, seen, total, D);
-  if (p->map_share > 0.0f) pp = (1.0 - (double)p->map_share) * pp + (double)p->map_share * (double)el_envlight_pdf_li(light, wi);
+  share = el_envlight__portal_share(p, w);
+  if (share > 0.0) pp = (1.0 - share) * pp + share * (double)el_envlight_pdf_li(light, wi);
   return (float)pp;
 }
 

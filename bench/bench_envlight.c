@@ -794,6 +794,17 @@ static void csv_build(int quick) {
     free(px);
   }
 }
+/* The CC0 map `name`: map_dir/name.hdr, else the repository's copy (data/envmaps has city and studio);
+ * 0 when neither exists. */
+static int map_path(char *path, size_t n, const char *map_dir, const char *name) {
+  FILE *f;
+  snprintf(path, n, "%s/%s.hdr", map_dir, name);
+  f = fopen(path, "rb");
+  if (f) { fclose(f); return 1; }
+  if (strcmp(name, "city") && strcmp(name, "studio")) return 0;
+  snprintf(path, n, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, name);
+  return 1;
+}
 static int csv_mode(const char *src, int quick) {
   char path[600];
   printf("kind,a,b,c,d,e\n");
@@ -821,22 +832,12 @@ int main(int argc, char **argv) {
     make_random();
     for (i = 0; i < 5; ++i) {
       char path[512 + 64];
-      FILE *f;
-      snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
-      f = fopen(path, "rb");
-      if (!f) {
-        if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
-        snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
-      } else fclose(f);
+      if (!map_path(path, sizeof path, map_dir, maps[i])) continue;
       product_table(path, nsamp);
     }
     for (i = 0; i < 5; i += 3) {
       char path[512 + 64];
-      FILE *f;
-      snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
-      f = fopen(path, "rb");
-      if (!f) snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
-      else fclose(f);
+      if (!map_path(path, sizeof path, map_dir, maps[i])) continue;
       strat_table(path);
     }
     return 0;
@@ -968,13 +969,7 @@ int main(int argc, char **argv) {
          "   'ns x var' the time-to-unit-variance: the mean relative variance per sample x ns per sample\n");
   for (i = 0; i < 5; ++i) {
     char path[512 + 64];
-    FILE *f;
-    snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
-    f = fopen(path, "rb");
-    if (!f) {
-      if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
-      snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
-    } else fclose(f);
+    if (!map_path(path, sizeof path, map_dir, maps[i])) continue;
     variance_table(path, nsamp);
   }
 
@@ -986,23 +981,13 @@ int main(int argc, char **argv) {
          "   the first row of each block; 'ns x var' the time-to-unit-variance, geomean x ns (smaller is better)\n");
   for (i = 0; i < 5; ++i) {
     char path[512 + 64];
-    FILE *f;
-    snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
-    f = fopen(path, "rb");
-    if (!f) {
-      if (strcmp(maps[i], "city") && strcmp(maps[i], "studio")) continue;
-      snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
-    } else fclose(f);
+    if (!map_path(path, sizeof path, map_dir, maps[i])) continue;
     product_table(path, nsamp);
   }
   printf("\n5. Stratification kept by each sampler: Var(256 independent samples) / Var(16x16 jittered), 400 repeats\n");
   for (i = 0; i < 5; i += 3) { /* city, studio */
     char path[512 + 64];
-    FILE *f;
-    snprintf(path, sizeof path, "%s/%s.hdr", map_dir, maps[i]);
-    f = fopen(path, "rb");
-    if (!f) snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, maps[i]);
-    else fclose(f);
+    if (!map_path(path, sizeof path, map_dir, maps[i])) continue;
     strat_table(path);
   }
   return 0;

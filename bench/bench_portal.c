@@ -6,7 +6,7 @@
  *   bench_portal [MAP.hdr|-smooth|""] [N] [R] [SS]   MAP default data/envmaps/city.hdr (a sun; the window
  *                                        is put so that it shines in); -smooth: a generated overcast sky;
  *                                        N samples per point and run (200000); R the rectified resolution
- *                                        of both portal samplers (0: envlight's default, the map's
+ *                                        of both portal samplers (0: envlight's default, twice the map's
  *                                        height); SS envlight's supersampling (0: its default, 2)
  *
  *   bench_portal --picture [OUT.png] [MAP]   where 2000 samples of one floor point land on the lat-long

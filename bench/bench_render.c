@@ -30,10 +30,10 @@
  * better read from instruction counts (--callgrind samples N --sampler S, below): wall times move with
  * the machine's load. examples/render/README.md has the measured tables.
  *
- * Part 1b (also --loops alone): the per-tile loops (one sample at a time, render_batched.c, the wave
- * loop with each of its four Embree call kinds) for the direct-lighting (16 spp) and path (4 spp)
- * integrators, zsobol (an order-free sampler, so every loop gives the same image): time, speed-up,
- * rays per second, Embree's share estimated from raw rates measured on rays of each kind through the
+ * Part 1b (also --loops alone): the per-tile loops (one sample at a time, the wave loop with each of
+ * its four Embree call kinds; the batched loop, render_batched.c, was folded into the wave loop) for
+ * the direct-lighting (16 spp) and path (4 spp) integrators, zsobol (an order-free sampler, so every
+ * loop gives the same image): time, speed-up, rays per second, Embree's share estimated from raw rates measured on rays of each kind through the
  * same call, and for the wave loop measured (its Embree calls timed). --split (alone): splitting's
  * variance across seeds x CPU time for 1, 2, 4 pairs and auto on bench_city and bench_studio.
  *
@@ -44,7 +44,7 @@
  *       (465 M) took 12 minutes there at load average 6.
  *       --quick: 16 and 64 spp, reference 256 spp (about a minute); the default takes a few minutes.
  * Instruction counts (DEVELOPERS.md): build/bin/bench_render --callgrind OP N runs only N operations
- * after the setup (--integrator path: the path tracer at 4 spp; --loop one|batched|wave and --wave-api
+ * after the setup (--integrator path: the path tracer at 4 spp; --loop one|wave and --wave-api
  * single|packet16|stream|soa choose the loop); OP is intersect (rtcIntersect1 calls), occluded (rtcOccluded1 calls), samples
  * (camera samples of the direct-lighting loop: 16 spp over N / 16 pixels of the middle rows,
  * rounded up to whole rows of 320) or samples1 (the same with light samples drawn one at a time:
@@ -68,6 +68,8 @@
  *   importance map: envlight's cell-average map (a quarter of the tables) makes the loop 5-10% faster
  *     but its relative MSE per sample is 11-33% higher (16/64 spp, quick table): pbrt-v3's map stays
  *     the default (lower relMSE at equal time).
+ * (The measurements below that name the batched loop, render_batched.c, are from before it was folded
+ * into the wave loop on 2026-12-02.)
  * Measured 2026-12-01 (quiet machine, interleaved runs of this binary and of the previous release's):
  *   a pixel's light samples drawn together (render_batched.c, el_envlight_sample_li_n): loop
  *     0.366-0.384 s, efficiency 27-28%; the same binary with no_batch 0.432-0.446 s (23-24%), the same
@@ -359,17 +361,17 @@ static void sampler_table(int ref_spp, int threads, int quick, const char *only_
   }
 }
 
-/* --loops (and part 1): the per-tile loops (one sample at a time, render_batched.c, render_wave.c with each
+/* --loops (and part 1): the per-tile loops (one sample at a time, render_wave.c with each
  * of its Embree calls) on bench_city, direct lighting (16 spp) and path (maxdepth 5, 4 spp), one thread,
  * rounds interleaved, the best of each kept. Per loop: its rays per second; Embree's share of its time
  * ESTIMATED from the raw rates (rtcIntersect1 for camera and bounce rays, rtcOccluded1 for shadow rays,
  * measured here on rays of each kind) as the time Embree alone would take for the loop's rays over the
  * loop's time; for the wave loop also MEASURED (its Embree calls timed: elr_stats.t_embree_loop). */
 static void loop_table(elr_scene *s, int rounds, int sampler) {
-  static const char *names[6] = {"one at a time", "batched", "wave, rtcIntersect1", "wave, packets of 16", "wave, 1M streams",
-                                 "wave, Np streams"};
-  static const int loops[6] = {ELR_LOOP_ONE, ELR_LOOP_BATCHED, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE};
-  static const int apis[6] = {-1, -1, ELR_WAVE_API_SINGLE, ELR_WAVE_API_PACKET16, ELR_WAVE_API_STREAM, ELR_WAVE_API_SOA};
+  enum { NLOOPS = 5 };
+  static const char *names[NLOOPS] = {"one at a time", "wave, rtcIntersect1", "wave, packets of 16", "wave, 1M streams", "wave, Np streams"};
+  static const int loops[NLOOPS] = {ELR_LOOP_ONE, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE, ELR_LOOP_WAVE};
+  static const int apis[NLOOPS] = {-1, ELR_WAVE_API_SINGLE, ELR_WAVE_API_PACKET16, ELR_WAVE_API_STREAM, ELR_WAVE_API_SOA};
   int w = s->d.xres, h = s->d.yres, nsh, nb, ig, round, k, a;
   bray *cam = (bray *)malloc(sizeof(bray) * (size_t)w * h), *sh = (bray *)malloc(sizeof(bray) * (size_t)w * h);
   bray *bo = (bray *)malloc(sizeof(bray) * (size_t)w * h), *blk = (bray *)malloc(sizeof(bray) * (size_t)w * h);
@@ -399,14 +401,14 @@ static void loop_table(elr_scene *s, int rounds, int sampler) {
   printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "shadow (occluded)", rate[1][0] * 1e-6, rate[1][1] * 1e-6, rate[1][2] * 1e-6, rate[1][3] * 1e-6);
   printf("  %-22s %10.2f %10.2f %10.2f %10.2f\n", "bounce (intersect)", rate[2][0] * 1e-6, rate[2][1] * 1e-6, rate[2][2] * 1e-6, rate[2][3] * 1e-6);
   for (ig = 0; ig < 2; ig++) {
-    double best[6], emb[6], ncam = 0, nbo = 0, nshr = 0;
-    int spp = ig ? 4 : 16, same[6];
+    double best[NLOOPS], emb[NLOOPS], ncam = 0, nbo = 0, nshr = 0;
+    int spp = ig ? 4 : 16, same[NLOOPS];
     elr_image ref;
     memset(&ref, 0, sizeof ref);
     s->d.integrator_path = ig;
-    for (k = 0; k < 6; k++) { best[k] = 1e30; emb[k] = 0; same[k] = 1; }
+    for (k = 0; k < NLOOPS; k++) { best[k] = 1e30; emb[k] = 0; same[k] = 1; }
     for (round = 0; round < rounds; round++)
-      for (k = 0; k < 6; k++) {
+      for (k = 0; k < NLOOPS; k++) {
         elr_image img;
         elr_stats st;
         g_loop = loops[k]; g_wave_api = apis[k];
@@ -425,7 +427,7 @@ static void loop_table(elr_scene *s, int rounds, int sampler) {
     printf("  %.0f camera + %.0f bounce + %.0f shadow rays; Embree alone at the raw 1-by-1 rates: %.3f s\n", ncam, nbo, nshr,
            ncam / rate[0][0] + nbo / rate[2][0] + nshr / rate[1][0]);
     printf("  %-22s %8s %8s %10s %13s %13s %9s\n", "loop", "time s", "speed-up", "M rays/s", "Embree est.", "Embree meas.", "image");
-    for (k = 0; k < 6; k++) {
+    for (k = 0; k < NLOOPS; k++) {
       int a2 = apis[k] < 0 ? 0 : apis[k];
       double raw = ncam / rate[0][a2] + nbo / rate[2][a2] + nshr / rate[1][a2];
       if (best[k] >= 1e30) continue;
@@ -505,7 +507,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--loops")) loops_only = 1;
     else if (!strcmp(argv[i], "--split")) split_only = 1;
     else if (!strcmp(argv[i], "--loop") && i + 1 < argc) {
-      i++; g_loop = !strcmp(argv[i], "one") ? ELR_LOOP_ONE : !strcmp(argv[i], "batched") ? ELR_LOOP_BATCHED : ELR_LOOP_WAVE;
+      i++; g_loop = !strcmp(argv[i], "one") ? ELR_LOOP_ONE : ELR_LOOP_WAVE; /* ("batched": folded into the wave loop) */
     }
     else if (!strcmp(argv[i], "--wave-api") && i + 1 < argc) {
       i++; g_wave_api = !strcmp(argv[i], "single") ? 0 : !strcmp(argv[i], "packet16") ? 1 : !strcmp(argv[i], "stream") ? 2 : 3;
@@ -519,7 +521,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|batched|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);

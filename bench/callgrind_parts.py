@@ -41,7 +41,7 @@ FILE_RULES = [  # (regex on the source file, part)
     (r"(^|/)examples/render/film\.c$", "film"),
     (r"(^|/)examples/render/(shapes|loopsubdiv)\.c$", "embree"),
     (r"(^|/)examples/render/camera\.c$", "camera"),
-    (r"(^|/)examples/render/(render|render_batched|render_wave|integrator[^/]*|interaction|stats)\.c$", "loop"),
+    (r"(^|/)examples/render/(render|render_wave|integrator[^/]*|interaction|stats)\.c$", "loop"),
 ]
 FN_RULES = [  # (regex on the function's name, part): first match wins, before the file rules
     (r"^(elr_sampler_|elr_zsobol|elr__zsobol|elr_randomize|elr_sobol|elr__fast_owen|elr_dim_hash|elr_paddedsobol|elr_halton|elr_stratified|elr_zerotwo)", "sampler"),

@@ -17,7 +17,7 @@
  *   Sphere (3.2), ray differentials (10.1), MIPMap (10.4), InfiniteAreaLight (12.6, 14.2.4), Film and
  *   GaussianFilter (7.8, 7.9). Unlike pbrt the world is y-up and right-handed, as in Mitsuba 3.
  *
- * HOW TO RUN IT
+ * HOW TO RUN IT (--help prints this usage)
  *   build/bin/00_path_tracer [map.hdr|.exr|.pfm] [out.png|.pfm|.exr] [spp] [width] [height]
  *     defaults: EL_SOURCE_DIR "/data/envmaps/city.hdr", 00_path_tracer.png, 16, 480, 270.
  *   build/bin/00_path_tracer --furnace [out] [spp] [width] [height]: a white sphere (albedo 1) fills the
@@ -291,13 +291,27 @@ static int render(const Scene &sc, const Camera &cam, el_film *film, int spp, bo
   return lost;
 }
 
+static const char kUsage[] =
+    "usage: 00_path_tracer [map.hdr|.exr|.pfm] [out.png|.pfm|.exr] [spp] [width] [height]\n"
+    "       00_path_tracer --furnace [out] [spp] [width] [height]   (a white sphere that must render as 1)\n"
+    "       00_path_tracer --plain [map] [out] [spp] [width] [height]   (sample_li, not product sampling)\n"
+    "       00_path_tracer --compare [map] [spp] [width] [height]   (both ways: variance and time, no file)\n";
+
 int main(int argc, char **argv) {
+  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
   // --plain and --compare come first and are taken off the arguments; --compare has no output file
   bool plain = argc > 1 && std::string(argv[1]) == "--plain";
   bool compare = argc > 1 && std::string(argv[1]) == "--compare";
   if (plain || compare) { ++argv; --argc; }
   int k = compare ? 1 : 0;  // --compare: [map] [spp] [width] [height]
   bool furnace = argc > 1 && std::string(argv[1]) == "--furnace";
+  if (argc > 1 && argv[1][0] == '-' && !furnace) {  // an option it does not know (not a file name)
+    std::fprintf(stderr, "00_path_tracer: unknown option %s\n%s", argv[1], kUsage);
+    return 1;
+  }
   std::string map_path = argc > 1 && !furnace ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
   std::string out_path = argc > 2 && !compare ? argv[2] : "00_path_tracer.png";
   int spp = argc > 3 - k ? std::atoi(argv[3 - k]) : 16, width = argc > 4 - k ? std::atoi(argv[4 - k]) : 480;

@@ -124,6 +124,11 @@ static void run_case(const char *name, const el_envlight *light, const float *pt
   check(r == EL_SUCCESS, what, (double)r, 0);
   if (r != EL_SUCCESS) return;
   for (k = 0; k < count; ++k) tp_make(&T[k], pts + 12 * k, pos);
+  if (opt && opt->map_share_outside) { /* the share only behind some portal's plane (the test's own frame) */
+    int behind = 0;
+    for (k = 0; k < count; ++k) behind |= !T[k].seen;
+    if (!behind) share = 0;
+  }
   memset(obs, 0, sizeof obs);
   /* expected probabilities per bin: midpoint quadrature of pdf * dw/dab */
   for (k = 0; k < count; ++k)
@@ -279,6 +284,12 @@ static void test_cases(void) {
     el_envlight_portal_options p3 = po;
     p3.map_share = 0.25f;
     run_case("two windows, map share 0.25 (defensive mixture)", &L, pts, 2, pos, &p3, 100000);
+    p3.map_share_outside = 1; /* in front of both portals: the pure portal density */
+    run_case("two windows, map share 0.25 outside only, a point inside", &L, pts, 2, pos, &p3, 100000);
+    {
+      float out[3] = {2.5f, 0.3f, 0.8f}; /* behind window 1's plane, in front of window 2's: the mixture */
+      run_case("two windows, map share 0.25 outside only, a point behind window 1", &L, pts, 2, out, &p3, 100000);
+    }
   }
   el_envlight_free(&L);
 }
@@ -326,7 +337,7 @@ static void test_pdf_zero_and_fallback(void) {
   check(!el_envlight_portal_sees(&P, pos), "on the plane: sees no portal", 0, 0);
   pos[0] = NAN;
   check(!el_envlight_portal_sees(&P, pos), "NaN point: sees no portal", 0, 0);
-  check(el_envlight_portal_bytes(&P) == 65u * 65u * 8u && P.res == 64, "8 bytes per rectified texel; the default resolution is the map height (64)", (double)el_envlight_portal_bytes(&P), 0);
+  check(el_envlight_portal_bytes(&P) == 129u * 129u * 8u && P.res == 128, "8 bytes per rectified texel; the default resolution is twice the map height (128)", (double)el_envlight_portal_bytes(&P), 0);
   el_envlight_portal_free(&P);
   el_envlight_free(&L);
 }

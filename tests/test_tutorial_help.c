@@ -1,4 +1,4 @@
-/* test_tutorial_help.c: every chapter program of the course answers --help with its usage on stdout and
+/* test_tutorial_help.c: every chapter program of the course (and 00_path_tracer) answers --help with its usage on stdout and
  * exit status 0, and writes nothing (before this test, `01_mipmap_pyramid --help` created a folder
  * named "--help"). Each program runs in a fresh empty directory, which must still be empty afterwards.
  *   test_tutorial_help      (run by ctest from the build directory; the programs are in build/bin)
@@ -67,7 +67,7 @@ static void remove_scratch(const char *dir) {
 }
 
 int main(void) {
-  static const char *progs[] = {"01_mipmap_pyramid", "02_mipmap_empty_constructor", "02_mipmap_lookup",
+  static const char *progs[] = {"00_path_tracer", "01_mipmap_pyramid", "02_mipmap_empty_constructor", "02_mipmap_lookup",
                                 "03_infinite_light", "04_tone_mapping"};
   char bin[4096], cwd[4096];
   size_t i;

@@ -28,24 +28,9 @@
 
 using namespace pbrt;
 
-// the materials, in pbrt-v3 scene syntax (the test hands the same text to our parser)
+// the materials, in pbrt-v3 scene syntax (bsdf_materials.inc: the test includes the same list and hands it to our parser)
 static const char *kMaterials[] = {
-    "Material \"plastic\" \"rgb Kd\" [ .4 .2 .2 ] \"rgb Ks\" [ .5 .5 .5 ] \"float roughness\" [ .025 ]",
-    "Material \"plastic\" \"rgb Kd\" [ .4 .5 .4 ] \"rgb Ks\" [ .3 .3 .3 ] \"float roughness\" [ .15 ]",
-    "Material \"plastic\" \"rgb Kd\" [ .2 .3 .4 ] \"rgb Ks\" [ .6 .5 .4 ] \"float roughness\" [ .2 ] \"bool remaproughness\" \"false\"",
-    "Material \"metal\"",
-    "Material \"metal\" \"float uroughness\" [ .3 ] \"float vroughness\" [ .1 ] \"bool remaproughness\" \"false\"",
-    "Material \"metal\" \"float roughness\" [ .2 ] \"rgb eta\" [ 1.5 1 .5 ] \"rgb k\" [ 3 4 5 ]",
-    "Material \"substrate\" \"rgb Kd\" [ .6 .3 .2 ] \"rgb Ks\" [ .2 .4 .1 ] \"float uroughness\" [ .2 ] \"float vroughness\" [ .05 ]",
-    "Material \"uber\" \"rgb Kd\" [ .5 .4 .3 ] \"rgb Ks\" [ .3 .3 .3 ] \"float roughness\" [ .05 ]",
-    "Material \"uber\" \"rgb Kd\" [ .5 .4 .3 ] \"rgb Ks\" [ .3 .3 .3 ] \"float uroughness\" [ .3 ] \"float vroughness\" [ .1 ] \"float index\" [ 1.8 ]",
-    "Material \"glass\" \"float uroughness\" [ .15 ] \"float vroughness\" [ .3 ]",
-    "Material \"glass\" \"float roughness\" [ .1 ] \"float index\" [ 1.33 ] \"bool remaproughness\" \"false\"",
-    "Material \"matte\" \"rgb Kd\" [ .5 .25 .125 ]",
-    "Material \"matte\" \"rgb Kd\" [ .5 .25 .125 ] \"float sigma\" [ 20 ]",
-    "Material \"matte\" \"rgb Kd\" [ .7 .6 .5 ] \"float sigma\" [ 90 ]",
-    "Material \"matte\" \"rgb Kd\" [ .5 -.25 .125 ]",
-    "Material \"plastic\" \"rgb Kd\" [ -.2 .3 .4 ] \"rgb Ks\" [ .5 -.1 .2 ] \"float roughness\" [ .1 ]",
+#include "bsdf_materials.inc"
 };
 
 // a minimal reader of the parameter list above: "type name" value | [ values ]

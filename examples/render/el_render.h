@@ -1,7 +1,7 @@
 /* el_render.h: the pieces of `render`, a pbrt-v3-format scene renderer on Embree (examples/render).
  *
  * Not part of the envlight library: an application of it. The renderer reads a pbrt-v3 scene file
- * (parser.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
+ * (parser.c, paramset.c, api*.c), builds an Embree scene of exact spheres, disks, triangle meshes, Loop subdivision surfaces
  * and instances (scene.c, shapes.c, loopsubdiv.c), shades with pbrt-v3's matte / mirror / plastic / glass /
  * metal / uber / substrate materials and its textures (materials.c, textures.c, reflection.c), lights with
  * the infinite area light of envlight.h plus point, distant and diffuse area lights (lights.c, chosen
@@ -65,9 +65,9 @@ int elr_sampler_kind_from_name(const char *name);
 #define ELR_DEFAULT_SAMPLER ELR_SAMPLER_ZEROTWO
 #define ELR_DEFAULT_SPP 16
 
-/* the per-tile loops: one sample at a time (the reference), a pixel's light samples drawn together
- * (render_batched.c), waves of samples (render_wave.c) */
-enum { ELR_LOOP_ONE = 0, ELR_LOOP_BATCHED = 1, ELR_LOOP_WAVE = 2 };
+/* the per-tile loops: one sample at a time (the reference), waves of samples (render_wave.c, the fast
+ * one). 1 was the batched loop (a pixel's light samples drawn together), folded into the wave loop. */
+enum { ELR_LOOP_ONE = 0, ELR_LOOP_WAVE = 2 };
 enum { ELR_SPLIT_OFF = 0, ELR_SPLIT_AUTO = 1 };
 typedef struct elr_render_options {
   int spp;            /* 0: the scene's */
@@ -82,9 +82,10 @@ typedef struct elr_render_options {
                          paddedsobol scramble with 0 none, 1 permutedigits, 2 fastowen, 3 owen */
   int env_sampling;   /* -1: the infinite lights' "sampling"; 1 product sampling (map x cosine), 0 the map alone */
   int tile_size;      /* 0: 16 */
-  int no_batch;       /* 0: a pixel's environment light samples are drawn together (after its camera rays),
-                         1: one at a time inside each sample's shading; the same image either way */
-  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the batched and wave loops only where
+  int no_batch;       /* 0: the wave loop where it applies (its environment light samples drawn together),
+                         1: the reference loop (one at a time inside each sample's shading); the same image
+                         except for the path tracer with a pixel sampler (render.c) */
+  int loop;           /* -1: the default loop for the scene; else ELR_LOOP_* (the wave loop only where
                          render.c can use them: the environment the only light that emits, and sampled) */
   int split;          /* -1: the scene's ("splitting", default auto); ELR_SPLIT_OFF: each light's "samples";
                          ELR_SPLIT_AUTO: chosen by a pilot (render.c); N >= 2: N light and BSDF sample pairs per
@@ -92,7 +93,8 @@ typedef struct elr_render_options {
   int wave_api;       /* -1: the wave loop's default; else how it traces (ELR_WAVE_API_* of elr_internal.h:
                          0 rtcIntersect1, 1 packets of 16, 2 rtcIntersect1M streams, 3 rtcIntersectNp) */
   float env_lobe_alpha; /* < 0: ELR_ENV_LOBE_ALPHA; else with product sampling, vertices whose glossy lobe has a
-                           Trowbridge-Reitz alpha below it sample the environment's map alone (0: never; issue 20) */
+                           Trowbridge-Reitz alpha below it and no diffuse lobe sample the environment's map alone
+                           under a sun map, the product around the mirror direction otherwise (0: never; issue 20) */
   float env_light_alpha; /* < 0: ELR_ENV_LIGHT_ALPHA; else with product sampling, directlighting vertices whose lobes
                             are diffuse or of alpha >= it take the light sample alone (no BSDF sample; inf: never) */
 } elr_render_options;
@@ -110,7 +112,8 @@ typedef struct elr_light_stats {
   size_t bytes;         /* those tables */
   double seconds;       /* and their build time */
   int env_product;      /* environment: reflecting vertices sampled the map x cosine (el_envlight_sample_li_cos) */
-  float env_lobe_alpha; /* environment, product sampling: vertices with a glossy lobe of alpha below it took the map */
+  float env_lobe_alpha; /* environment, product sampling: vertices with a glossy lobe of alpha below it (no diffuse
+                           lobe) took the map under a sun, the product around the mirror direction otherwise */
   float env_light_alpha; /* and directlighting vertices with no lobe narrower than it, the light sample alone */
   float env_sun_share;   /* the share of the map's power above 100x its mean radiance (> 0.5: diffuse lobes take the map) */
   int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
@@ -119,6 +122,7 @@ typedef struct elr_light_stats {
   size_t env_portal_bytes;
   float env_portal_share; /* "float portalmapshare": the map's share where a portal is seen */
   uint64_t env_portal_used, env_portal_fallback; /* light samples through the portals, and by the map behind them */
+  int env_portal_compensated; /* the portals' density is MIS-compensated (max(lum - mean, 0)) */
 } elr_light_stats;
 
 typedef struct elr_stats {
@@ -129,7 +133,7 @@ typedef struct elr_stats {
   uint64_t env_product_samples, env_map_samples; /* environment light samples by product sampling, by the map alone */
   uint64_t env_light_only_samples;               /* of the product ones: taken alone, without a BSDF sample */
   int mip_levels_built, mip_textures, distribution_built, light_sampling_used, splats_allocated;
-  int light_samples_batched; /* a pixel's environment light samples drawn together (elr_render_options.no_batch) */
+  int light_samples_batched; /* the wave loop drew the environment's light samples together (el_envlight_sample_li_n) */
   int loop, wave_api;        /* the per-tile loop that ran (ELR_LOOP_*) and the wave loop's Embree calls */
   double t_embree_loop;      /* the wave loop: seconds inside Embree, summed over the threads (0 for the other loops) */
   int split, split_auto;     /* light and BSDF sample pairs per camera sample given by splitting (1: none); chosen by the pilot */

@@ -3,11 +3,11 @@
  * Only examples/render (its tests and bench/bench_render.c) include it. The library's headers are
  * included for their declarations (envlight_impl.c compiles them); colours and directions cross to
  * them as float[3] (elr_to3, elr_from3).
- *   vectors, transforms (transform.c)      scene description (parser.c, scene.c, ply.c, loopsubdiv.c)
+ *   vectors, transforms (transform.c)      scene description (parser.c and api*.c, scene.c, ply.c, loopsubdiv.c)
  *   intersection (scene.c, shapes.c)      textures, materials, BSDFs (textures.c, materials.c, reflection.c)
  *   ray differentials (interaction.c)     lights (lights.c)          camera (camera.c)
  *   samplers (sampler*.c)                 film (film.c)              a render (render.c)
- *   integrators (integrator*.c, render_batched.c) */
+ *   integrators (integrator*.c, render_wave.c) */
 #ifndef ELR_INTERNAL_H
 #define ELR_INTERNAL_H
 #include "el_render.h"
@@ -21,7 +21,7 @@
 #ifndef ELR_PI
 #define ELR_PI 3.14159265358979323846f
 /* LightSource "infinite" "float portalmapshare" default (bench/bench_portal_render.c measures it) */
-#define ELR_PORTAL_MAP_SHARE 0.1
+#define ELR_PORTAL_MAP_SHARE 0.5
 #endif
 #define ELR_INV_PI 0.31830988618379067154f
 #define ELR_ONE_MINUS_EPS 0x1.fffffep-1f
@@ -73,7 +73,7 @@ elr_v3 elr_xnormal(const elr_xform *t, elr_v3 n); /* by the inverse transpose */
 elr_v3 elr_xvector_inv(const elr_xform *t, elr_v3 v);
 elr_v3 elr_xpoint_inv(const elr_xform *t, elr_v3 p);
 
-/* >> scene description (parser.c reads it, scene.c builds the Embree scene and frees it) */
+/* >> scene description (parser.c, paramset.c and api*.c read it; scene.c builds the lights and the Embree scene, and frees it) */
 /* the PixelFilter directive's parameters (film.c makes film.h's filter of them) */
 enum { ELR_PF_BOX = 0, ELR_PF_TRIANGLE, ELR_PF_GAUSSIAN, ELR_PF_MITCHELL, ELR_PF_SINC };
 typedef struct elr_filter_desc { int type; float xw, yw, alpha, b, c, tau; int nonneg; } elr_filter_desc; /* nonneg: "bool nonnegative" */
@@ -156,7 +156,8 @@ typedef struct elr_instance { int object; elr_xform xf; /* instance to world */ 
  * clamped cosine (el_envlight_sample_li_cos), or the map alone (el_envlight_sample_li, pbrt-v3's) */
 enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
 /* issue 20's per-lobe choice: with product sampling, a vertex whose glossy lobe has a Trowbridge-Reitz
- * alpha below this samples the map alone (elr_bsdf_cos_normal; measured with bench/lobes.py) */
+ * alpha below this and no diffuse lobe (metal) samples the map alone under a sun map, the product around
+ * wo's mirror direction otherwise (elr_bsdf_cos_normal; measured with bench/lobes.py) */
 #define ELR_ENV_LOBE_ALPHA 0.1f
 /* and a vertex whose lobes are diffuse or glossy with alpha at least this is estimated, by directlighting,
  * with the product light sample alone (no BSDF sample: elr_env_light_only) */
@@ -203,7 +204,36 @@ typedef struct elr_light {
    * pdf_li sample through the portals seen from the shading point (the map's sampling behind them) */
   el_envlight_portal *portal;
   float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
+  float *portal_points;    /* the portals' points (portal_count x 12 floats), to rebuild the tables when a */
+  int portal_count, portal_compensated; /* render asks for another compensation (--compensated): the one built */
 } elr_light;
+
+/* LightSource "infinite" as the parser read it (pbrt-v4's LightSceneEntity: the parser describes, the
+ * scene builds): scene.c's elr_scene_make_lights reads its image and makes envlight's light of it, in the
+ * slot s->light[light] that the parser filled with the light's kind and options. */
+typedef struct elr_infinite_desc {
+  int light;                /* its index in s->light */
+  char *path;               /* "mapname" or "filename", resolved; NULL: a constant light */
+  int v4_filename;          /* given as pbrt-v4's "filename" (a square image is then an equal-area map) */
+  float scale[3];           /* L times scale */
+  float l2w[9];             /* light to world: the CTM's rotation */
+  float *portal;            /* pbrt-v4's "point3 portal": nportal rectangles of 4 world-space points */
+  int nportal;
+  char *file; int line;     /* the directive, for messages; */
+  char *filename_file; int filename_line; /* the "filename" parameter's place, */
+  char *portal_file; int portal_line;     /* and the portal's */
+} elr_infinite_desc;
+
+/* Texture "imagemap" as the parser read it: scene.c's elr_scene_make_textures reads the image and makes
+ * the MIP map of texture s->tex[tex] (pbrt-v3's ImageTexture constructor, after the parse) */
+typedef struct elr_imagemap_desc {
+  int tex;                  /* its index in s->tex */
+  char *path, *name;        /* the image (resolved) and the texture's name, for messages */
+  int gamma, is_float;      /* sRGB-decode 8-bit images; a float texture (luminance) */
+  float scale, maxaniso;
+  int filter, wrap;         /* el_mipmap_filter, el_mipmap_wrap */
+  char *file; int line;     /* the directive */
+} elr_imagemap_desc;
 
 typedef struct elr_scene_desc {
   /* camera */
@@ -237,9 +267,12 @@ struct elr_scene {
   elr_light *light; int nlight, caplight;
   elr_object *obj; int nobj, capobj;
   elr_instance *inst; int ninst, capinst;
+  elr_infinite_desc *envdesc; int nenvdesc, capenvdesc; /* api_lights.c's infinite lights, for elr_scene_make_lights */
+  elr_imagemap_desc *texdesc; int ntexdesc, captexdesc; /* api_materials.c's image textures, for elr_scene_make_textures */
   int warnings;
   /* issue 20: where the environment is product-sampled, vertices with a glossy lobe of Trowbridge-Reitz
-   * alpha below this sample the map alone (elr_bsdf.env_map); 0 never (set by elr_render) */
+   * alpha below this and no diffuse lobe sample the map alone under a sun (elr_bsdf.env_map), else the
+   * product around wo's mirror direction (elr_bsdf.env_mirror); 0 never (set by elr_render) */
   float env_lobe_alpha;
   /* and vertices whose glossy lobes (if any) all have alpha >= this take directlighting's product light
    * sample alone, without the BSDF sample (elr_bsdf.env_light_only; INFINITY never) */
@@ -271,10 +304,23 @@ int elr_parse(elr_scene *s, const char *text, size_t len, const char *name, cons
               char *err, size_t errlen);
 void elr_warn(elr_scene *s, const char *file, int line, const char *fmt, ...);
 int elr_ply_load(const char *path, elr_mesh *m, char *err, size_t errlen); /* ply.c */
+/* imageio.c: the scene's images (pbrt-v3's ReadImage): el_image_load with a size check (-1 with why), and
+ * the image as linear RGB times scale (NULL: out of memory, *bad = -1; or texel *bad is NaN, infinite or
+ * overflows when scaled, its value *bad_value) */
+struct el_image;
+int elr_image_read(const char *path, struct el_image *img, char *why, size_t n);
+float *elr_image_rgb(const struct el_image *img, int gamma, float scale, int64_t *bad, float *bad_value);
+/* parser.c's messages: "file:line: error: ..." into err (control characters of the scene's strings
+ * replaced), and warnings (elr_warn, above) */
+void elr_error(char *err, size_t errlen, const char *file, int line, const char *fmt, ...);
 /* loopsubdiv.c: pbrt-v3's LoopSubdivide of the control mesh (indices in [0, npoints), P: 3 npoints) into
  * out (object space: idx, p, n); *dropped: triangles that repeat a vertex, left out. -1 with err. */
 int elr_loop_subdivide(int levels, const int *indices, int nindices, const double *P, int npoints, elr_mesh *out, int *dropped,
                        char *err, size_t errlen);
+/* scene.c: the lights and image textures the parser described (elr_infinite_desc, elr_imagemap_desc), then
+ * the Embree scene */
+int elr_scene_make_lights(elr_scene *s, char *err, size_t errlen);
+int elr_scene_make_textures(elr_scene *s, char *err, size_t errlen);
 int elr_scene_build(elr_scene *s, char *err, size_t errlen); /* Embree (scene.c) */
 void elr_scene_release(elr_scene *s);
 
@@ -382,6 +428,8 @@ typedef struct elr_bsdf {
   int has_diffuse, has_glossy, has_specular, ncomp;
   int spec_r, spec_t, nlobes;
   float eta;
+  int env_mirror; /* a peaked glossy lobe under a map without a sun: product sampling around wo's mirror direction
+                     (elr_bsdf_cos_normal), with MIS against the BSDF sample */
   int env_map; /* a glossy lobe peaked enough that the environment's map alone samples this vertex (elr_bsdf_cos_normal) */
   int env_light_only; /* no lobe narrower than the scene's env_light_alpha: directlighting's product light sample
                          alone estimates the environment here (elr_env_light_only) */
@@ -405,13 +453,19 @@ elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, in
  * transmits (rough glass): its light comes from both sides. Light sample and BSDF sample's MIS weight
  * use the same normal, and the path tracer keeps it for its continuation ray (elr_path_state.prev_n).
  * Returns 0 too where a glossy lobe is peaked (b->env_map, set by elr_bsdf_init: its Trowbridge-Reitz
- * alpha below the scene's env_lobe_alpha): there the product of the map and the cosine follows the
- * lobe no better than the map does and costs more (issue 20, bench/lobes.py). */
+ * alpha below the scene's env_lobe_alpha, no diffuse lobe): there the product of the map and the cosine follows the
+ * lobe no better than the map does and costs more (issue 20, bench/lobes.py); that is, under a sun map
+ * (elr_scene.env_sunny). Under other maps such a lobe (b->env_mirror, no diffuse lobe) gets wo's mirror
+ * direction about ns in place of the normal: the product of the map and the clamped cosine around the
+ * mirror direction, a broad proxy of the lobe that MIS with the BSDF sample (which covers the whole
+ * lobe) keeps unbiased; never taken alone (elr_env_light_only is 0 there: that needs the normal's
+ * cosine, positive wherever f is). */
 static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
   int i;
   if (b->env_map) return 0; /* issue 20's per-lobe choice: a peaked glossy lobe (elr_bsdf_lobe_alpha) */
   for (i = 0; i < b->nlobes; i++)
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
+  if (b->env_mirror) { *n = elr_sub(elr_mul(b->ns, 2.f * elr_dot(wo, b->ns)), wo); return 1; } /* (any length: only its direction counts) */
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
   return 1;
 }
@@ -469,7 +523,6 @@ float elr_light_pdf_li_at(const elr_light *l, elr_v3 p, const elr_v3 *n, elr_v3 
  * each, pbrt-v4's vertex order); -1 with err naming the problem */
 int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen);
 elr_v3 elr_light_le(const elr_light *l, elr_v3 dir);
-int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float scale[3], const float l2w[9], char *err,
                       size_t errlen);
 int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map);
@@ -630,7 +683,7 @@ typedef struct elr_sampler_desc {
 } elr_sampler_desc;
 int elr_sampler_tables_init(elr_sampler_tables *T, const elr_sampler_desc *d, const int sample_bounds[4], uint64_t seed);
 void elr_sampler_tables_free(elr_sampler_tables *T);
-/* whether every draw render_batched.c makes ahead gives the same number in any order (pixel samplers
+/* whether every draw the wave loop makes ahead gives the same number in any order (pixel samplers
  * only within their `dimensions`) */
 int elr_sampler_order_free(const elr_sampler_desc *d);
 
@@ -700,9 +753,16 @@ static inline uint64_t elr_dim_hash(int dim, uint32_t seed) {
 }
 /* the scramble seed of dimension d (elr_dim_hash(d, S->sseed), kept for the first 72) */
 static inline uint64_t elr_sampler_dim_hash(const elr_sampler *S, int d) { return d >= 0 && d < 72 ? S->dhash[d] : elr_dim_hash(d, S->sseed); }
-/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension */
-float elr_sampler_hash_float(const elr_sampler *S, int dim);
-/* for draws made ahead (render_batched.c): a 2D draw skipped, and a camera sample's place saved and restored */
+/* a number for a dimension past a sequence's table: a hash of seed, pixel, sample and dimension. These
+ * hashes are the samplers' shared helpers, inline here so that sampler_*.c never call back into
+ * sampler.c (which dispatches to them: test_render_layout checks the direction) */
+static inline float elr_sampler_hash_float(const elr_sampler *S, int dim) {
+  uint64_t h = elr_mix64(S->seed ^ 0xd1b54a32d192ed03ULL);
+  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->px << 32) | (uint32_t)S->py));
+  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->sample << 32) | (uint32_t)dim));
+  return (float)(h >> 40) * 0x1p-24f;
+}
+/* for draws made ahead (render_wave.c): a 2D draw skipped, and a camera sample's place saved and restored */
 typedef struct elr_sampler_pos { int sample, d1, d2, dim; int64_t hindex; elr_rng rng; } elr_sampler_pos;
 void elr_sampler_skip2d(elr_sampler *S);
 void elr_sampler_save(const elr_sampler *S, elr_sampler_pos *p);
@@ -737,10 +797,10 @@ typedef struct elr_ctx {
   int direct_one;         /* directlighting: strategy "one" (one light chosen per vertex) */
   elr_light_distrib ld;   /* which light next-event estimation samples (built for the path tracer and
                              strategy "one" when more than one light emits) */
-  /* render_batched.c: the one emitting light, a sampled environment, whose light samples a pixel draws
+  /* render_wave.c: the one emitting light, a sampled environment, whose light samples a wave draws
    * together; NULL: one sample at a time */
   const elr_light *batch_light;
-  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_BATCHED and ELR_LOOP_WAVE need batch_light) */
+  int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_WAVE needs batch_light) */
   int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
 } elr_ctx;
 
@@ -774,6 +834,8 @@ static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) 
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
+/* pbrt-v3's VisibilityTester::Unoccluded of a light sample taken at h (integrator.c: lights.c traces no rays) */
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
                          const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld);
 elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
@@ -794,7 +856,7 @@ elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, 
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
-/* render_batched.c and render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
+/* render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
  * hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first light-sampling
  * draw there. */
 typedef struct elr_first {
@@ -811,8 +873,8 @@ typedef struct elr_first {
   elr_bsdf b;
   elr_v3 fb, wb, Lb;
   float bpdf, bpdf_env;
-  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading (render_batched.c),
-   * else their answers, traced by the wave loop (1: occluded) */
+  /* the shadow rays of the light sample and of the BSDF sample: -1 traced in the shading, else their
+   * answers, traced by the wave loop (1: occluded) */
   int occ_l, occ_b;
   /* the light's further samples (its "samples" count, or splitting) drawn ahead the same way: their light
    * sample, BSDF sample and shadow rays' answers (the wave loop); the others, from nmore + 1 on, drawn in
@@ -823,8 +885,6 @@ typedef struct elr_first {
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */
 elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
-/* render_batched.c: pixel (x, y)'s camera samples with its environment light samples drawn together */
-void elr_pixel_batched(const elr_ctx *C, elr_sampler *S, int x, int y, el_film_tile *tile, elr_tstats *ts);
 
 /* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
 typedef struct elr_wave elr_wave;

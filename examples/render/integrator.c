@@ -9,10 +9,11 @@
  *   elr_specular_transmit           SpecularTransmit: the refracted bounce and its ray differentials
  *   elr_direct_specular             both, at a vertex of the direct-lighting integrator
  *   elr_infinite_le                 the radiance of the lights at infinity along a ray that leaves
+ *   elr_light_unoccluded            VisibilityTester::Unoccluded: a light sample's shadow ray
  *
  * This is the reference a port follows: one light sample at a time, in pbrt-v3's order. The render
  * loop (render.c) calls the integrators of integrator_direct.c and integrator_path.c per camera
- * sample; render_batched.c is the faster arrangement of the same computation for scenes lit by the
+ * sample; render_wave.c is the faster arrangement of the same computation for scenes lit by the
  * environment alone. The light interface (lights.c) hides which kind of light is sampled, except in
  * EstimateDirect's BSDF-sampled term: for an area light it needs the ray's hit (is it this light?),
  * where the environment only needs to know that nothing is in the way. */
@@ -26,6 +27,25 @@ elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d) {
   for (i = 0; i < s->nlight; i++)
     if (s->light[i].kind == ELR_LIGHT_INFINITE && elr_light_emits(&s->light[i])) L = elr_add(L, elr_light_le(&s->light[i], d));
   return L;
+}
+
+/* pbrt-v3's VisibilityTester::Unoccluded for a light sample taken at h: the shadow ray from h's offset
+ * origin towards the light, ending just before a point light or the sampled point of an area light, and
+ * past the scene for the others. It lives here, with the integrators that trace it, so that lights.c
+ * never calls into the scene (test_render_layout checks it). For an area light the ray aims at the point
+ * from the offset origin (pbrt-v3's SpawnRayTo): along wi, a ray that meets the light's surface at a
+ * grazing angle would enter it before the point (the origin's offset, 2e-5 of the coordinates, moves the
+ * entry by that over the cosine: 0.3% of a sphere light's samples were lost so, at 3 radii, before this). */
+int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls) {
+  elr_v3 o = elr_spawn_origin(h, ls->wi), d;
+  float dist;
+  if (ls->at_point != 2) {
+    float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
+    return !elr_occluded(s, o, ls->wi, tmax);
+  }
+  d = elr_sub(ls->p_light, o);
+  dist = elr_len(d);
+  return !(dist > 0.f) || !elr_occluded(s, o, elr_mul(d, 1.f / dist), dist * (1.f - 1e-4f));
 }
 
 /* pbrt-v3's EstimateDirect at hit h (BSDF b, outgoing direction wo) for light l, with the 2D numbers

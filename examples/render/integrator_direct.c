@@ -14,12 +14,12 @@
 #define ELR_DIRECT_PENDING 32
 
 /* pbrt-v3's DirectLightingIntegrator::Li along the path state p: a camera ray (elr_path_begin) or the
- * rest of a path whose first vertex render_batched.c shaded. Its recursion (SpecularReflect, then
+ * rest of a path whose first vertex render_wave.c shaded. Its recursion (SpecularReflect, then
  * SpecularTransmit) runs as a loop carrying the throughput beta, with the transmitted branches of
  * glass waiting on a small stack: no stack growth whatever maxdepth says. */
 elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts) { return elr_direct_li_branches(C, S, p, NULL, 0, 0, ts); }
 
-/* the same with branches already waiting (render_batched.c: those of a first vertex shaded ahead) and
+/* the same with branches already waiting (render_wave.c: those of a first vertex shaded ahead) and
  * splits already made */
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts) {

@@ -8,7 +8,8 @@
  * of that light's choice times its Pdf_Li from that vertex (pbrt-v4's arrangement: one fewer ray per
  * vertex than pbrt-v3's EstimateDirect, the same expectation). For the environment that Pdf_Li is the
  * density the previous vertex's light sample had: with product sampling, pdf_li_cos with that vertex's
- * normal (elr_bsdf_cos_normal: its geometric normal on wo's side), kept in prev_n. Camera rays and specular bounces see
+ * normal (elr_bsdf_cos_normal: its geometric normal on wo's side, or for a peaked metal lobe without a sun in the map
+ * the mirror direction of wo), kept in prev_n. Camera rays and specular bounces see
  * emitters unweighted. pbrt-v3's Russian roulette: after 3 bounces, when the throughput's largest
  * component is below rrthreshold. Later rays carry no differentials (pbrt-v3 spawns them without), so
  * their textures are point sampled. Refraction (glass, uber's Kt) scales the radiance by (etaI / etaT)^2
@@ -17,7 +18,7 @@
 #include <string.h>
 
 /* pbrt-v3's PathIntegrator::Li along the path state p: a camera ray (elr_path_begin) or the rest of a
- * path whose first vertex render_batched.c shaded. */
+ * path already under way (its state after a first vertex shaded elsewhere). */
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts) {
   const elr_scene *s = C->s;
   elr_v3 L = p->L, beta = p->beta;

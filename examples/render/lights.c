@@ -1,7 +1,8 @@
 /* lights.c: the lights and the one interface the integrators see them through (the book's chapter 12,
  * Light Sources, and section 14.2, Sampling Light Sources).
  *
- * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample) and
+ * pbrt-v3: core/light.h (Light::Sample_Li, Pdf_Li, Le; the VisibilityTester of a light sample is
+ * integrator.c's elr_light_unoccluded: the lights trace no rays) and
  * lights/point.cpp (PointLight), lights/distant.cpp (DistantLight), lights/infinite.cpp
  * (InfiniteAreaLight: here envlight.h's el_envlight, called directly: el_envlight_sample_li_cos and
  * el_envlight_pdf_li_cos, the product of the map and the clamped cosine of the shading point's normal,
@@ -135,24 +136,6 @@ double elr_light_power(const elr_scene *s, const elr_light *l) {
   }
 }
 
-/* pbrt-v3's VisibilityTester::Unoccluded for a light sample taken at h: the shadow ray from h's
- * offset origin towards the light, ending just before a point light or the sampled point of an area
- * light, and past the scene for the others. For an area light the ray aims at the point from the offset
- * origin (pbrt-v3's SpawnRayTo): along wi, a ray that meets the light's surface at a grazing angle
- * would enter it before the point (the origin's offset, 2e-5 of the coordinates, moves the entry by
- * that over the cosine: 0.3% of a sphere light's samples were lost so, at 3 radii, before this). */
-int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls) {
-  elr_v3 o = elr_spawn_origin(h, ls->wi), d;
-  float dist;
-  if (ls->at_point != 2) {
-    float tmax = ls->at_point ? elr_len(elr_sub(ls->p_light, o)) * (1.f - 1e-4f) : ls->dist;
-    return !elr_occluded(s, o, ls->wi, tmax);
-  }
-  d = elr_sub(ls->p_light, o);
-  dist = elr_len(d);
-  return !(dist > 0.f) || !elr_occluded(s, o, elr_mul(d, 1.f / dist), dist * (1.f - 1e-4f));
-}
-
 /* >> infinite light (pbrt-v3 lights/infinite.cpp: envlight.h's el_envlight) */
 static int elr__importance(int importance) { /* envlight's map names; anything else: its default */
   return importance == EL_ENVLIGHT_IMPORTANCE_PBRT_V3 || importance == EL_ENVLIGHT_IMPORTANCE_TEXEL ||
@@ -225,6 +208,7 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
  * alone; with product sampling the product tables are built (el_envlight_prepare_product), and the
  * map's own tables only when need_map (some surface transmits through a non-specular lobe: its vertices
  * sample the map alone). Returns -1 when the distribution cannot be built. */
+static int elr__portal_build(elr_light *l, int compensated, char *err, size_t errlen);
 int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map) {
   if (compensated < 0) compensated = l->compensated;
   if (importance < 0) importance = l->importance;
@@ -256,6 +240,12 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
     l->env_sample = l->env_alt;
   }
   l->product = product < 0 ? l->sampling == ELR_ENVLS_PRODUCT : product;
+  /* the portals' tables with the compensation this render asks for (--compensated: pbrt-v4's portal
+   * light has none; envlight's portal density max(lum - mean, 0) is the MIS partner of the BSDF) */
+  if (l->portal && l->portal_compensated != compensated) {
+    char err[256];
+    if (elr__portal_build(l, compensated, err, sizeof err) != 0) return -1;
+  }
   if (l->portal) l->product = 0; /* the portals sample every vertex; the map's own tables behind them */
   if (l->product && el_envlight_prepare_product(l->env_sample, NULL) != EL_SUCCESS) return -1;
   if (l->product && !need_map) return 0;
@@ -321,18 +311,18 @@ void elr_light_prefetch(const elr_light *l, elr_v3 wi) {
 #endif
 }
 
-int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen) {
+/* the portal tables of l's points (l->portal_points) with compensation 0/1, replacing any built */
+static int elr__portal_build(elr_light *l, int compensated, char *err, size_t errlen) {
   el_result r;
-  el_envlight_portal *P;
-  if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
-  P = (el_envlight_portal *)calloc(1, sizeof *P);
+  el_envlight_portal *P = (el_envlight_portal *)calloc(1, sizeof *P);
   if (!P) { snprintf(err, errlen, "out of memory"); return -1; }
   {
     el_envlight_portal_options po;
     memset(&po, 0, sizeof po);
-    po.compensated = l->compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
+    po.compensated = compensated; /* pbrt-v4's portal light has no MIS compensation; envlight's does */
     po.map_share = l->portal_share;
-    r = el_envlight_portal_init(P, l->env, pts, count, &po);
+    po.map_share_outside = 1; /* (the share only behind some portal's plane: a room's inside keeps the pure portal density) */
+    r = el_envlight_portal_init(P, l->env, l->portal_points, l->portal_count, &po);
   }
   if (r != EL_SUCCESS) {
     snprintf(err, errlen, "\"point3 portal\": %s (%s)", P->error, el_result_string(r));
@@ -340,12 +330,26 @@ int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *er
     free(P);
     return -1;
   }
+  if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); }
   l->portal = P;
+  l->portal_compensated = compensated;
   return 0;
+}
+
+int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *err, size_t errlen) {
+  if (!l->env || !l->has_map) { snprintf(err, errlen, "portals need an environment map (\"mapname\"), as in pbrt-v4"); return -1; }
+  free(l->portal_points);
+  l->portal_points = (float *)malloc((size_t)(count > 0 ? count : 1) * 12 * sizeof(float));
+  if (!l->portal_points) { snprintf(err, errlen, "out of memory"); return -1; }
+  if (count > 0) memcpy(l->portal_points, pts, (size_t)count * 12 * sizeof(float));
+  l->portal_count = count;
+  return elr__portal_build(l, l->compensated, err, errlen);
 }
 
 void elr_light_free(elr_light *l) {
   if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); l->portal = NULL; }
+  free(l->portal_points);
+  l->portal_points = NULL;
   free(l->tri_cdf);
   l->tri_cdf = NULL;
   if (l->env_alt) { el_envlight_free(l->env_alt); free(l->env_alt); }

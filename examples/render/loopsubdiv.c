@@ -1,5 +1,5 @@
 /* loopsubdiv.c: pbrt-v3's Loop subdivision surface (shapes/loopsubdiv.cpp; the book's section 3.8,
- * Subdivision Surfaces), which Shape "loopsubdiv" turns into a triangle mesh (parser.c).
+ * Subdivision Surfaces), which Shape "loopsubdiv" turns into a triangle mesh (api_shapes.c).
  *
  * The control mesh (a triangle mesh of "indices" and "P") is refined "levels" times (pbrt-v3's default
  * 3): each triangle into four, the old ("even") vertices moved by Loop's one-ring rule (beta = 3/16 for

@@ -11,12 +11,13 @@
  *
  * Hidden test and benchmark options: --light-sampling mis|light|bsdf, --compensated 0|1,
  * --env-sampling product|map (the environment sampled by the map x the surface's cosine, or the map alone),
- * --env-lobe-alpha A (with product sampling, vertices with a glossy lobe of Trowbridge-Reitz alpha below A
- * sample the map alone; 0 never; default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
+ * --env-lobe-alpha A (with product sampling, vertices with a glossy lobe of Trowbridge-Reitz alpha below A and no
+ * diffuse lobe sample the map alone under a sun map, the product around the mirror direction otherwise; 0 never;
+ * default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
- * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|batched|wave (the per-tile loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
+ * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|wave (the per-tile loop: the reference or the wave loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -111,8 +112,12 @@ int main(int argc, char **argv) {
       else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
     } else if (!strcmp(a, "--loop") && i + 1 < argc) {
       const char *m = argv[++i];
-      if (!strcmp(m, "one")) o.loop = 0; else if (!strcmp(m, "batched")) o.loop = 1; else if (!strcmp(m, "wave")) o.loop = 2;
-      else { fprintf(stderr, "render: --loop one|batched|wave\n"); return 1; }
+      if (!strcmp(m, "one")) o.loop = ELR_LOOP_ONE; else if (!strcmp(m, "wave")) o.loop = ELR_LOOP_WAVE;
+      else if (!strcmp(m, "batched")) {
+        fprintf(stderr, "render: --loop batched is gone: the wave loop (--loop wave, the default where it applies) draws the light "
+                        "samples together now; --loop one is the reference\n");
+        return 1;
+      } else { fprintf(stderr, "render: --loop one|wave\n"); return 1; }
     } else if (!strcmp(a, "--split") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "off")) o.split = 0; else if (!strcmp(m, "auto")) o.split = 1;

@@ -4,18 +4,23 @@
  * el_envlight_sample_li_n call, its environment lookups in one pass, so that their cache misses overlap.
  * With product sampling (the default, el_envlight_sample_li_cos: a normal per sample, no n-at-once
  * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
+ * pbrt-v3 has no such loop; the model is pbrt-v4's WavefrontPathIntegrator (src/pbrt/wavefront/
+ * integrator.cpp, surfscatter.cpp), whose stages each run over a queue of many paths (over the whole
+ * image, on the GPU or the CPU): here over a tile's wave on one thread, with Embree's packets.
  *
  * The same computation as the one-sample-at-a-time loop of render.c (integrator_direct.c,
- * integrator_path.c), in another order, for the scenes that render_batched.c takes too: the
- * environment is the only light that emits, and it is sampled (elr_render decides: elr_ctx.batch_light,
+ * integrator_path.c), in another order, for the scenes where the environment is the only light
+ * that emits, and it is sampled (elr_render decides: elr_ctx.batch_light,
  * elr_ctx.loop). A wave is up to ELR_WAVE camera samples of consecutive pixels of the tile (each pixel's
  * samples together, one sampler per pixel: the sampler gives every (pixel, sample, dimension) its
  * number whichever order they are asked in).
  *
- * Direct lighting: the first vertex as render_batched.c computes it ahead (elr_first), with the
+ * Direct lighting: the first vertex computed ahead (elr_first), with the
  *   wave's camera rays, light samples and shadow rays (light and BSDF sampled) each in one call; then
- *   elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
- *   vertex (specular reflection and transmission, a light's further "samples").
+ *   its shading in the wave (elr__direct_shade) where no specular bounce follows and it emits nothing,
+ *   else elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
+ *   vertex (specular reflection and transmission, a light's further "samples"). The wave's radiance
+ *   goes to the film in one el_film_tile_add_samples call.
  * Path: every vertex is a wave. For the paths still alive: their rays in one call; at each hit the
  *   BSDF, the light-sample and BSDF draws; the light samples in one el_envlight_sample_li_n call and
  *   the escaped rays' environment (pdf and radiance) in one pass; the shadow rays in one call; then
@@ -34,6 +39,87 @@
 #ifndef ELR_WAVE
 #define ELR_WAVE 256 /* camera samples in a wave at most */
 #endif
+
+/* >> a first vertex computed ahead (elr_first): its shading in the reference's order (moved here from
+ * render_batched.c, the batched loop, when the wave loop replaced it) */
+/* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
+ * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
+ * ahead in f */
+static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_first *f,
+                                       int sample_bsdf, elr_tstats *ts, elr_v3 *Ld) {
+  const elr_scene *s = C->s;
+  elr_v3 nc;
+  /* issue 20: the product light sample alone where the lobes are diffuse or broad (as elr_estimate_direct) */
+  int lonly = C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_bsdf_cos_normal(b, wo, &nc), b);
+  /* <<Sample light source with multiple importance sampling>> */
+  if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
+    elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
+    if (!elr_isblack(fl)) {
+      ts->shadow++;
+      if (!(f->occ_l >= 0 ? f->occ_l : elr_occluded(s, elr_spawn_origin(h, f->wi), f->wi, INFINITY))) {
+        float w = 1.f;
+        if (C->ls == ELR_LS_MIS && !lonly) w = elr_power_heuristic(f->pdf, elr_bsdf_pdf(b, wo, f->wi));
+        *Ld = elr_add(*Ld, elr_mul(elr_vmul(fl, f->L), w / f->pdf));
+      }
+    }
+  }
+  /* <<Sample BSDF with multiple importance sampling>> (f->bray: the conditions of elr_estimate_direct) */
+  if (sample_bsdf && f->bray) {
+    elr_v3 fb = elr_mul(f->fb, fabsf(elr_dot(f->wb, b->ns)));
+    ts->bsdfl++;
+    if (!(f->occ_b >= 0 ? f->occ_b : elr_occluded(s, elr_spawn_origin(h, f->wb), f->wb, INFINITY))) {
+      float w = C->ls == ELR_LS_MIS ? elr_power_heuristic(f->bpdf, f->bpdf_env) : 1.f;
+      *Ld = elr_add(*Ld, elr_mul(elr_vmul(fb, f->Lb), w / f->bpdf));
+    }
+  }
+}
+
+/* elr_uniform_sample_all_lights at a first vertex: the environment is the only light that emits (the
+ * others contribute nothing), and its first sample was drawn ahead. */
+static elr_v3 elr__sample_lights_ahead(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo,
+                                       const elr_first *f, int use_counts, int sample_bsdf, elr_tstats *ts) {
+  const elr_light *l = C->batch_light;
+  int n = use_counts ? l->nsamples : 1, k;
+  elr_v3 L = elr_v(0, 0, 0), Ld = elr_v(0, 0, 0);
+  float ul[2], us[2];
+  elr_sampler_skip2d(S);                                  /* the light draw, made ahead */
+  if (f->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us); /* the BSDF draw (made ahead with its sample) */
+  elr__estimate_direct_ahead(C, h, b, wo, f, sample_bsdf, ts, &Ld);
+  for (k = 1; k < n; k++) { /* the light's further samples: drawn ahead too (the wave loop's splitting), or as the
+                              * reference draws them */
+    if (k - 1 < f->nmore) {
+      const elr_first *q = &f->more[k - 1];
+      elr_sampler_skip2d(S);
+      if (q->bs) elr_sampler_skip2d(S); else elr_sampler_get2d(S, us);
+      elr__estimate_direct_ahead(C, h, b, wo, q, sample_bsdf, ts, &Ld);
+      continue;
+    }
+    elr_sampler_get2d(S, ul);
+    elr_sampler_get2d(S, us);
+    elr_estimate_direct(C, h, b, wo, l, ul, us, sample_bsdf, 1.f, ts, &Ld);
+  }
+  return elr_add(L, elr_mul(Ld, 1.f / (float)n));
+}
+
+/* elr_direct_li's first iteration with the vertex computed ahead, then the reference from the second
+ * (the wave loop's direct lighting, with the shadow rays' answers in f) */
+elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts) {
+  elr_path_state p;
+  elr_v3 wo;
+  elr_path_begin(&p, r);
+  if (!f->hit) return elr_add(p.L, elr_vmul(p.beta, elr_infinite_le(C->s, r->d)));
+  wo = elr_mul(r->d, -1.f);
+  if (f->h->light >= 0) p.L = elr_add(p.L, elr_vmul(p.beta, elr_hit_le(C->s, f->h, wo)));
+  if (C->light_sampling && (f->b.has_diffuse || f->b.has_glossy)) /* (strategy "one" with one light: "all" with 1 sample) */
+    p.L = elr_add(p.L, elr_vmul(p.beta, elr__sample_lights_ahead(C, S, f->h, &f->b, wo, f, !C->direct_one, 1, ts)));
+  if (1 < C->maxdepth && (f->b.spec_r || f->b.spec_t)) {
+    elr_path_state next[2];
+    int n = elr_direct_specular(C, S, r, f->h, &f->tc, f->dpdx, f->dpdy, &f->b, p.beta, 0, 1, next, ts);
+    /* the reference's state after its first vertex: the first branch followed, the second waiting */
+    if (n >= 1) { next[0].L = p.L; return elr_direct_li_branches(C, S, &next[0], &next[1], n - 1, n - 1, ts); }
+  }
+  return p.L;
+}
 
 /* the wave's Embree calls, timed (a few calls per wave: the clock costs nothing next to them) */
 static void elr__intersect(const elr_ctx *C, elr_wave_rays *w, int coherent, elr_tstats *ts) {
@@ -78,6 +164,8 @@ struct elr_wave {
   float u[2 * ELR_WAVE], wi[3 * ELR_WAVE], Le[3 * ELR_WAVE], pdf[ELR_WAVE];
   elr_v3 normal[ELR_WAVE]; /* product sampling: each light sample's normal (elr_bsdf_cos_normal), */
   int has_n[ELR_WAVE];     /* or 0: the map alone */
+  elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
+  elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
   elr_wave_rays rays, shadows;
 };
 
@@ -111,11 +199,21 @@ void elr_wave_free(elr_wave *W) {
 
 /* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
  * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
- * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does) */
-static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, float *wi, float *Le,
-                             float *pdf) {
+ * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does); with portals
+ * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct) */
+static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, const elr_v3 *pos,
+                             float *wi, float *Le, float *pdf, elr_tstats *ts) {
   int i, k, nm = 0, idx[ELR_WAVE];
   float um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
+  if (l->portal) {
+    for (i = 0; i < n; i++) {
+      float pp[3];
+      elr_to3(pos[i], pp);
+      if (el_envlight_portal_sample_li(l->portal, l->env_sample, pp, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i])) ts->portal_used++;
+      else ts->portal_fallback++;
+    }
+    return;
+  }
   for (i = 0; i < n && !has_n[i]; i++) {}
   if (!l->product || i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; } /* (the map alone for all) */
   for (i = 0; i < n; i++) {
@@ -137,7 +235,7 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
 
 /* The first vertex of the camera samples W->fast marks (a hit that emits nothing and from which the
  * reference follows no specular bounce), shaded here rather than by elr_direct_first: its
- * elr__sample_lights_ahead and elr__estimate_direct_ahead (render_batched.c) with the same sums in the
+ * elr__sample_lights_ahead and elr__estimate_direct_ahead (above) with the same sums in the
  * same order (bit for bit: test_render_wave), without the sampler's restore and skips (nothing draws
  * after the first vertex then) and with the light sample's BSDF value already computed for the shadow
  * ray (W->fl). Each pair's terms into its camera sample's W->Ld; the 1 / nsamples in the film loop. */
@@ -172,8 +270,9 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
 }
 
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
- * in W->rays, traced): render_batched.c's phases 1 and 2 for the whole wave, for each of the light's
- * W->npair sample pairs (its "samples" count, or splitting's), then all their shadow rays */
+ * in W->rays, traced): the hits' BSDF samples, light samples and environment lookups for the whole
+ * wave, for each of the light's W->npair sample pairs (its "samples" count, or splitting's), then all
+ * their shadow rays */
 static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
   int j, k, n = 0, np = 0, nm = 0;
@@ -208,6 +307,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
         W->has_n[n] = elr_bsdf_cos_normal(&q->b, wo, &W->normal[n]);
+        W->lpos[n] = W->h[j].p;
         lonly = elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
         W->light[np] = n++;
@@ -223,7 +323,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     }
   }
   /* the light samples */
-  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->wi, W->Le, W->pdf);
+  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, ts);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
   for (k = 0; k < np; k++) {
@@ -256,7 +356,8 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     float d[3], L3[3];
     if (!p->bray || p->occ_b) continue;
     elr_to3(p->wb, d);
-    if (C->batch_light->product) {
+    if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+    else if (C->batch_light->product) {
       elr_v3 nc;
       int has = elr_bsdf_cos_normal(&W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
       p->bpdf_env = elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
@@ -332,6 +433,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_sampler_get2d(S, &W->u[2 * n]);
         elr_sampler_get2d(S, us);
         W->has_n[n] = elr_bsdf_cos_normal(b, wo, &W->normal[n]);
+        W->lpos[n] = h->p;
         if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
       }
@@ -341,11 +443,13 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_sampler_save(S, &W->pos[j]);
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
-    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne);
+    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, ts);
     for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
       int e = W->escaped[j];
       if (e < 0) continue;
-      if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
+      if (l->portal) /* (at the vertex the ray left, as elr_path_li's prev_p) */
+        W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
+      else if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
       else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) /* (only where the weight is
         * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
         W->pdf[e] = elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
@@ -405,6 +509,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
       p->specular = spec; p->prev_pdf = pdf;
       p->prev_has_n = elr_bsdf_cos_normal(b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
         W->alive[j] = 0; nalive--; continue;

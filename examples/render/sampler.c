@@ -130,13 +130,6 @@ static uint64_t elr__spread2(uint32_t x) {
   return (v | (v << 1)) & 0x5555555555555555ULL;
 }
 
-float elr_sampler_hash_float(const elr_sampler *S, int dim) {
-  uint64_t h = elr_mix64(S->seed ^ 0xd1b54a32d192ed03ULL);
-  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->px << 32) | (uint32_t)S->py));
-  h = elr_mix64(h ^ (((uint64_t)(uint32_t)S->sample << 32) | (uint32_t)dim));
-  return (float)(h >> 40) * 0x1p-24f;
-}
-
 /* pbrt-v3's StartPixel */
 void elr_sampler_start_pixel(elr_sampler *S, int px, int py) {
   S->px = px; S->py = py;
@@ -226,7 +219,7 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
   *fx = u[0] + (float)x; *fy = u[1] + (float)y;
 }
 
-/* >> for draws made ahead (render_batched.c) */
+/* >> for draws made ahead (render_wave.c) */
 /* the sampler's state after a 2D draw, without the draw's work */
 void elr_sampler_skip2d(elr_sampler *S) {
   float u[2];

@@ -5,7 +5,9 @@
  * ELR_EMBREE_SPHERES=1; the disks as another user geometry. ObjectInstance: each instanced prototype is
  * an Embree scene of its own, built once, and each instance an RTC_GEOMETRY_TYPE_INSTANCE of it with the
  * instance's transform. elr_intersect makes the hit record through shapes.c (in world space, also for
- * instances), elr_occluded answers shadow rays. */
+ * instances), elr_occluded answers shadow rays. The image textures and the infinite lights are made here
+ * too, of the descriptions the parser leaves (elr_scene_make_textures, elr_scene_make_lights: their
+ * images, MIP maps and envlight's tables). */
 #define _POSIX_C_SOURCE 200809L
 #include "elr_internal.h"
 #include "image_io.h"
@@ -244,34 +246,37 @@ static void elr__rayhit_init(struct RTCRayHit *rh, elr_v3 o, elr_v3 d, float tma
   elr__ray_init(&rh->ray, o, d, tmax);
   rh->hit.geomID = RTC_INVALID_GEOMETRY_ID; rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
+/* one ray through the scene's top level (rtcIntersect1 / rtcOccluded1), Embree 3's context or Embree 4's none */
+static void elr__intersect1(const elr_scene *s, struct RTCRayHit *rh) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcIntersect1((RTCScene)s->rtscene, rh, NULL);
+#else
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1((RTCScene)s->rtscene, &ctx, rh);
+#endif
+}
+static void elr__occluded1(const elr_scene *s, struct RTCRay *r) {
+#if RTC_VERSION_MAJOR >= 4
+  rtcOccluded1((RTCScene)s->rtscene, r, NULL);
+#else
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcOccluded1((RTCScene)s->rtscene, &ctx, r);
+#endif
+}
 
 void elr_raw_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float *t, unsigned *geom) {
   struct RTCRayHit rh;
   elr__rayhit_init(&rh, o, d, INFINITY);
-#if RTC_VERSION_MAJOR >= 4
-  rtcIntersect1((RTCScene)s->rtscene, &rh, NULL);
-#else
-  {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect1((RTCScene)s->rtscene, &ctx, &rh);
-  }
-#endif
+  elr__intersect1(s, &rh);
   *t = rh.ray.tfar; *geom = rh.hit.geomID;
 }
 
 int elr_occluded(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax) {
   struct RTCRay r;
   elr__ray_init(&r, o, d, tmax);
-#if RTC_VERSION_MAJOR >= 4
-  rtcOccluded1((RTCScene)s->rtscene, &r, NULL);
-#else
-  {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcOccluded1((RTCScene)s->rtscene, &ctx, &r);
-  }
-#endif
+  elr__occluded1(s, &r);
   return r.tfar < 0.f;
 }
 
@@ -318,15 +323,7 @@ static void elr__hit_record(const elr_scene *s, elr_v3 o, elr_v3 d, unsigned geo
 int elr_intersect(const elr_scene *s, elr_v3 o, elr_v3 d, float tmax, elr_hit *h) {
   struct RTCRayHit rh;
   elr__rayhit_init(&rh, o, d, tmax);
-#if RTC_VERSION_MAJOR >= 4
-  rtcIntersect1((RTCScene)s->rtscene, &rh, NULL);
-#else
-  {
-    struct RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    rtcIntersect1((RTCScene)s->rtscene, &ctx, &rh);
-  }
-#endif
+  elr__intersect1(s, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
   elr__hit_record(s, o, d, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, h);
   return 1;
@@ -491,6 +488,173 @@ int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h) 
   return 1;
 }
 
+/* >> the image textures and lights the parser described (pbrt-v3's ImageTexture constructor, MakeLight and
+ * CreateInfiniteLight, called here after the parse as pbrt-v4's scene.cpp creates its textures and lights
+ * from the parser's entities: api_materials.c and api_lights.c describe, this builds, and lights.c calls
+ * neither) */
+/* the scene's images, read for what the parser described: what ("LightSource", "Texture") and the
+ * directive's file:line name an error (pbrt-v3's ReadImage; imageio.c) */
+static int elr__read_image(elr_scene *s, const char *what, const char *path, const char *file, int line, el_image *img, char *err,
+                           size_t errlen) {
+  char why[700];
+  double t0 = elr_now();
+  int r = elr_image_read(path, img, why, sizeof why);
+  s->t_images += elr_now() - t0;
+  if (r != 0) elr_error(err, errlen, file, line, "%s: %s", what, why);
+  return r;
+}
+/* the image as linear RGB; a NaN or infinite texel (or one that overflows when scaled) is an error naming
+ * the file and the texel (img is freed then) */
+static float *elr__image_rgb(const char *what, el_image *img, int gamma, float scale, const char *path, const char *file, int line,
+                             char *err, size_t errlen) {
+  int64_t bad;
+  float v = 0.f;
+  float *rgb = elr_image_rgb(img, gamma, scale, &bad, &v);
+  int w = img->width;
+  if (rgb) return rgb;
+  el_image_free(img);
+  if (bad < 0) snprintf(err, errlen, "out of memory");
+  else if (!isfinite(v))
+    elr_error(err, errlen, file, line, "%s: image \"%s\": texel (%d, %d) is %s", what, path, (int)(bad % w), (int)(bad / w),
+              v != v ? "NaN" : "infinite");
+  else
+    elr_error(err, errlen, file, line, "%s: image \"%s\": texel (%d, %d) times scale %g overflows", what, path, (int)(bad % w),
+              (int)(bad / w), scale);
+  return NULL;
+}
+
+static int elr__make_infinite(elr_scene *s, const elr_infinite_desc *D, char *err, size_t errlen) {
+  elr_light *l = &s->light[D->light];
+  const char *path = D->path;
+  float *rgb = NULL;
+  int w = 1, h = 1, r;
+  char e[700];
+  double t0;
+  if (path) {
+    el_image img;
+    if (elr__read_image(s, "LightSource", path, D->file, D->line, &img, err, errlen) != 0) return -1;
+    if (l->bad_texels != EL_ENVLIGHT_BAD_TEXELS_ZERO) { /* NaN / infinite: an error naming the file and texel */
+      if (!(rgb = elr__image_rgb("LightSource", &img, 0, 1.f, path, D->file, D->line, err, errlen))) return -1;
+    } else { /* "zero": every value as the file holds it, for envlight to count and replace */
+      size_t n = (size_t)img.width * (size_t)img.height, k;
+      rgb = (float *)malloc(n * 3 * sizeof(float));
+      if (!rgb) { el_image_free(&img); snprintf(err, errlen, "out of memory"); return -1; }
+      for (k = 0; k < 3 * n; k++) rgb[k] = img.pixels[(k / 3) * (size_t)img.channels + (img.channels >= 3 ? k % 3 : 0)];
+    }
+    w = img.width; h = img.height;
+    el_image_free(&img);
+    l->has_map = 1;
+    /* pbrt-v4 reads "filename" as a square equal-area octahedral map (ImageInfiniteLight) and refuses any
+     * other shape; here a non-square "filename" is read as pbrt-v3's lat-long map, with a warning */
+    if (D->v4_filename && w == h) l->mapping = EL_ENVLIGHT_MAPPING_EQUAL_AREA;
+    else if (D->v4_filename)
+      elr_warn(s, D->filename_file, D->filename_line,
+               "LightSource \"infinite\": \"%s\" is %dx%d, not square: pbrt-v4 wants a square equal-area map; read as a lat-long "
+               "map (pbrt-v3's \"mapname\")", path, w, h);
+  }
+  t0 = elr_now();
+  r = elr_infinite_init(l, rgb, w, h, D->scale, D->l2w, e, sizeof e);
+  if (r == 0 && rgb && l->env && l->env->borrowed) l->env_pixels = rgb; /* read in place: freed with the light */
+  else free(rgb);
+  if (r != 0) {
+    if (path) elr_error(err, errlen, D->file, D->line, "LightSource \"infinite\": image \"%s\": %s", path, e);
+    else elr_error(err, errlen, D->file, D->line, "LightSource \"infinite\": %s", e);
+    return -1;
+  }
+  s->t_images += elr_now() - t0;
+  /* one warning per kind of texel replaced (the light's "badtexels" policy) */
+  if (l->env->negative_texels > 0) {
+    int mi = l->env->most_negative_index;
+    elr_warn(s, D->file, D->line,
+             "LightSource \"infinite\": image \"%s\": %zu negative texels clamped to 0 (the most negative %.3g at texel (%d, %d);"
+             " lossy EXR compression such as DWAB rings below 0; \"string badtexels\" \"error\" refuses them)",
+             path ? path : "(constant L)", l->env->negative_texels, (double)l->env->most_negative, mi % w, mi / w);
+  }
+  if (l->env->nonfinite_texels > 0)
+    elr_warn(s, D->file, D->line, "LightSource \"infinite\": image \"%s\": %zu NaN or infinite texels set to 0 (\"string badtexels\" \"zero\")",
+             path ? path : "(constant L)", l->env->nonfinite_texels);
+  if (D->nportal > 0) {
+    t0 = elr_now();
+    if (elr_infinite_set_portals(l, D->portal, D->nportal, e, sizeof e) != 0) {
+      elr_error(err, errlen, D->portal_file, D->portal_line, "LightSource \"infinite\": %s", e);
+      return -1;
+    }
+    s->t_images += elr_now() - t0;
+  }
+  return 0;
+}
+/* an image texture the parser described (pbrt-v3's ImageTexture constructor): its image as linear RGB
+ * (a float texture's as luminance), flipped in y, in a MIP map (mipmap.h; the texture owns it) */
+static int elr__make_imagemap(elr_scene *s, const elr_imagemap_desc *D, char *err, size_t errlen) {
+  elr_texture *t = &s->tex[D->tex];
+  el_image img;
+  float *rgb;
+  if (elr__read_image(s, "Texture", D->path, D->file, D->line, &img, err, errlen) != 0) return -1;
+  if (!(rgb = elr__image_rgb("Texture", &img, D->gamma, D->scale, D->path, D->file, D->line, err, errlen))) return -1;
+  if (D->is_float) { /* pbrt-v3 converts to float by luminance */
+    size_t i, n = (size_t)img.width * (size_t)img.height;
+    for (i = 0; i < n; i++) {
+      float y = 0.212671f * rgb[3 * i] + 0.715160f * rgb[3 * i + 1] + 0.072169f * rgb[3 * i + 2];
+      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = y;
+    }
+  }
+  { /* <<Flip image in y; texture coordinate space has (0,0) at the lower left corner>> (pbrt-v3) */
+    int y, W = img.width, H = img.height;
+    size_t row = (size_t)W * 3, k;
+    for (y = 0; y < H / 2; y++)
+      for (k = 0; k < row; k++) {
+        float tmp = rgb[(size_t)y * row + k];
+        rgb[(size_t)y * row + k] = rgb[(size_t)(H - 1 - y) * row + k];
+        rgb[(size_t)(H - 1 - y) * row + k] = tmp;
+      }
+  }
+  {
+    double t0 = elr_now();
+    el_result r = EL_ERROR_OUT_OF_MEMORY;
+    el_mipmap_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.wrap_u = mo.wrap_v = (el_mipmap_wrap)D->wrap;
+    mo.filter = (el_mipmap_filter)D->filter;
+    mo.max_anisotropy = D->maxaniso;
+    t->mip = (el_mipmap *)calloc(1, sizeof *t->mip);
+    if (t->mip) r = el_mipmap_init(t->mip, rgb, img.width, img.height, 3, &mo);
+    if (r != EL_SUCCESS) { free(t->mip); t->mip = NULL; }
+    free(rgb);
+    s->t_images += elr_now() - t0;
+    s->bytes_textures += (size_t)img.width * (size_t)img.height * 3 * sizeof(float);
+    el_image_free(&img);
+    if (r != EL_SUCCESS) { elr_error(err, errlen, D->file, D->line, "Texture \"%s\": MIP map: %s", D->name, el_result_string(r)); return -1; }
+  }
+  return 0;
+}
+int elr_scene_make_textures(elr_scene *s, char *err, size_t errlen) {
+  int i;
+  for (i = 0; i < s->ntexdesc; i++)
+    if (elr__make_imagemap(s, &s->texdesc[i], err, errlen) != 0) return -1;
+  return 0;
+}
+int elr_scene_make_lights(elr_scene *s, char *err, size_t errlen) {
+  int i;
+  for (i = 0; i < s->nenvdesc; i++)
+    if (elr__make_infinite(s, &s->envdesc[i], err, errlen) != 0) return -1;
+  return 0;
+}
+static void elr__free_descs(elr_scene *s) {
+  int i;
+  for (i = 0; i < s->nenvdesc; i++) {
+    elr_infinite_desc *D = &s->envdesc[i];
+    free(D->path); free(D->portal); free(D->file); free(D->filename_file); free(D->portal_file);
+  }
+  free(s->envdesc);
+  s->envdesc = NULL; s->nenvdesc = s->capenvdesc = 0;
+  for (i = 0; i < s->ntexdesc; i++) {
+    elr_imagemap_desc *D = &s->texdesc[i];
+    free(D->path); free(D->name); free(D->file);
+  }
+  free(s->texdesc);
+  s->texdesc = NULL; s->ntexdesc = s->captexdesc = 0;
+}
+
 /* >> loading and freeing a scene (pbrt-v3 core/api.cpp: pbrtParseFile, then the scene made at WorldEnd) */
 static void elr__dirname(const char *path, char *dir, size_t n) {
   const char *sl = strrchr(path, '/');
@@ -505,7 +669,11 @@ int elr_scene_load_string(const char *text, const char *name, const char *base_d
   *out = NULL;
   if (!s) { snprintf(err, errlen, "out of memory"); return -1; }
   s->quiet = quiet;
-  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0) { elr_scene_free(s); return -1; }
+  if (elr_parse(s, text, strlen(text), name, base_dir, err, errlen) != 0 || elr_scene_make_textures(s, err, errlen) != 0 ||
+      elr_scene_make_lights(s, err, errlen) != 0) {
+    elr_scene_free(s);
+    return -1;
+  }
   s->t_parse = elr_now() - t0;
   if (elr_scene_build(s, err, errlen) != 0) { elr_scene_free(s); return -1; }
   *out = s;
@@ -540,6 +708,7 @@ void elr_scene_free(elr_scene *s) {
   for (i = 0; i < s->ntex; i++) if (s->tex[i].mip) { el_mipmap_free(s->tex[i].mip); free(s->tex[i].mip); }
   for (i = 0; i < s->nmesh; i++) { free(s->mesh[i].idx); free(s->mesh[i].p); free(s->mesh[i].n); free(s->mesh[i].uv); }
   for (i = 0; i < s->nlight; i++) elr_light_free(&s->light[i]);
+  elr__free_descs(s);
   free(s->tex); free(s->mat); free(s->mesh); free(s->sph); free(s->disk); free(s->light); free(s->mat_textured); free(s->obj); free(s->inst);
   free(s);
 }

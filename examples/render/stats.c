@@ -36,9 +36,9 @@ void elr_stats_print(const elr_stats *st, void *fp) {
   if (st->nothing_emits) fprintf(f, "  light sampling     no: nothing emits (the image is black; no ray traced)\n");
   else
     fprintf(f, "  light sampling     %s%s\n", st->light_sampling_used ? "yes" : "no (no surface has a non-specular lobe)",
-            st->light_samples_batched ? "; a pixel's environment samples drawn together" : "");
+            st->light_samples_batched ? "; a wave's environment samples drawn together" : "");
   if (!st->nothing_emits) {
-    static const char *loops[3] = {"one sample at a time (the reference)", "a pixel's light samples together (render_batched.c)",
+    static const char *loops[3] = {"one sample at a time (the reference)", "?" /* (the batched loop, gone) */,
                                    "waves of up to 256 camera samples (render_wave.c)"};
     static const char *apis[4] = {"rtcIntersect1 / rtcOccluded1", "packets of 16", "rtcIntersect1M streams", "rtcIntersectNp streams"};
     fprintf(f, "  loop               %s", st->loop >= 0 && st->loop < 3 ? loops[st->loop] : "?");
@@ -86,9 +86,9 @@ void elr_stats_print(const elr_stats *st, void *fp) {
       }
       if (l->kind == 0 && l->env_portals) {
         double n = (double)(l->env_portal_used + l->env_portal_fallback);
-        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
+        fprintf(f, "; portal strategy: %d portal%s (el_envlight_portal_sample_li, %.1f KiB, map share %.2f behind a portal's plane%s), used for %.1f%% of %llu light samples, the map alone (el_envlight_sample_li) for the rest (points behind every portal)",
                 l->env_portals, l->env_portals == 1 ? "" : "s", (double)l->env_portal_bytes / 1024.0, l->env_portal_share,
-                n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
+                l->env_portal_compensated ? ", compensated" : "", n > 0 ? 100.0 * (double)l->env_portal_used / n : 0.0, (unsigned long long)(l->env_portal_used + l->env_portal_fallback));
       }
       if (l->kind == 0) fprintf(f, "; sampling tables %s", l->tables_built ? "built" : "not built");
       if (l->kind == 3 && l->shape_kind == 0) fprintf(f, "; area CDF %s", l->tables_built ? "built" : "not built");
@@ -103,9 +103,10 @@ void elr_stats_print(const elr_stats *st, void *fp) {
     for (i = 0; i < st->nlight_stats; i++)
       if (st->light[i].env_product) { a = st->light[i].env_lobe_alpha; b = st->light[i].env_light_alpha; sun = st->light[i].env_sun_share; }
     fprintf(f, "  env strategies     %llu light samples by product sampling (%llu of them alone, without a BSDF sample: lobes "
-               "diffuse or of alpha >= %g), %llu by the map alone (glossy lobes of alpha < %g, rough transmission%s); "
+               "diffuse or of alpha >= %g; around the mirror direction for metal of alpha < %g without a sun), %llu by the map "
+               "alone (metal of alpha < %g under a sun, rough transmission%s); "
                "the map's sun share %.3f\n",
-            (unsigned long long)st->env_product_samples, (unsigned long long)st->env_light_only_samples, (double)b,
+            (unsigned long long)st->env_product_samples, (unsigned long long)st->env_light_only_samples, (double)b, (double)a,
             (unsigned long long)st->env_map_samples, (double)a, sun > ELR_ENV_SUN_SHARE ? ", diffuse lobes under a sun" : "", (double)sun);
   }
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,

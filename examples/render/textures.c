@@ -2,9 +2,9 @@
  * with its closed-form box filter over the ray footprint), imagemap.cpp (ImageTexture: a MIP map of
  * mipmap.h, filtered by el_mipmap_lookup_differentials), all through the UVMapping2D of core/texture.cpp,
  * and scale.cpp (ScaleTexture: tex1 * tex2) and mix.cpp (MixTexture: (1 - amount) tex1 + amount tex2),
- * which combine other textures. The parser (parser.c) builds them (a scale or mix of constants is made a
- * constant there); materials.c evaluates them at shading points. Float textures hold their value in all
- * three components. */
+ * which combine other textures. The parser (api_materials.c) makes them (a scale or mix of constants is
+ * made a constant there; an image texture's MIP map is made by scene.c after the parse); materials.c
+ * evaluates them at shading points. Float textures hold their value in all three components. */
 #include "elr_internal.h"
 
 /* The texture ti at the shading point's (u, v) and its screen-space differentials: pbrt-v3's

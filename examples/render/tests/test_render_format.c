@@ -1,5 +1,5 @@
-/* test_render_format: the parts of the pbrt-v3 format that issue 16 adds to the parser (parser.c,
- * textures.c), each against an answer worked out by hand:
+/* test_render_format: the parts of the pbrt-v3 format that issue 16 adds to the parser (api.c,
+ * api_options.c, api_materials.c, textures.c), each against an answer worked out by hand:
  *   - Texture "scale" (tex1 * tex2) and "mix" ((1 - amount) tex1 + amount tex2), float and spectrum:
  *     of constants they are constants of the hand-computed value; of checkerboards, looked up at a (u, v)
  *     in each check, the product and the blend of that check's colours;

@@ -1,5 +1,5 @@
 /* test_render_fuzz: a small deterministic mutation fuzzer for the renderer's inputs: pbrt-v3 scene
- * text (parser.c, Include, PLY meshes) and the image files image_io.c reads (HDR, EXR, PFM, PNG).
+ * text (parser.c and the api*.c files, Include, PLY meshes) and the image files image_io.c reads (HDR, EXR, PFM, PNG).
  *
  * Every case starts from a valid input (the scenes in scenes/, a scene built here that uses every
  * directive, small images, PLY and .spd spectrum files written here) and applies a few seeded mutations: byte flips,

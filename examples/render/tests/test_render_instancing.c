@@ -1,5 +1,5 @@
-/* test_render_instancing: ObjectBegin / ObjectEnd / ObjectInstance as Embree instances (parser.c,
- * scene.c) against the same scene written with explicit copies of the shapes, each copy under the
+/* test_render_instancing: ObjectBegin / ObjectEnd / ObjectInstance as Embree instances (api.c,
+ * api_shapes.c, scene.c) against the same scene written with explicit copies of the shapes, each copy under the
  * transform pbrt-v3 gives an instance (the CTM at ObjectInstance times the shape's CTM inside the
  * object).
  *   1. Hit records: 40000 rays through both scenes hit the same shapes; points, geometric normals,

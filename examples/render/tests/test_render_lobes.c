@@ -2,22 +2,29 @@
  * elr_env_light_only; render's --env-lobe-alpha and --env-light-alpha).
  *  1. The decision follows the thresholds: a sphere filling the view, metal of Trowbridge-Reitz alpha
  *     0.05, 0.2, 0.5, 0.7, plastic of alpha 0.25, 0.35 (remaproughness false), matte, under the default
- *     thresholds (0.1 and 0.3) and moved ones; --stats' counts must say the map alone (below the first),
- *     product MIS (between), the product light sample alone (at or above the second with a diffuse lobe,
- *     twice the second without: metal; matte: then no BSDF-sampled ray either). With --env-sampling map
- *     nothing is counted as product. Under a sun map (one texel 1e6x the sky: render.c's elr__sun_share
- *     above ELR_ENV_SUN_SHARE) matte takes the map alone, the metals keep their choice.
+ *     thresholds (0.1 and 0.3) and moved ones; --stats' counts must say product MIS around the mirror
+ *     direction (metal below the first: the image differs from the one around the normal, same seed),
+ *     product MIS (between; plastic of alpha 0.05 too: its diffuse lobe keeps the normal), the product
+ *     light sample alone (at or above the second with a diffuse lobe, twice the second without: metal;
+ *     matte: then no BSDF-sampled ray either). With --env-sampling map nothing is counted as product.
+ *     Under a sun map (one texel 1e6x the sky: render.c's elr__sun_share above ELR_ENV_SUN_SHARE) matte
+ *     and metal of alpha 0.05 take the map alone, metal 0.7 the product light sample alone.
+ *     Seen to fail with the mirror's strategy taken alone (no BSDF sample): the two metals below the first
+ *     threshold and the count of product MIS samples in 2.
  *  2. Unbiased: a near-specular metal (alpha 0.02), a glossy plastic (roughness 0.1 remapped: alpha 0.46)
  *     and a rough plastic (alpha 1.13) on a matte plane under a sky with a sun 600x the sky (a 64 x 32
- *     map written here), directlighting and path: with the default thresholds the metal takes the map
- *     alone, the rest the product light sample alone; with the second threshold at 1 the glossy plastic
- *     takes product MIS (all three strategies in one image). Against pbrt-v3's map alone with MIS: NSEED seeds each, the 4 x 4-pixel block means compared
+ *     map written here: no sun by render.c's measure), directlighting and path: with the default thresholds
+ *     the metal takes product MIS around the mirror direction, the rest the product light sample alone;
+ *     with the second threshold at 1 the glossy plastic takes product MIS around the normal; and with a
+ *     metal of alpha 0.2 under a first threshold of 0.25 (around the mirror). Against pbrt-v3's map alone
+ *     with MIS: NSEED seeds each, the 4 x 4-pixel block means compared
  *     with Welch's statistic, |d| / sqrt(s1^2/n + s2^2/n) < 6 for all 16 blocks and for the image mean
  *     (a false alarm has probability about 1e-3 per 17 comparisons with 14 degrees of freedom).
  *     Seen to fail with a mutation of the renderer (then restored): the light sample alone keeping its
  *     power-heuristic weight (elr_estimate_direct and the wave loop's): directlighting image mean z = -47
  *     (default thresholds) and -37 (second threshold 1); the path tracer is not affected (it never takes
  *     the light sample alone).
+ *  3. The mirror's product against the map alone on one metal sphere (unbiased_mirror, below).
  */
 #include "render_test_util.h"
 
@@ -39,7 +46,7 @@ static const char *one_sphere(const char *material) {
   return buf;
 }
 
-static const char *lobes_scene(const char *integ) {
+static const char *lobes_scene(const char *integ, float metal_alpha) {
   static char buf[4096];
   snprintf(buf, sizeof buf,
            "LookAt 0 1.1 -5   0 0.45 0   0 1 0\n"
@@ -49,7 +56,7 @@ static const char *lobes_scene(const char *integ) {
            "Integrator %s\n"
            "WorldBegin\n"
            "AttributeBegin\n  Rotate -90 1 0 0\n  Rotate 23 0.3 0.5 0.8\n  LightSource \"infinite\" \"string mapname\" \"sky.pfm\"\nAttributeEnd\n"
-           "AttributeBegin\n  Material \"metal\" \"float roughness\" [ 0.02 ] \"bool remaproughness\" \"false\"\n"
+           "AttributeBegin\n  Material \"metal\" \"float roughness\" [ %g ] \"bool remaproughness\" \"false\"\n"
            "  Translate -1.15 0.5 0\n  Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
            "AttributeBegin\n  Material \"plastic\" \"rgb Kd\" [ 0.1 0.25 0.5 ] \"rgb Ks\" [ 0.5 0.5 0.5 ] \"float roughness\" [ 0.1 ]\n"
            "  Translate 0 0.5 0\n  Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
@@ -58,7 +65,7 @@ static const char *lobes_scene(const char *integ) {
            "Material \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
            "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -20 0 -20  20 0 -20  20 0 20  -20 0 20 ]\n"
            "WorldEnd\n",
-           RES, RES, integ);
+           RES, RES, integ, (double)metal_alpha);
   return buf;
 }
 
@@ -88,14 +95,17 @@ static int render(elr_scene *s, int env_sampling, float lobe_a, float light_a, u
 /* 1. the decision follows the thresholds */
 static void decisions(void) {
   static const struct { const char *mat; float lobe_a, light_a; int want; /* 0 map, 1 product MIS, 2 product alone */ } c[] = {
-    {"Material \"metal\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 0},
+    {"Material \"metal\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 1}, /* (around the mirror) */
     {"Material \"metal\" \"float roughness\" [ 0.2 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 1},
     {"Material \"metal\" \"float roughness\" [ 0.5 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 1},
     {"Material \"metal\" \"float roughness\" [ 0.7 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 2},
     {"Material \"plastic\" \"float roughness\" [ 0.25 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 1},
     {"Material \"plastic\" \"float roughness\" [ 0.35 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 2},
     {"Material \"matte\"", -1.f, -1.f, 2},
-    {"Material \"metal\" \"float roughness\" [ 0.2 ] \"bool remaproughness\" \"false\"", 0.25f, -1.f, 0},
+    {"Material \"metal\" \"float roughness\" [ 0.2 ] \"bool remaproughness\" \"false\"", 0.25f, -1.f, 1}, /* (around the mirror) */
+    /* a peaked lobe with a diffuse one (plastic): the product around the normal, whatever the alpha */
+    {"Material \"plastic\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\"", -1.f, -1.f, 1},
+    {"Material \"plastic\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\"", -1.f, 0.04f, 2},
     {"Material \"metal\" \"float roughness\" [ 0.2 ] \"bool remaproughness\" \"false\"", -1.f, 0.15f, 1},
     {"Material \"metal\" \"float roughness\" [ 0.2 ] \"bool remaproughness\" \"false\"", -1.f, 0.09f, 2},
     {"Material \"metal\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\"", 0.f, -1.f, 1},
@@ -147,6 +157,19 @@ static void decisions(void) {
              (double)st.light[0].env_sun_share, (unsigned long long)st.samples,
              (unsigned long long)st.env_product_samples, (unsigned long long)st.env_light_only_samples,
              (unsigned long long)st.env_map_samples, (unsigned long long)st.bsdf_light_rays);
+    if (k == 0) { /* the metal's product is around the mirror direction, not the normal: with the same seed the product
+                   * around the normal (--env-lobe-alpha 0) draws other light samples, so another image */
+      elr_image img2;
+      elr_stats st2;
+      if (render(s, -1, 0.f, -1.f, 1, &img2, &st2) == 0) {
+        size_t i, ndiff = 0, npix = (size_t)img.width * (size_t)img.height * 3;
+        for (i = 0; i < npix; i++) ndiff += img.rgb[i] != img2.rgb[i];
+        rt_check(st2.env_product_samples == st2.samples && st2.env_light_only_samples == 0 && ndiff > npix / 2,
+                 "metal 0.05: the product around the mirror direction (default) and around the normal (--env-lobe-alpha 0) "
+                 "differ in %zu of %zu pixel values", ndiff, npix);
+        elr_image_free(&img2);
+      }
+    }
     elr_image_free(&img);
     if (k == 0) { /* the map alone asked for: nothing is product-sampled, nothing counted */
       if (render(s, 0, -1.f, -1.f, 1, &img, &st) == 0) {
@@ -167,10 +190,23 @@ static void blocks(const elr_image *img, double *b /* 17: 16 blocks + mean */) {
       for (c = 0; c < 3; c++) { double v = img->rgb[3 * (y * RES + x) + c]; b[(y / 4) * 4 + x / 4] += v / 48.0; b[16] += v / (RES * RES * 3); }
 }
 
+/* Welch's statistic of value i between two renders' NSEED seeds: a[j * stride + i] and b[j * stride + i] for seed j */
+static double welch_z(const double *a, const double *b, int stride, int i) {
+  const double *x[2];
+  double m[2] = {0, 0}, v[2] = {0, 0};
+  int j, k;
+  x[0] = a; x[1] = b;
+  for (k = 0; k < 2; k++) {
+    for (j = 0; j < NSEED; j++) m[k] += x[k][j * stride + i] / NSEED;
+    for (j = 0; j < NSEED; j++) v[k] += (x[k][j * stride + i] - m[k]) * (x[k][j * stride + i] - m[k]) / (NSEED - 1);
+  }
+  return (m[0] - m[1]) / sqrt(v[0] / NSEED + v[1] / NSEED + 1e-30);
+}
+
 /* 2. the default against the map alone */
-static void unbiased(const char *integ, float light_a) {
+static void unbiased(const char *integ, float lobe_a, float light_a, float metal_alpha) {
   char err[512];
-  elr_scene *s = rt_load("lobes.pbrt", lobes_scene(integ), err, sizeof err);
+  elr_scene *s = rt_load("lobes.pbrt", lobes_scene(integ, metal_alpha), err, sizeof err);
   double b[2][NSEED][17], worst = 0, zmean = 0;
   int k, i, j, ok = 1;
   elr_stats st0;
@@ -180,28 +216,60 @@ static void unbiased(const char *integ, float light_a) {
     for (j = 0; j < NSEED; j++) {
       elr_image img;
       elr_stats st;
-      if (render(s, k == 0 ? -1 : 0, -1.f, light_a, (uint64_t)(100 + 17 * j + k), &img, &st) != 0) { ok = 0; continue; }
+      if (render(s, k == 0 ? -1 : 0, lobe_a, light_a, (uint64_t)(100 + 17 * j + k), &img, &st) != 0) { ok = 0; continue; }
       if (k == 0 && j == 0) st0 = st;
       blocks(&img, b[k][j]);
       elr_image_free(&img);
     }
   for (i = 0; i < 17 && ok; i++) {
-    double m[2] = {0, 0}, v[2] = {0, 0}, z;
-    for (k = 0; k < 2; k++) {
-      for (j = 0; j < NSEED; j++) m[k] += b[k][j][i] / NSEED;
-      for (j = 0; j < NSEED; j++) v[k] += (b[k][j][i] - m[k]) * (b[k][j][i] - m[k]) / (NSEED - 1);
-    }
-    z = (m[0] - m[1]) / sqrt(v[0] / NSEED + v[1] / NSEED + 1e-30);
+    double z = welch_z(&b[0][0][0], &b[1][0][0], 17, i);
     if (fabs(z) > worst) worst = fabs(z);
     if (i == 16) zmean = z;
   }
-  rt_check(ok && worst < 6.0, "%s, light-alone threshold %g: the per-lobe choice agrees with the map alone: image mean z = %.2f, worst "
-           "of 16 blocks and the mean |z| = %.2f (bound 6; %d seeds each)", integ, (double)light_a, zmean, worst, NSEED);
+  rt_check(ok && worst < 6.0, "%s, metal alpha %g, thresholds %g / %g: the per-lobe choice agrees with the map alone: image mean z = %.2f, "
+           "worst of 16 blocks and the mean |z| = %.2f (bound 6; %d seeds each)", integ, (double)metal_alpha, (double)lobe_a, (double)light_a, zmean,
+           worst, NSEED);
   if (!strstr(integ, "path"))
-    rt_check(st0.env_map_samples > 0 && st0.env_light_only_samples > 0 && (light_a < 0.f || st0.env_product_samples > st0.env_light_only_samples),
-             "%s, light-alone threshold %g: the map alone (%llu light samples), product MIS (%llu) and the product light sample alone (%llu)",
+    rt_check(st0.env_map_samples == 0 && st0.env_light_only_samples > 0 && st0.env_product_samples > st0.env_light_only_samples,
+             "%s, light-alone threshold %g: no map alone (%llu light samples), product MIS (%llu: the metal's around the mirror "
+             "direction, and the glossy plastic's with threshold 1) and the product light sample alone (%llu)",
              integ, (double)light_a, (unsigned long long)st0.env_map_samples,
              (unsigned long long)(st0.env_product_samples - st0.env_light_only_samples), (unsigned long long)st0.env_light_only_samples);
+  elr_scene_free(s);
+}
+
+/* 3. The mirror's product where light and BSDF samples share the work: a metal sphere of alpha 0.3 filling the view
+ * (threshold 0.4: around the mirror direction, MIS), 8 x 8 pixels at 1024 spp, against the map alone: the image mean
+ * and each pixel row (Welch's statistic as above, bound 6). Seen to fail with the BSDF sample's MIS weight taking the
+ * normal's product pdf while the light sample is drawn around the mirror (the wave loop's, then restored): worst row
+ * z = 16.4 (1.9 without the mutation; at 256 spp 5.9, too close to the bound). */
+static void unbiased_mirror(void) {
+  char err[512];
+  elr_scene *s = rt_load("one.pbrt", one_sphere("Material \"metal\" \"float roughness\" [ 0.3 ] \"bool remaproughness\" \"false\""), err,
+                         sizeof err);
+  double b[2][NSEED][9], worst = 0, zmean = 0;
+  int k, i, j, ok = 1;
+  if (!s) { rt_check(0, "load: %s", err); return; }
+  for (k = 0; k < 2; k++)
+    for (j = 0; j < NSEED; j++) {
+      elr_image img;
+      elr_stats st;
+      elr_render_options o;
+      elr_render_options_default(&o);
+      o.nthreads = 2; o.quiet = 1; o.seed = (uint64_t)(300 + 17 * j + k); o.env_sampling = k == 0 ? -1 : 0; o.env_lobe_alpha = 0.4f; o.spp = 1024;
+      if (elr_render(s, &o, &img, &st, err, sizeof err) != 0) { rt_check(0, "render failed: %s", err); ok = 0; continue; }
+      if (k == 0 && j == 0) rt_check(st.env_product_samples == st.samples && st.env_light_only_samples == 0, "metal 0.3, threshold 0.4: product MIS");
+      memset(b[k][j], 0, sizeof b[k][j]);
+      for (i = 0; i < 8 * 8 * 3; i++) { b[k][j][i / 24] += img.rgb[i] / 24.0; b[k][j][8] += img.rgb[i] / 192.0; }
+      elr_image_free(&img);
+    }
+  for (i = 0; i < 9 && ok; i++) {
+    double z = welch_z(&b[0][0][0], &b[1][0][0], 9, i);
+    if (fabs(z) > worst) worst = fabs(z);
+    if (i == 8) zmean = z;
+  }
+  rt_check(ok && worst < 6.0, "metal 0.3 around the mirror direction against the map alone: image mean z = %.2f, worst of 8 rows and the "
+           "mean |z| = %.2f (bound 6; %d seeds each)", zmean, worst, NSEED);
   elr_scene_free(s);
 }
 
@@ -209,8 +277,12 @@ int main(void) {
   rt_mkdir("test_render_lobes");
   make_map();
   decisions();
-  unbiased("\"directlighting\"", 1.f); /* (the glossy plastic, alpha 0.46, then takes product MIS) */
-  unbiased("\"directlighting\"", -1.f);
-  unbiased("\"path\" \"integer maxdepth\" [ 3 ]", -1.f);
+  unbiased("\"directlighting\"", -1.f, 1.f, 0.02f); /* (the glossy plastic, alpha 0.46, then takes product MIS) */
+  unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
+  unbiased("\"path\" \"integer maxdepth\" [ 3 ]", -1.f, -1.f, 0.02f);
+  /* the mirror's product on a broader metal lobe (alpha 0.2, threshold 0.25): light and BSDF samples both count there */
+  unbiased("\"directlighting\"", 0.25f, -1.f, 0.2f);
+  unbiased("\"path\" \"integer maxdepth\" [ 3 ]", 0.25f, -1.f, 0.2f);
+  unbiased_mirror();
   return rt_finish("test_render_lobes");
 }

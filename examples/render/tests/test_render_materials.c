@@ -389,8 +389,9 @@ static void renders(void) {
     }
     elr_image_free(&img);
   }
-  /* render_batched.c (a pixel's environment samples drawn together) gives the one-at-a-time image bit for
-   * bit with the new materials too: its first vertex goes through the same BSDFs and specular branches */
+  /* the wave loop (render_wave.c: a wave's environment samples drawn together) gives the one-at-a-time
+   * image bit for bit with the new materials too: its first vertex goes through the same BSDFs and
+   * specular branches */
   {
     static const char *integ[2] = {"\"path\" \"integer maxdepth\" 6", "\"directlighting\" \"integer maxdepth\" 6"};
     int q;

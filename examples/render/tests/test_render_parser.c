@@ -354,6 +354,12 @@ static void errors(void) {
   expect_error("int.pbrt", "Film \"image\" \"integer xresolution\" 10.5\nWorldBegin\nWorldEnd\n", "int.pbrt:1:", "not an integer");
   expect_error("include.pbrt", "WorldBegin\n\nInclude \"nothere.pbrt\"\nWorldEnd\n", "include.pbrt:3:", "nothere.pbrt");
   expect_error("image.pbrt", "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"missing.hdr\"\nWorldEnd\n", "image.pbrt:2:", "missing.hdr");
+  /* the environment's and the image textures' images are read after the parse (scene.c builds what the
+   * parser described): their errors still name the included file and line of the directive */
+  rt_write("light_inc.pbrt", "# the light\nLightSource \"infinite\" \"string mapname\" \"missing2.hdr\"\n");
+  expect_error("incimage.pbrt", "WorldBegin\nInclude \"light_inc.pbrt\"\nShape \"sphere\"\nWorldEnd\n", "light_inc.pbrt:2:", "missing2.hdr");
+  rt_write("tex_inc.pbrt", "\n\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"missing3.png\"\n");
+  expect_error("inctex.pbrt", "WorldBegin\nInclude \"tex_inc.pbrt\"\nWorldEnd\n", "tex_inc.pbrt:3:", "missing3.png");
   expect_error("res.pbrt", "Film \"image\" \"integer xresolution\" 1000000000\nWorldBegin\nWorldEnd\n", "res.pbrt:1:", "out of range");
   expect_error("spp.pbrt", "Sampler \"halton\" \"integer pixelsamples\" -4\nWorldBegin\nWorldEnd\n", "spp.pbrt:1:", "out of range");
   expect_error("nan.pbrt", "WorldBegin\nTranslate 1 nan 2\nWorldEnd\n", "nan.pbrt:2:", "expected a number");
@@ -644,6 +650,18 @@ static void cli(void) {
   snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --quiet 2>/dev/null", bin, rt_path("ok.pbrt"), rt_path("x.bmp"));
   r = system(cmd);
   rt_check(WEXITSTATUS(r) == 1, "render --outfile x.bmp (unknown format): exit 1");
+  /* the batched loop was folded into the wave loop: its option is refused with a message naming the two loops */
+  snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --loop batched --quiet 2>'%s'", bin, rt_path("ok.pbrt"), rt_path("batched.pfm"),
+           rt_path("batched.txt"));
+  r = system(cmd);
+  {
+    char log[1024];
+    read_text("batched.txt", log, sizeof log);
+    f = fopen(rt_path("batched.pfm"), "rb");
+    rt_check(WEXITSTATUS(r) == 1 && f == NULL && strstr(log, "--loop wave") && strstr(log, "--loop one"),
+             "render --loop batched: exit 1, no image, the message names --loop wave and --loop one (%s)", log);
+    if (f) fclose(f);
+  }
   snprintf(cmd, sizeof cmd, "'%s' '%s' --outfile '%s' --spp 1 --stats 2>'%s'", bin, rt_path("ok.pbrt"), rt_path("s.png"), rt_path("log.txt"));
   r = system(cmd);
   {

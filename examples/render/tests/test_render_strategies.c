@@ -144,7 +144,7 @@ static void run(const char *integ, int leaning) {
       rt_check(st.light[0].env_product == envk[k] && st.light[0].env_map_built == !envk[k] && st.light_samples_batched == !envk[k],
                "%s/%s: --stats says %s, the map's own tables %s, light samples %s", integ, names[k],
                envk[k] ? "product sampling" : "the map alone", envk[k] ? "not built" : "built",
-               envk[k] ? "one at a time" : "a pixel's drawn together (render_batched.c)");
+               envk[k] ? "one at a time" : "drawn together (render_wave.c)");
     elr_image_free(&img);
   }
   memcpy(ref, res[0], sizeof ref);
