@@ -575,6 +575,22 @@ EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envligh
                                           float wi[3], float rgb[3], float *pdf);
 EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
                                         const el_envlight_mix_weights *w, const float n[3], const float dir[3]);
+/* The per-call work of sample_li_mix_cos and pdf_li_mix_cos for one (w, n), done once (issue 22's renderer:
+ * a shading point's light sample and its BSDF sample's pdf, and points that share a normal): prepare fills
+ * t (about 2.2 KB, no allocation), then the _table calls give exactly what sample_li_mix_cos and
+ * pdf_li_mix_cos give with that w and n, bit for bit (they are those calls' own second halves). */
+typedef struct el_envlight_mix_cos_table {
+  int usable, hn;                            /* h usable with l; the normal was usable (nl) */
+  float n[3], nl[3], s;                      /* the world normal; in light space; the bounds' sum S(n) */
+  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1];     /* the normalised weights */
+  float bm[32 * 16];                         /* the cells' running sums of bound x mass */
+} el_envlight_mix_cos_table;
+EL_DEF void el_envlight_mix_cos_prepare(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w,
+                                        const float n[3], el_envlight_mix_cos_table *t);
+EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *t,
+                                                const float u[2], float wi[3], float rgb[3], float *pdf);
+EL_DEF float el_envlight_pdf_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *t,
+                                              const float dir[3]);
 /* The mixture's solid-angle density at dir: pdf_li(dir) x w_part / share_part for the part holding dir
  * (0 for a part of weight 0). With default weights: pdf_li(dir), bit for bit. */
 EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
@@ -645,7 +661,10 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    sample and per pdf (512 bounds in a vectorisable loop, then a running sum): 7.3x (3.4 against
  *    0.47 us) and, before the loop was vectorised, 9.2x sample_li_cos's time with radiance (sunrise, best
  *    of 5 interleaved rounds, loaded machine); so at equal time it wins on sun maps (sunrise, city:
- *    10-165x less variance), not on lamp maps. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
+ *    10-165x less variance), not on lamp maps. el_envlight_mix_cos_prepare does the 512 bounds once per (w, n)
+ *    and the _table calls reuse them (a shading point's sample and its BSDF sample's pdf, points sharing a
+ *    normal: issue 22's renderer keeps 8 per thread, 4.6x -> 1.8x its render time with the cache on
+ *    scenes/sun_shadow_object.pbrt). MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
  *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
@@ -4123,16 +4142,42 @@ EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_
   return el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, dir);
 }
 
+EL_DEF void el_envlight_mix_cos_prepare(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w,
+                                        const float n[3], el_envlight_mix_cos_table *t) {
+  int k;
+  t->n[0] = n ? n[0] : 0.0f; t->n[1] = n ? n[1] : 0.0f; t->n[2] = n ? n[2] : 0.0f;
+  t->usable = el_envlight__hot_usable(l, h);
+  t->hn = 0; t->s = 0.0f; t->nl[0] = t->nl[1] = t->nl[2] = 0.0f;
+  for (k = 0; k <= EL_ENVLIGHT_HOTSPOT_MAX; ++k) t->a[k] = 0.0;
+  if (!t->usable) return;
+  el_envlight__hot_weights_cos(h, w, t->a);
+  t->hn = el_envlight__hot_normal(l, t->n, t->nl);
+  if (h->cell_dist) t->s = el_envlight__hot_bounds(h, t->hn ? t->nl : NULL, t->bm);
+}
+
+EL_DEF float el_envlight_pdf_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *tab,
+                                              const float dir[3]) {
+  if (!tab->usable || !el_envlight__hot_usable(l, h)) return el_envlight_pdf_li_cos(l, tab->n, dir);
+  return el_envlight__hot_pdf_cos(l, h, tab->a, tab->hn ? tab->nl : NULL, tab->s, dir);
+}
+
 EL_DEF void el_envlight_sample_li_mix_cos(const el_envlight *l, const el_envlight_hotspots *h,
                                           const el_envlight_mix_weights *w, const float n[3], const float u[2],
                                           float wi[3], float rgb[3], float *pdf) {
-  double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
-  float fu, fv, pb, uu, nl[3], s = 0.0f, bm[32 * 16];
-  int k, iu, iv, hn, cell = 0;
+  el_envlight_mix_cos_table t;
   if (!el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf); return; }
-  el_envlight__hot_weights_cos(h, w, a);
-  hn = el_envlight__hot_normal(l, n, nl);
-  if (h->cell_dist) s = el_envlight__hot_bounds(h, hn ? nl : NULL, bm);
+  el_envlight_mix_cos_prepare(l, h, w, n, &t);
+  el_envlight_sample_li_mix_cos_table(l, h, &t, u, wi, rgb, pdf);
+}
+
+EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *tab,
+                                                const float u[2], float wi[3], float rgb[3], float *pdf) {
+  const double *a = tab->a;
+  const float *nl = tab->nl, *bm = tab->bm, s = tab->s;
+  double c = 0.0, u0;
+  float fu, fv, pb, uu;
+  int k, iu, iv, hn = tab->hn, cell = 0;
+  if (!tab->usable || !el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, tab->n, u, wi, rgb, pdf); return; }
   u0 = (double)el_envlight__clamp_u(u[0]);
   for (k = 0; k < h->count; ++k) {
     if (a[k] > 0.0 && u0 < c + a[k]) break;

@@ -579,7 +579,48 @@ static void test_hostile(void) {
   el_envlight_free(&l);
 }
 
+/* el_envlight_mix_cos_prepare + the _table calls (the renderer's sun cache: one table per shading normal,
+ * reused for many samples and pdfs) give sample_li_mix_cos's and pdf_li_mix_cos's results bit for bit,
+ * whichever calls came between, for normals up, sideways, down, zero, and spot weights 0, 0.03, default */
+static void test_table(void) {
+  static float px[MAXWH * 3];
+  static const float normals[5][3] = {{0, 0, 1}, {1, 0, 0}, {0, 0.6f, -0.8f}, {0.3f, -0.5f, 0.81f}, {0, 0, 0}};
+  el_envlight l;
+  el_envlight_hotspots h;
+  int rot, ni, wi_, i, bad = 0, calls = 0;
+  for (rot = 0; rot < 2; ++rot) {
+    make_map(MAP_ONE, px);
+    make_light(&l, px, rot);
+    el_envlight_hotspots_init(&h, &l, NULL);
+    for (ni = 0; ni < 5; ++ni)
+      for (wi_ = 0; wi_ < 3; ++wi_) {
+        el_envlight_mix_weights w;
+        el_envlight_mix_cos_table t;
+        memset(&w, 0, sizeof w);
+        if (wi_ < 2) { w.spot[0] = wi_ == 0 ? 0.0f : 0.03f; w.rest = 1.0f; }
+        el_envlight_mix_cos_prepare(&l, &h, &w, normals[ni], &t);
+        for (i = 0; i < 2000; ++i) {
+          float u[2], a[3], b[3], ra[3], rb[3], pa, pb, d[3];
+          u[0] = frand(); u[1] = frand();
+          el_envlight_sample_li_mix_cos(&l, &h, &w, normals[ni], u, a, ra, &pa);
+          el_envlight_sample_li_mix_cos_table(&l, &h, &t, u, b, rb, &pb);
+          if (memcmp(a, b, sizeof a) || memcmp(ra, rb, sizeof ra) || memcmp(&pa, &pb, sizeof pa)) ++bad;
+          d[0] = 2 * frand() - 1; d[1] = 2 * frand() - 1; d[2] = 2 * frand() - 1;
+          pa = el_envlight_pdf_li_mix_cos(&l, &h, &w, normals[ni], d); pb = el_envlight_pdf_li_mix_cos_table(&l, &h, &t, d);
+          if (memcmp(&pa, &pb, sizeof pa)) ++bad;
+          pa = el_envlight_pdf_li_mix_cos(&l, &h, &w, normals[ni], a); pb = el_envlight_pdf_li_mix_cos_table(&l, &h, &t, a);
+          if (memcmp(&pa, &pb, sizeof pa) || !(pa > 0.0f)) ++bad;
+          calls += 3;
+        }
+      }
+    el_envlight_hotspots_free(&h);
+    el_envlight_free(&l);
+  }
+  check(bad == 0, "mix_cos_prepare + the _table calls == sample_li_mix_cos / pdf_li_mix_cos bit for bit, one table reused (%d of %d differ)", bad, calls);
+}
+
 int main(void) {
+  test_table();
   test_detection();
   test_defaults();
   test_chi2();

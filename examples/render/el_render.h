@@ -97,6 +97,10 @@ typedef struct elr_render_options {
                            under a sun map, the product around the mirror direction otherwise (0: never; issue 20) */
   float env_light_alpha; /* < 0: ELR_ENV_LIGHT_ALPHA; else with product sampling, directlighting vertices whose lobes
                             are diffuse or of alpha >= it take the light sample alone (no BSDF sample; inf: never) */
+  int env_sun;          /* issue 22 (sun.c): 1 on for a product-sampled sun map (elr__sun_share) with hot spots: a pilot learns where they are
+                           hidden and the light samples there go to the rest of the map x cosine (1.3-1.9x less variance
+                           in the sun's shadow at equal samples, but 1.3-1.8x the render's CPU time on the bench scenes:
+                           bench/bench_sun_render.c); 0 and -1 (the default, until its per-sample cost is down) off */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);
 
@@ -152,6 +156,14 @@ typedef struct elr_stats {
   double t_light_distribution, t_area_lights;
   int nlight_stats;             /* the first ELR_STATS_LIGHTS lights */
   elr_light_stats light[ELR_STATS_LIGHTS];
+  /* issue 22: the sun cache (sun.c); sun_used 0: none was built */
+  int sun_used, sun_spots;
+  float sun_spot_axis[8][3], sun_spot_half_angle[8], sun_spot_share[8]; /* the hot spots (radians; sample_li's share) */
+  float sun_cell, sun_floor;  /* the cells' edge (world units); the spots' share of the samples where none is seen */
+  int64_t sun_pilot_points, sun_pilot_rays, sun_cells, sun_cells_lowered, sun_cells_dark;
+  double t_sun, t_sun_cpu;    /* the pilot's wall and CPU time (in t_total, not in t_render) */
+  uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* the sun light's samples; at lowered cells; at cells where
+                                                              no spot was seen; landing in a spot's cone */
 } elr_stats;
 
 typedef struct elr_image { int width, height; float *rgb; } elr_image; /* linear RGB, top row first */

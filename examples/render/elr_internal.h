@@ -782,6 +782,9 @@ typedef struct elr_tstats { /* one thread's counts */
   uint64_t env_light_only;       /* of the product ones: without a BSDF sample (elr_env_light_only) */
   uint64_t portal_used, portal_fallback; /* light samples through portals, and behind them (the map's) */
   double t_embree; /* the wave loop: seconds inside its Embree calls */
+  uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* sun.c (--stats): environment light samples at vertices the
+                        sun cache knows, of them where it lowered the spots' weight (and where it saw no spot), and of
+                        the looked-up ones those that landed in a spot's cone */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
@@ -802,6 +805,7 @@ typedef struct elr_ctx {
   const elr_light *batch_light;
   int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_WAVE needs batch_light) */
   int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
+  const struct elr_sun *sun; /* sun.c: where the environment's hot spots are hidden (NULL: not learnt) */
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
@@ -827,10 +831,11 @@ typedef struct elr_path_state {
   int prev_has_n;  /* the last vertex's product-sampling normal (elr_bsdf_cos_normal) exists: prev_n */
   elr_v3 prev_n;
   float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
+  const struct elr_sun_cell *prev_sun; /* sun.c: the last vertex's sun-cache cell (NULL: the light's own density) */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
-  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f;
+  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f; p->prev_sun = NULL;
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
@@ -891,5 +896,37 @@ typedef struct elr_wave elr_wave;
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile); /* NULL: out of memory */
 void elr_wave_free(elr_wave *W);
 void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1, int y1, el_film_tile *tile, elr_tstats *ts);
+
+/* >> sun.c: where the environment's hot spots are hidden (issue 22): a pilot's cache of their visibility
+ * over world-space cells, and the light density that moves a hidden spot's samples to the rest */
+typedef struct elr_sun elr_sun;
+typedef struct elr_sun_cell elr_sun_cell;
+#define ELR_SUN_INFO_SPOTS EL_ENVLIGHT_HOTSPOT_MAX
+typedef struct elr_sun_info {
+  int spots;                                /* hot spots found (el_envlight_hotspots_init's defaults) */
+  el_envlight_hotspot spot[ELR_SUN_INFO_SPOTS];
+  float cell, floor;                        /* the cells' edge (world units); the spots' share where none is seen */
+  int64_t pilot_points, pilot_rays, cells, cells_lowered, cells_dark; /* dark: no spot seen */
+  double seconds, cpu_seconds;              /* the pilot and the table: wall time, CPU time (all threads) */
+} elr_sun_info;
+/* 0 and *out set (NULL when the light has no hot spot), -1 out of memory. The pilot runs on nthreads threads
+ * (the same cache for any number). */
+int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nthreads, elr_sun **out);
+void elr_sun_free(elr_sun *S);
+const elr_sun_info *elr_sun_get_info(const elr_sun *S);
+const elr_light *elr_sun_light(const elr_sun *S);
+/* the cell of hit h seen from wo when it lowers a spot's weight; NULL: the light's own density there */
+const elr_sun_cell *elr_sun_lookup(const elr_sun *S, const elr_hit *h, elr_v3 wo);
+/* the light sample and the pdf at a vertex of cell c (n: product sampling's normal, or NULL: the map alone) */
+void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], float wi[3], float L[3], float *pdf);
+float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float wi[3]);
+int elr_sun_in_spot(const elr_sun *S, const float wi[3]);
+/* elr_bsdf_cos_normal at a vertex of cell c (NULL: the same): at a lowered cell also where only the sun map's
+ * choice for diffuse lobes asked for the map alone (sun.c) */
+int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n);
+float elr_sun_cell_alpha(const elr_sun_cell *c); /* sum P_k v_k / sum P_k of the cell (NULL: 1) */
+void elr_sun_count(const elr_sun *S, const elr_sun_cell *c, const float wi[3], float pdf, elr_tstats *ts); /* --stats */
+/* elr_light_sample_li for the sun's light at a vertex of cell c (not NULL), counted for --stats */
+void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], elr_light_sample *ls, elr_tstats *ts);
 
 #endif

@@ -61,15 +61,22 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   int delta = elr_light_is_delta(l);
   /* the normal of the environment's product sampling at this vertex (NULL: the BSDF transmits); the
    * BSDF sample's MIS weight below uses the same one, so both pdfs are the same density */
+  /* (issue 22, sun.c: where the pilot found the map's hot spots hidden, a density that draws them less) */
+  int sunl = C->sun && l == elr_sun_light(C->sun);
+  const elr_sun_cell *sc = sunl ? elr_sun_lookup(C->sun, h, wo) : NULL;
   elr_v3 nc;
-  const elr_v3 *n = elr_bsdf_cos_normal(b, wo, &nc) ? &nc : NULL;
+  const elr_v3 *n = elr_sun_cos_normal(s, sc, b, wo, &nc) ? &nc : NULL;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
-  int lonly = elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b);
+  int lonly = !sc && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c: MIS kept) */
   /* <<Sample light source with multiple importance sampling>> */
   if (delta || C->ls != ELR_LS_BSDF) {
     elr_light_sample ls;
     if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
-    elr_light_sample_li(l, s, h->p, n, ul, &ls);
+    if (sc) elr_sun_light_sample(C->sun, sc, n, ul, &ls, ts);
+    else {
+      elr_light_sample_li(l, s, h->p, n, ul, &ls);
+      if (sunl) { float d[3]; elr_to3(ls.wi, d); elr_sun_count(C->sun, NULL, d, ls.pdf, ts); }
+    }
     if (ls.portal >= 0) { if (ls.portal) ts->portal_used++; else ts->portal_fallback++; }
     if (ls.pdf > 0.f) {
       /* <<Compute BSDF value for light sample>> */
@@ -114,7 +121,11 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
        * the dim parts of the map, which only BSDF sampling covers: the power heuristic gives them 1) */
       if (!elr_occluded(s, elr_spawn_origin(h, wi), wi, INFINITY)) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pdf, elr_light_pdf_li_at(l, h->p, n, wi));
+        if (C->ls == ELR_LS_MIS) {
+          float d[3];
+          elr_to3(wi, d);
+          w = elr_power_heuristic(pdf, sc ? elr_sun_pdf(C->sun, sc, n, d) : elr_light_pdf_li_at(l, h->p, n, wi));
+        }
         /* <<Add light contribution from material sampling>> */
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, elr_light_le(l, wi)), w / pdf));
       }

@@ -26,6 +26,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   int depth, specular = p->specular, prev_has_n = p->prev_has_n;
   float prev_pdf = p->prev_pdf, eta_scale = p->eta_scale;
   elr_v3 prev_n = p->prev_n, prev_p = p->ray.o; /* prev_p: where the last light sample was drawn (portals) */
+  const elr_sun_cell *prev_sun = p->prev_sun; /* and its sun-cache cell (sun.c) */
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;
@@ -44,7 +45,13 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
         if (depth > 0 && !specular && C->light_sampling) {
           if (C->ls == ELR_LS_LIGHT) continue;
           if (C->ls == ELR_LS_MIS) /* the light's density as the previous vertex's light sample had it: its normal */
-            w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * elr_light_pdf_li_at(l, prev_p, prev_has_n ? &prev_n : NULL, r.d));
+          {
+            float d[3];
+            elr_to3(r.d, d);
+            w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * (prev_sun && l == elr_sun_light(C->sun)
+                                                                    ? elr_sun_pdf(C->sun, prev_sun, prev_has_n ? &prev_n : NULL, d)
+                                                                    : elr_light_pdf_li_at(l, prev_p, prev_has_n ? &prev_n : NULL, r.d)));
+          }
         }
         L = elr_add(L, elr_mul(elr_vmul(beta, elr_light_le(l, r.d)), w));
       }
@@ -79,8 +86,9 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
     if (elr_isblack(f) || pdf == 0.f) break;
     beta = elr_mul(elr_vmul(beta, f), fabsf(elr_dot(wi, b.ns)) / pdf);
     specular = spec; prev_pdf = pdf;
-    prev_has_n = elr_bsdf_cos_normal(&b, wo, &prev_n); /* the normal this vertex's light sample used */
     prev_p = h.p;
+    prev_sun = C->sun ? elr_sun_lookup(C->sun, &h, wo) : NULL;
+    prev_has_n = elr_sun_cos_normal(s, prev_sun, &b, wo, &prev_n); /* the normal this vertex's light sample used */
     if (spec == 2) eta_scale = elr_eta_scale(eta_scale, &b, wo); /* a specular transmission */
     /* the last vertex's continuation only matters for the emitters' BSDF-sampled part */
     if (depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;

@@ -17,7 +17,8 @@
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
- * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|wave (the per-tile loop: the reference or the wave loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree). */
+ * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|wave (the per-tile loop: the reference or the wave loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree),
+ * --sun auto|off|on (issue 22, sun.c: a pilot learns where the map's hot spots are hidden; auto: off for now). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -110,6 +111,10 @@ int main(int argc, char **argv) {
       if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
       else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
       else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
+    } else if (!strcmp(a, "--sun") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "auto")) o.env_sun = -1; else if (!strcmp(m, "off")) o.env_sun = 0; else if (!strcmp(m, "on")) o.env_sun = 1;
+      else { fprintf(stderr, "render: --sun auto|off|on\n"); return 1; }
     } else if (!strcmp(a, "--loop") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "one")) o.loop = ELR_LOOP_ONE; else if (!strcmp(m, "wave")) o.loop = ELR_LOOP_WAVE;

@@ -136,6 +136,8 @@ static void *elr__worker(void *arg) {
   J->total.camera += ts.camera; J->total.bounce += ts.bounce; J->total.shadow += ts.shadow;
   J->total.bsdfl += ts.bsdfl; J->total.samples += ts.samples; J->total.t_embree += ts.t_embree;
   J->total.env_product += ts.env_product; J->total.env_map += ts.env_map; J->total.env_light_only += ts.env_light_only;
+  J->total.sun_looked += ts.sun_looked; J->total.sun_lowered += ts.sun_lowered; J->total.sun_dark += ts.sun_dark;
+  J->total.sun_to_spot += ts.sun_to_spot;
   J->total.portal_used += ts.portal_used; J->total.portal_fallback += ts.portal_fallback;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
@@ -147,7 +149,7 @@ void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
   o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
   o->env_lobe_alpha = -1.f; o->env_light_alpha = -1.f;
-  o->loop = -1; o->wave_api = -1; o->split = -1;
+  o->loop = -1; o->wave_api = -1; o->split = -1; o->env_sun = -1;
 }
 
 /* >> what the scene calls for */
@@ -577,7 +579,41 @@ fail:
   return -1;
 }
 
+/* issue 22 (sun.c): the pilot that learns where the sampled environment's hot spots are hidden, for the
+ * first emitting environment sampled by product sampling (the default; not behind portals) */
+static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int fb[4], int nthreads, elr_stats *st, elr_sun **sun) {
+  const elr_scene *s = C->s;
+  int i;
+  *sun = NULL;
+  if (o->env_sun <= 0 || !C->light_sampling || C->ls == ELR_LS_BSDF) return 0; /* (-1, the default: off, el_render.h) */
+  for (i = 0; i < s->nlight; i++) {
+    const elr_light *l = &s->light[i];
+    if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l) || !l->product || l->portal || !l->env_sample) continue;
+    /* only under a sun (elr__sun_share): on studio.hdr's lamps the cache gave 2.4x MORE variance in the
+     * largest lamp's shadow (its other lamps stay lit and the rest x cosine draws them without the cosine:
+     * envlight.h's NOTES ON HOT SPOTS 4), bench/bench_sun_render.c on scenes/bench_studio.pbrt */
+    if (!s->env_sunny) return 0;
+    if (elr_sun_build(C, l, fb, nthreads, sun) != 0) return -1;
+    C->sun = *sun;
+    if (st && *sun) {
+      const elr_sun_info *in = elr_sun_get_info(*sun);
+      int k;
+      st->sun_used = 1; st->sun_spots = in->spots; st->sun_cell = in->cell; st->sun_floor = in->floor;
+      for (k = 0; k < in->spots && k < 8; k++) {
+        st->sun_spot_axis[k][0] = in->spot[k].axis[0]; st->sun_spot_axis[k][1] = in->spot[k].axis[1]; st->sun_spot_axis[k][2] = in->spot[k].axis[2];
+        st->sun_spot_half_angle[k] = in->spot[k].half_angle; st->sun_spot_share[k] = in->spot[k].share;
+      }
+      st->sun_pilot_points = in->pilot_points; st->sun_pilot_rays = in->pilot_rays; st->sun_cells = in->cells;
+      st->sun_cells_lowered = in->cells_lowered; st->sun_cells_dark = in->cells_dark; st->t_sun = in->seconds;
+      st->t_sun_cpu = in->cpu_seconds;
+    }
+    return 0;
+  }
+  return 0;
+}
+
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
+  elr_sun *sun = NULL;
   elr_ctx C;
   elr_job J;
   elr_sampler_tables T;
@@ -626,6 +662,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 1024) nthreads = 1024;
+  if (elr__sun_prepare(&C, o, fb, nthreads, st, &sun) != 0) { snprintf(err, errlen, "out of memory for the sun cache"); goto done; }
   /* splitting: the light and BSDF samples per camera sample, chosen by a pilot */
   if (elr__split_choose(&C, o, s, fb, &T, nthreads, st, split_saved, err, errlen) != 0) goto done;
   if (elr__run(&C, o, &film, &T, nthreads, 1, o->seed, o->quiet, &J, err, errlen) != 0) goto done;
@@ -638,9 +675,12 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     st->t_render = elr_now() - J.t0;
     st->t_render_cpu = elr_cpu_now() - J.cpu0;
     elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
+    st->sun_looked = J.total.sun_looked; st->sun_lowered = J.total.sun_lowered; st->sun_dark = J.total.sun_dark;
+    st->sun_to_spot = J.total.sun_to_spot;
   }
   rc = 0;
 done:
+  elr_sun_free(sun);
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
   free(J.ready); elr_sampler_tables_free(&T);
   elr__split_restore(s, split_saved);

@@ -50,7 +50,9 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
   const elr_scene *s = C->s;
   elr_v3 nc;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (as elr_estimate_direct) */
-  int lonly = C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_bsdf_cos_normal(b, wo, &nc), b);
+  /* (the normal as the light sample's: at a lowered sun-cache cell, sun.c's) */
+  const elr_sun_cell *sc = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
+  int lonly = !sc && C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_sun_cos_normal(s, sc, b, wo, &nc), b);
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
@@ -164,6 +166,8 @@ struct elr_wave {
   float u[2 * ELR_WAVE], wi[3 * ELR_WAVE], Le[3 * ELR_WAVE], pdf[ELR_WAVE];
   elr_v3 normal[ELR_WAVE]; /* product sampling: each light sample's normal (elr_bsdf_cos_normal), */
   int has_n[ELR_WAVE];     /* or 0: the map alone */
+  const elr_sun_cell *sc[ELR_WAVE];  /* sun.c: each light sample's sun-cache cell (NULL: the light's own density) */
+  const elr_sun_cell *vsc[ELR_WAVE]; /* and each camera sample's vertex's */
   elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
   elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
   elr_wave_rays rays, shadows;
@@ -200,9 +204,10 @@ void elr_wave_free(elr_wave *W) {
 /* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
  * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
  * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does); with portals
- * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct) */
+ * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct);
+ * at a vertex whose sun-cache cell lowers a hot spot (sc[i], sun.c) elr_sun_sample */
 static void elr__env_samples(const elr_light *l, int n, const float *u, const elr_v3 *normal, const int *has_n, const elr_v3 *pos,
-                             float *wi, float *Le, float *pdf, elr_tstats *ts) {
+                             float *wi, float *Le, float *pdf, const elr_sun *sun, const elr_sun_cell *const *sc, elr_tstats *ts) {
   int i, k, nm = 0, idx[ELR_WAVE];
   float um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
   if (l->portal) {
@@ -214,9 +219,17 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
     }
     return;
   }
-  for (i = 0; i < n && !has_n[i]; i++) {}
-  if (!l->product || i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; } /* (the map alone for all) */
+  if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
+  if (sun) { /* (sun.c: the vertices whose cell lowers a hot spot's weight, then the rest as below; --stats) */
+    nm = 0;
+    for (i = 0; i < n; i++)
+      if (sc[i]) elr_sun_sample(sun, sc[i], has_n[i] ? &normal[i] : NULL, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
+  } else { /* the map alone for all (diffuse vertices under a sun): one call on the arrays themselves */
+    for (i = 0; i < n && !has_n[i]; i++) {}
+    if (i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
+  }
   for (i = 0; i < n; i++) {
+    if (sun && sc[i]) continue;
     if (has_n[i]) {
       float nn[3];
       elr_to3(normal[i], nn);
@@ -225,12 +238,14 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
       idx[nm] = i; um[2 * nm] = u[2 * i]; um[2 * nm + 1] = u[2 * i + 1]; nm++;
     }
   }
-  if (nm == 0) return;
-  el_envlight_sample_li_n(l->env_sample, nm, um, wm, Lm, pm);
-  for (k = 0; k < nm; k++) {
-    i = idx[k];
-    memcpy(&wi[3 * i], &wm[3 * k], 3 * sizeof(float)); memcpy(&Le[3 * i], &Lm[3 * k], 3 * sizeof(float)); pdf[i] = pm[k];
+  if (nm > 0) {
+    el_envlight_sample_li_n(l->env_sample, nm, um, wm, Lm, pm);
+    for (k = 0; k < nm; k++) {
+      i = idx[k];
+      memcpy(&wi[3 * i], &wm[3 * k], 3 * sizeof(float)); memcpy(&Le[3 * i], &Lm[3 * k], 3 * sizeof(float)); pdf[i] = pm[k];
+    }
   }
+  if (sun) for (i = 0; i < n; i++) elr_sun_count(sun, sc[i], &wi[3 * i], pdf[i], ts);
 }
 
 /* The first vertex of the camera samples W->fast marks (a hit that emits nothing and from which the
@@ -296,6 +311,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
     W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t));
     W->Ld[j] = elr_v(0, 0, 0);
+    W->vsc[j] = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
     q->more = &W->more[nm]; q->nmore = W->npair - 1; nm += W->npair - 1;
     for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
@@ -306,9 +322,10 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
-        W->has_n[n] = elr_bsdf_cos_normal(&q->b, wo, &W->normal[n]);
+        W->sc[n] = W->vsc[j];
+        W->has_n[n] = elr_sun_cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
-        lonly = elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
+        lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
         W->light[np] = n++;
         W->lonly[np] = lonly;
@@ -323,7 +340,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     }
   }
   /* the light samples */
-  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, ts);
+  elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, C->sun, W->sc, ts);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
   for (k = 0; k < np; k++) {
@@ -359,8 +376,9 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
     else if (C->batch_light->product) {
       elr_v3 nc;
-      int has = elr_bsdf_cos_normal(&W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
-      p->bpdf_env = elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
+      const elr_sun_cell *c = W->vsc[W->pair_of[k]];
+      int has = elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      p->bpdf_env = c ? elr_sun_pdf(C->sun, c, has ? &nc : NULL, d) : elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
     } else {
       p->bpdf_env = el_envlight_pdf_li(env_sample, d);
     }
@@ -432,7 +450,8 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         float us[2];
         elr_sampler_get2d(S, &W->u[2 * n]);
         elr_sampler_get2d(S, us);
-        W->has_n[n] = elr_bsdf_cos_normal(b, wo, &W->normal[n]);
+        W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
+        W->has_n[n] = elr_sun_cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
         W->lpos[n] = h->p;
         if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
@@ -443,7 +462,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_sampler_save(S, &W->pos[j]);
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
-    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, ts);
+    elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, C->sun, W->sc, ts);
     for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
       int e = W->escaped[j];
       if (e < 0) continue;
@@ -452,7 +471,8 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       else if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
       else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) /* (only where the weight is
         * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
-        W->pdf[e] = elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
+        W->pdf[e] = W->p[j].prev_sun ? elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e])
+                                     : elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
       else W->pdf[e] = 0.f;
       el_envlight_le(env, &W->wi[3 * e], &W->Le[3 * e]);
     }
@@ -508,7 +528,8 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       if (elr_isblack(f) || pdf == 0.f) { W->alive[j] = 0; nalive--; continue; }
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
       p->specular = spec; p->prev_pdf = pdf;
-      p->prev_has_n = elr_bsdf_cos_normal(b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL; /* its sun-cache cell, */
+      p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n); /* the normal this vertex's light sample used */
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {

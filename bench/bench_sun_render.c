@@ -1,0 +1,302 @@
+/* bench_sun_render.c: the renderer's noise in the sun's shadow and in the sun, with issue 22's sun cache
+ * (examples/render/sun.c, --sun on) and without it (--sun off: the renderer's density before it).
+ *
+ *   bench_sun_render [SPP [SEEDS [THREADS [SCENE.pbrt ...]]]]   samples per pixel (16), seeds per case (16),
+ *                    threads (2), scenes (scenes/sun_shadow_object.pbrt: direct lighting; scenes/sun_porch.pbrt:
+ *                    path tracing, maxdepth 3; scenes/bench_city.pbrt: city.hdr's sun, direct lighting).
+ *                    Run from the repository's root.
+ *   bench_sun_render --csv [SPP [SEEDS [THREADS [SCENE ...]]]]   the same as CSV rows
+ *                    (kind,option,scene,class,spp,pixels,mean,variance,cpu_s; option off / on)
+ *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
+ *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below
+ *   bench_sun_render --picture [OUT.png]   where 2000 light samples of a shadowed ground point land, without
+ *                    and with the cache (the course's appendix, A3.14)
+ *
+ * For each scene: its pixels classed SHADOWED (5 rays through the pixel all hit points that do not see the
+ * largest hot spot's axis), LIT (all 5 see it) or neither (examples/render/tests/sun_measure.h); SEEDS
+ * renders with the cache off and on. Printed per class: the mean luminance with each (and the z score of
+ * their difference: unbiased when |z| is small), the mean over its pixels of the variance over the seeds,
+ * and their ratio (off / on: the gain at equal samples); the CPU seconds of one render loop (plus, for
+ * "on", the pilot's CPU seconds) and the gain at equal time (variance x seconds, off / on). */
+#include "tests/sun_measure.h"
+#include "image_io.h"
+#include "picture.h"
+#include <sys/stat.h>
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* ---- the picture: where the light samples of one shadowed ground point land, before and after ---- */
+static unsigned long long g_rng = 88172645463325252ULL;
+static float frand(void) {
+  g_rng ^= g_rng << 13; g_rng ^= g_rng >> 7; g_rng ^= g_rng << 17;
+  return (float)(g_rng >> 40) * (1.0f / 16777216.0f);
+}
+static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
+  double t = x / (1 + x);
+  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
+  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
+}
+static void dot(unsigned char *img, int W, int H, int x, int y, int r, unsigned char cr, unsigned char cg, unsigned char cb) {
+  int dx, dy;
+  for (dy = -r; dy <= r; ++dy)
+    for (dx = -r; dx <= r; ++dx) {
+      int xx = ((x + dx) % W + W) % W, yy = y + dy;
+      unsigned char *q;
+      if (yy < 0 || yy >= H) continue;
+      q = img + 3 * ((size_t)yy * (size_t)W + (size_t)xx);
+      q[0] = cr; q[1] = cg; q[2] = cb;
+    }
+}
+/* The point (-1.5, 0, 0) of scenes/sun_shadow_object.pbrt's ground, in the block's shadow: 2000 light
+ * samples of the renderer's density there without the cache (a diffuse vertex under a sun map: the map
+ * alone, el_envlight_sample_li) and with it (elr_sun_sample: the rest x cosine, the sun at the floor),
+ * drawn on the lat-long map (2x): red in the sun's cone, orange blocked by the scene, yellow reaching the
+ * sky, grey below the ground's horizon. */
+static int picture(const char *out) {
+  elr_scene *s = NULL;
+  elr_image im;
+  elr_render_options o;
+  elr_ctx C;
+  elr_sun *S = NULL;
+  elr_hit hit;
+  char err[512], label[200];
+  const elr_light *l;
+  const el_envlight *e;
+  const elr_sun_cell *cell;
+  int fb[4], panel, W, H, x, y, i, ns = 2000, Z = 2;
+  unsigned char *pix;
+  elr_v3 n = elr_v(0, 1, 0), wo;
+  if (elr_scene_load(EL_SOURCE_DIR "/scenes/sun_shadow_object.pbrt", &s, 1, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  elr_render_options_default(&o);
+  o.spp = 1; o.quiet = 1; o.nthreads = 1;
+  if (elr_render(s, &o, &im, NULL, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  elr_image_free(&im);
+  l = &s->light[0]; e = l->env_sample;
+  memset(&C, 0, sizeof C);
+  C.s = s;
+  elr_camera_init(&C.cam, &s->d, 1, 0);
+  elr_film_bounds(&s->d, fb);
+  if (elr_sun_build(&C, l, fb, 1, &S) != 0 || !S) { fprintf(stderr, "no sun cache\n"); return 1; }
+  if (!elr_intersect(s, elr_v(-1.5f, 1.f, 0.f), elr_v(0, -1, 0), INFINITY, &hit)) { fprintf(stderr, "no ground\n"); return 1; }
+  wo = elr_norm(elr_sub(elr_v(0, 2.6f, -7), hit.p));
+  cell = elr_sun_lookup(S, &hit, wo);
+  W = Z * e->width; H = Z * e->height;
+  pix = (unsigned char *)calloc((size_t)W * 2 * (size_t)H * 3, 1);
+  if (!pix) return 1;
+  for (panel = 0; panel < 2; ++panel) {
+    unsigned char *pm = pix + (size_t)panel * (size_t)W * (size_t)H * 3;
+    int nsun = 0, nsky = 0, nblock = 0, nbelow = 0;
+    g_rng = 88172645463325252ULL;
+    for (y = 0; y < H; ++y) /* the map, one stop darker */
+      for (x = 0; x < W; ++x) {
+        const float *t = e->texels + 3 * ((size_t)(y / Z) * (size_t)e->width + (size_t)(x / Z));
+        unsigned char *q = pm + 3 * ((size_t)y * (size_t)W + (size_t)x);
+        q[0] = to8(0.5 * t[0]); q[1] = to8(0.5 * t[1]); q[2] = to8(0.5 * t[2]);
+      }
+    for (i = 0; i < ns; ++i) {
+      float u[2], wi[3], L[3], pdf, d[3], uu, vv;
+      elr_v3 w;
+      u[0] = frand(); u[1] = frand();
+      if (panel == 0) el_envlight_sample_li(e, u, wi, L, &pdf);
+      else elr_sun_sample(S, cell, &n, u, wi, L, &pdf);
+      if (!(pdf > 0.f)) continue;
+      w = elr_from3(wi);
+      d[0] = e->to_world[0] * wi[0] + e->to_world[3] * wi[1] + e->to_world[6] * wi[2]; /* (light space) */
+      d[1] = e->to_world[1] * wi[0] + e->to_world[4] * wi[1] + e->to_world[7] * wi[2];
+      d[2] = e->to_world[2] * wi[0] + e->to_world[5] * wi[1] + e->to_world[8] * wi[2];
+      el_envlight_dir_to_uv(d, &uu, &vv);
+      x = (int)(uu * (float)W); y = (int)(vv * (float)H);
+      if (elr_sun_in_spot(S, wi)) { nsun++; dot(pm, W, H, x, y, 2, 255, 40, 40); }
+      else if (elr_dot(w, n) <= 0.f) { nbelow++; dot(pm, W, H, x, y, 1, 150, 150, 150); }
+      else if (elr_occluded(s, elr_spawn_origin(&hit, w), w, INFINITY)) { nblock++; dot(pm, W, H, x, y, 1, 255, 140, 0); }
+      else { nsky++; dot(pm, W, H, x, y, 1, 255, 230, 40); }
+    }
+    snprintf(label, sizeof label, "%s: %d IN THE SUN (RED), %d REACH THE SKY (YELLOW)", panel == 0 ? "BEFORE (THE MAP ALONE)" : "AFTER (THE SUN CACHE)", nsun, nsky);
+    el_draw_label(pm, W, H, 8, 8, label);
+    snprintf(label, sizeof label, "%d BLOCKED BY THE SCENE (ORANGE), %d BELOW THE GROUND (GREY)", nblock, nbelow);
+    el_draw_label(pm, W, H, 8, 34, label);
+    printf("%s: of %d samples %d in the sun's cone, %d blocked by the scene, %d below the ground, %d reach the sky\n",
+           panel == 0 ? "before (el_envlight_sample_li)" : "after (the sun cache's mixture)", ns, nsun, nblock, nbelow, nsky);
+  }
+  {
+    char dir[512];
+    const char *slash = strrchr(out, '/');
+    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
+  }
+  if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  printf("wrote %s\n", out);
+  free(pix);
+  elr_sun_free(S);
+  elr_scene_free(s);
+  return 0;
+}
+
+/* ---- one shadowed point, the library alone: which density pays in a shadow ----
+ * A ground point (normal up, light space of sunrise.hdr) behind a wall: the directions within 57 degrees of
+ * the sun's azimuth and below 34 degrees of elevation are blocked (WALL), or only those within 3 degrees
+ * of the sun (CONE: a small object). Variance per camera sample of E = integral of L max(0, n.w) V over
+ * 2^18 camera samples, for the light sample alone and for the light sample with a cosine BSDF sample
+ * (the power heuristic), each density: sample_li, sample_li_cos, the mixture with the spot at 3%
+ * (sample_li_mix) and the rest x cosine mixture (sample_li_mix_cos). */
+static float g_ax[3];
+static int g_cone;
+static int vis(const float *w) {
+  double el = asin(w[2]), a = atan2(w[1], w[0]) - atan2(g_ax[1], g_ax[0]);
+  if (g_cone) return w[0] * g_ax[0] + w[1] * g_ax[1] + w[2] * g_ax[2] < cos(3.0 * M_PI / 180);
+  while (a > M_PI) a -= 2 * M_PI;
+  while (a < -M_PI) a += 2 * M_PI;
+  return !(fabs(a) < 1.0 && el < 0.6);
+}
+static int shadow_point(void) {
+  el_image img;
+  el_envlight l;
+  el_envlight_hotspots h;
+  el_envlight_mix_weights w;
+  char err[256];
+  const float n[3] = {0, 0, 1};
+  static const char *name[4] = {"sample_li", "sample_li_cos", "sample_li_mix (sun 3%)", "sample_li_mix_cos (sun 3%)"};
+  int which, bsdf, i, N = 1 << 18;
+  if (el_image_load(EL_SOURCE_DIR "/data/envmaps/sunrise.hdr", &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS || el_envlight_hotspots_init(&h, &l, NULL) != EL_SUCCESS || h.count != 1) return 1;
+  memcpy(g_ax, h.spot[0].axis, sizeof g_ax);
+  memset(&w, 0, sizeof w);
+  w.spot[0] = 0.03f * h.rest_share / 0.97f; w.rest = h.rest_share;
+  for (g_cone = 0; g_cone < 2; g_cone++) {
+    printf("%s: variance per camera sample, light sample alone | with a cosine BSDF sample (MIS)\n",
+           g_cone ? "CONE (the sun hidden by a small object)" : "WALL (the sun and the low sky behind a wall hidden)");
+    for (which = 0; which < 4; which++) {
+      double v[2];
+      for (bsdf = 0; bsdf < 2; bsdf++) {
+        double s1 = 0, s2 = 0;
+        g_rng = 88172645463325252ULL;
+        for (i = 0; i < N; i++) {
+          float u[2], u2[2], wi[3], L[3], pdf, d[3], Lb[3];
+          double f = 0, pc, pl, pb, mis;
+          u[0] = frand(); u[1] = frand(); u2[0] = frand(); u2[1] = frand();
+          if (which == 0) el_envlight_sample_li(&l, u, wi, L, &pdf);
+          else if (which == 1) el_envlight_sample_li_cos(&l, n, u, wi, L, &pdf);
+          else if (which == 2) el_envlight_sample_li_mix(&l, &h, &w, u, wi, L, &pdf);
+          else el_envlight_sample_li_mix_cos(&l, &h, &w, n, u, wi, L, &pdf);
+          pc = wi[2] > 0 ? wi[2] / M_PI : 0;
+          mis = bsdf ? (double)pdf * pdf / ((double)pdf * pdf + pc * pc) : 1.0;
+          if (pdf > 0 && wi[2] > 0 && vis(wi)) f += L[1] * wi[2] / M_PI / pdf * mis;
+          if (bsdf) {
+            double r = sqrt(u2[0]), ph = 2 * M_PI * u2[1];
+            d[0] = (float)(r * cos(ph)); d[1] = (float)(r * sin(ph)); d[2] = (float)sqrt(1 - u2[0]);
+            pb = d[2] / M_PI;
+            pl = which == 0 ? el_envlight_pdf_li(&l, d) : which == 1 ? el_envlight_pdf_li_cos(&l, n, d)
+                 : which == 2 ? el_envlight_pdf_li_mix(&l, &h, &w, d) : el_envlight_pdf_li_mix_cos(&l, &h, &w, n, d);
+            if (vis(d) && pb > 0) { el_envlight_le(&l, d, Lb); f += Lb[1] * d[2] / M_PI / pb * (pb * pb / (pb * pb + pl * pl)); }
+          }
+          s1 += f; s2 += f * f;
+        }
+        s1 /= N;
+        v[bsdf] = s2 / N - s1 * s1;
+      }
+      printf("  %-28s %.3g | %.3g\n", name[which], v[0], v[1]);
+    }
+  }
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&l);
+  el_image_free(&img);
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  if (argc > 1 && !strcmp(argv[1], "--shadow-point")) return shadow_point();
+  if (argc > 1 && !strcmp(argv[1], "--picture")) return picture(argc > 2 ? argv[2] : "out/03-sun-samples.png");
+  static const char *defaults[3] = {"scenes/sun_shadow_object.pbrt", "scenes/sun_porch.pbrt", "scenes/bench_city.pbrt"};
+  int csv = argc > 1 && !strcmp(argv[1], "--csv");
+  if (csv) { argc--; argv++; }
+  {
+  int spp = argc > 1 ? atoi(argv[1]) : 16, ns = argc > 2 ? atoi(argv[2]) : 16, nt = argc > 3 ? atoi(argv[3]) : 2;
+  const char **scenes = argc > 4 ? (const char **)(argv + 4) : defaults;
+  int nsc = argc > 4 ? argc - 4 : 3, i, c;
+  if (spp < 1 || ns < 2 || ns > 1024 || nt < 1) { fprintf(stderr, "usage: bench_sun_render [SPP [SEEDS>=2 [THREADS [SCENE ...]]]]\n"); return 1; }
+  if (csv) printf("kind,option,scene,class,spp,pixels,mean,variance,cpu_s\n");
+  else printf("bench_sun_render: %d spp, %d seeds, %d threads\n", spp, ns, nt);
+  for (i = 0; i < nsc; i++) {
+    elr_scene *s = NULL;
+    char err[512];
+    unsigned char *cls;
+    sm_result off, on;
+    elr_image im;
+    elr_render_options o;
+    int w, h;
+    double toff, ton;
+    if (elr_scene_load(scenes[i], &s, 1, err, sizeof err) != 0) { printf("%s: %s\n", scenes[i], err); return 1; }
+    elr_render_options_default(&o);
+    o.spp = 1; o.quiet = 1; o.nthreads = nt;
+    if (elr_render(s, &o, &im, NULL, err, sizeof err) != 0) { printf("%s: %s\n", scenes[i], err); return 1; }
+    elr_image_free(&im);
+    if (getenv("SUN_CLASSES_FROM")) { /* (classes from another scene of the same geometry: e.g. its map without the sun) */
+      elr_scene *c2 = NULL;
+      if (elr_scene_load(getenv("SUN_CLASSES_FROM"), &c2, 1, err, sizeof err) != 0 || elr_render(c2, &o, &im, NULL, err, sizeof err) != 0) {
+        printf("%s\n", err); return 1;
+      }
+      elr_image_free(&im);
+      cls = sm_classes(c2, &w, &h);
+      elr_scene_free(c2);
+    } else
+      cls = sm_classes(s, &w, &h);
+    if (!cls) { printf("%s: no hot spot\n", scenes[i]); elr_scene_free(s); continue; }
+    if (sm_run(s, spp, ns, 0, nt, cls, w, h, &off) || sm_run(s, spp, ns, 1, nt, cls, w, h, &on)) return 1;
+    toff = off.cpu / ns; ton = on.cpu / ns + on.st.t_sun_cpu;
+    if (csv) {
+      for (c = 1; c <= 2; c++) {
+        printf("sun_cache,off,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, off.n[c], off.mean[c], off.var[c], toff);
+        printf("sun_cache,on,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, on.n[c], on.mean[c], on.var[c], ton);
+      }
+      sm_free(&off); sm_free(&on); free(cls);
+      elr_scene_free(s);
+      continue;
+    }
+    printf("%s (%dx%d, %s): cpu per render off %.3f s, on %.3f s (pilot %.3f s CPU); %.1f%% of the sun's light samples at lowered "
+           "vertices, %.1f%% in a spot's cone (off: see --stats)\n",
+           scenes[i], w, h, on.st.integrator_path ? "path" : "directlighting", toff, ton, on.st.t_sun_cpu,
+           on.st.sun_looked ? 100.0 * (double)on.st.sun_lowered / (double)on.st.sun_looked : 0.0,
+           on.st.sun_looked ? 100.0 * (double)on.st.sun_to_spot / (double)on.st.sun_looked : 0.0);
+    for (c = 1; c <= 2; c++) {
+      double g = on.var[c] > 0 ? off.var[c] / on.var[c] : 0;
+      printf("  %-8s %6d px  mean off %.5g on %.5g (z %+.2f)  variance off %.4g on %.4g: %.2fx less at equal spp, %.2fx at equal time;"
+             " median pixel's variance %.2fx less\n",
+             c == 1 ? "shadowed" : "lit", on.n[c], off.mean[c], on.mean[c], sm_z(&on, &off, cls, w * h, c, ns), off.var[c], on.var[c], g,
+             g * toff / ton, on.med[c] > 0 ? off.med[c] / on.med[c] : 0.0);
+    }
+    printf("  all pixels: z %+.2f\n", sm_z(&on, &off, cls, w * h, -1, ns));
+    if (getenv("SUN_DUMP")) { /* (the per-pixel variance, off then on, side by side: sqrt scaled to the off image's 99th percentile... its max) */
+      elr_image v;
+      double mx = 0;
+      int p2, x, y;
+      char path[600];
+      v.width = 2 * w; v.height = h; v.rgb = (float *)calloc((size_t)6 * (size_t)w * (size_t)h, sizeof(float));
+      for (p2 = 0; p2 < w * h; p2++) if (cls[p2] == 1 && sqrt(off.v[p2]) > mx) mx = sqrt(off.v[p2]);
+      for (y = 0; y < h; y++) for (x = 0; x < w; x++) {
+        float a0 = (float)(sqrt(off.v[y * w + x]) / mx), a1 = (float)(sqrt(on.v[y * w + x]) / mx);
+        float *q0 = &v.rgb[3 * (y * 2 * w + x)], *q1 = &v.rgb[3 * (y * 2 * w + w + x)];
+        q0[0] = q0[1] = q0[2] = a0; q1[0] = q1[1] = q1[2] = a1;
+        if (cls[y * w + x] == 1) { q0[0] *= 0.6f; q1[0] *= 0.6f; }
+      }
+      if (getenv("SUN_RATIO")) /* (instead: log2 of the variance ratio off / on, 3x3 box-averaged variances; green > 0, red < 0, 1 = 4x) */
+        for (y = 0; y < h; y++) for (x = 0; x < w; x++) {
+          double a0 = 0, a1 = 0, r;
+          int dx, dy;
+          float *q0 = &v.rgb[3 * (y * 2 * w + x)];
+          for (dy = -1; dy <= 1; dy++) for (dx = -1; dx <= 1; dx++) {
+            int xx = x + dx < 0 ? 0 : x + dx >= w ? w - 1 : x + dx, yy = y + dy < 0 ? 0 : y + dy >= h ? h - 1 : y + dy;
+            a0 += off.v[yy * w + xx]; a1 += on.v[yy * w + xx];
+          }
+          r = a1 > 0 && a0 > 0 ? log2(a0 / a1) / 2 : 0;
+          q0[0] = r < 0 ? (float)-r : 0.f; q0[1] = r > 0 ? (float)r : 0.f; q0[2] = cls[y * w + x] == 1 ? 0.3f : 0.f;
+        }
+      snprintf(path, sizeof path, "%s_%d.png", getenv("SUN_DUMP"), i);
+      elr_image_write(&v, path, err, sizeof err);
+      free(v.rgb);
+    }
+    sm_free(&off); sm_free(&on); free(cls);
+    elr_scene_free(s);
+  }
+  }
+  return 0;
+}
