@@ -7,6 +7,12 @@
  *                             then 2000 of el_envlight_sample_li_cos for a tilted normal, the normal's
  *                             horizon drawn; samples above it yellow, below it red. Written to OUT.png
  *                             (default out/product_samples.png, the folder created) for the tutorial
+ *   bench_product --library [MAP ...]   the library's own sampler (el_envlight_sample_li_cos) against
+ *                             sample_li: its tables (bytes, build ms: best and median of 5 builds, one
+ *                             core), and per normal the relative variance per sample, the time per
+ *                             sample (best of 3 runs, interleaved) and the time-to-unit-variance
+ *                             (relative variance x ns per sample; lower is better). Default maps: city
+ *                             and studio from data/envmaps. NSAMP as below.
  *   environment: NSAMP=n (samples per cell, 200000), ONLY=text (only strategies whose name holds it),
  *                MS=a,b,c (the three normal-table sizes, 8,16,32), BUILD=digits (build only tables
  *                3 * cells index + size index), DENSE=1 (an optimistic, NOT conservative bound: the
@@ -735,10 +741,94 @@ static int picture(const char *out, const char *path) {
   return 0;
 }
 
+/* ---- --library: the library's sampler as shipped (issue 20's numbers) ---- */
+static int cmp_double(const void *a, const void *b) { double x = *(const double *)a, y = *(const double *)b; return x < y ? -1 : x > y; }
+static void library_map(const char *path, int nsamp) {
+  el_image img;
+  char err[512];
+  el_envlight l;
+  double N[NN][3], E[NN], best = -1, ms[5], gv[2] = {0, 0}, gt[2] = {0, 0};
+  int x, y, k, j;
+  size_t bytes = 0;
+  if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
+  for (k = 0; k < 5; ++k) { /* builds on fresh lights */
+    double t0;
+    if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
+    t0 = now();
+    el_envlight_prepare_product(&l, NULL);
+    ms[k] = (now() - t0) * 1e3;
+    bytes = el_envlight_product_bytes(&l);
+    el_envlight_free(&l);
+  }
+  qsort(ms, 5, sizeof ms[0], cmp_double);
+  if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
+  el_envlight_prepare_product(&l, NULL);
+  el_envlight_prepare_sampling(&l);
+  memset(N, 0, sizeof N);
+  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
+  for (y = 0; y < img.height; ++y)
+    for (x = 0; x < img.width; ++x) {
+      double v = lum3(img.pixels + 3 * ((size_t)y * img.width + x));
+      if (v > best) {
+        double uu = (x + 0.5) / img.width, vv = (y + 0.5) / img.height;
+        best = v;
+        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
+      }
+    }
+  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  quadrature(&img, N, NN, E);
+  printf("\n%s (%dx%d): product tables %.2f MiB (%zu bytes), build %.1f ms best, %.1f median of 5\n", path, img.width, img.height,
+         bytes / 1048576.0, bytes, ms[0], ms[2]);
+  printf("  %-7s %-14s %10s %9s %11s   %-14s %10s %9s %11s\n", "normal", "sample_li_cos", "relvar", "ns", "relvar x ns", "sample_li", "relvar", "ns", "relvar x ns");
+  for (k = 0; k < NN; ++k) {
+    float n[3];
+    double rv[2], tn[2];
+    int strat;
+    for (j = 0; j < 3; ++j) n[j] = (float)N[k][j];
+    for (strat = 0; strat < 2; ++strat) {
+      double s1 = 0, s2 = 0, tbest = 1e30;
+      int rep;
+      rng g;
+      for (rep = 0; rep < 3; ++rep) {
+        double t0 = now();
+        g.s = 0x9e3779b97f4a7c15ull * (uint64_t)(k + 1);
+        s1 = s2 = 0;
+        for (j = 0; j < nsamp; ++j) {
+          float u[2], wi[3], rgb[3], pdf, c;
+          u[0] = rng_f(&g); u[1] = rng_f(&g);
+          if (strat == 0) el_envlight_sample_li_cos(&l, n, u, wi, rgb, &pdf);
+          else el_envlight_sample_li(&l, u, wi, rgb, &pdf);
+          c = wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2];
+          if (pdf > 0 && c > 0) { double f = lum3(rgb) * c / pdf; s1 += f; s2 += f * f; }
+        }
+        t0 = now() - t0;
+        if (t0 < tbest) tbest = t0;
+      }
+      { double m = s1 / nsamp; rv[strat] = (s2 / nsamp - m * m) / (E[k] * E[k]); }
+      tn[strat] = tbest / nsamp * 1e9;
+      gv[strat] += log(rv[strat]); gt[strat] += log(tn[strat]);
+    }
+    printf("  %-7s %-14s %10.4g %9.1f %11.4g   %-14s %10.4g %9.1f %11.4g\n", NNAME[k], "", rv[0], tn[0], rv[0] * tn[0], "", rv[1], tn[1], rv[1] * tn[1]);
+  }
+  printf("  %-7s %-14s %10.4g %9.1f %11.4g   %-14s %10.4g %9.1f %11.4g   (geometric means; product: %.1fx the efficiency)\n", "geomean", "",
+         exp(gv[0] / NN), exp(gt[0] / NN), exp((gv[0] + gt[0]) / NN), "", exp(gv[1] / NN), exp(gt[1] / NN), exp((gv[1] + gt[1]) / NN),
+         exp((gv[1] + gt[1] - gv[0] - gt[0]) / NN));
+  el_envlight_free(&l);
+  el_image_free(&img);
+}
+
 int main(int argc, char **argv) {
   const char *maps[5] = {"city", "sunset", "night", "forest", "studio"};
   const char *only = getenv("ONLY");
   int i, nsamp = getenv("NSAMP") ? atoi(getenv("NSAMP")) : 200000;
+  if (argc > 1 && !strcmp(argv[1], "--library")) {
+    if (argc == 2) {
+      library_map(EL_SOURCE_DIR "/data/envmaps/city.hdr", nsamp);
+      library_map(EL_SOURCE_DIR "/data/envmaps/studio.hdr", nsamp);
+    }
+    for (i = 2; i < argc; ++i) library_map(argv[i], nsamp);
+    return 0;
+  }
   if (argc > 1 && !strcmp(argv[1], "--picture"))
     return picture(argc > 2 ? argv[2] : "out/product_samples.png", argc > 3 ? argv[3] : EL_SOURCE_DIR "/data/envmaps/city.hdr");
   printf("Relative variance per sample of the irradiance estimate (Var / E^2, luminance) by normal (light space)\n"

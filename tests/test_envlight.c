@@ -1481,7 +1481,7 @@ static float ps_pdf_tested(const psrc *s, const float wi[3]) {
  * Also: every sample's pdf is finite and > 0 and equals the pdf function at its direction bit for bit,
  * and its radiance equals le(wi) bit for bit. Returns the p-value (1 when the test could not run). */
 static int g_prod_tests = 0;
-#define PROD_TESTS_PLANNED 28
+#define PROD_TESTS_PLANNED 31
 /* sub x sub midpoints per patch for the expectation (1: exact for a density bilinear in the map's
  * patches; maps over the product's size cap are bilinear in coarser patches: 4 there) */
 static int g_chi2_sub = 1;
@@ -1698,6 +1698,18 @@ static float *map_black_half(void) { /* the upper half black, the lower half a r
   for (k = PW * PH / 2; k < PW * PH; ++k) px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = 1.0f + (float)(k % PW) / 8.0f;
   return px;
 }
+static float *map_stripes(void) { /* 128 x 64: lit bands of columns, one across the seam (122..5), one at
+  40..50, a bright column at 90, black between them (issue 20's sparse normal tables: each cell row keeps
+  the span of its cells with weight, which wraps at the seam and holds black cells inside it) */
+  float *px = (float *)calloc(128 * 64 * 3, sizeof(float));
+  int k;
+  for (k = 0; k < 128 * 64; ++k) {
+    int x = k % 128, y = k / 128;
+    float v = (x >= 122 || x <= 5) ? 2.0f + (float)(y % 7) : (x >= 40 && x <= 50) ? 1.0f : x == 90 ? 300.0f : 0.0f;
+    px[3 * k] = px[3 * k + 1] = px[3 * k + 2] = v;
+  }
+  return px;
+}
 static float *map_pole_rows(void) { /* bright first and last rows */
   float *px = (float *)malloc(PW * PH * 3 * sizeof(float));
   int k;
@@ -1737,6 +1749,14 @@ static void test_product_chi2(const el_image *studio, const el_image *city) {
   chi2_product_case("pole rows 64x32", poles, PW, PH, 0, 0, UP, 32, 16, n, 111);
   chi2_product_case("pole rows 64x32", poles, PW, PH, 2, 1, NEAR_POLE, 32, 16, n, 112);
   chi2_product_case("1x48", col, 1, 48, 0, 0, TILT, 1, 24, n, 113);
+  { /* spans of cells with weight that wrap at the seam and hold black cells (sparse normal tables) */
+    static const double BACK[3] = {-0.6, 0.8, 0.0}, SEAM_UP[3] = {0.6, 0.0, 0.8};
+    float *stripes = map_stripes();
+    chi2_product_case("stripes 128x64", stripes, 128, 64, 0, 0, SEAM, 64, 32, n, 142);
+    chi2_product_case("stripes 128x64", stripes, 128, 64, 1, 0, BACK, 64, 32, n, 143);
+    chi2_product_case("stripes 128x64", stripes, 128, 64, 0, 1, SEAM_UP, 64, 32, n, 144);
+    free(stripes);
+  }
   chi2_product_case("64x1", row, 64, 1, 1, 0, SIDE, 32, 2, n, 114);
   { /* sizes the cells do not divide: 300x100 (64 cells over 300 patch columns), 60x21 (fewer patches than cells) */
     float *odd = (float *)malloc(300 * 100 * 3 * sizeof(float));
@@ -2031,6 +2051,41 @@ static void *prod_thread_fn(void *p) {
   }
   return NULL;
 }
+/* Texels at the ends of the float range (a denormal 1e-44, 1e-38 near FLT_MIN, a 1e30 sun, 3e38 near
+ * FLT_MAX) on a black map: product sampling stores its vertex grid in bfloat16 rounded up (issue 20), so
+ * every lit texel must keep a density > 0 towards it (a truncation would drop the denormal), and samples
+ * must keep their pdf == pdf_li_cos. */
+static void test_product_tiny_values(void) {
+  static const int TX[4][2] = {{10, 5}, {30, 20}, {50, 12}, {20, 27}};
+  static const float TV[4] = {1e-44f, 1e-38f, 1e30f, 3e38f};
+  float *px = (float *)calloc(PW * PH * 3, sizeof(float)), m[9];
+  el_envlight l;
+  int k, c, ok = 1, rt = 1;
+  for (k = 0; k < 4; ++k)
+    for (c = 0; c < 3; ++c) px[(TX[k][1] * PW + TX[k][0]) * 3 + c] = TV[k];
+  identity(m);
+  if (make_light_imp(&l, px, PW, PH, m, 0, 0) != EL_SUCCESS) { check(0, "tiny values: init failed"); free(px); return; }
+  for (k = 0; k < 4; ++k) {
+    double d[3];
+    float n[3], wi[3], rgb[3], p, q;
+    int j;
+    ref_uv_to_dir((TX[k][0] + 0.5) / PW, (TX[k][1] + 0.5) / PH, d);
+    for (c = 0; c < 3; ++c) n[c] = (float)d[c];
+    if (!(el_envlight_pdf_li_cos(&l, n, n) > 0.0f)) ok = 0; /* towards the texel, from a surface facing it */
+    for (j = 0; j < 64; ++j) {
+      float uu[2];
+      uu[0] = ((float)j + 0.5f) / 64.0f; uu[1] = (float)((j * 37) % 64 + 0.5f) / 64.0f;
+      el_envlight_sample_li_cos(&l, n, uu, wi, rgb, &p);
+      q = el_envlight_pdf_li_cos(&l, n, wi);
+      if (!(p > 0.0f) || p != q || !(p < INFINITY)) rt = 0;
+    }
+  }
+  check(ok, "product sampling, texels of 1e-44 (denormal), 1e-38, 1e30 and 3e38 on a black map: pdf_li_cos > 0 towards each");
+  check(rt, "product sampling on that map: 256 samples with pdf > 0, finite, == pdf_li_cos bit for bit");
+  el_envlight_free(&l);
+  free(px);
+}
+
 static void test_product_hard(const el_image *city) {
   el_envlight l;
   float *sunmap = map_sun();
@@ -2236,6 +2291,7 @@ int main(void) {
   test_product_coarse();
   test_product_unbiased(&studio, &city);
   test_product_hard(&city);
+  test_product_tiny_values();
   el_image_free(&studio);
   el_image_free(&city);
   printf("test_envlight: %d passed, %d failed\n", g_pass, g_fail);
