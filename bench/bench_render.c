@@ -102,7 +102,7 @@
  * 4063, soa 3919, single 4809 (packet16 3777 then), the sphere test two lanes at a time with SSE2
  * (Embree 995 -> 1009), active lanes by bit mask (907 -> 936). Loop CPU, one thread, interleaved rounds
  * against main's binary: bench_city 64 spp 0.85-0.90x, bench_studio 0.92-0.95x, path 0.95-0.98x.
- * After merging main's sun cache and product sampler: main 4119 -> 3541 (direct), 6146 -> 5862 (path). */
+ * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
