@@ -32,13 +32,9 @@
 #include <time.h>
 
 static const double PI = 3.14159265358979323846;
-#include "bench_common.h" /* process_now, make_parent_dir */
+#include "bench_common.h" /* process_now, make_parent_dir, picture_to8 / picture_dot, xorshift64_f */
 static double lum(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
-static unsigned long long g_rng = 88172645463325252ULL;
-static float frand(void) {
-  g_rng ^= g_rng << 13; g_rng ^= g_rng >> 7; g_rng ^= g_rng << 17;
-  return (float)(g_rng >> 40) * (1.0f / 16777216.0f);
-}
+static xorshift64 g_rng = {88172645463325252ULL};
 
 /* ---- the pbrt-v4 port: SummedAreaTable (double), WindowedPiecewiseConstant2D, the portal frame ---- */
 typedef struct pbrt_portal {
@@ -252,7 +248,7 @@ static int picture(const char *out, const char *path) {
   for (panel = 0; panel < 2; ++panel) {
     unsigned char *im = pix + (size_t)panel * (size_t)W * (size_t)H * 3;
     int nthrough = 0;
-    g_rng = 88172645463325252ULL;
+    g_rng.s = 88172645463325252ULL;
     for (y = 0; y < H; ++y) /* the map, one stop darker */
       for (x = 0; x < W; ++x) {
         const float *t = img.pixels + 3 * ((size_t)y * (size_t)W + (size_t)x);
@@ -271,7 +267,7 @@ static int picture(const char *out, const char *path) {
     for (i = 0; i < ns; ++i) {
       float u[2], wi[3], rgb[3], pdf;
       int ok;
-      u[0] = frand(); u[1] = frand();
+      u[0] = xorshift64_f(&g_rng); u[1] = xorshift64_f(&g_rng);
       if (panel == 0) el_envlight_sample_li(&L, u, wi, rgb, &pdf);
       else el_envlight_portal_sample_li(&EP, &L, pos, u, wi, rgb, &pdf);
       if (!(pdf > 0)) continue;
@@ -363,10 +359,10 @@ int main(int argc, char **argv) {
       double t0 = process_now(), sinkt = 0, tt;
       for (k = 0; k < 4; ++k) {
         double sum = 0, sum2 = 0;
-        g_rng = 88172645463325252ULL + (unsigned long long)(k * 7 + rep * 131);
+        g_rng.s = 88172645463325252ULL + (unsigned long long)(k * 7 + rep * 131);
         for (i = 0; i < N; ++i) {
           float u[2], wi[3], rgb[3], pdf = 0, f = 0, c;
-          u[0] = frand(); u[1] = frand();
+          u[0] = xorshift64_f(&g_rng); u[1] = xorshift64_f(&g_rng);
           if (s == 0) {
             el_envlight_sample_li(&L, u, wi, rgb, &pdf);
             if (pdf > 0 && !through(&rm, rm.pts[k], wi)) pdf = -1;

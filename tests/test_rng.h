@@ -11,7 +11,8 @@
  *   lcg g = {seed}; lcg_f(&g)     the film tests' and bench's linear congruential generator (Numerical
  *                                 Recipes' constants, 32-bit unsigned; lcg_next: the next state), floats
  *                                 in [0, 1) from its top 24 bits;
- *   xorshift32 x = {seed}; xorshift32_f(&x)  the MIP map tests' Marsaglia xorshift (13, 17, 5), likewise.
+ *   xorshift32 x = {seed}; xorshift32_f(&x)  the MIP map tests' Marsaglia xorshift (13, 17, 5), likewise;
+ *   xorshift64 x = {seed}; xorshift64_f(&x)  the portal's 64-bit xorshift (13, 7, 17), its top 24 bits.
  *
  * The streams are fixed: tests that check numbers drawn from a given seed rely on them. */
 #ifndef EL_TEST_RNG_H
@@ -51,6 +52,12 @@ static inline float xorshift32_f(xorshift32 *r) {
   r->s ^= r->s >> 17;
   r->s ^= r->s << 5;
   return (float)(r->s >> 8) * (1.0f / 16777216.0f);
+}
+
+typedef struct { unsigned long long s; } xorshift64;
+static inline float xorshift64_f(xorshift64 *r) {
+  r->s ^= r->s << 13; r->s ^= r->s >> 7; r->s ^= r->s << 17;
+  return (float)(r->s >> 40) * (1.0f / 16777216.0f);
 }
 
 #endif
