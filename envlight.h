@@ -333,16 +333,16 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 970
- * instructions (1090 with rgb), the pdf included. Builds its tables on first use (7.3 MB for a
- * 1024x512 map, at most about 17 MB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 900
+ * instructions (1030 with rgb), the pdf included. Builds its tables on first use (4.9 MiB for a
+ * 1024x512 map, at most 11 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
  * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
- * zero, NaN or infinite n, gives 0. About 380 instructions. Builds the tables on first use. */
+ * zero, NaN or infinite n, gives 0. About 410 instructions. Builds the tables on first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
  * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
@@ -401,7 +401,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    general rotation must find the same patch). The density is P(cell | n) x the patch's integer
  *    share x bil(s, t) / mean(corners): the warp's bilinear interpolant up to the units' rounding (the
  *    same variance per sample as before, measured). A sample costs a table lookup, four small binary
- *    searches, two linear inversions and the direction; the pdf an atan pair and the same tables.
+ *    searches, two linear inversions, the direction and the atan pair that locates it again (its pdf
+ *    then from the widths it picked); the pdf the atan pair and the same tables.
  *    WHERE IT CANNOT STAY ABOVE THE SURFACE: in cells that straddle the horizon of the bin's normals
  *    (the cells' size plus the bins' radius); such samples come back with n.wi <= 0 and contribute
  *    nothing. Their share is the share of the bound's mass in those cells, so it depends on how bright
@@ -430,32 +431,60 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    (17 MB of tables); a tighter per-bin bound (the maximum over 81 normals of the bin, not
  *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
- *    "exact". The default is the best variance at a fixed cost per sample, for 4.3 MB of tables.
+ *    "exact". The default is the best variance at a fixed cost per sample, for 2.9 MB of normal tables.
  *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random
- *    normal per call, the loop's own 9 subtracted): sample_li_cos 966 instructions (1094 with the
- *    radiance; before issue 20: 1179, 1310), pdf_li_cos 377 (419); sample_li 97 (261 with the radiance),
- *    pdf_li 76. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <= 150 and
- *    <= 1.5x pdf_li) are NOT met: the sample includes its own pdf (it runs pdf_li_cos's code on the
- *    sampled direction, about 260 instructions, so that the two agree bit for bit), and the pdf needs
- *    (u, v) to the bilinear's precision (two atan polynomials) plus the normal's bin. Time per estimate
- *    (table 4, light sampling alone, loaded machine, old and new back to back): 707 -> 405 ns on city,
- *    673 -> 379 on forest (sample_li: 160), so 1.7-1.8x less time-to-unit-variance (variance x time:
- *    city 23.7 -> 13.6, sample_li 414). TRIED AND DROPPED for issue 20: the light's own piecewise-
- *    constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340 instructions
- *    estimated) has 2.4x the variance on city (0.080 against 0.033, bench_product "table 32^2 64x32":
- *    20x on the normal facing up, where the sun's texel dominates and its density is flat while le is
- *    bilinear); an SSE2 count in place of the binary searches: more instructions (1049 against 953), not fewer.
- *    Not tried: a batched call for n normals, Conty and Lecocq's per-point 12x12 coarse level (its
- *    variance at 16x8 cells, above, is 2x the tables'), a diamond-angle patch parametrisation whose pdf
- *    needs no atan (the likely way to the targets).
- *    MEMORY: the vertex grid (4 bytes per vertex), the patch CDFs (2 bytes per patch) and the normal
- *    tables, 32^2 x (33 + 32 x 65) x 2 bytes = 4.3 MB: 7.3 MB at 1024x512 (8.7 before; the target 4 MB
- *    is not met: the normal tables alone are 4.3 MB). Maps over 2048x1024 use a coarse grid of that size
- *    (each coarse vertex the largest lum of the texels of its 3 x 3 coarse bins, so the density stays > 0
- *    wherever le is): at most about 17 MB for any map (before: 1.09 GB at 16384x8192). BUILD: 300 M
- *    instructions at 1024x512 (the normal tables 2.1 M bin-cell pairs: about 250 M), 29-53 ms on this
- *    loaded machine (target 20 ms: not met). el_envlight_product_options trade them: 32x16 cells and 16^2
- *    bins need 0.3 MB of tables and a sixteenth of their build, for 3x the variance.
+ *    normal per call, the loop's own 9 subtracted): sample_li_cos 902 instructions (1029 with the
+ *    radiance; 951 under a general rotation), pdf_li_cos 408 (436); sample_li 97 (265 with the
+ *    radiance), pdf_li 76. Before this round of issue 20: 988 (1116; 1034), 408 (432); before issue 20:
+ *    1179, 1310 and 444. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <=
+ *    150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about the pdf plus the pick. The
+ *    pdf (408) is the normal's bin (to light space, octahedral encoding: about 60), wi to light space
+ *    (27), (u, v) to the bilinear's precision (the two atan polynomials le() itself uses, so that rgb is
+ *    le(wi) bit for bit: about 110), the four table widths (about 50), the corners and the density
+ *    (about 60) and the calls; the sample adds the pick (four binary searches over 32, ~37, ~16 and 16
+ *    entries: about 190), two linear inversions, the direction (sinpi, cospi) and the atan pair again
+ *    (bit-for-bit agreement with pdf_li_cos needs the direction located as the pdf locates it).
+ *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
+ *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
+ *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
+ *    2.56 x 84 ns), studio 6.62 (0.0396 x 167 ns; before 6.80: 0.0396 x 172; sample_li 124): 33x and 19x
+ *    sample_li's efficiency. With a new random normal per call (renderer-like, cache-cold normal
+ *    tables; 1 M calls, best of 6 interleaved runs, CPU time): sample_li_cos 249 -> 238 ns, pdf_li_cos
+ *    69 -> 72 ns (the sparse tables' row offset is one more dependent load).
+ *    ISSUE 20, WHAT WAS TRIED (each measured; kept if it paid in time-to-unit-variance):
+ *    kept: the built check inlined (-25 instructions per call); the sample's pdf from the widths it
+ *    picked once the direction, located again, lands in the same patch (-70; the same bits as
+ *    pdf_li_cos: the same evaluation of the same values); sparse normal tables (each cell row only the
+ *    span of cells with weight, wrapping at the seam: 4.3 -> 2.9 MB, +14 instructions in the pdf, +23
+ *    in the sample); the vertex grid in bfloat16 rounded up (the patch CDFs built from the rounded
+ *    values: -1 MB, and the fastest per sample: half the cache footprint); the bounds' phi part per cell
+ *    column and two cells at a time (build 20.4 -> 15.7 ms, bit-identical tables). Dropped: the corners
+ *    recomputed from the texels instead of a stored grid (meets 4 MiB: 3.85 MiB, the same bits, but
+ *    +54 / +73 instructions and 18% more time per
+ *    sample with random normals: the texels are 6 MB against the grid's 1-2); a branch-free binary
+ *    search with fixed steps (-13 instructions per sample: not worth its code); the light's own
+ *    piecewise-constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340
+ *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
+ *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
+ *    place of the binary searches (1049 instructions against 953). Not tried: alias or guide tables (they
+ *    would replace the ~190 instructions of searches but need memory per normal bin beyond the 4 MiB
+ *    target, and alias tables break the stratification), a batched call for n normals (no instruction
+ *    saving without SIMD across samples: the work is table lookups), Conty and Lecocq's per-point 12x12
+ *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
+ *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
+ *    density would no longer be le's, and the atans are about a quarter of the pdf).
+ *    MEMORY: the vertex grid (2 bytes per vertex, bfloat16), the patch CDFs (2 bytes per patch) and the
+ *    sparse normal tables (2.9 MB for 32^2 bins x 64 x 32 cells; dense they were 4.3): 5,093,916 bytes =
+ *    4.86 MiB at 1024x512 (7.3 MiB before this round, 8.7 before issue 20; the target 4 MiB is not met
+ *    with the default options: 32x16 cells and 16^2 bins give 2.4 MB, for 3x the variance; the other
+ *    way, normal_bins 48 gives 1.6-1.7x less variance per sample at the same instructions per sample,
+ *    for 8.1 MiB and a 34 ms build: city 0.054 -> 0.033, studio 0.050 -> 0.029, geometric mean over up,
+ *    down, +x, +y, (0.6, -0.8, 0), (0.3, 0.5, 0.81); 64 gives 0.030 and 0.027 for 12.5 MiB). Maps over
+ *    2048x1024 use a coarse grid of that size (each coarse vertex the largest lum of the texels of its 3
+ *    x 3 coarse bins, so the density stays > 0 wherever le is): at most 11.0 MiB for any map (16.4 before,
+ *    1.09 GB before issue 20). BUILD: 242 M instructions at 1024x512 with init (310 M before; the bounds
+ *    two cells at a time with SSE2, the same bits as the scalar code), 15.7 ms (best of 7, CPU time,
+ *    2-core machine at load 5; 20.4 before, interleaved; target 20 ms); 4096x2048: about 80 ms.
  *
  * 3. EXACTNESS. pdf_li_cos(n, wi) of a sampled wi equals the returned pdf bit for bit, and rgb equals
  *    le(wi) bit for bit (signed-permutation matrices and general rotations alike: the sampler brings
@@ -2906,6 +2935,7 @@ struct el_envlight__warp {
   int fell_back;         /* compensated, but no vertex exceeds the mean: the plain density */
   float *sin_row;        /* h: sin(pi v_k) of texel row k - 1 */
   float *V;              /* (h + 2) x w: the vertex values; rows 0 and h + 1 (the poles) are 0 */
+  uint16_t *V16;         /* product sampling: V as bfloat16 (the top half of the float, rounded up) */
   double *S;             /* (h + 2) x ku: vertex row k's integral over cell column a, in u */
   float *cond;           /* (h + 2) x (w + ku): vertex row k's integer CDF over the patches of each cell
                             column, as floats (integers <= 2^24: exact); all 0 in the pole rows */
@@ -2923,7 +2953,8 @@ struct el_envlight__warp {
   size_t warp_bytes;
   /* the normal tables (cos_state) */
   int m;                 /* octahedral bins per axis */
-  uint16_t *cos_tab;     /* m * m cell tables */
+  uint16_t *cos_tab;     /* m * m sparse cell tables (el_envlight__cell_table_sparse), one after another */
+  uint32_t *cos_off;     /* m * m: where each bin's table starts in cos_tab */
   size_t cos_bytes;
   /* product sampling's patches (issue 20; a product table set uses w, h, ku, kv, a0, b0, cu_of, cv_of,
      coff, sin_row, V, mass, plain and the normal tables above, and these two instead of S, cond, marg) */
@@ -2975,6 +3006,59 @@ static void el_envlight__cell_table(const struct el_envlight__warp *W, const dou
   }
 }
 
+/* A sparse cell table (the normal tables, issue 20): the cell rows' CDF (kv + 1 entries, padded to an
+ * even count P), kv row offsets (uint32, read with memcpy) from the table's start, then per row its span
+ * of cells with weight, a_s (first cell) and L (cells, wrapping at the seam: the complement of the
+ * longest circular run of zero weights), and its CDF over those L cells (L + 1 entries). Below a normal's
+ * horizon the weights are 0, so a row holds about half its cells. Returns the entries used (at most
+ * el_envlight__sparse_max). tmp: ku + kv + 2 uint32; rows: kv + ku doubles. */
+static size_t el_envlight__sparse_max(const struct el_envlight__warp *W) {
+  return (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv + (size_t)W->kv * ((size_t)W->ku + 3);
+}
+static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
+  int a, b, ku = W->ku, kv = W->kv;
+  size_t pos = (size_t)((kv + 2) & ~1) + 2 * (size_t)kv;
+  double *span = rows + kv;
+  for (b = 0; b < kv; ++b) {
+    double sum = 0.0;
+    for (a = 0; a < ku; ++a) sum += wgt[(size_t)b * (size_t)ku + (size_t)a];
+    rows[b] = sum;
+  }
+  el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
+  for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
+  for (b = 0; b < kv; ++b) {
+    const double *w = wgt + (size_t)b * (size_t)ku;
+    int run = 0, best = 0, best_end = -1, lead = 0, as, len, k, kk;
+    uint32_t off = (uint32_t)pos;
+    /* the longest circular run of zeros: the longest inside the row, or the trailing run joined to the
+     * leading one across the seam */
+    while (lead < ku && !(w[lead] > 0.0)) ++lead;
+    for (k = lead; k < ku; ++k) {
+      run = w[k] > 0.0 ? 0 : run + 1;
+      if (run > best) { best = run; best_end = k; }
+    }
+    if (lead == ku) best = ku; /* all zero */
+    else if (run + lead > best) { best = run + lead; best_end = lead - 1 >= 0 ? lead - 1 : ku - 1; }
+    len = ku - best;
+    as = len == 0 || best == 0 ? 0 : (best_end + 1 < ku ? best_end + 1 : 0);
+    for (k = 0, kk = as; k < len; ++k, kk = kk + 1 < ku ? kk + 1 : 0) span[k] = w[kk];
+    if (len > 0) el_envlight__int_cdf(span, len, EL_ENVLIGHT__CELL_UNITS, tmp);
+    else tmp[0] = 0;
+    memcpy(tab + (size_t)((kv + 2) & ~1) + 2 * (size_t)b, &off, sizeof off);
+    tab[pos] = (uint16_t)as; tab[pos + 1] = (uint16_t)len;
+    for (k = 0; k <= len; ++k) tab[pos + 2 + (size_t)k] = (uint16_t)tmp[k];
+    pos += (size_t)len + 3;
+  }
+  return pos;
+}
+
+/* Row b of a sparse cell table: [a_s, L, CDF over L + 1 entries] */
+static inline const uint16_t *el_envlight__sparse_row(const struct el_envlight__warp *W, const uint16_t *tab, int b) {
+  uint32_t off;
+  memcpy(&off, tab + (size_t)((W->kv + 2) & ~1) + 2 * (size_t)b, sizeof off);
+  return tab + off;
+}
+
 /* Last i in [0, n - 1] with c[i] <= k (c[0] = 0 <= k), uint16 entries: a branch-free binary search. */
 static inline int el_envlight__search16(const uint16_t *c, int n, uint32_t k) {
   int lo = 0;
@@ -2999,7 +3083,7 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
   EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
-  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab);
+  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16);
   EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
@@ -3375,18 +3459,20 @@ static void el_envlight__oct_decode(double x, double y, double n[3]) {
 }
 
 /* max of n.w over the lat-long cell [phi0, phi1] x [theta0, theta1] (light space), exactly: over phi
- * the best is the normal's own phi if inside, else the nearer edge; then a sin(theta) + b cos(theta)
- * peaks at atan2(a, b) if inside, else at an edge. cs: cos, sin of phi0, of phi1, cos, sin of theta0,
- * of theta1, and 1 when phi1 - phi0 > pi (then "inside" is "not in the complement", narrower than pi). */
-static double el_envlight__cell_maxcos(const double n[3], const double cs[9]) {
-  double a, b, f0, f1, best, c0 = cs[0] * n[1] - cs[1] * n[0], c1 = n[0] * cs[3] - n[1] * cs[2];
-  int inside = cs[8] > 0.0 ? !(c1 < 0.0 && c0 < 0.0) : (c0 >= 0.0 && c1 >= 0.0);
-  if (inside) a = sqrt(n[0] * n[0] + n[1] * n[1]);
-  else { double d0 = n[0] * cs[0] + n[1] * cs[1], d1 = n[0] * cs[2] + n[1] * cs[3]; a = d0 > d1 ? d0 : d1; }
-  b = n[2];
-  f0 = a * cs[5] + b * cs[4]; f1 = a * cs[7] + b * cs[6];
-  best = f0 > f1 ? f0 : f1;
-  if (a * cs[4] - b * cs[5] > 0.0 && a * cs[6] - b * cs[7] < 0.0) best = sqrt(a * a + b * b); /* the peak is inside */
+ * the best is the normal's own phi if inside, else the nearer edge (el_envlight__col_maxcos: a, the best
+ * horizontal component, per cell column); then a sin(theta) + b cos(theta) peaks at atan2(a, b) if
+ * inside, else at an edge (el_envlight__row_maxcos, per cell). cp: cos, sin of phi0, of phi1, and 1 when
+ * phi1 - phi0 > pi (then "inside" is "not in the complement", narrower than pi); ct: cos, sin of theta0,
+ * of theta1. */
+static double el_envlight__col_maxcos(const double n[3], const double cp[5]) {
+  double c0 = cp[0] * n[1] - cp[1] * n[0], c1 = n[0] * cp[3] - n[1] * cp[2];
+  int inside = cp[4] > 0.0 ? !(c1 < 0.0 && c0 < 0.0) : (c0 >= 0.0 && c1 >= 0.0);
+  if (inside) return sqrt(n[0] * n[0] + n[1] * n[1]);
+  else { double d0 = n[0] * cp[0] + n[1] * cp[1], d1 = n[0] * cp[2] + n[1] * cp[3]; return d0 > d1 ? d0 : d1; }
+}
+static inline double el_envlight__row_maxcos(double a, double b, const double ct[4]) {
+  double f0 = a * ct[1] + b * ct[0], f1 = a * ct[3] + b * ct[2], best = f0 > f1 ? f0 : f1;
+  if (a * ct[0] - b * ct[1] > 0.0 && a * ct[2] - b * ct[3] < 0.0) best = sqrt(a * a + b * b); /* the peak is inside */
   return best;
 }
 
@@ -3394,23 +3480,34 @@ static double el_envlight__cell_maxcos(const double n[3], const double cs[9]) {
  * angular radius covering every normal the float encoder puts in the bin (the farthest point of the
  * bin's boundary, sampled 32 times per edge, plus the largest gap between samples, plus 1e-4), then per
  * cell the bound cos(max(0, angle(c, cell) - radius)) (1 when the cell is within the radius, 0 when it
- * is 90 degrees beyond), times the cell's mass, into a cell table. */
+ * is 90 degrees beyond), times the cell's mass, into a cell table. The phi part of the maximum is per
+ * cell column, the theta part per cell (issue 20: a third of the build's instructions). */
 static el_result el_envlight__cos_build(struct el_envlight__warp *W, int m) {
-  int ku = W->ku, kv = W->kv, K = ku * kv, bin, k, e, q;
-  double *geo = (double *)EL_MALLOC((size_t)K * 9 * sizeof(double)), *wgt = (double *)EL_MALLOC(((size_t)K + (size_t)kv) * sizeof(double));
+  int ku = W->ku, kv = W->kv, K = ku * kv, bin, k, e, q, a, b;
+  double *geo = (double *)EL_MALLOC(((size_t)ku * 6 + (size_t)kv * 4) * sizeof(double)), *wgt = (double *)EL_MALLOC(((size_t)K + (size_t)kv + (size_t)ku) * sizeof(double));
+  double *gcol = geo, *grow = geo + (size_t)ku * 5, *acol = grow + (size_t)kv * 4;
   uint32_t *tmp = (uint32_t *)EL_MALLOC(((size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
-  if ((size_t)m * (size_t)m > ((size_t)-1) / sizeof(uint16_t) / W->table_len) { EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); return EL_ERROR_SIZE_OVERFLOW; }
-  W->cos_tab = (uint16_t *)EL_MALLOC((size_t)m * (size_t)m * W->table_len * sizeof(uint16_t));
-  if (!geo || !wgt || !tmp || !W->cos_tab) { EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); EL_FREE(W->cos_tab); W->cos_tab = NULL; return EL_ERROR_OUT_OF_MEMORY; }
+  size_t smax = el_envlight__sparse_max(W), used = 0;
+  if ((size_t)m * (size_t)m > ((size_t)-1) / sizeof(uint16_t) / smax || (size_t)m * (size_t)m * smax > 0xffffffffu) { EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); return EL_ERROR_SIZE_OVERFLOW; }
+  /* the worst case, shrunk to what the bins use at the end */
+  W->cos_tab = (uint16_t *)EL_MALLOC((size_t)m * (size_t)m * smax * sizeof(uint16_t));
+  W->cos_off = (uint32_t *)EL_MALLOC((size_t)m * (size_t)m * sizeof(uint32_t));
+  if (!geo || !wgt || !tmp || !W->cos_tab || !W->cos_off) {
+    EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); W->cos_tab = NULL; W->cos_off = NULL;
+    return EL_ERROR_OUT_OF_MEMORY;
+  }
   W->m = m;
-  for (k = 0; k < K; ++k) { /* the cells' edges: phi at patch-column bounds (texel centres), theta at vertex rows */
-    int a = k % ku, b = k / ku, r0 = W->b0[b], r1 = W->b0[b + 1];
+  for (a = 0; a < ku; ++a) { /* the cells' edges: phi at patch-column bounds (texel centres), theta at vertex rows */
     double p0 = 2.0 * EL_ENVLIGHT__PI * (W->a0[a] + 0.5) / W->w, p1 = 2.0 * EL_ENVLIGHT__PI * (W->a0[a + 1] + 0.5) / W->w;
-    double v0 = r0 == 0 ? 0.0 : (r0 - 0.5) / W->h, v1 = r1 == W->h + 1 ? 1.0 : (r1 - 0.5) / W->h;
-    double *g = geo + 9 * (size_t)k;
+    double *g = gcol + 5 * (size_t)a;
     g[0] = cos(p0); g[1] = sin(p0); g[2] = cos(p1); g[3] = sin(p1);
-    g[8] = p1 - p0 > EL_ENVLIGHT__PI ? 1.0 : 0.0;
-    g[4] = cos(EL_ENVLIGHT__PI * v0); g[5] = sin(EL_ENVLIGHT__PI * v0); g[6] = cos(EL_ENVLIGHT__PI * v1); g[7] = sin(EL_ENVLIGHT__PI * v1);
+    g[4] = p1 - p0 > EL_ENVLIGHT__PI ? 1.0 : 0.0;
+  }
+  for (b = 0; b < kv; ++b) {
+    int r0 = W->b0[b], r1 = W->b0[b + 1];
+    double v0 = r0 == 0 ? 0.0 : (r0 - 0.5) / W->h, v1 = r1 == W->h + 1 ? 1.0 : (r1 - 0.5) / W->h;
+    double *g = grow + 4 * (size_t)b;
+    g[0] = cos(EL_ENVLIGHT__PI * v0); g[1] = sin(EL_ENVLIGHT__PI * v0); g[2] = cos(EL_ENVLIGHT__PI * v1); g[3] = sin(EL_ENVLIGHT__PI * v1);
   }
   for (bin = 0; bin < m * m; ++bin) {
     int bi = bin % m, bj = bin / m;
@@ -3435,20 +3532,47 @@ static el_result el_envlight__cos_build(struct el_envlight__warp *W, int m) {
     { double dp = prev[0] * first[0] + prev[1] * first[1] + prev[2] * first[2]; if (dp < gmin) gmin = dp; }
     rad = acos(dmin > -1.0 ? dmin : -1.0) + acos(gmin < 1.0 ? gmin : 1.0) + 1e-4;
     cr = cos(rad); sr = sin(rad);
-    for (k = 0; k < K; ++k) {
-      double mc = el_envlight__cell_maxcos(c, geo + 9 * (size_t)k), bound;
-      if (rad >= EL_ENVLIGHT__PI) bound = 1.0;
-      else if (mc >= cr) bound = 1.0;
-      else { /* cos(angle - rad) = mc cos(rad) + sin(angle) sin(rad) */
-        double sa = 1.0 - mc * mc;
-        bound = mc * cr + sqrt(sa > 0.0 ? sa : 0.0) * sr;
-        bound = bound > 0.0 ? bound : 0.0;
+    for (a = 0; a < ku; ++a) acol[a] = el_envlight__col_maxcos(c, gcol + 5 * (size_t)a);
+    for (b = 0, k = 0; b < kv; ++b)
+      for (a = 0; a < ku; ++a, ++k) {
+        double mc, bound;
+#if EL_ENVLIGHT__SSE
+        if (a + 1 < ku && rad < EL_ENVLIGHT__PI) { /* two cells at once: the scalar code's operations, in its order */
+          const double *ct = grow + 4 * (size_t)b;
+          __m128d A = _mm_loadu_pd(acol + a), B = _mm_set1_pd(c[2]), zero = _mm_setzero_pd();
+          __m128d c0 = _mm_set1_pd(ct[0]), s0 = _mm_set1_pd(ct[1]), c1 = _mm_set1_pd(ct[2]), s1 = _mm_set1_pd(ct[3]);
+          __m128d f0 = _mm_add_pd(_mm_mul_pd(A, s0), _mm_mul_pd(B, c0)), f1 = _mm_add_pd(_mm_mul_pd(A, s1), _mm_mul_pd(B, c1));
+          __m128d best = _mm_max_pd(f0, f1); /* f0 > f1 ? f0 : f1 (equal: f1) */
+          __m128d in = _mm_and_pd(_mm_cmpgt_pd(_mm_sub_pd(_mm_mul_pd(A, c0), _mm_mul_pd(B, s0)), zero),
+                                  _mm_cmplt_pd(_mm_sub_pd(_mm_mul_pd(A, c1), _mm_mul_pd(B, s1)), zero));
+          __m128d peak = _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(A, A), _mm_mul_pd(B, B)));
+          __m128d mv = _mm_or_pd(_mm_and_pd(in, peak), _mm_andnot_pd(in, best));
+          __m128d sa = _mm_max_pd(_mm_sub_pd(_mm_set1_pd(1.0), _mm_mul_pd(mv, mv)), zero); /* sa > 0 ? sa : 0 */
+          __m128d bb = _mm_max_pd(_mm_add_pd(_mm_mul_pd(mv, _mm_set1_pd(cr)), _mm_mul_pd(_mm_sqrt_pd(sa), _mm_set1_pd(sr))), zero);
+          __m128d one = _mm_cmpge_pd(mv, _mm_set1_pd(cr));
+          __m128d bnd = _mm_or_pd(_mm_and_pd(one, _mm_set1_pd(1.0)), _mm_andnot_pd(one, bb));
+          _mm_storeu_pd(wgt + k, _mm_mul_pd(_mm_loadu_pd(W->mass + k), bnd)); /* a mass of 0 gives 0, as the skip */
+          ++a; ++k;
+          continue;
+        }
+#endif
+        if (!(W->mass[k] > 0.0)) { wgt[k] = 0.0; continue; } /* no mass: no bound needed */
+        mc = el_envlight__row_maxcos(acol[a], c[2], grow + 4 * (size_t)b);
+        if (rad >= EL_ENVLIGHT__PI) bound = 1.0;
+        else if (mc >= cr) bound = 1.0;
+        else { /* cos(angle - rad) = mc cos(rad) + sin(angle) sin(rad) */
+          double sa = 1.0 - mc * mc;
+          bound = mc * cr + sqrt(sa > 0.0 ? sa : 0.0) * sr;
+          bound = bound > 0.0 ? bound : 0.0;
+        }
+        wgt[k] = W->mass[k] * bound;
       }
-      wgt[k] = W->mass[k] * bound;
-    }
-    el_envlight__cell_table(W, wgt, W->cos_tab + (size_t)bin * W->table_len, tmp, wgt + K);
+    W->cos_off[bin] = (uint32_t)used;
+    used += el_envlight__cell_table_sparse(W, wgt, W->cos_tab + used, tmp, wgt + K);
+    used += used & 1; /* each table starts at an even entry (its offsets are 4-byte words) */
   }
-  W->cos_bytes = (size_t)m * (size_t)m * W->table_len * sizeof(uint16_t);
+  { uint16_t *t = (uint16_t *)EL_REALLOC(W->cos_tab, (used > 0 ? used : 1) * sizeof(uint16_t)); if (t) W->cos_tab = t; }
+  W->cos_bytes = used * sizeof(uint16_t) + (size_t)m * (size_t)m * sizeof(uint32_t);
   EL_FREE(geo); EL_FREE(wgt); EL_FREE(tmp);
   return EL_SUCCESS;
 }
@@ -3480,6 +3604,22 @@ static inline float el_envlight__lin_invf(float a, float b, float q) {
   return t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
 }
 
+/* bfloat16 (the upper 16 bits of a float) of v >= 0, rounded up (a positive value stays positive; the
+ * largest finite bfloat16 for values beyond it), and back */
+static uint16_t el_envlight__bf16_up(float v) {
+  uint32_t b;
+  memcpy(&b, &v, sizeof b);
+  if (b & 0xffffu) b += 0x10000u;
+  b >>= 16;
+  return (uint16_t)(b >= 0x7f80u ? 0x7f7fu : b);
+}
+static inline float el_envlight__bf16(uint16_t h) {
+  uint32_t b = (uint32_t)h << 16;
+  float v;
+  memcpy(&v, &b, sizeof v);
+  return v;
+}
+
 /* <<Build the product tables>>: vertex grid, cells, patch CDFs, cell masses, plain and normal tables. */
 static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
   struct el_envlight__warp *W;
@@ -3487,7 +3627,7 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
   double *wgt = NULL, *rs = NULL, total = 0.0;
   float *bins = NULL, *rowmax = NULL;
   uint32_t *tmp = NULL;
-  size_t nv, np, nr, big;
+  size_t nv, np, nr, big, kk;
   el_result res;
   *out = NULL;
   W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
@@ -3519,7 +3659,6 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
   W->cu_of = (int *)EL_MALLOC((size_t)gw * sizeof(int));
   W->cv_of = (int *)EL_MALLOC(((size_t)gh + 1) * sizeof(int));
   W->mass = (double *)EL_MALLOC((size_t)ku * (size_t)kv * sizeof(double));
-  W->plain = (uint16_t *)EL_MALLOC(W->table_len * sizeof(uint16_t));
   wgt = (double *)EL_MALLOC((big + (size_t)ku * (size_t)kv) * sizeof(double));
   rs = (double *)EL_MALLOC(((size_t)gh + 1) * (size_t)ku * sizeof(double));
   tmp = (uint32_t *)EL_MALLOC((big + (size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
@@ -3528,7 +3667,7 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
     rowmax = (float *)EL_MALLOC((size_t)gw * sizeof(float));
   }
   if (!W->sin_row || !W->V || !W->coff || !W->pcol || !W->prow || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
-      !W->plain || !wgt || !rs || !tmp || (W->coarse && (!bins || !rowmax))) {
+      !wgt || !rs || !tmp || (W->coarse && (!bins || !rowmax))) {
     res = EL_ERROR_OUT_OF_MEMORY;
     goto fail;
   }
@@ -3585,6 +3724,10 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
       }
     }
   }
+  /* the vertex values as the queries read them: bfloat16, rounded up */
+  W->V16 = (uint16_t *)EL_MALLOC(nv * sizeof(uint16_t));
+  if (!W->V16) { res = EL_ERROR_OUT_OF_MEMORY; goto fail; }
+  for (kk = 0; kk < nv; ++kk) { W->V16[kk] = el_envlight__bf16_up(W->V[kk]); W->V[kk] = el_envlight__bf16(W->V16[kk]); }
   /* patch (i, r): corners V[r][i], V[r][i+1], V[r+1][i], V[r+1][i+1]; mass = their mean x dv (dv 1 / gh, half
    * at the pole rows; du = 1 / gw is common). pcol: each cell column's patches per patch row. */
   for (r = 0; r <= gh; ++r) {
@@ -3617,14 +3760,14 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
       total += s;
     }
   W->all_zero = !(total > 0.0);
-  el_envlight__cell_table(W, W->mass, W->plain, tmp, wgt);
   EL_FREE(wgt); EL_FREE(rs); EL_FREE(tmp); EL_FREE(bins); EL_FREE(rowmax);
   wgt = NULL; rs = NULL; tmp = NULL; bins = NULL; rowmax = NULL;
+  EL_FREE(W->V); W->V = NULL; /* the queries read V16 */
   res = el_envlight__cos_build(W, m);
   if (res != EL_SUCCESS) goto fail;
-  W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(float) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
-                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int) +
-                  (size_t)ku * (size_t)kv * sizeof(double) + W->table_len * sizeof(uint16_t);
+  EL_FREE(W->mass); W->mass = NULL; /* only the build needs the cells' masses (and no plain table) */
+  W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(uint16_t) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
+                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int);
   *out = W;
   return EL_SUCCESS;
 fail:
@@ -3633,12 +3776,12 @@ fail:
   return res;
 }
 
-/* The product tables' once-scheme (cos_state; the same scheme as the sampling tables). NULL: failed. */
-static const struct el_envlight__warp *el_envlight__prod_ensure(const el_envlight *cl, int ku, int kv, int m) {
+/* The product tables' once-scheme (cos_state; the same scheme as the sampling tables). NULL: failed.
+ * The built case is inlined into the queries (el_envlight__prod_ensure); the build stays out of line. */
+static const struct el_envlight__warp *el_envlight__prod_ensure_slow(const el_envlight *cl, int ku, int kv, int m) {
   el_envlight *l = (el_envlight *)cl;
 #if EL_ENVLIGHT__ATOMICS
   int expected = 0;
-  if (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2) return l->prod;
   if (__atomic_compare_exchange_n(&l->cos_state, &expected, 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
     struct el_envlight__warp *W = NULL;
     el_result r = el_envlight__prod_build(l, ku, kv, m, &W);
@@ -3659,6 +3802,14 @@ static const struct el_envlight__warp *el_envlight__prod_ensure(const el_envligh
   return l->cos_state == 2 ? l->prod : NULL;
 #endif
 }
+static inline const struct el_envlight__warp *el_envlight__prod_ensure(const el_envlight *l, int ku, int kv, int m) {
+#if EL_ENVLIGHT__ATOMICS
+  if (__atomic_load_n(&l->cos_state, __ATOMIC_ACQUIRE) == 2) return l->prod;
+#else
+  if (l->cos_state == 2) return l->prod;
+#endif
+  return el_envlight__prod_ensure_slow(l, ku, kv, m);
+}
 
 /* The cell table for world normal n (its octahedral bin's), or NULL for a zero, NaN or infinite n. A
  * huge or tiny n is scaled in world space first, so the bin depends only on n's direction. */
@@ -3673,82 +3824,126 @@ static inline const uint16_t *el_envlight__prod_table(const el_envlight *l, cons
   i = (int)(x * (float)mm); j = (int)(y * (float)mm);
   i = i < mm - 1 ? (i > 0 ? i : 0) : mm - 1;
   j = j < mm - 1 ? (j > 0 ? j : 0) : mm - 1;
-  return W->cos_tab + ((size_t)j * (size_t)mm + (size_t)i) * W->table_len;
+  return W->cos_tab + W->cos_off[(size_t)j * (size_t)mm + (size_t)i];
+}
+
+/* The corners V[r][i], V[r][i + 1], V[r + 1][i], V[r + 1][i + 1] of patch (i, r) (bfloat16: issue 20, half
+ * the memory of floats; the tables were built from the same rounded values). */
+static inline void el_envlight__prod_corners(const struct el_envlight__warp *W, int i, int r, float c[4]) {
+  int gw = W->w, i1 = i + 1 < gw ? i + 1 : 0;
+  const uint16_t *V = W->V16 + (size_t)r * (size_t)gw;
+  c[0] = el_envlight__bf16(V[i]); c[1] = el_envlight__bf16(V[i1]);
+  c[2] = el_envlight__bf16(V[(size_t)gw + (size_t)i]); c[3] = el_envlight__bf16(V[(size_t)gw + (size_t)i1]);
+}
+
+/* Where the pdf finds a light-space direction (any length): le()'s (u, v), the patch (column i, vertex
+ * row r), s in it, Y = v gh + 0.5, vp, sin theta's r (rr) and the squared length. 0: a zero or NaN d. */
+typedef struct el_envlight__ploc { float u, v, vp, rr, len2, s, Y; int i, r; } el_envlight__ploc;
+static inline int el_envlight__prod_locate(const struct el_envlight__warp *W, const float dir[3], el_envlight__ploc *q) {
+  float dd[3], r2, len2, X, Y, s;
+  int gw = W->w, gh = W->h, i, r;
+  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
+  r2 = dd[0] * dd[0] + dd[1] * dd[1];
+  len2 = r2 + dd[2] * dd[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
+    if (!el_envlight__rescale(dd)) return 0;
+    r2 = dd[0] * dd[0] + dd[1] * dd[1];
+    len2 = r2 + dd[2] * dd[2];
+  }
+  q->len2 = len2;
+  q->rr = el_envlight__sqrt(r2);
+  q->u = el_envlight__phi_turns(dd[1], dd[0]);
+  el_envlight__theta_vp(q->rr, dd[2], &q->v, &q->vp);
+  X = q->u * (float)gw - 0.5f;
+  if (X < 0.0f) X += (float)gw;
+  i = (int)X;
+  if (i > gw - 1) i = gw - 1;
+  s = X - (float)i;
+  q->s = s < 1.0f ? (s > 0.0f ? s : 0.0f) : 1.0f;
+  Y = q->v * (float)gh + 0.5f;
+  r = (int)Y;
+  if (r > gh) r = gh;
+  q->Y = Y; q->i = i; q->r = r;
+  return 1;
+}
+
+/* The density at a located point of patch (q->i, q->r) whose cell has integer width wc (cell row x cell)
+ * and patch width wr (patch row x patch): P / (mean(corners) du dv 2 pi^2) x bil(s, t) / sin(theta).
+ * The sampler calls it with the widths it picked from, the pdf with the widths it reads: the same bits. */
+static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, const el_envlight__ploc *q, uint32_t wc, uint32_t wr, const float c[4]) {
+  int gh = W->h, r = q->r;
+  float v00 = c[0], v01 = c[1], v10 = c[2], v11 = c[3], s = q->s, t;
+  float sum = (v00 + v01) + (v10 + v11), e0 = v00 + s * (v01 - v00), e1 = v10 + s * (v11 - v10), len, p;
+  p = (float)wc * (float)wr * W->dens_k * 4.0f / sum; /* P / (mean du dv 2 pi^2) */
+  len = el_envlight__sqrt(q->len2);
+  /* bil / sin(theta). In the pole rows one edge is 0 and t = 2 gh vp (or 1 - t), dv halves: bil / sin =
+   * 2 gh e (vp / sin theta) x 2, with vp / sin -> 1 / pi at the pole itself */
+  if (r == 0 || r == gh) {
+    float ratio = q->rr > 0.0f ? q->vp * len / q->rr : 0.318309886f;
+    p *= 4.0f * (float)gh * (r == 0 ? e1 : e0) * ratio;
+  } else {
+    t = q->Y - (float)r;
+    t = t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
+    p *= (e0 + t * (e1 - e0)) * len / q->rr;
+  }
+  return p < FLT_MAX ? p : FLT_MAX;
 }
 
 /* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
  * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
  * be NULL) gets the (u, v) at which le() looks d up. */
 static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
-  float dd[3], r2, len2, rr, len, u, v, vp, X, Y, s, t, v00, v01, v10, v11, e0, e1, sum, p;
-  int gw = W->w, gh = W->h, i, i1, r, a, b;
+  el_envlight__ploc q;
+  float c[4];
+  int i, r, a, b, k;
   const uint16_t *row, *pc, *pr;
-  const float *V;
   uint32_t wc, wr;
   if (uv) uv[0] = uv[1] = 0.0f;
-  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
-  r2 = dd[0] * dd[0] + dd[1] * dd[1];
-  len2 = r2 + dd[2] * dd[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(dd)) return 0.0f;
-    r2 = dd[0] * dd[0] + dd[1] * dd[1];
-    len2 = r2 + dd[2] * dd[2];
-  }
-  rr = el_envlight__sqrt(r2);
-  u = el_envlight__phi_turns(dd[1], dd[0]);
-  el_envlight__theta_vp(rr, dd[2], &v, &vp);
-  if (uv) { uv[0] = u; uv[1] = v; }
-  X = u * (float)gw - 0.5f;
-  if (X < 0.0f) X += (float)gw;
-  i = (int)X;
-  if (i > gw - 1) i = gw - 1;
-  s = X - (float)i;
-  s = s < 1.0f ? (s > 0.0f ? s : 0.0f) : 1.0f;
-  Y = v * (float)gh + 0.5f;
-  r = (int)Y;
-  if (r > gh) r = gh;
+  if (!el_envlight__prod_locate(W, dir, &q)) return 0.0f;
+  if (uv) { uv[0] = q.u; uv[1] = q.v; }
+  i = q.i; r = q.r;
   a = W->cu_of[i]; b = W->cv_of[r];
-  row = tab + W->marg_len + (size_t)b * (size_t)W->row_len;
-  wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[a + 1] - row[a]);
+  row = el_envlight__sparse_row(W, tab, b);
+  k = a - (int)row[0]; /* the cell's place in its row's span */
+  k += k < 0 ? W->ku : 0;
+  wc = k < (int)row[1] ? (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[k + 3] - row[k + 2]) : 0u;
   pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a] + (size_t)(i - W->a0[a]);
-  pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
+  pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
   wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
   if (wc == 0 || wr == 0) return 0.0f;
-  i1 = i + 1 < gw ? i + 1 : 0;
-  V = W->V + (size_t)r * (size_t)gw;
-  v00 = V[i]; v01 = V[i1]; v10 = V[(size_t)gw + (size_t)i]; v11 = V[(size_t)gw + (size_t)i1];
-  sum = (v00 + v01) + (v10 + v11);
-  e0 = v00 + s * (v01 - v00);
-  e1 = v10 + s * (v11 - v10);
-  p = (float)wc * (float)wr * W->dens_k * 4.0f / sum; /* P / (mean du dv 2 pi^2) */
-  len = el_envlight__sqrt(len2);
-  /* bil / sin(theta). In the pole rows one edge is 0 and t = 2 gh vp (or 1 - t), dv halves: bil / sin =
-   * 2 gh e (vp / sin theta) x 2, with vp / sin -> 1 / pi at the pole itself */
-  if (r == 0 || r == gh) {
-    float ratio = rr > 0.0f ? vp * len / rr : 0.318309886f;
-    p *= 4.0f * (float)gh * (r == 0 ? e1 : e0) * ratio;
-  } else {
-    t = Y - (float)r;
-    t = t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
-    p *= (e0 + t * (e1 - e0)) * len / rr;
-  }
-  return p < FLT_MAX ? p : FLT_MAX;
+  el_envlight__prod_corners(W, i, r, c);
+  return el_envlight__prod_eval(W, &q, wc, wr, c);
 }
 
 /* <<Sample the product>>: cell, patch row, patch, then (s, t) from the bilinear; wi and the pdf as
- * pdf_li_cos computes it at wi. */
+ * pdf_li_cos computes it at wi: the direction located again (the atans), and when it lands in the
+ * patch it came from (all but a measure-zero set), the density from the widths already read. */
 static void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, v00, v01, v10, v11, p;
-  int a, b, gw = W->w, gh = W->h, r, i, i1, n;
+  float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, c[4], p;
+  int a, b, gh = W->h, r, i, n;
+  uint32_t wc, wr;
   const uint16_t *pr, *pc;
-  const float *V;
-  el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
+  el_envlight__ploc loc;
+  { /* <<Pick a cell>> from the sparse table: the cell row, then a cell of its span */
+    float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(uu[0]) * (float)EL_ENVLIGHT__CELL_UNITS;
+    const uint16_t *row, *cc;
+    b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
+    f1 = (x1 - (float)tab[b]) / (float)(tab[b + 1] - tab[b]);
+    row = el_envlight__sparse_row(W, tab, b);
+    cc = row + 2;
+    a = el_envlight__search16(cc, (int)row[1], (uint32_t)x0);
+    f0 = (x0 - (float)cc[a]) / (float)(cc[a + 1] - cc[a]);
+    wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(cc[a + 1] - cc[a]);
+    a += (int)row[0];
+    a -= a >= W->ku ? W->ku : 0;
+  }
   /* the patch row: the cell's CDF over its rows, with f1 */
   n = W->b0[b + 1] - W->b0[b];
   pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
   x = el_envlight__clamp01(f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
   r = el_envlight__search16(pr, n, (uint32_t)x);
   q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
+  wr = (uint32_t)(pr[r + 1] - pr[r]);
   r += W->b0[b];
   /* the patch: the row's CDF over the cell column, with f0 */
   n = W->a0[a + 1] - W->a0[a];
@@ -3756,13 +3951,12 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   x = el_envlight__clamp01(f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
   i = el_envlight__search16(pc, n, (uint32_t)x);
   s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
+  wr *= (uint32_t)(pc[i + 1] - pc[i]);
   i += W->a0[a];
   /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
-  i1 = i + 1 < gw ? i + 1 : 0;
-  V = W->V + (size_t)r * (size_t)gw;
-  v00 = V[i]; v01 = V[i1]; v10 = V[(size_t)gw + (size_t)i]; v11 = V[(size_t)gw + (size_t)i1];
-  t = el_envlight__lin_invf(v00 + v01, v10 + v11, q);
-  s = el_envlight__lin_invf(v00 + t * (v10 - v00), v01 + t * (v11 - v01), s);
+  el_envlight__prod_corners(W, i, r, c);
+  t = el_envlight__lin_invf(c[0] + c[1], c[2] + c[3], q);
+  s = el_envlight__lin_invf(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), s);
   /* 2^-12 of a patch inside its edges: a q of exactly 0 or 1 (x on a unit) would put the point on the
    * edge, where the pdf may read the neighbour (after a general rotation's round trip, ~1e-7 rad): pdf 0
    * next to a patch without mass. The density there is within 2^-12 of the edge's: no measurable bias */
@@ -3779,7 +3973,10 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
     el_envlight__uvp_to_dir(u, v, vp, d);
     el_envlight__to_world(l, d, wi);
     if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li_cos brings wi back */
-    p = el_envlight__prod_pdf_light(W, tab, d, uv);
+    if (el_envlight__prod_locate(W, d, &loc) && loc.i == i && loc.r == r) { /* the pdf's own path, its reads skipped */
+      p = el_envlight__prod_eval(W, &loc, wc, wr, c);
+      uv[0] = loc.u; uv[1] = loc.v;
+    } else p = el_envlight__prod_pdf_light(W, tab, d, uv);
     if (p > 0.0f) break;
     /* the round trip left the patch for one without mass (near a pole under a general rotation, where
      * 1e-7 of direction is a large step in phi): the patch's centre instead, as issue 24 did */

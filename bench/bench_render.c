@@ -93,7 +93,16 @@
  * (two --callgrind samples runs, 25600 and 51200, and bench/callgrind_parts.py on their difference).
  * Measured 2026-12-02 (issue 21), zsobol's fast path: sampler 1225 -> 512 instructions per camera
  * sample with direct lighting, 2123 -> 1411 with the path tracer (4 spp); the same images
- * (examples/render/README.md has the table by part). */
+ * (examples/render/README.md has the table by part).
+ * Measured 2026-12-02 (issue 21, second round), callgrind_parts.sh: direct lighting 4026 -> 3453
+ * instructions per camera sample (the first vertex shaded in the wave -249, the BSDF direction's
+ * environment only where its shadow ray escaped -99, full packets copied by component -88, the film in
+ * one call a wave -67, a map-alone wave's light samples without gather -31, clamp without fmaxf -26,
+ * Lambertian f and pdf inlined -15), path 6004 -> 5719; the same images. Not kept: --wave-api stream
+ * 4063, soa 3919, single 4809 (packet16 3777 then), the sphere test two lanes at a time with SSE2
+ * (Embree 995 -> 1009), active lanes by bit mask (907 -> 936). Loop CPU, one thread, interleaved rounds
+ * against main's binary: bench_city 64 spp 0.85-0.90x, bench_studio 0.92-0.95x, path 0.95-0.98x.
+ * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"

@@ -7,7 +7,8 @@ removes every fixed cost (scene loading, the light's tables, lazily built ones i
 
 Parts (by the function's name, its source file, and for inlined code the file it was inlined from):
   sampler   examples/render/sampler*.c, lowdiscrepancy.c, elr_sampler_* / elr_zsobol_* / elr_randomize
-  light     envlight.h, distribution2d.h, mipmap.h, lights.c, lightdistrib.c, elr_light_*
+  light     envlight.h, distribution2d.h, mipmap.h, lights.c, lightdistrib.c, sun.c (the sun cache),
+            elr_light_*, elr_sun_*
   bsdf      reflection.c, materials.c, textures.c, elr_bsdf_*
   film      film.h, film.c, el_film_*
   embree    libembree3 and the renderer's intersection code (shapes.c: the sphere callbacks and
@@ -35,7 +36,7 @@ PARTS = ["sampler", "light", "bsdf", "film", "embree", "camera", "loop", "other"
 FILE_RULES = [  # (regex on the source file, part)
     (r"(^|/)examples/render/(sampler[^/]*|lowdiscrepancy)\.c$", "sampler"),
     (r"(^|/)(envlight|distribution2d|mipmap|blockedarray)\.h$", "light"),
-    (r"(^|/)examples/render/(lights|lightdistrib|envlight_impl)\.c$", "light"),
+    (r"(^|/)examples/render/(lights|lightdistrib|envlight_impl|sun)\.c$", "light"),
     (r"(^|/)examples/render/(reflection|materials|textures)\.c$", "bsdf"),
     (r"(^|/)film\.h$", "film"),
     (r"(^|/)examples/render/film\.c$", "film"),
@@ -45,7 +46,7 @@ FILE_RULES = [  # (regex on the source file, part)
 ]
 FN_RULES = [  # (regex on the function's name, part): first match wins, before the file rules
     (r"^(elr_sampler_|elr_zsobol|elr__zsobol|elr_randomize|elr_sobol|elr__fast_owen|elr_dim_hash|elr_paddedsobol|elr_halton|elr_stratified|elr_zerotwo)", "sampler"),
-    (r"^(el_envlight|el_distribution|el_mipmap|elr_light|elr__env_samples)", "light"),
+    (r"^(el_envlight|el_distribution|el_mipmap|elr_light|elr__env_samples|elr_sun_|elr__sun)", "light"),
     (r"^(elr_bsdf|elr_material)", "bsdf"),
     (r"^(el_film|elr_film)", "film"),
     (r"^(elr_intersect|elr_occluded|elr_raw_intersect|elr_wave_intersect|elr_wave_occluded|elr__wave_|elr_sphere_|elr_triangle_|elr_disk_|elr_wave_hit|elr__sph|elr__disk)", "embree"),

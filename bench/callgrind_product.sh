@@ -10,7 +10,9 @@
 # same with 0 calls, and prints (Ir(N) - Ir(0)) / N minus the "loop" operation's own count (reading the
 # precomputed random numbers and summing the results). Product sampling draws a new random normal on every
 # call (the random directions, as a renderer's shading points); sample_li and sample_li_cos with _rgb
-# also return the radiance. Instruction counts do not depend on the machine's load.
+# also return the radiance. Instruction counts do not depend on the machine's load. build_product: one
+# build of the product tables with the light's init (2 builds counted, per build). Table bytes, build
+# milliseconds, variance and time per sample (time-to-unit-variance): build/bin/bench_product --library.
 set -e
 BENCH=${1:-build/bin/bench_envlight}
 MAP=${2:-data/envmaps/city.hdr}
@@ -26,3 +28,7 @@ for op in ${OPS:-sample_guide sample_guide_rgb pdf sample_cos sample_cos_rgb pdf
   c=$(per_call "$op")
   printf '%-22s %10.1f\n' "$op" "$(echo "$c - $LOOP" | bc -l)"
 done
+if [ -z "$OPS" ]; then
+  a=$(ir build_product 0); b=$(ir build_product 2)
+  printf '%-22s %10.1f M (per build, with the light'"'"'s init)\n' build_product "$(echo "($b - $a) / 2000000" | bc -l)"
+fi

@@ -24,18 +24,30 @@ The default run (variance mode; issues 13 and 14)
   Tables: (a) issue 13's equal-spp ratio, ours / Mitsuba with matched samplers (our random against
   independent, our low-discrepancy sampler against multijitter), one light + one BSDF sample
   (target <= 0.5); (b) issue 14's equal-time ratio: cost = relative variance x CPU s of our best
-  configuration over Mitsuba's best at each spp (target <= 0.5).
-    python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--our-sampler 02sequence]
-                                     [--map-too] [--no-stratified-splitting] [--threads 2]
+  configuration over Mitsuba's best at each spp (target <= 0.5); (c) issue 21's CPU per camera sample,
+  ours / Mitsuba at equal spp with one light + one BSDF sample (target <= 1), beside (b) again (issue
+  21's equal-time target <= 0.5); (d) with --regions or --mask, (a) and (b) for the lit and the
+  shadowed pixels apart (issue 22).
+    python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--var-spp 64,256]
+                                     [--our-sampler 02sequence] [--map-too] [--no-stratified-splitting]
+                                     [--threads 2] [--maxdepth 5] [--regions | --mask FILE]
+  --regions: pixel_classes() ray-casts the parsed scene in numpy (neither renderer's code) at 4x4
+  positions per pixel and casts a shadow ray towards the map's brightest texel (sun_direction()): "lit"
+  pixels see the sun from every position, "shadowed" from none (background, silhouettes and penumbrae
+  are in neither; bench_city at 320x240: 32676 lit, 20781 shadowed). --mask FILE: the same two classes
+  from a PGM (P2/P5) or PFM of the compared resolution (> 0.5 of its maximum: shadowed), read_mask().
+  Other scripts can import pixel_classes, read_mask, relvar_by_class, scene_variant and parse_pbrt.
   --quick: 160x120, 16 and 64 spp, 2 seeds, fewer configurations (about 2 CPU minutes).
   --sampler-variance: our seven samplers alone (directlighting, both maps), the table of the render
   README's "Samplers" section.
   Mitsuba is installed from PyPI (pip install mitsuba numpy) when it is missing; its llvm variants
   need libLLVM (Debian: apt-get install libllvm19), else scalar_rgb is used.
-  Measured (2026-12-02, --var-res 160 120 --seeds 2 --our-sampler 02sequence --map-too
-  --no-stratified-splitting, 17 minutes on the shared 2-core machine): examples/render/README.md,
-  "Against Mitsuba 3": (a) 0.50-0.52 / 0.59-0.87 on the sun map (random / low discrepancy; direct /
-  path), 0.17-0.24 on the smooth map; (b) 1.2-1.96 on the sun map, 0.38-0.54 on the smooth map.
+  Measured (2026-12-02, --var-res 320 240 --var-spp 64,256 --seeds 3 --regions --no-stratified-splitting,
+  25 minutes on the shared 2-core machine at load average 3-10; examples/render/README.md, "Against
+  Mitsuba 3"): (c) our CPU per camera sample 2.0-2.2x Mitsuba's (direct), 1.5-1.7x (path, sun map),
+  2.1-2.2x (path, smooth map); (a) zsobol / multijitter 1.41-1.52 (sun, direct), 1.19-1.21 (sun, path),
+  0.13-0.21 (smooth); (b) 3.1 (sun, direct), 1.8-2.0 (sun, path), 0.23-0.25 (smooth, direct), 0.43-0.46
+  (smooth, path).
 
 The older measure (--reference; issue 5)
   Accuracy against time for direct lighting of a diffuse sphere on a plane under the city map
@@ -485,6 +497,150 @@ def pbrt_background(sc, envpath, sub=4):
     return acc / (sub * sub) * np.array(light["scale"])
 
 
+# --------------------------------------------------------------------------------------------------
+# Pixel classes: lit and shadowed pixels reported apart (issue 22)
+# --------------------------------------------------------------------------------------------------
+def sun_direction(sc):
+    """the world direction (unit, towards the light) of the first map's brightest texel's centre, by
+    pbrt-v3's mapping (row v: theta = pi (v + 1/2) / H, column u: phi = 2 pi (u + 1/2) / W, in the
+    light's space, then its LightToWorld)"""
+    import numpy as np
+    light = sc["lights"][0]
+    env = read_image(light["mapname"])
+    H, W = env.shape[:2]
+    v, u = np.unravel_index(np.argmax(env @ np.array([0.2126, 0.7152, 0.0722])), (H, W))
+    th, ph = math.pi * (v + 0.5) / H, 2 * math.pi * (u + 0.5) / W
+    d = np.array(light["to_world"])[:3, :3] @ np.array([math.sin(th) * math.cos(ph), math.sin(th) * math.sin(ph), math.cos(th)])
+    return d / np.linalg.norm(d)
+
+
+def ray_cast(sc, o, d):
+    """nearest hit distance (inf: none) of rays o + t d (arrays (..., 3)) against the parsed scene's
+    spheres (any affine to_world: solved in object space) and triangle meshes (P by to_world), t > 1e-4"""
+    import numpy as np
+    best = np.full(o.shape[:-1], np.inf)
+    for shp in sc["shapes"]:
+        M = np.array(shp["to_world"])
+        if shp["type"] == "sphere":
+            Mi = np.linalg.inv(M)
+            oo, dd = o @ Mi[:3, :3].T + Mi[:3, 3], d @ Mi[:3, :3].T
+            A, B = (dd * dd).sum(-1), 2 * (dd * oo).sum(-1)
+            C = (oo * oo).sum(-1) - shp["radius"] ** 2
+            disc = B * B - 4 * A * C
+            sq = np.sqrt(np.maximum(disc, 0))
+            for t in ((-B - sq) / (2 * A), (-B + sq) / (2 * A)):
+                ok = (disc >= 0) & (t > 1e-4) & (t < best)
+                best = np.where(ok, t, best)
+        else:
+            P = np.array(shp["P"], dtype=np.float64).reshape(-1, 3) @ M[:3, :3].T + M[:3, 3]
+            idx = shp["indices"]
+            for k in range(0, len(idx), 3):  # Moller-Trumbore
+                p0, p1, p2 = P[idx[k]], P[idx[k + 1]], P[idx[k + 2]]
+                e1, e2 = p1 - p0, p2 - p0
+                pv = np.cross(d, e2)
+                det = (pv * e1).sum(-1)
+                det = np.where(np.abs(det) < 1e-12, 1e-12, det)
+                tv = o - p0
+                uu = (tv * pv).sum(-1) / det
+                qv = np.cross(tv, e1)
+                vv = (d * qv).sum(-1) / det
+                t = (e2 * qv).sum(-1) / det
+                ok = (uu >= 0) & (vv >= 0) & (uu + vv <= 1) & (t > 1e-4) & (t < best)
+                best = np.where(ok, t, best)
+    return best
+
+
+def pixel_classes(sc, sub=4):
+    """{"lit", "shadowed"}: boolean (h, w) masks from the scene's own geometry (numpy ray casting, not
+    either renderer): at sub x sub positions in each pixel the camera ray's hit and a shadow ray towards
+    the map's brightest texel (sun_direction); "lit": every position hits and sees the sun, "shadowed":
+    every position hits and none sees it. Pixels of the background, of silhouettes and of penumbrae
+    (mixed positions) are in neither."""
+    import numpy as np
+    w, h = sc["xres"], sc["yres"]
+    aspect = w / h
+    sw = (aspect, 1.0) if aspect > 1 else (1.0, 1.0 / aspect)
+    t = math.tan(math.radians(sc["fov"]) / 2)
+    c2w = np.array(sc["camera_to_world"])
+    sun = sun_direction(sc)
+    hit_all, lit_all, lit_none = np.ones((h, w), bool), np.ones((h, w), bool), np.ones((h, w), bool)
+    for sy_ in range(sub):
+        for sx_ in range(sub):
+            px, py = np.meshgrid(np.arange(w) + (sx_ + 0.5) / sub, np.arange(h) + (sy_ + 0.5) / sub)
+            dc = np.stack([(-sw[0] + 2 * sw[0] * px / w) * t, (sw[1] - 2 * sw[1] * py / h) * t, np.ones_like(px)], -1)
+            d = dc @ c2w[:3, :3].T
+            d /= np.linalg.norm(d, axis=-1, keepdims=True)
+            o = np.broadcast_to(c2w[:3, 3], d.shape)
+            th = ray_cast(sc, o, d)
+            hit = np.isfinite(th)
+            p = o + d * np.where(hit, th, 0)[..., None]
+            ts = ray_cast(sc, p + 1e-4 * sun, np.broadcast_to(sun, d.shape))
+            sees = hit & ~np.isfinite(ts)
+            hit_all &= hit
+            lit_all &= sees
+            lit_none &= ~sees
+    return {"lit": hit_all & lit_all, "shadowed": hit_all & lit_none}
+
+
+def read_mask(path, w, h):
+    """--mask: a PGM (P2 or P5, 8 or 16 bits) or PFM of w x h pixels (PFM: first channel; rows bottom
+    to top as the format says); {"lit": value <= 0.5 of the maximum (PGM) or <= 0.5 (PFM), "shadowed":
+    above}"""
+    import numpy as np
+    with open(path, "rb") as f:
+        data = f.read()
+    magic = data[:2]
+    if magic in (b"P2", b"P5"):
+        toks, pos = [], 2
+        while len(toks) < 3:  # width, height, maxval (comments skipped)
+            m = re.compile(rb"\s*(#[^\n]*\n\s*)*(\d+)").match(data, pos)
+            if not m:
+                die("%s: not a PGM header" % path)
+            toks.append(int(m.group(2)))
+            pos = m.end()
+        mw, mh, maxval = toks
+        if magic == b"P2":
+            v = np.array(data[pos:].split()[:mw * mh], dtype=np.float64)
+        else:
+            pos += 1
+            if len(data) - pos < mw * mh * (2 if maxval > 255 else 1):
+                die("%s: truncated PGM" % path)
+            v = np.frombuffer(data, dtype=">u2" if maxval > 255 else np.uint8, count=mw * mh, offset=pos).astype(np.float64)
+        if v.size != mw * mh:
+            die("%s: truncated PGM" % path)
+        img = v.reshape(mh, mw) / max(maxval, 1)
+    elif magic in (b"Pf", b"PF"):
+        lines, pos = [], 0
+        try:
+            for _ in range(3):
+                e = data.index(b"\n", pos)
+                lines.append(data[pos:e].decode().strip())
+                pos = e + 1
+            mw, mh = map(int, lines[1].split())
+            sc_ = float(lines[2])
+        except ValueError:
+            die("%s: not a PFM header" % path)
+        nc = 1 if magic == b"Pf" else 3
+        if len(data) - pos < mw * mh * nc * 4:
+            die("%s: truncated PFM" % path)
+        v = np.frombuffer(data, dtype="<f4" if sc_ < 0 else ">f4", count=mw * mh * nc, offset=pos)
+        img = v.reshape(mh, mw, nc)[::-1, :, 0].astype(np.float64)
+    else:
+        die("%s: --mask takes a PGM (P2/P5) or PFM file" % path)
+    if (mw, mh) != (w, h):
+        die("%s: the mask is %dx%d, the images %dx%d" % (path, mw, mh, w, h))
+    return {"lit": img <= 0.5, "shadowed": img > 0.5}
+
+
+def relvar_by_class(imgs, classes):
+    """relvar over each class's pixels ({name: value})"""
+    import numpy as np
+    a = np.stack(imgs)
+    m = a.mean(axis=0)
+    q = a.var(axis=0, ddof=1) / (m * m + 1e-2)
+    return {k: float(np.mean(q[c])) if c.any() else float("nan") for k, c in classes.items()}
+
+
 def write_background_scene(text, scene_dir, path):
     """The scene file with its shapes removed (for our renderer's background image), its map path
     made absolute so that the copy can live elsewhere."""
@@ -719,9 +875,12 @@ def variance_mode(args):
     quick = args.quick
     res = (160, 120) if quick else (tuple(args.var_res) if args.var_res else None)
     spps = [16, 64] if quick else [16, 64, 256]
+    if args.var_spp:
+        spps = [int(x) for x in args.var_spp.split(",")]
     seeds = 2 if quick else args.seeds
     ld = args.our_sampler
     integs = ["direct", "path"]
+    maxdepth = args.maxdepth
     workdir = tempfile.mkdtemp(prefix="el_mitsuba_var_")
     variant = "llvm_ad_rgb"
     try:
@@ -748,10 +907,14 @@ def variance_mode(args):
                      ("mitsuba", "stratified 4/4", "direct", "stratified", 4)]
     if args.map_too:
         cfgs += [("ours", "%s 1/1, map alone" % ld, None, ld, 1)]
-    print("variance mode: %s x %s, spp %s, %d seeds per configuration, %d threads; Mitsuba %s %s"
-          % ("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
-             ",".join(map(str, spps)), seeds, args.threads, mi.__version__, variant))
+    print("variance mode: %s x %s, spp %s, %d seeds per configuration, %d threads, path maxdepth %d; Mitsuba %s %s; "
+          "load average %.2f %.2f %.2f" % (("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
+                                            ",".join(map(str, spps)), seeds, args.threads, maxdepth, mi.__version__, variant)
+                                           + os.getloadavg()))
+    t_start = time.time()
+    regions = {}  # (scene) -> {"lit": mask, "shadowed": mask}: --regions (the scene's geometry) or --mask FILE
     results = {}  # (scene, integ, spp, side, name) -> (relvar, median CPU s, mean image)
+    by_region = {}  # the same keys -> {"lit": relvar, "shadowed": relvar}
     for sc_key, fname in VAR_SCENES:
         path = os.path.join(ROOT, "scenes", fname)
         for integ in integs:
@@ -759,20 +922,23 @@ def variance_mode(args):
             for ns in (1, 2, 4):
                 files[ns] = os.path.join(workdir, "%s_%s_%d.pbrt" % (sc_key, integ, ns))
                 with open(files[ns], "w") as f:
-                    f.write(scene_variant(path, res, integ, ns))
-            sc = parse_pbrt(files[1], scene_variant(path, res, integ, 1))
+                    f.write(scene_variant(path, res, integ, ns, maxdepth))
+            sc = parse_pbrt(files[1], scene_variant(path, res, integ, 1, maxdepth))
+            if (args.regions or args.mask) and sc_key not in regions:
+                regions[sc_key] = read_mask(args.mask, sc["xres"], sc["yres"]) if args.mask else pixel_classes(sc)
+                print("  %s: %s" % (sc_key, ", ".join("%s %d pixels" % (k, int(v.sum())) for k, v in regions[sc_key].items())))
             mine = [c for c in cfgs if c[2] in (None, integ)]
             for spp in spps:
                 imgs, cpus = {}, {}
                 for c in mine:  # Mitsuba's warm-up render (JIT compilation, timed apart; once per configuration)
                     if c[0] == "mitsuba" and spp == spps[0]:
                         t0 = time.perf_counter()
-                        mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], 5), spp, 999)
+                        mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], maxdepth), spp, 999)
                         mr.compile_s.setdefault((sc_key, integ, c[1]), time.perf_counter() - t0)
                 for r in range(seeds):  # interleaved: every configuration once per round
                     for c in mine:
                         if c[0] == "mitsuba":
-                            img, cpu = mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], 5), spp, r + 1)
+                            img, cpu = mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], maxdepth), spp, r + 1)
                         else:
                             env = "map" if "map alone" in c[1] else None
                             img, cpu, _ = ours.render(files[c[4]], spp, r + 1, c[3], env)
@@ -781,9 +947,12 @@ def variance_mode(args):
                 for c in mine:
                     results[(sc_key, integ, spp, c[0], c[1])] = (relvar(imgs[c[1]]), statistics.median(cpus[c[1]]),
                                                               np.mean(imgs[c[1]], axis=0))
+                    if sc_key in regions:
+                        by_region[(sc_key, integ, spp, c[0], c[1])] = relvar_by_class(imgs[c[1]], regions[sc_key])
                 for c in mine:
                     v = results[(sc_key, integ, spp, c[0], c[1])]
-                    print("  %s %s %d %s %s: relvar %.3g, CPU %.3f s" % (sc_key, integ, spp, c[0], c[1], v[0], v[1]))
+                    extra = "".join(", %s %.3g" % kv for kv in by_region.get((sc_key, integ, spp, c[0], c[1]), {}).items())
+                    print("  %s %s %d %s %s: relvar %.3g%s, CPU %.3f s" % (sc_key, integ, spp, c[0], c[1], v[0], extra, v[1]))
                 sys.stdout.flush()
         mr.drop(sc_key)
     print()
@@ -818,6 +987,41 @@ def variance_mode(args):
                 bm, bo = min(m), min(o)
                 rows.append([sc_key, integ, spp, "%.3g (%s)" % bo, "%.3g (%s)" % bm, "%.2f" % (bo[0] / bm[0])])
     print(fmt_table(rows, ["map", "integrator", "spp", "ours best", "Mitsuba best", "ratio"]))
+    print("\n(c) CPU per camera sample (the render loop's CPU s at equal spp and resolution), ours / Mitsuba, one light + "
+          "one BSDF sample (issue 21's target <= 1), and the equal-time ratio of (b) again (issue 21's target <= 0.5)")
+    rows = []
+    for sc_key, _ in VAR_SCENES:
+        for integ in integs:
+            for spp in spps:
+                g = lambda side, name: results.get((sc_key, integ, spp, side, name), (float("nan"), float("nan")))[1]
+                m = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "mitsuba")]
+                o = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "ours")
+                     and "map alone" not in k[4]]
+                rows.append([sc_key, integ, spp, "%.3f / %.3f = %.2f" % (g("ours", "%s 1/1" % ld), g("mitsuba", "multijitter 1/1"),
+                                                                       g("ours", "%s 1/1" % ld) / g("mitsuba", "multijitter 1/1")),
+                             "%.2f" % (g("ours", "random 1/1") / g("mitsuba", "independent 1/1")),
+                             "%.2f" % (min(o)[0] / min(m)[0]) if m and o else "-"])
+    print(fmt_table(rows, ["map", "integrator", "spp", "CPU s %s / multijitter 1/1" % ld, "random / independent", "equal time"]))
+    if by_region:
+        print("\n(d) by region (%s): relvar ours / Mitsuba at equal spp (%s 1/1 / multijitter 1/1; random / independent) "
+              "and the equal-time ratio (best / best, cost = the region's relvar x the whole image's CPU s)"
+              % ("--mask " + args.mask if args.mask else "--regions: lit = every position of the pixel sees the sun, "
+                 "shadowed = none does", ld))
+        rows = []
+        for sc_key, _ in VAR_SCENES:
+            for integ in integs:
+                for spp in spps:
+                    for reg in ("lit", "shadowed"):
+                        g = lambda side, name: by_region.get((sc_key, integ, spp, side, name), {}).get(reg, float("nan"))
+                        m = [(by_region[k][reg] * v[1], k[4]) for k, v in results.items()
+                             if k[:4] == (sc_key, integ, spp, "mitsuba") and k in by_region]
+                        o = [(by_region[k][reg] * v[1], k[4]) for k, v in results.items()
+                             if k[:4] == (sc_key, integ, spp, "ours") and k in by_region and "map alone" not in k[4]]
+                        rows.append([sc_key, integ, spp, reg, "%.2f" % (g("ours", "%s 1/1" % ld) / g("mitsuba", "multijitter 1/1")),
+                                     "%.2f" % (g("ours", "random 1/1") / g("mitsuba", "independent 1/1")),
+                                     "%.2f (%s / %s)" % (min(o)[0] / min(m)[0], min(o)[1], min(m)[1]) if m and o else "-"])
+        print(fmt_table(rows, ["map", "integrator", "spp", "region", "%s / multijitter" % ld, "random / independent",
+                               "equal time"]))
     print("\nbias check: relative difference of the image means, ours (%s 1/1) against Mitsuba (multijitter 1/1), "
           "at %d spp:" % (ld, spps[-1]))
     for sc_key, _ in VAR_SCENES:
@@ -834,6 +1038,7 @@ def variance_mode(args):
         print("  Mitsuba %-8s load_dict (map load, its distribution, BVH) %.3f s" % (k, t))
     for k, t in sorted(mr.compile_s.items()):
         print("  Mitsuba %-8s %-6s %-16s first render (JIT compilation included) %.2f s" % (k[0], k[1], k[2], t))
+    print("\nwall time %.0f s; load average at the end %.2f %.2f %.2f" % ((time.time() - t_start,) + os.getloadavg()))
     shutil.rmtree(workdir, ignore_errors=True)
 
 
@@ -902,6 +1107,13 @@ def main():
     ap.add_argument("--map-too", action="store_true", help="variance mode: also ours with the map alone (no product)")
     ap.add_argument("--var-res", type=int, nargs=2, default=None,
                     help="resolution of the variance modes (default: the scene's, 320x240; --sampler-variance 320x240)")
+    ap.add_argument("--var-spp", default="", help="variance mode: the sample counts (default 16,64,256)")
+    ap.add_argument("--maxdepth", type=int, default=5, help="variance mode: both integrators' maxdepth (pbrt's bounces)")
+    ap.add_argument("--regions", action="store_true",
+                    help="variance mode: also report lit and shadowed pixels apart (classified by ray casting the "
+                         "scene towards the map's brightest texel: pixel_classes)")
+    ap.add_argument("--mask", default="", help="variance mode: lit (<= 0.5) and shadowed (> 0.5) pixels from a PGM or PFM "
+                    "of the compared resolution")
     ap.add_argument("--no-stratified-splitting", action="store_true",
                     help="variance mode: leave out Mitsuba's stratified 2/2 and 4/4 (its multijitter is the stronger)")
     args = ap.parse_args()

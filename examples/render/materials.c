@@ -17,7 +17,8 @@
  * Spectra are RGB (pbrt-v3's default RGBSpectrum); "Clamp" is pbrt-v3's Spectrum::Clamp (negatives to 0). */
 #include "elr_internal.h"
 
-static elr_v3 elr__clamp0(elr_v3 v) { return elr_v(fmaxf(v.x, 0.f), fmaxf(v.y, 0.f), fmaxf(v.z, 0.f)); }
+/* max(v, 0) per component, NaN to 0: fmaxf(x, 0.f)'s values (-0 to +0 as well), without its libm call */
+static elr_v3 elr__clamp0(elr_v3 v) { return elr_v(v.x > 0.f ? v.x : 0.f, v.y > 0.f ? v.y : 0.f, v.z > 0.f ? v.z : 0.f); }
 static float elr__ftex(const elr_scene *s, int t, const elr_tex_ctx *c) { return elr_tex_eval(s, t, c).x; }
 /* an index of refraction from a texture, kept where the Fresnel and refraction maths stay finite */
 static float elr__eta(float e) { return e > 1e-3f ? (e < 1e3f ? e : 1e3f) : 1e-3f; }

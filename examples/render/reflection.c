@@ -93,13 +93,22 @@ static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
 }
 static ELR_NOINLINE elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
 static ELR_NOINLINE float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
+/* f and pdf of a BSDF of no lobe list and no glossy lobe (Lambertian alone needs no local frame):
+ * inlined into elr_bsdf_sample too, which evaluates both in the sampled direction */
+static inline elr_v3 elr__lambert_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
+  int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
+  return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
+}
+static inline float elr__lambert_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
+  float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
+  return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
+}
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi, f = elr_v(0, 0, 0);
   int reflect;
   if (b->nlobes) return elr__list_f(b, woW, wiW, ELR_BSDF_ALL);
+  if (!b->has_glossy) return elr__lambert_f(b, woW, wiW);
   reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
-  if (!b->has_glossy) /* Lambertian alone needs no local frame */
-    return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : f;
   wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || !reflect) return f;
   if (b->has_diffuse) f = elr_mul(b->kd, ELR_INV_PI);
@@ -110,10 +119,7 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi;
   float pdf = 0.f;
   if (b->nlobes) return elr__list_pdf(b, woW, wiW, ELR_BSDF_ALL);
-  if (!b->has_glossy) {
-    float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
-    return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
-  }
+  if (!b->has_glossy) return elr__lambert_pdf(b, woW, wiW);
   wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || b->ncomp == 0) return 0.f;
   if (b->has_diffuse && wo.z * wi.z > 0.f) pdf += fabsf(wi.z) * ELR_INV_PI;
@@ -165,6 +171,10 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
     if (wo.z * wi.z <= 0.f) return elr_v(0, 0, 0);
   }
   *wiW = elr__to_world(b, wi);
+  if (!b->has_glossy) { /* (elr_bsdf_pdf and elr_bsdf_f, inlined) */
+    *pdf = elr__lambert_pdf(b, woW, *wiW);
+    return elr__lambert_f(b, woW, *wiW);
+  }
   *pdf = elr_bsdf_pdf(b, woW, *wiW);
   if (b->has_specular) *pdf *= 1.f; /* a specular lobe never matches a non-specular direction */
   return elr_bsdf_f(b, woW, *wiW);

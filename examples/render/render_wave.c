@@ -17,8 +17,10 @@
  *
  * Direct lighting: the first vertex computed ahead (elr_first), with the
  *   wave's camera rays, light samples and shadow rays (light and BSDF sampled) each in one call; then
- *   elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
- *   vertex (specular reflection and transmission, a light's further "samples").
+ *   its shading in the wave (elr__direct_shade) where no specular bounce follows and it emits nothing,
+ *   else elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
+ *   vertex (specular reflection and transmission, a light's further "samples"). The wave's radiance
+ *   goes to the film in one el_film_tile_add_samples call.
  * Path: every vertex is a wave. For the paths still alive: their rays in one call; at each hit the
  *   BSDF, the light-sample and BSDF draws; the light samples in one el_envlight_sample_li_n call and
  *   the escaped rays' environment (pdf and radiance) in one pass; the shadow rays in one call; then
@@ -147,6 +149,12 @@ struct elr_wave {
   elr_first more[ELR_WAVE]; /* the further pairs of each camera sample (elr_first.more) */
   elr_first *pair[ELR_WAVE];
   int pair_of[ELR_WAVE];
+  /* the first vertex shaded here (elr__direct_shade), per pair: its light sample's BSDF value times the
+   * cosine and its lonly; per camera sample: shaded here (1) or by elr_direct_first (0), and its Ld */
+  elr_v3 fl[ELR_WAVE];
+  int lonly[ELR_WAVE], fast[ELR_WAVE];
+  elr_v3 Ld[ELR_WAVE];
+  float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
   elr_path_state p[ELR_WAVE];
   int alive[ELR_WAVE], ray[ELR_WAVE], light[ELR_WAVE], shadow[ELR_WAVE], escaped[ELR_WAVE], bshadow[ELR_WAVE];
@@ -216,6 +224,9 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
     nm = 0;
     for (i = 0; i < n; i++)
       if (sc[i]) elr_sun_sample(sun, sc[i], has_n[i] ? &normal[i] : NULL, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
+  } else { /* the map alone for all (diffuse vertices under a sun): one call on the arrays themselves */
+    for (i = 0; i < n && !has_n[i]; i++) {}
+    if (i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
   }
   for (i = 0; i < n; i++) {
     if (sun && sc[i]) continue;
@@ -237,6 +248,42 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
   if (sun) for (i = 0; i < n; i++) elr_sun_count(sun, sc[i], &wi[3 * i], pdf[i], ts);
 }
 
+/* The first vertex of the camera samples W->fast marks (a hit that emits nothing and from which the
+ * reference follows no specular bounce), shaded here rather than by elr_direct_first: its
+ * elr__sample_lights_ahead and elr__estimate_direct_ahead (above) with the same sums in the
+ * same order (bit for bit: test_render_wave), without the sampler's restore and skips (nothing draws
+ * after the first vertex then) and with the light sample's BSDF value already computed for the shadow
+ * ray (W->fl). Each pair's terms into its camera sample's W->Ld; the 1 / nsamples in the film loop. */
+static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats *ts) {
+  int k;
+  for (k = 0; k < np; k++) {
+    const elr_first *p = W->pair[k];
+    int j = W->pair_of[k];
+    const elr_bsdf *b = &W->f[j].b;
+    elr_v3 Ld = W->Ld[j];
+    if (!W->fast[j]) continue;
+    /* <<Sample light source with multiple importance sampling>> (W->fl: set where pdf > 0) */
+    if (C->ls != ELR_LS_BSDF && p->pdf > 0.f && !elr_isblack(W->fl[k])) {
+      ts->shadow++;
+      if (!p->occ_l) {
+        float w = 1.f;
+        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, elr_bsdf_pdf(b, elr_mul(W->cam[j].d, -1.f), p->wi));
+        Ld = elr_add(Ld, elr_mul(elr_vmul(W->fl[k], p->L), w / p->pdf));
+      }
+    }
+    /* <<Sample BSDF with multiple importance sampling>> */
+    if (p->bray) {
+      elr_v3 fb = elr_mul(p->fb, fabsf(elr_dot(p->wb, b->ns)));
+      ts->bsdfl++;
+      if (!p->occ_b) {
+        float w = C->ls == ELR_LS_MIS ? elr_power_heuristic(p->bpdf, p->bpdf_env) : 1.f;
+        Ld = elr_add(Ld, elr_mul(elr_vmul(fb, p->Lb), w / p->bpdf));
+      }
+    }
+    W->Ld[j] = Ld;
+  }
+}
+
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
  * in W->rays, traced): the hits' BSDF samples, light samples and environment lookups for the whole
  * wave, for each of the light's W->npair sample pairs (its "samples" count, or splitting's), then all
@@ -255,11 +302,15 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     q->pdf = 0.f;
     q->more = NULL; q->nmore = 0; q->sun = NULL;
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
+    W->fast[j] = 0;
     if (!q->hit) continue;
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
     elr_bsdf_init(C->s, &W->h[j], &q->tc, &q->b);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
+    /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
+    W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t));
+    W->Ld[j] = elr_v(0, 0, 0);
     W->vsc[j] = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
     q->more = &W->more[nm]; q->nmore = W->npair - 1; nm += W->npair - 1;
     for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
@@ -267,7 +318,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       float us[2];
       int lonly = 0;
       p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f; p->sun = W->vsc[j];
-      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1;
+      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1; W->lonly[np] = 0;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
@@ -277,6 +328,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
         lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
         W->light[np] = n++;
+        W->lonly[np] = lonly;
       }
       if (C->ls != ELR_LS_LIGHT && !lonly) {
         int spec;
@@ -287,25 +339,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       np++;
     }
   }
-  /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the BSDF
-   * samples' directions, then the light samples */
-  for (k = 0; k < np; k++) {
-    elr_first *p = W->pair[k];
-    float d[3], L3[3];
-    if (!p->bray) continue;
-    elr_to3(p->wb, d);
-    if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
-    else if (C->batch_light->product) {
-      elr_v3 nc;
-      const elr_sun_cell *c = W->vsc[W->pair_of[k]];
-      int has = elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
-      p->bpdf_env = c ? elr_sun_pdf(C->sun, c, has ? &nc : NULL, d) : elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
-    } else {
-      p->bpdf_env = el_envlight_pdf_li(env_sample, d);
-    }
-    el_envlight_le(env, d, L3);
-    p->Lb = elr_from3(L3);
-  }
+  /* the light samples */
   elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, C->sun, W->sc, ts);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
@@ -316,7 +350,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (i >= 0) {
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
-      if (p->pdf > 0.f && !elr_isblack(elr_mul(elr_bsdf_f(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
+      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
         W->shadow[k] = W->shadows.n;
         elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi), p->wi, INFINITY);
       }
@@ -332,6 +366,26 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     p->occ_l = W->shadow[k] >= 0 ? W->shadows.tfar[W->shadow[k]] < 0.f : 0;
     p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
   }
+  /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the directions
+   * of the BSDF samples whose rays escaped (the others' are never read) */
+  for (k = 0; k < np; k++) {
+    elr_first *p = W->pair[k];
+    float d[3], L3[3];
+    if (!p->bray || p->occ_b) continue;
+    elr_to3(p->wb, d);
+    if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+    else if (C->batch_light->product) {
+      elr_v3 nc;
+      const elr_sun_cell *c = W->vsc[W->pair_of[k]];
+      int has = elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      p->bpdf_env = c ? elr_sun_pdf(C->sun, c, has ? &nc : NULL, d) : elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
+    } else {
+      p->bpdf_env = el_envlight_pdf_li(env_sample, d);
+    }
+    el_envlight_le(env, d, L3);
+    p->Lb = elr_from3(L3);
+  }
+  elr__direct_shade(C, W, np, ts);
 }
 
 /* the path tracer (elr_path_li) for the m camera samples of the wave, every vertex a wave; their camera
@@ -533,19 +587,22 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
     elr__intersect(C, &W->rays, 1, ts);
     if (C->path) elr__path_wave(C, W, m, ts);
     else elr__direct_wave(C, W, m, ts);
-    /* <<Add camera ray's contribution to image>>, in the reference's order */
+    /* <<Add camera ray's contribution to image>>, in the reference's order (one film call for the wave) */
     for (j = 0; j < m; j++) {
-      float rgb[3];
       elr_v3 L;
       if (C->path) L = W->p[j].L;
-      else {
+      else if (W->fast[j]) { /* elr_direct_first's sums: p.L + beta (0 + Ld / n) */
+        elr_path_state ps;
+        elr_path_begin(&ps, &W->cam[j]);
+        L = elr_add(ps.L, elr_vmul(ps.beta, elr_add(elr_v(0, 0, 0), elr_mul(W->Ld[j], 1.f / (float)(C->direct_one ? 1 : C->batch_light->nsamples)))));
+      } else {
         elr_sampler *S = &W->S[W->pix[j]];
         elr_sampler_restore(S, &W->pos[j]); /* the sampler back at sample j, after its film draw */
         L = elr_direct_first(C, S, &W->cam[j], &W->f[j], ts);
       }
-      elr_to3(L, rgb);
-      el_film_tile_add_sample(tile, W->fx[j], W->fy[j], rgb, 1.f);
+      elr_to3(L, &W->rgb[3 * j]);
       ts->samples++;
     }
+    el_film_tile_add_samples(tile, m, W->fx, W->fy, W->rgb, NULL);
   }
 }

@@ -352,6 +352,15 @@ static void elr__wave_np(elr_wave_rays *w, struct RTCRayHitNp *np) {
  * of its first ray, masked off (Embree wants the packet and its mask 64-byte aligned) */
 static void elr__wave_ray16(const elr_wave_rays *w, int i, struct RTCRay16 *r, int valid[16]) {
   int k;
+  if (i + 16 <= w->n) { /* a full packet: each component a copy of 16 (elr_wave_add wrote tnear, time 0, mask ~0, flags 0) */
+    static const unsigned lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    for (k = 0; k < 16; k++) valid[k] = -1;
+    memcpy(r->org_x, w->ox + i, sizeof r->org_x); memcpy(r->org_y, w->oy + i, sizeof r->org_y); memcpy(r->org_z, w->oz + i, sizeof r->org_z);
+    memcpy(r->tnear, w->tnear + i, sizeof r->tnear); memcpy(r->dir_x, w->dx + i, sizeof r->dir_x); memcpy(r->dir_y, w->dy + i, sizeof r->dir_y);
+    memcpy(r->dir_z, w->dz + i, sizeof r->dir_z); memcpy(r->time, w->time + i, sizeof r->time); memcpy(r->tfar, w->tfar + i, sizeof r->tfar);
+    memcpy(r->mask, w->mask + i, sizeof r->mask); memcpy(r->id, lane, sizeof r->id); memcpy(r->flags, w->flags + i, sizeof r->flags);
+    return;
+  }
   for (k = 0; k < 16; k++) {
     int j = i + k < w->n ? i + k : i;
     valid[k] = i + k < w->n ? -1 : 0;
@@ -397,10 +406,15 @@ void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coher
 #else
       rtcIntersect16(valid, sc, &ctx, &rh);
 #endif
-      for (k = 0; k < 16 && i + k < w->n; k++) {
-        w->tfar[i + k] = rh.ray.tfar[k]; w->geom[i + k] = rh.hit.geomID[k]; w->inst[i + k] = rh.hit.instID[0][k];
-        w->prim[i + k] = rh.hit.primID[k]; w->u[i + k] = rh.hit.u[k]; w->v[i + k] = rh.hit.v[k];
-      }
+      if (i + 16 <= w->n) {
+        memcpy(w->tfar + i, rh.ray.tfar, sizeof rh.ray.tfar); memcpy(w->geom + i, rh.hit.geomID, sizeof rh.hit.geomID);
+        memcpy(w->inst + i, rh.hit.instID[0], sizeof rh.hit.instID[0]); memcpy(w->prim + i, rh.hit.primID, sizeof rh.hit.primID);
+        memcpy(w->u + i, rh.hit.u, sizeof rh.hit.u); memcpy(w->v + i, rh.hit.v, sizeof rh.hit.v);
+      } else
+        for (k = 0; k < 16 && i + k < w->n; k++) {
+          w->tfar[i + k] = rh.ray.tfar[k]; w->geom[i + k] = rh.hit.geomID[k]; w->inst[i + k] = rh.hit.instID[0][k];
+          w->prim[i + k] = rh.hit.primID[k]; w->u[i + k] = rh.hit.u[k]; w->v[i + k] = rh.hit.v[k];
+        }
     }
     return;
   }
@@ -448,7 +462,8 @@ void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int cohere
 #else
       rtcOccluded16(valid, sc, &ctx, &r);
 #endif
-      for (k = 0; k < 16 && i + k < w->n; k++) w->tfar[i + k] = r.tfar[k];
+      if (i + 16 <= w->n) memcpy(w->tfar + i, r.tfar, sizeof r.tfar);
+      else for (k = 0; k < 16 && i + k < w->n; k++) w->tfar[i + k] = r.tfar[k];
     }
     return;
   }
