@@ -1,0 +1,156 @@
+/* bench_ld_point.c: how much of a low-discrepancy sampler's stratification survives the map's warp, at
+ * one lit ground point (issue 21/22's finding: on bench_city, Mitsuba's multijitter gains 8x over
+ * independent, our zsobol 6x, lit pixels 2.4-2.75x Mitsuba's).
+ *
+ *   bench_ld_point [MAP.hdr [N [TRIALS [IMPORTANCE [RES]]]]]   map (data/envmaps/city.hdr), points per estimate (64),
+ *                  trials (4000), the light's importance map (EL_ENVLIGHT_IMPORTANCE_*: 0 cell average, 1 pbrt-v3
+ *                  (the renderer's default), 2 texel, 3 bilinear (Mitsuba 3's density); default 1), RES: the
+ *                  importance map's bins per texel and axis (0: the mode's own)
+ *
+ * The irradiance at an upward normal (the map's own frame, +z up, nothing occluded) estimated from N
+ * points, TRIALS times with fresh randomisation; printed: the variance of one estimate per point set
+ * (independent, jittered N = k x k with each 2D dimension jittered on its own and paired at random,
+ * multi-jitter (jittered and n-rooks, as Mitsuba 3's multijitter), Owen-scrambled Sobol' (0,2)-nets, the two 2D dimensions with independent scrambles and their pairing
+ * shuffled) and its gain over independent points, for
+ *   (a) the light sample alone, bilinear radiance (el_envlight_sample_li as the renderer uses it),
+ *   (b) the same with the radiance of the sampled texel (nearest, piecewise constant like the pdf),
+ *   (c) the ideal warp: L / pdf constant (cos only), what stratification gives when the warp is exact,
+ *   (d) one light + one cosine BSDF sample with the power heuristic (the renderer's map-alone MIS),
+ *   (e) (d) with the nearest radiance.
+ * (a) against (b) shows whether the radiance that varies inside a texel while the pdf does not (pbrt-v3's
+ * piecewise-constant density under a bilinear lookup) eats the gain in the sun's few texels. */
+#define EL_IMPLEMENTATION
+#include "envlight.h"
+#include "image_io.h"
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static uint64_t g_s = 0x9E3779B97F4A7C15ull;
+static uint64_t rnd64(void) {
+  uint64_t z = (g_s += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+static float rndf(void) { return (float)(rnd64() >> 40) * (1.0f / 16777216.0f); }
+static uint32_t hash32(uint32_t x) {
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return x;
+}
+/* nested uniform (Owen) scramble of the top 24 bits of v with seed: bit i flipped by a hash of the bits above */
+static float owen(uint32_t v, uint32_t seed) {
+  uint32_t out = 0;
+  int i;
+  for (i = 31; i >= 8; i--) {
+    uint32_t prefix = i == 31 ? 0 : (v >> (i + 1)) | (1u << (31 - i));
+    uint32_t b = (v >> i) & 1u;
+    b ^= hash32(prefix ^ hash32(seed + (uint32_t)i)) & 1u;
+    out |= b << i;
+  }
+  return (float)(out >> 8) * (1.0f / 16777216.0f);
+}
+static uint32_t sobol0(uint32_t i) { uint32_t r = 0, b = 0x80000000u; for (; i; i >>= 1, b >>= 1) if (i & 1) r ^= b; return r; }
+static uint32_t sobol1(uint32_t i) {
+  uint32_t r = 0, v = 0x80000000u;
+  for (; i; i >>= 1, v ^= v >> 1) if (i & 1) r ^= v;
+  return r;
+}
+static void shuffle(int *p, int n) { int i; for (i = 0; i < n; i++) p[i] = i; for (i = n - 1; i > 0; i--) { int j = (int)(rnd64() % (uint64_t)(i + 1)), t = p[i]; p[i] = p[j]; p[j] = t; } }
+
+/* n 2D points of kind k (0 independent, 1 jittered k x k, 2 Owen-scrambled Sobol', 3 multi-jitter), into u[2 i] */
+static void points(int kind, int n, float *u) {
+  int i, perm[4096];
+  if (kind == 0) { for (i = 0; i < 2 * n; i++) u[i] = rndf(); return; }
+  shuffle(perm, n);
+  if (kind == 1) {
+    int k = (int)(sqrt((double)n) + 0.5);
+    for (i = 0; i < n; i++) { int c = perm[i]; u[2 * i] = ((float)(c % k) + rndf()) / (float)k; u[2 * i + 1] = ((float)(c / k) + rndf()) / (float)k; }
+  } else if (kind == 3) { /* multi-jitter (Chiu, Shirley and Wang 1994): jittered k x k and n-rooks, fine strata shuffled */
+    int k = (int)(sqrt((double)n) + 0.5), a, b, sx[64][64], sy[64][64];
+    for (a = 0; a < k; a++) { shuffle(sx[a], k); shuffle(sy[a], k); }
+    for (i = 0; i < n; i++) {
+      int c = perm[i];
+      a = c % k; b = c / k; /* the coarse cell (a, b) */
+      u[2 * i] = ((float)(a * k + sx[a][b]) + rndf()) / (float)n;
+      u[2 * i + 1] = ((float)(b * k + sy[b][a]) + rndf()) / (float)n;
+    }
+  } else {
+    uint32_t s0 = (uint32_t)rnd64(), s1 = (uint32_t)rnd64();
+    for (i = 0; i < n; i++) { uint32_t c = (uint32_t)perm[i]; u[2 * i] = owen(sobol0(c), s0); u[2 * i + 1] = owen(sobol1(c), s1); }
+  }
+  for (i = 0; i < 2 * n; i++) if (u[i] >= 1.0f) u[i] = 0.99999994f;
+}
+
+static const float *g_px;
+static int g_w, g_h;
+static double lum(const float *c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+static double nearest(const float d[3]) { /* the texel's luminance (pbrt-v3's (u, v) = (phi / 2pi, theta / pi)) */
+  float u, v;
+  int x, y;
+  el_envlight_dir_to_uv(d, &u, &v);
+  x = (int)(u * (float)g_w); y = (int)(v * (float)g_h);
+  x = x < 0 ? 0 : x >= g_w ? g_w - 1 : x; y = y < 0 ? 0 : y >= g_h ? g_h - 1 : y;
+  return lum(g_px + 3 * ((size_t)y * (size_t)g_w + (size_t)x));
+}
+static void cos_sample(const float u[2], float d[3], float *pdf) {
+  double r = sqrt(u[0]), ph = 2 * 3.14159265358979 * u[1];
+  d[0] = (float)(r * cos(ph)); d[1] = (float)(r * sin(ph)); d[2] = (float)sqrt(fmax(0.0, 1.0 - u[0]));
+  *pdf = d[2] / 3.14159265f;
+}
+
+int main(int argc, char **argv) {
+  const char *path = argc > 1 ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
+  int N = argc > 2 ? atoi(argv[2]) : 64, T = argc > 3 ? atoi(argv[3]) : 4000, imp = argc > 4 ? atoi(argv[4]) : 1, res = argc > 5 ? atoi(argv[5]) : 0, kind, e, t, i;
+  el_envlight_options opt;
+  el_image img;
+  el_envlight l;
+  char err[256];
+  static const char *kname[4] = {"independent", "jittered", "sobol-owen", "multijitter"};
+  static const char *ename[5] = {"(a) light alone, bilinear L", "(b) light alone, texel L", "(c) ideal warp (L/pdf const)",
+                                 "(d) MIS light+BSDF, bilinear", "(e) MIS light+BSDF, texel L"};
+  double var[4][5], mean[4][5];
+  float *ul, *ub;
+  if (N < 1 || N > 4096 || T < 2 || (int)(sqrt((double)N) + 0.5) * (int)(sqrt((double)N) + 0.5) != N) { fprintf(stderr, "bench_ld_point: N a square in 1..4096, TRIALS >= 2\n"); return 1; }
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  memset(&opt, 0, sizeof opt);
+  opt.importance = imp;
+  if (res > 0) { opt.importance_width = res * img.width; opt.importance_height = res * img.height; opt.importance_cap = -1; }
+  if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, &opt) != EL_SUCCESS) { fprintf(stderr, "%s: init failed\n", path); return 1; }
+  g_px = img.pixels; g_w = img.width; g_h = img.height;
+  ul = (float *)malloc(sizeof(float) * 2 * (size_t)N); ub = (float *)malloc(sizeof(float) * 2 * (size_t)N);
+  for (kind = 0; kind < 4; kind++) {
+    double s1[5] = {0}, s2[5] = {0};
+    for (t = 0; t < T; t++) {
+      double acc[5] = {0};
+      points(kind, N, ul); points(kind, N, ub);
+      for (i = 0; i < N; i++) {
+        float wi[3], L[3], pdf, wb[3], pb, Lb[3];
+        el_envlight_sample_li(&l, ul + 2 * i, wi, L, &pdf);
+        if (pdf > 0 && wi[2] > 0) {
+          double c = wi[2], pbs = wi[2] / 3.14159265, w = pdf * pdf / ((double)pdf * pdf + pbs * pbs);
+          acc[0] += lum(L) * c / pdf; acc[1] += nearest(wi) * c / pdf; acc[2] += c;
+          acc[3] += w * lum(L) * c / pdf; acc[4] += w * nearest(wi) * c / pdf;
+        }
+        cos_sample(ub + 2 * i, wb, &pb);
+        if (pb > 0) {
+          double pl = el_envlight_pdf_li(&l, wb), w = (double)pb * pb / ((double)pb * pb + pl * pl);
+          el_envlight_le(&l, wb, Lb);
+          acc[3] += w * lum(Lb) * wb[2] / pb; acc[4] += w * nearest(wb) * wb[2] / pb;
+        }
+      }
+      for (e = 0; e < 5; e++) { double x = acc[e] / N; s1[e] += x; s2[e] += x * x; }
+    }
+    for (e = 0; e < 5; e++) { mean[kind][e] = s1[e] / T; var[kind][e] = (s2[e] - s1[e] * s1[e] / T) / (T - 1); }
+  }
+  printf("%s, importance %d res %d, %d points per estimate, %d trials: relative variance of one estimate (gain over independent)\n", path, imp, res, N, T);
+  for (e = 0; e < 5; e++) {
+    printf("%-32s", ename[e]);
+    for (kind = 0; kind < 4; kind++) printf("  %s %.3e (%.2fx)", kname[kind], var[kind][e] / (mean[0][e] * mean[0][e]), var[0][e] / var[kind][e]);
+    printf("  mean %.4g\n", mean[0][e]);
+  }
+  free(ul); free(ub); el_envlight_free(&l); el_image_free(&img);
+  return 0;
+}
