@@ -18,7 +18,9 @@
  *   (d) one light + one cosine BSDF sample with the power heuristic (the renderer's map-alone MIS),
  *   (e) (d) with the nearest radiance.
  * (a) against (b) shows whether the radiance that varies inside a texel while the pdf does not (pbrt-v3's
- * piecewise-constant density under a bilinear lookup) eats the gain in the sun's few texels. */
+ * piecewise-constant density under a bilinear lookup) eats the gain in the sun's few texels.
+ *   (f), (g): (a), (d) with a prototype of the proposed fix (below: the bilinear density, sampled by the
+ * discrete table over le()'s patches and a bilinear warp inside the patch). */
 #define EL_IMPLEMENTATION
 #include "envlight.h"
 #include "image_io.h"
@@ -95,6 +97,86 @@ static double nearest(const float d[3]) { /* the texel's luminance (pbrt-v3's (u
   x = x < 0 ? 0 : x >= g_w ? g_w - 1 : x; y = y < 0 ? 0 : y >= g_h ? g_h - 1 : y;
   return lum(g_px + 3 * ((size_t)y * (size_t)g_w + (size_t)x));
 }
+
+/* ---- the proposed fix, as a prototype: piecewise-constant bins on le()'s bilinear patches (between texel
+ * centres; half rows at the poles, where le() is constant in v), each bin's mass its exact integral of
+ * the corners' lum x sin(theta_centre), then a bilinear warp inside the chosen patch (Mitsuba 3's density,
+ * sampled by the discrete 2D table plus two linear inversions). Its pdf is exact for its own sampler. */
+static el_distribution2d g_pd;
+static float *g_corner; /* (h) x (w): lum x sin(theta) of texel (x, y) */
+static double g_total;
+static float corner(int x, int y) { return g_corner[(size_t)y * (size_t)g_w + (size_t)((x + g_w) % g_w)]; }
+static void patch_rows(int r, int *y0, int *y1, double *v0, double *hv) {
+  *y0 = r == 0 ? 0 : r - 1; *y1 = r == g_h ? g_h - 1 : r;
+  *v0 = r == 0 ? 0.0 : (r - 0.5) / g_h; *hv = (r == 0 || r == g_h) ? 0.5 / g_h : 1.0 / g_h;
+}
+static int patch_init(void) {
+  int x, y, r;
+  float *f = (float *)malloc(sizeof(float) * (size_t)g_w * (size_t)(g_h + 1));
+  g_corner = (float *)malloc(sizeof(float) * (size_t)g_w * (size_t)g_h);
+  for (y = 0; y < g_h; y++)
+    for (x = 0; x < g_w; x++) g_corner[(size_t)y * g_w + x] = (float)(lum(g_px + 3 * ((size_t)y * g_w + x)) * sin(3.14159265358979 * (y + 0.5) / g_h));
+  g_total = 0;
+  for (r = 0; r <= g_h; r++) {
+    int y0, y1; double v0, hv;
+    patch_rows(r, &y0, &y1, &v0, &hv);
+    for (x = 0; x < g_w; x++) { /* bins of equal size in the table: f is the mass over the bin's area */
+      double m = (corner(x, y0) + corner(x + 1, y0) + corner(x, y1) + corner(x + 1, y1)) * 0.25 * hv / g_w;
+      f[(size_t)r * g_w + x] = (float)m;
+      g_total += m;
+    }
+  }
+  r = el_distribution2d_init(&g_pd, f, g_w, g_h + 1, NULL) != EL_SUCCESS;
+  free(f);
+  return r;
+}
+/* t in [0, 1) with density proportional to (1 - t) A + t B */
+static double lin_inv(double A, double B, double xi) {
+  if (A + B <= 0) return xi;
+  return xi * (A + B) / (A + sqrt(A * A + xi * (B * B - A * A)));
+}
+static double patch_density_uv(int i, int r, double s, double t) { /* pdf over (u, v) */
+  int y0, y1; double v0, hv, a, b, c, d, mass, val;
+  patch_rows(r, &y0, &y1, &v0, &hv);
+  a = corner(i, y0); b = corner(i + 1, y0); c = corner(i, y1); d = corner(i + 1, y1);
+  mass = (a + b + c + d) * 0.25 * hv / g_w;
+  if (mass <= 0) return 0;
+  val = (1 - t) * ((1 - s) * a + s * b) + t * ((1 - s) * c + s * d);
+  return val / g_total; /* the mass's share x val / mean corner / area = val / total */
+}
+static void uv_dir(double u, double v, float d[3]) {
+  double ph = 2 * 3.14159265358979 * u, th = 3.14159265358979 * v;
+  d[0] = (float)(sin(th) * cos(ph)); d[1] = (float)(sin(th) * sin(ph)); d[2] = (float)cos(th);
+}
+static double patch_pdf(const float d[3]);
+static void patch_sample(const float uu[2], float wi[3], float *pdf) {
+  int i, r, y0, y1; float fu, fv, pb; double v0, hv, a, b, c, d, s, t, u, v, sth;
+  el_distribution2d_sample_bins(&g_pd, uu[0], uu[1], &i, &r, &fu, &fv, &pb);
+  patch_rows(r, &y0, &y1, &v0, &hv);
+  a = corner(i, y0); b = corner(i + 1, y0); c = corner(i, y1); d = corner(i + 1, y1);
+  t = lin_inv(a + b, c + d, fv);
+  s = lin_inv((1 - t) * a + t * c, (1 - t) * b + t * d, fu);
+  u = (i + 0.5 + s) / g_w; if (u >= 1) u -= 1;
+  v = v0 + t * hv;
+  sth = sin(3.14159265358979 * v);
+  uv_dir(u, v, wi);
+  /* the pdf of the returned (float) direction, as sample_li returns pdf_li(wi): at a patch's zero corner
+   * the density of the exact (s, t) may be 0 where le() of the rounded direction is not */
+  *pdf = sth > 0 ? (float)patch_pdf(wi) : 0.f;
+}
+static double patch_pdf(const float d[3]) {
+  double ph = atan2(d[1], d[0]), th = acos(fmax(-1.0, fmin(1.0, d[2]))), u, v, x, s, t, sth;
+  int i, r;
+  if (ph < 0) ph += 2 * 3.14159265358979;
+  u = ph / (2 * 3.14159265358979); v = th / 3.14159265358979;
+  x = u * g_w - 0.5; if (x < 0) x += g_w;
+  i = (int)x; if (i >= g_w) i = g_w - 1; s = x - i;
+  if (v < 0.5 / g_h) { r = 0; t = v / (0.5 / g_h); }
+  else if (v >= (g_h - 0.5) / g_h) { r = g_h; t = (v - (g_h - 0.5) / g_h) / (0.5 / g_h); }
+  else { double yv = v * g_h - 0.5; r = (int)yv + 1; if (r > g_h - 1) r = g_h - 1; t = yv - (r - 1); }
+  sth = sin(th);
+  return sth > 0 ? patch_density_uv(i, r, s, t) / (2 * 3.14159265358979 * 3.14159265358979 * sth) : 0;
+}
 static void cos_sample(const float u[2], float d[3], float *pdf) {
   double r = sqrt(u[0]), ph = 2 * 3.14159265358979 * u[1];
   d[0] = (float)(r * cos(ph)); d[1] = (float)(r * sin(ph)); d[2] = (float)sqrt(fmax(0.0, 1.0 - u[0]));
@@ -109,9 +191,10 @@ int main(int argc, char **argv) {
   el_envlight l;
   char err[256];
   static const char *kname[4] = {"independent", "jittered", "sobol-owen", "multijitter"};
-  static const char *ename[5] = {"(a) light alone, bilinear L", "(b) light alone, texel L", "(c) ideal warp (L/pdf const)",
-                                 "(d) MIS light+BSDF, bilinear", "(e) MIS light+BSDF, texel L"};
-  double var[4][5], mean[4][5];
+  static const char *ename[7] = {"(a) light alone, bilinear L", "(b) light alone, texel L", "(c) ideal warp (L/pdf const)",
+                                 "(d) MIS light+BSDF, bilinear", "(e) MIS light+BSDF, texel L",
+                                 "(f) patch warp, light alone", "(g) patch warp, MIS light+BSDF"};
+  double var[4][7], mean[4][7];
   float *ul, *ub;
   if (N < 1 || N > 4096 || T < 2 || (int)(sqrt((double)N) + 0.5) * (int)(sqrt((double)N) + 0.5) != N) { fprintf(stderr, "bench_ld_point: N a square in 1..4096, TRIALS >= 2\n"); return 1; }
   if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
@@ -120,11 +203,12 @@ int main(int argc, char **argv) {
   if (res > 0) { opt.importance_width = res * img.width; opt.importance_height = res * img.height; opt.importance_cap = -1; }
   if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, &opt) != EL_SUCCESS) { fprintf(stderr, "%s: init failed\n", path); return 1; }
   g_px = img.pixels; g_w = img.width; g_h = img.height;
+  if (patch_init()) { fprintf(stderr, "patch table failed\n"); return 1; }
   ul = (float *)malloc(sizeof(float) * 2 * (size_t)N); ub = (float *)malloc(sizeof(float) * 2 * (size_t)N);
   for (kind = 0; kind < 4; kind++) {
-    double s1[5] = {0}, s2[5] = {0};
+    double s1[7] = {0}, s2[7] = {0};
     for (t = 0; t < T; t++) {
-      double acc[5] = {0};
+      double acc[7] = {0};
       points(kind, N, ul); points(kind, N, ub);
       for (i = 0; i < N; i++) {
         float wi[3], L[3], pdf, wb[3], pb, Lb[3];
@@ -134,19 +218,30 @@ int main(int argc, char **argv) {
           acc[0] += lum(L) * c / pdf; acc[1] += nearest(wi) * c / pdf; acc[2] += c;
           acc[3] += w * lum(L) * c / pdf; acc[4] += w * nearest(wi) * c / pdf;
         }
+        { /* the prototype: light alone and MIS with the same BSDF sample below */
+          float wp[3], pp, Lp[3];
+          patch_sample(ul + 2 * i, wp, &pp);
+          if (pp > 0 && wp[2] > 0) {
+            double c = wp[2], pbs = wp[2] / 3.14159265, w = (double)pp * pp / ((double)pp * pp + pbs * pbs);
+            el_envlight_le(&l, wp, Lp);
+            acc[5] += lum(Lp) * c / pp; acc[6] += w * lum(Lp) * c / pp;
+          }
+        }
         cos_sample(ub + 2 * i, wb, &pb);
         if (pb > 0) {
           double pl = el_envlight_pdf_li(&l, wb), w = (double)pb * pb / ((double)pb * pb + pl * pl);
           el_envlight_le(&l, wb, Lb);
           acc[3] += w * lum(Lb) * wb[2] / pb; acc[4] += w * nearest(wb) * wb[2] / pb;
+          pl = patch_pdf(wb); w = (double)pb * pb / ((double)pb * pb + pl * pl);
+          acc[6] += w * lum(Lb) * wb[2] / pb;
         }
       }
-      for (e = 0; e < 5; e++) { double x = acc[e] / N; s1[e] += x; s2[e] += x * x; }
+      for (e = 0; e < 7; e++) { double x = acc[e] / N; s1[e] += x; s2[e] += x * x; }
     }
-    for (e = 0; e < 5; e++) { mean[kind][e] = s1[e] / T; var[kind][e] = (s2[e] - s1[e] * s1[e] / T) / (T - 1); }
+    for (e = 0; e < 7; e++) { mean[kind][e] = s1[e] / T; var[kind][e] = (s2[e] - s1[e] * s1[e] / T) / (T - 1); }
   }
   printf("%s, importance %d res %d, %d points per estimate, %d trials: relative variance of one estimate (gain over independent)\n", path, imp, res, N, T);
-  for (e = 0; e < 5; e++) {
+  for (e = 0; e < 7; e++) {
     printf("%-32s", ename[e]);
     for (kind = 0; kind < 4; kind++) printf("  %s %.3e (%.2fx)", kname[kind], var[kind][e] / (mean[0][e] * mean[0][e]), var[0][e] / var[kind][e]);
     printf("  mean %.4g\n", mean[0][e]);
