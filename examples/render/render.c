@@ -149,7 +149,7 @@ void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
   o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
   o->env_lobe_alpha = -1.f; o->env_light_alpha = -1.f;
-  o->loop = -1; o->wave_api = -1; o->split = -1; o->env_sun = -1;
+  o->loop = -1; o->wave_api = -1; o->split = -1; o->env_sun = -1; o->env_sun_diffuse = -1; o->env_sun_cos = -3.f;
 }
 
 /* >> what the scene calls for */
@@ -192,7 +192,8 @@ static int elr__mat_transmits_rough(const elr_scene *s) {
 /* The share of the environment's power (luminance x solid angle) that its brightest texels covering
  * ELR_ENV_SUN_AREA of the sphere hold: a sun's. Issue 20: under such a map the product light sample alone
  * misses the sky wherever the sun is occluded (bench/lobes.py's shadows region: 0.41x the map alone's
- * efficiency on city.hdr), so diffuse-only lobes there keep the map alone with MIS (elr_scene.env_sunny). */
+ * efficiency on city.hdr), so diffuse-only lobes there keep MIS (elr_scene.env_sunny): the map alone where
+ * the sun is within 60 degrees of the normal, the product elsewhere (ELR_ENVSD_SUNCOS, bench/sun_rule.py). */
 typedef struct { float lum, w; } elr__texel_lw;
 static int elr__cmp_lum(const void *a, const void *b) {
   float x = ((const elr__texel_lw *)a)->lum, y = ((const elr__texel_lw *)b)->lum;
@@ -316,6 +317,17 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
         s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha;
         s->env_sun_share = (float)elr__sun_share(l->env);
         s->env_sunny = s->env_sun_share > ELR_ENV_SUN_SHARE;
+        s->env_sun_diffuse = o->env_sun_diffuse < 0 ? ELR_ENV_SUN_DIFFUSE : o->env_sun_diffuse;
+        s->env_sun_cos = o->env_sun_cos > -2.f ? o->env_sun_cos : ELR_ENV_SUN_COS;
+        if (s->env_sunny && s->env_sun_diffuse == ELR_ENVSD_SUNCOS) { /* the brightest hot spot's axis (NOTES ON HOT SPOTS) */
+          el_envlight_hotspots hs;
+          memset(&hs, 0, sizeof hs);
+          if (el_envlight_hotspots_init(&hs, l->env_sample, NULL) == EL_SUCCESS && hs.count > 0)
+            s->env_sun_axis = elr_v(hs.spot[0].axis[0], hs.spot[0].axis[1], hs.spot[0].axis[2]);
+          else s->env_sun_diffuse = ELR_ENVSD_MAP; /* (no spot found: the map alone, as before) */
+          el_envlight_hotspots_free(&hs);
+          if (getenv("ELR_SUN_AXIS_DEBUG")) fprintf(stderr, "sun axis %g %g %g\n", s->env_sun_axis.x, s->env_sun_axis.y, s->env_sun_axis.z);
+        }
       }
       if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
