@@ -692,8 +692,11 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    of 5 interleaved rounds, loaded machine); so at equal time it wins on sun maps (sunrise, city:
  *    10-165x less variance), not on lamp maps. el_envlight_mix_cos_prepare does the 512 bounds once per (w, n)
  *    and the _table calls reuse them (a shading point's sample and its BSDF sample's pdf, points sharing a
- *    normal: issue 22's renderer keeps 8 per thread, 4.6x -> 1.8x its render time with the cache on
- *    scenes/sun_shadow_object.pbrt). MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
+ *    normal: issue 22's renderer first kept 8 per thread, 4.6x -> 1.8x its render time with the cache on
+ *    scenes/sun_shadow_object.pbrt; now one per shadowed cell of its cache, shared, 1.3x). The pdfs of
+ *    the mixtures find pdf_li's bin once (el_envlight__hot_pdf_li_bin: its search and hot_bin's were a
+ *    third of the pdf's instructions). What is left is memory: a sample reads a cell's distribution,
+ *    then the pdf table, the direction table and the texels at random places. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
  *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
@@ -4149,7 +4152,7 @@ static inline float el_envlight__hot_b(float ca, float cr, float sr) {
   return b > 1e-3f ? b : 1e-3f;  /* a floor: every cell with rest mass stays reachable */
 }
 static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float nl[3]);
-static int el_envlight__hot_cell_of(const el_envlight_hotspots *h, int64_t b);
+static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, int iv);
 
 /* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
  * first half: keep the two in step), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN,
@@ -4170,9 +4173,48 @@ static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
   return (int64_t)iv * (int64_t)l->dist.nu + (int64_t)iu;
 }
 
-/* Which part holds bin b: a spot index, or h->count for the rest. */
-static int el_envlight__hot_part(const el_envlight_hotspots *h, int64_t b) {
-  int k, iu = (int)(b % h->nu), iv = (int)(b / h->nu);
+/* pdf_li(dir) and the bin it reads (iu, iv; -1 where el_envlight__hot_bin gives -1), from one bin search:
+ * on pdf_li's inline path (EL_ENVLIGHT__HOT_PDF, a normal-length direction) el_envlight__pdf_core's own
+ * arithmetic, so both equal pdf_li's and hot_bin's bit for bit; elsewhere those two calls. (Issue 22:
+ * the rest x cosine's pdf made the search twice, a third of its cost.) */
+static float el_envlight__hot_pdf_li_bin(const el_envlight *l, const float dir[3], int *biu, int *biv) {
+  float d[3], r2, len2, r, len, pu, t, p;
+  uint32_t iu, iv;
+  size_t c;
+  int64_t b;
+#if EL_ENVLIGHT__ATOMICS
+  int hot = (__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF) != 0;
+#else
+  int hot = (l->hot & EL_ENVLIGHT__HOT_PDF) != 0;
+#endif
+  if (hot) {
+    el_envlight__to_light(l, dir, d);
+    r2 = d[0] * d[0] + d[1] * d[1];
+    len2 = r2 + d[2] * d[2];
+    if (len2 >= FLT_MIN && len2 <= FLT_MAX) { /* el_envlight__pdf_core with the bin kept */
+      r = el_envlight__sqrt(r2); len = el_envlight__sqrt(len2);
+      pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
+      pu = pu < 3.99999976f ? pu : 3.99999976f;
+      c = (size_t)(int64_t)(pu * l->u_cell_scale);
+      iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
+      t = 1.0f - d[2] / (r + fabsf(d[2]));
+      c = (size_t)(int64_t)(t * l->v_cell_scale);
+      iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+      p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)];
+      r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
+      *biu = (int)iu; *biv = (int)iv;
+      return p * len / r;
+    }
+  }
+  p = el_envlight_pdf_li(l, dir);
+  b = p > 0.0f ? el_envlight__hot_bin(l, dir) : -1;
+  *biu = b < 0 ? -1 : (int)(b % l->dist.nu); *biv = b < 0 ? -1 : (int)(b / l->dist.nu);
+  return p;
+}
+
+/* Which part holds bin (iu, iv): a spot index, or h->count for the rest. */
+static int el_envlight__hot_part_uv(const el_envlight_hotspots *h, int iu, int iv) {
+  int k;
   for (k = 0; k < h->count; ++k) {
     const int *rc = h->rect[k];
     int x = iu - rc[0], y = iv - rc[1];
@@ -4225,13 +4267,10 @@ static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, 
 /* pdf_li_mix with usable h and normalised weights a */
 static float el_envlight__hot_pdf(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float dir[3]) {
   float p;
-  int64_t b;
-  int k;
-  p = el_envlight_pdf_li(l, dir);
-  if (!(p > 0.0f)) return 0.0f;
-  b = el_envlight__hot_bin(l, dir);
-  if (b < 0) return 0.0f;
-  k = el_envlight__hot_part(h, b);
+  int k, iu, iv;
+  p = el_envlight__hot_pdf_li_bin(l, dir, &iu, &iv); /* (pdf_li and hot_bin from one search) */
+  if (!(p > 0.0f) || iu < 0) return 0.0f;
+  k = el_envlight__hot_part_uv(h, iu, iv);
   p = (float)((double)p * (a[k] / h->share_d[k]));
   return p < FLT_MAX ? p : FLT_MAX;
 }
@@ -4304,19 +4343,17 @@ static void el_envlight__hot_weights_cos(const el_envlight_hotspots *h, const el
 static float el_envlight__hot_pdf_cos(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float *nl,
                                       float s, const float dir[3]) {
   float p;
-  int64_t b;
-  int k, c;
+  int k, c, iu, iv;
   double bnd = 1.0;
-  p = el_envlight_pdf_li(l, dir);
+  p = el_envlight__hot_pdf_li_bin(l, dir, &iu, &iv); /* (pdf_li and hot_bin from one search) */
   if (!(p > 0.0f)) return 0.0f;
-  b = el_envlight__hot_bin(l, dir);
-  if (b < 0) return 0.0f;
-  k = el_envlight__hot_part(h, b);
+  if (iu < 0) return 0.0f;
+  k = el_envlight__hot_part_uv(h, iu, iv);
   if (k < h->count || !h->cell_dist) {
     p = (float)((double)p * (a[k] / h->share_d[k]));
     return p < FLT_MAX ? p : FLT_MAX;
   }
-  c = el_envlight__hot_cell_of(h, b);
+  c = el_envlight__hot_cell_of_uv(h, iu, iv);
   if (nl) {
     const float *q = h->cell_cone;
     size_t nc = (size_t)h->cells_u * (size_t)h->cells_v, cc = (size_t)c;
@@ -4611,9 +4648,8 @@ static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float
   return 1;
 }
 
-/* the cell of bin b */
-static int el_envlight__hot_cell_of(const el_envlight_hotspots *h, int64_t b) {
-  int iu = (int)(b % h->nu), iv = (int)(b / h->nu);
+/* the cell of bin (iu, iv) */
+static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, int iv) {
   int cu = (int)(((int64_t)iu * h->cells_u + h->cells_u) / h->nu), cv = (int)(((int64_t)iv * h->cells_v + h->cells_v) / h->nv);
   /* the cell whose range [c nu / C, (c+1) nu / C) holds iu: step back while its start is past iu */
   while (cu > 0 && (int)((int64_t)cu * h->nu / h->cells_u) > iu) --cu;

@@ -46,11 +46,7 @@
 
 static const double PI = 3.14159265358979323846;
 
-static double wall(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench_common.h" /* wall_now, hash32 */
 static double cpu(void) { /* user + system: page faults are system time */
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);
@@ -76,10 +72,6 @@ static int reset_hwm(void) {
   return fclose(f) == 0;
 }
 
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
-  return x;
-}
 static float rnd(uint32_t i) { return (float)(hash32(i * 2654435761u + 12345u) >> 8) * (1.0f / 16777216.0f); }
 
 /* the sun: 30 degrees above the horizon (light space, +z up), at phi = 1 rad; 0.5 degree diameter */
@@ -154,15 +146,15 @@ static void build_row(const float *px, int w, int h, const char *name, int cap, 
   o.no_copy = no_copy;
   hwm_ok = reset_hwm();
   rss0 = proc_kb("VmRSS:");
-  t0 = wall(); c0 = cpu();
+  t0 = wall_now(); c0 = cpu();
   r = el_envlight_init(&l, px, w, h, 3, &o);
   if (r != EL_SUCCESS) { printf("init failed: %s\n", el_result_string(r)); return; }
-  t1 = wall(); c1 = cpu();
+  t1 = wall_now(); c1 = cpu();
   r = el_envlight_prepare_sampling(&l);
-  t2 = wall(); c2 = cpu();
+  t2 = wall_now(); c2 = cpu();
   hwm1 = proc_kb("VmHWM:");
   if (r == EL_SUCCESS) r = el_envlight_prepare_product(&l, NULL);
-  t3 = wall(); c3 = cpu();
+  t3 = wall_now(); c3 = cpu();
   hwm2 = proc_kb("VmHWM:");
   if (r != EL_SUCCESS) printf("tables failed: %s\n", el_result_string(r));
   if (g_csv)

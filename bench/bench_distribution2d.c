@@ -43,15 +43,7 @@
 #include <string.h>
 #include <time.h>
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
-  return x;
-}
+#include "bench_common.h" /* wall_now, hash32 */
 
 /* ---- the input ---- */
 static float *make_map(int nu, int nv) {
@@ -297,10 +289,10 @@ int main(int argc, char **argv) {
       int rep;
       cdf_ms = 1e30;
       for (rep = 0; rep < 3; ++rep) {
-        double t0 = now();
+        double t0 = wall_now();
         if (rep) el_distribution2d_free(&base.d);
         build(&base, M_CDF, f, nu, nv);
-        if ((now() - t0) * 1e3 < cdf_ms) cdf_ms = (now() - t0) * 1e3;
+        if ((wall_now() - t0) * 1e3 < cdf_ms) cdf_ms = (wall_now() - t0) * 1e3;
       }
     }
     for (m = 0; m < M_COUNT; ++m) {
@@ -310,21 +302,21 @@ int main(int argc, char **argv) {
       for (rep = 0; rep < 3; ++rep) { /* best of 3 for every timing */
         double t0;
         c = base;
-        t0 = now();
+        t0 = wall_now();
         if (m != M_CDF) build(&c, m, f, nu, nv);
-        if ((now() - t0) * 1e3 < build_ms) build_ms = (now() - t0) * 1e3;
+        if ((wall_now() - t0) * 1e3 < build_ms) build_ms = (wall_now() - t0) * 1e3;
         if (rep < 2 && m != M_CDF) unbuild(&c);
       }
       if (m == M_CDF) build_ms = cdf_ms;
       if (m == M_PBRT) pbrt_Distribution2D_unreachable(&c.pb, &unreach, &share);
       sink += run_samples(&c, 100000); /* warm up */
       for (rep = 0; rep < 3; ++rep) {
-        double t0 = now();
+        double t0 = wall_now();
         sink += run_samples(&c, ns);
-        if (now() - t0 < ts) ts = now() - t0;
-        t0 = now();
+        if (wall_now() - t0 < ts) ts = wall_now() - t0;
+        t0 = wall_now();
         sink += (m <= M_CDF) ? run_pdfs(&c, np) : 0;
-        if (now() - t0 < tp) tp = now() - t0;
+        if (wall_now() - t0 < tp) tp = wall_now() - t0;
       }
       if (m <= M_CDF)
         printf("  %-10s %9.1f %9.1f %11.1f %11.1f   ", method_name[m], build_ms, bytes(&c) / 1048576.0, ns / ts / 1e6, np / tp / 1e6);

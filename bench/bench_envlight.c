@@ -74,17 +74,9 @@
 
 static const double PI = 3.14159265358979323846;
 
-/* CPU time of this process, not wall time: the benchmark is single-threaded, and on a machine shared
- * with other jobs the wall clock also counts the time we wait for a core. */
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
-  return x;
-}
+/* process_now: CPU time of this process, not wall time: the benchmark is single-threaded, and on a
+ * machine shared with other jobs the wall clock also counts the time we wait for a core. */
+#include "bench_common.h" /* process_now, cpu_now, median, hash32, rng (PCG32) */
 
 /* 2^20 precomputed uniform numbers in [0,1) (24 bits), and as many random directions */
 #define NP (1 << 20)
@@ -193,9 +185,9 @@ static double rate(double (*fn)(el_envlight *, long, int), el_envlight *l, int a
   long n = 1 << 21;
   volatile double sink;
   for (rep = 0; rep < 3; ++rep) {
-    double t = now();
+    double t = process_now();
     sink = fn(l, n, arg);
-    t = now() - t;
+    t = process_now() - t;
     if (t < best) best = t;
   }
   (void)sink;
@@ -417,17 +409,7 @@ static double estimate(int s, el_envlight *l, const double n[3], const double b1
   return lum3(L[0], L[1], L[2]) * c / p;
 }
 
-/* PCG32 for the variance runs (independent streams per strategy and normal) */
-typedef struct { uint64_t s; } rng;
-static uint32_t rng_u32(rng *r) {
-  uint64_t old = r->s;
-  uint32_t x, rot;
-  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  return (x >> rot) | (x << ((32 - rot) & 31));
-}
-static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+/* PCG32 (bench_common.h's rng) for the variance runs (independent streams per strategy and normal) */
 
 typedef double (*estimator)(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u);
 /* the mean and variance of nsamp irradiance estimates est(s, l, n, ...) for the normal n, from the
@@ -480,7 +462,7 @@ static void variance_table(const char *path, int nsamp) {
   for (s = 0; s < S_N; ++s) {
     double *rv = res_rv[s], *bias = res_bias[s], t, mean_rv = 0;
     if (!ok[s]) continue;
-    t = now();
+    t = process_now();
     for (k = 0; k < 3; ++k) {
       double mean, var;
       moments(estimate, s, k, &lights[s], N3[k], nsamp, &mean, &var);
@@ -488,7 +470,7 @@ static void variance_table(const char *path, int nsamp) {
       bias[k] = fabs(mean - E[k]) / sqrt(var / nsamp + 1e-300);
       mean_rv += rv[k] / 3;
     }
-    res_ns[s] = (now() - t) / (3.0 * nsamp) * 1e9;
+    res_ns[s] = (process_now() - t) / (3.0 * nsamp) * 1e9;
     res_mean[s] = mean_rv;
   }
   for (s = 0; s < S_N; ++s) {
@@ -578,9 +560,9 @@ static void product_table(const char *path, int nsamp) {
     memset(&o, 0, sizeof o);
     o.importance = s == P_BILIN ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
     el_envlight_init(&lights[s], img.pixels, img.width, img.height, 3, &o);
-    t0 = now();
+    t0 = process_now();
     if (s == P_COS) el_envlight_prepare_product(&lights[s], NULL); else el_envlight_prepare_sampling(&lights[s]);
-    printf("  %-26s tables %6.1f ms, %6.2f MB\n", P_NAME[s], (now() - t0) * 1e3,
+    printf("  %-26s tables %6.1f ms, %6.2f MB\n", P_NAME[s], (process_now() - t0) * 1e3,
            (el_envlight_sampling_bytes(&lights[s]) + el_envlight_product_bytes(&lights[s])) / 1048576.0);
   }
   printf("  %-26s %-5s", "relative variance per", "");
@@ -590,7 +572,7 @@ static void product_table(const char *path, int nsamp) {
     double ref = 0;
     for (s = 0; s < P_N; ++s) {
       double rv[PN], lg = 0, nbelow = 0, t;
-      t = now();
+      t = process_now();
       for (k = 0; k < PN; ++k) {
         double b1[3], b2[3], sum = 0, sum2 = 0, mean;
         float nf[3];
@@ -612,7 +594,7 @@ static void product_table(const char *path, int nsamp) {
         lg += log(rv[k] > 0 ? rv[k] : 1e-30) / PN;
         nbelow += (double)below / nsamp / PN;
       }
-      t = (now() - t) / (PN * (double)nsamp) * 1e9;
+      t = (process_now() - t) / (PN * (double)nsamp) * 1e9;
       if (s == 0) ref = exp(lg) * t;
       printf("  %-26s %-5s", P_NAME[s], mis == 2 ? "+MISp" : mis ? "+MIS" : "light");
       for (k = 0; k < PN; ++k) printf(" %8.3g", rv[k]);
@@ -686,19 +668,6 @@ enum { C_UNIFORM, C_COSINE, C_CELL, C_CELL2, C_PBRT, C_TEXEL, C_BILIN, C_PROD, C
 static const char *C_NAME[C_N] = {"uniform sphere", "cosine (BSDF)", "CELL_AVERAGE (default)", "CELL_AVERAGE 2x",
                                   "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
                                   "product sample_li_cos", "MIS pair (light + cosine)", "MIS pair compensated"};
-static double cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_double);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 static double c_estimate(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u) {
   static const int to_s[C_N] = {S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_BILIN, 0, S_COMP_MIS, S_COMP_MIS};
   if (s == C_PROD) {
@@ -864,9 +833,9 @@ int main(int argc, char **argv) {
       if (imp == 4) {
         for (rep = 0; rep < (w > 2048 ? 1 : 3); ++rep) {
           make_light(&l, px, w, h, 0, 0, 0, NULL);
-          t0 = now();
+          t0 = process_now();
           el_envlight_prepare_product(&l, NULL);
-          t0 = now() - t0; if (t0 < t2) t2 = t0;
+          t0 = process_now() - t0; if (t0 < t2) t2 = t0;
           if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
         }
         printf("  %-22s %9s %7.1f ms %4dx%-5d %10.1f %10.1f\n", "product (sample_li_cos)", "", t2 * 1e3, 64, 32,
@@ -875,12 +844,12 @@ int main(int argc, char **argv) {
         continue;
       }
       for (rep = 0; rep < (w > 2048 ? 1 : 3); ++rep) {
-        t0 = now();
+        t0 = process_now();
         if (make_light(&l, px, w, h, imp, 0, 0, NULL) != EL_SUCCESS) { printf("  init failed\n"); break; }
-        t0 = now() - t0; if (t0 < t1) t1 = t0;
-        t0 = now();
+        t0 = process_now() - t0; if (t0 < t1) t1 = t0;
+        t0 = process_now();
         el_envlight_prepare_sampling(&l);
-        t0 = now() - t0; if (t0 < t2) t2 = t0;
+        t0 = process_now() - t0; if (t0 < t2) t2 = t0;
         if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
       }
       printf("  %-22s %9.1f %7.1f ms %4dx%-5d %10.1f %10.1f\n",

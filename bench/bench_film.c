@@ -33,16 +33,8 @@
 static const char *filter_name[5] = {"box", "triangle", "gaussian", "mitchell", "lanczos"};
 static const char *tonemap_name[4] = {"clamp", "exponential", "reinhard", "aces"};
 
-static unsigned g_rng = 2024u;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench_common.h" /* wall_now, cpu_now, cmp_double, lcg_f */
+static lcg g_rng = {2024u};
 
 static el_film make_film(int w, int h, int type, int exact) {
   el_film f;
@@ -95,11 +87,11 @@ static void make_samples(const el_film *f) {
   int b[4], i;
   el_film_sample_bounds(f, b);
   for (i = 0; i < NS; i++) {
-    g_samples[5 * i] = b[0] + (b[2] - b[0]) * frand();
-    g_samples[5 * i + 1] = b[1] + (b[3] - b[1]) * frand();
-    g_samples[5 * i + 2] = frand();
-    g_samples[5 * i + 3] = frand();
-    g_samples[5 * i + 4] = frand();
+    g_samples[5 * i] = b[0] + (b[2] - b[0]) * lcg_f(&g_rng);
+    g_samples[5 * i + 1] = b[1] + (b[3] - b[1]) * lcg_f(&g_rng);
+    g_samples[5 * i + 2] = lcg_f(&g_rng);
+    g_samples[5 * i + 3] = lcg_f(&g_rng);
+    g_samples[5 * i + 4] = lcg_f(&g_rng);
   }
 }
 
@@ -146,7 +138,7 @@ static int callgrind_mode(const char *op, long n) {
     int i;
     memset(&o, 0, sizeof o);
     o.tonemap = (el_film_tonemap)type;
-    for (i = 0; i < 3 * NS; i++) rgb[i] = 4.0f * frand() * frand();
+    for (i = 0; i < 3 * NS; i++) rgb[i] = 4.0f * lcg_f(&g_rng) * lcg_f(&g_rng);
     for (k = 0; k < n; k++) el_film_to_srgb8(rgb, 64, NS / 64, &o, out);
     free(rgb);
     free(out);
@@ -195,15 +187,6 @@ static float zone(float x, float y) {
   double dx = x - ZW / 2.0, dy = y - ZW / 2.0;
   return (float)(0.5 + 0.5 * cos(zone_k() * (dx * dx + dy * dy)));
 }
-static double cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
 static void zone_image(int type, int exact, int n, float *out) { /* n x n strata per pixel */
   el_film f = make_film(ZW, ZW, type, exact);
   int b[4], x, y, i, j;
@@ -212,7 +195,7 @@ static void zone_image(int type, int exact, int n, float *out) { /* n x n strata
     for (x = b[0]; x < b[2]; x++)
       for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
-          float px = x + (i + frand()) / n, py = y + (j + frand()) / n, c[3];
+          float px = x + (i + lcg_f(&g_rng)) / n, py = y + (j + lcg_f(&g_rng)) / n, c[3];
           c[0] = c[1] = c[2] = zone(px, py);
           el_film_add_sample(&f, px, py, c, 1.0f);
         }
@@ -239,7 +222,7 @@ static int csv_mode(int quick) {
       for (e = 0; e < 2; e++) {
         double sa = 0, sd = 0;
         int na = 0, nd = 0;
-        g_rng = 7u + (unsigned)k; /* the same samples for every filter */
+        g_rng.s = 7u + (unsigned)k; /* the same samples for every filter */
         zone_image(t, e, strata[k], img);
         for (i = 0; i < ZW * ZW; i++) {
           double x = i % ZW + 0.5, y = i / ZW + 0.5, dx = x - ZW / 2.0, dy = y - ZW / 2.0;
@@ -342,17 +325,17 @@ int main(int argc, char **argv) {
       char op[64];
       make_samples(&f);
       run_adds(&f, 20000); /* warm up */
-      t0 = now();
-      do { run_adds(&f, n); reps++; t1 = now(); } while (t1 - t0 < 0.3);
+      t0 = wall_now();
+      do { run_adds(&f, n); reps++; t1 = wall_now(); } while (t1 - t0 < 0.3);
       el_film_free(&f);
       /* noise: 4 random samples per pixel */
       {
         el_film g = make_film(CW, CW, t, e);
         int b[4], k;
         el_film_sample_bounds(&g, b);
-        g_rng = 99u; /* the same samples for the table and the exact film */
+        g_rng.s = 99u; /* the same samples for the table and the exact film */
         for (k = 0; k < 4 * (b[2] - b[0]) * (b[3] - b[1]); k++) {
-          float px = b[0] + (b[2] - b[0]) * frand(), py = b[1] + (b[3] - b[1]) * frand(), c[3];
+          float px = b[0] + (b[2] - b[0]) * lcg_f(&g_rng), py = b[1] + (b[3] - b[1]) * lcg_f(&g_rng), c[3];
           c[0] = c[1] = c[2] = chart(px, py);
           el_film_add_sample(&g, px, py, c, 1.0f);
         }
@@ -377,15 +360,15 @@ int main(int argc, char **argv) {
     float *rgb = (float *)malloc(sizeof(float) * 3 * PW * PW);
     unsigned char *out = (unsigned char *)malloc(3 * PW * PW);
     el_film_output_options o;
-    for (i = 0; i < 3 * PW * PW; i++) rgb[i] = 4.0f * frand() * frand();
+    for (i = 0; i < 3 * PW * PW; i++) rgb[i] = 4.0f * lcg_f(&g_rng) * lcg_f(&g_rng);
     for (t = 0; t < 4; t++) {
       double t0, t1, ir = -1;
       long reps = 0;
       char op[64];
       memset(&o, 0, sizeof o);
       o.tonemap = (el_film_tonemap)t;
-      t0 = now();
-      do { el_film_to_srgb8(rgb, PW, PW, &o, out); reps++; t1 = now(); } while (t1 - t0 < 0.2);
+      t0 = wall_now();
+      do { el_film_to_srgb8(rgb, PW, PW, &o, out); reps++; t1 = wall_now(); } while (t1 - t0 < 0.2);
       snprintf(op, sizeof op, "srgb8_%s", tonemap_name[t]);
       if (use_cg) ir = instr_per_call(argv[0], op, 100) / NS;
       printf("%-12s %10.2f %11.1f\n", tonemap_name[t], 1e9 * (t1 - t0) / ((double)reps * PW * PW), ir);

@@ -26,28 +26,15 @@
 #include <string.h>
 #include <time.h>
 
-static uint64_t g_rng = 0x853c49e6748fea9bULL;
-static float frand(void) {
-  uint64_t old = g_rng;
-  uint32_t x, rot;
-  g_rng = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  x = (x >> rot) | (x << ((32u - rot) & 31u));
-  return (float)(x >> 8) * (1.0f / 16777216.0f);
-}
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "bench_common.h" /* rng_f (PCG32), wall_now */
+static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
 
 static double below(const el_envlight *l, const float n[3]) {
   int j, b = 0, valid = 0, count = 65536;
   for (j = 0; j < count; ++j) {
     float u[2], wi[3], pdf;
-    u[0] = ((float)(j % 256) + frand()) / 256.0f;
-    u[1] = ((float)(j / 256) + frand()) / 256.0f;
+    u[0] = ((float)(j % 256) + rng_f(&g_rng)) / 256.0f;
+    u[1] = ((float)(j / 256) + rng_f(&g_rng)) / 256.0f;
     el_envlight_sample_li_cos(l, n, u, wi, NULL, &pdf);
     if (!(pdf > 0.0f)) continue;
     ++valid;
@@ -114,7 +101,7 @@ static void radiance_cost(const char *dir) {
   int i;
   snprintf(path, sizeof path, "%s/city.exr", dir);
   if (el_image_load(path, &im, err, sizeof err) != 0) { printf("(%s)\n", err); free(u); return; }
-  for (i = 0; i < 2 * (1 << 20); ++i) u[i] = frand();
+  for (i = 0; i < 2 * (1 << 20); ++i) u[i] = rng_f(&g_rng);
   printf("2. sample_li's radiance on city, ns per sample over 5 interleaved rounds of 2^20 (min - max)\n");
   for (gi = 0; gi < 2; ++gi) {
     el_envlight l;
@@ -133,7 +120,7 @@ static void radiance_cost(const char *dir) {
     for (round = 0; round < 5; ++round) {
       int v;
       for (v = 0; v < 3; ++v) {
-        double t0 = now(), dt;
+        double t0 = wall_now(), dt;
         for (i = 0; i < (1 << 20); ++i) {
           float wi[3], rgb[3], pdf;
           if (v == 0) el_envlight_sample_li(&l, u + 2 * i, wi, NULL, &pdf), rgb[0] = pdf;
@@ -141,7 +128,7 @@ static void radiance_cost(const char *dir) {
           else { el_envlight_sample_li(&l, u + 2 * i, wi, NULL, &pdf); el_envlight_le(&l, wi, rgb); }
           sink += (double)rgb[0];
         }
-        dt = (now() - t0) * 1e9 / (1 << 20);
+        dt = (wall_now() - t0) * 1e9 / (1 << 20);
         if (dt < t[v][0]) t[v][0] = dt;
         if (dt > t[v][1]) t[v][1] = dt;
       }

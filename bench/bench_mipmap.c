@@ -97,11 +97,9 @@ static void pbrt_init(pbrt_MIPMap *pm, int w, int h, const float *img) {
   pbrt_MIPMap_init(pm, pbrt_Point2i_make(w, h), (const pbrt_RGBSpectrum *)img, 0, 8.f, pbrt_ImageWrap_Repeat);
 }
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+/* wall_now; cpu_now: the thread's CPU time (a core taken by another process's work does not count: the
+ * machine is shared); median */
+#include "bench_common.h"
 
 enum { OP_POINT, OP_BILINEAR, OP_TRILINEAR, OP_EWA, OP_PBRT_TRILINEAR, OP_PBRT_EWA };
 static float run_op(int op, const el_mipmap *m, const pbrt_MIPMap *pm, const query *q, int n) {
@@ -309,20 +307,20 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
   int i, l;
   static const char *names[] = {"point", "bilinear", "trilinear", "EWA (aniso 8)", "EWA (aniso 64)"};
   double err[5] = {0, 0, 0, 0, 0};
-  t0 = now();
+  t0 = wall_now();
   el_mipmap_init(&m, img, w, h, 3, NULL);
-  t_init = now() - t0;
+  t_init = wall_now() - t0;
   printf("\n## %dx%d RGB%s\n\n", w, h, (w & (w - 1)) ? " (resampled to 2048x1024)" : "");
   printf("| build | time | bytes |\n|---|---|---|\n");
   printf("| el_mipmap_init (level 0 only, lazy) | %.1f ms | %zu |\n", 1e3 * t_init, el_mipmap_bytes(&m));
-  t0 = now();
+  t0 = wall_now();
   el_mipmap_build_levels(&m);
-  t_all = now() - t0;
+  t_all = wall_now() - t0;
   printf("| + el_mipmap_build_levels (all %d levels) | %.1f ms | %zu |\n", m.levels, 1e3 * (t_init + t_all),
          el_mipmap_bytes(&m));
-  t0 = now();
+  t0 = wall_now();
   pbrt_init(&pm, w, h, img);
-  t_pbrt = now() - t0;
+  t_pbrt = wall_now() - t0;
   printf("| pbrt-v3 port (all levels, BlockedArray) | %.1f ms | %zu |\n", 1e3 * t_pbrt,
          (size_t)(4 * 3 * sizeof(float) * (size_t)pm.resolution.x * pm.resolution.y / 3));
   /* same results? */
@@ -382,9 +380,9 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
     int rep;
     volatile float sink;
     for (rep = 0; rep < 3; ++rep) {
-      t0 = now();
+      t0 = wall_now();
       sink = run_op(op, mm, NULL, q, nq);
-      t0 = now() - t0;
+      t0 = wall_now() - t0;
       if (t0 < best) best = t0;
     }
     (void)sink;
@@ -397,9 +395,9 @@ static void size_table(int w, int h, const query *q, int nq, const query *qe, in
     for (op = OP_PBRT_TRILINEAR; op <= OP_PBRT_EWA; ++op) {
       best = 1e30;
       for (rep = 0; rep < 3; ++rep) {
-        t0 = now();
+        t0 = wall_now();
         sink = run_op(op, &m, &pm, q, nq);
-        t0 = now() - t0;
+        t0 = wall_now() - t0;
         if (t0 < best) best = t0;
       }
       (void)sink;
@@ -438,20 +436,6 @@ static query *make_queries_aniso(int n, float aniso) {
     q[i].width = 2 * len;
   }
   return q;
-}
-/* The thread's CPU time: a core taken by another process's work does not count (the machine is shared). */
-static double cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp_double);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 /* one lookup of filter f: 0 point, 1 bilinear, 2 trilinear, 3 EWA (m), 4 EWA (m64), 5/6 pbrt-v3 port */
 static void csv_lookup(int f, const el_mipmap *m, const el_mipmap *m64, const pbrt_MIPMap *pm, const query *k,

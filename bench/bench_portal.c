@@ -24,7 +24,6 @@
 #include "../envlight.h"
 #include "../examples/common/image_io.h"
 #include "../examples/common/picture.h"
-#include <sys/stat.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -33,17 +32,9 @@
 #include <time.h>
 
 static const double PI = 3.14159265358979323846;
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_common.h" /* process_now, make_parent_dir, picture_to8 / picture_dot, xorshift64_f */
 static double lum(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
-static unsigned long long g_rng = 88172645463325252ULL;
-static float frand(void) {
-  g_rng ^= g_rng << 13; g_rng ^= g_rng >> 7; g_rng ^= g_rng << 17;
-  return (float)(g_rng >> 40) * (1.0f / 16777216.0f);
-}
+static xorshift64 g_rng = {88172645463325252ULL};
 
 /* ---- the pbrt-v4 port: SummedAreaTable (double), WindowedPiecewiseConstant2D, the portal frame ---- */
 typedef struct pbrt_portal {
@@ -223,22 +214,6 @@ static int through(const room *r, const float pos[3], const float wi[3]) {
 static const char *names[NSTRAT] = {"map sample_li (no portal)", "pbrt-v4 port (bisection, double SAT)", "envlight portal (integer SAT)"};
 
 /* ---- the picture: where the samples of one floor point land, map sampling against the portal ---- */
-static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
-  double t = x / (1 + x);
-  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
-  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
-}
-static void dot(unsigned char *img, int W, int H, int x, int y, int r, unsigned char cr, unsigned char cg, unsigned char cb) {
-  int dx, dy;
-  for (dy = -r; dy <= r; ++dy)
-    for (dx = -r; dx <= r; ++dx) {
-      int xx = ((x + dx) % W + W) % W, yy = y + dy;
-      unsigned char *q;
-      if (yy < 0 || yy >= H) continue;
-      q = img + 3 * ((size_t)yy * (size_t)W + (size_t)xx);
-      q[0] = cr; q[1] = cg; q[2] = cb;
-    }
-}
 /* world direction -> pixel of the lat-long map (light space: the transpose of light_to_world) */
 static void to_pixel(const float m[9], const float w[3], int W, int H, int *x, int *y) {
   float d[3], u, v;
@@ -273,12 +248,12 @@ static int picture(const char *out, const char *path) {
   for (panel = 0; panel < 2; ++panel) {
     unsigned char *im = pix + (size_t)panel * (size_t)W * (size_t)H * 3;
     int nthrough = 0;
-    g_rng = 88172645463325252ULL;
+    g_rng.s = 88172645463325252ULL;
     for (y = 0; y < H; ++y) /* the map, one stop darker */
       for (x = 0; x < W; ++x) {
         const float *t = img.pixels + 3 * ((size_t)y * (size_t)W + (size_t)x);
         unsigned char *q = im + 3 * ((size_t)y * (size_t)W + (size_t)x);
-        q[0] = to8(0.5 * t[0]); q[1] = to8(0.5 * t[1]); q[2] = to8(0.5 * t[2]);
+        q[0] = picture_to8(0.5 * t[0]); q[1] = picture_to8(0.5 * t[1]); q[2] = picture_to8(0.5 * t[2]);
       }
     for (k = 0; k < 4; ++k) /* the window's outline seen from the point */
       for (i = 0; i <= 400; ++i) {
@@ -287,20 +262,20 @@ static int picture(const char *out, const char *path) {
         int c;
         for (c = 0; c < 3; ++c) w[c] = a[c] + (b[c] - a[c]) * (float)i / 400.0f - pos[c];
         to_pixel(lo.light_to_world, w, W, H, &x, &y);
-        dot(im, W, H, x, y, 0, 80, 220, 255);
+        picture_dot(im, W, H, x, y, 0, 80, 220, 255);
       }
     for (i = 0; i < ns; ++i) {
       float u[2], wi[3], rgb[3], pdf;
       int ok;
-      u[0] = frand(); u[1] = frand();
+      u[0] = xorshift64_f(&g_rng); u[1] = xorshift64_f(&g_rng);
       if (panel == 0) el_envlight_sample_li(&L, u, wi, rgb, &pdf);
       else el_envlight_portal_sample_li(&EP, &L, pos, u, wi, rgb, &pdf);
       if (!(pdf > 0)) continue;
       ok = through(&rm, pos, wi);
       nthrough += ok;
       to_pixel(lo.light_to_world, wi, W, H, &x, &y);
-      if (ok) dot(im, W, H, x, y, 1, 255, 230, 40);
-      else dot(im, W, H, x, y, 1, 255, 40, 40);
+      if (ok) picture_dot(im, W, H, x, y, 1, 255, 230, 40);
+      else picture_dot(im, W, H, x, y, 1, 255, 40, 40);
     }
     snprintf(label, sizeof label, "%s: %d OF %d SAMPLES THROUGH THE WINDOW (YELLOW)", panel == 0 ? "MAP (SAMPLE LI)" : "PORTAL (PORTAL SAMPLE LI)",
              nthrough, ns);
@@ -308,11 +283,7 @@ static int picture(const char *out, const char *path) {
     el_draw_label(im, W, H, 8, 34, "THE WINDOW SEEN FROM A POINT ON THE FLOOR: BLUE");
     printf("%s: %d of %d samples through the window\n", panel == 0 ? "el_envlight_sample_li" : "el_envlight_portal_sample_li", nthrough, ns);
   }
-  {
-    char dir[512];
-    const char *slash = strrchr(out, '/');
-    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
-  }
+  make_parent_dir(out);
   if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   printf("wrote %s\n", out);
   free(pix);
@@ -373,25 +344,25 @@ int main(int argc, char **argv) {
     memset(&po, 0, sizeof po);
     po.resolution = R;
     po.supersample = SS;
-    t0 = now();
+    t0 = process_now();
     if (el_envlight_portal_init(&EP, &L, rm.portal, 1, &po) != EL_SUCCESS) { fprintf(stderr, "bench_portal: %s\n", EP.error); return 1; }
-    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (now() - t0), EP.res, EP.res, SS ? SS : 2);
+    printf("build: envlight portal %.1f ms (%dx%d, supersample %d); ", 1e3 * (process_now() - t0), EP.res, EP.res, SS ? SS : 2);
     R = EP.res;
-    t0 = now();
+    t0 = process_now();
     pbrt_init(&PP, &L, rm.portal, R);
-    printf("pbrt-v4 port %.1f ms\n", 1e3 * (now() - t0));
+    printf("pbrt-v4 port %.1f ms\n", 1e3 * (process_now() - t0));
   }
   el_envlight_prepare_sampling(&L);
   for (s = 0; s < NSTRAT; ++s) { best[s] = 1e30; worst[s] = 0; var[s] = 0; }
   for (rep = 0; rep < 5; ++rep)
     for (s = 0; s < NSTRAT; ++s) {
-      double t0 = now(), sinkt = 0, tt;
+      double t0 = process_now(), sinkt = 0, tt;
       for (k = 0; k < 4; ++k) {
         double sum = 0, sum2 = 0;
-        g_rng = 88172645463325252ULL + (unsigned long long)(k * 7 + rep * 131);
+        g_rng.s = 88172645463325252ULL + (unsigned long long)(k * 7 + rep * 131);
         for (i = 0; i < N; ++i) {
           float u[2], wi[3], rgb[3], pdf = 0, f = 0, c;
-          u[0] = frand(); u[1] = frand();
+          u[0] = xorshift64_f(&g_rng); u[1] = xorshift64_f(&g_rng);
           if (s == 0) {
             el_envlight_sample_li(&L, u, wi, rgb, &pdf);
             if (pdf > 0 && !through(&rm, rm.pts[k], wi)) pdf = -1;
@@ -408,7 +379,7 @@ int main(int argc, char **argv) {
           if (k == 0) printf("  %-38s point 0: E = %.5g\n", names[s], m);
         }
       }
-      tt = (now() - t0) / (4.0 * N) * 1e9;
+      tt = (process_now() - t0) / (4.0 * N) * 1e9;
       if (tt < best[s]) best[s] = tt;
       if (tt > worst[s]) worst[s] = tt;
       if (sinkt < 0) printf("?");

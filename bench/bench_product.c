@@ -69,21 +69,7 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-typedef struct { uint64_t s; } rng;
-static uint32_t rng_u32(rng *r) {
-  uint64_t old = r->s;
-  uint32_t x, rot;
-  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  return (x >> rot) | (x << ((32 - rot) & 31));
-}
-static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+#include "bench_common.h" /* rng, rng_f (PCG32), process_now, make_parent_dir */
 static double lum3(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -171,7 +157,7 @@ static double bin_pmf(const el_envlight *l, int i, int j) {
 }
 static void cells_init(cells *c, const el_envlight *l, int ku, int kv) {
   int nu = l->dist.nu, nv = l->dist.nv, a, b, i, j;
-  double t = now();
+  double t = process_now();
   float *f;
   c->ku = ku; c->kv = kv; c->nu = nu; c->nv = nv;
   c->x0 = (int *)malloc((ku + 1) * sizeof(int)); c->y0 = (int *)malloc((kv + 1) * sizeof(int));
@@ -199,7 +185,7 @@ static void cells_init(cells *c, const el_envlight *l, int ku, int kv) {
       c->bytes += el_distribution2d_bytes(&c->cell[b * ku + a]);
     }
   free(f);
-  c->build_s = now() - t;
+  c->build_s = process_now() - t;
 }
 static void cells_free(cells *c) {
   int k;
@@ -222,7 +208,7 @@ typedef struct {
 static void ntables_init(ntables *t, const void *cs, int ku, int kv, const double *mass, bounds_fn bf, int m) {
   int b, k, K = ku * kv;
   float *f = (float *)malloc(K * sizeof(float));
-  double t0 = now();
+  double t0 = process_now();
   t->m = m; t->ku = ku; t->kv = kv;
   t->tab = (el_distribution2d *)calloc((size_t)m * m, sizeof(el_distribution2d));
   t->bytes = 0;
@@ -252,7 +238,7 @@ static void ntables_init(ntables *t, const void *cs, int ku, int kv, const doubl
     t->bytes += el_distribution2d_bytes(&t->tab[b]);
   }
   free(f);
-  t->build_s = now() - t0;
+  t->build_s = process_now() - t0;
 }
 static void ntables_free(ntables *t) {
   int b;
@@ -283,7 +269,7 @@ static double wlin(double a, double b, double q) { /* t in [0,1] with int_0^t ((
 }
 static void warp_init(warp *W, const el_envlight *l, const el_image *im, int ku, int kv) {
   int w = im->width, h = im->height, k, i, a, b;
-  double t0 = now();
+  double t0 = process_now();
   W->w = w; W->h = h; W->ku = ku; W->kv = kv;
   W->V = (double *)calloc((size_t)(h + 2) * w, sizeof(double));
   W->vk = (double *)malloc((h + 2) * sizeof(double));
@@ -317,7 +303,7 @@ static void warp_init(warp *W, const el_envlight *l, const el_image *im, int ku,
       W->total += m;
     }
   W->bytes = ((size_t)(h + 2) * (w + ku) + (size_t)(h + 2) * ku * 2) * 4;
-  W->build_s = now() - t0;
+  W->build_s = process_now() - t0;
 }
 static void warp_free(warp *W) {
   free(W->V); free(W->vk); free(W->S); free(W->mass); free(W->a0); free(W->b0); free(W->cu_of); free(W->cv_of);
@@ -523,7 +509,7 @@ static double run(strategy *s, el_envlight *l, const double n[3], double E, int 
   r.s = seed;
   frame(n, b1, b2);
   if (s->kind == ST_EXACT) exact_prepare(s, n);
-  t = now();
+  t = process_now();
   for (i = 0; i < ns; ++i) {
     float u[2], L[3], w[3];
     double d[3], p, c, f = 0;
@@ -550,7 +536,7 @@ static double run(strategy *s, el_envlight *l, const double n[3], double E, int 
     }
     sum += f; sum2 += f * f;
   }
-  *ns_per = (now() - t) / ns * 1e9;
+  *ns_per = (process_now() - t) / ns * 1e9;
   *below = (double)nb / ns;
   {
     double m = sum / ns, var = fmax(0.0, sum2 / ns - m * m);
@@ -559,12 +545,32 @@ static double run(strategy *s, el_envlight *l, const double n[3], double E, int 
   }
 }
 
+/* the normals NNAME (light space): up, down, sideways, the brightest texel and away from it; returns
+ * the brightest texel's luminance */
+static double six_normals(const el_image *img, double N[NN][3]) {
+  double best = -1;
+  int x, y, k;
+  memset(N, 0, NN * sizeof N[0]);
+  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
+  for (y = 0; y < img->height; ++y)
+    for (x = 0; x < img->width; ++x) {
+      double v = lum3(img->pixels + 3 * ((size_t)y * img->width + x));
+      if (v > best) {
+        double uu = (x + 0.5) / img->width, vv = (y + 0.5) / img->height;
+        best = v;
+        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
+      }
+    }
+  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  return best;
+}
+
 static void do_map(const char *path, int nsamp, const char *only) {
   el_image img;
   char err[512];
   el_envlight l;
-  double N[NN][3], E[NN], best = -1;
-  int x, y, k, q, ns = 0, m, ci, wi;
+  double N[NN][3], E[NN], best;
+  int k, q, ns = 0, m, ci, wi;
   static const int CK[][2] = {{16, 8}, {32, 16}, {64, 32}};
   static int MS[3] = {8, 16, 32};
   static char names[64][40];
@@ -575,19 +581,7 @@ static void do_map(const char *path, int nsamp, const char *only) {
   if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
   if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
   el_envlight_prepare_sampling(&l);
-  /* normals: up, down, sideways, the brightest texel and away from it (light space) */
-  memset(N, 0, sizeof N);
-  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
-  for (y = 0; y < img.height; ++y)
-    for (x = 0; x < img.width; ++x) {
-      double v = lum3(img.pixels + 3 * ((size_t)y * img.width + x));
-      if (v > best) {
-        double uu = (x + 0.5) / img.width, vv = (y + 0.5) / img.height;
-        best = v;
-        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
-      }
-    }
-  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  best = six_normals(&img, N);
   quadrature(&img, N, NN, E);
   printf("\n%s (%dx%d), brightest texel %.3g at theta %.0f deg; E:", path, img.width, img.height, best, acos(N[4][2]) * 180 / PI);
   for (k = 0; k < NN; ++k) printf(" %s %.3g", NNAME[k], E[k]);
@@ -654,23 +648,6 @@ static void do_map(const char *path, int nsamp, const char *only) {
 }
 
 /* ---- the picture: where 2000 samples of one shading point land, plain versus product ---- */
-#include <sys/stat.h>
-static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
-  double t = x / (1 + x);
-  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
-  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
-}
-static void dot(unsigned char *img, int W, int H, int x, int y, unsigned char r, unsigned char g, unsigned char b) {
-  int dx, dy;
-  for (dy = -1; dy <= 1; ++dy)
-    for (dx = -1; dx <= 1; ++dx) {
-      int xx = ((x + dx) % W + W) % W, yy = y + dy;
-      unsigned char *p;
-      if (yy < 0 || yy >= H) continue;
-      p = img + 3 * ((size_t)yy * W + xx);
-      p[0] = r; p[1] = g; p[2] = b;
-    }
-}
 static int picture(const char *out, const char *path) {
   el_image img;
   char err[512], label[128];
@@ -693,7 +670,7 @@ static int picture(const char *out, const char *path) {
       for (x = 0; x < W; ++x) {
         const float *t = img.pixels + 3 * ((size_t)y * W + x);
         unsigned char *p = im + 3 * ((size_t)y * W + x);
-        p[0] = to8(0.5 * t[0]); p[1] = to8(0.5 * t[1]); p[2] = to8(0.5 * t[2]);
+        p[0] = picture_to8(0.5 * t[0]); p[1] = picture_to8(0.5 * t[1]); p[2] = picture_to8(0.5 * t[2]);
       }
     for (x = 0; x < W; ++x) /* the normal's horizon: n.w = 0 along each column, found by bisection on theta */
       for (i = 0; i < 2; ++i) {
@@ -701,11 +678,11 @@ static int picture(const char *out, const char *path) {
         double th = atan2(-b, a); /* a sin(th) + b cos(th) = 0 */
         if (i) th += PI;
         th -= 2 * PI * floor(th / (2 * PI));
-        if (th <= PI) dot(im, W, H, x, (int)(th / PI * H), 80, 220, 255);
+        if (th <= PI) picture_dot(im, W, H, x, (int)(th / PI * H), 1, 80, 220, 255);
       }
     for (i = -6; i <= 6; ++i) { /* the normal: a white cross */
-      dot(im, W, H, (int)(u0 * W) + i, (int)(v0 * H), 255, 255, 255);
-      dot(im, W, H, (int)(u0 * W), (int)(v0 * H) + i, 255, 255, 255);
+      picture_dot(im, W, H, (int)(u0 * W) + i, (int)(v0 * H), 1, 255, 255, 255);
+      picture_dot(im, W, H, (int)(u0 * W), (int)(v0 * H) + i, 1, 255, 255, 255);
     }
     below = 0;
     for (i = 0; i < ns; ++i) {
@@ -719,8 +696,8 @@ static int picture(const char *out, const char *path) {
       vv = acos(fmax(-1.0, fmin(1.0, wi[2]))) / PI;
       c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
       if (c <= 0) ++below;
-      if (c > 0) dot(im, W, H, (int)(uu * W), (int)(vv * H), 255, 230, 40);
-      else dot(im, W, H, (int)(uu * W), (int)(vv * H), 255, 40, 40);
+      if (c > 0) picture_dot(im, W, H, (int)(uu * W), (int)(vv * H), 1, 255, 230, 40);
+      else picture_dot(im, W, H, (int)(uu * W), (int)(vv * H), 1, 255, 40, 40);
     }
     snprintf(label, sizeof label, "%s: %d SAMPLES, %d BELOW THE HORIZON (RED)",
              panel == 0 ? "PLAIN (SAMPLE LI)" : "PRODUCT (SAMPLE LI COS)", ns, below);
@@ -728,11 +705,7 @@ static int picture(const char *out, const char *path) {
     el_draw_label(im, W, H, 8, 34, "THE NORMAL: WHITE CROSS. ITS HORIZON: BLUE");
     printf("%s: %d of %d samples below the horizon\n", panel == 0 ? "sample_li" : "sample_li_cos", below, ns);
   }
-  {
-    char dir[512];
-    const char *slash = strrchr(out, '/');
-    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
-  }
+  make_parent_dir(out);
   if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   printf("wrote %s\n", out);
   free(pix);
@@ -742,21 +715,20 @@ static int picture(const char *out, const char *path) {
 }
 
 /* ---- --library: the library's sampler as shipped (issue 20's numbers) ---- */
-static int cmp_double(const void *a, const void *b) { double x = *(const double *)a, y = *(const double *)b; return x < y ? -1 : x > y; }
 static void library_map(const char *path, int nsamp) {
   el_image img;
   char err[512];
   el_envlight l;
-  double N[NN][3], E[NN], best = -1, ms[5], gv[2] = {0, 0}, gt[2] = {0, 0};
-  int x, y, k, j;
+  double N[NN][3], E[NN], ms[5], gv[2] = {0, 0}, gt[2] = {0, 0};
+  int k, j;
   size_t bytes = 0;
   if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
   for (k = 0; k < 5; ++k) { /* builds on fresh lights */
     double t0;
     if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
-    t0 = now();
+    t0 = process_now();
     el_envlight_prepare_product(&l, NULL);
-    ms[k] = (now() - t0) * 1e3;
+    ms[k] = (process_now() - t0) * 1e3;
     bytes = el_envlight_product_bytes(&l);
     el_envlight_free(&l);
   }
@@ -764,18 +736,7 @@ static void library_map(const char *path, int nsamp) {
   if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
   el_envlight_prepare_product(&l, NULL);
   el_envlight_prepare_sampling(&l);
-  memset(N, 0, sizeof N);
-  N[0][2] = 1; N[1][2] = -1; N[2][0] = 1; N[3][1] = 1;
-  for (y = 0; y < img.height; ++y)
-    for (x = 0; x < img.width; ++x) {
-      double v = lum3(img.pixels + 3 * ((size_t)y * img.width + x));
-      if (v > best) {
-        double uu = (x + 0.5) / img.width, vv = (y + 0.5) / img.height;
-        best = v;
-        N[4][0] = sin(PI * vv) * cos(2 * PI * uu); N[4][1] = sin(PI * vv) * sin(2 * PI * uu); N[4][2] = cos(PI * vv);
-      }
-    }
-  for (k = 0; k < 3; ++k) N[5][k] = -N[4][k];
+  six_normals(&img, N);
   quadrature(&img, N, NN, E);
   printf("\n%s (%dx%d): product tables %.2f MiB (%zu bytes), build %.1f ms best, %.1f median of 5\n", path, img.width, img.height,
          bytes / 1048576.0, bytes, ms[0], ms[2]);
@@ -790,7 +751,7 @@ static void library_map(const char *path, int nsamp) {
       int rep;
       rng g;
       for (rep = 0; rep < 3; ++rep) {
-        double t0 = now();
+        double t0 = process_now();
         g.s = 0x9e3779b97f4a7c15ull * (uint64_t)(k + 1);
         s1 = s2 = 0;
         for (j = 0; j < nsamp; ++j) {
@@ -801,7 +762,7 @@ static void library_map(const char *path, int nsamp) {
           c = wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2];
           if (pdf > 0 && c > 0) { double f = lum3(rgb) * c / pdf; s1 += f; s2 += f * f; }
         }
-        t0 = now() - t0;
+        t0 = process_now() - t0;
         if (t0 < tbest) tbest = t0;
       }
       { double m = s1 / nsamp; rv[strat] = (s2 / nsamp - m * m) / (E[k] * E[k]); }

@@ -37,21 +37,8 @@
 
 #define PI 3.14159265358979323846
 
-static uint64_t g_rng = 0x853c49e6748fea9bULL;
-static float frand(void) {
-  uint64_t old = g_rng;
-  uint32_t x, rot;
-  g_rng = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  x = (x >> rot) | (x << ((32u - rot) & 31u));
-  return (float)(x >> 8) * (1.0f / 16777216.0f);
-}
-static double now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "bench_common.h" /* rng_f (PCG32), wall_now */
+static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
 
 #define GW 1024
 #define GH 512
@@ -145,7 +132,7 @@ static void study(const char *name, const el_envlight *l) {
         for (i = 0; i < count; ++i) {
           float u[2], wi[3], rgb[3], pdf, c, cs;
           double f;
-          u[0] = frand(); u[1] = frand();
+          u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
           el_envlight_sample_li_cos(l, ns[ni], u, wi, rgb, &pdf);
           tries += 1;
           if (!(pdf > 0)) continue;
@@ -163,11 +150,11 @@ static void study(const char *name, const el_envlight *l) {
                mean, var, var / var0[ni], var > 0 ? var0[ni] / var : 0.0, 100 * (1 - z));
         continue;
       }
-      g_rng = 0x853c49e6748fea9bULL + (uint64_t)ni;
+      g_rng.s = 0x853c49e6748fea9bULL + (uint64_t)ni;
       for (i = 0; i < count; ++i) {
         float u[2], wi[3], rgb[3], pdf, c, cs;
         double f = 0;
-        u[0] = frand(); u[1] = frand();
+        u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
         draw(l, &h, which, which >= 6 ? shares[which - 5] : which >= 2 ? shares[which - 2] : 0, ns[ni], u, wi, rgb, &pdf);
         if (!(pdf > 0)) continue;
         cs = wi[0] * ax[0] + wi[1] * ax[1] + wi[2] * ax[2];
@@ -200,10 +187,10 @@ static void cost(const el_envlight *l) {
   if (!u) return;
   el_envlight_hotspots_init(&h, l, NULL);
   el_envlight_hotspots_weights(&h, 0.02f, &w);
-  for (i = 0; i < 2 * n; ++i) u[i] = frand();
+  for (i = 0; i < 2 * n; ++i) u[i] = rng_f(&g_rng);
   for (round = 0; round < 5; ++round)
     for (which = 0; which < 4; ++which) {
-      double t0 = now(), t;
+      double t0 = wall_now(), t;
       for (i = 0; i < n; ++i) {
         float wi[3], rgb[3], pdf;
         if (which == 0) el_envlight_sample_li(l, u + 2 * i, wi, rgb, &pdf);
@@ -212,7 +199,7 @@ static void cost(const el_envlight *l) {
         else el_envlight_sample_li_mix_cos(l, &h, &w, nup, u + 2 * i, wi, rgb, &pdf);
         sink += pdf + rgb[0];
       }
-      t = (now() - t0) / n * 1e9;
+      t = (wall_now() - t0) / n * 1e9;
       if (t < best[which]) best[which] = t;
       if (t > worst[which]) worst[which] = t;
     }

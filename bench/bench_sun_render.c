@@ -264,7 +264,13 @@ int main(int argc, char **argv) {
              c == 1 ? "shadowed" : "lit", on.n[c], off.mean[c], on.mean[c], sm_z(&on, &off, cls, w * h, c, ns), off.var[c], on.var[c], g,
              g * toff / ton, on.med[c] > 0 ? off.med[c] / on.med[c] : 0.0);
     }
-    printf("  all pixels: z %+.2f\n", sm_z(&on, &off, cls, w * h, -1, ns));
+    { /* the whole image: the mean over all its pixels of the variance over the seeds */
+      double va = 0, vb = 0;
+      int p;
+      for (p = 0; p < w * h; p++) { va += off.v[p]; vb += on.v[p]; }
+      printf("  all pixels: z %+.2f  variance off %.4g on %.4g: %.2fx less at equal spp, %.2fx at equal time\n", sm_z(&on, &off, cls, w * h, -1, ns),
+             va / (w * h), vb / (w * h), vb > 0 ? va / vb : 0.0, vb > 0 ? va / vb * toff / ton : 0.0);
+    }
     if (getenv("SUN_DUMP")) { /* (the per-pixel variance, off then on, side by side: sqrt scaled to the off image's 99th percentile... its max) */
       elr_image v;
       double mx = 0;

@@ -47,10 +47,7 @@ static uint64_t rnd64(void) {
   return z ^ (z >> 31);
 }
 static float rndu(void) { return (float)(rnd64() >> 40) * (1.0f / 16777216.0f); }
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
-  return x;
-}
+#include "test_rng.h" /* hash32 */
 
 #include "test_chisq.h" /* gammq: the chi-square p-value */
 #define N_CHI2_TESTS 4 /* Bonferroni: every chi-square test in this file */

@@ -36,34 +36,10 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-static int g_pass = 0, g_fail = 0;
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
-static void check(int ok, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-#include <stdarg.h>
-static void check(int ok, const char *fmt, ...) {
-  va_list ap;
-  printf("%s ", ok ? "PASS" : "FAIL");
-  va_start(ap, fmt);
-  vprintf(fmt, ap);
-  va_end(ap);
-  printf("\n");
-  if (ok) ++g_pass; else ++g_fail;
-}
-
-/* ---- random numbers: PCG32, 24-bit floats in [0,1) ------------------------------------------ */
-typedef struct { uint64_t s; } rng;
-static uint32_t rng_u32(rng *r) {
-  uint64_t old = r->s;
-  uint32_t x, rot;
-  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  return (x >> rot) | (x << ((32 - rot) & 31));
-}
-static float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
-static rng rng_make(uint64_t seed) { rng r; r.s = seed * 2654435761ULL + 12345; rng_u32(&r); return r; }
-
-#include "test_chisq.h" /* gammq: the chi-square p-value */
+#include "test_rng.h"   /* rng, rng_make, rng_f: PCG32, 24-bit floats in [0,1) */
+#include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
 
 /* ---- independent reference mapping (double precision libm) --------------------------------- */
 static void ref_uv_to_dir(double u, double v, double d[3]) { /* pbrt-v3, light space */
@@ -89,16 +65,6 @@ static void mat_mul_t(const float m[9], const double a[3], double b[3]) {
   for (i = 0; i < 3; ++i) b[i] = m[i] * a[0] + m[3 + i] * a[1] + m[6 + i] * a[2];
 }
 static void identity(float m[9]) { int i; for (i = 0; i < 9; ++i) m[i] = (i % 4 == 0) ? 1.0f : 0.0f; }
-/* a rotation: 37 degrees about the normalised axis (1, 2, 3) (Rodrigues, in double) */
-static void some_rotation(float m[9]) {
-  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
-  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y,
-                 t * x * y + s * z, t * y * y + c, t * y * z - s * x,
-                 t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-  int i;
-  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
-}
 
 /* Our own bilinear reconstruction (pbrt's s*w - 0.5, Repeat in u, Clamp in v), in double. */
 typedef struct { const float *px; int w, h; } image;
@@ -125,13 +91,20 @@ static int load_map(const char *name, el_image *img) {
   return 0;
 }
 
-static el_result make_light(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int sampler) {
+/* a light of RGB texels px (w x h) under the matrix m (NULL: identity), compensated or not, with a sampler
+ * and an importance (0: the defaults) */
+static el_result make_light_with(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int sampler,
+                                 int imp) {
   el_envlight_options o;
   memset(&o, 0, sizeof o);
   if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
   o.compensated = comp;
   o.sampler = sampler;
+  o.importance = imp;
   return el_envlight_init(l, px, w, h, 3, &o);
+}
+static el_result make_light(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int sampler) {
+  return make_light_with(l, px, w, h, m, comp, sampler, 0);
 }
 
 /* ======================================================================================== */
@@ -353,7 +326,7 @@ static void chi2_light(const char *name, el_envlight *l, const float m[9], int g
   int nu = l->imp_w, nv = l->imp_h, i, j, cells = gu * gv, pooled_cells = 0, dof;
   double *expect = (double *)calloc((size_t)cells, sizeof(double));
   double *obs = (double *)calloc((size_t)cells, sizeof(double));
-  double chi2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / CHI2_TESTS_PLANNED;
+  double chi2, total = 0, pval, alpha = 0.01 / CHI2_TESTS_PLANNED;
   int impossible = 0, mismatch = 0, nonfinite = 0;
   rng r = rng_make(seed);
   el_envlight_prepare_sampling(l);
@@ -387,14 +360,7 @@ static void chi2_light(const char *name, el_envlight *l, const float m[9], int g
     if (cv >= gv) cv = gv - 1;
     obs[cv * gu + cu] += 1;
   }
-  for (i = 0; i < cells; ++i) {
-    double e = expect[i] / total * n;
-    if (expect[i] == 0) { if (obs[i] > 0) ++impossible; continue; }
-    if (e < 5) { pool_e += e; pool_o += obs[i]; continue; }
-    chi2 += (obs[i] - e) * (obs[i] - e) / e;
-    ++pooled_cells;
-  }
-  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++pooled_cells; }
+  chi2 = chisq_pooled(expect, obs, (size_t)cells, total, n, &impossible, &pooled_cells);
   dof = pooled_cells - 1;
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
   ++g_chi2_tests;
@@ -413,7 +379,7 @@ static void chi2_map(const char *name, const float *px, int w, int h, int gu, in
   float m[9];
   char label[128];
   el_result res;
-  if (rotate) some_rotation(m); else identity(m);
+  if (rotate) rotation37(m); else identity(m);
   res = make_light(&l, px, w, h, m, comp, sampler);
   snprintf(label, sizeof label, "%s%s%s%s", name, comp ? " compensated" : "", rotate ? " rotated" : "",
            sampler == EL_ENVLIGHT_SAMPLER_CDF ? " CDF" : sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? " alias" : "");
@@ -508,7 +474,7 @@ static void test_pdf_integral(const el_image *studio) {
   el_envlight l;
   float m[9];
   int comp;
-  some_rotation(m);
+  rotation37(m);
   for (comp = 0; comp < 2; ++comp) {
     int i, j, nu = 3000, nv = 1400;
     double s = 0;
@@ -645,7 +611,7 @@ static void unbiased_case(const char *name, const float *px, int w, int h, int q
   float m[9];
   int k, ok = 1;
   el_result res;
-  if (rotate) some_rotation(m); else identity(m);
+  if (rotate) rotation37(m); else identity(m);
   im.px = px; im.w = w; im.h = h;
   quadrature(&im, qs, NORMALS, NNORM, E);
   memset(&o, 0, sizeof o);
@@ -980,7 +946,7 @@ static void test_hard_cases(void) {
     res = el_envlight_init(&l, px, 2, 2, 3, &o);
     check(res == EL_SUCCESS, "a reflection (det -1) is accepted");
     el_envlight_free(&l);
-    some_rotation(m);
+    rotation37(m);
     memcpy(o.light_to_world, m, sizeof m);
     o.light_to_world[0] += 3e-5f; /* float noise of a user's matrix: accepted and re-orthonormalised */
     res = el_envlight_init(&l, px, 2, 2, 3, &o);
@@ -1243,7 +1209,7 @@ static void test_table_directions(const el_image *city) {
       }
       if (mi == 0) identity(m);
       else if (mi == 1) el_envlight_yup_matrix(m);
-      else some_rotation(m);
+      else rotation37(m);
       make_light(&l, pix, w, h, m, 0, smp ? EL_ENVLIGHT_SAMPLER_GUIDE : EL_ENVLIGHT_SAMPLER_CDF);
       el_envlight_prepare_sampling(&l);
       for (i = 0; i < n; ++i) {
@@ -1354,7 +1320,7 @@ static void test_direction_scale(const el_image *city) {
   for (mi = 0; mi < 3; ++mi) {
     el_envlight l;
     float m[9], d0[3] = {1.0f, -0.75f, 0.5f}, L0[3], p0, x0[3] = {1.0f, 0.0f, 0.0f}, Lx[3], px0;
-    if (mi == 0) identity(m); else if (mi == 1) el_envlight_yup_matrix(m); else some_rotation(m);
+    if (mi == 0) identity(m); else if (mi == 1) el_envlight_yup_matrix(m); else rotation37(m);
     make_light(&l, city->pixels, city->width, city->height, m, 0, 0);
     el_envlight_le(&l, d0, L0);
     p0 = el_envlight_pdf_li(&l, d0);
@@ -1416,7 +1382,7 @@ static void test_pdf_round_trip(const el_image *city) {
           if (mi == 0) identity(m);
           else if (mi == 1) el_envlight_yup_matrix(m);
           else if (mi == 2) el_envlight_zup_matrix(m);
-          else some_rotation(m);
+          else rotation37(m);
           memset(&o, 0, sizeof o);
           memcpy(o.light_to_world, m, sizeof m);
           o.sampler = smp;
@@ -1489,7 +1455,7 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
                            uint64_t seed, int expect_pass) {
   int cells = gu * gv, i, r, pooled = 0, dof, impossible = 0, mismatch = 0, nonfinite = 0, rgb_mismatch = 0, zero = 0;
   double *expect = (double *)calloc((size_t)cells, sizeof(double)), *obs = (double *)calloc((size_t)cells, sizeof(double));
-  double chi2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / PROD_TESTS_PLANNED;
+  double chi2, total = 0, pval, alpha = 0.01 / PROD_TESTS_PLANNED;
   rng g = rng_make(seed);
   for (r = 0; r <= h; ++r) {
     double v0 = r == 0 ? 0.0 : (r - 0.5) / h, v1 = r == h ? 1.0 : (r + 0.5) / h, v = 0.5 * (v0 + v1);
@@ -1530,14 +1496,7 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
     pr = (int)(v * h + 0.5); if (pr > h) pr = h;
     obs[(pr * gv / (h + 1)) * gu + pi * gu / w] += 1;
   }
-  for (i = 0; i < cells; ++i) {
-    double e = expect[i] / total * n;
-    if (expect[i] == 0) { if (obs[i] > 0) ++impossible; continue; }
-    if (e < 5) { pool_e += e; pool_o += obs[i]; continue; }
-    chi2 += (obs[i] - e) * (obs[i] - e) / e;
-    ++pooled;
-  }
-  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++pooled; }
+  chi2 = chisq_pooled(expect, obs, (size_t)cells, total, n, &impossible, &pooled);
   dof = pooled - 1;
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
   if (expect_pass) {
@@ -1565,7 +1524,7 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
 static void chi2_fractions(const char *name, const psrc *s, const float m[9], int w, int h, int n, uint64_t seed) {
   size_t cells = (size_t)(h + 1) * w * 16, k;
   double *expect = (double *)calloc(cells, sizeof(double)), *obs = (double *)calloc(cells, sizeof(double));
-  double chi2 = 0, total = 0, pval, pool_e = 0, pool_o = 0;
+  double chi2, total = 0, pval;
   int i, r, a, b, dof, used = 0;
   rng g = rng_make(seed);
   for (r = 0; r <= h; ++r) {
@@ -1604,13 +1563,7 @@ static void chi2_fractions(const char *name, const psrc *s, const float m[9], in
     a = a < 0 ? 0 : a > 3 ? 3 : a; b = b < 0 ? 0 : b > 3 ? 3 : b;
     obs[(((size_t)pr * w + pi) * 4 + b) * 4 + a] += 1;
   }
-  for (k = 0; k < cells; ++k) {
-    double e = expect[k] / total * n;
-    if (e < 5) { pool_e += e; pool_o += obs[k]; continue; }
-    chi2 += (obs[k] - e) * (obs[k] - e) / e;
-    ++used;
-  }
-  if (pool_e > 0) { chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++used; }
+  chi2 = chisq_pooled(expect, obs, cells, total, n, NULL, &used); /* zero-pdf cells pooled */
   dof = used - 1;
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
   ++g_prod_tests;
@@ -1621,12 +1574,7 @@ static void chi2_fractions(const char *name, const psrc *s, const float m[9], in
 }
 
 static el_result make_light_imp(el_envlight *l, const float *px, int w, int h, const float m[9], int comp, int imp) {
-  el_envlight_options o;
-  memset(&o, 0, sizeof o);
-  if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
-  o.compensated = comp;
-  o.importance = imp;
-  return el_envlight_init(l, px, w, h, 3, &o);
+  return make_light_with(l, px, w, h, m, comp, 0, imp);
 }
 /* a box-filtered copy of an image at w / f x h / f (keeps the tests fast on the 1024x512 maps) */
 static float *shrink(const el_image *im, int f) {
@@ -1653,7 +1601,7 @@ static void chi2_product_case(const char *name, const float *px, int w, int h, i
   float m[9];
   psrc s;
   char label[160];
-  if (matrix == 1) some_rotation(m);
+  if (matrix == 1) rotation37(m);
   else if (matrix == 2) el_envlight_yup_matrix(m);
   else if (matrix == 3) el_envlight_zup_matrix(m);
   else identity(m);
@@ -1673,7 +1621,7 @@ static void chi2_bilinear_case(const char *name, const float *px, int w, int h, 
   float m[9];
   psrc s;
   char label[160];
-  if (matrix == 1) some_rotation(m); else identity(m);
+  if (matrix == 1) rotation37(m); else identity(m);
   if (make_light_imp(&l, px, w, h, m, comp, EL_ENVLIGHT_IMPORTANCE_BILINEAR) != EL_SUCCESS) { check(0, "chi2 %s: init failed", name); return; }
   memset(&s, 0, sizeof s);
   s.l = s.pdf_light = &l;
@@ -1932,7 +1880,7 @@ static void test_product_coverage(const el_image *studio) {
       float m[9];
       int k, i, j, bad = 0, tried = 0, NU = 240, NV = 120;
       rng g = rng_make(500 + mi);
-      if (rot) some_rotation(m); else identity(m);
+      if (rot) rotation37(m); else identity(m);
       make_light_imp(&l, maps[mi], sizes[mi][0], sizes[mi][1], m, 0, 0);
       for (k = 0; k < 12; ++k) { /* normals: the poles, the seam, and random ones */
         float n[3];
@@ -1980,7 +1928,7 @@ static void test_product_unbiased(const el_image *studio, const el_image *city) 
       float m[9];
       double E[NNORM], worst = 0, worst_bad = 0;
       int k, i, nsamp = 60000, comp = mode == 2, imp = mode == 3 ? EL_ENVLIGHT_IMPORTANCE_BILINEAR : 0;
-      if (mode == 1 || mode == 2) some_rotation(m); else identity(m);
+      if (mode == 1 || mode == 2) rotation37(m); else identity(m);
       ref.px = half[mapi]; ref.w = 512; ref.h = 256;
       quadrature(&ref, 2, NORMALS, NNORM, E);
       make_light_imp(&l, half[mapi], 512, 256, m, comp, imp);
@@ -2099,7 +2047,7 @@ static void test_product_hard(const el_image *city) {
     float p0, pz, pn, pi, ds[3], m[9];
     int mi;
     for (mi = 0; mi < 2; ++mi) {
-      if (mi == 0) identity(m); else some_rotation(m);
+      if (mi == 0) identity(m); else rotation37(m);
       make_light_imp(&l, sunmap, PW, PH, m, 0, 0);
       p0 = el_envlight_pdf_li_cos(&l, nu, dir);
       ok = p0 > 0;

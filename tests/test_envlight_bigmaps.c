@@ -30,37 +30,18 @@
 #endif
 
 static const double PI = 3.14159265358979323846;
-static int g_pass = 0, g_fail = 0;
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
-static void check(int ok, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void check(int ok, const char *fmt, ...) {
-  va_list ap;
-  printf("%s ", ok ? "PASS" : "FAIL");
-  va_start(ap, fmt);
-  vprintf(fmt, ap);
-  va_end(ap);
-  printf("\n");
-  if (ok) ++g_pass; else ++g_fail;
-}
-
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
-  return x;
-}
+#include "test_rng.h" /* hash32 */
 /* 24-bit uniform floats in [0,1) from an index and a stream */
 static float rnd(uint32_t i, uint32_t s) { return (float)(hash32(i * 2654435761u + s * 0x9e3779b9u + 12345u) >> 8) * (1.0f / 16777216.0f); }
 
-#include "test_chisq.h" /* gammq: the chi-square p-value */
+#include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
 /* chi-square of observed counts against expected probabilities (cells with expectation < 5 pooled) */
 static double chi2_p(const double *obs, const double *prob, int n, double total, int *dof_out) {
-  double chi2 = 0.0, pe = 0.0, po = 0.0;
-  int i, dof = -1;
-  for (i = 0; i < n; ++i) {
-    double e = prob[i] * total;
-    if (e < 5.0) { pe += e; po += obs[i]; continue; }
-    chi2 += (obs[i] - e) * (obs[i] - e) / e; ++dof;
-  }
-  if (pe > 0.0) { chi2 += (po - pe) * (po - pe) / pe; ++dof; }
+  int dof;
+  double chi2 = chisq_pooled(prob, obs, (size_t)n, 1.0, total, NULL, &dof);
+  dof -= 1;
   *dof_out = dof;
   return dof > 0 ? gammq(0.5 * dof, 0.5 * chi2) : 1.0;
 }
@@ -530,14 +511,7 @@ static void test_ea_misc(void) {
 
 int main(void) {
   float rot[9];
-  {
-    double ax[3] = {1, 2, 3}, nn = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-    double x = ax[0] / nn, y = ax[1] / nn, z = ax[2] / nn;
-    double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                   t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-    int i;
-    for (i = 0; i < 9; ++i) rot[i] = (float)r[i];
-  }
+  rotation37(rot);
   test_cap_defaults();
   test_cap_density();
   test_no_copy();

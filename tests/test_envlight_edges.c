@@ -38,41 +38,11 @@
 #define EL_TEST_DATA_DIR "data"
 #endif
 
-static int g_pass, g_fail;
-static void check(int ok, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-static void check(int ok, const char *fmt, ...) {
-  va_list ap;
-  printf("%s ", ok ? "PASS" : "FAIL");
-  va_start(ap, fmt);
-  vprintf(fmt, ap);
-  va_end(ap);
-  printf("\n");
-  if (ok) ++g_pass; else ++g_fail;
-}
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
-static uint64_t g_rng = 0x853c49e6748fea9bULL;
-static float frand(void) { /* PCG32, 24-bit floats in [0, 1) */
-  uint64_t old = g_rng;
-  uint32_t x, rot;
-  g_rng = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  x = (x >> rot) | (x << ((32u - rot) & 31u));
-  return (float)(x >> 8) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* rng_f: PCG32, 24-bit floats in [0, 1) */
+static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
 
-static void rotation(float m[9]) { /* 37 degrees about (1, 2, 3) */
-  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * 3.14159265358979323846 / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
-  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                 t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-  int i;
-  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
-}
 
 static int load(const char *name, el_image *img) {
   char path[512], err[256];
@@ -84,7 +54,7 @@ static int load(const char *name, el_image *img) {
 static int init(el_envlight *l, const float *px, int w, int h, int general, int importance, int compensated) {
   el_envlight_options o;
   memset(&o, 0, sizeof o);
-  if (general) rotation(o.light_to_world);
+  if (general) rotation37(o.light_to_world);
   o.importance = importance;
   o.compensated = compensated;
   return el_envlight_init(l, px, w, h, 3, &o) == EL_SUCCESS;
@@ -262,7 +232,7 @@ static int zero_pdfs(const el_envlight *l, const float *n, int sweep, int *tried
   float a[16], u[2], wi[3], pdf;
   int na, i, j, axis, zeros = 0, seen = 0;
   for (i = 0; i < 64; ++i) {
-    u[0] = frand(); u[1] = frand();
+    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
     if (n) el_envlight_sample_li_cos(l, n, u, wi, NULL, &pdf);
     else el_envlight_sample_li(l, u, wi, NULL, &pdf);
     if (pdf > 0.0f) seen = 1;
@@ -273,7 +243,7 @@ static int zero_pdfs(const el_envlight *l, const float *n, int sweep, int *tried
     for (i = 0; i < na; ++i)
       for (j = 0; j < sweep; ++j) {
         u[axis] = a[i];
-        u[1 - axis] = ((float)j + frand()) / (float)sweep;
+        u[1 - axis] = ((float)j + rng_f(&g_rng)) / (float)sweep;
         if (n) el_envlight_sample_li_cos(l, n, u, wi, NULL, &pdf);
         else el_envlight_sample_li(l, u, wi, NULL, &pdf);
         ++*tried;
@@ -290,7 +260,7 @@ static void test_adversarial_u(const el_image *city) {
       el_envlight l;
       if (!init(&l, city->pixels, city->width, city->height, gi, 0, comp)) { check(0, "init"); return; }
       for (k = 0; k < 96; ++k) {
-        float z = 2.0f * frand() - 1.0f, ph = 6.2831853f * frand(), r = sqrtf(1.0f - z * z), n[3];
+        float z = 2.0f * rng_f(&g_rng) - 1.0f, ph = 6.2831853f * rng_f(&g_rng), r = sqrtf(1.0f - z * z), n[3];
         n[0] = r * cosf(ph); n[1] = r * sinf(ph); n[2] = z;
         zeros_cos += zero_pdfs(&l, n, 256, &tried_cos);
       }
@@ -326,7 +296,7 @@ static void test_adversarial_u(const el_image *city) {
           float u[2], wi[3], pdf;
           zeros_pole += zero_pdfs(&l, NULL, 4096, &tried_pole);
           for (j = 0; j < 200000; ++j) { /* and random u */
-            u[0] = frand(); u[1] = frand();
+            u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
             el_envlight_sample_li(&l, u, wi, NULL, &pdf);
             ++tried_pole;
             if (!(pdf > 0.0f)) ++zeros_pole;
@@ -366,8 +336,8 @@ static void test_sample_radiance(const el_image *city) {
       for (j = 0; j < 60000; ++j) {
         float u[2], wi[3], rgb[3], le[3], pdf;
         int c;
-        u[0] = frand();
-        u[1] = j % 3 == 0 ? frand() * 0.002f : j % 3 == 1 ? 1.0f - frand() * 0.002f : frand(); /* near the poles too */
+        u[0] = rng_f(&g_rng);
+        u[1] = j % 3 == 0 ? rng_f(&g_rng) * 0.002f : j % 3 == 1 ? 1.0f - rng_f(&g_rng) * 0.002f : rng_f(&g_rng); /* near the poles too */
         el_envlight_sample_li(&l, u, wi, rgb, &pdf);
         if (!(pdf > 0.0f)) continue;
         el_envlight_le(&l, wi, le);
@@ -398,8 +368,8 @@ static double below_fraction(const el_envlight *l, const float n[3], int count) 
   int j, below = 0, valid = 0;
   for (j = 0; j < count; ++j) {
     float u[2], wi[3], pdf;
-    u[0] = ((float)(j % 256) + frand()) / 256.0f;
-    u[1] = ((float)(j / 256) + frand()) / (float)(count / 256);
+    u[0] = ((float)(j % 256) + rng_f(&g_rng)) / 256.0f;
+    u[1] = ((float)(j / 256) + rng_f(&g_rng)) / (float)(count / 256);
     el_envlight_sample_li_cos(l, n, u, wi, NULL, &pdf);
     if (!(pdf > 0.0f)) continue;
     ++valid;

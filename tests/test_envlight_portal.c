@@ -24,11 +24,8 @@ static void check(int ok, const char *what, double a, double b) {
   else g_fail++;
   printf("%s: %s (%g, %g)\n", ok ? "PASS" : "FAIL", what, a, b);
 }
-static unsigned long long g_rng = 88172645463325252ULL;
-static float frand(void) {
-  g_rng ^= g_rng << 13; g_rng ^= g_rng >> 7; g_rng ^= g_rng << 17;
-  return (float)(g_rng >> 40) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* xorshift64_f */
+static xorshift64 g_rng = {88172645463325252ULL};
 static double lum(const float *c) { return 0.212671 * c[0] + 0.715160 * c[1] + 0.072169 * c[2]; }
 
 #include "test_chisq.h" /* gammq: the chi-square p-value */
@@ -156,7 +153,7 @@ static void run_case(const char *name, const el_envlight *light, const float *pt
   for (s = 0; s < nsamples; ++s) {
     float u[2], wi[3], rgb[3], pdf, pdf2;
     int hit = 0;
-    u[0] = frand(); u[1] = frand();
+    u[0] = xorshift64_f(&g_rng); u[1] = xorshift64_f(&g_rng);
     used += el_envlight_portal_sample_li(&P, light, pos, u, wi, rgb, &pdf);
     pdf2 = el_envlight_portal_pdf_li(&P, light, pos, wi);
     if (!(fabsf(pdf2 - pdf) <= 1e-3f * pdf)) bad_rt++;

@@ -38,43 +38,13 @@ static int g_w = 128, g_h = 64; /* 512 x 256 once: the direction-table path of m
 #define H g_h
 #define MAXWH (512 * 256)
 
-static int g_pass, g_fail;
-static void check(int ok, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-static void check(int ok, const char *fmt, ...) {
-  va_list ap;
-  printf("%s ", ok ? "PASS" : "FAIL");
-  va_start(ap, fmt);
-  vprintf(fmt, ap);
-  va_end(ap);
-  printf("\n");
-  if (ok) ++g_pass; else ++g_fail;
-}
+#include "test_common.h" /* check (a PASS / FAIL line, counted in g_pass / g_fail), rotation37 */
 
-static uint64_t g_rng = 0x853c49e6748fea9bULL;
-static float frand(void) { /* PCG32, 24-bit floats in [0, 1) */
-  uint64_t old = g_rng;
-  uint32_t x, rot;
-  g_rng = old * 6364136223846793005ULL + 1442695040888963407ULL;
-  x = (uint32_t)(((old >> 18) ^ old) >> 27);
-  rot = (uint32_t)(old >> 59);
-  x = (x >> rot) | (x << ((32u - rot) & 31u));
-  return (float)(x >> 8) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* rng_f: PCG32, 24-bit floats in [0, 1) */
+static rng g_rng = {0x853c49e6748fea9bULL}; /* one stream for the whole program */
 
-#include "test_chisq.h" /* gammq: the chi-square p-value */
+#include "test_chisq.h" /* gammq, chisq_pooled: the chi-square statistic and p-value */
 
-static void rotation(float m[9]) { /* 37 degrees about (1, 2, 3) */
-  double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * PI / 180.0, c = cos(a), s = sin(a), t = 1 - c;
-  double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;
-  double r[9] = {t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
-                 t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
-  int i;
-  for (i = 0; i < 9; ++i) m[i] = (float)r[i];
-}
 static void mul(const float m[9], const float a[3], float b[3]) {
   b[0] = m[0] * a[0] + m[1] * a[1] + m[2] * a[2];
   b[1] = m[3] * a[0] + m[4] * a[1] + m[5] * a[2];
@@ -129,7 +99,7 @@ static el_result make_light(el_envlight *l, const float *px, int rotated) {
   if (g_variant == 2) o.sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (g_variant == 3) o.sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
   if (g_variant == 4) o.importance = EL_ENVLIGHT_IMPORTANCE_TEXEL;
-  if (rotated) rotation(o.light_to_world);
+  if (rotated) rotation37(o.light_to_world);
   return el_envlight_init(l, px, W, H, 3, &o);
 }
 
@@ -146,7 +116,7 @@ static void test_detection(void) {
       int ns = sun_dirs(kind, d), k, s, i, n = 100000;
       make_map(kind, px);
       if (make_light(&l, px, rot) != EL_SUCCESS) { check(0, "init %s", map_name[kind]); continue; }
-      rotation(m);
+      rotation37(m);
       if (rot) for (s = 0; s < ns; ++s) { float a[3], b[3]; a[0] = (float)d[s][0]; a[1] = (float)d[s][1]; a[2] = (float)d[s][2]; mul(m, a, b); d[s][0] = b[0]; d[s][1] = b[1]; d[s][2] = b[2]; }
       check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS, "hotspots_init %s%s", map_name[kind], rot ? " (rotated)" : "");
       check(h.count == ns, "%s%s: %d spots found (%d put)", map_name[kind], rot ? " (rotated)" : "", h.count, ns);
@@ -158,7 +128,7 @@ static void test_detection(void) {
         for (i = 0; i < n; ++i) {
           float u[2], wi[3], pdf;
           double c;
-          u[0] = frand(); u[1] = frand();
+          u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
           el_envlight_sample_li(&l, u, wi, NULL, &pdf);
           c = wi[0] * h.spot[k].axis[0] + wi[1] * h.spot[k].axis[1] + wi[2] * h.spot[k].axis[2];
           if (c >= cos(h.spot[k].half_angle) - 1e-6) ++inside;
@@ -222,11 +192,11 @@ static void test_defaults(void) {
       for (i = 0; i < 20000; ++i) {
         float u[2], a[3], b[3], ra[3], rb[3], pa, pb, d[3];
         const el_envlight_mix_weights *wp = t == 4 ? NULL : &w[t];
-        u[0] = frand(); u[1] = frand();
+        u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
         el_envlight_sample_li(&l, u, a, ra, &pa);
         el_envlight_sample_li_mix(&l, &h, wp, u, b, rb, &pb);
         if (memcmp(a, b, sizeof a) || memcmp(ra, rb, sizeof ra) || memcmp(&pa, &pb, sizeof pa)) ++bad_s;
-        d[0] = 2 * frand() - 1; d[1] = 2 * frand() - 1; d[2] = 2 * frand() - 1;
+        d[0] = 2 * rng_f(&g_rng) - 1; d[1] = 2 * rng_f(&g_rng) - 1; d[2] = 2 * rng_f(&g_rng) - 1;
         pa = el_envlight_pdf_li(&l, d); pb = el_envlight_pdf_li_mix(&l, &h, wp, d);
         if (memcmp(&pa, &pb, sizeof pa)) ++bad_p;
         pa = el_envlight_pdf_li(&l, a); pb = el_envlight_pdf_li_mix(&l, &h, wp, a);
@@ -243,7 +213,7 @@ static void test_defaults(void) {
       double worst = 0;
       for (i = 0; i < 40000; ++i) {
         float u[2], a[3], pa, pb;
-        u[0] = frand(); u[1] = frand();
+        u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
         el_envlight_sample_li(&l, u, a, NULL, &pa);
         pa = el_envlight_pdf_li(&l, a);
         pb = el_envlight_pdf_li_mix(&l, &h, &ws, a);
@@ -256,7 +226,7 @@ static void test_defaults(void) {
       int differ = 0, pass;
       for (pass = 0; pass < 2; ++pass) {
         el_envlight_hotspots_weights(&h, pass ? 0.1f : NAN, &ws);
-        for (i = 0; i < 2 * 37; ++i) uu[i] = frand();
+        for (i = 0; i < 2 * 37; ++i) uu[i] = rng_f(&g_rng);
         el_envlight_sample_li_mix_n(&l, &h, &ws, 37, uu, wa, ra, pa);
         for (i = 0; i < 37; ++i) {
           el_envlight_sample_li_mix(&l, &h, &ws, uu + 2 * i, wb, rb, &pb);
@@ -293,10 +263,10 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
   float m[9];
   int i, n = g_cosn ? 100000 : 200000, mismatch = 0, nonfinite = 0, dof = -1, zero_pdf_hits = 0, k;
   double frac[2][16], fx2 = 0, fp;
-  double x2 = 0, pool_e = 0, pool_o = 0, total = 0, pval, alpha = 0.01 / CHI2_PLANNED, spot_mass = 0, spot_obs = 0;
+  double x2 = 0, total = 0, pval, alpha = 0.01 / CHI2_PLANNED, spot_mass = 0, spot_obs = 0;
   make_map(kind, px);
   make_light(&l, px, rot);
-  rotation(m);
+  rotation37(m);
   el_envlight_hotspots_init(&h, &l, NULL);
   el_envlight_hotspots_weights(&h, spot_share, &w);
   memset(obs, 0, sizeof obs);
@@ -315,7 +285,7 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
     float u[2], wi[3], rgb[3], pdf, q, d[3], len;
     double uu, vv;
     int x, y;
-    u[0] = frand(); u[1] = frand();
+    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
     mix_sample(&l, &h, &w, u, wi, rgb, &pdf);
     q = mix_pdf(&l, &h, &w, wi);
     if (memcmp(&q, &pdf, sizeof q)) ++mismatch;
@@ -344,13 +314,9 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
       if (expect[i] == 0 && obs[i]) ++zero_pdf_hits;
       ce[c] += expect[i]; co[c] += obs[i];
     }
-    for (i = 0; i < 128 * 64; ++i) {
-      double e = ce[i] * n;
-      if (e < 5) { pool_e += e; pool_o += co[i]; continue; }
-      x2 += (co[i] - e) * (co[i] - e) / e; ++dof;
-    }
+    x2 = chisq_pooled(ce, co, 128 * 64, 1.0, n, NULL, &dof); /* (ce: probabilities) */
+    dof -= 1;
   }
-  if (pool_e > 0) { x2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e; ++dof; }
   pval = dof > 0 ? gammq(0.5 * dof, 0.5 * x2) : 1.0;
   ++g_chi2;
   check(pval > alpha && fabs(total - 1) < 2e-3 && zero_pdf_hits == 0,
@@ -463,7 +429,7 @@ static void unbiased(int kind, float spot_share, int shadow, int cos_mix) {
   for (i = 0; i < count; ++i) {
     float u[2], wi[3], rgb[3], pdf, c;
     double f = 0;
-    u[0] = frand(); u[1] = frand();
+    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
     if (cos_mix) el_envlight_sample_li_mix_cos(&l, &h, &w, n, u, wi, rgb, &pdf);
     else el_envlight_sample_li_mix(&l, &h, &w, u, wi, rgb, &pdf);
     c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
@@ -545,7 +511,7 @@ static void test_hostile(void) {
   bad = 0;
   for (i = 0; i < 2000; ++i) {
     float u[2], a[3], b[3], pa, pb;
-    u[0] = frand(); u[1] = frand();
+    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
     el_envlight_sample_li(&l, u, a, NULL, &pa);
     el_envlight_sample_li_mix(&l, &h2, &w, u, b, NULL, &pb);
     if (memcmp(a, b, sizeof a) || pa != pb || el_envlight_pdf_li_mix(&l, &h2, &w, a) != el_envlight_pdf_li(&l, a)) ++bad;
@@ -564,7 +530,7 @@ static void test_hostile(void) {
     bad = 0;
     for (i = 0; i < 2000; ++i) {
       float u[2], a[3], pa;
-      u[0] = frand(); u[1] = frand();
+      u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
       el_envlight_sample_li_mix(&l3, &h3, &w, u, a, NULL, &pa);
       if (!(pa > 0) || fabsf(pa - el_envlight_pdf_li(&l3, a)) > 1e-5f * pa) ++bad;
     }
@@ -601,11 +567,11 @@ static void test_table(void) {
         el_envlight_mix_cos_prepare(&l, &h, &w, normals[ni], &t);
         for (i = 0; i < 2000; ++i) {
           float u[2], a[3], b[3], ra[3], rb[3], pa, pb, d[3];
-          u[0] = frand(); u[1] = frand();
+          u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
           el_envlight_sample_li_mix_cos(&l, &h, &w, normals[ni], u, a, ra, &pa);
           el_envlight_sample_li_mix_cos_table(&l, &h, &t, u, b, rb, &pb);
           if (memcmp(a, b, sizeof a) || memcmp(ra, rb, sizeof ra) || memcmp(&pa, &pb, sizeof pa)) ++bad;
-          d[0] = 2 * frand() - 1; d[1] = 2 * frand() - 1; d[2] = 2 * frand() - 1;
+          d[0] = 2 * rng_f(&g_rng) - 1; d[1] = 2 * rng_f(&g_rng) - 1; d[2] = 2 * rng_f(&g_rng) - 1;
           pa = el_envlight_pdf_li_mix_cos(&l, &h, &w, normals[ni], d); pb = el_envlight_pdf_li_mix_cos_table(&l, &h, &t, d);
           if (memcmp(&pa, &pb, sizeof pa)) ++bad;
           pa = el_envlight_pdf_li_mix_cos(&l, &h, &w, normals[ni], a); pb = el_envlight_pdf_li_mix_cos_table(&l, &h, &t, a);

@@ -53,11 +53,8 @@ static double ref1(int type, double x, double r) {
 }
 static const double ref_radius[5] = {0.5, 2.0, 2.0, 2.0, 4.0};
 
-static unsigned g_rng = 12345u;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* lcg_f */
+static lcg g_rng = {12345u};
 
 static el_film make_film(int w, int h, int type, int exact) {
   el_film f;
@@ -132,7 +129,7 @@ static void test_filters(void) {
     el_film f = make_film(4, 4, t, 0);
     double maxe = 0, maxt = 0, r = ref_radius[t];
     for (i = 0; i < 2000; i++) {
-      float x = (frand() * 2 - 1) * (float)(r * 1.1), y = (frand() * 2 - 1) * (float)(r * 1.1);
+      float x = (lcg_f(&g_rng) * 2 - 1) * (float)(r * 1.1), y = (lcg_f(&g_rng) * 2 - 1) * (float)(r * 1.1);
       double e = fabs(el_film_filter_eval(&f.filter, x, y) - ref1(t, x, r) * ref1(t, y, r));
       if (e > maxe) maxe = e;
     }
@@ -169,7 +166,7 @@ static void test_table_vs_exact(void) {
     bound = L * M * cell + 1e-6;
     for (i = 0; i < 200; i++) {
       float c[3] = {1, 1, 1};
-      float px = 10.5f + (frand() - 0.5f), py = 10.5f + (frand() - 0.5f);
+      float px = 10.5f + (lcg_f(&g_rng) - 0.5f), py = 10.5f + (lcg_f(&g_rng) - 0.5f);
       int x, y;
       el_film_clear(&ft);
       el_film_clear(&fe);
@@ -211,7 +208,7 @@ static void test_constant(void) {
         el_film_init(&f, &o);
         el_film_sample_bounds(&f, b);
         for (i = 0; i < 20000; i++)
-          el_film_add_sample(&f, b[0] + (b[2] - b[0]) * frand(), b[1] + (b[3] - b[1]) * frand(), c, 1.0f);
+          el_film_add_sample(&f, b[0] + (b[2] - b[0]) * lcg_f(&g_rng), b[1] + (b[3] - b[1]) * lcg_f(&g_rng), c, 1.0f);
         out = (float *)malloc(sizeof(float) * 3 * f.width * f.height);
         el_film_get_rgb(&f, 1.0f, out);
         for (i = 0; i < f.width * f.height * 3; i++) {
@@ -642,10 +639,10 @@ static void test_threads(void) {
   int i, same = 1;
   double maxd = 0;
   for (i = 0; i < N; i++) { /* left half samples in sa, right half in sb */
-    sa[5 * i] = 16 * frand(); sa[5 * i + 1] = H * frand();
-    sa[5 * i + 2] = frand(); sa[5 * i + 3] = frand() * 4; sa[5 * i + 4] = sa[5 * i] / 16;
-    sb[5 * i] = 16 + 16 * frand(); sb[5 * i + 1] = H * frand();
-    sb[5 * i + 2] = frand(); sb[5 * i + 3] = frand() * 4; sb[5 * i + 4] = sb[5 * i + 1] / 16;
+    sa[5 * i] = 16 * lcg_f(&g_rng); sa[5 * i + 1] = H * lcg_f(&g_rng);
+    sa[5 * i + 2] = lcg_f(&g_rng); sa[5 * i + 3] = lcg_f(&g_rng) * 4; sa[5 * i + 4] = sa[5 * i] / 16;
+    sb[5 * i] = 16 + 16 * lcg_f(&g_rng); sb[5 * i + 1] = H * lcg_f(&g_rng);
+    sb[5 * i + 2] = lcg_f(&g_rng); sb[5 * i + 3] = lcg_f(&g_rng) * 4; sb[5 * i + 4] = sb[5 * i + 1] / 16;
   }
   /* one thread: tile A then tile B */
   el_film_tile_init(&f1, &ta, 0, 0, 16, H);
@@ -761,13 +758,13 @@ static void lobe_run(int type, int exact, int nonneg, int spp, double *wmin, dou
   o.exact_filter = exact;
   o.nonnegative_filter = nonneg;
   if (el_film_init(&f, &o) != EL_SUCCESS || !rgb) { check(0, "film init"); free(rgb); return; }
-  g_rng = 777u;
+  g_rng.s = 777u;
   for (y = 0; y < H; y++)
     for (x = 0; x < W; x++)
       for (k = 0; k < spp; k++) {
-        float L[3], v = frand();
+        float L[3], v = lcg_f(&g_rng);
         L[0] = L[1] = L[2] = v;
-        el_film_add_sample(&f, (float)x + frand(), (float)y + frand(), L, 1.0f);
+        el_film_add_sample(&f, (float)x + lcg_f(&g_rng), (float)y + lcg_f(&g_rng), L, 1.0f);
       }
   *wmin = 1e30; *wmax = -1e30; *pmin = 1e30; *pmax = -1e30;
   for (k = 0; k < W * H; k++) { /* the filter-weight sums, and the pixel before pbrt's max(0, .) */
@@ -837,16 +834,16 @@ static void test_add_samples(void) {
           el_film_tile_init(&f, &a, off * 3, off * 2, 12, 9);
           el_film_tile_init(&f, &b, off * 3, off * 2, 12, 9);
           for (run = 0; run < 40; run++) {
-            int i, n = 1 + (int)(frand() * 63.0f);
+            int i, n = 1 + (int)(lcg_f(&g_rng) * 63.0f);
             for (i = 0; i < n; i++) {
-              float r = frand();
-              px[i] = r < 0.1f ? (float)(int)(frand() * 12.0f) : -1.0f + 14.0f * frand(); /* pixel edges, outside */
-              py[i] = r > 0.9f ? (float)(int)(frand() * 9.0f) : -1.0f + 11.0f * frand();
-              rgb[3 * i] = 3.0f * frand(); rgb[3 * i + 1] = frand(); rgb[3 * i + 2] = 0.5f * frand();
-              w[i] = frand() < 0.5f ? 1.0f : 2.0f * frand();
-              if (frand() < 0.1f) rgb[3 * i + (int)(frand() * 2.99f)] = odd[(int)(frand() * 6.99f)];
-              if (frand() < 0.03f) w[i] = odd[(int)(frand() * 6.99f)];
-              if (frand() < 0.03f) px[i] = odd[(int)(frand() * 3.99f)];
+              float r = lcg_f(&g_rng);
+              px[i] = r < 0.1f ? (float)(int)(lcg_f(&g_rng) * 12.0f) : -1.0f + 14.0f * lcg_f(&g_rng); /* pixel edges, outside */
+              py[i] = r > 0.9f ? (float)(int)(lcg_f(&g_rng) * 9.0f) : -1.0f + 11.0f * lcg_f(&g_rng);
+              rgb[3 * i] = 3.0f * lcg_f(&g_rng); rgb[3 * i + 1] = lcg_f(&g_rng); rgb[3 * i + 2] = 0.5f * lcg_f(&g_rng);
+              w[i] = lcg_f(&g_rng) < 0.5f ? 1.0f : 2.0f * lcg_f(&g_rng);
+              if (lcg_f(&g_rng) < 0.1f) rgb[3 * i + (int)(lcg_f(&g_rng) * 2.99f)] = odd[(int)(lcg_f(&g_rng) * 6.99f)];
+              if (lcg_f(&g_rng) < 0.03f) w[i] = odd[(int)(lcg_f(&g_rng) * 6.99f)];
+              if (lcg_f(&g_rng) < 0.03f) px[i] = odd[(int)(lcg_f(&g_rng) * 3.99f)];
             }
             el_film_tile_add_samples(&a, n, px, py, rgb, run % 2 ? w : NULL);
             for (i = 0; i < n; i++) el_film_tile_add_sample(&b, px[i], py[i], rgb + 3 * i, run % 2 ? w[i] : 1.0f);

@@ -30,17 +30,12 @@ static char g_buf[512];
     check(ok, g_buf);                                                                               \
   } while (0)
 
-static unsigned g_rng = 2463534242u;
-static float frand(void) {
-  g_rng ^= g_rng << 13;
-  g_rng ^= g_rng >> 17;
-  g_rng ^= g_rng << 5;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* xorshift32_f */
+static xorshift32 g_rng = {2463534242u};
 static float *random_image(int w, int h, int C) {
   float *p = (float *)malloc(sizeof(float) * (size_t)w * (size_t)h * (size_t)C);
   size_t i;
-  for (i = 0; i < (size_t)w * (size_t)h * (size_t)C; ++i) p[i] = 0.1f + frand();
+  for (i = 0; i < (size_t)w * (size_t)h * (size_t)C; ++i) p[i] = 0.1f + xorshift32_f(&g_rng);
   return p;
 }
 static el_mipmap_options opts(el_mipmap_wrap wu, el_mipmap_wrap wv, int keep) {
@@ -230,18 +225,18 @@ static void test_constant(void) {
               if (rel(d[3 * i + c], cval[c]) > worst_level) worst_level = rel(d[3 * i + c], cval[c]);
         }
         for (i = 0; i < 3000; ++i) {
-          float s = -1.5f + 4 * frand(), t = -1.5f + 4 * frand(), o4[8][3];
-          float len = powf(10.0f, -4 + 4 * frand()), ang = 6.2831853f * frand(), r = 1 + 30 * frand();
+          float s = -1.5f + 4 * xorshift32_f(&g_rng), t = -1.5f + 4 * xorshift32_f(&g_rng), o4[8][3];
+          float len = powf(10.0f, -4 + 4 * xorshift32_f(&g_rng)), ang = 6.2831853f * xorshift32_f(&g_rng), r = 1 + 30 * xorshift32_f(&g_rng);
           int f;
-          el_mipmap_point(&m, (int)(frand() * 12), s, t, o4[0]);
-          el_mipmap_bilerp(&m, (int)(frand() * 12), s, t, o4[1]);
+          el_mipmap_point(&m, (int)(xorshift32_f(&g_rng) * 12), s, t, o4[0]);
+          el_mipmap_bilerp(&m, (int)(xorshift32_f(&g_rng) * 12), s, t, o4[1]);
           el_mipmap_lookup(&m, s, t, len, o4[2]);
           el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_POINT, s, t, len, o4[3]);
           el_mipmap_lookup_filtered(&m, EL_MIPMAP_FILTER_BILINEAR, s, t, len, o4[4]);
           el_mipmap_lookup_differentials(&m, s, t, len * cosf(ang), len * sinf(ang), -len / r * sinf(ang),
                                          len / r * cosf(ang), o4[5]);
           el_mipmap_lookup_differentials(&m, s, t, len, len, 2 * len, 2 * len, o4[6]); /* parallel */
-          el_mipmap_texel(&m, (int)(frand() * 12), (int)(frand() * 200) - 100, (int)(frand() * 200) - 100, o4[7]);
+          el_mipmap_texel(&m, (int)(xorshift32_f(&g_rng) * 12), (int)(xorshift32_f(&g_rng) * 200) - 100, (int)(xorshift32_f(&g_rng) * 200) - 100, o4[7]);
           for (f = 0; f < 8; ++f)
             for (c = 0; c < 3; ++c)
               if (rel(o4[f][c], cval[c]) > worst_lookup) worst_lookup = rel(o4[f][c], cval[c]);
@@ -268,7 +263,7 @@ static void test_centres(void) {
       for (x = 0; x < w; ++x) {
         el_mipmap_bilerp(&m, 0, (x + 0.5f) / w, (y + 0.5f) / h, o);
         for (c = 0; c < 3; ++c) ok_b &= fabsf(o[c] - img[(y * w + x) * 3 + c]) <= 1e-6f * img[(y * w + x) * 3 + c];
-        el_mipmap_point(&m, 0, (x + 0.01f + 0.98f * frand()) / w, (y + 0.01f + 0.98f * frand()) / h, o);
+        el_mipmap_point(&m, 0, (x + 0.01f + 0.98f * xorshift32_f(&g_rng)) / w, (y + 0.01f + 0.98f * xorshift32_f(&g_rng)) / h, o);
         for (c = 0; c < 3; ++c) ok_p &= o[c] == img[(y * w + x) * 3 + c];
         el_mipmap_lookup(&m, (x + 0.5f) / w, (y + 0.5f) / h, 0.0f, o);
         for (c = 0; c < 3; ++c) ok_l0 &= fabsf(o[c] - img[(y * w + x) * 3 + c]) <= 1e-6f * img[(y * w + x) * 3 + c];
@@ -423,8 +418,8 @@ static void test_ewa(void) {
    * are: the ideal filter averages the columns away and keeps the rows. Major 8..24 texels along u,
    * minor 1..3 along v, slightly rotated. */
   for (i = 0; i < 400; ++i) {
-    float s = frand(), t = frand(), major = (8 + 16 * frand()) / n, minor = (1 + 2 * frand()) / n;
-    float ang = 0.2f * (frand() - 0.5f), r[1], q[1];
+    float s = xorshift32_f(&g_rng), t = xorshift32_f(&g_rng), major = (8 + 16 * xorshift32_f(&g_rng)) / n, minor = (1 + 2 * xorshift32_f(&g_rng)) / n;
+    float ang = 0.2f * (xorshift32_f(&g_rng) - 0.5f), r[1], q[1];
     float d0s = major * cosf(ang), d0t = major * sinf(ang), d1s = -minor * sinf(ang), d1t = minor * cosf(ang);
     double ref = gaussian_reference(img, n, s, t, d0s, d0t, d1s, d1t), e;
     el_mipmap_lookup_differentials(&m, s, t, d0s, d0t, d1s, d1t, r);
@@ -598,9 +593,9 @@ static void test_pbrt_algorithm(void) {
   int i;
   el_mipmap_init(&m, img, 128, 64, 3, &op);
   for (i = 0; i < 3000; ++i) {
-    float s = -0.15f + 1.3f * frand(), t = -0.15f + 1.3f * frand();
-    float len = powf(10.0f, -2.6f + 1.9f * frand()), ratio = 1 + 11 * frand();
-    float ang = 6.2831853f * frand(), e;
+    float s = -0.15f + 1.3f * xorshift32_f(&g_rng), t = -0.15f + 1.3f * xorshift32_f(&g_rng);
+    float len = powf(10.0f, -2.6f + 1.9f * xorshift32_f(&g_rng)), ratio = 1 + 11 * xorshift32_f(&g_rng);
+    float ang = 6.2831853f * xorshift32_f(&g_rng), e;
     float d0s = len * cosf(ang), d0t = len * sinf(ang), d1s = -len / ratio * sinf(ang), d1t = len / ratio * cosf(ang);
     el_mipmap_lookup(&m, s, t, 2 * len, o);
     ref_trilinear(&m, s, t, 2 * len, r);
@@ -642,8 +637,8 @@ static void test_differentials_width(void) {
   op.filter = EL_MIPMAP_FILTER_BILINEAR;
   el_mipmap_init(&mb, img, 128, 64, 3, &op);
   for (i = 0; i < 2000; ++i) {
-    float s = -0.15f + 1.3f * frand(), t = -0.15f + 1.3f * frand();
-    float len = powf(10.0f, -2.6f + 1.9f * frand()), ratio = 1 + 11 * frand(), ang = 6.2831853f * frand(), e;
+    float s = -0.15f + 1.3f * xorshift32_f(&g_rng), t = -0.15f + 1.3f * xorshift32_f(&g_rng);
+    float len = powf(10.0f, -2.6f + 1.9f * xorshift32_f(&g_rng)), ratio = 1 + 11 * xorshift32_f(&g_rng), ang = 6.2831853f * xorshift32_f(&g_rng), e;
     float d0s = len * cosf(ang), d0t = len * sinf(ang), d1s = -len / ratio * sinf(ang), d1t = len / ratio * cosf(ang);
     float width = fmaxf(fmaxf(fabsf(d0s), fabsf(d0t)), fmaxf(fabsf(d1s), fabsf(d1t)));
     el_mipmap_lookup_differentials(&mt, s, t, d0s, d0t, d1s, d1t, o);
@@ -737,7 +732,7 @@ static void test_hard_inputs(void) {
               el_mipmap_lookup_filtered(&m[f], EL_MIPMAP_FILTER_BILINEAR, coords[i], coords[j], widths[k], out[2]);
               el_mipmap_point(&m[f], k - 2, coords[i], coords[j], out[3]);
               el_mipmap_bilerp(&m[f], k * 3 - 5, coords[i], coords[j], out[4]);
-              el_mipmap_texel(&m[f], k, (int)(frand() * 4e9f - 2e9f), (int)(frand() * 4e9f - 2e9f), out[5]);
+              el_mipmap_texel(&m[f], k, (int)(xorshift32_f(&g_rng) * 4e9f - 2e9f), (int)(xorshift32_f(&g_rng) * 4e9f - 2e9f), out[5]);
               for (c = 0; c < 18; ++c) {
                 float v = out[c / 3][c % 3];
                 count++;

@@ -40,10 +40,7 @@
 
 #define TUTORIAL_RNG_SEED 4242u
 #include "tutorial_check.h" /* check, checkf, frand */
-static unsigned irand(unsigned n) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (g_rng >> 8) % n;
-}
+static unsigned irand(unsigned n) { return (lcg_next(&g_rng) >> 8) % n; }
 
 /* pbrt's two matrices in double, and the two norms of the header comment */
 static const double M[9] = {0.412453, 0.357580, 0.180423, 0.212671, 0.715160, 0.072169, 0.019334, 0.119193, 0.950227};

@@ -44,17 +44,12 @@ static char g_buf[512];
 #define BOUND 1e-6f /* the stated bound where the library's logarithm differs from pbrt's: a fraction
                        of the image's largest texel */
 
-static unsigned g_rng = 2463534242u;
-static float frand(void) {
-  g_rng ^= g_rng << 13;
-  g_rng ^= g_rng >> 17;
-  g_rng ^= g_rng << 5;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* xorshift32_f */
+static xorshift32 g_rng = {2463534242u};
 static float *random_image(int w, int h) {
   float *p = (float *)malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
   int i;
-  for (i = 0; i < 3 * w * h; ++i) p[i] = 0.05f + frand();
+  for (i = 0; i < 3 * w * h; ++i) p[i] = 0.05f + xorshift32_f(&g_rng);
   return p;
 }
 static int same_bits(const float *a, const float *b, int n) { return memcmp(a, b, sizeof(float) * (size_t)n) == 0; }
@@ -137,14 +132,14 @@ static void test_levels(const char *name, const float *img, int w, int h) {
         same = 0;
       free(lin);
       for (k = 0; k < 200; ++k) { /* Texel with any coordinates, several times around the level */
-        int s = (int)(frand() * 5 * lw) - 2 * lw, t = (int)(frand() * 5 * lh) - 2 * lh;
+        int s = (int)(xorshift32_f(&g_rng) * 5 * lw) - 2 * lw, t = (int)(xorshift32_f(&g_rng) * 5 * lh) - 2 * lh;
         float o[3];
         pbrt_RGBSpectrum r = pbrt_MIPMap_Texel(&q.p, l, s, t);
         el_mipmap_texel(&q.m, l, s, t, o);
         if (!same_bits(r.c, o, 3)) texel_same = 0;
       }
       for (k = 0; k < 200; ++k) { /* triangle() around and across the borders */
-        float s = -0.5f + 2 * frand(), t = -0.5f + 2 * frand(), o[3];
+        float s = -0.5f + 2 * xorshift32_f(&g_rng), t = -0.5f + 2 * xorshift32_f(&g_rng), o[3];
         pbrt_RGBSpectrum r = pbrt_MIPMap_triangle(&q.p, l, pbrt_Point2f_make(s, t));
         el_mipmap_bilerp(&q.m, l, s, t, o);
         if (!same_bits(r.c, o, 3)) tri_same = 0;
@@ -191,23 +186,23 @@ static void test_lookups(const char *name, const float *img, int w, int h) {
     nl = q.m.levels;
     differ = wrap == 1 && first_black_level(&q) < nl; /* Black, non-square: upper levels differ (test_levels) */
     for (k = 0; k < 3000; ++k) {
-      float s = -0.2f + 1.4f * frand(), t = -0.2f + 1.4f * frand(), o[3], e;
+      float s = -0.2f + 1.4f * xorshift32_f(&g_rng), t = -0.2f + 1.4f * xorshift32_f(&g_rng), o[3], e;
       float texel0 = 1.0f / (float)(1 << (nl - 1)); /* a width of one texel of level 0 */
-      float width = powf(10.0f, -3.5f + 3.5f * frand()); /* 3e-4 .. 1 */
-      float len = powf(10.0f, -3.5f + 3.0f * frand()), ratio = 1 + 11 * frand(), ang = 6.2831853f * frand();
+      float width = powf(10.0f, -3.5f + 3.5f * xorshift32_f(&g_rng)); /* 3e-4 .. 1 */
+      float len = powf(10.0f, -3.5f + 3.0f * xorshift32_f(&g_rng)), ratio = 1 + 11 * xorshift32_f(&g_rng), ang = 6.2831853f * xorshift32_f(&g_rng);
       float d0s = len * cosf(ang), d0t = len * sinf(ang), d1s = -len / ratio * sinf(ang), d1t = len / ratio * cosf(ang);
       pbrt_Point2f st = pbrt_Point2f_make(s, t);
       pbrt_Vector2f dst0 = pbrt_Vector2f_make(d0s, d0t), dst1 = pbrt_Vector2f_make(d1s, d1t);
       pbrt_RGBSpectrum r;
       { /* below one texel: level 0 only */
-        float wd = 0.9f * texel0 * frand();
+        float wd = 0.9f * texel0 * xorshift32_f(&g_rng);
         r = pbrt_MIPMap_Lookup(&q.p, st, wd);
         el_mipmap_lookup(&q.m, s, t, wd, o);
         if (!same_bits(r.c, o, 3)) bits_small = 0;
       }
       if (differ) continue;
       { /* at or above 1: the 1x1 level */
-        float wd = 1.0f + 3 * frand();
+        float wd = 1.0f + 3 * xorshift32_f(&g_rng);
         r = pbrt_MIPMap_Lookup(&q.p, st, wd);
         el_mipmap_lookup(&q.m, s, t, wd, o);
         if (!same_bits(r.c, o, 3)) bits_top = 0;

@@ -18,9 +18,7 @@ static void checkf(int ok, const char *fmt, double a, double b) {
   check(ok, buf);
 }
 /* a uniform float in [0, 1) from a linear congruential generator (Numerical Recipes' constants) */
-static unsigned g_rng = TUTORIAL_RNG_SEED;
-static float frand(void) {
-  g_rng = g_rng * 1664525u + 1013904223u;
-  return (float)(g_rng >> 8) * (1.0f / 16777216.0f);
-}
+#include "test_rng.h" /* lcg_f */
+static lcg g_rng = {TUTORIAL_RNG_SEED};
+static float frand(void) { return lcg_f(&g_rng); }
 #endif

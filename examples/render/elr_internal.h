@@ -218,6 +218,10 @@ typedef struct elr_light {
   float portal_share;      /* "float portalmapshare": the map's share of the light samples where a portal is seen */
   float *portal_points;    /* the portals' points (portal_count x 12 floats), to rebuild the tables when a */
   int portal_count, portal_compensated; /* render asks for another compensation (--compensated): the one built */
+  /* sun.c (issue 22): the hot spots of env_sample (sun_hs_of), found by the first render that asked and kept
+   * for the next ones, as the sampling tables are; freed with the light */
+  struct el_envlight_hotspots *sun_hs;
+  const el_envlight *sun_hs_of;
 } elr_light;
 
 /* LightSource "infinite" as the parser read it (pbrt-v4's LightSceneEntity: the parser describes, the
@@ -905,6 +909,7 @@ typedef struct elr_first {
    * the shading */
   const struct elr_first *more;
   int nmore;
+  const struct elr_sun_cell *sun; /* sun.c: the vertex's sun-cache cell (elr_sun_lookup, made once per vertex) */
 } elr_first;
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */

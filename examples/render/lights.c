@@ -215,6 +215,9 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
   l->env_sample = l->env;
   if (compensated != l->compensated || importance != l->importance) {
     if (l->env_alt && (l->alt_compensated != compensated || l->alt_importance != importance)) {
+      if (l->sun_hs && l->sun_hs_of == l->env_alt) { /* (its hot spots go with it: a new env_alt may reuse the address) */
+        el_envlight_hotspots_free(l->sun_hs); free(l->sun_hs); l->sun_hs = NULL; l->sun_hs_of = NULL;
+      }
       el_envlight_free(l->env_alt);
       free(l->env_alt);
       l->env_alt = NULL;
@@ -347,6 +350,7 @@ int elr_infinite_set_portals(elr_light *l, const float *pts, int count, char *er
 }
 
 void elr_light_free(elr_light *l) {
+  if (l->sun_hs) { el_envlight_hotspots_free(l->sun_hs); free(l->sun_hs); l->sun_hs = NULL; }
   if (l->portal) { el_envlight_portal_free(l->portal); free(l->portal); l->portal = NULL; }
   free(l->portal_points);
   l->portal_points = NULL;

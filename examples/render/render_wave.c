@@ -51,7 +51,7 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
   elr_v3 nc;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (as elr_estimate_direct) */
   /* (the normal as the light sample's: at a lowered sun-cache cell, sun.c's) */
-  const elr_sun_cell *sc = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
+  const elr_sun_cell *sc = f->sun; /* (elr_sun_lookup's, made by the wave loop) */
   int lonly = !sc && C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_sun_cos_normal(s, sc, b, wo, &nc), b);
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
@@ -300,7 +300,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     q->bs = q->bray = 0;
     q->occ_l = q->occ_b = -1;
     q->pdf = 0.f;
-    q->more = NULL; q->nmore = 0;
+    q->more = NULL; q->nmore = 0; q->sun = NULL;
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
     if (!q->hit) continue;
@@ -317,7 +317,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
       float us[2];
       int lonly = 0;
-      p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f;
+      p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f; p->sun = W->vsc[j];
       W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1; W->lonly[np] = 0;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);

@@ -18,8 +18,9 @@
  * renderer's density unchanged, bit for bit): the spot's weight P_k e, the other parts their shares P
  * (e makes the dark spots' total ELR_SUN_FLOOR of the samples), as
  *   the rest x cosine (el_envlight_sample_li_mix_cos) where the vertex reflects only (elr_sun_cos_normal:
- *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the normal rounded
- *     to ~2 degrees; with several spots, some lit, the one-sample mixture a p_cos + (1 - a) p_mixcos,
+ *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the CELL's normal
+ *     (the mean of its pilot normals, rounded to ~5 degrees: one table per cell, see elr__sun_tables);
+ *     with several spots, some lit, the one-sample mixture a p_cos + (1 - a) p_mixcos,
  *     a = the lit spots' share (p_cos: sample_li_cos's density);
  *   el_envlight_sample_li_mix with those weights elsewhere (a peaked lobe, rough transmission).
  * The light sample keeps its BSDF sample as MIS partner (elr_env_light_only is left out there: the
@@ -29,9 +30,15 @@
  * from the same vertex, so both agree on one density. Every part keeps a positive weight, so a sun the
  * pilot missed is still found (at the floor's rate).
  *
- * COST: the rest x cosine sums 512 cell bounds per (weights, normal) (el_envlight_mix_cos_prepare); each
- * thread keeps its last ELR_SUN_MEMOS tables. bench/bench_sun_render.c: 1.7-1.8x the render's CPU time
- * at 16 spp on the bench scenes, for 1.3-1.9x less variance in the shadow (lit pixels unchanged).
+ * COST (issue 22's second step): the rest x cosine tables (el_envlight_mix_cos_prepare, 512 cell bounds)
+ * are made once per lowered cell after the pilot and shared read-only (a per-thread memo of 8 was 1.8x);
+ * the hash keeps only lowered cells; the light's hot spots are found once per light (elr_light.sun_hs).
+ * Callgrind, 16 spp, the render loop and the pilot against --sun off: 1.15x (sun_shadow_object), 1.24x
+ * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time is 1.3-1.45x: what is left is
+ * memory (a light sample in a dark cell reads a cell's distribution, the pdf table, the direction table
+ * and the texels at random places: perf shows el_distribution2d_sample_bins waiting on its row's loads).
+ * bench/bench_sun_render.c: 1.3-1.9x less variance in the shadow at equal samples, lit pixels unchanged;
+ * at equal time 0.9-1.45x in the shadow, 0.7x lit: off by default.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
@@ -44,6 +51,8 @@
 
 #define ELR_SUN_FLOOR 0.03f /* the spots' share of the light samples where the pilot saw none of them */
 #define ELR_SUN_RAYS 2      /* pilot shadow rays per spot and pixel */
+#define ELR_SUN_DIRS 64     /* the directions of a spot they choose from (drawn once per cache: the sampler's
+                             * cost per pilot ray was a quarter of the pilot's) */
 #define ELR_SUN_CELL 3.f    /* a cell's edge in median pixel footprints */
 /* 1: a spot's weight is lowered only in cells where no pilot ray of the cell and its 26 neighbours saw it
  * (partly lit cells keep the light's density: a lit point there lost more, 1/p in its sun term, than a
@@ -53,20 +62,6 @@
 #define ELR_SUN_DARK_ONLY 1
 #endif
 
-#if defined(__GNUC__)
-#define ELR_SUN_MEMO 1
-typedef struct elr__sun_memo {
-  unsigned id;
-  float n[3];
-  el_envlight_mix_weights w;
-  el_envlight_mix_cos_table t;
-} elr__sun_memo;
-#define ELR_SUN_MEMOS 8 /* entries, replaced in turn */
-static __thread elr__sun_memo elr__memo[ELR_SUN_MEMOS];
-static __thread int elr__memo_next;
-static unsigned elr__sun_ids;
-#endif
-
 struct elr_sun_cell {
   uint64_t key; /* 0: empty */
   int rays;
@@ -74,30 +69,37 @@ struct elr_sun_cell {
   float alpha;                         /* sum P_k v_k / sum P_k */
   int lowered;                         /* some v_k < 1 */
   el_envlight_mix_weights w;
+  float nsum[3];                       /* the sum of the pilot's normals in the cell */
+  const el_envlight_mix_cos_table *tab; /* the rest x cosine table of a lowered cell (shared, read-only) */
 };
 
 struct elr_sun {
   const elr_light *l;
-  unsigned id;    /* this cache among all built (the threads' memo below) */
-  el_envlight_hotspots hs;
+  const el_envlight_hotspots *hs; /* the light's (elr_light.sun_hs) */
   float cell;     /* the cells' edge (world units) */
+  float inv_cell;
   elr_sun_cell *tab;
   size_t mask, used;
   float eps;      /* e above */
   float cos_half[EL_ENVLIGHT_HOTSPOT_MAX];
+  elr_v3 dirs[EL_ENVLIGHT_HOTSPOT_MAX][ELR_SUN_DIRS]; /* the pilot's directions towards each spot (0: none) */
+  el_envlight_mix_cos_table *tabs; /* the lowered cells' tables, one per (weights, rounded normal) */
+  size_t ntabs;
   elr_sun_info info;
 };
 
 static uint64_t elr__sun_key(const elr_sun *S, elr_v3 p, elr_v3 n) {
-  double inv = 1.0 / S->cell, lim = (double)((1 << 19) - 1);
-  double fx = floor(p.x * inv), fy = floor(p.y * inv), fz = floor(p.z * inv);
-  float ax = fabsf(n.x), ay = fabsf(n.y), az = fabsf(n.z);
-  uint64_t bin = ax >= ay && ax >= az ? (n.x < 0) : ay >= az ? 2u + (n.y < 0) : 4u + (n.z < 0);
-  int64_t ix, iy, iz;
-  /* (clamped before the conversion: a far or non-finite point shares the border cells) */
+  /* (in float, the floor by hand: the libm call and the doubles were most of a lookup; clamped before the
+   * conversion: a far or non-finite point shares the border cells) */
+  const float lim = (float)((1 << 19) - 1), inv = S->inv_cell;
+  float fx = p.x * inv, fy = p.y * inv, fz = p.z * inv, ax = fabsf(n.x), ay = fabsf(n.y), az = fabsf(n.z);
+  uint32_t bin = ax >= ay && ax >= az ? (n.x < 0) : ay >= az ? 2u + (n.y < 0) : 4u + (n.z < 0);
+  int32_t ix, iy, iz;
   fx = fx >= -lim ? (fx <= lim ? fx : lim) : -lim; fy = fy >= -lim ? (fy <= lim ? fy : lim) : -lim; fz = fz >= -lim ? (fz <= lim ? fz : lim) : -lim;
-  ix = (int64_t)fx; iy = (int64_t)fy; iz = (int64_t)fz;
-  return 1u + (bin | ((uint64_t)(ix + (int64_t)lim) << 3) | ((uint64_t)(iy + (int64_t)lim) << 23) | ((uint64_t)(iz + (int64_t)lim) << 43));
+  ix = (int32_t)fx; iy = (int32_t)fy; iz = (int32_t)fz;
+  ix -= (float)ix > fx; iy -= (float)iy > fy; iz -= (float)iz > fz;
+  return 1u + (bin | ((uint64_t)(uint32_t)(ix + (1 << 19) - 1) << 3) | ((uint64_t)(uint32_t)(iy + (1 << 19) - 1) << 23) |
+               ((uint64_t)(uint32_t)(iz + (1 << 19) - 1) << 43));
 }
 static uint64_t elr__sun_key_offset(uint64_t key, int dx, int dy, int dz) { /* the same class, a neighbour cell */
   uint64_t k = key - 1u;
@@ -160,22 +162,13 @@ static void elr__sun_pilot_pixel(const elr_ctx *C, const elr_sun *S, int x, int 
   q->fp = elr_len(elr_sub(elr_add(ray1.o, elr_mul(ray1.d, h.t)), elr_add(ray.o, elr_mul(ray.d, h.t))));
   wo = elr_mul(ray.d, -1.f);
   q->p = h.p; q->n = elr__sun_side(&h, wo); q->hit = 1;
-  for (k = 0; k < S->hs.count; k++) {
-    el_envlight_mix_weights w;
-    memset(&w, 0, sizeof w);
-    w.spot[k] = 1.f;
+  for (k = 0; k < S->hs->count; k++) {
     q->seen[k] = 0;
-    for (r = 0; r < ELR_SUN_RAYS; r++) {
-      float u[2], wi[3], pdf;
+    for (r = 0; r < ELR_SUN_RAYS; r++) { /* (a direction of the spot's ELR_SUN_DIRS, stratum r of them) */
       elr_v3 d;
       hs = hs * 747796405u + 2891336453u;
-      u[0] = ((float)r + (float)(hs >> 8) * (1.f / 16777216.f)) / (float)ELR_SUN_RAYS;
-      hs = hs * 747796405u + 2891336453u;
-      u[1] = (float)(hs >> 8) * (1.f / 16777216.f);
-      el_envlight_sample_li_mix(S->l->env_sample, &S->hs, &w, u, wi, NULL, &pdf);
-      if (!(pdf > 0.f)) continue;
-      d = elr_from3(wi);
-      if (elr_dot(d, q->n) <= 0.f) continue;
+      d = S->dirs[k][r * (ELR_SUN_DIRS / ELR_SUN_RAYS) + (int)((hs >> 16) % (ELR_SUN_DIRS / ELR_SUN_RAYS))];
+      if (!(elr_dot(d, d) > 0.f) || elr_dot(d, q->n) <= 0.f) continue;
       if (!elr_occluded(s, elr_spawn_origin(&h, d), d, INFINITY)) q->seen[k]++;
     }
   }
@@ -195,6 +188,73 @@ static void *elr__sun_pilot_rows(void *arg) { /* rows t, t + nthreads, ... */
   return NULL;
 }
 
+/* the normal the rest x cosine part is made for: n rounded to a grid of 1/ELR_SUN_NQ per component and
+ * renormalised (about 5 degrees), so that cells of a plane or of nearby normals share tables */
+#define ELR_SUN_NQ 12.f
+static void elr__sun_qn(const float n[3], float q[3]) {
+  float l2;
+  q[0] = roundf(n[0] * ELR_SUN_NQ); q[1] = roundf(n[1] * ELR_SUN_NQ); q[2] = roundf(n[2] * ELR_SUN_NQ);
+  l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+  if (!(l2 > 0.f)) { q[0] = n[0]; q[1] = n[1]; q[2] = n[2]; return; }
+  l2 = 1.f / sqrtf(l2);
+  q[0] *= l2; q[1] *= l2; q[2] *= l2;
+}
+
+/* After the pilot: the hash keeps only the lowered cells (a lookup elsewhere ends at an empty slot), and
+ * each lowered cell gets a pointer to the rest x cosine table (el_envlight_mix_cos_prepare) of its weights
+ * and of its pilot normals' mean, rounded (elr__sun_qn); cells with the same (weights, rounded normal)
+ * share one table. Built once, in the cells' order (the same for any thread count), read-only during the
+ * render: a lookup is a hash and a pointer. The density at a vertex is then that of its cell's normal, not
+ * of its own: still positive wherever the map is (the cosine bounds' floor), and its light sample and its
+ * BSDF sample's pdf agree because both come from the cell. */
+static int elr__sun_tables(elr_sun *S) {
+  enum { KL = 3 + EL_ENVLIGHT_HOTSPOT_MAX + 1 }; /* a table's key: the rounded normal, the weights */
+  size_t i, j, nlow = 0, want, omask = S->mask, hmask = 0, *slot = NULL;
+  elr_sun_cell *old = S->tab, *nt;
+  int k, nk = S->hs->count, prod = S->l->product != 0;
+  float *keys = NULL;
+  for (i = 0; i <= omask; i++) if (old[i].key && old[i].lowered) nlow++;
+  for (want = 16; want < 2 * nlow + 1; want <<= 1) {}
+  nt = (elr_sun_cell *)calloc(want, sizeof *nt);
+  if (!nt) return -1;
+  if (nlow && prod) {
+    hmask = want - 1;
+    S->tabs = (el_envlight_mix_cos_table *)malloc(nlow * sizeof *S->tabs);
+    keys = (float *)malloc(nlow * KL * sizeof *keys);
+    slot = (size_t *)calloc(want, sizeof *slot);
+    if (!S->tabs || !keys || !slot) { free(nt); free(keys); free(slot); return -1; }
+  }
+  S->tab = nt; S->mask = want - 1; S->used = 0; S->ntabs = 0;
+  for (i = 0; i <= omask; i++) {
+    elr_sun_cell *c;
+    float key[KL], l2, nn[3];
+    uint64_t hk = 1469598103934665603ULL;
+    const unsigned char *kb = (const unsigned char *)key;
+    if (!old[i].key || !old[i].lowered) continue;
+    c = elr__sun_insert(S, old[i].key);
+    *c = old[i];
+    c->tab = NULL;
+    if (!prod) continue;
+    memset(key, 0, sizeof key);
+    l2 = c->nsum[0] * c->nsum[0] + c->nsum[1] * c->nsum[1] + c->nsum[2] * c->nsum[2];
+    l2 = l2 > 0.f ? 1.f / sqrtf(l2) : 0.f;
+    nn[0] = c->nsum[0] * l2; nn[1] = c->nsum[1] * l2; nn[2] = c->nsum[2] * l2;
+    elr__sun_qn(nn, key);
+    for (k = 0; k < nk; k++) key[3 + k] = c->w.spot[k];
+    key[KL - 1] = c->w.rest;
+    for (j = 0; j < sizeof key; j++) { hk ^= kb[j]; hk *= 1099511628211ULL; }
+    for (j = (size_t)hk & hmask; slot[j] && memcmp(&keys[(slot[j] - 1) * KL], key, sizeof key); j = (j + 1) & hmask) {}
+    if (!slot[j]) { /* a new table */
+      memcpy(&keys[S->ntabs * KL], key, sizeof key);
+      el_envlight_mix_cos_prepare(S->l->env_sample, S->hs, &c->w, key, &S->tabs[S->ntabs]);
+      slot[j] = ++S->ntabs;
+    }
+    c->tab = &S->tabs[slot[j] - 1];
+  }
+  free(old); free(keys); free(slot);
+  return 0;
+}
+
 int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nthreads, elr_sun **out) {
   const elr_scene *s = C->s;
   elr_sun *S;
@@ -207,17 +267,37 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
   S = (elr_sun *)calloc(1, sizeof *S);
   if (!S) return -1;
   S->l = l;
-#ifdef ELR_SUN_MEMO
-  S->id = __atomic_add_fetch(&elr__sun_ids, 1u, __ATOMIC_RELAXED); /* (never 0: the memo's empty id) */
-  if (S->id == 0) S->id = __atomic_add_fetch(&elr__sun_ids, 1u, __ATOMIC_RELAXED);
-#endif
-  if (el_envlight_hotspots_init(&S->hs, l->env_sample, NULL) != EL_SUCCESS || S->hs.count == 0) { /* nothing to learn */
-    el_envlight_hotspots_free(&S->hs);
-    free(S);
-    return 0;
+  { /* the light's hot spots: found once per light and density, kept in the light (the scene's lights are
+     * never const objects; renders of one scene do not run concurrently) */
+    elr_light *lm = (elr_light *)l;
+    if (lm->sun_hs && lm->sun_hs_of != l->env_sample) { el_envlight_hotspots_free(lm->sun_hs); free(lm->sun_hs); lm->sun_hs = NULL; }
+    if (!lm->sun_hs) {
+      lm->sun_hs = (el_envlight_hotspots *)calloc(1, sizeof *lm->sun_hs);
+      if (!lm->sun_hs) { free(S); return -1; }
+      if (el_envlight_hotspots_init(lm->sun_hs, l->env_sample, NULL) != EL_SUCCESS) memset(lm->sun_hs, 0, sizeof *lm->sun_hs);
+      lm->sun_hs_of = l->env_sample;
+    }
+    S->hs = lm->sun_hs;
   }
-  nk = S->hs.count;
-  for (k = 0; k < nk; k++) { Ps += S->hs.spot[k].share; S->cos_half[k] = cosf(S->hs.spot[k].half_angle); }
+  if (S->hs->count == 0) { free(S); return 0; } /* nothing to learn */
+  nk = S->hs->count;
+  for (k = 0; k < nk; k++) { Ps += S->hs->spot[k].share; S->cos_half[k] = cosf(S->hs->spot[k].half_angle); }
+  for (k = 0; k < nk; k++) { /* the pilot's directions: the spot's own density, stratified in u[0], fixed numbers */
+    el_envlight_mix_weights w;
+    uint32_t hs = 0x2545F491u + (uint32_t)k;
+    int r;
+    memset(&w, 0, sizeof w);
+    w.spot[k] = 1.f;
+    for (r = 0; r < ELR_SUN_DIRS; r++) {
+      float u[2], wi[3], pdf;
+      hs = hs * 747796405u + 2891336453u;
+      u[0] = ((float)r + (float)(hs >> 8) * (1.f / 16777216.f)) / (float)ELR_SUN_DIRS;
+      hs = hs * 747796405u + 2891336453u;
+      u[1] = (float)(hs >> 8) * (1.f / 16777216.f);
+      el_envlight_sample_li_mix(l->env_sample, S->hs, &w, u, wi, NULL, &pdf);
+      S->dirs[k][r] = pdf > 0.f ? elr_from3(wi) : elr_v(0, 0, 0);
+    }
+  }
   S->eps = (float)(ELR_SUN_FLOOR * (1.0 - Ps) / ((1.0 - ELR_SUN_FLOOR) * (Ps > 0.0 ? Ps : 1.0)));
   if (!(S->eps > 1e-6f)) S->eps = 1e-6f;
   cap = (size_t)(fb[2] - fb[0]) * (size_t)(fb[3] - fb[1]);
@@ -248,6 +328,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
   qsort(fps, npt, sizeof *fps, elr__cmp_float);
   S->cell = ELR_SUN_CELL * fps[npt / 2];
   if (!(S->cell > 0.f) || !isfinite(S->cell)) S->cell = 1e-3f * (s->world_radius > 0.f ? s->world_radius : 1.f);
+  S->inv_cell = 1.f / S->cell;
   for (want = 1024; want < 2 * npt; want <<= 1) {}
   S->tab = (elr_sun_cell *)calloc(want, sizeof *S->tab);
   if (!S->tab) goto fail;
@@ -255,6 +336,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
   for (i = 0; i < npt; i++) { /* in pixel order: the same table for any thread count */
     elr_sun_cell *c = elr__sun_insert(S, elr__sun_key(S, pt[i].p, pt[i].n));
     c->rays += ELR_SUN_RAYS;
+    c->nsum[0] += pt[i].n.x; c->nsum[1] += pt[i].n.y; c->nsum[2] += pt[i].n.z;
     for (k = 0; k < nk; k++) c->seen[k] += (float)pt[i].seen[k];
   }
   for (i = 0; i <= S->mask; i++) { /* v_k */
@@ -285,20 +367,21 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
         if (ELR_SUN_DARK_ONLY && v > 0.f) v = 1.f;
         c->seen[k] = v;
         if (v < 1.f) c->lowered = 1;
-        a += S->hs.spot[k].share * v;
-        c->w.spot[k] = S->hs.spot[k].share * (v > S->eps ? v : S->eps);
+        a += S->hs->spot[k].share * v;
+        c->w.spot[k] = S->hs->spot[k].share * (v > S->eps ? v : S->eps);
       }
-      c->w.rest = S->hs.rest_share;
+      c->w.rest = S->hs->rest_share;
       c->alpha = (float)(a / Ps);
       S->info.cells++;
       if (c->lowered) S->info.cells_lowered++;
       if (c->alpha == 0.f) S->info.cells_dark++;
     }
   }
+  if (elr__sun_tables(S) != 0) goto fail;
 none:
   S->info.cell = S->cell;
   S->info.spots = nk;
-  for (k = 0; k < nk && k < ELR_SUN_INFO_SPOTS; k++) S->info.spot[k] = S->hs.spot[k];
+  for (k = 0; k < nk && k < ELR_SUN_INFO_SPOTS; k++) S->info.spot[k] = S->hs->spot[k];
   S->info.floor = ELR_SUN_FLOOR;
   S->info.seconds = elr_now() - t0;
   S->info.cpu_seconds = elr_cpu_now() - c0;
@@ -313,7 +396,7 @@ fail:
 
 void elr_sun_free(elr_sun *S) {
   if (!S) return;
-  el_envlight_hotspots_free(&S->hs);
+  free(S->tabs); /* (S->hs: the light's) */
   free(S->tab);
   free(S);
 }
@@ -325,83 +408,44 @@ const elr_light *elr_sun_light(const elr_sun *S) { return S ? S->l : NULL; }
 int elr_sun_in_spot(const elr_sun *S, const float wi[3]) {
   int k;
   if (!S) return 0;
-  for (k = 0; k < S->hs.count; k++)
-    if (wi[0] * S->hs.spot[k].axis[0] + wi[1] * S->hs.spot[k].axis[1] + wi[2] * S->hs.spot[k].axis[2] >= S->cos_half[k]) return 1;
+  for (k = 0; k < S->hs->count; k++)
+    if (wi[0] * S->hs->spot[k].axis[0] + wi[1] * S->hs->spot[k].axis[1] + wi[2] * S->hs->spot[k].axis[2] >= S->cos_half[k]) return 1;
   return 0;
-}
-
-/* The rest x cosine tables (el_envlight_mix_cos_prepare: 512 cell bounds) of the last ELR_SUN_MEMOS (cache,
- * weights, normal) this thread asked for: a shading point's light sample and its BSDF sample's pdf share it, and so do the
- * points of a plane. Only a time saving: the table is a function of its key. Without thread-local storage,
- * the caller's own table each time. */
-static const el_envlight_mix_cos_table *elr__sun_table(const elr_sun *S, const elr_sun_cell *c, const float n[3], el_envlight_mix_cos_table *own) {
-#ifdef ELR_SUN_MEMO
-  elr__sun_memo *m;
-  int i;
-  (void)own;
-  for (i = 0; i < ELR_SUN_MEMOS; i++) {
-    m = &elr__memo[i];
-    if (m->id == S->id && memcmp(m->n, n, sizeof m->n) == 0 && memcmp(&m->w, &c->w, sizeof m->w) == 0) return &m->t;
-  }
-  m = &elr__memo[elr__memo_next];
-  elr__memo_next = (elr__memo_next + 1) % ELR_SUN_MEMOS;
-  m->id = S->id; memcpy(m->n, n, sizeof m->n); m->w = c->w;
-  el_envlight_mix_cos_prepare(S->l->env_sample, &S->hs, &c->w, n, &m->t);
-  return &m->t;
-#else
-  el_envlight_mix_cos_prepare(S->l->env_sample, &S->hs, &c->w, n, own);
-  return own;
-#endif
-}
-
-/* the normal the rest x cosine part is made for: n rounded to a grid of 1/ELR_SUN_NQ per component and
- * renormalised (about 2 degrees), so that the points of a curved surface share tables; the density stays
- * positive wherever n.w > 0 (the cells' floor) and sample and pdf round alike */
-#define ELR_SUN_NQ 32.f
-static void elr__sun_qn(const float n[3], float q[3]) {
-  float l2;
-  q[0] = roundf(n[0] * ELR_SUN_NQ); q[1] = roundf(n[1] * ELR_SUN_NQ); q[2] = roundf(n[2] * ELR_SUN_NQ);
-  l2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-  if (!(l2 > 0.f)) { q[0] = n[0]; q[1] = n[1]; q[2] = n[2]; return; }
-  l2 = 1.f / sqrtf(l2);
-  q[0] *= l2; q[1] *= l2; q[2] *= l2;
 }
 
 void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], float wi[3], float L[3], float *pdf) {
   const el_envlight *e = S->l->env_sample;
-  if (n && S->l->product) {
-    float nn[3], nq[3], uu[2], a = c->alpha, pc, pm;
-    el_envlight_mix_cos_table own;
-    elr_to3(*n, nn);
-    elr__sun_qn(nn, nq);
+  if (n && c->tab) {
+    float nn[3], uu[2], a = c->alpha, pc, pm;
     uu[1] = u[1];
     if (a > 0.f && u[0] < a) { /* sample_li_cos */
+      elr_to3(*n, nn);
       uu[0] = fminf(u[0] / a, 0x1.fffffep-1f);
       el_envlight_sample_li_cos(e, nn, uu, wi, L, &pc);
-      pm = pc > 0.f ? el_envlight_pdf_li_mix_cos_table(e, &S->hs, elr__sun_table(S, c, nq, &own), wi) : 0.f;
+      pm = pc > 0.f ? el_envlight_pdf_li_mix_cos_table(e, S->hs, c->tab, wi) : 0.f;
     } else {
       uu[0] = a > 0.f ? fminf((u[0] - a) / (1.f - a), 0x1.fffffep-1f) : u[0];
-      el_envlight_sample_li_mix_cos_table(e, &S->hs, elr__sun_table(S, c, nq, &own), uu, wi, L, &pm);
-      pc = pm > 0.f && a > 0.f ? el_envlight_pdf_li_cos(e, nn, wi) : 0.f;
+      el_envlight_sample_li_mix_cos_table(e, S->hs, c->tab, uu, wi, L, &pm);
       if (!(pm > 0.f)) { *pdf = 0.f; return; }
+      if (!(a > 0.f)) { *pdf = pm; return; }
+      elr_to3(*n, nn);
+      pc = el_envlight_pdf_li_cos(e, nn, wi);
     }
     *pdf = a * pc + (1.f - a) * pm;
     return;
   }
-  el_envlight_sample_li_mix(e, &S->hs, &c->w, u, wi, L, pdf);
+  el_envlight_sample_li_mix(e, S->hs, &c->w, u, wi, L, pdf);
 }
 
 float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float wi[3]) {
   const el_envlight *e = S->l->env_sample;
-  if (n && S->l->product) {
-    float nn[3], nq[3], a = c->alpha;
-    el_envlight_mix_cos_table own;
+  if (n && c->tab) {
+    float nn[3], a = c->alpha, pm = el_envlight_pdf_li_mix_cos_table(e, S->hs, c->tab, wi);
+    if (!(a > 0.f)) return pm;
     elr_to3(*n, nn);
-    elr__sun_qn(nn, nq);
-    return (a > 0.f ? a * el_envlight_pdf_li_cos(e, nn, wi) : 0.f) +
-           (1.f - a) * el_envlight_pdf_li_mix_cos_table(e, &S->hs, elr__sun_table(S, c, nq, &own), wi);
+    return a * el_envlight_pdf_li_cos(e, nn, wi) + (1.f - a) * pm;
   }
-  return el_envlight_pdf_li_mix(e, &S->hs, &c->w, wi);
+  return el_envlight_pdf_li_mix(e, S->hs, &c->w, wi);
 }
 
 float elr_sun_cell_alpha(const elr_sun_cell *c) { return c ? c->alpha : 1.f; }

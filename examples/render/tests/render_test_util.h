@@ -70,4 +70,25 @@ static int rt_render(elr_scene *s, int spp, int ls, int comp, int nthreads, uint
   if (elr_render(s, &o, img, st, err, sizeof err) != 0) { printf("render failed: %s\n", err); return -1; }
   return 0;
 }
+/* The BSDF of the material text `mat` (e.g. "Material \"metal\""), made through the parser and
+ * materials.c (a scene of one sphere, integrator "path"), at n = ns = ng = z with the frame ss = x,
+ * ts = y (pbrt-v3's for dpdu = x); returns 0 on success. */
+#if defined(__GNUC__)
+__attribute__((unused))
+#endif
+static int rt_bsdf_of(const char *mat, elr_bsdf *b) {
+  char buf[2048], err[512];
+  elr_scene *s;
+  elr_hit h;
+  elr_tex_ctx tc;
+  snprintf(buf, sizeof buf, "Integrator \"path\"\nWorldBegin\n%s\nShape \"sphere\"\nWorldEnd\n", mat);
+  s = rt_load("mat.pbrt", buf, err, sizeof err);
+  if (!s) { rt_check(0, "material scene: %s", err); return -1; }
+  memset(&h, 0, sizeof h); memset(&tc, 0, sizeof tc);
+  h.ns = h.ng = elr_v(0, 0, 1); h.material = s->sph[0].material; h.inst = -1;
+  h.has_uv = 1; h.dpdu = elr_v(1, 0, 0); h.dpdv = elr_v(0, 1, 0);
+  elr_bsdf_init(s, &h, &tc, b);
+  elr_scene_free(s);
+  return 0;
+}
 #endif

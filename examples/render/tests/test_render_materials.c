@@ -173,22 +173,6 @@ static void conductor(void) {
   }
 }
 
-/* the BSDFs of the four materials, made through the parser and materials.c (a scene of one sphere) */
-static int material_bsdf(const char *mat, const char *integrator, elr_bsdf *b) {
-  char buf[2048], err[512];
-  elr_scene *s;
-  elr_hit h;
-  elr_tex_ctx tc;
-  snprintf(buf, sizeof buf, "Integrator \"%s\"\nWorldBegin\n%s\nShape \"sphere\"\nWorldEnd\n", integrator, mat);
-  s = rt_load("mat.pbrt", buf, err, sizeof err);
-  if (!s) { rt_check(0, "material scene: %s", err); return -1; }
-  memset(&h, 0, sizeof h); memset(&tc, 0, sizeof tc);
-  h.ns = h.ng = elr_v(0, 0, 1); h.material = s->sph[0].material; h.inst = -1;
-  h.has_uv = 1; h.dpdu = elr_v(1, 0, 0); h.dpdv = elr_v(0, 1, 0); /* the frame ss = x, ts = y (pbrt-v3's for dpdu = x) */
-  elr_bsdf_init(s, &h, &tc, b);
-  elr_scene_free(s);
-  return 0;
-}
 
 static void reciprocity(void) {
   static const char *mats[5] = {"Material \"metal\" \"float uroughness\" 0.3 \"float vroughness\" 0.1 \"bool remaproughness\" \"false\"",
@@ -200,7 +184,7 @@ static void reciprocity(void) {
   for (m = 0; m < 5; m++) {
     elr_bsdf b;
     double w = 0;
-    if (material_bsdf(mats[m], "path", &b) != 0) continue;
+    if (rt_bsdf_of(mats[m], &b) != 0) continue;
     for (i = 0; i < 2000; i++) {
       elr_v3 wo = dir_sph(acos(rnd()), 2 * PI * rnd()), wi = dir_sph(acos(rnd()), 2 * PI * rnd());
       elr_v3 f1 = elr_bsdf_f(&b, wo, wi), f2 = elr_bsdf_f(&b, wi, wo);
@@ -213,7 +197,7 @@ static void reciprocity(void) {
     elr_bsdf b;
     double w = 0;
     int n = 0;
-    if (material_bsdf("Material \"glass\" \"float uroughness\" 0.3 \"float vroughness\" 0.3 \"float index\" 1.5", "path", &b) == 0) {
+    if (rt_bsdf_of("Material \"glass\" \"float uroughness\" 0.3 \"float vroughness\" 0.3 \"float index\" 1.5", &b) == 0) {
       for (i = 0; i < 4000; i++) {
         elr_v3 wo = dir_sph(acos(rnd()), 2 * PI * rnd()), wi = dir_sph(acos(rnd()), 2 * PI * rnd());
         elr_v3 f1, f2;
@@ -261,7 +245,7 @@ static void sampling(void) {
     elr_bsdf b;
     double sa, qa;
     elr_v3 wo = dir_sph(m == 4 ? PI - 0.6 : 0.6, 0.3);
-    if (material_bsdf(mats[m], "path", &b) != 0) continue;
+    if (rt_bsdf_of(mats[m], &b) != 0) continue;
     albedo(&b, wo, 400000, &sa, &qa);
     rt_check(fabs(sa - qa) < 0.02 * qa + 2e-3, "Sample_f agrees with f: albedo by sampling %.4f, by quadrature %.4f: %s%s", sa, qa, mats[m],
              m == 4 ? " (from inside)" : "");

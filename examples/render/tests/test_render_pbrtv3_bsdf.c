@@ -285,22 +285,6 @@ static const struct { int m; double wo[3], wi[3], f[3], pdf; } pbrt[] = { /* (fl
   {15, {-0.664463103, 0.664462984, 0.342020124}, {0.640856504, -0.640856266, 0.42261824}, {0.842325211, 0.0954929665, 0.464254081}, 0.478685945},
 };
 
-/* a BSDF of material text `mat` (our parser and materials.c) at n = ns = ng = z */
-static int bsdf_of(const char *mat, elr_bsdf *b) {
-  char buf[1024], err[512];
-  elr_scene *s;
-  elr_hit h;
-  elr_tex_ctx tc;
-  snprintf(buf, sizeof buf, "Integrator \"path\"\nWorldBegin\n%s\nShape \"sphere\"\nWorldEnd\n", mat);
-  s = rt_load("mat.pbrt", buf, err, sizeof err);
-  if (!s) { rt_check(0, "material scene: %s", err); return -1; }
-  memset(&h, 0, sizeof h); memset(&tc, 0, sizeof tc);
-  h.ns = h.ng = elr_v(0, 0, 1); h.material = s->sph[0].material; h.inst = -1;
-  h.has_uv = 1; h.dpdu = elr_v(1, 0, 0); h.dpdv = elr_v(0, 1, 0); /* the frame ss = x, ts = y (pbrt-v3's for dpdu = x) */
-  elr_bsdf_init(s, &h, &tc, b);
-  elr_scene_free(s);
-  return 0;
-}
 static elr_v3 vec(const double v[3]) { return elr_v((float)v[0], (float)v[1], (float)v[2]); }
 static double rel(double a, double b) { return fabs(a - b) / fmax(fmax(fabs(a), fabs(b)), 1e-2); }
 
@@ -312,7 +296,7 @@ int main(void) {
     elr_bsdf b;
     double wf = 0, wp = 0;
     int rows = 0, worst = -1;
-    if (bsdf_of(materials[m], &b) != 0) continue;
+    if (rt_bsdf_of(materials[m], &b) != 0) continue;
     for (i = 0; i < n; i++) {
       elr_v3 wo, wi, f;
       float pdf;

@@ -77,7 +77,8 @@ static void determinism(const char *name) {
   o.spp = 4; o.nthreads = 1; o.loop = ELR_LOOP_ONE; o.quiet = 1; o.seed = 5; o.env_sun = 1;
   if (elr_render(s, &o, &ref, NULL, err, sizeof err) != 0) { rt_check(0, "%s renders", name); elr_scene_free(s); return; }
   rt_check(same(s, ELR_LOOP_ONE, 2, &ref) && same(s, ELR_LOOP_WAVE, 1, &ref) && same(s, ELR_LOOP_WAVE, 2, &ref),
-           "%s: with the cache, the same image for 1 and 2 threads, one-sample and wave loops", name);
+           "%s: with the cache, the same image for 1 and 2 threads, one-sample and wave loops (the first render finds the "
+           "hot spots, the others reuse the light's: elr_light.sun_hs; the wave loop looks the cell up once per vertex)", name);
   { /* the default (-1) is off for now (el_render.h) */
     elr_stats st;
     elr_image im;

@@ -1,0 +1,63 @@
+/* test_rng.h: the random numbers that the tests and the benchmarks share (bench/bench_common.h includes
+ * it). Header-only static inline functions, C99 and C++.
+ *
+ *   rng r = rng_make(seed);       a PCG32 stream (O'Neill's pcg32, XSH RR, the default increment);
+ *   rng g = {0x853c49e6748fea9bULL};  or set the state r.s yourself (the programs that drew from one
+ *                                 global stream start at this state);
+ *   rng_u32(&r)                   the next 32 bits;
+ *   rng_f(&r)                     the next float in [0, 1): the top 24 bits, so exact and never 1;
+ *   hash32(i)                     a 32-bit integer hash (Wellons' lowbias32), for random numbers
+ *                                 indexed by sample (the same number whatever the order of the draws);
+ *   lcg g = {seed}; lcg_f(&g)     the film tests' and bench's linear congruential generator (Numerical
+ *                                 Recipes' constants, 32-bit unsigned; lcg_next: the next state), floats
+ *                                 in [0, 1) from its top 24 bits;
+ *   xorshift32 x = {seed}; xorshift32_f(&x)  the MIP map tests' Marsaglia xorshift (13, 17, 5), likewise;
+ *   xorshift64 x = {seed}; xorshift64_f(&x)  the portal's 64-bit xorshift (13, 7, 17), its top 24 bits.
+ *
+ * The streams are fixed: tests that check numbers drawn from a given seed rely on them. */
+#ifndef EL_TEST_RNG_H
+#define EL_TEST_RNG_H
+
+#include <stdint.h>
+
+typedef struct { uint64_t s; } rng;
+static inline uint32_t rng_u32(rng *r) {
+  uint64_t old = r->s;
+  uint32_t x, rot;
+  r->s = old * 6364136223846793005ULL + 1442695040888963407ULL;
+  x = (uint32_t)(((old >> 18) ^ old) >> 27);
+  rot = (uint32_t)(old >> 59);
+  return (x >> rot) | (x << ((32u - rot) & 31u));
+}
+static inline float rng_f(rng *r) { return (float)(rng_u32(r) >> 8) * (1.0f / 16777216.0f); }
+static inline rng rng_make(uint64_t seed) {
+  rng r;
+  r.s = seed * 2654435761ULL + 12345;
+  rng_u32(&r);
+  return r;
+}
+
+static inline uint32_t hash32(uint32_t x) {
+  x ^= x >> 16; x *= 0x7feb352dU; x ^= x >> 15; x *= 0x846ca68bU; x ^= x >> 16;
+  return x;
+}
+
+typedef struct { unsigned s; } lcg;
+static inline unsigned lcg_next(lcg *r) { return r->s = r->s * 1664525u + 1013904223u; }
+static inline float lcg_f(lcg *r) { return (float)(lcg_next(r) >> 8) * (1.0f / 16777216.0f); }
+
+typedef struct { unsigned s; } xorshift32;
+static inline float xorshift32_f(xorshift32 *r) {
+  r->s ^= r->s << 13;
+  r->s ^= r->s >> 17;
+  r->s ^= r->s << 5;
+  return (float)(r->s >> 8) * (1.0f / 16777216.0f);
+}
+
+typedef struct { unsigned long long s; } xorshift64;
+static inline float xorshift64_f(xorshift64 *r) {
+  r->s ^= r->s << 13; r->s ^= r->s >> 7; r->s ^= r->s << 17;
+  return (float)(r->s >> 40) * (1.0f / 16777216.0f);
+}
+
+#endif
