@@ -297,7 +297,7 @@ struct elr_scene {
    * where the sun is near their normal, the product elsewhere (env_sun_diffuse) */
   int env_sunny;
   int env_sun_diffuse; /* ELR_ENVSD_*: how they do (ELR_ENV_SUN_DIFFUSE unless render's options say) */
-  elr_v3 env_sun_axis; float env_sun_cos; /* ELR_ENVSD_SUNCOS: the brightest hot spot's axis (world), the threshold */
+  elr_v3 env_sun_axis; float env_sun_cos; /* ELR_ENVSD_SUNCOS: the brightest texel's direction (world), the threshold */
   float env_sun_share;
   char last_warning[512];
   int quiet;

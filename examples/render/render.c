@@ -199,9 +199,10 @@ static int elr__cmp_lum(const void *a, const void *b) {
   float x = ((const elr__texel_lw *)a)->lum, y = ((const elr__texel_lw *)b)->lum;
   return x < y ? 1 : x > y ? -1 : 0;
 }
-static double elr__sun_share(const el_envlight *e) {
+static double elr__sun_share(const el_envlight *e, float axis[3]) {
   double P = 0, W = 0, Ps = 0, Ws = 0;
-  size_t n, k;
+  size_t n, k, imax = 0;
+  float lmax = -1.f;
   int x, y;
   elr__texel_lw *t;
   if (!e || e->width <= 0 || !e->texels) return 0.0;
@@ -215,8 +216,15 @@ static double elr__sun_share(const el_envlight *e) {
       const float *c = &e->texels[3 * i];
       t[i].lum = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
       t[i].w = w;
+      if (t[i].lum > lmax) { lmax = t[i].lum; imax = i; }
       P += (double)w * t[i].lum; W += w;
     }
+  }
+  { /* the brightest texel's direction, world space (the sun rule by the normal: ELR_ENVSD_SUNCOS) */
+    float u = ((float)(imax % (size_t)e->width) + 0.5f) / (float)e->width, v = ((float)(imax / (size_t)e->width) + 0.5f) / (float)e->height, d[3];
+    int j;
+    if (e->mapping == EL_ENVLIGHT_MAPPING_LATLONG) el_envlight_uv_to_dir(u, v, d); else el_envlight_square_to_dir(u, v, d);
+    for (j = 0; j < 3; j++) axis[j] = e->to_world[3 * j] * d[0] + e->to_world[3 * j + 1] * d[1] + e->to_world[3 * j + 2] * d[2];
   }
   qsort(t, n, sizeof *t, elr__cmp_lum);
   for (k = 0; k < n && Ws < ELR_ENV_SUN_AREA * W; k++) { /* (of the last texel only the part that fits: coarse maps) */
@@ -315,19 +323,12 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
       }
       if (l->product) {
         s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha;
-        s->env_sun_share = (float)elr__sun_share(l->env);
+        float axis[3] = {0, 0, 0};
+        s->env_sun_share = (float)elr__sun_share(l->env, axis);
         s->env_sunny = s->env_sun_share > ELR_ENV_SUN_SHARE;
         s->env_sun_diffuse = o->env_sun_diffuse < 0 ? ELR_ENV_SUN_DIFFUSE : o->env_sun_diffuse;
         s->env_sun_cos = o->env_sun_cos > -2.f ? o->env_sun_cos : ELR_ENV_SUN_COS;
-        if (s->env_sunny && s->env_sun_diffuse == ELR_ENVSD_SUNCOS) { /* the brightest hot spot's axis (NOTES ON HOT SPOTS) */
-          el_envlight_hotspots hs;
-          memset(&hs, 0, sizeof hs);
-          if (el_envlight_hotspots_init(&hs, l->env_sample, NULL) == EL_SUCCESS && hs.count > 0)
-            s->env_sun_axis = elr_v(hs.spot[0].axis[0], hs.spot[0].axis[1], hs.spot[0].axis[2]);
-          else s->env_sun_diffuse = ELR_ENVSD_MAP; /* (no spot found: the map alone, as before) */
-          el_envlight_hotspots_free(&hs);
-          if (getenv("ELR_SUN_AXIS_DEBUG")) fprintf(stderr, "sun axis %g %g %g\n", s->env_sun_axis.x, s->env_sun_axis.y, s->env_sun_axis.z);
-        }
+        s->env_sun_axis = elr_v(axis[0], axis[1], axis[2]); /* (the brightest texel's direction) */
       }
       if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;
