@@ -163,10 +163,22 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * with the product light sample alone (no BSDF sample: elr_env_light_only) */
 #define ELR_ENV_LIGHT_ALPHA 0.3f
 /* a map whose brightest texels covering ELR_ENV_SUN_AREA of the sphere (about twice the sun's solid
- * angle) hold more than ELR_ENV_SUN_SHARE of its power is a sun map: there diffuse-only vertices sample
- * the map alone (render.c's elr__sun_share; city.hdr 0.219, studio.hdr 0.004: its lights are larger) */
+ * angle) hold more than ELR_ENV_SUN_SHARE of its power is a sun map: there diffuse-only vertices take MIS,
+ * never the light sample alone (render.c's elr__sun_share; city.hdr 0.219, studio.hdr 0.004: its lights
+ * are larger) */
 #define ELR_ENV_SUN_AREA 1e-5
 #define ELR_ENV_SUN_SHARE 0.1f
+/* how those diffuse-only vertices sample a sun map (elr_render_options.env_sun_diffuse, render's --env-sun-diffuse)
+ * (ELR_ENVSD_SUNCOS: the map alone where the sun's axis is within acos(ELR_ENV_SUN_COS) of the vertex's normal,
+ * the product with MIS elsewhere: elr_bsdf_cos_normal). Measured with bench/sun_rule.py (time to unit variance
+ * against the map alone, 16 and 64 spp): the product with MIS everywhere wins where the sun is low or behind
+ * the normal (sunrise.hdr's plane, the sun at cos 0.42: 2.3-2.5x; spheres' far sides, sunrise's shadows) and
+ * loses where it is high (city.hdr's plane, cos 0.74: 0.82-0.91x; its shadows 0.69-0.73x), as the map alone
+ * then sends the sun's share where the cosine is near its maximum and the product sample costs 1.3-1.4x;
+ * the normal's test keeps both halves (bench_city 1.32-1.36x, was 0.88-0.97x; lobes_city unchanged) */
+enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3 };
+#define ELR_ENV_SUN_COS 0.5f
+#define ELR_ENV_SUN_DIFFUSE ELR_ENVSD_SUNCOS
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {
@@ -281,8 +293,11 @@ struct elr_scene {
   /* and vertices whose glossy lobes (if any) all have alpha >= this take directlighting's product light
    * sample alone, without the BSDF sample (elr_bsdf.env_light_only; INFINITY never) */
   float env_light_alpha;
-  /* and under a sun (elr__sun_share > ELR_ENV_SUN_SHARE) vertices with only diffuse lobes take the map alone */
+  /* and under a sun (elr__sun_share > ELR_ENV_SUN_SHARE) vertices with only diffuse lobes take MIS: the map alone
+   * where the sun is near their normal, the product elsewhere (env_sun_diffuse) */
   int env_sunny;
+  int env_sun_diffuse; /* ELR_ENVSD_*: how they do (ELR_ENV_SUN_DIFFUSE unless render's options say) */
+  elr_v3 env_sun_axis; float env_sun_cos; /* ELR_ENVSD_SUNCOS: the brightest texel's direction (world), the threshold */
   float env_sun_share;
   char last_warning[512];
   int quiet;
@@ -437,6 +452,9 @@ typedef struct elr_bsdf {
   int env_map; /* a glossy lobe peaked enough that the environment's map alone samples this vertex (elr_bsdf_cos_normal) */
   int env_light_only; /* no lobe narrower than the scene's env_light_alpha: directlighting's product light sample
                          alone estimates the environment here (elr_env_light_only) */
+  int env_sun_test; /* ELR_ENVSD_SUNCOS at a diffuse-only vertex under a sun: elr_bsdf_cos_normal chooses the map
+                       alone where its normal is within acos(env_sun_cos) of env_sun_axis */
+  elr_v3 env_sun_axis; float env_sun_cos;
   elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
@@ -471,6 +489,7 @@ static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
   if (b->env_mirror) { *n = elr_sub(elr_mul(b->ns, 2.f * elr_dot(wo, b->ns)), wo); return 1; } /* (any length: only its direction counts) */
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
+  if (b->env_sun_test && elr_dot(*n, b->env_sun_axis) >= b->env_sun_cos) return 0; /* (the sun high above: the map alone) */
   return 1;
 }
 /* Issue 20's per-lobe choice, second half: whether EstimateDirect at this vertex (BSDF b, product-sampling

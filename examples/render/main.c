@@ -15,6 +15,8 @@
  * diffuse lobe sample the map alone under a sun map, the product around the mirror direction otherwise; 0 never;
  * default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
+ * --env-sun-diffuse map|product|alone (under a sun map, diffuse-only vertices: the map alone with MIS, the
+ * product with MIS, the product light sample alone; default ELR_ENV_SUN_DIFFUSE),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
  * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|wave (the per-tile loop: the reference or the wave loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree),
@@ -111,6 +113,17 @@ int main(int argc, char **argv) {
       if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
       else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
       else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
+    } else if (!strcmp(a, "--env-sun-diffuse") && i + 1 < argc) {
+      const char *m = argv[++i];
+      if (!strcmp(m, "map")) o.env_sun_diffuse = 0; else if (!strcmp(m, "product")) o.env_sun_diffuse = 1;
+      else if (!strcmp(m, "alone")) o.env_sun_diffuse = 2; else if (!strcmp(m, "suncos")) o.env_sun_diffuse = 3;
+      else { fprintf(stderr, "render: --env-sun-diffuse map|product|alone|suncos\n"); return 1; }
+    } else if (!strcmp(a, "--env-sun-cos") && i + 1 < argc) {
+      char *e;
+      double x;
+      errno = 0; x = strtod(argv[++i], &e);
+      if (errno || *e || e == argv[i] || !(x >= -1.0 && x <= 1.0)) { fprintf(stderr, "render: --env-sun-cos must be a number in [-1, 1], got \"%s\"\n", argv[i]); return 1; }
+      o.env_sun_cos = (float)x;
     } else if (!strcmp(a, "--sun") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "auto")) o.env_sun = -1; else if (!strcmp(m, "off")) o.env_sun = 0; else if (!strcmp(m, "on")) o.env_sun = 1;

@@ -138,15 +138,22 @@ static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *
  * mirror below 0.1 where no sun, the map alone under one. Plastic of alpha 0.05 (diffuse part): the
  * product around the normal 1.86x (city) and 5.95x (studio), the map alone then being what it lost
  * before (0.92x, 0.91x: the same variance at the product tables' extra time), the mirror 0.51x (studio:
- * the diffuse lobe is not around the mirror direction). */
+ * the diffuse lobe is not around the mirror direction). Diffuse-only lobes under a sun map (elr__sun_share):
+ * MIS, never the light sample alone (it leaves the sky unsampled in the shadows: 0.18-0.41x), by the map
+ * alone where the sun is within acos(ELR_ENV_SUN_COS) = 60 degrees of the normal (elr_bsdf_cos_normal tests
+ * it on wo's side), by the product elsewhere (bench/sun_rule.py: elr_internal.h's ELR_ENVSD_SUNCOS). */
 static void elr__env_choice(const elr_scene *s, elr_bsdf *b) {
   float a = elr_bsdf_lobe_alpha(b);
-  int diffuse = b->has_diffuse, peaked, i;
+  int diffuse = b->has_diffuse, peaked, sun_diffuse, i;
   for (i = 0; i < b->nlobes; i++) diffuse |= b->lobe[i].type == ELR_BXDF_LAMBERTIAN || b->lobe[i].type == ELR_BXDF_FRESNEL_BLEND;
   peaked = a < s->env_lobe_alpha && !diffuse;
-  b->env_map = (peaked && s->env_sunny) || (s->env_sunny && a == INFINITY && diffuse); /* (a sun: elr__sun_share) */
+  sun_diffuse = s->env_sunny && a == INFINITY && diffuse; /* (a sun: elr__sun_share; env_sun_diffuse says how) */
+  b->env_map = (peaked && s->env_sunny) || (sun_diffuse && s->env_sun_diffuse == ELR_ENVSD_MAP);
   b->env_mirror = peaked && !s->env_sunny; /* (MIS only: the mirror's cosine is no bound of f) */
-  b->env_light_only = !b->env_mirror && s->env_light_alpha < INFINITY && a >= (diffuse ? 1.f : 2.f) * s->env_light_alpha; /* (INFINITY: never) */
+  b->env_sun_test = sun_diffuse && s->env_sun_diffuse == ELR_ENVSD_SUNCOS;
+  if (b->env_sun_test) { b->env_sun_axis = s->env_sun_axis; b->env_sun_cos = s->env_sun_cos; }
+  b->env_light_only = !b->env_mirror && !(sun_diffuse && (s->env_sun_diffuse == ELR_ENVSD_PRODUCT || b->env_sun_test)) && s->env_light_alpha < INFINITY &&
+                      a >= (diffuse ? 1.f : 2.f) * s->env_light_alpha; /* (INFINITY: never) */
 }
 
 /* The BSDF of the hit's material at the shading point c (its textures evaluated there). */

@@ -149,7 +149,7 @@ void elr_render_options_default(elr_render_options *o) {
   memset(o, 0, sizeof *o);
   o->light_sampling = -1; o->compensated = -1; o->importance = -1; o->randomization = -1; o->env_sampling = -1;
   o->env_lobe_alpha = -1.f; o->env_light_alpha = -1.f;
-  o->loop = -1; o->wave_api = -1; o->split = -1; o->env_sun = -1;
+  o->loop = -1; o->wave_api = -1; o->split = -1; o->env_sun = -1; o->env_sun_diffuse = -1; o->env_sun_cos = -3.f;
 }
 
 /* >> what the scene calls for */
@@ -192,15 +192,17 @@ static int elr__mat_transmits_rough(const elr_scene *s) {
 /* The share of the environment's power (luminance x solid angle) that its brightest texels covering
  * ELR_ENV_SUN_AREA of the sphere hold: a sun's. Issue 20: under such a map the product light sample alone
  * misses the sky wherever the sun is occluded (bench/lobes.py's shadows region: 0.41x the map alone's
- * efficiency on city.hdr), so diffuse-only lobes there keep the map alone with MIS (elr_scene.env_sunny). */
+ * efficiency on city.hdr), so diffuse-only lobes there keep MIS (elr_scene.env_sunny): the map alone where
+ * the sun is within 60 degrees of the normal, the product elsewhere (ELR_ENVSD_SUNCOS, bench/sun_rule.py). */
 typedef struct { float lum, w; } elr__texel_lw;
 static int elr__cmp_lum(const void *a, const void *b) {
   float x = ((const elr__texel_lw *)a)->lum, y = ((const elr__texel_lw *)b)->lum;
   return x < y ? 1 : x > y ? -1 : 0;
 }
-static double elr__sun_share(const el_envlight *e) {
+static double elr__sun_share(const el_envlight *e, float axis[3]) {
   double P = 0, W = 0, Ps = 0, Ws = 0;
-  size_t n, k;
+  size_t n, k, imax = 0;
+  float lmax = -1.f;
   int x, y;
   elr__texel_lw *t;
   if (!e || e->width <= 0 || !e->texels) return 0.0;
@@ -214,8 +216,15 @@ static double elr__sun_share(const el_envlight *e) {
       const float *c = &e->texels[3 * i];
       t[i].lum = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
       t[i].w = w;
+      if (t[i].lum > lmax) { lmax = t[i].lum; imax = i; }
       P += (double)w * t[i].lum; W += w;
     }
+  }
+  { /* the brightest texel's direction, world space (the sun rule by the normal: ELR_ENVSD_SUNCOS) */
+    float u = ((float)(imax % (size_t)e->width) + 0.5f) / (float)e->width, v = ((float)(imax / (size_t)e->width) + 0.5f) / (float)e->height, d[3];
+    int j;
+    if (e->mapping == EL_ENVLIGHT_MAPPING_LATLONG) el_envlight_uv_to_dir(u, v, d); else el_envlight_square_to_dir(u, v, d);
+    for (j = 0; j < 3; j++) axis[j] = e->to_world[3 * j] * d[0] + e->to_world[3 * j + 1] * d[1] + e->to_world[3 * j + 2] * d[2];
   }
   qsort(t, n, sizeof *t, elr__cmp_lum);
   for (k = 0; k < n && Ws < ELR_ENV_SUN_AREA * W; k++) { /* (of the last texel only the part that fits: coarse maps) */
@@ -314,8 +323,12 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
       }
       if (l->product) {
         s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha;
-        s->env_sun_share = (float)elr__sun_share(l->env);
+        float axis[3] = {0, 0, 0};
+        s->env_sun_share = (float)elr__sun_share(l->env, axis);
         s->env_sunny = s->env_sun_share > ELR_ENV_SUN_SHARE;
+        s->env_sun_diffuse = o->env_sun_diffuse < 0 ? ELR_ENV_SUN_DIFFUSE : o->env_sun_diffuse;
+        s->env_sun_cos = o->env_sun_cos > -2.f ? o->env_sun_cos : ELR_ENV_SUN_COS;
+        s->env_sun_axis = elr_v(axis[0], axis[1], axis[2]); /* (the brightest texel's direction) */
       }
       if (st) st->t_distribution += elr_now() - t0;
       *env_sampled = 1;

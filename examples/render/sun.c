@@ -475,7 +475,7 @@ void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 
  * the light sample alone had 2.3x MORE variance than the map with MIS on shadowed ground near a wall. */
 int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
   int i;
-  if (!c || !b->env_map) return elr_bsdf_cos_normal(b, wo, n);
+  if (!c || !(b->env_map || b->env_sun_test)) return elr_bsdf_cos_normal(b, wo, n); /* (env_sun_test: the sun rule by the normal, ELR_ENVSD_SUNCOS) */
   if (elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha) return 0; /* a peaked glossy lobe: the map alone, with MIS */
   for (i = 0; i < b->nlobes; i++)
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
