@@ -2961,6 +2961,7 @@ struct el_envlight__warp {
   uint16_t *pcol;        /* (h + 1) x (w + ku): patch row r's CDF over the patches of each cell column */
   uint16_t *prow;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
   int coarse;            /* 1: V is a max-filtered coarse grid of the map (maps over the size cap) */
+  uint8_t *gcol, *grow;  /* guide tables (issue 20) of pcol per (r, a) and prow per (a, b), or NULL */
   float dens_k;          /* 2^-60 w h / (2 pi^2): integer widths -> density per solid angle x sin */
 };
 
@@ -3006,6 +3007,28 @@ static void el_envlight__cell_table(const struct el_envlight__warp *W, const dou
   }
 }
 
+/* Guide tables (Chen's cutpoint method, issue 20): for a CDF c[0..n] over 32768 units, g[j] (j < 8) is the
+ * last i in [0, n - 1] with c[i] <= j 4096; the search starts there and steps forward: the same i as
+ * el_envlight__search16 for k < 32768. */
+#define EL_ENVLIGHT__GUIDE_K 8
+#define EL_ENVLIGHT__GUIDE_SHIFT 12 /* 32768 / GUIDE_K = 2^GUIDE_SHIFT */
+#define EL_ENVLIGHT__GUIDE_E (EL_ENVLIGHT__GUIDE_K / 2) /* uint16 entries a guide takes inside a sparse table */
+static void el_envlight__guide_build(const uint16_t *c, int n, uint8_t *g) {
+  int j, i = 0;
+  for (j = 0; j < EL_ENVLIGHT__GUIDE_K; ++j) {
+    uint32_t k = (uint32_t)j * (32768u / EL_ENVLIGHT__GUIDE_K);
+    while (i + 1 < n && (uint32_t)c[i + 1] <= k) ++i;
+    g[j] = (uint8_t)i;
+  }
+}
+static inline int el_envlight__search_guided(const uint16_t *c, int n, const uint8_t *g, uint32_t k) {
+  int i;
+  k = k < 32767u ? k : 32767u;
+  i = g[k >> EL_ENVLIGHT__GUIDE_SHIFT];
+  while (i + 1 < n && (uint32_t)c[i + 1] <= k) ++i;
+  return i;
+}
+
 /* A sparse cell table (the normal tables, issue 20): the cell rows' CDF (kv + 1 entries, padded to an
  * even count P), kv row offsets (uint32, read with memcpy) from the table's start, then per row its span
  * of cells with weight, a_s (first cell) and L (cells, wrapping at the seam: the complement of the
@@ -3013,11 +3036,11 @@ static void el_envlight__cell_table(const struct el_envlight__warp *W, const dou
  * horizon the weights are 0, so a row holds about half its cells. Returns the entries used (at most
  * el_envlight__sparse_max). tmp: ku + kv + 2 uint32; rows: kv + ku doubles. */
 static size_t el_envlight__sparse_max(const struct el_envlight__warp *W) {
-  return (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv + (size_t)W->kv * ((size_t)W->ku + 3);
+  return (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv + EL_ENVLIGHT__GUIDE_E + (size_t)W->kv * ((size_t)W->ku + 3 + EL_ENVLIGHT__GUIDE_E);
 }
 static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
   int a, b, ku = W->ku, kv = W->kv;
-  size_t pos = (size_t)((kv + 2) & ~1) + 2 * (size_t)kv;
+  size_t pos = (size_t)((kv + 2) & ~1) + 2 * (size_t)kv + EL_ENVLIGHT__GUIDE_E;
   double *span = rows + kv;
   for (b = 0; b < kv; ++b) {
     double sum = 0.0;
@@ -3026,10 +3049,11 @@ static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, 
   }
   el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
   for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
+  el_envlight__guide_build(tab, kv, (uint8_t *)(tab + (size_t)((kv + 2) & ~1) + 2 * (size_t)kv)); /* the rows' guide */
   for (b = 0; b < kv; ++b) {
     const double *w = wgt + (size_t)b * (size_t)ku;
     int run = 0, best = 0, best_end = -1, lead = 0, as, len, k, kk;
-    uint32_t off = (uint32_t)pos;
+    uint32_t off = (uint32_t)pos + EL_ENVLIGHT__GUIDE_E; /* after the row's guide */
     /* the longest circular run of zeros: the longest inside the row, or the trailing run joined to the
      * leading one across the seam */
     while (lead < ku && !(w[lead] > 0.0)) ++lead;
@@ -3045,8 +3069,10 @@ static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, 
     if (len > 0) el_envlight__int_cdf(span, len, EL_ENVLIGHT__CELL_UNITS, tmp);
     else tmp[0] = 0;
     memcpy(tab + (size_t)((kv + 2) & ~1) + 2 * (size_t)b, &off, sizeof off);
+    pos += EL_ENVLIGHT__GUIDE_E;
     tab[pos] = (uint16_t)as; tab[pos + 1] = (uint16_t)len;
     for (k = 0; k <= len; ++k) tab[pos + 2 + (size_t)k] = (uint16_t)tmp[k];
+    el_envlight__guide_build(tab + pos + 2, len > 0 ? len : 1, (uint8_t *)(tab + pos - EL_ENVLIGHT__GUIDE_E));
     pos += (size_t)len + 3;
   }
   return pos;
@@ -3083,7 +3109,7 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
   EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
-  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16);
+  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16); EL_FREE(W->gcol); EL_FREE(W->grow);
   EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
@@ -3760,6 +3786,21 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
       total += s;
     }
   W->all_zero = !(total > 0.0);
+  if (gw / ku + 1 <= 256 && (gh + 1) / kv + 1 <= 256) { /* guide tables (uint8 entries): cells up to 256 patches a side */
+    W->gcol = (uint8_t *)EL_MALLOC(((size_t)gh + 1) * (size_t)ku * EL_ENVLIGHT__GUIDE_K);
+    W->grow = (uint8_t *)EL_MALLOC((size_t)ku * (size_t)kv * EL_ENVLIGHT__GUIDE_K);
+    if (!W->gcol || !W->grow) { EL_FREE(W->gcol); EL_FREE(W->grow); W->gcol = NULL; W->grow = NULL; }
+    else {
+      for (r = 0; r <= gh; ++r)
+        for (a = 0; a < ku; ++a)
+          el_envlight__guide_build(W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a], W->a0[a + 1] - W->a0[a],
+                                   W->gcol + ((size_t)r * (size_t)ku + (size_t)a) * EL_ENVLIGHT__GUIDE_K);
+      for (a = 0; a < ku; ++a)
+        for (b = 0; b < kv; ++b)
+          el_envlight__guide_build(W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b, W->b0[b + 1] - W->b0[b],
+                                   W->grow + ((size_t)a * (size_t)kv + (size_t)b) * EL_ENVLIGHT__GUIDE_K);
+    }
+  }
   EL_FREE(wgt); EL_FREE(rs); EL_FREE(tmp); EL_FREE(bins); EL_FREE(rowmax);
   wgt = NULL; rs = NULL; tmp = NULL; bins = NULL; rowmax = NULL;
   EL_FREE(W->V); W->V = NULL; /* the queries read V16 */
@@ -3767,7 +3808,8 @@ static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, i
   if (res != EL_SUCCESS) goto fail;
   EL_FREE(W->mass); W->mass = NULL; /* only the build needs the cells' masses (and no plain table) */
   W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(uint16_t) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
-                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int);
+                  nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int) +
+                  (W->gcol ? ((size_t)gh + 1 + (size_t)kv) * (size_t)ku * EL_ENVLIGHT__GUIDE_K : 0);
   *out = W;
   return EL_SUCCESS;
 fail:
@@ -3927,11 +3969,11 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   { /* <<Pick a cell>> from the sparse table: the cell row, then a cell of its span */
     float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(uu[0]) * (float)EL_ENVLIGHT__CELL_UNITS;
     const uint16_t *row, *cc;
-    b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
+    b = el_envlight__search_guided(tab, W->kv, (const uint8_t *)(tab + (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv), (uint32_t)x1);
     f1 = (x1 - (float)tab[b]) / (float)(tab[b + 1] - tab[b]);
     row = el_envlight__sparse_row(W, tab, b);
     cc = row + 2;
-    a = el_envlight__search16(cc, (int)row[1], (uint32_t)x0);
+    a = el_envlight__search_guided(cc, (int)row[1], (const uint8_t *)(row - EL_ENVLIGHT__GUIDE_E), (uint32_t)x0);
     f0 = (x0 - (float)cc[a]) / (float)(cc[a + 1] - cc[a]);
     wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(cc[a + 1] - cc[a]);
     a += (int)row[0];
@@ -3941,7 +3983,8 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   n = W->b0[b + 1] - W->b0[b];
   pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
   x = el_envlight__clamp01(f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
-  r = el_envlight__search16(pr, n, (uint32_t)x);
+  r = W->grow ? el_envlight__search_guided(pr, n, W->grow + ((size_t)a * (size_t)W->kv + (size_t)b) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
+              : el_envlight__search16(pr, n, (uint32_t)x);
   q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
   wr = (uint32_t)(pr[r + 1] - pr[r]);
   r += W->b0[b];
@@ -3949,7 +3992,8 @@ static void el_envlight__prod_sample(const el_envlight *l, const struct el_envli
   n = W->a0[a + 1] - W->a0[a];
   pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a];
   x = el_envlight__clamp01(f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
-  i = el_envlight__search16(pc, n, (uint32_t)x);
+  i = W->gcol ? el_envlight__search_guided(pc, n, W->gcol + ((size_t)r * (size_t)W->ku + (size_t)a) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
+              : el_envlight__search16(pc, n, (uint32_t)x);
   s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
   wr *= (uint32_t)(pc[i + 1] - pc[i]);
   i += W->a0[a];
