@@ -333,9 +333,9 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 900
- * instructions (1030 with rgb), the pdf included. Builds its tables on first use (4.9 MiB for a
- * 1024x512 map, at most 11 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 810
+ * instructions (930 with rgb), the pdf included. Builds its tables on first use (5.4 MiB for a
+ * 1024x512 map, at most 12 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
                                       float rgb[3], float *pdf);
@@ -432,18 +432,19 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    conservative) would gain only 15%. The warp inside cells gains 2.4-5.6x over cell averages (city, studio). Hierarchical
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 2.9 MB of normal tables.
- *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random
- *    normal per call, the loop's own 9 subtracted): sample_li_cos 902 instructions (1029 with the
- *    radiance; 951 under a general rotation), pdf_li_cos 408 (436); sample_li 97 (265 with the
- *    radiance), pdf_li 76. Before this round of issue 20: 988 (1116; 1034), 408 (432); before issue 20:
- *    1179, 1310 and 444. Issue 20's targets (sample_li_cos <= 400 and <= 1.25x sample_li, pdf_li_cos <=
- *    150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about the pdf plus the pick. The
- *    pdf (408) is the normal's bin (to light space, octahedral encoding: about 60), wi to light space
- *    (27), (u, v) to the bilinear's precision (the two atan polynomials le() itself uses, so that rgb is
- *    le(wi) bit for bit: about 110), the four table widths (about 50), the corners and the density
- *    (about 60) and the calls; the sample adds the pick (four binary searches over 32, ~37, ~16 and 16
- *    entries: about 190), two linear inversions, the direction (sinpi, cospi) and the atan pair again
- *    (bit-for-bit agreement with pdf_li_cos needs the direction located as the pdf locates it).
+ *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random normal per
+ *    call, the loop's own 9 subtracted): sample_li_cos 806 instructions (933 with the radiance; 855 under a
+ *    general rotation), pdf_li_cos 408 (436); sample_li 97 (265 with the radiance), pdf_li 76. With binary
+ *    searches in place of the guide tables (below): 902 (1029; 951); before the round before: 988 (1116;
+ *    1034), 408 (432); before issue 20: 1179, 1310 and 444. Issue 20's targets (sample_li_cos <= 400 and <=
+ *    1.25x sample_li, pdf_li_cos <= 150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about
+ *    the pdf plus the pick. The pdf (408) is the normal's bin (to light space, octahedral encoding: about
+ *    60), wi to light space (27), (u, v) to the bilinear's precision (the two atan polynomials le() itself
+ *    uses, so that rgb is le(wi) bit for bit: about 110), the four table widths (about 50), the corners and
+ *    the density (about 60) and the calls; the sample adds the pick (four searches over 32, ~37, ~16 and 16
+ *    entries: about 190 as binary searches, about 95 with the guide tables), two linear inversions, the
+ *    direction (sinpi, cospi) and the atan pair again (bit-for-bit agreement with pdf_li_cos needs the
+ *    direction located as the pdf locates it).
  *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
  *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
  *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
@@ -452,10 +453,19 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    tables; 1 M calls, best of 6 interleaved runs, CPU time): sample_li_cos 249 -> 238 ns, pdf_li_cos
  *    69 -> 72 ns (the sparse tables' row offset is one more dependent load).
  *    ISSUE 20, WHAT WAS TRIED (each measured; kept if it paid in time-to-unit-variance):
- *    kept: the built check inlined (-25 instructions per call); the sample's pdf from the widths it
- *    picked once the direction, located again, lands in the same patch (-70; the same bits as
- *    pdf_li_cos: the same evaluation of the same values); sparse normal tables (each cell row only the
- *    span of cells with weight, wrapping at the seam: 4.3 -> 2.9 MB, +14 instructions in the pdf, +23
+ *    kept: guide tables (Chen's cutpoint method: for each of the four CDFs 8 bytes, the first candidate entry
+ *    of each eighth of its units, then a forward scan; the same index as the binary search, so the same
+ *    samples bit for bit, checked over 400,000 random normals and u on city and studio): sample_li_cos 902 ->
+ *    806 instructions (the normal bins' cell-row and span guides -58, in the sparse tables; the patch-row and
+ *    patch guides -38, beside pcol and prow); random normals 286-302 -> 268-276 ns per sample (bench_envlight
+ *    --callgrind sample_cos 5 M, user time, 3 interleaved runs), bench_product --library city 203 / 206 ->
+ *    182 / 194 ns; +549,400 bytes (4.86 -> 5.38 MiB; 4 buckets: +275 KB for 854 instructions), build +3.5-4
+ *    ms interleaved (16.2-16.5 -> 20.0-20.3 ms best of 5, NSAMP=1000; 242 -> 264 M instructions). Dropped:
+ *    the octahedral fold without branches (the same bins: +25 instructions, no gain in ns). Kept in earlier
+ *    rounds: the built check inlined (-25 instructions per call); the sample's pdf from the widths it picked
+ *    once the direction, located again, lands in the same patch (-70; the same bits as pdf_li_cos: the same
+ *    evaluation of the same values); sparse normal tables (each cell row only the span of cells with weight,
+ *    wrapping at the seam: 4.3 -> 2.9 MB, +14 instructions in the pdf, +23
  *    in the sample); the vertex grid in bfloat16 rounded up (the patch CDFs built from the rounded
  *    values: -1 MB, and the fastest per sample: half the cache footprint); the bounds' phi part per cell
  *    column and two cells at a time (build 20.4 -> 15.7 ms, bit-identical tables). Dropped: the corners
@@ -466,25 +476,27 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    piecewise-constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340
  *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
  *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
- *    place of the binary searches (1049 instructions against 953). Not tried: alias or guide tables (they
- *    would replace the ~190 instructions of searches but need memory per normal bin beyond the 4 MiB
- *    target, and alias tables break the stratification), a batched call for n normals (no instruction
+ *    place of the binary searches (1049 instructions against 953). Not tried: alias tables (they break
+ *    the stratification), a batched call for n normals (no instruction
  *    saving without SIMD across samples: the work is table lookups), Conty and Lecocq's per-point 12x12
  *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
  *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
  *    density would no longer be le's, and the atans are about a quarter of the pdf).
  *    MEMORY: the vertex grid (2 bytes per vertex, bfloat16), the patch CDFs (2 bytes per patch) and the
- *    sparse normal tables (2.9 MB for 32^2 bins x 64 x 32 cells; dense they were 4.3): 5,093,916 bytes =
- *    4.86 MiB at 1024x512 (7.3 MiB before this round, 8.7 before issue 20; the target 4 MiB is not met
+ *    sparse normal tables (2.9 MB for 32^2 bins x 64 x 32 cells; dense they were 4.3) and the guide tables
+ *    (0.55 MB): 5,643,316 bytes = 5.38 MiB at 1024x512 (4.86 without the guides, 7.3 MiB before this round,
+ *    8.7 before issue 20; the target 4 MiB is not met
  *    with the default options: 32x16 cells and 16^2 bins give 2.4 MB, for 3x the variance; the other
  *    way, normal_bins 48 gives 1.6-1.7x less variance per sample at the same instructions per sample,
  *    for 8.1 MiB and a 34 ms build: city 0.054 -> 0.033, studio 0.050 -> 0.029, geometric mean over up,
  *    down, +x, +y, (0.6, -0.8, 0), (0.3, 0.5, 0.81); 64 gives 0.030 and 0.027 for 12.5 MiB). Maps over
  *    2048x1024 use a coarse grid of that size (each coarse vertex the largest lum of the texels of its 3
- *    x 3 coarse bins, so the density stays > 0 wherever le is): at most 11.0 MiB for any map (16.4 before,
- *    1.09 GB before issue 20). BUILD: 242 M instructions at 1024x512 with init (310 M before; the bounds
- *    two cells at a time with SSE2, the same bits as the scalar code), 15.7 ms (best of 7, CPU time,
- *    2-core machine at load 5; 20.4 before, interleaved; target 20 ms); 4096x2048: about 80 ms.
+ *    x 3 coarse bins, so the density stays > 0 wherever le is): at most 11.8 MiB for any map (11.0
+ *    without the guide tables, 16.4 before, 1.09 GB before issue 20). BUILD: 264 M instructions at
+ *    1024x512 with init (242 M without the guide tables, 310 M before; the bounds two cells at a time
+ *    with SSE2, the same bits as the scalar code), 15.7 ms without the guide tables (best of 7, CPU
+ *    time, 2-core machine at load 5; 20.4 before, interleaved; target 20 ms), about 20 ms with them
+ *    (interleaved: 16.2-16.5 -> 20.0-20.3 ms, best of 5); 4096x2048: about 80 ms.
  *
  * 3. EXACTNESS. pdf_li_cos(n, wi) of a sampled wi equals the returned pdf bit for bit, and rgb equals
  *    le(wi) bit for bit (signed-permutation matrices and general rotations alike: the sampler brings
@@ -3014,12 +3026,16 @@ static void el_envlight__cell_table(const struct el_envlight__warp *W, const dou
 #define EL_ENVLIGHT__GUIDE_SHIFT 12 /* 32768 / GUIDE_K = 2^GUIDE_SHIFT */
 #define EL_ENVLIGHT__GUIDE_E (EL_ENVLIGHT__GUIDE_K / 2) /* uint16 entries a guide takes inside a sparse table */
 static void el_envlight__guide_build(const uint16_t *c, int n, uint8_t *g) {
-  int j, i = 0;
-  for (j = 0; j < EL_ENVLIGHT__GUIDE_K; ++j) {
-    uint32_t k = (uint32_t)j * (32768u / EL_ENVLIGHT__GUIDE_K);
-    while (i + 1 < n && (uint32_t)c[i + 1] <= k) ++i;
-    g[j] = (uint8_t)i;
+  /* g[j] = #{i in [1, n - 1]: c[i] <= j 2^GUIDE_SHIFT} (c is monotone): c[i] counts from bucket
+   * ceil(c[i] / 2^GUIDE_SHIFT) on. The counts per bucket (n <= 256: at most 255 each) are bytes of one
+   * register, so the loop has no branch and no store-to-load chain (the build's time: issue 20) */
+  uint64_t cnt = 0;
+  int i, j, acc = 0;
+  for (i = 1; i < n; ++i) {
+    uint32_t b = ((uint32_t)c[i] + (1u << EL_ENVLIGHT__GUIDE_SHIFT) - 1u) >> EL_ENVLIGHT__GUIDE_SHIFT;
+    cnt += b < EL_ENVLIGHT__GUIDE_K ? (uint64_t)1 << (8u * b) : 0u;
   }
+  for (j = 0; j < EL_ENVLIGHT__GUIDE_K; ++j) { acc += (int)((cnt >> (8 * j)) & 255u); g[j] = (uint8_t)acc; }
 }
 static inline int el_envlight__search_guided(const uint16_t *c, int n, const uint8_t *g, uint32_t k) {
   int i;
