@@ -37,6 +37,15 @@
  * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time is 1.3-1.45x: what is left is
  * memory (a light sample in a dark cell reads a cell's distribution, the pdf table, the direction table
  * and the texels at random places: perf shows el_distribution2d_sample_bins waiting on its row's loads).
+ * Loading ahead does not pay (measured 2026-12-02, perf at 64 spp and bench_sun_render interleaved with the
+ * code before): a wave's dark-cell samples in passes (pick each one's rest cell from the table's sums, load
+ * its marginal, search it and load the row, then draw) moved el_distribution2d_sample_bins' wait (9% of
+ * bench_city's CPU to 3%) into the passes themselves; __builtin_prefetch of the same lines did nothing (the
+ * prefetches were dropped); also loading the map's pdf and direction tables at the drawn bin cut
+ * el_envlight__sample_table from 5.5% to 0.7% but cost as much. CPU on / off stayed 1.24-1.35x (object),
+ * 1.33-1.50x (porch), 1.33-1.42x (city) against 1.22-1.26x, 1.29-1.35x, 1.37-1.45x, images bit-identical. The
+ * remaining cost is the dark-cell samples' work (the cell search, two 2D searches, the direction and
+ * the pdf with its cell bound): elr_sun_lookup and elr_sun_cos_normal, what every vertex pays, are 3%.
  * bench/bench_sun_render.c: 1.3-1.9x less variance in the shadow at equal samples, lit pixels unchanged;
  * at equal time 0.9-1.45x in the shadow, 0.7x lit: off by default.
  *
