@@ -18,36 +18,20 @@
  * their difference: unbiased when |z| is small), the mean over its pixels of the variance over the seeds,
  * and their ratio (off / on: the gain at equal samples); the CPU seconds of one render loop (plus, for
  * "on", the pilot's CPU seconds) and the gain at equal time (variance x seconds, off / on). */
+#define _POSIX_C_SOURCE 200809L /* bench_common.h's clocks */
 #include "tests/sun_measure.h"
 #include "image_io.h"
 #include "picture.h"
+#include "bench_common.h"
 #include <sys/stat.h>
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
 /* ---- the picture: where the light samples of one shadowed ground point land, before and after ---- */
-static unsigned long long g_rng = 88172645463325252ULL;
-static float frand(void) {
-  g_rng ^= g_rng << 13; g_rng ^= g_rng >> 7; g_rng ^= g_rng << 17;
-  return (float)(g_rng >> 40) * (1.0f / 16777216.0f);
-}
-static unsigned char to8(double x) { /* x / (1 + x), then sRGB */
-  double t = x / (1 + x);
-  t = t <= 0.0031308 ? 12.92 * t : 1.055 * pow(t, 1 / 2.4) - 0.055;
-  return (unsigned char)(t <= 0 ? 0 : t >= 1 ? 255 : (int)(t * 255 + 0.5));
-}
-static void dot(unsigned char *img, int W, int H, int x, int y, int r, unsigned char cr, unsigned char cg, unsigned char cb) {
-  int dx, dy;
-  for (dy = -r; dy <= r; ++dy)
-    for (dx = -r; dx <= r; ++dx) {
-      int xx = ((x + dx) % W + W) % W, yy = y + dy;
-      unsigned char *q;
-      if (yy < 0 || yy >= H) continue;
-      q = img + 3 * ((size_t)yy * (size_t)W + (size_t)xx);
-      q[0] = cr; q[1] = cg; q[2] = cb;
-    }
-}
+/* the picture's helpers, the clocks and the generator are bench_common.h's (test_rng.h's 64-bit xorshift) */
+static xorshift64 g_rng = {88172645463325252ULL};
+static float frand(void) { return xorshift64_f(&g_rng); }
 /* The point (-1.5, 0, 0) of scenes/sun_shadow_object.pbrt's ground, in the block's shadow: 2000 light
  * samples of the renderer's density there without the cache (a diffuse vertex under a sun map: the map
  * alone, el_envlight_sample_li) and with it (elr_sun_sample: the rest x cosine, the sun at the floor),
@@ -87,12 +71,12 @@ static int picture(const char *out) {
   for (panel = 0; panel < 2; ++panel) {
     unsigned char *pm = pix + (size_t)panel * (size_t)W * (size_t)H * 3;
     int nsun = 0, nsky = 0, nblock = 0, nbelow = 0;
-    g_rng = 88172645463325252ULL;
+    g_rng.s = 88172645463325252ULL;
     for (y = 0; y < H; ++y) /* the map, one stop darker */
       for (x = 0; x < W; ++x) {
         const float *t = e->texels + 3 * ((size_t)(y / Z) * (size_t)e->width + (size_t)(x / Z));
         unsigned char *q = pm + 3 * ((size_t)y * (size_t)W + (size_t)x);
-        q[0] = to8(0.5 * t[0]); q[1] = to8(0.5 * t[1]); q[2] = to8(0.5 * t[2]);
+        q[0] = picture_to8(0.5 * t[0]); q[1] = picture_to8(0.5 * t[1]); q[2] = picture_to8(0.5 * t[2]);
       }
     for (i = 0; i < ns; ++i) {
       float u[2], wi[3], L[3], pdf, d[3], uu, vv;
@@ -107,10 +91,10 @@ static int picture(const char *out) {
       d[2] = e->to_world[2] * wi[0] + e->to_world[5] * wi[1] + e->to_world[8] * wi[2];
       el_envlight_dir_to_uv(d, &uu, &vv);
       x = (int)(uu * (float)W); y = (int)(vv * (float)H);
-      if (elr_sun_in_spot(S, wi)) { nsun++; dot(pm, W, H, x, y, 2, 255, 40, 40); }
-      else if (elr_dot(w, n) <= 0.f) { nbelow++; dot(pm, W, H, x, y, 1, 150, 150, 150); }
-      else if (elr_occluded(s, elr_spawn_origin(&hit, w), w, INFINITY)) { nblock++; dot(pm, W, H, x, y, 1, 255, 140, 0); }
-      else { nsky++; dot(pm, W, H, x, y, 1, 255, 230, 40); }
+      if (elr_sun_in_spot(S, wi)) { nsun++; picture_dot(pm, W, H, x, y, 2, 255, 40, 40); }
+      else if (elr_dot(w, n) <= 0.f) { nbelow++; picture_dot(pm, W, H, x, y, 1, 150, 150, 150); }
+      else if (elr_occluded(s, elr_spawn_origin(&hit, w), w, INFINITY)) { nblock++; picture_dot(pm, W, H, x, y, 1, 255, 140, 0); }
+      else { nsky++; picture_dot(pm, W, H, x, y, 1, 255, 230, 40); }
     }
     snprintf(label, sizeof label, "%s: %d IN THE SUN (RED), %d REACH THE SKY (YELLOW)", panel == 0 ? "BEFORE (THE MAP ALONE)" : "AFTER (THE SUN CACHE)", nsun, nsky);
     el_draw_label(pm, W, H, 8, 8, label);
@@ -119,11 +103,7 @@ static int picture(const char *out) {
     printf("%s: of %d samples %d in the sun's cone, %d blocked by the scene, %d below the ground, %d reach the sky\n",
            panel == 0 ? "before (el_envlight_sample_li)" : "after (the sun cache's mixture)", ns, nsun, nblock, nbelow, nsky);
   }
-  {
-    char dir[512];
-    const char *slash = strrchr(out, '/');
-    if (slash && slash - out < (long)sizeof dir) { memcpy(dir, out, (size_t)(slash - out)); dir[slash - out] = 0; mkdir(dir, 0777); }
-  }
+  make_parent_dir(out);
   if (el_image_write_png(out, pix, W, 2 * H, 3, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   printf("wrote %s\n", out);
   free(pix);
@@ -169,7 +149,7 @@ static int shadow_point(void) {
       double v[2];
       for (bsdf = 0; bsdf < 2; bsdf++) {
         double s1 = 0, s2 = 0;
-        g_rng = 88172645463325252ULL;
+        g_rng.s = 88172645463325252ULL;
         for (i = 0; i < N; i++) {
           float u[2], u2[2], wi[3], L[3], pdf, d[3], Lb[3];
           double f = 0, pc, pl, pb, mis;
