@@ -3003,7 +3003,8 @@ static int el_envlight__int_cdf(const double *f, int n, uint32_t units, uint32_t
 
 /* A cell table from kv x ku weights: the cell rows' CDF, then each row's CDF over its cells, in
  * EL_ENVLIGHT__CELL_UNITS. tmp: ku + kv + 2 uint32 and kv doubles. */
-static void el_envlight__cell_table(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
+static void el_envlight__cell_rows_cdf(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
+  /* the cell rows' sums (rows[0..kv-1]) and their CDF (tab[0..kv]), shared by both table layouts */
   int a, b, ku = W->ku, kv = W->kv;
   for (b = 0; b < kv; ++b) {
     double s = 0.0;
@@ -3012,6 +3013,10 @@ static void el_envlight__cell_table(const struct el_envlight__warp *W, const dou
   }
   el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
   for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
+}
+static void el_envlight__cell_table(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
+  int a, b, ku = W->ku, kv = W->kv;
+  el_envlight__cell_rows_cdf(W, wgt, tab, tmp, rows);
   for (b = 0; b < kv; ++b) {
     uint16_t *row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
     el_envlight__int_cdf(wgt + (size_t)b * (size_t)ku, ku, EL_ENVLIGHT__CELL_UNITS, tmp);
@@ -3055,16 +3060,10 @@ static size_t el_envlight__sparse_max(const struct el_envlight__warp *W) {
   return (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv + EL_ENVLIGHT__GUIDE_E + (size_t)W->kv * ((size_t)W->ku + 3 + EL_ENVLIGHT__GUIDE_E);
 }
 static size_t el_envlight__cell_table_sparse(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
-  int a, b, ku = W->ku, kv = W->kv;
+  int b, ku = W->ku, kv = W->kv;
   size_t pos = (size_t)((kv + 2) & ~1) + 2 * (size_t)kv + EL_ENVLIGHT__GUIDE_E;
   double *span = rows + kv;
-  for (b = 0; b < kv; ++b) {
-    double sum = 0.0;
-    for (a = 0; a < ku; ++a) sum += wgt[(size_t)b * (size_t)ku + (size_t)a];
-    rows[b] = sum;
-  }
-  el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
-  for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
+  el_envlight__cell_rows_cdf(W, wgt, tab, tmp, rows);
   el_envlight__guide_build(tab, kv, (uint8_t *)(tab + (size_t)((kv + 2) & ~1) + 2 * (size_t)kv)); /* the rows' guide */
   for (b = 0; b < kv; ++b) {
     const double *w = wgt + (size_t)b * (size_t)ku;
