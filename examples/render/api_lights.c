@@ -5,6 +5,17 @@
  * to each shape after it in its attribute block. Nothing here calls lights.c. */
 #include "parser.h"
 
+/* a point or distant light's radiance, its parameter times "scale": an overflow or a negative channel is an
+ * error naming the light and the parameter (the infinite light's rule: negative light would render black, unsaid) */
+static elr_v3 elr__light_radiance(elr__parser *P, const char *type, const char *param, elr_v3 v, elr_v3 sc) {
+  elr_v3 L = elr_vmul(v, sc);
+  if (!isfinite(L.x + L.y + L.z) || !isfinite(L.x) || !isfinite(L.y) || !isfinite(L.z))
+    elr__failf(P, P->dir_file, P->dir_line, "LightSource \"%s\": %s times scale overflows (%g %g %g)", type, param, L.x, L.y, L.z);
+  if (L.x < 0.f || L.y < 0.f || L.z < 0.f)
+    elr__failf(P, P->dir_file, P->dir_line, "LightSource \"%s\": %s times scale (%g %g %g) must not be negative", type, param, L.x, L.y, L.z);
+  return L;
+}
+
 void elr__light(elr__parser *P, const char *type) {
   elr_scene *s = P->s;
   elr_light *l;
@@ -126,11 +137,7 @@ void elr__light(elr__parser *P, const char *type) {
     elr_v3 I = elr__prgb(P, "I", elr_v(1, 1, 1));
     elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
     l->kind = ELR_LIGHT_POINT;
-    l->L = elr_vmul(I, sc);
-    if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
-      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"point\": I times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
-    if (l->L.x < 0.f || l->L.y < 0.f || l->L.z < 0.f) /* the infinite light's rule: negative light would render black, unsaid */
-      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"point\": I times scale (%g %g %g) must not be negative", l->L.x, l->L.y, l->L.z);
+    l->L = elr__light_radiance(P, "point", "I", I, sc);
     l->pos = elr_xpoint(&P->ctm, from);
     elr__check_point(P, P->dir_line, l->pos, "the light's position");
     l->nsamples = 1;
@@ -139,11 +146,7 @@ void elr__light(elr__parser *P, const char *type) {
     elr_v3 from = elr__ppoint(P, "from", "point3", elr_v(0, 0, 0));
     elr_v3 to = elr__ppoint(P, "to", "point3", elr_v(0, 0, 1));
     l->kind = ELR_LIGHT_DISTANT;
-    l->L = elr_vmul(L, sc);
-    if (!isfinite(l->L.x + l->L.y + l->L.z) || !isfinite(l->L.x) || !isfinite(l->L.y) || !isfinite(l->L.z))
-      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"distant\": L times scale overflows (%g %g %g)", l->L.x, l->L.y, l->L.z);
-    if (l->L.x < 0.f || l->L.y < 0.f || l->L.z < 0.f) /* the infinite light's rule: negative light would render black, unsaid */
-      elr__failf(P, P->dir_file, P->dir_line, "LightSource \"distant\": L times scale (%g %g %g) must not be negative", l->L.x, l->L.y, l->L.z);
+    l->L = elr__light_radiance(P, "distant", "L", L, sc);
     l->dir = elr_norm(elr_xvector(&P->ctm, elr_sub(from, to)));
     l->nsamples = 1;
   } else {
