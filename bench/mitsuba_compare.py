@@ -975,16 +975,22 @@ def variance_mode(args):
     print(fmt_table(rows, ["map", "integrator", "spp", "random / independent", "%s / multijitter" % ld]))
     print("\n(b) equal time: cost (relvar x CPU s) of our best configuration over Mitsuba's best "
           "(issue 14's target <= 0.5)")
+
+    def best(sc_key, integ, spp):
+        """(cost, configuration) of Mitsuba's and of our cheapest configuration (cost = relvar x CPU s; ours
+        without the map-alone comparison runs); None for a side with no result"""
+        m = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "mitsuba")]
+        o = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "ours")
+             and "map alone" not in k[4]]
+        return (min(m) if m else None), (min(o) if o else None)
+
     rows = []
     for sc_key, _ in VAR_SCENES:
         for integ in integs:
             for spp in spps:
-                m = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "mitsuba")]
-                o = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "ours")
-                     and "map alone" not in k[4]]
-                if not m or not o:
+                bm, bo = best(sc_key, integ, spp)
+                if bm is None or bo is None:
                     continue
-                bm, bo = min(m), min(o)
                 rows.append([sc_key, integ, spp, "%.3g (%s)" % bo, "%.3g (%s)" % bm, "%.2f" % (bo[0] / bm[0])])
     print(fmt_table(rows, ["map", "integrator", "spp", "ours best", "Mitsuba best", "ratio"]))
     print("\n(c) CPU per camera sample (the render loop's CPU s at equal spp and resolution), ours / Mitsuba, one light + "
@@ -994,13 +1000,11 @@ def variance_mode(args):
         for integ in integs:
             for spp in spps:
                 g = lambda side, name: results.get((sc_key, integ, spp, side, name), (float("nan"), float("nan")))[1]
-                m = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "mitsuba")]
-                o = [(v[0] * v[1], k[4]) for k, v in results.items() if k[:4] == (sc_key, integ, spp, "ours")
-                     and "map alone" not in k[4]]
+                bm, bo = best(sc_key, integ, spp)
                 rows.append([sc_key, integ, spp, "%.3f / %.3f = %.2f" % (g("ours", "%s 1/1" % ld), g("mitsuba", "multijitter 1/1"),
                                                                        g("ours", "%s 1/1" % ld) / g("mitsuba", "multijitter 1/1")),
                              "%.2f" % (g("ours", "random 1/1") / g("mitsuba", "independent 1/1")),
-                             "%.2f" % (min(o)[0] / min(m)[0]) if m and o else "-"])
+                             "%.2f" % (bo[0] / bm[0]) if bm and bo else "-"])
     print(fmt_table(rows, ["map", "integrator", "spp", "CPU s %s / multijitter 1/1" % ld, "random / independent", "equal time"]))
     if by_region:
         print("\n(d) by region (%s): relvar ours / Mitsuba at equal spp (%s 1/1 / multijitter 1/1; random / independent) "
