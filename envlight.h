@@ -1091,6 +1091,7 @@ extern "C" {
 #define EL_ENVLIGHT__HOT_SAMPLE 1
 #define EL_ENVLIGHT__HOT_PDF 2
 #define EL_ENVLIGHT__HOT_SAMPLE_FINISH 4
+#define EL_ENVLIGHT__HOT_PATCH 8 /* importance BILINEAR's patch tables are built: sample_li and pdf_li go straight there */
 #define EL_ENVLIGHT__INV_2PI2 0.05066059182116889f /* 1 / (2 pi^2) */
 
 /* sqrt without libm's errno branch (sqrtf(x < 0) must set errno, so compilers call it for such x):
@@ -1286,10 +1287,11 @@ static float el_envlight__luminance(const float *rgb) {
 #define EL_ENVLIGHT__CELLS_V 32
 #define EL_ENVLIGHT__NORMAL_BINS 32
 struct el_envlight__warp;
-static const struct el_envlight__warp *el_envlight__warp_ensure(const el_envlight *cl, int ku, int kv);
 static void el_envlight__warp_free(struct el_envlight__warp *W);
-static void el_envlight__warp_sample_plain(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
-static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]);
+/* importance BILINEAR: le()'s patches (the section "importance BILINEAR" after product sampling) */
+static el_result el_envlight__patch_build(el_envlight *l);
+static void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
+static float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]);
 static size_t el_envlight__warp_bytes(const el_envlight *l);
 
 /* >> private helpers: validation */
@@ -1968,8 +1970,7 @@ static el_result el_envlight__build(el_envlight *l) {
   el_result r = EL_SUCCESS;
   el_distribution_options dopt;
   if (l->width == 0) return EL_SUCCESS; /* constant light: uniform sampling, no tables */
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) /* the warp's own tables only (continuous warp section) */
-    return el_envlight__warp_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V) ? EL_SUCCESS : l->warp_result;
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return el_envlight__patch_build(l); /* le()'s patches */
   nb = (size_t)nu * (size_t)nv;
   /* pdf_li indexes the pdf table with 32-bit arithmetic: at most 2^32 - 1 bins (a 16 GB table) */
   if (nb > ((size_t)-1) / sizeof(float) || (uint64_t)nb > 0xffffffffu) return EL_ERROR_SIZE_OVERFLOW;
@@ -2144,6 +2145,7 @@ static el_result el_envlight__build(el_envlight *l) {
 
 /* Which inline fast paths are usable once the tables are built (stored after them, with release). */
 static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
+  if (r == EL_SUCCESS && l->width > 0 && l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return EL_ENVLIGHT__HOT_PATCH;
   if (r != EL_SUCCESS || l->width == 0 || l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR || l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return 0;
   /* sample_li's inline path: direction tables and the guide sampler; HOT_SAMPLE when the table direction
    * and pdf are final (table_done: a signed-permutation matrix, a map that is not all black), else
@@ -2406,7 +2408,7 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_world_cold(const el_envlight
 static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
   float d[3], len2;
   if (!el_envlight__ensure(l)) return 0.0f;
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__warp_pdf_li(l, dir);
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__patch_pdf_li(l, dir);
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) return el_envlight__ea_pdf_li(l, dir);
   el_envlight__to_light(l, dir, d);
   len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
@@ -2418,10 +2420,11 @@ EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3], r2, len2;
   /* the hot bit EL_ENVLIGHT__HOT_PDF: tables built, and a map (not the constant light) */
 #if EL_ENVLIGHT__ATOMICS
-  if (!(__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF)) return el_envlight__pdf_li_slow(l, dir);
+  int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
 #else
-  if (!(l->hot & EL_ENVLIGHT__HOT_PDF)) return el_envlight__pdf_li_slow(l, dir);
+  int hot = l->hot;
 #endif
+  if (!(hot & EL_ENVLIGHT__HOT_PDF)) return (hot & EL_ENVLIGHT__HOT_PATCH) ? el_envlight__patch_pdf_li(l, dir) : el_envlight__pdf_li_slow(l, dir);
   el_envlight__to_light(l, dir, d);
   r2 = d[0] * d[0] + d[1] * d[1];
   len2 = r2 + d[2] * d[2];
@@ -2586,8 +2589,8 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight 
     if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
     return;
   }
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { /* the continuous warp */
-    el_envlight__warp_sample_plain(l, uu, wi, rgb, pdf);
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { /* le()'s patches */
+    el_envlight__patch_sample(l, uu, wi, rgb, pdf);
     return;
   }
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) { /* pbrt-v4's equal-area map */
@@ -2744,6 +2747,7 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
     return;
   }
 #else
+  if (hot & EL_ENVLIGHT__HOT_PATCH) { el_envlight__patch_sample(l, uu, wi, rgb, pdf); return; }
   if ((hot & (EL_ENVLIGHT__HOT_SAMPLE | EL_ENVLIGHT__HOT_SAMPLE_FINISH)) && el_distribution2d_u_in_range(uu[0], uu[1])) {
     float fu, fv, pb;
     int iu, iv;
@@ -2753,6 +2757,9 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
       return;
     }
   }
+#endif
+#if EL_ENVLIGHT__SSE
+  if (hot & EL_ENVLIGHT__HOT_PATCH) { el_envlight__patch_sample(l, uu, wi, rgb, pdf); return; }
 #endif
   el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
@@ -2892,7 +2899,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   int s = l->state;
 #endif
   if (s != 2 || l->width == 0) return 0;
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return el_envlight__warp_bytes(l); /* the warp */
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return el_envlight__warp_bytes(l); /* the patch tables */
   b += el_distribution2d_bytes(&l->dist);
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
@@ -2938,7 +2945,6 @@ EL_DEF void el_envlight_zup_matrix(float m[9]) {
  * vertex is reachable at any dynamic range; the density is defined with that alpha (the pdf uses it). */
 
 #define EL_ENVLIGHT__CELL_UNITS 32768u  /* a cell table's integer total (its entries are uint16_t) */
-#define EL_ENVLIGHT__ALPHA_MIN 9.5367431640625e-7 /* 2^-20 */
 
 struct el_envlight__warp {
   int w, h, ku, kv;      /* the image (w patch columns, h + 1 patch rows); cells */
@@ -3013,15 +3019,6 @@ static void el_envlight__cell_rows_cdf(const struct el_envlight__warp *W, const 
   }
   el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
   for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
-}
-static void el_envlight__cell_table(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
-  int a, b, ku = W->ku, kv = W->kv;
-  el_envlight__cell_rows_cdf(W, wgt, tab, tmp, rows);
-  for (b = 0; b < kv; ++b) {
-    uint16_t *row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
-    el_envlight__int_cdf(wgt + (size_t)b * (size_t)ku, ku, EL_ENVLIGHT__CELL_UNITS, tmp);
-    for (a = 0; a <= ku; ++a) row[a] = (uint16_t)tmp[a];
-  }
 }
 
 /* Guide tables (Chen's cutpoint method, issue 20): for a CDF c[0..n] over 32768 units, g[j] (j < 8) is the
@@ -3129,245 +3126,10 @@ static void el_envlight__warp_free(struct el_envlight__warp *W) {
   EL_FREE(W);
 }
 
-/* <<Build the warp>>: vertex rows, cells, the integer CDFs, cell masses and the plain cell table. */
-static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, struct el_envlight__warp **out) {
-  struct el_envlight__warp *W;
-  int w = l->width, h = l->height, i, j, a, b, r, k;
-  double *vrow = NULL, *wgt = NULL, total = 0.0;
-  uint32_t *tmp = NULL;
-  size_t nc, nm;
-  *out = NULL;
-  W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
-  if (!W) return EL_ERROR_OUT_OF_MEMORY;
-  memset(W, 0, sizeof *W);
-  ku = ku < w ? ku : w;
-  kv = kv < h + 1 ? kv : h + 1;
-  /* a cell column's patches and a cell's patch rows each fit the integer CDFs (at most 2^22 entries) */
-  if ((w + ku - 1) / ku > 4194304 || (h + kv) / kv > 4194304) { EL_FREE(W); return EL_ERROR_SIZE_OVERFLOW; }
-  W->w = w; W->h = h; W->ku = ku; W->kv = kv;
-  W->marg_len = kv + 1;
-  W->row_len = ku + 1;
-  W->table_len = (size_t)W->marg_len + (size_t)kv * (size_t)W->row_len;
-  W->cond_stride = (size_t)w + (size_t)ku;
-  W->inv_w = 1.0f / (float)w; W->inv_h = 1.0f / (float)h; W->half_inv_h = 0.5f / (float)h;
-  nc = ((size_t)h + 2) * W->cond_stride;
-  nm = (size_t)ku * ((size_t)h + 1 + (size_t)kv);
-  if (nc > ((size_t)-1) / sizeof(uint32_t) / 2) { EL_FREE(W); return EL_ERROR_SIZE_OVERFLOW; }
-  W->sin_row = (float *)EL_MALLOC((size_t)h * sizeof(float));
-  W->V = (float *)EL_MALLOC(((size_t)h + 2) * (size_t)w * sizeof(float));
-  W->coff = (int *)EL_MALLOC((size_t)ku * sizeof(int));
-  W->S = (double *)EL_MALLOC(((size_t)h + 2) * (size_t)ku * sizeof(double));
-  W->cond = (float *)EL_MALLOC(nc * sizeof(float));
-  W->marg = (uint32_t *)EL_MALLOC(nm * sizeof(uint32_t));
-  W->a0 = (int *)EL_MALLOC(((size_t)ku + 1) * sizeof(int));
-  W->b0 = (int *)EL_MALLOC(((size_t)kv + 1) * sizeof(int));
-  W->cu_of = (int *)EL_MALLOC((size_t)w * sizeof(int));
-  W->cv_of = (int *)EL_MALLOC(((size_t)h + 1) * sizeof(int));
-  W->mass = (double *)EL_MALLOC((size_t)ku * (size_t)kv * sizeof(double));
-  W->plain = (uint16_t *)EL_MALLOC(W->table_len * sizeof(uint16_t));
-  vrow = (double *)EL_MALLOC(((size_t)w + 1) * sizeof(double));
-  wgt = (double *)EL_MALLOC(((size_t)(w > h + 1 ? w : h + 1) + (size_t)ku * (size_t)kv) * sizeof(double));
-  tmp = (uint32_t *)EL_MALLOC(((size_t)(w > h + 1 ? w : h + 1) + (size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
-  if (!W->sin_row || !W->V || !W->coff || !W->S || !W->cond || !W->marg || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
-      !W->plain || !vrow || !wgt || !tmp) {
-    EL_FREE(vrow); EL_FREE(wgt); EL_FREE(tmp);
-    el_envlight__warp_free(W);
-    return EL_ERROR_OUT_OF_MEMORY;
-  }
-  for (a = 0; a <= ku; ++a) W->a0[a] = (int)((int64_t)a * w / ku);
-  for (b = 0; b <= kv; ++b) W->b0[b] = (int)((int64_t)b * (h + 1) / kv);
-  for (a = 0; a < ku; ++a) for (i = W->a0[a]; i < W->a0[a + 1]; ++i) W->cu_of[i] = a;
-  for (a = 0; a < ku; ++a) W->coff[a] = W->a0[a] + a;
-  for (b = 0; b < kv; ++b) for (r = W->b0[b]; r < W->b0[b + 1]; ++r) W->cv_of[r] = b;
-  for (j = 0; j < h; ++j) W->sin_row[j] = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / h);
-  /* <<Initialize compensated PDF>> (pbrt-v4): subtract the mean luminance over the sphere (the exact
-   * integral of le / 4 pi) from every vertex; none above it: the plain density */
-  W->offset = 0.0f;
-  if (l->compensated) {
-    double mean = (0.212671 * l->integral[0] + 0.715160 * l->integral[1] + 0.072169 * l->integral[2]) / (4.0 * EL_ENVLIGHT__PI);
-    int any = 0;
-    W->offset = mean < (double)FLT_MAX ? (float)mean : FLT_MAX;
-    for (j = 0; j < h && !any; ++j)
-      for (i = 0; i < w; ++i) if (el_envlight__vertex_of(l, W, i, j) > 0.0f) { any = 1; break; }
-    if (!any) { W->offset = 0.0f; W->fell_back = 1; }
-  }
-  /* vertex rows: the pole rows are 0 (their V, S and CDFs); texel row j is vertex row j + 1 */
-  for (a = 0; a < ku; ++a) { W->S[a] = 0.0; W->S[((size_t)h + 1) * (size_t)ku + (size_t)a] = 0.0; }
-  for (i = 0; i < w; ++i) W->V[i] = W->V[((size_t)h + 1) * (size_t)w + (size_t)i] = 0.0f;
-  for (k = 0; k < (int)W->cond_stride; ++k) W->cond[k] = W->cond[((size_t)h + 1) * W->cond_stride + (size_t)k] = 0.0f;
-  for (j = 0; j < h; ++j) {
-    for (i = 0; i < w; ++i) vrow[i] = (double)(W->V[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__vertex_of(l, W, i, j));
-    vrow[w] = vrow[0];
-    for (a = 0; a < ku; ++a) {
-      int n = W->a0[a + 1] - W->a0[a];
-      double s = 0.0;
-      for (i = 0; i < n; ++i) { wgt[i] = 0.5 * (vrow[W->a0[a] + i] + vrow[W->a0[a] + i + 1]); s += wgt[i]; }
-      W->S[((size_t)j + 1) * (size_t)ku + (size_t)a] = s / w;
-      float *c = W->cond + ((size_t)j + 1) * W->cond_stride + (size_t)W->coff[a];
-      el_envlight__int_cdf(wgt, n, 16777216u, tmp);
-      for (i = 0; i <= n; ++i) c[i] = (float)tmp[i];
-    }
-  }
-  /* each cell's patch rows: mass (A + B) / 2 dv, dv = 1 / h (0.5 / h at the poles) */
-  for (a = 0; a < ku; ++a)
-    for (b = 0; b < kv; ++b) {
-      int n = W->b0[b + 1] - W->b0[b];
-      double s = 0.0;
-      for (k = 0; k < n; ++k) {
-        r = W->b0[b] + k;
-        wgt[k] = 0.5 * (W->S[(size_t)r * (size_t)ku + (size_t)a] + W->S[((size_t)r + 1) * (size_t)ku + (size_t)a]) *
-                 ((r == 0 || r == h) ? 0.5 / h : 1.0 / h);
-        s += wgt[k];
-      }
-      el_envlight__int_cdf(wgt, n, 16777216u, W->marg + (size_t)a * ((size_t)h + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b);
-      W->mass[(size_t)b * (size_t)ku + (size_t)a] = s;
-      total += s;
-    }
-  W->all_zero = !(total > 0.0);
-  el_envlight__cell_table(W, W->mass, W->plain, tmp, wgt);
-  W->warp_bytes = sizeof *W + (size_t)h * sizeof(float) + ((size_t)h + 2) * (size_t)w * sizeof(float) + (size_t)ku * sizeof(int) + ((size_t)h + 2) * (size_t)ku * sizeof(double) +
-                  nc * sizeof(float) + nm * sizeof(uint32_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)w + (size_t)h + 1) * sizeof(int) +
-                  (size_t)ku * (size_t)kv * sizeof(double) + W->table_len * sizeof(uint16_t);
-  EL_FREE(vrow); EL_FREE(wgt); EL_FREE(tmp);
-  *out = W;
-  return EL_SUCCESS;
-}
-
-/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2: the inverse CDF of a linear density
- * (a, b >= 0, not both 0), in the form without cancellation. */
-static inline double el_envlight__lin_inv(double a, double b, double q) {
-  double m = a > b ? a : b, d, den, t;
-  a /= m; b /= m;
-  d = a * a + q * (b * b - a * a);
-  den = a + sqrt(d > 0.0 ? d : 0.0);
-  t = den > 0.0 ? q * (a + b) / den : 0.0; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
-  return t < 1.0 ? (t > 0.0 ? t : 0.0) : 1.0;
-}
-
-/* The conditional's blend weight at t in patch row r of cell column a (A, B: the two vertex rows'
- * integrals over the cell column), kept off 0 and 1 while both rows have mass. */
-static inline double el_envlight__alpha(double A, double B, double t) {
-  double x, y, al;
-  if (!(A > 0.0)) return 0.0;
-  if (!(B > 0.0)) return 1.0;
-  x = (1.0 - t) * A; y = t * B;
-  al = x / (x + y);
-  return al < EL_ENVLIGHT__ALPHA_MIN ? EL_ENVLIGHT__ALPHA_MIN : al > 1.0 - EL_ENVLIGHT__ALPHA_MIN ? 1.0 - EL_ENVLIGHT__ALPHA_MIN : al;
-}
-
-/* The blended conditional CDF of cell column a at patch j (0..n) of its n patches: alpha * row r's CDF +
- * (1 - alpha) * row r + 1's (a row without mass has weight exactly 0: al is 0 or 1 then) */
-static inline double el_envlight__blend(const float *c0, const float *c1, double al, double bl, int j) {
-  return al * (double)c0[j] + bl * (double)c1[j];
-}
-
-/* The two vertex rows' CDF rows for patch row r in cell column a. */
-static inline void el_envlight__cond_rows(const struct el_envlight__warp *W, int r, int a, const float **c0, const float **c1) {
-  *c0 = W->cond + (size_t)r * W->cond_stride + (size_t)W->coff[a];
-  *c1 = *c0 + W->cond_stride;
-}
-
-/* The linear density in s over patch i (absolute patch column) at the blend al: its values e0, e1 at the
- * patch's two ends, as probabilities per unit s (e0 + e1 = 2 x the patch's probability). */
-static inline void el_envlight__patch_ends(const struct el_envlight__warp *W, int r, int i, int j,
-                                           const float *c0, const float *c1, double al, double bl, double *e0, double *e1) {
-  int i1 = i + 1 < W->w ? i + 1 : 0;
-  const float *v = W->V + (size_t)r * (size_t)W->w;
-  /* each row's share of the patch (its units x its weight), spread linearly between its two vertices */
-  double a0 = (double)v[i], a1 = (double)v[i1], b0 = (double)v[(size_t)W->w + (size_t)i], b1 = (double)v[(size_t)W->w + (size_t)i1];
-  double sa = a0 + a1, sb = b0 + b1, ka, kb;
-  ka = 2.0 * al * (double)(c0[j + 1] - c0[j]) / (sa > 0.0 ? sa : 1.0); /* no units where the sum is 0 */
-  kb = 2.0 * bl * (double)(c1[j + 1] - c1[j]) / (sb > 0.0 ? sb : 1.0);
-  *e0 = (ka * a0 + kb * b0) * (1.0 / 16777216.0);
-  *e1 = (ka * a1 + kb * b1) * (1.0 / 16777216.0);
-}
-
 /* u in [0,1) as the fast samplers clamp it: NaN and <= 0 -> 0, >= 1 -> 0x1.fffffep-1 */
 static inline float el_envlight__clamp01(float u) {
   u = u > 0.0f ? u : 0.0f;
   return u < 0.99999994f ? u : 0.99999994f;
-}
-
-/* <<Pick a cell>> from a cell table with (u0, u1): u1 the cell row, u0 the cell in it (CDF inversion);
- * *f0, *f1: the positions of u0, u1 within the cell's units, for the warp inside the cell. */
-static inline void el_envlight__cell_pick(const struct el_envlight__warp *W, const uint16_t *tab, float u0, float u1,
-                                          int *a, int *b, float *f0, float *f1) {
-  float x1 = el_envlight__clamp01(u1) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(u0) * (float)EL_ENVLIGHT__CELL_UNITS;
-  const uint16_t *row;
-  *b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
-  *f1 = (x1 - (float)tab[*b]) / (float)(tab[*b + 1] - tab[*b]);
-  row = tab + (size_t)W->marg_len + (size_t)*b * (size_t)W->row_len;
-  *a = el_envlight__search16(row, W->ku, (uint32_t)x0);
-  *f0 = (x0 - (float)row[*a]) / (float)(row[*a + 1] - row[*a]);
-}
-
-/* The patch (column i, vertex row r) in which the pdf finds the point (u, v): le()'s texels, patch column
- * i = floor(u w - 0.5) (Repeat), row floor(v h + 0.5); *X, *Y the scaled coordinates. */
-static inline void el_envlight__patch_at(const struct el_envlight__warp *W, float u, float v, int *i, int *r, float *X, float *Y) {
-  *X = u * (float)W->w - 0.5f;
-  if (*X < 0.0f) *X += (float)W->w;
-  *i = (int)*X;
-  if (*i > W->w - 1) *i = W->w - 1;
-  *Y = v * (float)W->h + 0.5f;
-  *r = (int)*Y;
-  if (*r > W->h) *r = W->h;
-}
-
-/* <<Warp inside cell (a, b)>>: (f0, f1) in [0,1]^2 -> a light-space unit direction; *pi, *pr get the
- * patch (column, vertex row) it chose. centre = 1: the same patch, but the point at its centre (s = t =
- * 1/2: el_envlight__warp_sample's fallback when rounding moved the point out of its patch). */
-static void el_envlight__warp_sample_cell(const struct el_envlight__warp *W, int a, int b, float f0, float f1, int centre, float d[3], int *pi, int *pr) {
-  int h = W->h, ku = W->ku, n, r, lo, len, i;
-  const uint32_t *mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
-  const float *c0, *c1;
-  double x, q, A, B, t, al, bl, lo_v, hi_v, e0, e1, s;
-  float u, v, vp;
-  /* the patch row: integer CDF inversion, then t in it (a linear density) */
-  x = (double)el_envlight__clamp01(f1) * 16777216.0;
-  n = W->b0[b + 1] - W->b0[b];
-  r = el_distribution2d__search(mg, 0, n, (uint32_t)x);
-  q = (x - (double)mg[r]) / (double)(mg[r + 1] - mg[r]);
-  r += W->b0[b];
-  A = W->S[(size_t)r * (size_t)ku + (size_t)a];
-  B = W->S[((size_t)r + 1) * (size_t)ku + (size_t)a];
-  t = el_envlight__lin_inv(A, B, q);
-  /* the patch at t: inversion of the blended conditional CDF, then s in the patch */
-  al = el_envlight__alpha(A, B, t);
-  bl = 1.0 - al;
-  el_envlight__cond_rows(W, r, a, &c0, &c1);
-  x = (double)el_envlight__clamp01(f0) * 16777216.0;
-  lo = 0; len = W->a0[a + 1] - W->a0[a];
-  while (len > 1) {
-    int half = len >> 1;
-    lo = el_envlight__blend(c0, c1, al, bl, lo + half) <= x ? lo + half : lo;
-    len -= half;
-  }
-  lo_v = el_envlight__blend(c0, c1, al, bl, lo);
-  hi_v = el_envlight__blend(c0, c1, al, bl, lo + 1);
-  q = hi_v > lo_v ? (x - lo_v) / (hi_v - lo_v) : 0.5;
-  q = q < 1.0 ? (q > 0.0 ? q : 0.0) : 1.0;
-  i = W->a0[a] + lo;
-  el_envlight__patch_ends(W, r, i, lo, c0, c1, al, bl, &e0, &e1);
-  s = e0 + e1 > 0.0 ? el_envlight__lin_inv(e0, e1, q) : q;
-  /* kept inside the patch by w 2^-21 (h 2^-21) of it, more than the rounding of u below and of the pdf's
-   * u w - 0.5 (a few w 2^-24), so that the pdf finds the point in this patch (issue 24: s = 1 rounded
-   * into the next patch, maybe of a cell without mass); monotone, so the warp stays monotone */
-  {
-    double ms = (double)W->w * (1.0 / 2097152.0), mt = (double)W->h * (1.0 / 2097152.0);
-    ms = ms < 0.25 ? ms : 0.25; mt = mt < 0.25 ? mt : 0.25;
-    s = s > ms ? (s < 1.0 - ms ? s : 1.0 - ms) : ms;
-    t = t > mt ? (t < 1.0 - mt ? t : 1.0 - mt) : mt;
-  }
-  if (centre) s = t = 0.5;
-  *pi = i; *pr = r;
-  /* <<Compute direction>>: u from the patch's left texel centre, v and its distance to the nearer pole */
-  u = ((float)i + 0.5f + (float)s) * W->inv_w;
-  if (u >= 1.0f) u -= 1.0f;
-  u = u < 0.99999994f ? u : 0.99999994f;
-  if (r == 0) { vp = (float)t * W->half_inv_h; v = vp; }
-  else if (r == h) { vp = (float)(1.0 - t) * W->half_inv_h; v = 1.0f - vp; }
-  else { v = ((float)r - 0.5f + (float)t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
-  el_envlight__uvp_to_dir(u, v, vp, d);
 }
 
 /* theta_halfturns with the distance to the nearer pole as well (same operations for *v) */
@@ -3379,98 +3141,6 @@ static inline void el_envlight__theta_vp(float r, float z, float *v, float *vp) 
   *vp = a;
   if (z < 0.0f) a = 1.0f - a;
   *v = a;
-}
-
-/* <<Compute PDF>> of the warp times the cell table tab at a light-space direction d (any length):
- * P(cell) x the warp's density in (u, v) inside the cell / (2 pi^2 sin theta). uv (may be NULL) gets the
- * (u, v) at which le() looks d up. */
-static float el_envlight__warp_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
-  float dd[3], r2, len2, rr, u, v, vp, X, Y;
-  int w = W->w, h = W->h, ku = W->ku, kv = W->kv, i, r, a, b, j;
-  const uint16_t *row;
-  const uint32_t *mg;
-  const float *c0, *c1;
-  double pc, prow, A, B, t, s, lin, fv, al, e0, e1, fu, p, len;
-  if (uv) uv[0] = uv[1] = 0.0f;
-  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
-  r2 = dd[0] * dd[0] + dd[1] * dd[1];
-  len2 = r2 + dd[2] * dd[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(dd)) return 0.0f;
-    r2 = dd[0] * dd[0] + dd[1] * dd[1];
-    len2 = r2 + dd[2] * dd[2];
-  }
-  rr = sqrtf(r2);
-  u = el_envlight__phi_turns(dd[1], dd[0]);
-  el_envlight__theta_vp(rr, dd[2], &v, &vp);
-  if (uv) { uv[0] = u; uv[1] = v; }
-  /* the patch and the fractions in it (le()'s texels: patch column i = floor(u w - 0.5), row floor(v h - 0.5) + 1) */
-  el_envlight__patch_at(W, u, v, &i, &r, &X, &Y);
-  s = (double)X - (double)i;
-  s = s < 1.0 ? (s > 0.0 ? s : 0.0) : 1.0;
-  if (r == 0) t = (double)vp * 2.0 * h;
-  else if (r == h) t = 1.0 - (double)vp * 2.0 * h;
-  else t = (double)Y - (double)r;
-  t = t < 1.0 ? (t > 0.0 ? t : 0.0) : 1.0;
-  a = W->cu_of[i]; b = W->cv_of[r];
-  /* P(cell): the table's two integer widths */
-  row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
-  pc = (double)(tab[b + 1] - tab[b]) * (double)(row[a + 1] - row[a]) * (1.0 / 1073741824.0); /* 2^-30 */
-  if (!(pc > 0.0)) return 0.0f;
-  /* the marginal in v inside the cell: the patch row's probability times the linear shape in t */
-  mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b;
-  j = r - W->b0[b];
-  prow = (double)(mg[j + 1] - mg[j]) * (1.0 / 16777216.0);
-  if (!(prow > 0.0)) return 0.0f;
-  A = W->S[(size_t)r * (size_t)ku + (size_t)a];
-  B = W->S[((size_t)r + 1) * (size_t)ku + (size_t)a];
-  lin = (1.0 - t) * A + t * B;
-  /* the conditional in u at t: the blend's linear density over patch i */
-  al = el_envlight__alpha(A, B, t);
-  el_envlight__cond_rows(W, r, a, &c0, &c1);
-  el_envlight__patch_ends(W, r, i, i - W->a0[a], c0, c1, al, 1.0 - al, &e0, &e1);
-  fu = ((1.0 - s) * e0 + s * e1) * (double)w;
-  len = (double)el_envlight__sqrt(len2);
-  /* density over (u, v) / sin(theta): f_v = prow (lin / mean) / dv. In the pole rows lin / mean = 2 t
-   * (2 (1 - t)) and t = 2 h vp, so f_v / sin(theta) = 8 h^2 prow vp / sin(theta), with vp / sin(theta) ->
-   * 1 / pi at the pole itself (vp and sin theta = r / len both computed without cancellation). */
-  if (r == 0 || r == h) {
-    double ratio = rr > 0.0f ? (double)vp * len / (double)rr : 0.318309886183790672;
-    fv = 8.0 * (double)h * (double)h * prow * ratio;
-  } else {
-    fv = prow * (lin / (0.5 * (A + B))) * (double)h * len / (double)rr;
-  }
-  p = pc * fv * fu * (1.0 / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI));
-  return p < (double)FLT_MAX ? (float)p : FLT_MAX;
-}
-
-/* The once-scheme of the warp (as el_envlight__ensure_slow): returns the tables or NULL (failed). The
- * build writes into *l through a cast: queries take const lights, so never define an el_envlight object
- * itself const (a const pointer to it is fine). */
-static const struct el_envlight__warp *el_envlight__warp_ensure(const el_envlight *cl, int ku, int kv) {
-  el_envlight *l = (el_envlight *)cl;
-#if EL_ENVLIGHT__ATOMICS
-  int expected = 0;
-  if (__atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE) == 2) return l->warp;
-  if (__atomic_compare_exchange_n(&l->warp_state, &expected, 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
-    struct el_envlight__warp *W = NULL;
-    el_result r = el_envlight__warp_build(l, ku, kv, &W);
-    l->warp = W;
-    l->warp_result = r;
-    __atomic_store_n(&l->warp_state, r == EL_SUCCESS ? 2 : 3, __ATOMIC_RELEASE);
-  } else {
-    while (__atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE) == 1) { /* another thread builds */ }
-  }
-  return __atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE) == 2 ? l->warp : NULL;
-#else
-  if (l->warp_state == 0) {
-    struct el_envlight__warp *W = NULL;
-    l->warp_result = el_envlight__warp_build(l, ku, kv, &W);
-    l->warp = W;
-    l->warp_state = l->warp_result == EL_SUCCESS ? 2 : 3;
-  }
-  return l->warp_state == 2 ? l->warp : NULL;
-#endif
 }
 
 /* >> product sampling
@@ -4092,43 +3762,6 @@ static void el_envlight__cos_sample_constant(const el_envlight *l, const float n
   if (rgb) for (k = 0; k < 3; ++k) rgb[k] = *pdf > 0.0f ? l->constant[k] : 0.0f;
 }
 
-/* sample_li_cos and sample_li in mode BILINEAR: the warp times cell table tab */
-static void el_envlight__warp_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], uv[2], f0, f1, p, X, Y;
-  int a, b, i, r, pi, pr, k;
-  if (W->all_zero || tab[W->kv] == 0) { /* nothing emits (above this surface, for a normal's table) */
-    wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
-    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    return;
-  }
-  el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
-  /* the point, then its pdf: the pdf function's at wi (so pdf_li_cos(wi) equals it bit for bit), from d
-   * itself for a signed permutation (the round trip is exact), else from wi brought back as pdf_li_cos
-   * does. Rounding can move a point at the very edge of its patch (u0 within ulps of 1: (i + 0.5 + s) / w
-   * rounds up to the next patch) or near a pole under a rotation (phi is ill-conditioned there) into
-   * another patch, maybe of another cell without mass, and a u on a CDF step can land on a patch's
-   * massless end: then the sample is its patch's centre instead (a point of the same patch; a
-   * measure-zero set of u moves, issue 24). */
-  for (k = 0; k < 2; ++k) {
-    el_envlight__warp_sample_cell(W, a, b, f0, f1, k, d, &i, &r);
-    el_envlight__to_world(l, d, wi);
-    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d);
-    p = el_envlight__warp_pdf_light(W, tab, d, uv);
-    el_envlight__patch_at(W, uv[0], uv[1], &pi, &pr, &X, &Y);
-    if (pi == i && pr == r && p > 0.0f) break;
-  }
-  *pdf = p;
-  if (rgb) {
-    if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb); /* le(wi): the same (u, v) */
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
-  }
-}
-
-/* sample_li in importance mode BILINEAR (the tables are built: el_envlight__build made them) */
-static void el_envlight__warp_sample_plain(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  el_envlight__warp_sample(l, l->warp, l->warp->plain, uu, wi, rgb, pdf);
-}
-
 EL_DEF el_result el_envlight_prepare_product(const el_envlight *l, const el_envlight_product_options *opt) {
   int ku = EL_ENVLIGHT__CELLS_U, kv = EL_ENVLIGHT__CELLS_V, m = EL_ENVLIGHT__NORMAL_BINS;
   const struct el_envlight__warp *W;
@@ -4190,14 +3823,190 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
   return (cs == 2 && l->prod) ? l->prod->warp_bytes + l->prod->cos_bytes : 0;
 }
 
+/* >> importance BILINEAR: le()'s patches (issue 22's patch density; NOTES ON PRODUCT SAMPLING, point 1)
+ * The density is the bilinear interpolant, over each of le()'s patches (the warp's layout above: w patch
+ * columns between texel centres, h + 1 patch rows, the two pole rows half as tall with a vertex row of
+ * 0), of the vertex values V = lum x sin(theta) at the texel centres, as bfloat16 rounded up (the product
+ * sampler's grid: el_envlight__prod_corners reads both). A patch is picked from one discrete 2D table
+ * over the patches (distribution2d.h's integer CDFs, each patch's mass its corners' mean x its height,
+ * and its guide tables: the light's own sampler, l->dist and l->fast), then (s, t) inside it by two
+ * linear inversions (t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s from the conditional at
+ * t). Its density is the patch's integer share x bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta):
+ * el_envlight__prod_eval's expression with the distribution's 2^24 x 2^24 units (dens_k = 2^-48 w h /
+ * (2 pi^2)). pdf_li locates the direction (le()'s own atans: the (u, v) le() looks up), reads the two
+ * integer widths and the four corners. sample_li locates its own direction the same way, so its pdf is
+ * pdf_li(wi)'s and its radiance le(wi), bit for bit. */
+
+/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2 for float a, b >= 0, not both 0: the
+ * inverse CDF of a linear density in the form without cancellation (a = b: t = q; a = 0: sqrt(q); b = 0:
+ * 1 - sqrt(1 - q)). In double: the squares of floats cannot overflow nor lose a denormal. */
+static inline float el_envlight__lin_inv(float a, float b, float q) {
+  double A = (double)a, B = (double)b, Q = (double)q, d = A * A + Q * (B * B - A * A), den, t;
+  den = A + sqrt(d > 0.0 ? d : 0.0);
+  t = den > 0.0 ? Q * (A + B) / den : 0.0; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
+  return t < 1.0 ? (t > 0.0 ? (float)t : 0.0f) : 1.0f;
+}
+
+/* (u, v) and the light-space unit direction of (s, t) in patch (i, r), as le() maps them: u from the
+ * patch's left texel centre (wrapping at the seam), v and its distance vp to the nearer pole. */
+static inline void el_envlight__patch_dir(const struct el_envlight__warp *W, int i, int r, float s, float t, float d[3]) {
+  float u = ((float)i + 0.5f + s) * W->inv_w, v, vp;
+  if (u >= 1.0f) u -= 1.0f;
+  u = u < 0.99999994f ? u : 0.99999994f;
+  if (r == 0) { vp = t * W->half_inv_h; v = vp; }
+  else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; v = 1.0f - vp; }
+  else { v = ((float)r - 0.5f + t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
+  el_envlight__uvp_to_dir(u, v, vp, d);
+}
+
+/* <<Build the patch tables>>: the vertex grid (bfloat16), the patches' masses, the distribution over them
+ * and its guide tables. The patches are the image's, whatever importance_width says (maps over the cap
+ * never get here: init gives them CELL_AVERAGE). */
+static el_result el_envlight__patch_build(el_envlight *l) {
+  struct el_envlight__warp *W;
+  int w = l->width, h = l->height, i, j, r;
+  float *f = NULL;
+  size_t nv = ((size_t)h + 2) * (size_t)w;
+  el_result res = EL_ERROR_OUT_OF_MEMORY;
+  el_distribution_options dopt;
+  W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
+  if (!W) return EL_ERROR_OUT_OF_MEMORY;
+  memset(W, 0, sizeof *W);
+  W->w = w; W->h = h;
+  W->inv_w = 1.0f / (float)w; W->inv_h = 1.0f / (float)h; W->half_inv_h = 0.5f / (float)h;
+  W->dens_k = (float)(3.552713678800501e-15 * (double)w * (double)h / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI)); /* 2^-48 */
+  W->sin_row = (float *)EL_MALLOC((size_t)h * sizeof(float));
+  W->V16 = (uint16_t *)EL_MALLOC(nv * sizeof(uint16_t));
+  f = (float *)EL_MALLOC(((size_t)h + 1) * (size_t)w * sizeof(float));
+  if (!W->sin_row || !W->V16 || !f) goto fail;
+  for (j = 0; j < h; ++j) W->sin_row[j] = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / h);
+  /* <<Initialize compensated PDF>> (pbrt-v4): the mean luminance (the exact integral of le / 4 pi)
+   * subtracted from every vertex, clamped at 0; none above it: the plain density */
+  if (l->compensated) {
+    double mean = (0.212671 * l->integral[0] + 0.715160 * l->integral[1] + 0.072169 * l->integral[2]) / (4.0 * EL_ENVLIGHT__PI);
+    int any = 0;
+    W->offset = mean < (double)FLT_MAX ? (float)mean : FLT_MAX;
+    for (j = 0; j < h && !any; ++j)
+      for (i = 0; i < w; ++i) if (el_envlight__vertex_of(l, W, i, j) > 0.0f) { any = 1; break; }
+    if (!any) { W->offset = 0.0f; W->fell_back = l->fell_back = 1; }
+  }
+  /* the vertex rows: 0 at the poles; each value at most FLT_MAX / 8, so that a patch's sum of four
+   * corners (rounded up to bfloat16) stays finite */
+  for (i = 0; i < w; ++i) W->V16[i] = W->V16[((size_t)h + 1) * (size_t)w + (size_t)i] = 0;
+  for (j = 0; j < h; ++j)
+    for (i = 0; i < w; ++i) {
+      float v = el_envlight__vertex_of(l, W, i, j);
+      W->V16[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__bf16_up(v < 4.25e37f ? v : 4.25e37f);
+    }
+  /* each patch's mass over the table's equal bins: the mean of its (rounded) corners x its height (the
+   * pole rows half) */
+  for (r = 0; r <= h; ++r)
+    for (i = 0; i < w; ++i) {
+      float c[4];
+      el_envlight__prod_corners(W, i, r, c);
+      f[(size_t)r * (size_t)w + (size_t)i] = ((c[0] + c[1]) + (c[2] + c[3])) * (r == 0 || r == h ? 0.125f : 0.25f);
+    }
+  memset(&dopt, 0, sizeof dopt);
+  res = el_distribution2d_init(&l->dist, f, w, h + 1, &dopt);
+  if (res != EL_SUCCESS) goto fail;
+  W->all_zero = l->dist.all_zero;
+  if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
+    el_distribution_fast_options fo;
+    memset(&fo, 0, sizeof fo);
+    fo.method = l->sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? EL_DISTRIBUTION_FAST_ALIAS : EL_DISTRIBUTION_FAST_GUIDE;
+    fo.guide_shrink_log2 = 2; /* as the other modes: 1 byte per patch */
+    res = el_distribution2d_fast_init_ex(&l->fast, &l->dist, &fo);
+    if (res != EL_SUCCESS) { el_distribution2d_free(&l->dist); goto fail; }
+  }
+  EL_FREE(f);
+  W->warp_bytes = sizeof *W + (size_t)h * sizeof(float) + nv * sizeof(uint16_t) + el_distribution2d_bytes(&l->dist) +
+                  (l->sampler != EL_ENVLIGHT_SAMPLER_CDF ? el_distribution2d_fast_bytes(&l->fast) : 0);
+  l->warp = W;
+  l->warp_state = 2;
+  return EL_SUCCESS;
+fail:
+  EL_FREE(f);
+  el_envlight__warp_free(W);
+  return res;
+}
+
 static size_t el_envlight__warp_bytes(const el_envlight *l) { return l->warp ? l->warp->warp_bytes : 0; }
 
-/* pdf_li in importance mode BILINEAR (the tables are built: el_envlight__build made them) */
-static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) {
+/* The density of patch (q->i, q->r) at a located point: its two integer widths, then the corners. */
+static inline float el_envlight__patch_eval(const el_envlight *l, const el_envlight__ploc *q) {
+  const uint32_t *row = l->dist.cdf + (size_t)q->r * ((size_t)l->dist.nu + 1);
+  uint32_t wv = l->dist.marginal[q->r + 1] - l->dist.marginal[q->r], wu = row[q->i + 1] - row[q->i];
+  float c[4];
+  if (wv == 0 || wu == 0) return 0.0f; /* a patch without mass (all four corners 0) */
+  el_envlight__prod_corners(l->warp, q->i, q->r, c);
+  return el_envlight__prod_eval(l->warp, q, wv, wu, c);
+}
+
+/* pdf_li in importance mode BILINEAR (the tables are built) */
+static float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3];
+  el_envlight__ploc q;
   if (!l->warp || l->warp->all_zero) return 0.0f;
   if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
-  return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
+  if (!el_envlight__prod_locate(l->warp, d, &q)) return 0.0f;
+  return el_envlight__patch_eval(l, &q);
+}
+
+/* The sample at (s, t) of patch (i, r) with integer widths wv, wu and corners c: its world direction and
+ * its pdf, pdf_li's at wi; q gets where pdf_li located it. */
+static inline float el_envlight__patch_point(const el_envlight *l, int i, int r, float s, float t, uint32_t wv, uint32_t wu, const float c[4],
+                                              float wi[3], el_envlight__ploc *q) {
+  float d[3];
+  el_envlight__patch_dir(l->warp, i, r, s, t, d);
+  el_envlight__to_world(l, d, wi);
+  if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li brings wi back */
+  if (!el_envlight__prod_locate(l->warp, d, q)) return 0.0f; /* (not for a unit d) */
+  if (q->i == i && q->r == r) return el_envlight__prod_eval(l->warp, q, wv, wu, c); /* pdf_li's arithmetic, its reads done */
+  return el_envlight__patch_eval(l, q);
+}
+
+/* the rare retry at the patch's centre, out of line */
+static EL_ENVLIGHT__NOINLINE float el_envlight__patch_centre(const el_envlight *l, int i, int r, uint32_t wv, uint32_t wu, const float c[4],
+                                                           float wi[3], el_envlight__ploc *q) {
+  return el_envlight__patch_point(l, i, r, 0.5f, 0.5f, wv, wu, c, wi, q);
+}
+
+/* sample_li in importance mode BILINEAR (the tables are built) */
+static void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  const struct el_envlight__warp *W = l->warp;
+  float fu, fv, pb, c[4], s, t, p;
+  int i, r;
+  uint32_t wv, wu;
+  const uint32_t *row;
+  el_envlight__ploc q;
+  if (!W || W->all_zero) { /* nothing emits */
+    wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
+    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    return;
+  }
+  /* <<Pick a patch>>: the light's sampler over the patch table (guide: CDF inversion's patch) */
+  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], &i, &r, &fu, &fv, &pb);
+  else el_distribution2d_fast_sample_bins(&l->fast, uu[0], uu[1], &i, &r, &fu, &fv, &pb);
+  row = l->dist.cdf + (size_t)r * ((size_t)l->dist.nu + 1);
+  wv = l->dist.marginal[r + 1] - l->dist.marginal[r]; wu = row[i + 1] - row[i];
+  /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
+  el_envlight__prod_corners(W, i, r, c);
+  t = el_envlight__lin_inv(c[0] + c[1], c[2] + c[3], fv);
+  s = el_envlight__lin_inv(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), fu);
+  /* 2^-12 of a patch inside its edges (as product sampling): the pdf, which locates the direction again
+   * with le()'s atans (2.5e-7 rad), finds this patch on maps up to 4096 x 2048, so a sample on the edge of
+   * a patch without mass does not get pdf 0 */
+  t = t > 2.44140625e-4f ? (t < 0.999755859f ? t : 0.999755859f) : 2.44140625e-4f;
+  s = s > 2.44140625e-4f ? (s < 0.999755859f ? s : 0.999755859f) : 2.44140625e-4f;
+  p = el_envlight__patch_point(l, i, r, s, t, wv, wu, c, wi, &q);
+  /* the round trip left the patch for one without mass (near a pole under a general rotation, or a map
+   * over 4096 wide): the patch's centre instead, as issue 24 did */
+  if (!(p > 0.0f)) p = el_envlight__patch_centre(l, i, r, wv, wu, c, wi, &q);
+  *pdf = p;
+  if (rgb) {
+    if (p > 0.0f) el_envlight__bilerp(l, q.u, q.v, rgb); /* le(wi): the same (u, v) */
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
 }
 
 /* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */

@@ -14,6 +14,8 @@ TTUV(map alone) / TTUV(strategy) (relvar x CPU s; above 1 the strategy beats the
 relvar ratio alone (per sample) in brackets.
   python3 bench/sun_rule.py [--seeds 6] [--spp 16] [--scenes bench_city,lobes_city,sun_shadow_object,sun_porch]
                             [--sampler zsobol] [--strategies map,default,product,alone]
+  (--strategies default,bilinear: render's --importance bilinear, issue 22's patch density, against the
+  default; without product the lit / shadowed split is over the pixels where those two images differ)
 """
 import argparse, os, re, subprocess, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -23,7 +25,8 @@ ROOT = lobes.ROOT
 STRATS = {'map': ['--env-sampling', 'map'], 'default': [], 'product': ['--env-sun-diffuse', 'product'],
           'alone': ['--env-sun-diffuse', 'alone'], 'mapmis': ['--env-sun-diffuse', 'map'],
           'suncos': ['--env-sun-diffuse', 'suncos'], 'suncos.3': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.3'],
-          'suncos.7': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.7']}
+          'suncos.7': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.7'],
+          'bilinear': ['--importance', 'bilinear']}  # issue 22's patch density for the map alone
 
 
 def lum(img, i):
@@ -82,9 +85,10 @@ def main():
                     cpu[k].append(t)
             npx = len(imgs[strats[0]][0]) // 3
             regions = [(reg, list(range(npx)))]
-            if reg in ('full',) + (('crop ' + a.crop,) if a.crop else ()) and 'product' in imgs and ('mapmis' in imgs or 'default' in imgs):
+            if reg in ('full',) + (('crop ' + a.crop,) if a.crop else ()) and ('product' in imgs or 'bilinear' in imgs) and ('mapmis' in imgs or 'default' in imgs):
                 base = imgs['mapmis' if 'mapmis' in imgs else 'default'][0]
-                ch = [p for p in range(npx) if any(base[3 * p + c] != imgs['product'][0][3 * p + c] for c in range(3))]
+                other = imgs['product' if 'product' in imgs else 'bilinear'][0]
+                ch = [p for p in range(npx) if any(base[3 * p + c] != other[3 * p + c] for c in range(3))]
                 allimgs = [im for k in strats for im in imgs[k]]
                 ml = {p: sum(lum(im, p) for im in allimgs) / len(allimgs) for p in ch}
                 if ch:
