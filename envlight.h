@@ -1091,7 +1091,6 @@ extern "C" {
 #define EL_ENVLIGHT__HOT_SAMPLE 1
 #define EL_ENVLIGHT__HOT_PDF 2
 #define EL_ENVLIGHT__HOT_SAMPLE_FINISH 4
-#define EL_ENVLIGHT__HOT_PATCH 8 /* importance BILINEAR's patch tables are built: sample_li and pdf_li go straight there */
 #define EL_ENVLIGHT__INV_2PI2 0.05066059182116889f /* 1 / (2 pi^2) */
 
 /* sqrt without libm's errno branch (sqrtf(x < 0) must set errno, so compilers call it for such x):
@@ -1292,6 +1291,7 @@ static void el_envlight__warp_free(struct el_envlight__warp *W);
 static el_result el_envlight__patch_build(el_envlight *l);
 static void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
 static float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]);
+static void el_envlight__patch_sample_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 static size_t el_envlight__warp_bytes(const el_envlight *l);
 
 /* >> private helpers: validation */
@@ -2145,7 +2145,6 @@ static el_result el_envlight__build(el_envlight *l) {
 
 /* Which inline fast paths are usable once the tables are built (stored after them, with release). */
 static int el_envlight__hot_bits(const el_envlight *l, el_result r) {
-  if (r == EL_SUCCESS && l->width > 0 && l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return EL_ENVLIGHT__HOT_PATCH;
   if (r != EL_SUCCESS || l->width == 0 || l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR || l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return 0;
   /* sample_li's inline path: direction tables and the guide sampler; HOT_SAMPLE when the table direction
    * and pdf are final (table_done: a signed-permutation matrix, a map that is not all black), else
@@ -2405,10 +2404,8 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_world_cold(const el_envlight
   return el_envlight__pdf_light(l, d);
 }
 
-static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_rest(const el_envlight *l, const float dir[3]) {
   float d[3], len2;
-  if (!el_envlight__ensure(l)) return 0.0f;
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__patch_pdf_li(l, dir);
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) return el_envlight__ea_pdf_li(l, dir);
   el_envlight__to_light(l, dir, d);
   len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
@@ -2416,15 +2413,21 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l
   return el_envlight__pdf_light(l, d);
 }
 
+/* pdf_li without the inline path: a small frame, so that importance BILINEAR's call is a tail call */
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+  if (!el_envlight__ensure(l)) return 0.0f;
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__patch_pdf_li(l, dir);
+  return el_envlight__pdf_li_rest(l, dir);
+}
+
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3], r2, len2;
   /* the hot bit EL_ENVLIGHT__HOT_PDF: tables built, and a map (not the constant light) */
 #if EL_ENVLIGHT__ATOMICS
-  int hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
+  if (!(__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF)) return el_envlight__pdf_li_slow(l, dir);
 #else
-  int hot = l->hot;
+  if (!(l->hot & EL_ENVLIGHT__HOT_PDF)) return el_envlight__pdf_li_slow(l, dir);
 #endif
-  if (!(hot & EL_ENVLIGHT__HOT_PDF)) return (hot & EL_ENVLIGHT__HOT_PATCH) ? el_envlight__patch_pdf_li(l, dir) : el_envlight__pdf_li_slow(l, dir);
   el_envlight__to_light(l, dir, d);
   r2 = d[0] * d[0] + d[1] * d[1];
   len2 = r2 + d[2] * d[2];
@@ -2582,17 +2585,8 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
 }
 
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_rest(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float d[3], u, v, p;
-  if (!el_envlight__ensure(l)) {
-    wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
-    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    return;
-  }
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { /* le()'s patches */
-    el_envlight__patch_sample(l, uu, wi, rgb, pdf);
-    return;
-  }
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) { /* pbrt-v4's equal-area map */
     el_envlight__ea_sample(l, uu, wi, rgb, pdf);
     return;
@@ -2631,6 +2625,17 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight 
     if (p > 0.0f) el_envlight__lookup(l, u, v, rgb);
     else rgb[0] = rgb[1] = rgb[2] = 0.0f;
   }
+}
+
+/* sample_li without the inline path: a small frame, so that importance BILINEAR's call is a tail call */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  if (!el_envlight__ensure(l)) {
+    wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
+    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    return;
+  }
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { el_envlight__patch_sample(l, uu, wi, rgb, pdf); return; } /* le()'s patches */
+  el_envlight__sample_li_rest(l, uu, wi, rgb, pdf);
 }
 
 #if EL_ENVLIGHT__SSE
@@ -2747,7 +2752,6 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
     return;
   }
 #else
-  if (hot & EL_ENVLIGHT__HOT_PATCH) { el_envlight__patch_sample(l, uu, wi, rgb, pdf); return; }
   if ((hot & (EL_ENVLIGHT__HOT_SAMPLE | EL_ENVLIGHT__HOT_SAMPLE_FINISH)) && el_distribution2d_u_in_range(uu[0], uu[1])) {
     float fu, fv, pb;
     int iu, iv;
@@ -2757,9 +2761,6 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
       return;
     }
   }
-#endif
-#if EL_ENVLIGHT__SSE
-  if (hot & EL_ENVLIGHT__HOT_PATCH) { el_envlight__patch_sample(l, uu, wi, rgb, pdf); return; }
 #endif
   el_envlight__sample_li_slow(l, uu, wi, rgb, pdf);
 }
@@ -2831,6 +2832,10 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
     return;
   }
 #endif
+  if (n > 1 && l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0 && el_envlight__ensure(l)) {
+    el_envlight__patch_sample_n(l, n, u, wi, rgb, pdf); /* (importance BILINEAR: its own batches) */
+    return;
+  }
   for (i = 0; i < n; ++i) el_envlight_sample_li(l, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
 }
 
@@ -3837,14 +3842,17 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
  * integer widths and the four corners. sample_li locates its own direction the same way, so its pdf is
  * pdf_li(wi)'s and its radiance le(wi), bit for bit. */
 
-/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2 for float a, b >= 0, not both 0: the
- * inverse CDF of a linear density in the form without cancellation (a = b: t = q; a = 0: sqrt(q); b = 0:
- * 1 - sqrt(1 - q)). In double: the squares of floats cannot overflow nor lose a denormal. */
+/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2 for a, b >= 0, not both 0: the inverse
+ * CDF of a linear density in the form without cancellation (a = b: t = q; a = 0: sqrt(q); b = 0: 1 -
+ * sqrt(1 - q)). For the patch grid's values (at most 2^61 for a sum of two: the squares stay finite);
+ * sums below 2^-40 are scaled up first, so that the squares stay normal floats. */
 static inline float el_envlight__lin_inv(float a, float b, float q) {
-  double A = (double)a, B = (double)b, Q = (double)q, d = A * A + Q * (B * B - A * A), den, t;
-  den = A + sqrt(d > 0.0 ? d : 0.0);
-  t = den > 0.0 ? Q * (A + B) / den : 0.0; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
-  return t < 1.0 ? (t > 0.0 ? (float)t : 0.0f) : 1.0f;
+  float d, den, t;
+  if (a + b < 9.09494702e-13f) { a *= 1.20892582e24f; b *= 1.20892582e24f; } /* 2^-40, 2^80 */
+  d = a * a + q * (b * b - a * a);
+  den = a + el_envlight__sqrt(d > 0.0f ? d : 0.0f);
+  t = den > 0.0f ? q * (a + b) / den : 0.0f; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
+  return t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
 }
 
 /* (u, v) and the light-space unit direction of (s, t) in patch (i, r), as le() maps them: u from the
@@ -3857,6 +3865,105 @@ static inline void el_envlight__patch_dir(const struct el_envlight__warp *W, int
   else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; v = 1.0f - vp; }
   else { v = ((float)r - 0.5f + t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
   el_envlight__uvp_to_dir(u, v, vp, d);
+}
+
+/* THE FAST PATH (maps of at least 256 x 128: patch angles <= pi / 128): where pdf_li finds a direction
+ * without atan. The patch column and row come from bin finders over half texels (el_envlight__finder
+ * with 2w and 2h bins: the texel centres are the odd edges), as pdf_li's own bins; s and t from the angle
+ * to a reference edge of the patch, atan of the tangent of the difference, (y c - x s) / (x c + y s) for
+ * phi and (r c - z s) / (z c + r s) for theta (|angle| <= pi / 128: atan q = q - q^3 / 3 to float
+ * precision). Column i's reference is its texel centre phi_i (cos, sin: col_tab[2 i]); patch row r's
+ * (row_tab[8 r]: cos, sin, t0, 1 / dtheta, dtheta) is its edge nearer the pole (the pole itself for the
+ * two pole rows), so that sample_li's sin(theta) = s cos a + c sin a never cancels; t = t0 + angle /
+ * dtheta. sample_li forms its direction from the same references by angle addition (sin b = b - b^3 / 6,
+ * cos b = 1 - b^2 / 2). The light's own pdf_li tables (u_base, u_edge, v_base, v_edge; col_tab, row_tab
+ * in dir_alloc) hold them: mode BILINEAR has no others. */
+static el_result el_envlight__patch_tables(el_envlight *l, int w, int h) {
+  int i, r;
+  el_result res = el_envlight__finder(2 * w, 4, &l->u_base, &l->u_edge, &l->u_cells);
+  if (res == EL_SUCCESS) res = el_envlight__finder(2 * h, 2, &l->v_base, &l->v_edge, &l->v_cells);
+  if (res != EL_SUCCESS) return res;
+  l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
+  l->v_cell_scale = (float)(l->v_cells - 2) * 0.5f;
+  l->dir_alloc = EL_MALLOC(((size_t)2 * (size_t)w + 8 * ((size_t)h + 1)) * sizeof(float));
+  if (!l->dir_alloc) return EL_ERROR_OUT_OF_MEMORY;
+  l->col_tab = (float *)l->dir_alloc;
+  l->row_tab = l->col_tab + 2 * (size_t)w;
+  for (i = 0; i < w; ++i) {
+    double a = 2.0 * EL_ENVLIGHT__PI * (i + 0.5) / w;
+    l->col_tab[2 * i] = (float)cos(a); l->col_tab[2 * i + 1] = (float)sin(a);
+  }
+  for (r = 0; r <= h; ++r) {
+    float *t = l->row_tab + 8 * (size_t)r;
+    double dt = (r == 0 || r == h ? 0.5 : 1.0) * EL_ENVLIGHT__PI / h, ref;
+    int north = 2 * r <= h; /* the middle row (h even) may take either edge */
+    ref = north ? (r == 0 ? 0.0 : EL_ENVLIGHT__PI * (r - 0.5) / h) : (r == h ? EL_ENVLIGHT__PI : EL_ENVLIGHT__PI * (r + 0.5) / h);
+    memset(t, 0, 8 * sizeof(float));
+    t[0] = (float)cos(ref); t[1] = north ? (float)sin(ref) : (float)sin(EL_ENVLIGHT__PI - ref); /* sin 0 and sin pi: exactly 0 */
+    t[2] = north ? 0.0f : 1.0f;
+    t[3] = (float)(1.0 / dt); t[4] = (float)dt;
+  }
+  return EL_SUCCESS;
+}
+
+/* atan(q) for |q| <= tan(pi / 128): q - q^3 / 3 (the next term, q^5 / 5, is below 2e-9 q) */
+static inline float el_envlight__atan_small(float q) { return q - q * q * q * 0.333333343f; }
+
+/* The fast path's <<Locate the patch>> of a light-space direction (x, y, z), r2 = x^2 + y^2 and len2
+ * normal floats: patch (i, r), fractions (s, t), and rr = sqrt(r2), len = sqrt(len2) in q (q.u, q.v,
+ * q.vp, q.Y unused). */
+static inline void el_envlight__patch_find(const el_envlight *l, float x, float y, float z, float r2, float len2, el_envlight__ploc *q) {
+  float rr = el_envlight__sqrt(r2), pu, tv, cs, sn, a;
+  const float *rt;
+  uint32_t hu, hv;
+  size_t c;
+  int i, r;
+  pu = 2.0f - copysignf(1.0f + x / (fabsf(x) + fabsf(y) + FLT_MIN), y); /* pdf_li's diamond angle */
+  pu = pu < 3.99999976f ? pu : 3.99999976f;
+  c = (size_t)(int64_t)(pu * l->u_cell_scale);
+  hu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]); /* the half texel */
+  tv = 1.0f - z / (rr + fabsf(z));
+  c = (size_t)(int64_t)(tv * l->v_cell_scale);
+  hv = (uint32_t)l->v_base[c] + (tv >= l->v_edge[c]);
+  i = hu == 0 ? l->width - 1 : (int)((hu - 1u) >> 1);
+  r = (int)((hv + 1u) >> 1);
+  cs = l->col_tab[2 * i]; sn = l->col_tab[2 * i + 1];
+  a = el_envlight__atan_small((y * cs - x * sn) / (x * cs + y * sn)) * ((float)l->width * 0.159154943f);
+  q->s = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f;
+  rt = l->row_tab + 8 * (size_t)r;
+  a = rt[2] + el_envlight__atan_small((rr * rt[0] - z * rt[1]) / (z * rt[0] + rr * rt[1])) * rt[3];
+  q->Y = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f; /* t */
+  q->i = i; q->r = r; q->rr = rr; q->len2 = el_envlight__sqrt(len2); /* len */
+}
+
+/* The fast path's density at a found point of patch (q->i, q->r) with factor K (pdf_table) and corners c:
+ * K bil(s, t) / sin(theta), sin(theta) = rr / len; in the pole rows (one edge 0) bil / sin -> the other
+ * edge x (1 / dtheta) at the pole itself (rr = 0). */
+static inline float el_envlight__patch_density(const el_envlight *l, const el_envlight__ploc *q, float K, const float c[4]) {
+  float s = q->s, t = q->Y, e0 = c[0] + s * (c[1] - c[0]), e1 = c[2] + s * (c[3] - c[2]), p;
+  if (q->rr > 0.0f) p = K * (e0 + t * (e1 - e0)) * (q->len2 / q->rr);
+  else p = K * (e0 + e1) * l->row_tab[8 * (size_t)q->r + 3]; /* the exact pole: one of e0, e1 is 0 */
+  return p < FLT_MAX ? p : FLT_MAX;
+}
+
+/* Patch (i, r)'s record: returns K, c gets the corners (el_envlight__prod_corners' values) */
+static inline float el_envlight__patch_rec(const el_envlight *l, int i, int r, float c[4]) {
+  const float *rec = l->pdf_table + 4 * ((size_t)r * (size_t)l->width + (size_t)i);
+  uint32_t a, b;
+  memcpy(&a, rec + 1, 4); memcpy(&b, rec + 2, 4);
+  c[0] = el_envlight__bf16((uint16_t)(a & 0xffffu)); c[1] = el_envlight__bf16((uint16_t)(a >> 16));
+  c[2] = el_envlight__bf16((uint16_t)(b & 0xffffu)); c[3] = el_envlight__bf16((uint16_t)(b >> 16));
+  return rec[0];
+}
+
+/* The fast path's pdf_li of a light-space direction (x, y, z) whose r2 and len2 are normal floats */
+static inline float el_envlight__patch_pdf_fast(const el_envlight *l, float x, float y, float z, float r2, float len2) {
+  el_envlight__ploc q;
+  float c[4], K;
+  el_envlight__patch_find(l, x, y, z, r2, len2, &q);
+  K = el_envlight__patch_rec(l, q.i, q.r, c);
+  if (!(K > 0.0f)) return 0.0f; /* a patch without mass */
+  return el_envlight__patch_density(l, &q, K, c);
 }
 
 /* <<Build the patch tables>>: the vertex grid (bfloat16), the patches' masses, the distribution over them
@@ -3890,14 +3997,22 @@ static el_result el_envlight__patch_build(el_envlight *l) {
       for (i = 0; i < w; ++i) if (el_envlight__vertex_of(l, W, i, j) > 0.0f) { any = 1; break; }
     if (!any) { W->offset = 0.0f; W->fell_back = l->fell_back = 1; }
   }
-  /* the vertex rows: 0 at the poles; each value at most FLT_MAX / 8, so that a patch's sum of four
-   * corners (rounded up to bfloat16) stays finite */
-  for (i = 0; i < w; ++i) W->V16[i] = W->V16[((size_t)h + 1) * (size_t)w + (size_t)i] = 0;
-  for (j = 0; j < h; ++j)
-    for (i = 0; i < w; ++i) {
-      float v = el_envlight__vertex_of(l, W, i, j);
-      W->V16[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__bf16_up(v < 4.25e37f ? v : 4.25e37f);
-    }
+  /* the vertex rows: 0 at the poles; the values scaled by a power of two so that the largest is 2^60 (the
+   * density does not change: it is bil / mean), positive ones at least 2^-60, so that el_envlight__lin_inv's
+   * squares stay normal floats */
+  {
+    float vmax = 0.0f, k = 1.0f;
+    int e;
+    for (j = 0; j < h; ++j)
+      for (i = 0; i < w; ++i) { float v = el_envlight__vertex_of(l, W, i, j); vmax = v > vmax ? v : vmax; }
+    if (vmax > 0.0f) { (void)frexpf(vmax, &e); k = ldexpf(1.0f, 60 - e); }
+    for (i = 0; i < w; ++i) W->V16[i] = W->V16[((size_t)h + 1) * (size_t)w + (size_t)i] = 0;
+    for (j = 0; j < h; ++j)
+      for (i = 0; i < w; ++i) {
+        double v = (double)el_envlight__vertex_of(l, W, i, j) * (double)k;
+        W->V16[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__bf16_up(v > 0.0 ? (float)(v > 8.67361738e-19 ? v : 8.67361738e-19) : 0.0f);
+      }
+  }
   /* each patch's mass over the table's equal bins: the mean of its (rounded) corners x its height (the
    * pole rows half) */
   for (r = 0; r <= h; ++r)
@@ -3910,17 +4025,44 @@ static el_result el_envlight__patch_build(el_envlight *l) {
   res = el_distribution2d_init(&l->dist, f, w, h + 1, &dopt);
   if (res != EL_SUCCESS) goto fail;
   W->all_zero = l->dist.all_zero;
+  /* each patch's record (l->pdf_table, 16 bytes: one cache line for everything the pdf reads of it): its
+   * density factor K = P / (mean(corners) du dv 2 pi^2), P from its integer widths, so that the pdf is K
+   * bil(s, t) / sin(theta); then its four corners as bfloat16 pairs (V[r][i], V[r][i + 1]) and (V[r + 1][i],
+   * V[r + 1][i + 1]) */
+  EL_FREE(f);
+  f = NULL;
+  l->pdf_table = (float *)EL_MALLOC(((size_t)h + 1) * (size_t)w * 4 * sizeof(float));
+  if (!l->pdf_table) { el_envlight__free_tables(l); res = EL_ERROR_OUT_OF_MEMORY; goto fail; }
+  for (r = 0; r <= h; ++r) {
+    const uint32_t *row = l->dist.cdf + (size_t)r * ((size_t)w + 1);
+    const uint16_t *V = W->V16 + (size_t)r * (size_t)w;
+    float wv = (float)(int32_t)(l->dist.marginal[r + 1] - l->dist.marginal[r]);
+    for (i = 0; i < w; ++i) {
+      float c[4], wu = (float)(int32_t)(row[i + 1] - row[i]), sum, *rec = l->pdf_table + 4 * ((size_t)r * (size_t)w + (size_t)i);
+      int i1 = i + 1 < w ? i + 1 : 0;
+      uint32_t top = (uint32_t)V[i] | (uint32_t)V[i1] << 16, bottom = (uint32_t)V[(size_t)w + (size_t)i] | (uint32_t)V[(size_t)w + (size_t)i1] << 16;
+      el_envlight__prod_corners(W, i, r, c);
+      sum = (c[0] + c[1]) + (c[2] + c[3]);
+      rec[0] = wu > 0.0f ? wv * wu * W->dens_k * (r == 0 || r == h ? 8.0f : 4.0f) / sum : 0.0f;
+      memcpy(rec + 1, &top, 4); memcpy(rec + 2, &bottom, 4); rec[3] = 0.0f;
+    }
+  }
   if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
     el_distribution_fast_options fo;
     memset(&fo, 0, sizeof fo);
     fo.method = l->sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? EL_DISTRIBUTION_FAST_ALIAS : EL_DISTRIBUTION_FAST_GUIDE;
     fo.guide_shrink_log2 = 2; /* as the other modes: 1 byte per patch */
     res = el_distribution2d_fast_init_ex(&l->fast, &l->dist, &fo);
-    if (res != EL_SUCCESS) { el_distribution2d_free(&l->dist); goto fail; }
+    if (res != EL_SUCCESS) { el_envlight__free_tables(l); goto fail; }
   }
-  EL_FREE(f);
   W->warp_bytes = sizeof *W + (size_t)h * sizeof(float) + nv * sizeof(uint16_t) + el_distribution2d_bytes(&l->dist) +
+                  ((size_t)h + 1) * (size_t)w * 4 * sizeof(float) + /* the records */
                   (l->sampler != EL_ENVLIGHT_SAMPLER_CDF ? el_distribution2d_fast_bytes(&l->fast) : 0);
+  if (w >= 256 && h >= 128) { /* the fast path's tables (below): patch edges without atan, directions by angle addition */
+    res = el_envlight__patch_tables(l, w, h);
+    if (res != EL_SUCCESS) { el_envlight__free_tables(l); goto fail; }
+    W->warp_bytes += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float)) + ((size_t)2 * (size_t)w + 8 * ((size_t)h + 1)) * sizeof(float);
+  }
   l->warp = W;
   l->warp_state = 2;
   return EL_SUCCESS;
@@ -3943,70 +4085,167 @@ static inline float el_envlight__patch_eval(const el_envlight *l, const el_envli
 }
 
 /* pdf_li in importance mode BILINEAR (the tables are built) */
-static float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]) {
+static EL_ENVLIGHT__NOINLINE float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3];
   el_envlight__ploc q;
   if (!l->warp || l->warp->all_zero) return 0.0f;
   if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
+  if (l->col_tab) { /* (to_light_dir left len2 a normal float) */
+    float r2 = d[0] * d[0] + d[1] * d[1];
+    return el_envlight__patch_pdf_fast(l, d[0], d[1], d[2], r2, r2 + d[2] * d[2]);
+  }
   if (!el_envlight__prod_locate(l->warp, d, &q)) return 0.0f;
   return el_envlight__patch_eval(l, &q);
 }
 
-/* The sample at (s, t) of patch (i, r) with integer widths wv, wu and corners c: its world direction and
- * its pdf, pdf_li's at wi; q gets where pdf_li located it. */
-static inline float el_envlight__patch_point(const el_envlight *l, int i, int r, float s, float t, uint32_t wv, uint32_t wu, const float c[4],
-                                              float wi[3], el_envlight__ploc *q) {
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__HOT_INLINE inline __attribute__((always_inline))
+#else
+#define EL_ENVLIGHT__HOT_INLINE inline
+#endif
+/* The sample at (s, t) of patch (i, r) (factor K, corners c): its world direction and its pdf, pdf_li's
+ * at wi; q gets where pdf_li located it (the small maps' path: its (u, v) too). */
+static EL_ENVLIGHT__HOT_INLINE float el_envlight__patch_point(const el_envlight *l, int i, int r, float s, float t, float K, const float c[4],
+                                                             float wi[3], el_envlight__ploc *q) {
   float d[3];
+  if (l->col_tab) { /* the fast path: angle addition from the patch's references */
+    const float *ct = l->col_tab + 2 * (size_t)i, *rt = l->row_tab + 8 * (size_t)r;
+    float b = s * (6.28318531f * l->warp->inv_w), a = (t - rt[2]) * rt[4], b2 = b * b, a2 = a * a;
+    float cb = 1.0f - 0.5f * b2, sb = b - b * b2 * 0.166666672f, ca = 1.0f - 0.5f * a2, sa = a - a * a2 * 0.166666672f;
+    float st = rt[1] * ca + rt[0] * sa, r2, len2;
+    d[0] = st * (ct[0] * cb - ct[1] * sb);
+    d[1] = st * (ct[1] * cb + ct[0] * sb);
+    d[2] = rt[0] * ca - rt[1] * sa;
+    el_envlight__to_world(l, d, wi);
+    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li brings wi back */
+    r2 = d[0] * d[0] + d[1] * d[1]; len2 = r2 + d[2] * d[2];
+    el_envlight__patch_find(l, d[0], d[1], d[2], r2, len2, q);
+    if (q->i == i && q->r == r) return el_envlight__patch_density(l, q, K, c); /* pdf_li's arithmetic, its reads done */
+    return el_envlight__patch_pdf_fast(l, d[0], d[1], d[2], r2, len2);
+  }
   el_envlight__patch_dir(l->warp, i, r, s, t, d);
   el_envlight__to_world(l, d, wi);
   if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li brings wi back */
   if (!el_envlight__prod_locate(l->warp, d, q)) return 0.0f; /* (not for a unit d) */
-  if (q->i == i && q->r == r) return el_envlight__prod_eval(l->warp, q, wv, wu, c); /* pdf_li's arithmetic, its reads done */
   return el_envlight__patch_eval(l, q);
 }
 
 /* the rare retry at the patch's centre, out of line */
-static EL_ENVLIGHT__NOINLINE float el_envlight__patch_centre(const el_envlight *l, int i, int r, uint32_t wv, uint32_t wu, const float c[4],
-                                                           float wi[3], el_envlight__ploc *q) {
-  return el_envlight__patch_point(l, i, r, 0.5f, 0.5f, wv, wu, c, wi, q);
+static EL_ENVLIGHT__NOINLINE float el_envlight__patch_centre(const el_envlight *l, int i, int r, float K, const float c[4], float wi[3],
+                                                           el_envlight__ploc *q) {
+  return el_envlight__patch_point(l, i, r, 0.5f, 0.5f, K, c, wi, q);
+}
+
+/* The sample of patch (i, r) at fractions (fu, fv) of its units: (s, t), the direction, its pdf, le(wi). */
+static void el_envlight__patch_finish(const el_envlight *l, int i, int r, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+  float c[4], s, t, p, K;
+  el_envlight__ploc q;
+  q.u = q.v = 0.0f;
+  K = el_envlight__patch_rec(l, i, r, c);
+  /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
+  t = el_envlight__lin_inv(c[0] + c[1], c[2] + c[3], fv);
+  s = el_envlight__lin_inv(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), fu);
+  /* 2^-12 of a patch inside its edges (as product sampling): pdf_li, which locates the direction again,
+   * finds this patch on maps up to 4096 x 2048, so that a sample at the edge of a patch next to one
+   * without mass does not get pdf 0 */
+  t = t > 2.44140625e-4f ? (t < 0.999755859f ? t : 0.999755859f) : 2.44140625e-4f;
+  s = s > 2.44140625e-4f ? (s < 0.999755859f ? s : 0.999755859f) : 2.44140625e-4f;
+  p = el_envlight__patch_point(l, i, r, s, t, K, c, wi, &q);
+  /* the round trip left the patch for one without mass (near a pole under a general rotation, or a map
+   * over 4096 wide): the patch's centre instead, as issue 24 did */
+  if (!(p > 0.0f)) p = el_envlight__patch_centre(l, i, r, K, c, wi, &q);
+  *pdf = p;
+  if (rgb) {
+    if (!(p > 0.0f)) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    else if (l->col_tab) el_envlight_le(l, wi, rgb); /* le(wi) itself (the fast path has no atan) */
+    else el_envlight__bilerp(l, q.u, q.v, rgb); /* le(wi): the same (u, v) */
+  }
+}
+
+/* <<Pick a patch>>: the light's sampler over the patch table (guide: CDF inversion's patch) */
+static inline void el_envlight__patch_pick(const el_envlight *l, const float uu[2], int *i, int *r, float *fu, float *fv) {
+  float pb;
+  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], i, r, fu, fv, &pb);
+  else el_distribution2d_fast_sample_bins(&l->fast, uu[0], uu[1], i, r, fu, fv, &pb);
 }
 
 /* sample_li in importance mode BILINEAR (the tables are built) */
-static void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  const struct el_envlight__warp *W = l->warp;
-  float fu, fv, pb, c[4], s, t, p;
+static EL_ENVLIGHT__NOINLINE void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  float fu, fv;
   int i, r;
-  uint32_t wv, wu;
-  const uint32_t *row;
-  el_envlight__ploc q;
-  if (!W || W->all_zero) { /* nothing emits */
+  if (!l->warp || l->warp->all_zero) { /* nothing emits */
     wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
     if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
     return;
   }
-  /* <<Pick a patch>>: the light's sampler over the patch table (guide: CDF inversion's patch) */
-  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], &i, &r, &fu, &fv, &pb);
-  else el_distribution2d_fast_sample_bins(&l->fast, uu[0], uu[1], &i, &r, &fu, &fv, &pb);
-  row = l->dist.cdf + (size_t)r * ((size_t)l->dist.nu + 1);
-  wv = l->dist.marginal[r + 1] - l->dist.marginal[r]; wu = row[i + 1] - row[i];
-  /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
-  el_envlight__prod_corners(W, i, r, c);
-  t = el_envlight__lin_inv(c[0] + c[1], c[2] + c[3], fv);
-  s = el_envlight__lin_inv(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), fu);
-  /* 2^-12 of a patch inside its edges (as product sampling): the pdf, which locates the direction again
-   * with le()'s atans (2.5e-7 rad), finds this patch on maps up to 4096 x 2048, so a sample on the edge of
-   * a patch without mass does not get pdf 0 */
-  t = t > 2.44140625e-4f ? (t < 0.999755859f ? t : 0.999755859f) : 2.44140625e-4f;
-  s = s > 2.44140625e-4f ? (s < 0.999755859f ? s : 0.999755859f) : 2.44140625e-4f;
-  p = el_envlight__patch_point(l, i, r, s, t, wv, wu, c, wi, &q);
-  /* the round trip left the patch for one without mass (near a pole under a general rotation, or a map
-   * over 4096 wide): the patch's centre instead, as issue 24 did */
-  if (!(p > 0.0f)) p = el_envlight__patch_centre(l, i, r, wv, wu, c, wi, &q);
-  *pdf = p;
-  if (rgb) {
-    if (p > 0.0f) el_envlight__bilerp(l, q.u, q.v, rgb); /* le(wi): the same (u, v) */
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  el_envlight__patch_pick(l, uu, &i, &r, &fu, &fv);
+  el_envlight__patch_finish(l, i, r, fu, fv, wi, rgb, pdf);
+}
+
+/* sample_li_n in importance mode BILINEAR, the tables built: up to 16 samples at a time in passes that
+ * start the next pass's cache misses for all of them (as the other modes' sample_li_n): (1) the row
+ * search in the small marginal, then the guide entry of the row; (2) the CDF entries it points to; (3)
+ * the patch (sample_li's own pick), then its record; (4) the sample (sample_li's own code), then the
+ * texels of its patch; (5) the radiance, le(wi). The results are sample_li's, bit for bit. */
+static void el_envlight__patch_sample_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
+#if defined(__GNUC__) || defined(__clang__)
+  const el_distribution2d_fast *f = &l->fast;
+  int i0, m, k;
+  if (l->warp->all_zero || l->sampler != EL_ENVLIGHT_SAMPLER_GUIDE) {
+    for (k = 0; k < n; ++k) el_envlight__patch_sample(l, u + 2 * k, wi + 3 * k, rgb ? rgb + 3 * k : NULL, pdf + k);
+    return;
   }
+  for (i0 = 0; i0 < n; i0 += 16) {
+    size_t gix[16];
+    int pi[16], pr[16];
+    float pfu[16], pfv[16];
+    m = n - i0 < 16 ? n - i0 : 16;
+    for (k = 0; k < m; ++k) { /* (1) */
+      const float *uk = u + 2 * (i0 + k);
+      uint32_t g, kv;
+      size_t v;
+      gix[k] = (size_t)-1;
+      if (!el_distribution2d_u_in_range(uk[0], uk[1])) continue;
+      g = f->guide_v[(size_t)(int64_t)(uk[1] * f->gv_scale)];
+      if (g & EL_DISTRIBUTION__GUIDE_CROWDED) continue;
+      kv = (uint32_t)(int32_t)(uk[1] * 16777216.0f);
+      for (v = g; f->marginal[v + 1] <= kv; ++v) {}
+      gix[k] = v * f->guide_stride + (size_t)(int64_t)(uk[0] * f->gu_scale);
+      __builtin_prefetch(f->guide_u + gix[k]);
+      __builtin_prefetch(f->cdf + v * f->row_stride); /* (the row's start, for the search's first step) */
+    }
+    for (k = 0; k < m; ++k) { /* (2) */
+      uint32_t g;
+      if (gix[k] == (size_t)-1) continue;
+      g = f->guide_u[gix[k]];
+      if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) __builtin_prefetch(f->cdf + (gix[k] / f->guide_stride) * f->row_stride + g + 1);
+    }
+    for (k = 0; k < m; ++k) { /* (3) */
+      el_envlight__patch_pick(l, u + 2 * (i0 + k), &pi[k], &pr[k], &pfu[k], &pfv[k]);
+      __builtin_prefetch(l->pdf_table + 4 * ((size_t)pr[k] * (size_t)l->width + (size_t)pi[k]));
+    }
+    for (k = 0; k < m; ++k) { /* (4); with the fast path the radiance waits for (5), its texels prefetched */
+      const int j = i0 + k, later = rgb && l->col_tab;
+      el_envlight__patch_finish(l, pi[k], pr[k], pfu[k], pfv[k], wi + 3 * j, later ? NULL : (rgb ? rgb + 3 * j : NULL), pdf + j);
+      if (later) { /* le(wi) reads the patch's own texels (rows r - 1 and r, columns i and i + 1; but after a rare relocation) */
+        int y0 = pr[k] > 0 ? pr[k] - 1 : 0, y1 = pr[k] < l->height ? pr[k] : l->height - 1;
+        __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)l->width + (size_t)pi[k]) * 3);
+        __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)l->width + (size_t)pi[k]) * 3 + 5);
+        __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)l->width + (size_t)pi[k]) * 3);
+        __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)l->width + (size_t)pi[k]) * 3 + 5);
+      }
+    }
+    if (rgb && l->col_tab)
+      for (k = 0; k < m; ++k) { /* (5) the radiance, as el_envlight__patch_finish forms it */
+        const int j = i0 + k;
+        if (pdf[j] > 0.0f) el_envlight_le(l, wi + 3 * j, rgb + 3 * j);
+        else rgb[3 * j] = rgb[3 * j + 1] = rgb[3 * j + 2] = 0.0f;
+      }
+  }
+#else
+  int k;
+  for (k = 0; k < n; ++k) el_envlight__patch_sample(l, u + 2 * k, wi + 3 * k, rgb ? rgb + 3 * k : NULL, pdf + k);
+#endif
 }
 
 /* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */

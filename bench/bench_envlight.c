@@ -9,7 +9,8 @@
  *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
  *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
  *                                        sample_rotated pdf_rotated build; importance BILINEAR:
- *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear;
+ *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear
+ *                                        sample_bilinear_rotated pdf_bilinear_rotated;
  *                                        product sampling (a new normal per call): sample_cos
  *                                        sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated
  *                                        build_product
@@ -44,7 +45,7 @@
  *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
  *     to light sampling with CELL_AVERAGE and the default (guide) sampler; and, for light sampling, the
  *     relative variance of lum(le) / pdf (how well the density matches the map, whatever the cosine).
- *     BILINEAR (the continuous warp) is among the rows.
+ *     BILINEAR (le()'s patch density, issue 22) is among the rows.
  *  4. Product sampling: for each CC0 map and six normals (up, down, two sideways, facing the brightest
  *     texel and away from it) the relative variance per sample of the irradiance estimate with
  *     sample_li, sample_li in importance BILINEAR and sample_li_cos, each alone and with one cosine
@@ -255,10 +256,11 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   if (!strcmp(op, "sample_cdf")) sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
-  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated")) {
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated") ||
+      !strcmp(op, "sample_bilinear_rotated") || !strcmp(op, "pdf_bilinear_rotated")) {
     sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot();
   }
-  if (!strcmp(op, "sample_bilinear") || !strcmp(op, "sample_bilinear_rgb") || !strcmp(op, "pdf_bilinear")) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (!strncmp(op, "sample_bilinear", 15) || !strncmp(op, "pdf_bilinear", 12)) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
   if (make_light(&l, px, w, h, imp, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
   if (strstr(op, "_cos") || !strcmp(op, "build_product")) el_envlight_prepare_product(&l, NULL);
   else el_envlight_prepare_sampling(&l);
@@ -288,7 +290,7 @@ static int callgrind_mode(const char *op, long n, const char *map) {
     }
   } else if (!strcmp(op, "sample_cos") || !strcmp(op, "sample_cos_rgb") || !strcmp(op, "sample_cos_rotated")) sink = run_sample_cos(&l, n, !strcmp(op, "sample_cos_rgb"));
   else if (!strcmp(op, "pdf_cos") || !strcmp(op, "pdf_cos_rotated")) sink = run_pdf_cos(&l, n);
-  else if (!strcmp(op, "pdf_bilinear")) sink = run_pdf(&l, n);
+  else if (!strcmp(op, "pdf_bilinear") || !strcmp(op, "pdf_bilinear_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "loop")) sink = run_loop(n);
   else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);

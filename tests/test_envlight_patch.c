@@ -192,6 +192,28 @@ int main(void) {
     }
   }
 
+  { /* sample_li_n: sample_li's results bit for bit (its batches prefetch in passes), with and without rgb */
+    el_envlight l;
+    int mat, bad = 0, k, tried = 0;
+    float u[2 * 101], wi[3 * 101], rgb[3 * 101], pdf[101], w1[3], c1[3], p1;
+    for (mat = 0; mat < 3; ++mat) {
+      if (!make(&l, mat == 2 ? sun12 : city.pixels, mat == 2 ? 32 : city.width, mat == 2 ? 16 : city.height, mat, EL_ENVLIGHT_IMPORTANCE_BILINEAR)) { check(0, "init"); continue; }
+      for (k = 0; k < 2 * 101; ++k) u[k] = rng_f(&g_rng);
+      u[0] = 0.0f; u[1] = 0.99999994f; u[2] = NAN; u[3] = 1.5f;
+      el_envlight_sample_li_n(&l, 101, u, wi, rgb, pdf);
+      for (k = 0; k < 101; ++k, ++tried) {
+        el_envlight_sample_li(&l, u + 2 * k, w1, c1, &p1);
+        if (p1 != pdf[k] || memcmp(w1, wi + 3 * k, sizeof w1) || memcmp(c1, rgb + 3 * k, sizeof c1)) ++bad;
+      }
+      el_envlight_sample_li_n(&l, 101, u, wi, NULL, pdf);
+      for (k = 0; k < 101; ++k, ++tried) {
+        el_envlight_sample_li(&l, u + 2 * k, w1, NULL, &p1);
+        if (p1 != pdf[k] || memcmp(w1, wi + 3 * k, sizeof w1)) ++bad;
+      }
+      el_envlight_free(&l);
+    }
+    check(bad == 0, "sample_li_n in importance BILINEAR = sample_li bit for bit (city identity / y-up, sun rotated; rgb and NULL): %d of %d differ", bad, tried);
+  }
   { /* 5. hostile inputs */
     el_envlight l;
     float dirs[8][3] = {{NAN, 0, 1}, {0, 0, 0}, {INFINITY, 0, 0}, {0, -INFINITY, 1}, {1e-40f, 0, 0}, {0, 0, -1}, {0, 0, 1}, {3e38f, -3e38f, 3e38f}};
