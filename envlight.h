@@ -314,9 +314,11 @@ EL_DEF void el_envlight_square_to_dir(float u, float v, float dir[3]);
 
 /* >> declarations: product sampling and the bilinear warp (issue 13; NOTES ON PRODUCT SAMPLING below) */
 
-/* Importance mode 3: the density follows the luminance of le()'s own bilinear reconstruction times
- * sin(theta), sampled by a continuous warp of its bilinear patches (Mitsuba 3's density). sample_li,
- * pdf_li, sample_le and pdf_le use it; about 1100 / 400 instructions instead of 95 / 75 (NOTES 1). */
+/* Importance mode 3: the density is the bilinear interpolant of le()'s luminance times sin(theta) over
+ * le()'s own patches (Mitsuba 3's density), so lum(le) / pdf is nearly constant and low-discrepancy points
+ * keep their stratification through the warp: a discrete table over the patches, then a bilinear warp
+ * inside one. sample_li, sample_li_n, pdf_li, sample_le and pdf_le use it; about 510 / 230 instructions
+ * instead of 97 / 76 (NOTES ON PRODUCT SAMPLING 1). */
 #define EL_ENVLIGHT_IMPORTANCE_BILINEAR 3
 
 /* Table sizes of product sampling (all zero: the defaults, 64 x 32 cells and 32 x 32 normal bins). */
@@ -360,28 +362,60 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  * NOTES ON PRODUCT SAMPLING AND THE BILINEAR WARP (issue 13; the numbers: bench/bench_envlight.c tables
  * 1, 2, 4, 5 and bench/bench_product.c, gcc 12 -O3, no -march, this project's shared 2-core machine)
  *
- * 1. THE BILINEAR WARP (importance mode BILINEAR, and inside product sampling's cells). The density is
- *    the bilinear interpolant of le()'s luminance x sin(theta) at the texel centres (the vertices of
- *    le()'s bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density.
- *    Where the cell-average density (the default) is constant over a texel while le() is bilinear,
- *    this one follows le() inside the texel: lum(le) / pdf has a relative variance of 1.5e-5 on city
- *    instead of 0.10 (table 3), so a sun stops adding variance of its own. It is sampled by CDF
- *    inversion of the patches, marginal then conditional, both linear inside a patch (two square
- *    roots, no libm), so every step is monotone in its u: 16x16 jittered u give 114x less variance
- *    than independent u for an up-facing point on city (the cell-average sampler: 3.4x; table 5).
- *    Robust where a float CDF is not: each vertex row has its own integer CDF over its patches
- *    (distribution2d.h's idea: every patch with a positive vertex gets a unit), the conditional at t
- *    is the blend of the two rows' CDFs with weight alpha = (1-t) A / ((1-t) A + t B) kept within
- *    [2^-20, 1 - 2^-20] while both rows have mass (the density is defined with that alpha), so no
- *    patch next to a sun becomes unreachable. At the poles the density and sin(theta) both vanish;
- *    their ratio is computed without 0/0 (its limit at the pole itself).
- *    COST: sample_li 1086-1113 instructions (+radiance 1217-1244), pdf_li 403 (table 2; CELL_AVERAGE:
- *    93.5-97.4, 257-261, 75); 2-3x the time of CELL_AVERAGE per estimate in table 4. MEMORY: 8 bytes per
- *    texel (a float vertex value and a float CDF entry) plus 16 bytes per vertex row and cell column:
- *    4.6 MB at 1024x512 (CELL_AVERAGE: 4.7). BUILD: 45 M instructions, 8-12 ms at 1024x512; 168 M, 34 ms
- *    at 2048x1024 (with init). It wins on variance only where a sun dominates the estimate (1.6x on
- *    city, <= 1.2x on the other CC0 maps), not on variance x time (0.4-0.6 of CELL_AVERAGE's efficiency
- *    for light sampling alone): CELL_AVERAGE stays the default. Its place is inside product sampling.
+ * 1. IMPORTANCE MODE BILINEAR: LE()'S PATCHES (issue 22; before it, a continuous warp of cells). The
+ *    density is the bilinear interpolant of V = lum x sin(theta) at the texel centres (the vertices of
+ *    le()'s bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density. Where
+ *    the cell-average density (the default) is constant over a texel while le() is bilinear, this one
+ *    follows le() inside the texel: the relative variance of lum(le) / pdf per sample is 3.2e-6 on city
+ *    against 0.099 (tests/test_envlight_patch.c), so a sun stops adding variance of its own and
+ *    low-discrepancy points keep their stratification: bench/bench_ld_point.c (city, an upward normal, 64
+ *    points per estimate, relative variance of one estimate, independent / Owen-scrambled Sobol'): the
+ *    light sample alone 3.78e-3 / 2.07e-6 (CELL_AVERAGE 6.30e-3 / 1.76e-3, PBRT_V3 4.41e-3 / 4.24e-4),
+ *    with one cosine sample and the power heuristic 4.12e-3 / 2.32e-4 (6.59e-3 / 1.82e-3, 4.76e-3 /
+ *    5.53e-4): 2.4x less than PBRT_V3 with the low-discrepancy points, 1.15x with independent ones.
+ *    SAMPLING: one discrete table over the w x (h + 1) patches (distribution2d.h's integer CDFs, each
+ *    patch's weight the mean of its corners x its height, so every patch with a positive corner is
+ *    reachable at any dynamic range; the light's own guide tables, or its CDF or alias sampler), then
+ *    (s, t) inside the patch in closed form: t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s
+ *    from the conditional at t, each the inverse of a linear density (a quadratic, in the form without
+ *    cancellation: exact at zero and at equal corners), kept 2^-12 of a patch inside its edges. Every
+ *    step is monotone in its u. The corners are bfloat16 rounded up, scaled by a power of two (the
+ *    density is bil / mean: unchanged) so that the squares stay normal floats. The density of a patch
+ *    is its integer share x bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta): one factor K per patch
+ *    stored with its four corners in a 16-byte record (one cache line per query).
+ *    THE PDF (maps of at least 256 x 128; smaller ones take le()'s atans, product sampling's locate):
+ *    no atan. The patch column and row come from bin finders over half texels (pdf_li's diamond angle
+ *    and its t = 1 - z / (r + |z|), 2w and 2h bins: the texel centres are the odd edges); s and t from
+ *    the angle to a reference edge of the patch, atan of the tangent of the difference ((y c - x s) /
+ *    (x c + y s), at most pi / 128: q - q^3 / 3). sample_li forms its direction from the same references
+ *    by angle addition, then finds it again as pdf_li does, so its pdf is pdf_li(wi) bit for bit and its
+ *    radiance le(wi) bit for bit (both tested on every sample of the chi-square tests, for identity, y-up
+ *    and general rotations); when rounding moves the point into another patch the pdf is that patch's,
+ *    and if that has no mass the sample moves to its patch's centre (issue 24's rule).
+ *    sample_li_n prefetches in passes (the marginal row and its guide entry, the CDF entries, the
+ *    patch's record, its texels), bit-identical to sample_li: the renderer's waves draw their map samples
+ *    through it (without it, bench_city's render loop took 1.24x pbrt-v3's density's CPU; with it
+ *    1.04-1.05x).
+ *    COST (bench/callgrind_product.sh with OPS=...bilinear..., city 1024x512, the loop subtracted):
+ *    sample_li 508 instructions (768 with the radiance: le(wi) with its atans; 546 under a general
+ *    rotation), pdf_li 226 (242); before (the continuous warp): 1174 (1301), 422. CELL_AVERAGE: 97.6
+ *    (266), 76. The issue's targets (250 / 150) are NOT met: the pick (the guide search, ~60), the two
+ *    inversions (~50), the direction (~40), finding it again (~90) and the density (~30), plus the
+ *    calls: the relocation buys the bit-for-bit pdf; without it (the sample's own (s, t), exact
+ *    transforms) sample_li measured 342. The renderer's per-camera-sample instructions on bench_city
+ *    (zsobol, callgrind, spp 8 - spp 4) are 8% above its default PBRT_V3 density's.
+ *    MEMORY: 2 bytes per vertex (bfloat16), 16 per patch (the records), 4 + 1 per patch (the integer CDFs
+ *    and guide tables), the finders and reference tables (about 200 KB at 1024x512): 11.7 MB at 1024x512
+ *    (CELL_AVERAGE 4.7, PBRT_V3 18.3, the continuous warp 4.6). Maps over the cap (EL_ENVLIGHT_IMPORTANCE_CAP
+ *    wide) take CELL_AVERAGE's capped tables, as PBRT_V3 does: about 190 MB for a 4096 x 2048 map, the largest.
+ *    BUILD: 100 M instructions, 15 ms at 1024x512 (PBRT_V3 44 ms).
+ *    IN THE RENDERER (bench/sun_rule.py --strategies pbrtv3,default: relative variance across 8 seeds x
+ *    the render loop's CPU, interleaved; the map alone at diffuse vertices facing a sun), time to unit
+ *    variance against PBRT_V3, whole image / lit / shadowed pixels of bench_city: zsobol 16 spp 1.10 /
+ *    1.23 / 0.96, 64 spp 1.12 / 1.31 / 0.91; independent 16 spp 1.02 / 1.05 / 0.97, 64 spp 0.96 / 0.99 /
+ *    0.91 (the lit pixels' variance 1.29-1.45x lower with zsobol, 1.09x with independent samples; the
+ *    render loop's CPU +4-12%). The renderer takes it by default under a sun map
+ *    (examples/render/README.md).
  *
  * 2. PRODUCT SAMPLING (sample_li_cos, pdf_li_cos): a density close to L(w) max(0, n.w). The map's
  *    patches are grouped into 64 x 32 cells; a cell is picked with probability proportional to its
@@ -1281,7 +1315,7 @@ static float el_envlight__luminance(const float *rgb) {
   return 0.212671f * rgb[0] + 0.715160f * rgb[1] + 0.072169f * rgb[2]; /* pbrt's y() */
 }
 
-/* >> continuous warp: forward declarations (the section is near the end of the file) */
+/* >> the patch grid (product sampling, importance BILINEAR): forward declarations (the sections are near the end of the file) */
 #define EL_ENVLIGHT__CELLS_U 64
 #define EL_ENVLIGHT__CELLS_V 32
 #define EL_ENVLIGHT__NORMAL_BINS 32
@@ -2931,23 +2965,16 @@ EL_DEF void el_envlight_zup_matrix(float m[9]) {
   memcpy(m, k, sizeof k);
 }
 
-/* >> continuous warp
+/* >> the patch grid
  * The density of importance mode BILINEAR and, times a per-cell cosine bound, of sample_li_cos: the
  * luminance of le()'s bilinear reconstruction times sin(theta), taken as the bilinear interpolant of its
  * values at the texel centres (the vertices) - Mitsuba 3's envmap density. Vertex row k is at v_k =
  * (k - 0.5) / h for k = 1..h (texel row k - 1), with two pole rows v_0 = 0 and v_{h+1} = 1 whose value
  * is 0 (sin 0); so there are h + 1 patch rows (the two at the poles half as tall) and w patch columns
- * (patch column i spans the texel centres i and i + 1, wrapping at the seam). Patches are grouped into
- * ku x kv cells. Within a cell the warp is marginal-conditional CDF inversion of the patches: a patch row
- * (integer CDF of the row masses), t in it (the marginal is linear in t: a quadratic), then a patch of
- * the row at that t (the conditional is the blend of the two vertex rows' own conditionals, with
- * weights alpha = (1 - t) A / ((1 - t) A + t B), A and B the rows' integrals over the cell column), s in
- * it (linear again). Every step is monotone in its u, so stratified input stays stratified. The vertex
- * values are not stored: they are the luminance of the texels the radiance lookup reads anyway, times
- * a per-row sin. Plain CDF inversion of a blended float CDF would lose patches next to a sun (pbrt's
- * float-CDF problem); here each vertex row has its own integer CDF (every patch with mass has a unit)
- * and alpha is kept within [2^-20, 1 - 2^-20] when both rows have mass, so every patch with a positive
- * vertex is reachable at any dynamic range; the density is defined with that alpha (the pdf uses it). */
+ * (patch column i spans the texel centres i and i + 1, wrapping at the seam). Product sampling groups
+ * the patches into cells (its section below); importance BILINEAR samples them from one table (the
+ * section "importance BILINEAR"). Until issue 22 mode BILINEAR had a continuous warp of its own here
+ * (per-row integer CDFs blended at t, about 1100 instructions per sample). */
 
 #define EL_ENVLIGHT__CELL_UNITS 32768u  /* a cell table's integer total (its entries are uint16_t) */
 
@@ -3829,7 +3856,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
 }
 
 /* >> importance BILINEAR: le()'s patches (issue 22's patch density; NOTES ON PRODUCT SAMPLING, point 1)
- * The density is the bilinear interpolant, over each of le()'s patches (the warp's layout above: w patch
+ * The density is the bilinear interpolant, over each of le()'s patches (the patch grid's layout above: w patch
  * columns between texel centres, h + 1 patch rows, the two pole rows half as tall with a vertex row of
  * 0), of the vertex values V = lum x sin(theta) at the texel centres, as bfloat16 rounded up (the product
  * sampler's grid: el_envlight__prod_corners reads both). A patch is picked from one discrete 2D table
@@ -3838,9 +3865,10 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
  * linear inversions (t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s from the conditional at
  * t). Its density is the patch's integer share x bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta):
  * el_envlight__prod_eval's expression with the distribution's 2^24 x 2^24 units (dens_k = 2^-48 w h /
- * (2 pi^2)). pdf_li locates the direction (le()'s own atans: the (u, v) le() looks up), reads the two
- * integer widths and the four corners. sample_li locates its own direction the same way, so its pdf is
- * pdf_li(wi)'s and its radiance le(wi), bit for bit. */
+ * (2 pi^2)), stored per patch as the factor K of its record. pdf_li locates the direction (the fast path
+ * below on maps of at least 256 x 128; on smaller ones le()'s own atans, product sampling's locate) and
+ * reads one record. sample_li locates its own direction the same way, so its pdf is pdf_li(wi)'s, bit
+ * for bit. */
 
 /* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2 for a, b >= 0, not both 0: the inverse
  * CDF of a linear density in the form without cancellation (a = b: t = q; a = 0: sqrt(q); b = 0: 1 -
@@ -4091,8 +4119,12 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__patch_pdf_li(const el_envlight *
   if (!l->warp || l->warp->all_zero) return 0.0f;
   if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
   if (l->col_tab) { /* (to_light_dir left len2 a normal float) */
-    float r2 = d[0] * d[0] + d[1] * d[1];
-    return el_envlight__patch_pdf_fast(l, d[0], d[1], d[2], r2, r2 + d[2] * d[2]);
+    float r2 = d[0] * d[0] + d[1] * d[1], len2 = r2 + d[2] * d[2];
+    if (len2 < 8.67361738e-19f) { /* 2^-60: a short d's squares may be denormal (inexact); 2^40 d is exact */
+      d[0] *= 1.09951163e12f; d[1] *= 1.09951163e12f; d[2] *= 1.09951163e12f;
+      r2 = d[0] * d[0] + d[1] * d[1]; len2 = r2 + d[2] * d[2];
+    }
+    return el_envlight__patch_pdf_fast(l, d[0], d[1], d[2], r2, len2);
   }
   if (!el_envlight__prod_locate(l->warp, d, &q)) return 0.0f;
   return el_envlight__patch_eval(l, &q);
