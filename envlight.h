@@ -3885,13 +3885,18 @@ static inline float el_envlight__lin_inv(float a, float b, float q) {
 
 /* (u, v) and the light-space unit direction of (s, t) in patch (i, r), as le() maps them: u from the
  * patch's left texel centre (wrapping at the seam), v and its distance vp to the nearer pole. */
+static inline float el_envlight__patch_uv(const struct el_envlight__warp *W, int i, int r, float s, float t, float *u, float *v) {
+  float vp;
+  *u = ((float)i + 0.5f + s) * W->inv_w;
+  if (*u >= 1.0f) *u -= 1.0f;
+  *u = *u < 0.99999994f ? *u : 0.99999994f;
+  if (r == 0) { vp = t * W->half_inv_h; *v = vp; }
+  else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; *v = 1.0f - vp; }
+  else { *v = ((float)r - 0.5f + t) * W->inv_h; vp = *v < 0.5f ? *v : 1.0f - *v; }
+  return vp;
+}
 static inline void el_envlight__patch_dir(const struct el_envlight__warp *W, int i, int r, float s, float t, float d[3]) {
-  float u = ((float)i + 0.5f + s) * W->inv_w, v, vp;
-  if (u >= 1.0f) u -= 1.0f;
-  u = u < 0.99999994f ? u : 0.99999994f;
-  if (r == 0) { vp = t * W->half_inv_h; v = vp; }
-  else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; v = 1.0f - vp; }
-  else { v = ((float)r - 0.5f + t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
+  float u, v, vp = el_envlight__patch_uv(W, i, r, s, t, &u, &v);
   el_envlight__uvp_to_dir(u, v, vp, d);
 }
 
@@ -4168,8 +4173,10 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__patch_centre(const el_envlight *
   return el_envlight__patch_point(l, i, r, 0.5f, 0.5f, K, c, wi, q);
 }
 
-/* The sample of patch (i, r) at fractions (fu, fv) of its units: (s, t), the direction, its pdf, le(wi). */
-static void el_envlight__patch_finish(const el_envlight *l, int i, int r, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+/* The sample of patch (i, r) at fractions (fu, fv) of its units: (s, t), the direction, its pdf, its
+ * radiance. With uvout (sample_li_n) and rgb wanted, a fast-path sample under a signed permutation leaves
+ * its radiance's (u, v) there (returns 1) for the caller to look up later. */
+static int el_envlight__patch_finish(const el_envlight *l, int i, int r, float fu, float fv, float wi[3], float rgb[3], float *pdf, float *uvout) {
   float c[4], s, t, p, K;
   el_envlight__ploc q;
   q.u = q.v = 0.0f;
@@ -4189,9 +4196,17 @@ static void el_envlight__patch_finish(const el_envlight *l, int i, int r, float 
   *pdf = p;
   if (rgb) {
     if (!(p > 0.0f)) rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    else if (l->col_tab) el_envlight_le(l, wi, rgb); /* le(wi) itself (the fast path has no atan) */
-    else el_envlight__bilerp(l, q.u, q.v, rgb); /* le(wi): the same (u, v) */
+    else if (!l->col_tab) el_envlight__bilerp(l, q.u, q.v, rgb); /* le(wi): the same (u, v) */
+    else if (!l->exact_transform) el_envlight_le(l, wi, rgb); /* le(wi) itself, as the other modes' rotations */
+    else { /* as the other modes under a signed permutation: le at the point's own (u, v), where pdf_li
+            * found it (its patch, s, t): le(wi) but for le()'s atan polynomial, 1e-4 texel at most */
+      float uv[2];
+      el_envlight__patch_uv(l->warp, q.i, q.r, q.s, q.Y, uv, uv + 1);
+      if (uvout) { uvout[0] = uv[0]; uvout[1] = uv[1]; return 1; }
+      el_envlight__bilerp(l, uv[0], uv[1], rgb);
+    }
   }
+  return 0;
 }
 
 /* <<Pick a patch>>: the light's sampler over the patch table (guide: CDF inversion's patch) */
@@ -4211,7 +4226,7 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__patch_sample(const el_envlight *l
     return;
   }
   el_envlight__patch_pick(l, uu, &i, &r, &fu, &fv);
-  el_envlight__patch_finish(l, i, r, fu, fv, wi, rgb, pdf);
+  el_envlight__patch_finish(l, i, r, fu, fv, wi, rgb, pdf, NULL);
 }
 
 /* sample_li_n in importance mode BILINEAR, the tables built: up to 16 samples at a time in passes that
@@ -4230,7 +4245,8 @@ static void el_envlight__patch_sample_n(const el_envlight *l, int n, const float
   for (i0 = 0; i0 < n; i0 += 16) {
     size_t gix[16];
     int pi[16], pr[16];
-    float pfu[16], pfv[16];
+    float pfu[16], pfv[16], uv[32];
+    unsigned char later[16];
     m = n - i0 < 16 ? n - i0 : 16;
     for (k = 0; k < m; ++k) { /* (1) */
       const float *uk = u + 2 * (i0 + k);
@@ -4256,23 +4272,19 @@ static void el_envlight__patch_sample_n(const el_envlight *l, int n, const float
       el_envlight__patch_pick(l, u + 2 * (i0 + k), &pi[k], &pr[k], &pfu[k], &pfv[k]);
       __builtin_prefetch(l->pdf_table + 4 * ((size_t)pr[k] * (size_t)l->width + (size_t)pi[k]));
     }
-    for (k = 0; k < m; ++k) { /* (4); with the fast path the radiance waits for (5), its texels prefetched */
-      const int j = i0 + k, later = rgb && l->col_tab;
-      el_envlight__patch_finish(l, pi[k], pr[k], pfu[k], pfv[k], wi + 3 * j, later ? NULL : (rgb ? rgb + 3 * j : NULL), pdf + j);
-      if (later) { /* le(wi) reads the patch's own texels (rows r - 1 and r, columns i and i + 1; but after a rare relocation) */
-        int y0 = pr[k] > 0 ? pr[k] - 1 : 0, y1 = pr[k] < l->height ? pr[k] : l->height - 1;
-        __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)l->width + (size_t)pi[k]) * 3);
-        __builtin_prefetch(l->texels + ((size_t)y0 * (size_t)l->width + (size_t)pi[k]) * 3 + 5);
-        __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)l->width + (size_t)pi[k]) * 3);
-        __builtin_prefetch(l->texels + ((size_t)y1 * (size_t)l->width + (size_t)pi[k]) * 3 + 5);
+    for (k = 0; k < m; ++k) { /* (4); the radiance of a fast-path sample waits for (5), its texels prefetched */
+      const int j = i0 + k;
+      later[k] = (unsigned char)el_envlight__patch_finish(l, pi[k], pr[k], pfu[k], pfv[k], wi + 3 * j, rgb ? rgb + 3 * j : NULL, pdf + j, uv + 2 * k);
+      if (later[k]) {
+        const float *tx[4];
+        float fx, fy;
+        int q;
+        el_envlight__bilerp_texels(l, uv[2 * k], uv[2 * k + 1], tx, &fx, &fy);
+        for (q = 0; q < 4; ++q) __builtin_prefetch(tx[q] + 2 * (q & 1)); /* (as the other modes' batches) */
       }
     }
-    if (rgb && l->col_tab)
-      for (k = 0; k < m; ++k) { /* (5) the radiance, as el_envlight__patch_finish forms it */
-        const int j = i0 + k;
-        if (pdf[j] > 0.0f) el_envlight_le(l, wi + 3 * j, rgb + 3 * j);
-        else rgb[3 * j] = rgb[3 * j + 1] = rgb[3 * j + 2] = 0.0f;
-      }
+    for (k = 0; k < m; ++k) /* (5) the radiance, as el_envlight__patch_finish forms it */
+      if (later[k]) el_envlight__bilerp(l, uv[2 * k], uv[2 * k + 1], rgb + 3 * (i0 + k));
   }
 #else
   int k;
