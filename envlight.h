@@ -317,7 +317,7 @@ EL_DEF void el_envlight_square_to_dir(float u, float v, float dir[3]);
 /* Importance mode 3: the density is the bilinear interpolant of le()'s luminance times sin(theta) over
  * le()'s own patches (Mitsuba 3's density), so lum(le) / pdf is nearly constant and low-discrepancy points
  * keep their stratification through the warp: a discrete table over the patches, then a bilinear warp
- * inside one. sample_li, sample_li_n, pdf_li, sample_le and pdf_le use it; about 510 / 230 instructions
+ * inside one. sample_li, sample_li_n, pdf_li, sample_le and pdf_le use it; about 515 / 240 instructions
  * instead of 97 / 76 (NOTES ON PRODUCT SAMPLING 1). */
 #define EL_ENVLIGHT_IMPORTANCE_BILINEAR 3
 
@@ -388,18 +388,19 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    and its t = 1 - z / (r + |z|), 2w and 2h bins: the texel centres are the odd edges); s and t from
  *    the angle to a reference edge of the patch, atan of the tangent of the difference ((y c - x s) /
  *    (x c + y s), at most pi / 128: q - q^3 / 3). sample_li forms its direction from the same references
- *    by angle addition, then finds it again as pdf_li does, so its pdf is pdf_li(wi) bit for bit and its
- *    radiance le(wi) bit for bit (both tested on every sample of the chi-square tests, for identity, y-up
- *    and general rotations); when rounding moves the point into another patch the pdf is that patch's,
+ *    by angle addition, then finds it again as pdf_li does, so its pdf is pdf_li(wi) bit for bit (tested
+ *    on every sample of the chi-square tests, for identity, y-up and general rotations); its radiance is
+ *    le at that point's (u, v) under a signed permutation (le(wi) but for le()'s atan polynomial: within
+ *    2e-4 of the four texels' range, tested), le(wi) itself under a general rotation; when rounding moves the point into another patch the pdf is that patch's,
  *    and if that has no mass the sample moves to its patch's centre (issue 24's rule).
  *    sample_li_n prefetches in passes (the marginal row and its guide entry, the CDF entries, the
  *    patch's record, its texels), bit-identical to sample_li: the renderer's waves draw their map samples
  *    through it (without it, bench_city's render loop took 1.24x pbrt-v3's density's CPU; with it
  *    1.04-1.05x).
  *    COST (bench/callgrind_product.sh with OPS=...bilinear..., city 1024x512, the loop subtracted):
- *    sample_li 508 instructions (768 with the radiance: le(wi) with its atans; 546 under a general
- *    rotation), pdf_li 226 (242); before (the continuous warp): 1174 (1301), 422. CELL_AVERAGE: 97.6
- *    (266), 76. The issue's targets (250 / 150) are NOT met: the pick (the guide search, ~60), the two
+ *    sample_li 515 instructions (668 with the radiance: le at the point's own (u, v), as the other modes
+ *    under a signed permutation; 552 under a general rotation, whose radiance is le(wi)), pdf_li 241
+ *    (257); before (the continuous warp): 1174 (1301), 422. CELL_AVERAGE: 97.6 (266), 76. The issue's targets (250 / 150) are NOT met: the pick (the guide search, ~60), the two
  *    inversions (~50), the direction (~40), finding it again (~90) and the density (~30), plus the
  *    calls: the relocation buys the bit-for-bit pdf; without it (the sample's own (s, t), exact
  *    transforms) sample_li measured 342. The renderer's per-camera-sample instructions on bench_city
@@ -412,10 +413,10 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    IN THE RENDERER (bench/sun_rule.py --strategies pbrtv3,default: relative variance across 8 seeds x
  *    the render loop's CPU, interleaved; the map alone at diffuse vertices facing a sun), time to unit
  *    variance against PBRT_V3, whole image / lit / shadowed pixels of bench_city: zsobol 16 spp 1.10 /
- *    1.23 / 0.96, 64 spp 1.12 / 1.31 / 0.91; independent 16 spp 1.02 / 1.05 / 0.97, 64 spp 0.96 / 0.99 /
+ *    1.22 / 0.95, 64 spp 1.11 / 1.31 / 0.91; independent 16 spp 1.02 / 1.05 / 0.97, 64 spp 0.96 / 0.99 /
  *    0.91 (the lit pixels' variance 1.29-1.45x lower with zsobol, 1.09x with independent samples; the
- *    render loop's CPU +4-12%). The renderer takes it by default under a sun map
- *    (examples/render/README.md).
+ *    render loop's CPU +4-12%). The renderer takes it by default under a sun map with a low-discrepancy
+ *    sampler (examples/render/README.md).
  *
  * 2. PRODUCT SAMPLING (sample_li_cos, pdf_li_cos): a density close to L(w) max(0, n.w). The map's
  *    patches are grouped into 64 x 32 cells; a cell is picked with probability proportional to its
