@@ -458,6 +458,10 @@ typedef struct elr_bsdf {
   elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
+/* a material whose BSDF is the same at every hit but for its frame (constant textures, no anisotropic
+ * lobe): 1 and its BSDF t, else 0 (materials.c; render_wave.c makes a hit's BSDF from t by a copy and
+ * the frame) */
+int elr_bsdf_constant(const elr_scene *s, int mi, elr_bsdf *t);
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 /* Returns f; *specular is 0 when the sampled lobe was not specular, 1 for a specular reflection, 2 for a

@@ -33,6 +33,7 @@
  * order: other numbers of the same distribution (test_render_wave checks both). A change to
  * EstimateDirect or to elr_path_li must be made here too (test_render_wave fails until it is). */
 #include "elr_internal.h"
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -171,11 +172,27 @@ struct elr_wave {
   elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
   elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
   elr_wave_rays rays, shadows;
+  /* per material, the BSDF it has at every hit but for the frame (elr_bsdf_constant), or -1: its index in tmpl */
+  int *tmpl_of;
+  elr_bsdf *tmpl;
 };
+
+/* elr_bsdf_init for the wave: from the material's constant BSDF where it has one (a copy of the fields
+ * elr_bsdf_init writes, then the frame elr_bsdf_init makes: the same BSDF), else elr_bsdf_init */
+static void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b) {
+  int t = W->tmpl_of[h->material];
+  const elr_bsdf *c;
+  if (t < 0) { elr_bsdf_init(s, h, tc, b); return; }
+  c = &W->tmpl[t];
+  memcpy(b, c, offsetof(elr_bsdf, lobe)); /* (a size the compiler knows: moves, no call) */
+  if (c->nlobes) memcpy(b->lobe, c->lobe, (size_t)c->nlobes * sizeof(elr_bxdf));
+  b->ns = h->ns; b->ng = h->ng;
+  elr_onb(b->ns, &b->ss, &b->ts);
+}
 
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile) {
   elr_wave *W = (elr_wave *)calloc(1, sizeof *W);
-  int i, npix;
+  int i, k, npix;
   if (!W) return NULL;
   /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
@@ -190,6 +207,11 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
     W->nS++;
   }
   W->npix = npix;
+  /* the materials' constant BSDFs */
+  W->tmpl_of = (int *)malloc(((size_t)C->s->nmat + 1) * sizeof(int));
+  W->tmpl = (elr_bsdf *)malloc(((size_t)C->s->nmat + 1) * sizeof(elr_bsdf));
+  if (!W->tmpl_of || !W->tmpl) { elr_wave_free(W); return NULL; }
+  for (i = 0, k = 0; i < C->s->nmat; i++) W->tmpl_of[i] = elr_bsdf_constant(C->s, i, &W->tmpl[k]) ? k++ : -1;
   return W;
 }
 
@@ -197,7 +219,7 @@ void elr_wave_free(elr_wave *W) {
   int i;
   if (!W) return;
   for (i = 0; i < W->nS; i++) elr_sampler_free(&W->S[i]);
-  free(W->S);
+  free(W->S); free(W->tmpl_of); free(W->tmpl);
   free(W);
 }
 
@@ -306,7 +328,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (!q->hit) continue;
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
-    elr_bsdf_init(C->s, &W->h[j], &q->tc, &q->b);
+    elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
     /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
     W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t));
@@ -374,10 +396,11 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (!p->bray || p->occ_b) continue;
     elr_to3(p->wb, d);
     if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
-    else if (C->batch_light->product) {
+    else if (C->batch_light->product) { /* (the normal of the pair's light sample where it has one: the same call) */
       elr_v3 nc;
       const elr_sun_cell *c = W->vsc[W->pair_of[k]];
-      int has = elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      int i = W->light[k], has = i >= 0 ? W->has_n[i] : elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      if (i >= 0 && has) nc = W->normal[i];
       p->bpdf_env = c ? elr_sun_pdf(C->sun, c, has ? &nc : NULL, d) : elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
     } else {
       p->bpdf_env = el_envlight_pdf_li(env_sample, d);
@@ -441,7 +464,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         memset(&tc, 0, sizeof tc);
         if (s->mat_textured[h->material]) { elr_hit_uv(s, h); tc.u = h->u; tc.v = h->v; }
       }
-      elr_bsdf_init(s, h, &tc, b);
+      elr__bsdf_init(s, W, h, &tc, b);
       wo = elr_mul(p->ray.d, -1.f);
       elr_sampler_restore(S, &W->pos[j]);
       if (C->light_sampling && (b->has_diffuse || b->has_glossy)) {
@@ -528,8 +551,13 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       if (elr_isblack(f) || pdf == 0.f) { W->alive[j] = 0; nalive--; continue; }
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
       p->specular = spec; p->prev_pdf = pdf;
-      p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL; /* its sun-cache cell, */
-      p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      if (W->light[j] >= 0) { /* its sun-cache cell and the normal its light sample used (the same calls, made above) */
+        int i = W->light[j];
+        p->prev_sun = W->sc[i]; p->prev_has_n = W->has_n[i]; p->prev_n = W->normal[i];
+      } else {
+        p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
+        p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n);
+      }
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
