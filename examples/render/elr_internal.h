@@ -467,6 +467,22 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 /* Returns f; *specular is 0 when the sampled lobe was not specular, 1 for a specular reflection, 2 for a
  * specular transmission. */
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
+/* f and pdf of a BSDF of no lobe list and no glossy lobe (elr_bsdf_f and elr_bsdf_pdf there: Lambertian
+ * alone needs no local frame), and elr_bsdf_f and elr_bsdf_pdf with that case inline (the wave loop) */
+static inline elr_v3 elr_bsdf_lambert_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
+  int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
+  return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
+}
+static inline float elr_bsdf_lambert_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
+  float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
+  return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
+}
+static inline elr_v3 elr_bsdf_f_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
+  return b->nlobes || b->has_glossy ? elr_bsdf_f(b, wo, wi) : elr_bsdf_lambert_f(b, wo, wi);
+}
+static inline float elr_bsdf_pdf_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
+  return b->nlobes || b->has_glossy ? elr_bsdf_pdf(b, wo, wi) : elr_bsdf_lambert_pdf(b, wo, wi);
+}
 /* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
  * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
 elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);

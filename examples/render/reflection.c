@@ -93,21 +93,11 @@ static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
 }
 static ELR_NOINLINE elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
 static ELR_NOINLINE float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
-/* f and pdf of a BSDF of no lobe list and no glossy lobe (Lambertian alone needs no local frame):
- * inlined into elr_bsdf_sample too, which evaluates both in the sampled direction */
-static inline elr_v3 elr__lambert_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
-  int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
-  return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
-}
-static inline float elr__lambert_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
-  float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
-  return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
-}
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi, f = elr_v(0, 0, 0);
   int reflect;
   if (b->nlobes) return elr__list_f(b, woW, wiW, ELR_BSDF_ALL);
-  if (!b->has_glossy) return elr__lambert_f(b, woW, wiW);
+  if (!b->has_glossy) return elr_bsdf_lambert_f(b, woW, wiW);
   reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
   wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || !reflect) return f;
@@ -119,16 +109,39 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi;
   float pdf = 0.f;
   if (b->nlobes) return elr__list_pdf(b, woW, wiW, ELR_BSDF_ALL);
-  if (!b->has_glossy) return elr__lambert_pdf(b, woW, wiW);
+  if (!b->has_glossy) return elr_bsdf_lambert_pdf(b, woW, wiW);
   wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || b->ncomp == 0) return 0.f;
   if (b->has_diffuse && wo.z * wi.z > 0.f) pdf += fabsf(wi.z) * ELR_INV_PI;
   if (b->has_glossy) pdf += elr__glossy_pdf(b, wo, wi);
   return pdf / (float)b->ncomp;
 }
+/* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) for the fixed
+ * lobes (z from r^2 (cos^2 + sin^2), as they always computed it) */
+static inline elr_v3 elr__fixed_cosine_sample(float woz, float u0, float u1) {
+  float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th;
+  elr_v3 wi;
+  if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
+  else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
+  else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
+  wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(fmaxf(0.f, 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th)))));
+  if (woz < 0.f) wi.z = -wi.z;
+  return wi;
+}
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3 *wiW, float *pdf, int *specular) {
   elr_v3 wo, wi;
   int comp, k = 0, which = -1;
+  if (b->ncomp == 1 && b->has_diffuse && !b->nlobes && u0 >= 0.f && u0 < 1.f) {
+    /* a Lambertian lobe alone (matte): the steps below for ncomp 1 and u0 in [0, 1), where the component
+     * is 0 and u0 stays as it is, with wo.z alone of the local wo (the same floats) */
+    float woz = elr_dot(woW, b->ns);
+    *pdf = 0.f; *specular = 0;
+    if (woz == 0.f) return elr_v(0, 0, 0);
+    wi = elr__fixed_cosine_sample(woz, u0, u1);
+    *wiW = elr__to_world(b, wi);
+    *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
+    return elr_bsdf_lambert_f(b, woW, *wiW);
+  }
   if (b->nlobes) {
     int flags = 0;
     elr_v3 f = elr_bsdf_sample_type(b, woW, u0, u1, ELR_BSDF_ALL, wiW, pdf, &flags);
@@ -156,13 +169,7 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
     return elr_mul(b->kr, 1.f / fabsf(wi.z));
   }
   if (which == 0) {
-    /* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) */
-    float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th;
-    if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
-    else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
-    else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
-    wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(fmaxf(0.f, 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th)))));
-    if (wo.z < 0.f) wi.z = -wi.z;
+    wi = elr__fixed_cosine_sample(wo.z, u0, u1);
   } else {
     elr_v3 wh = elr__tr_sample_wh(b->alpha, wo, u0, u1);
     float d = elr_dot(wo, wh);
@@ -172,8 +179,8 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
   }
   *wiW = elr__to_world(b, wi);
   if (!b->has_glossy) { /* (elr_bsdf_pdf and elr_bsdf_f, inlined) */
-    *pdf = elr__lambert_pdf(b, woW, *wiW);
-    return elr__lambert_f(b, woW, *wiW);
+    *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
+    return elr_bsdf_lambert_f(b, woW, *wiW);
   }
   *pdf = elr_bsdf_pdf(b, woW, *wiW);
   if (b->has_specular) *pdf *= 1.f; /* a specular lobe never matches a non-specular direction */

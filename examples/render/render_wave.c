@@ -289,7 +289,7 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
       ts->shadow++;
       if (!p->occ_l) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, elr_bsdf_pdf(b, elr_mul(W->cam[j].d, -1.f), p->wi));
+        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, elr_bsdf_pdf_inl(b, elr_mul(W->cam[j].d, -1.f), p->wi));
         Ld = elr_add(Ld, elr_mul(elr_vmul(W->fl[k], p->L), w / p->pdf));
       }
     }
@@ -372,7 +372,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (i >= 0) {
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
-      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
+      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f_inl(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
         W->shadow[k] = W->shadows.n;
         elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi), p->wi, INFINITY);
       }
@@ -522,11 +522,11 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         float lpdf = W->pdf[ne + i];
         W->contrib[j] = elr_v(0, 0, 0);
         if (C->ls != ELR_LS_BSDF && lpdf > 0.f) {
-          elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+          elr_v3 fl = elr_mul(elr_bsdf_f_inl(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
           if (!elr_isblack(fl)) {
             float w = 1.f;
             ts->shadow++;
-            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, elr_bsdf_pdf(b, wo, wi));
+            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, elr_bsdf_pdf_inl(b, wo, wi));
             W->contrib[j] = elr_mul(elr_vmul(fl, elr_from3(&W->Le[3 * (ne + i)])), w / lpdf);
             W->shadow[j] = W->shadows.n;
             elr_wave_add(&W->shadows, elr_spawn_origin(&W->h[j], wi), wi, INFINITY);
