@@ -273,6 +273,7 @@ static double wave_rate(elr_scene *s, const bray *r, int n, int api, int occlude
   double t0 = elr_now(), cnt = 0;
   volatile float sink = 0;
   int pass, i, k;
+  elr_wave_rays_init(&w);
   for (pass = 0; elr_now() - t0 < 0.3 || pass < 2; pass++) {
     for (i = 0; i < n; i += 256) {
       w.n = 0;

@@ -402,7 +402,17 @@ typedef struct elr_wave_rays {
   float ngx[ELR_WAVE_RAYS], ngy[ELR_WAVE_RAYS], ngz[ELR_WAVE_RAYS], u[ELR_WAVE_RAYS], v[ELR_WAVE_RAYS];
   unsigned prim[ELR_WAVE_RAYS], geom[ELR_WAVE_RAYS], inst[ELR_WAVE_RAYS];
 } elr_wave_rays;
-void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax);
+/* the fields of every ray of w that elr_wave_add leaves as they are: tnear and time 0, mask ~0, id its
+ * index, flags 0 (once, before the first elr_wave_add) */
+void elr_wave_rays_init(elr_wave_rays *w);
+/* ray n of the wave (inline: the wave loop adds a few rays per camera sample); geom and inst
+ * RTC_INVALID_GEOMETRY_ID (~0u), as a miss leaves them */
+static inline void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax) {
+  int i = w->n++;
+  w->ox[i] = o.x; w->oy[i] = o.y; w->oz[i] = o.z;
+  w->dx[i] = d.x; w->dy[i] = d.y; w->dz[i] = d.z;
+  w->tfar[i] = tmax; w->geom[i] = w->inst[i] = ~0u;
+}
 void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
 void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
 int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h); /* 0: ray i left the scene */

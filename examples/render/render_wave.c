@@ -207,6 +207,7 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
     W->nS++;
   }
   W->npix = npix;
+  elr_wave_rays_init(&W->rays); elr_wave_rays_init(&W->shadows);
   /* the materials' constant BSDFs */
   W->tmpl_of = (int *)malloc(((size_t)C->s->nmat + 1) * sizeof(int));
   W->tmpl = (elr_bsdf *)malloc(((size_t)C->s->nmat + 1) * sizeof(elr_bsdf));
