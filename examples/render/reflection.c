@@ -119,12 +119,13 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
 /* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) for the fixed
  * lobes (z from r^2 (cos^2 + sin^2), as they always computed it) */
 static inline elr_v3 elr__fixed_cosine_sample(float woz, float u0, float u1) {
-  float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th;
+  float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th, z2;
   elr_v3 wi;
   if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
   else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
   else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
-  wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(fmaxf(0.f, 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th)))));
+  z2 = 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th));
+  wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(z2 > 0.f ? z2 : 0.f)); /* (fmaxf(0, z2)'s value, NaN to 0, without its libm call) */
   if (woz < 0.f) wi.z = -wi.z;
   return wi;
 }
