@@ -177,6 +177,12 @@ struct elr_wave {
   elr_bsdf *tmpl;
 };
 
+/* elr_sun_cos_normal with its first case inline (no lowered cell, or a BSDF whose choice the cell does not
+ * change: elr_bsdf_cos_normal, inline in elr_internal.h); sun.c's test, repeated: keep the two alike */
+static inline int elr__cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
+  return !c || !(b->env_map || b->env_sun_test) ? elr_bsdf_cos_normal(b, wo, n) : elr_sun_cos_normal(s, c, b, wo, n);
+}
+
 /* elr_bsdf_init for the wave: from the material's constant BSDF where it has one (a copy of the fields
  * elr_bsdf_init writes, then the frame elr_bsdf_init makes: the same BSDF), else elr_bsdf_init */
 static void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b) {
@@ -319,11 +325,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *q = &W->f[j];
     elr_sampler *S = &W->S[W->pix[j]];
     elr_v3 wo = elr_mul(W->cam[j].d, -1.f);
-    q->h = &W->h[j];
-    q->bs = q->bray = 0;
-    q->occ_l = q->occ_b = -1;
-    q->pdf = 0.f;
-    q->more = NULL; q->nmore = 0; q->sun = NULL;
+    q->h = &W->h[j]; /* (the pair loop below sets the light sampling's fields: elr_direct_first reads them nowhere else) */
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
     if (!q->hit) continue;
@@ -346,7 +348,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
         W->sc[n] = W->vsc[j];
-        W->has_n[n] = elr_sun_cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
+        W->has_n[n] = elr__cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
         lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
@@ -475,7 +477,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_sampler_get2d(S, &W->u[2 * n]);
         elr_sampler_get2d(S, us);
         W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
-        W->has_n[n] = elr_sun_cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
+        W->has_n[n] = elr__cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
         W->lpos[n] = h->p;
         if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
