@@ -487,6 +487,14 @@ static inline float elr_bsdf_lambert_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 w
   float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
   return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
 }
+/* both, with the dot products they share computed once (the same floats as the two calls) */
+static inline elr_v3 elr_bsdf_f_pdf_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi, float *pdf) {
+  float co, ci;
+  if (b->nlobes || b->has_glossy) { *pdf = elr_bsdf_pdf(b, wo, wi); return elr_bsdf_f(b, wo, wi); }
+  co = elr_dot(wo, b->ns); ci = elr_dot(wi, b->ns);
+  *pdf = b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
+  return elr_dot(wi, b->ng) * elr_dot(wo, b->ng) > 0.f && b->has_diffuse && co != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
+}
 static inline elr_v3 elr_bsdf_f_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   return b->nlobes || b->has_glossy ? elr_bsdf_f(b, wo, wi) : elr_bsdf_lambert_f(b, wo, wi);
 }

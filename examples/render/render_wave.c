@@ -153,6 +153,7 @@ struct elr_wave {
   /* the first vertex shaded here (elr__direct_shade), per pair: its light sample's BSDF value times the
    * cosine and its lonly; per camera sample: shaded here (1) or by elr_direct_first (0), and its Ld */
   elr_v3 fl[ELR_WAVE];
+  float flpdf[ELR_WAVE]; /* and the BSDF's pdf in its direction (computed with fl: the dot products they share) */
   int lonly[ELR_WAVE], fast[ELR_WAVE];
   elr_v3 Ld[ELR_WAVE];
   float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
@@ -296,7 +297,7 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
       ts->shadow++;
       if (!p->occ_l) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, elr_bsdf_pdf_inl(b, elr_mul(W->cam[j].d, -1.f), p->wi));
+        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, W->flpdf[k]);
         Ld = elr_add(Ld, elr_mul(elr_vmul(W->fl[k], p->L), w / p->pdf));
       }
     }
@@ -375,7 +376,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (i >= 0) {
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
-      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f_inl(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
+      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f_pdf_inl(&q->b, wo, p->wi, &W->flpdf[k]), fabsf(elr_dot(p->wi, q->b.ns))))) {
         W->shadow[k] = W->shadows.n;
         elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi), p->wi, INFINITY);
       }
@@ -525,11 +526,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         float lpdf = W->pdf[ne + i];
         W->contrib[j] = elr_v(0, 0, 0);
         if (C->ls != ELR_LS_BSDF && lpdf > 0.f) {
-          elr_v3 fl = elr_mul(elr_bsdf_f_inl(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+          float bpdf;
+          elr_v3 fl = elr_mul(elr_bsdf_f_pdf_inl(b, wo, wi, &bpdf), fabsf(elr_dot(wi, b->ns)));
           if (!elr_isblack(fl)) {
             float w = 1.f;
             ts->shadow++;
-            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, elr_bsdf_pdf_inl(b, wo, wi));
+            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, bpdf);
             W->contrib[j] = elr_mul(elr_vmul(fl, elr_from3(&W->Le[3 * (ne + i)])), w / lpdf);
             W->shadow[j] = W->shadows.n;
             elr_wave_add(&W->shadows, elr_spawn_origin(&W->h[j], wi), wi, INFINITY);
