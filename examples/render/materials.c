@@ -215,6 +215,7 @@ int elr_bsdf_constant(const elr_scene *s, int mi, elr_bsdf *t) {
   if (mi < 0 || mi >= s->nmat || !s->mat_textured || s->mat_textured[mi]) return 0;
   memset(&h, 0, sizeof h); memset(&c, 0, sizeof c); memset(t, 0, sizeof *t);
   h.material = mi; h.ns = h.ng = elr_v(0.f, 0.f, 1.f); h.inst = -1;
+  h.has_uv = 1; /* (an anisotropic lobe's frame asks elr_hit_uv: nothing to look up at a made-up hit; refused below) */
   elr_bsdf_init(s, &h, &c, t);
   for (k = 0; k < t->nlobes; k++) {
     const elr_bxdf *l = &t->lobe[k];
