@@ -215,11 +215,16 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   }
   W->npix = npix;
   elr_wave_rays_init(&W->rays); elr_wave_rays_init(&W->shadows);
-  /* the materials' constant BSDFs */
+  /* the materials' constant BSDFs (counted first: memory for those alone) */
   W->tmpl_of = (int *)malloc(((size_t)C->s->nmat + 1) * sizeof(int));
-  W->tmpl = (elr_bsdf *)malloc(((size_t)C->s->nmat + 1) * sizeof(elr_bsdf));
-  if (!W->tmpl_of || !W->tmpl) { elr_wave_free(W); return NULL; }
-  for (i = 0, k = 0; i < C->s->nmat; i++) W->tmpl_of[i] = elr_bsdf_constant(C->s, i, &W->tmpl[k]) ? k++ : -1;
+  if (!W->tmpl_of) { elr_wave_free(W); return NULL; }
+  for (i = 0, k = 0; i < C->s->nmat; i++) {
+    elr_bsdf t;
+    W->tmpl_of[i] = elr_bsdf_constant(C->s, i, &t) ? k++ : -1;
+  }
+  W->tmpl = (elr_bsdf *)malloc(((size_t)k + 1) * sizeof(elr_bsdf));
+  if (!W->tmpl) { elr_wave_free(W); return NULL; }
+  for (i = 0; i < C->s->nmat; i++) if (W->tmpl_of[i] >= 0) elr_bsdf_constant(C->s, i, &W->tmpl[W->tmpl_of[i]]);
   return W;
 }
 
