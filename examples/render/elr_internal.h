@@ -501,6 +501,41 @@ static inline elr_v3 elr_bsdf_f_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
 static inline float elr_bsdf_pdf_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   return b->nlobes || b->has_glossy ? elr_bsdf_pdf(b, wo, wi) : elr_bsdf_lambert_pdf(b, wo, wi);
 }
+/* a direction of the shading frame in world space */
+static inline elr_v3 elr_bsdf_to_world(const elr_bsdf *b, elr_v3 v) {
+  return elr_add(elr_add(elr_mul(b->ss, v.x), elr_mul(b->ts, v.y)), elr_mul(b->ns, v.z));
+}
+/* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) for the fixed
+ * lobes (z from r^2 (cos^2 + sin^2), as they always computed it; the clamp is fmaxf(0, z^2)'s value,
+ * NaN to 0, without its libm call) */
+static inline elr_v3 elr_bsdf_fixed_cosine_sample(float woz, float u0, float u1) {
+  float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th, z2;
+  elr_v3 wi;
+  if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
+  else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
+  else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
+  z2 = 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th));
+  wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(z2 > 0.f ? z2 : 0.f));
+  if (woz < 0.f) wi.z = -wi.z;
+  return wi;
+}
+/* elr_bsdf_sample of a Lambertian lobe alone (matte) and u0 in [0, 1): its general steps where the
+ * component is 0 and u0 stays as it is, with wo.z alone of the local wo (the same floats); inline, and
+ * elr_bsdf_sample_inl with it (the wave loop) */
+static inline int elr_bsdf_lambert_alone(const elr_bsdf *b, float u0) {
+  return b->ncomp == 1 && b->has_diffuse && !b->nlobes && u0 >= 0.f && u0 < 1.f;
+}
+static inline elr_v3 elr_bsdf_lambert_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3 *wiW, float *pdf, int *specular) {
+  float woz = elr_dot(woW, b->ns);
+  *pdf = 0.f; *specular = 0;
+  if (woz == 0.f) return elr_v(0, 0, 0);
+  *wiW = elr_bsdf_to_world(b, elr_bsdf_fixed_cosine_sample(woz, u0, u1));
+  *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
+  return elr_bsdf_lambert_f(b, woW, *wiW);
+}
+static inline elr_v3 elr_bsdf_sample_inl(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular) {
+  return elr_bsdf_lambert_alone(b, u0) ? elr_bsdf_lambert_sample(b, wo, u0, u1, wi, pdf, specular) : elr_bsdf_sample(b, wo, u0, u1, wi, pdf, specular);
+}
 /* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
  * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
 elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);

@@ -69,9 +69,6 @@ float elr_fr_dielectric(float cosi, float etai, float etat) {
 
 /* >> BSDF (core/reflection.cpp) */
 static elr_v3 elr__to_local(const elr_bsdf *b, elr_v3 v) { return elr_v(elr_dot(v, b->ss), elr_dot(v, b->ts), elr_dot(v, b->ns)); }
-static elr_v3 elr__to_world(const elr_bsdf *b, elr_v3 v) {
-  return elr_add(elr_add(elr_mul(b->ss, v.x), elr_mul(b->ts, v.y)), elr_mul(b->ns, v.z));
-}
 static elr_v3 elr__glossy_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   float co = fabsf(wo.z), ci = fabsf(wi.z), F;
   elr_v3 wh = elr_add(wi, wo);
@@ -116,33 +113,10 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   if (b->has_glossy) pdf += elr__glossy_pdf(b, wo, wi);
   return pdf / (float)b->ncomp;
 }
-/* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) for the fixed
- * lobes (z from r^2 (cos^2 + sin^2), as they always computed it) */
-static inline elr_v3 elr__fixed_cosine_sample(float woz, float u0, float u1) {
-  float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th, z2;
-  elr_v3 wi;
-  if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
-  else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
-  else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
-  z2 = 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th));
-  wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(z2 > 0.f ? z2 : 0.f)); /* (fmaxf(0, z2)'s value, NaN to 0, without its libm call) */
-  if (woz < 0.f) wi.z = -wi.z;
-  return wi;
-}
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3 *wiW, float *pdf, int *specular) {
   elr_v3 wo, wi;
   int comp, k = 0, which = -1;
-  if (b->ncomp == 1 && b->has_diffuse && !b->nlobes && u0 >= 0.f && u0 < 1.f) {
-    /* a Lambertian lobe alone (matte): the steps below for ncomp 1 and u0 in [0, 1), where the component
-     * is 0 and u0 stays as it is, with wo.z alone of the local wo (the same floats) */
-    float woz = elr_dot(woW, b->ns);
-    *pdf = 0.f; *specular = 0;
-    if (woz == 0.f) return elr_v(0, 0, 0);
-    wi = elr__fixed_cosine_sample(woz, u0, u1);
-    *wiW = elr__to_world(b, wi);
-    *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
-    return elr_bsdf_lambert_f(b, woW, *wiW);
-  }
+  if (elr_bsdf_lambert_alone(b, u0)) return elr_bsdf_lambert_sample(b, woW, u0, u1, wiW, pdf, specular);
   if (b->nlobes) {
     int flags = 0;
     elr_v3 f = elr_bsdf_sample_type(b, woW, u0, u1, ELR_BSDF_ALL, wiW, pdf, &flags);
@@ -163,14 +137,14 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
   if (which == 2) {
     /* SpecularReflection with FresnelNoOp: f = R / |cos wi|, pdf 1 (only lobe of a mirror) */
     wi = elr_v(-wo.x, -wo.y, wo.z);
-    *wiW = elr__to_world(b, wi);
+    *wiW = elr_bsdf_to_world(b, wi);
     *specular = 1;
     *pdf = 1.f / (float)b->ncomp;
     if (wi.z == 0.f) { *pdf = 0.f; return elr_v(0, 0, 0); }
     return elr_mul(b->kr, 1.f / fabsf(wi.z));
   }
   if (which == 0) {
-    wi = elr__fixed_cosine_sample(wo.z, u0, u1);
+    wi = elr_bsdf_fixed_cosine_sample(wo.z, u0, u1);
   } else {
     elr_v3 wh = elr__tr_sample_wh(b->alpha, wo, u0, u1);
     float d = elr_dot(wo, wh);
@@ -178,7 +152,7 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
     wi = elr_sub(elr_mul(wh, 2.f * d), wo);
     if (wo.z * wi.z <= 0.f) return elr_v(0, 0, 0);
   }
-  *wiW = elr__to_world(b, wi);
+  *wiW = elr_bsdf_to_world(b, wi);
   if (!b->has_glossy) { /* (elr_bsdf_pdf and elr_bsdf_f, inlined) */
     *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
     return elr_bsdf_lambert_f(b, woW, *wiW);
@@ -550,7 +524,7 @@ elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 woW, float u0, float u1, i
   if (wo.z == 0.f) return elr_v(0, 0, 0);
   f = elr__bxdf_sample(x, wo, u0, u1, &wi, pdf, flags);
   if (*pdf == 0.f) { *flags = 0; return elr_v(0, 0, 0); }
-  *wiW = elr__to_world(b, wi);
+  *wiW = elr_bsdf_to_world(b, wi);
   /* <<Compute overall PDF with all matching BxDFs>> */
   if (!(x->flags & ELR_BSDF_SPECULAR) && n > 1)
     for (i = 0; i < b->nlobes; i++)

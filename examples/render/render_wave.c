@@ -363,7 +363,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       }
       if (C->ls != ELR_LS_LIGHT && !lonly) {
         int spec;
-        p->fb = elr_bsdf_sample(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
+        p->fb = elr_bsdf_sample_inl(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
         p->bs = 1;
         p->bray = !spec && p->bpdf > 0.f && !elr_isblack(p->fb); /* elr_estimate_direct's BSDF ray */
       }
@@ -490,7 +490,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       }
       /* <<Sample BSDF to get new path direction>> */
       elr_sampler_get2d(S, u);
-      W->fs[j] = elr_bsdf_sample(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
+      W->fs[j] = elr_bsdf_sample_inl(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
       elr_sampler_save(S, &W->pos[j]);
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
