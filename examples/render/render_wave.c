@@ -186,7 +186,7 @@ static inline int elr__cos_normal(const elr_scene *s, const elr_sun_cell *c, con
 
 /* elr_bsdf_init for the wave: from the material's constant BSDF where it has one (a copy of the fields
  * elr_bsdf_init writes, then the frame elr_bsdf_init makes: the same BSDF), else elr_bsdf_init */
-static void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b) {
+static inline void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b) {
   int t = W->tmpl_of[h->material];
   const elr_bsdf *c;
   if (t < 0) { elr_bsdf_init(s, h, tc, b); return; }
