@@ -104,11 +104,11 @@
  * against main's binary: bench_city 64 spp 0.85-0.90x, bench_studio 0.92-0.95x, path 0.95-0.98x.
  * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path).
  * Measured 2026-12-02 (issue 21, third round: the wave's shading and bookkeeping), callgrind_parts.sh:
- * direct 4060 -> 3673, path 6453 -> 5868 (BSDF + loop + other 1377 -> 1096 and 1972 -> 1544; a
- * material's constant BSDF copied per hit, Lambertian sampling and f/pdf inline, elr_wave_add inline;
- * examples/render/README.md has the table); the same images. Loop CPU, one thread, 64 spp, 7
- * interleaved rounds against main's binary: bench_city direct 0.895-0.925x, path 0.874-0.953x,
- * bench_studio 0.913-0.988x. */
+ * direct 4060 -> 3630, path 6453 -> 5765 (BSDF 614 -> 406 and 811 -> 485, now inline in the loop's
+ * file; a material's constant BSDF copied per hit, Lambertian sampling and f/pdf inline, elr_wave_add
+ * inline; examples/render/README.md has the table); the same images. Loop CPU, one thread, 64 spp, 7
+ * interleaved rounds against main's binary: bench_city direct 0.870-0.931x, path 0.873-0.945x,
+ * bench_studio 0.917-0.969x. */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
