@@ -333,8 +333,8 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 810
- * instructions (930 with rgb), the pdf included. Builds its tables on first use (5.4 MiB for a
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 820
+ * instructions (945 with rgb), the pdf included; sample_li_cos_n below: about 620 (810). Builds its tables on first use (5.4 MiB for a
  * 1024x512 map, at most 12 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
@@ -342,12 +342,14 @@ EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], co
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
  * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
- * zero, NaN or infinite n, gives 0. About 410 instructions. Builds the tables on first use. */
+ * zero, NaN or infinite n, gives 0. About 400 instructions (pdf_li_cos_n: 330). Builds the tables on first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
-/* n at once, for wave loops: normals[3i..] and u[2i..] in, wi[3i..], rgb[3i..] (may be NULL) and pdf[i]
- * out (arrays of points, as sample_li_n), bit for bit what n calls of sample_li_cos return; pdf_li_cos_n
- * likewise pdf[i] = pdf_li_cos(normals[3i..], wi[3i..]). With SSE2 four samples share each arithmetic
- * step (about 2x fewer instructions per sample; NOTES 2); without, a loop of single calls. n <= 0: nothing. */
+/* n at once, for wave loops (a renderer's shading points of one stage): normals[3i..] and u[2i..] in,
+ * wi[3i..], rgb[3i..] (may be NULL) and pdf[i] out (arrays of points, as sample_li_n), bit for bit what
+ * n calls of sample_li_cos return; pdf_li_cos_n likewise pdf[i] = pdf_li_cos(normals[3i..], wi[3i..]).
+ * With SSE2 the arithmetic runs on four samples at once and the table reads of 16 samples are started
+ * together: about 620 / 330 instructions per sample and 2-3x less time with random normals (NOTES 2,
+ * COST); without SSE2 (or with FMA contraction: -mfma) a loop of single calls. n <= 0 does nothing. */
 EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float *normals, const float *u, float *wi,
                                         float *rgb, float *pdf);
 EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *normals, const float *wi, float *pdf);
@@ -440,8 +442,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 2.9 MB of normal tables.
  *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random normal per
- *    call, the loop's own 9 subtracted): sample_li_cos 806 instructions (933 with the radiance; 855 under a
- *    general rotation), pdf_li_cos 408 (436); sample_li 97 (265 with the radiance), pdf_li 76. With binary
+ *    call, the loop's own 9 subtracted): sample_li_cos 818 instructions (945 with the radiance; 867 under a
+ *    general rotation), pdf_li_cos 400 (424); sample_li 97 (265 with the radiance), pdf_li 76 (the pick
+ *    in stages shared with the batched call below: 806, 933, 855, 408 and 436 before). With binary
  *    searches in place of the guide tables (below): 902 (1029; 951); before the round before: 988 (1116;
  *    1034), 408 (432); before issue 20: 1179, 1310 and 444. Issue 20's targets (sample_li_cos <= 400 and <=
  *    1.25x sample_li, pdf_li_cos <= 150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about
@@ -452,6 +455,25 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    entries: about 190 as binary searches, about 95 with the guide tables), two linear inversions, the
  *    direction (sinpi, cospi) and the atan pair again (bit-for-bit agreement with pdf_li_cos needs the
  *    direction located as the pdf locates it).
+ *    N AT ONCE (sample_li_cos_n, pdf_li_cos_n; issue 20): the same work, bit for bit, with the arithmetic
+ *    on four lanes of SSE2 (normal -> bin, the linear inversions, the direction's sinpi / cospi, the atan
+ *    pair, the density) and the table reads lane by lane, in four stages over 16 samples (cell row, cell,
+ *    patch row, patch: each stage requests the next stage's lines, then the corners and the texels),
+ *    so that 16 samples' cache misses overlap. Counted the same way in batches of 64 (bench_envlight
+ *    --callgrind sample_cos_n ...: callgrind_product.sh): sample 617 instructions per sample (812 with
+ *    the radiance, 634 general rotation), pdf 333 (341); city and studio alike. The four lanes alone (4
+ *    samples per block, no stages): 542 and 245; the stages and prefetches cost 75 / 88 instructions
+ *    and save far more time. Time (bench_product --batch: a new random normal per sample, radiance
+ *    included, CPU ns, best of 2-3 interleaved rounds, 2-core machine at load 3-7): city sample_li_cos
+ *    373-414 -> 132-142 ns (2.8x), pdf 106-111 -> 52 ns (2x; sample_li 100-107); without the prefetches
+ *    217-224 and 59 ns. Issue 20's targets are not met this way either: the floor is the scalar part,
+ *    the four searches (about 125 per sample, the guides' forward scans) and the pick's address and
+ *    fraction arithmetic (about 110), the normal's table and the lanes' bookkeeping; the vector part is
+ *    about 120 per sample. In render's wave loop (render_wave.c, the wave's product samples in one
+ *    call): callgrind_parts.sh, instructions per camera sample, city 4064 -> 4019 (light part 1066 ->
+ *    1021), studio 3264 -> 3171 (1011 -> 916; the four lanes without stages: 3969 and 3058); render
+ *    CPU time, one thread, 64 spp, best of 3 interleaved: bench_city 1.84 -> 1.77 s, bench_studio 1.44
+ *    -> 1.17 s, images byte-identical.
  *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
  *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
  *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
@@ -483,9 +505,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    piecewise-constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340
  *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
  *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
- *    place of the binary searches (1049 instructions against 953). Not tried: alias tables (they break
- *    the stratification), a batched call for n normals (no instruction
- *    saving without SIMD across samples: the work is table lookups), Conty and Lecocq's per-point 12x12
+ *    place of the binary searches (1049 instructions against 953). Tried since: the batched call for n
+ *    normals (N AT ONCE above: 617 / 333 instructions, 2-3x less time). Not tried: alias tables (they
+ *    break the stratification), Conty and Lecocq's per-point 12x12
  *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
  *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
  *    density would no longer be le's, and the atans are about a quarter of the pdf).
@@ -4229,7 +4251,8 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
  * sample whose round trip leaves its patch or finds no density) is recomputed by the single call's own
  * code. The plain loop over single calls: without SSE2 (EL_NO_SIMD, other CPUs), with x87 float
  * evaluation, and where a compiler may fuse multiply-adds (FMA code: scalar and vector would fuse
- * differently). */
+ * differently; measured: clang -march=native fuses the scalar code and not the intrinsics, and 1 batch
+ * in 3-4 differs; gcc happened to fuse both alike). */
 #if EL_ENVLIGHT__SSE && defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0 && !defined(__FMA__)
 #define EL_ENVLIGHT__COS4 1
 #define EL_ENVLIGHT__V(x) _mm_set1_ps(x)
@@ -4268,24 +4291,18 @@ static inline __m128 el_envlight__atan_ratio4(__m128 mn, __m128 mx) {
   p = _mm_mul_ps(t2, _mm_add_ps(EL_ENVLIGHT__V(-0.333173674f), p));
   return _mm_mul_ps(t, _mm_add_ps(EL_ENVLIGHT__V(0.999996111f), p));
 }
-/* to light space (el_envlight__to_light) and to world space (el_envlight__to_world), x[3] -> y[3] */
-static inline void el_envlight__to_light4(const el_envlight *l, const __m128 x[3], __m128 y[3]) {
-  const float *m = l->to_world;
+/* to world space (el_envlight__to_world) or, with back = 1, to light space (el_envlight__to_light):
+ * x[3] -> y[3], the same operations in the same order */
+static inline void el_envlight__xform4(const el_envlight *l, int back, const __m128 x[3], __m128 y[3]) {
+  const float *m = l->to_world, *sg = back ? l->isign : l->sign;
+  const int *pm = back ? l->iperm : l->perm;
+  const int a = back ? 1 : 3, b = back ? 3 : 1; /* M's row k (to world) or column k (to light) */
   int k;
   if (l->exact_transform)
-    for (k = 0; k < 3; ++k) y[k] = _mm_mul_ps(_mm_set1_ps(l->isign[k]), x[l->iperm[k]]);
+    for (k = 0; k < 3; ++k) y[k] = _mm_mul_ps(_mm_set1_ps(sg[k]), x[pm[k]]);
   else
     for (k = 0; k < 3; ++k)
-      y[k] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[k]), x[0]), _mm_mul_ps(_mm_set1_ps(m[3 + k]), x[1])), _mm_mul_ps(_mm_set1_ps(m[6 + k]), x[2]));
-}
-static inline void el_envlight__to_world4(const el_envlight *l, const __m128 x[3], __m128 y[3]) {
-  const float *m = l->to_world;
-  int k;
-  if (l->exact_transform)
-    for (k = 0; k < 3; ++k) y[k] = _mm_mul_ps(_mm_set1_ps(l->sign[k]), x[l->perm[k]]);
-  else
-    for (k = 0; k < 3; ++k)
-      y[k] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[3 * k]), x[0]), _mm_mul_ps(_mm_set1_ps(m[3 * k + 1]), x[1])), _mm_mul_ps(_mm_set1_ps(m[3 * k + 2]), x[2]));
+      y[k] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[a * k]), x[0]), _mm_mul_ps(_mm_set1_ps(m[a * k + b]), x[1])), _mm_mul_ps(_mm_set1_ps(m[a * k + 2 * b]), x[2]));
 }
 /* three rows of four floats <-> four points of three (AoS, p[3 k + c]); lanes >= m are padded with lane 0 */
 static inline void el_envlight__load3x4(const float *p, int m, __m128 x[3]) {
@@ -4363,7 +4380,7 @@ static EL_ENVLIGHT__PROD_INLINE void el_envlight__prod_table4(const el_envlight 
   int ok, k, ii[4], jj[4];
   s = _mm_add_ps(_mm_add_ps(el_envlight__abs4(x[0]), el_envlight__abs4(x[1])), el_envlight__abs4(x[2]));
   ok = _mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(s, EL_ENVLIGHT__V(1e-18f)), _mm_cmple_ps(s, EL_ENVLIGHT__V(1e18f))));
-  el_envlight__to_light4(l, x, d);
+  el_envlight__xform4(l, 1, x, d);
   /* el_envlight__oct_encode */
   s = _mm_add_ps(_mm_add_ps(el_envlight__abs4(d[0]), el_envlight__abs4(d[1])), el_envlight__abs4(d[2]));
   px = _mm_div_ps(d[0], s); py = _mm_div_ps(d[1], s);
@@ -4476,8 +4493,8 @@ EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float
           d[1] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__sinpi4(vm)));
           d[2] = el_envlight__sinpi4(_mm_sub_ps(EL_ENVLIGHT__V(0.5f), v));
         }
-        el_envlight__to_world4(l, d, w);
-        if (!l->exact_transform) el_envlight__to_light4(l, w, d); /* as pdf_li_cos brings wi back */
+        el_envlight__xform4(l, 0, d, w);
+        if (!l->exact_transform) el_envlight__xform4(l, 1, w, d); /* as pdf_li_cos brings wi back */
         /* the pdf's own path at wi (el_envlight__prod_locate, el_envlight__prod_eval), its reads skipped */
         ok = el_envlight__prod_locate4(W, d, &q);
         ok = _mm_and_ps(ok, _mm_castsi128_ps(_mm_and_si128(_mm_cmpeq_epi32(q.i, vi), _mm_cmpeq_epi32(q.r, vr))));
@@ -4535,7 +4552,7 @@ EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *n
         el_envlight__load3x4(normals + 3 * (j + g), mg, x);
         el_envlight__prod_table4(l, W, normals + 3 * (j + g), mg, x, tab + g);
         el_envlight__load3x4(wi + 3 * (j + g), mg, x);
-        el_envlight__to_light4(l, x, d); /* el_envlight__to_light_dir: lanes that need rescaling go to the single call */
+        el_envlight__xform4(l, 1, x, d); /* el_envlight__to_light_dir: lanes that need rescaling go to the single call */
         ok |= (unsigned)_mm_movemask_ps(el_envlight__prod_locate4(W, d, &q[g / 4])) << g;
         _mm_storeu_si128((__m128i *)(void *)(ii + g), q[g / 4].i); _mm_storeu_si128((__m128i *)(void *)(rr + g), q[g / 4].r);
         for (k = g; k < g + mg; ++k) {
