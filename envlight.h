@@ -334,7 +334,7 @@ typedef struct el_envlight_product_options {
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
  * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 820
- * instructions (945 with rgb), the pdf included; sample_li_cos_n below: about 620 (810). Builds its tables on first use (5.4 MiB for a
+ * instructions (945 with rgb), the pdf included; sample_li_cos_n below: about 620 (750). Builds its tables on first use (5.4 MiB for a
  * 1024x512 map, at most 12 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
@@ -460,8 +460,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    pair, the density) and the table reads lane by lane, in four stages over 16 samples (cell row, cell,
  *    patch row, patch: each stage requests the next stage's lines, then the corners and the texels),
  *    so that 16 samples' cache misses overlap. Counted the same way in batches of 64 (bench_envlight
- *    --callgrind sample_cos_n ...: callgrind_product.sh): sample 617 instructions per sample (812 with
- *    the radiance, 634 general rotation), pdf 333 (341); city and studio alike. The four lanes alone (4
+ *    --callgrind sample_cos_n ...: callgrind_product.sh): sample 617 instructions per sample (751 with
+ *    the radiance: its texels located once, for the prefetch and the blend; 634 general rotation), pdf 333 (341); city and studio alike. The four lanes alone (4
  *    samples per block, no stages): 542 and 245; the stages and prefetches cost 75 / 88 instructions
  *    and save far more time. Time (bench_product --batch: a new random normal per sample, radiance
  *    included, CPU ns, best of 2-3 interleaved rounds, 2-core machine at load 3-7): city sample_li_cos
@@ -1282,19 +1282,23 @@ static inline void el_envlight__bilerp_texels(const el_envlight *l, float u, flo
   p[3] = l->texels + ((size_t)y1 * (size_t)w + (size_t)x1) * 3;
 }
 
-/* Bilinear lookup at (u, v) in [0,1]^2: Repeat in u, Clamp in v. */
-static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rgb[3]) {
-  const float *p[4], *p00, *p01, *p10, *p11;
-  float fx, fy;
+/* The bilinear blend of the four texels p (el_envlight__bilerp_texels) with weights fx, fy. */
+static inline void el_envlight__bilerp_at(const float *const p[4], float fx, float fy, float rgb[3]) {
+  const float *p00 = p[0], *p01 = p[1], *p10 = p[2], *p11 = p[3];
   int c;
-  el_envlight__bilerp_texels(l, u, v, p, &fx, &fy);
-  p00 = p[0]; p01 = p[1]; p10 = p[2]; p11 = p[3];
   for (c = 0; c < 3; ++c) {
     float a = p00[c] + fx * (p01[c] - p00[c]);
     float b = p10[c] + fx * (p11[c] - p10[c]);
     rgb[c] = a + fy * (b - a);
     if (rgb[c] < 0.0f) rgb[c] = 0.0f; /* rounding of a + f (b - a) with huge ranges */
   }
+}
+/* Bilinear lookup at (u, v) in [0,1]^2: Repeat in u, Clamp in v. */
+static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rgb[3]) {
+  const float *p[4];
+  float fx, fy;
+  el_envlight__bilerp_texels(l, u, v, p, &fx, &fy);
+  el_envlight__bilerp_at(p, fx, fy, rgb);
 }
 
 /* The radiance at light-space (u, v). */
@@ -4418,7 +4422,8 @@ EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float
       const uint16_t *tab[EL_ENVLIGHT__CB];
       el_envlight__pick P[EL_ENVLIGHT__CB];
       float fq[EL_ENVLIGHT__CB], fs[EL_ENVLIGHT__CB], fwc[EL_ENVLIGHT__CB], fwr[EL_ENVLIGHT__CB], cs[4][EL_ENVLIGHT__CB];
-      float ow[EL_ENVLIGHT__CB][4], pp[EL_ENVLIGHT__CB], uvs[2 * EL_ENVLIGHT__CB], c4[4];
+      float ow[EL_ENVLIGHT__CB][4], pp[EL_ENVLIGHT__CB], uvs[2 * EL_ENVLIGHT__CB], c4[4], fxy[2 * EL_ENVLIGHT__CB];
+      const float *tp[EL_ENVLIGHT__CB][4];
       int ii[EL_ENVLIGHT__CB], rr[EL_ENVLIGHT__CB], m = n - j < EL_ENVLIGHT__CB ? n - j : EL_ENVLIGHT__CB, k, g;
       unsigned live = 0, good = 0;
       for (g = 0; g < m; g += 4) { /* the normals' tables; their first lines requested */
@@ -4507,19 +4512,17 @@ EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float
         _mm_storeu_ps(uvs + 2 * g, _mm_unpacklo_ps(q.u, q.v)); _mm_storeu_ps(uvs + 2 * g + 4, _mm_unpackhi_ps(q.u, q.v));
       }
       good &= live;
-      if (rgb) /* the radiance's texels requested */
+      if (rgb) /* le(wi) at the same (u, v): its texels requested, blended below */
         for (k = 0; k < m; ++k)
           if ((good >> k) & 1) {
-            const float *tp[4];
-            float fx, fy;
-            el_envlight__bilerp_texels(l, uvs[2 * k], uvs[2 * k + 1], tp, &fx, &fy);
-            EL_ENVLIGHT__PF(tp[0], 0); EL_ENVLIGHT__PF(tp[1], 8); EL_ENVLIGHT__PF(tp[2], 0); EL_ENVLIGHT__PF(tp[3], 8);
+            el_envlight__bilerp_texels(l, uvs[2 * k], uvs[2 * k + 1], tp[k], &fxy[2 * k], &fxy[2 * k + 1]);
+            EL_ENVLIGHT__PF(tp[k][0], 0); EL_ENVLIGHT__PF(tp[k][1], 8); EL_ENVLIGHT__PF(tp[k][2], 0); EL_ENVLIGHT__PF(tp[k][3], 8);
           }
       for (k = 0; k < m; ++k) {
         float *wk = wi + 3 * (j + k), *ck = rgb ? rgb + 3 * (j + k) : NULL;
         if ((good >> k) & 1) {
           wk[0] = ow[k][0]; wk[1] = ow[k][1]; wk[2] = ow[k][2]; pdf[j + k] = pp[k];
-          if (ck) el_envlight__bilerp(l, uvs[2 * k], uvs[2 * k + 1], ck); /* le(wi): the same (u, v) */
+          if (ck) el_envlight__bilerp_at(tp[k], fxy[2 * k], fxy[2 * k + 1], ck);
         } else if ((live >> k) & 1) el_envlight_sample_li_cos(l, normals + 3 * (j + k), u + 2 * (j + k), wk, ck, pdf + j + k); /* rare */
         else { /* as sample_li_cos: no sample */
           wk[0] = l->to_world[2]; wk[1] = l->to_world[5]; wk[2] = l->to_world[8]; pdf[j + k] = 0.0f;
