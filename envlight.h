@@ -4019,7 +4019,7 @@ static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, cons
  * it reads, P->p, so that the batched call can start those reads for several samples before it needs
  * them): the patch (P->i, P->r), the fractions P->q (of the patch row's units) and P->s (of the
  * patch's), the cell's integer width P->wc and the patch's P->wr (as the pdf reads them). */
-typedef struct el_envlight__pick { const uint16_t *p; const uint8_t *g; float x0, f0, f1, q, s; int a, b, r, i; uint32_t wc, wr; } el_envlight__pick;
+typedef struct el_envlight__pick { const uint16_t *p; float x0, f0, f1, q, s; int a, b, r, i; uint32_t wc, wr; } el_envlight__pick;
 /* 1: the cell row b, from the table's rows CDF; P->p: the row's span [a_s, L, CDF] */
 static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick1(const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], el_envlight__pick *P) {
   float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS;
@@ -4031,7 +4031,7 @@ static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick1(const struct el_envlight
   P->p = el_envlight__sparse_row(W, tab, b);
   P->b = b;
 }
-/* 2: a cell a of the row's span; P->p: the cell's CDF over its patch rows (P->g its guide) */
+/* 2: a cell a of the row's span; P->p: the cell's CDF over its patch rows */
 static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick2(const struct el_envlight__warp *W, el_envlight__pick *P) {
   const uint16_t *row = P->p, *cc = row + 2;
   int a = el_envlight__search_guided(cc, (int)row[1], (const uint8_t *)(row - EL_ENVLIGHT__GUIDE_E), (uint32_t)P->x0), b = P->b;
@@ -4041,27 +4041,27 @@ static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick2(const struct el_envlight
   a -= a >= W->ku ? W->ku : 0;
   P->a = a;
   P->p = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
-  P->g = W->grow ? W->grow + ((size_t)a * (size_t)W->kv + (size_t)b) * EL_ENVLIGHT__GUIDE_K : NULL;
 }
-/* 3: the patch row r, with f1; P->p: the row's CDF over the cell column (P->g its guide) */
+/* 3: the patch row r, with f1; P->p: the row's CDF over the cell column */
 static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick3(const struct el_envlight__warp *W, el_envlight__pick *P) {
   const uint16_t *pr = P->p;
   int a = P->a, n = W->b0[P->b + 1] - W->b0[P->b], r;
   float x = el_envlight__clamp01(P->f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
-  r = W->grow ? el_envlight__search_guided(pr, n, P->g, (uint32_t)x) : el_envlight__search16(pr, n, (uint32_t)x);
+  r = W->grow ? el_envlight__search_guided(pr, n, W->grow + ((size_t)a * (size_t)W->kv + (size_t)P->b) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
+              : el_envlight__search16(pr, n, (uint32_t)x);
   P->q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
   P->wr = (uint32_t)(pr[r + 1] - pr[r]);
   r += W->b0[P->b];
   P->r = r;
   P->p = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a];
-  P->g = W->gcol ? W->gcol + ((size_t)r * (size_t)W->ku + (size_t)a) * EL_ENVLIGHT__GUIDE_K : NULL;
 }
 /* 4: the patch i, with f0 */
 static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick4(const struct el_envlight__warp *W, el_envlight__pick *P) {
   const uint16_t *pc = P->p;
   int a = P->a, n = W->a0[a + 1] - W->a0[a], i;
   float x = el_envlight__clamp01(P->f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
-  i = W->gcol ? el_envlight__search_guided(pc, n, P->g, (uint32_t)x) : el_envlight__search16(pc, n, (uint32_t)x);
+  i = W->gcol ? el_envlight__search_guided(pc, n, W->gcol + ((size_t)P->r * (size_t)W->ku + (size_t)a) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
+              : el_envlight__search16(pc, n, (uint32_t)x);
   P->s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
   P->wr *= (uint32_t)(pc[i + 1] - pc[i]);
   P->i = i + W->a0[a];
@@ -4444,9 +4444,17 @@ EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float
           EL_ENVLIGHT__PF(P[k].p, -2 * EL_ENVLIGHT__GUIDE_E); EL_ENVLIGHT__PF(P[k].p, 56);
         }
       for (k = 0; k < m; ++k)
-        if ((live >> k) & 1) { el_envlight__pick2(W, &P[k]); EL_ENVLIGHT__PF(P[k].p, 0); if (P[k].g) EL_ENVLIGHT__PF(P[k].g, 0); }
+        if ((live >> k) & 1) {
+          el_envlight__pick2(W, &P[k]);
+          EL_ENVLIGHT__PF(P[k].p, 0);
+          if (W->grow) EL_ENVLIGHT__PF(W->grow, ((size_t)P[k].a * (size_t)W->kv + (size_t)P[k].b) * EL_ENVLIGHT__GUIDE_K);
+        }
       for (k = 0; k < m; ++k)
-        if ((live >> k) & 1) { el_envlight__pick3(W, &P[k]); EL_ENVLIGHT__PF(P[k].p, 0); if (P[k].g) EL_ENVLIGHT__PF(P[k].g, 0); }
+        if ((live >> k) & 1) {
+          el_envlight__pick3(W, &P[k]);
+          EL_ENVLIGHT__PF(P[k].p, 0);
+          if (W->gcol) EL_ENVLIGHT__PF(W->gcol, ((size_t)P[k].r * (size_t)W->ku + (size_t)P[k].a) * EL_ENVLIGHT__GUIDE_K);
+        }
       for (k = 0; k < m; ++k)
         if ((live >> k) & 1) {
           const uint16_t *V;
