@@ -3697,7 +3697,7 @@ static inline float el_envlight__bf16(uint16_t h) {
 }
 
 /* <<Build the product tables>>: vertex grid, cells, patch CDFs, cell masses, plain and normal tables. */
-static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
+static EL_ENVLIGHT__NOINLINE el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
   struct el_envlight__warp *W;
   int w = l->width, h = l->height, gw, gh, i, j, a, b, r, k;
   double *wgt = NULL, *rs = NULL, total = 0.0;
