@@ -333,8 +333,8 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 820
- * instructions (945 with rgb), the pdf included; sample_li_cos_n below: about 620 (750). Builds its
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 815
+ * instructions (940 with rgb), the pdf included; sample_li_cos_n below: about 625 (755). Builds its
  * tables on first use (5.4 MiB for a
  * 1024x512 map, at most 12 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
@@ -343,14 +343,14 @@ EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], co
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
  * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
- * zero, NaN or infinite n, gives 0. About 400 instructions (pdf_li_cos_n: 330). Builds the tables on
+ * zero, NaN or infinite n, gives 0. About 400 instructions (pdf_li_cos_n: 335). Builds the tables on
  * first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
 /* n at once, for wave loops (a renderer's shading points of one stage): normals[3i..] and u[2i..] in,
  * wi[3i..], rgb[3i..] (may be NULL) and pdf[i] out (arrays of points, as sample_li_n), bit for bit what
  * n calls of sample_li_cos return; pdf_li_cos_n likewise pdf[i] = pdf_li_cos(normals[3i..], wi[3i..]).
  * With SSE2 the arithmetic runs on four samples at once and the table reads of 16 samples are started
- * together: about 620 / 330 instructions per sample and 2-3x less time with random normals (NOTES 2,
+ * together: about 625 / 335 instructions per sample and 2-3.5x less time with random normals (NOTES 2,
  * COST); without SSE2 (or with FMA contraction: -mfma) a loop of single calls. n <= 0 does nothing. */
 EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float *normals, const float *u, float *wi,
                                         float *rgb, float *pdf);
@@ -444,7 +444,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 2.9 MB of normal tables.
  *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random normal per
- *    call, the loop's own 9 subtracted): sample_li_cos 818 instructions (945 with the radiance; 867 under a
+ *    call, the loop's own 9 subtracted): sample_li_cos 814 instructions (941 with the radiance; 863 under a
  *    general rotation), pdf_li_cos 400 (424); sample_li 97 (265 with the radiance), pdf_li 76 (the pick
  *    in stages shared with the batched call below: 806, 933, 855, 408 and 436 before). With binary
  *    searches in place of the guide tables (below): 902 (1029; 951); before the round before: 988 (1116;
@@ -462,20 +462,21 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    pair, the density) and the table reads lane by lane, in four stages over 16 samples (cell row, cell,
  *    patch row, patch: each stage requests the next stage's lines, then the corners and the texels), so
  *    that 16 samples' cache misses overlap. Counted the same way in batches of 64 (bench_envlight
- *    --callgrind sample_cos_n ...: callgrind_product.sh): sample 617 instructions per sample (751 with the
- *    radiance: its texels located once, for the prefetch and the blend; 634 under a general rotation), pdf
+ *    --callgrind sample_cos_n ...: callgrind_product.sh): sample 624 instructions per sample (756 with the
+ *    radiance: its texels located once, for the prefetch and the blend; 640 under a general rotation), pdf
  *    333 (341); city and studio alike. The four lanes alone (4 samples per block, no stages): 542 and 245;
- *    the stages and prefetches cost 75 / 88 instructions and save far more time. Time (bench_product
+ *    the stages and prefetches cost about 80 / 88 instructions and save far more time. Time (bench_product
  *    --batch: a new random normal per sample, radiance included, CPU ns, best of 2-3 interleaved rounds,
- *    2-core machine at load 3-7): city sample_li_cos 373-414 -> 132-142 ns (2.8x), pdf 106-111 -> 52 ns
- *    (2x; sample_li 100-107); without the prefetches 217-224 and 59 ns. Issue 20's targets are not met this
- *    way either: the floor is the scalar part, the four searches (about 125 per sample, the guides' forward
- *    scans) and the pick's address and fraction arithmetic (about 110), the normal's table and the lanes'
- *    bookkeeping; the vector part is about 120 per sample. In render's wave loop (render_wave.c, the wave's
- *    product samples in one call): callgrind_parts.sh, instructions per camera sample, city 4064 -> 4019
- *    (light part 1066 -> 1021), studio 3264 -> 3171 (1011 -> 916; the four lanes without stages: 3969 and
- *    3058); render CPU time, one thread, 64 spp, best of 3 interleaved: bench_city 1.84 -> 1.77 s,
- *    bench_studio 1.44 -> 1.17 s, images byte-identical.
+ *    2-core machine at load 3-7): city sample_li_cos 373-478 -> 127-142 ns (2.8-3.5x), pdf_li_cos 94-130 ->
+ *    52-56 ns (2-2.3x; sample_li 100-114); studio 325 -> 122 and 91 -> 48; without the prefetches city
+ *    217-224 and 59 ns. Issue 20's targets are not met this way either: the floor is the scalar part, the
+ *    four searches (about 125 per sample, the guides' forward scans) and the pick's address and fraction
+ *    arithmetic (about 110), the normal's table and the lanes' bookkeeping; the vector part is about 120
+ *    per sample. In render's wave loop (render_wave.c, the wave's product samples in one call):
+ *    callgrind_parts.sh, instructions per camera sample, city 4064 -> 3993 (light part 1066 -> 996), studio
+ *    3264 -> 3114 (1011 -> 860; four lanes without stages or the texel reuse: 3969 and 3058); render CPU
+ *    time, one thread, 64 spp, best of 3 interleaved: bench_city 1.98 -> 1.88 s, bench_studio 1.47 -> 1.18
+ *    s, images byte-identical.
  *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
  *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
  *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
@@ -508,7 +509,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
  *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
  *    place of the binary searches (1049 instructions against 953). Tried since: the batched call for n
- *    normals (N AT ONCE above: 617 / 333 instructions, 2-3x less time). Not tried: alias tables (they
+ *    normals (N AT ONCE above: 624 / 333 instructions, 2-3.5x less time). Not tried: alias tables (they
  *    break the stratification), Conty and Lecocq's per-point 12x12
  *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
  *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
