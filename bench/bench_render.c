@@ -529,13 +529,14 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--scene bench_studio] [--integrator path] [--loop one|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
   if (samplers) { sampler_table(ref_spp, threads, quick, only_scene, only_integrator); return 0; }
   if (split_only) { split_table(threads, quick ? 1 : 3); return 0; }
-  snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
+  /* (--callgrind ... --scene bench_studio: the studio map's scene instead) */
+  snprintf(path, sizeof path, "%s/scenes/%s.pbrt", EL_SOURCE_DIR, cg_op && only_scene ? only_scene : "bench_city");
   if (packets) setenv("ELR_EMBREE_SPHERES", "1", 1);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
   w = s->d.xres; h = s->d.yres;

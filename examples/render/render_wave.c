@@ -2,8 +2,8 @@
  * each stage for the whole wave before the next: the wave's rays in one Embree call (packets of 16 or
  * streams: scene.c's elr_wave_intersect / elr_wave_occluded), its environment light samples in one
  * el_envlight_sample_li_n call, its environment lookups in one pass, so that their cache misses overlap.
- * With product sampling (the default, el_envlight_sample_li_cos: a normal per sample, no n-at-once
- * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
+ * With product sampling (the default: a normal per sample) in one el_envlight_sample_li_cos_n call
+ * (elr__env_samples).
  * pbrt-v3 has no such loop; the model is pbrt-v4's WavefrontPathIntegrator (src/pbrt/wavefront/
  * integrator.cpp, surfscatter.cpp), whose stages each run over a queue of many paths (over the whole
  * image, on the GPU or the CPU): here over a tile's wave on one thread, with Embree's packets.
@@ -237,7 +237,7 @@ void elr_wave_free(elr_wave *W) {
 }
 
 /* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
- * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
+ * for the map alone; with product sampling in one el_envlight_sample_li_cos_n call, each for the normal of its
  * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does); with portals
  * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct);
  * at a vertex whose sun-cache cell lowers a hot spot (sc[i], sun.c) elr_sun_sample */
@@ -263,16 +263,20 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
     for (i = 0; i < n && !has_n[i]; i++) {}
     if (i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
   }
-  for (i = 0; i < n; i++) {
-    if (sun && sc[i]) continue;
-    if (has_n[i]) {
-      float nn[3];
-      elr_to3(normal[i], nn);
-      el_envlight_sample_li_cos(l->env_sample, nn, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
-    } else { /* (gathered: the map's samples in one el_envlight_sample_li_n call below, as the map alone draws them) */
-      idx[nm] = i; um[2 * nm] = u[2 * i]; um[2 * nm + 1] = u[2 * i + 1]; nm++;
+  { /* the product samples (a normal each) in one el_envlight_sample_li_cos_n call: the same bits as one
+     * el_envlight_sample_li_cos each, four samples' arithmetic at a time (issue 20) */
+    float nn[3 * ELR_WAVE];
+    int nc = 0;
+    for (i = 0; i < n; i++)
+      if (!(sun && sc[i]) && has_n[i]) { idx[nc] = i; elr_to3(normal[i], &nn[3 * nc]); um[2 * nc] = u[2 * i]; um[2 * nc + 1] = u[2 * i + 1]; nc++; }
+    if (nc > 0) el_envlight_sample_li_cos_n(l->env_sample, nc, nn, um, wm, Lm, pm);
+    for (k = 0; k < nc; k++) {
+      i = idx[k];
+      memcpy(&wi[3 * i], &wm[3 * k], 3 * sizeof(float)); memcpy(&Le[3 * i], &Lm[3 * k], 3 * sizeof(float)); pdf[i] = pm[k];
     }
   }
+  for (i = 0; i < n; i++) /* (gathered: the map's samples in one el_envlight_sample_li_n call below, as the map alone draws them) */
+    if (!(sun && sc[i]) && !has_n[i]) { idx[nm] = i; um[2 * nm] = u[2 * i]; um[2 * nm + 1] = u[2 * i + 1]; nm++; }
   if (nm > 0) {
     el_envlight_sample_li_n(l->env_sample, nm, um, wm, Lm, pm);
     for (k = 0; k < nm; k++) {
