@@ -1491,20 +1491,8 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
     ref_dir_to_uv(dl, &u, &v);
     if (s->kind == 1 && s->l->exact_transform && w >= 256 && h >= 128) {
       /* importance BILINEAR's sample_li under a signed permutation on maps of at least 256 x 128 (its fast
-       * path): le at the point's own (u, v), as the other modes (envlight.h: sample_li): le(wi) up to a
-       * shift of 1e-4 texel, here 2e-4 of the four texels' range */
-      int x0 = (int)floor(u * w - 0.5), y0 = (int)floor(v * h - 0.5), c, k;
-      for (c = 0; c < 3; ++c) {
-        float lo = 3e38f, hi = 0.0f;
-        for (k = 0; k < 4; ++k) {
-          int xx = ((x0 + (k & 1)) % w + w) % w, yy = y0 + (k >> 1);
-          float t;
-          yy = yy < 0 ? 0 : yy > h - 1 ? h - 1 : yy;
-          t = s->l->texels[3 * ((size_t)yy * w + xx) + c];
-          lo = t < lo ? t : lo; hi = t > hi ? t : hi;
-        }
-        if (!(fabsf(L[c] - rgb[c]) <= 2e-4f * (hi - lo) + 1e-6f * L[c])) { ++rgb_mismatch; break; }
-      }
+       * path): le at the point's own (u, v), as the other modes (envlight.h: sample_li) */
+      if (!rgb_near_le(s->l->texels, w, h, u, v, L, rgb)) ++rgb_mismatch;
     } else if (L[0] != rgb[0] || L[1] != rgb[1] || L[2] != rgb[2]) ++rgb_mismatch;
     x = u * w - 0.5;
     if (x < 0) x += w;

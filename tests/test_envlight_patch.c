@@ -93,20 +93,8 @@ static void chi2_map(const char *name, const float *px, int w, int h, int matrix
     to_light(&l, wi, d);
     el_envlight_dir_to_uv(d, &uu, &vv);
     if (l.exact_transform && w >= 256 && h >= 128) {
-      /* the fast path under a signed permutation: le at the point's own (u, v) (envlight.h: sample_li), le(wi)
-       * up to a shift of 1e-4 texel: within 2e-4 of the range of the four texels le() reads */
-      int x0 = (int)floorf(uu * (float)w - 0.5f), y0 = (int)floorf(vv * (float)h - 0.5f), c, q;
-      for (c = 0; c < 3; ++c) {
-        float lo = 3e38f, hi = 0.0f;
-        for (q = 0; q < 4; ++q) {
-          int xx = ((x0 + (q & 1)) % w + w) % w, yy = y0 + (q >> 1);
-          float tx;
-          yy = yy < 0 ? 0 : yy > h - 1 ? h - 1 : yy;
-          tx = px[3 * ((size_t)yy * w + xx) + c];
-          lo = tx < lo ? tx : lo; hi = tx > hi ? tx : hi;
-        }
-        if (!(fabsf(le[c] - rgb[c]) <= 2e-4f * (hi - lo) + 1e-6f * le[c])) { ++bad_rgb; break; }
-      }
+      /* the fast path under a signed permutation: le at the point's own (u, v) (envlight.h: sample_li) */
+      if (!rgb_near_le(px, w, h, uu, vv, le, rgb)) ++bad_rgb;
     } else if (le[0] != rgb[0] || le[1] != rgb[1] || le[2] != rgb[2]) ++bad_rgb;
     bu = (int)(uu * nu); bv = (int)(vv * nv);
     bu = bu < 0 ? 0 : bu >= nu ? nu - 1 : bu; bv = bv < 0 ? 0 : bv >= nv ? nv - 1 : bv;
