@@ -373,61 +373,63 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  * NOTES ON PRODUCT SAMPLING AND THE BILINEAR WARP (issue 13; the numbers: bench/bench_envlight.c tables
  * 1, 2, 4, 5 and bench/bench_product.c, gcc 12 -O3, no -march, this project's shared 2-core machine)
  *
- * 1. IMPORTANCE MODE BILINEAR: LE()'S PATCHES (issue 22; before it, a continuous warp of cells). The
- *    density is the bilinear interpolant of V = lum x sin(theta) at the texel centres (the vertices of
- *    le()'s bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density. Where
- *    the cell-average density (the default) is constant over a texel while le() is bilinear, this one
- *    follows le() inside the texel: the relative variance of lum(le) / pdf per sample is 3.2e-6 on city
- *    against 0.099 (tests/test_envlight_patch.c), so a sun stops adding variance of its own and
- *    low-discrepancy points keep their stratification: bench/bench_ld_point.c (city, an upward normal, 64
- *    points per estimate, relative variance of one estimate, independent / Owen-scrambled Sobol'): the
- *    light sample alone 3.78e-3 / 2.07e-6 (CELL_AVERAGE 6.30e-3 / 1.76e-3, PBRT_V3 4.41e-3 / 4.24e-4),
- *    with one cosine sample and the power heuristic 4.12e-3 / 2.32e-4 (6.59e-3 / 1.82e-3, 4.76e-3 /
- *    5.53e-4): 2.4x less than PBRT_V3 with the low-discrepancy points, 1.15x with independent ones.
- *    SAMPLING: one discrete table over the w x (h + 1) patches (distribution2d.h's integer CDFs, each
- *    patch's weight the mean of its corners x its height, so every patch with a positive corner is
- *    reachable at any dynamic range; the light's own guide tables, or its CDF or alias sampler), then
- *    (s, t) inside the patch in closed form: t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s
- *    from the conditional at t, each the inverse of a linear density (a quadratic, in the form without
- *    cancellation: exact at zero and at equal corners), kept 2^-12 of a patch inside its edges. Every
- *    step is monotone in its u. The corners are bfloat16 rounded up, scaled by a power of two (the
- *    density is bil / mean: unchanged) so that the squares stay normal floats. The density of a patch
- *    is its integer share x bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta): one factor K per patch
- *    stored with its four corners in a 16-byte record (one cache line per query).
- *    THE PDF (maps of at least 256 x 128; smaller ones take le()'s atans, product sampling's locate):
- *    no atan. The patch column and row come from bin finders over half texels (pdf_li's diamond angle
- *    and its t = 1 - z / (r + |z|), 2w and 2h bins: the texel centres are the odd edges); s and t from
- *    the angle to a reference edge of the patch, atan of the tangent of the difference ((y c - x s) /
- *    (x c + y s), at most pi / 128: q - q^3 / 3). sample_li forms its direction from the same references
- *    by angle addition, then finds it again as pdf_li does, so its pdf is pdf_li(wi) bit for bit (tested
- *    on every sample of the chi-square tests, for identity, y-up and general rotations); its radiance is
- *    le at that point's (u, v) under a signed permutation (le(wi) but for le()'s atan polynomial: within
- *    2e-4 of the four texels' range, tested), le(wi) itself under a general rotation; when rounding moves the point into another patch the pdf is that patch's,
- *    and if that has no mass the sample moves to its patch's centre (issue 24's rule).
- *    sample_li_n prefetches in passes (the marginal row and its guide entry, the CDF entries, the
- *    patch's record, its texels), bit-identical to sample_li: the renderer's waves draw their map samples
- *    through it (without it, bench_city's render loop took 1.24x pbrt-v3's density's CPU; with it
- *    1.04-1.05x).
- *    COST (bench/callgrind_product.sh with OPS=...bilinear..., city 1024x512, the loop subtracted):
- *    sample_li 515 instructions (668 with the radiance: le at the point's own (u, v), as the other modes
- *    under a signed permutation; 552 under a general rotation, whose radiance is le(wi)), pdf_li 241
- *    (257); before (the continuous warp): 1174 (1301), 422. CELL_AVERAGE: 97.6 (266), 76. The issue's targets (250 / 150) are NOT met: the pick (the guide search, ~60), the two
- *    inversions (~50), the direction (~40), finding it again (~90) and the density (~30), plus the
- *    calls: the relocation buys the bit-for-bit pdf; without it (the sample's own (s, t), exact
- *    transforms) sample_li measured 342. The renderer's per-camera-sample instructions on bench_city
- *    (zsobol, callgrind, spp 8 - spp 4) are 8% above its default PBRT_V3 density's.
- *    MEMORY: 2 bytes per vertex (bfloat16), 16 per patch (the records), 4 + 1 per patch (the integer CDFs
- *    and guide tables), the finders and reference tables (about 200 KB at 1024x512): 11.7 MB at 1024x512
+ * 1. IMPORTANCE MODE BILINEAR: LE()'S PATCHES (issue 22; before it, a continuous warp of cells). The density
+ *    is the bilinear interpolant of V = lum x sin(theta) at the texel centres (the vertices of le()'s
+ *    bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density. Where the
+ *    cell-average density (the default) is constant over a texel while le() is bilinear, this one follows
+ *    le() inside the texel: the relative variance of lum(le) / pdf per sample is 3.2e-6 on city against 0.099
+ *    (tests/test_envlight_patch.c), so a sun stops adding variance of its own and low-discrepancy points keep
+ *    their stratification: bench/bench_ld_point.c (city, an upward normal, 64 points per estimate, relative
+ *    variance of one estimate, independent / Owen-scrambled Sobol'): the light sample alone 3.78e-3 / 2.07e-6
+ *    (CELL_AVERAGE 6.30e-3 / 1.76e-3, PBRT_V3 4.41e-3 / 4.24e-4), with one cosine sample and the power
+ *    heuristic 4.12e-3 / 2.32e-4 (6.59e-3 / 1.82e-3, 4.76e-3 / 5.53e-4): 2.4x less than PBRT_V3 with the
+ *    low-discrepancy points, 1.15x with independent ones.
+ *    SAMPLING: one discrete table over the w x (h + 1) patches (distribution2d.h's integer CDFs, each patch's
+ *    weight the mean of its corners x its height, so every patch with a positive corner is reachable at any
+ *    dynamic range; the light's own guide tables, or its CDF or alias sampler), then (s, t) inside the patch
+ *    in closed form: t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s from the conditional at t,
+ *    each the inverse of a linear density (a quadratic, in the form without cancellation: exact at zero and
+ *    at equal corners), kept 2^-12 of a patch inside its edges. Every step is monotone in its u. The corners
+ *    are bfloat16 rounded up, scaled by a power of two (the density is bil / mean: unchanged) so that the
+ *    squares stay normal floats. The density of a patch is its integer share x bil(s, t) / mean(corners) /
+ *    (du dv 2 pi^2 sin theta): one factor K per patch stored with its four corners in a 16-byte record (one
+ *    cache line per query).
+ *    THE PDF (maps of at least 256 x 128; smaller ones take le()'s atans, product sampling's locate): no
+ *    atan. The patch column and row come from bin finders over half texels (pdf_li's diamond angle and its t
+ *    = 1 - z / (r + |z|), 2w and 2h bins: the texel centres are the odd edges); s and t from the angle to a
+ *    reference edge of the patch, atan of the tangent of the difference ((y c - x s) / (x c + y s), at most
+ *    pi / 128: q - q^3 / 3). sample_li forms its direction from the same references by angle addition, then
+ *    finds it again as pdf_li does, so its pdf is pdf_li(wi) bit for bit (tested on every sample of the
+ *    chi-square tests, for identity, y-up and general rotations); its radiance is le at that point's (u, v)
+ *    under a signed permutation (le(wi) but for le()'s atan polynomial: within 2e-4 of the four texels'
+ *    range, tested), le(wi) itself under a general rotation; when rounding moves the point into another patch
+ *    the pdf is that patch's, and if that has no mass the sample moves to its patch's centre (issue 24's
+ *    rule).
+ *    sample_li_n prefetches in passes (the marginal row and its guide entry, the CDF entries, the patch's
+ *    record, its texels), bit-identical to sample_li: the renderer's waves draw their map samples through it
+ *    (without it, bench_city's render loop took 1.24x pbrt-v3's density's CPU; with it 1.04-1.05x).
+ *    COST (bench/callgrind_product.sh with OPS=...bilinear..., city 1024x512, the loop subtracted): sample_li
+ *    515 instructions (668 with the radiance: le at the point's own (u, v), as the other modes under a signed
+ *    permutation; 552 under a general rotation, whose radiance is le(wi)), pdf_li 241 (257); before (the
+ *    continuous warp): 1174 (1301), 422. CELL_AVERAGE: 97.6 (266), 76. The issue's targets (250 / 150) are
+ *    NOT met: the pick (the guide search, ~60), the two inversions (~50), the direction (~40), finding it
+ *    again (~90) and the density (~30), plus the calls: the relocation buys the bit-for-bit pdf; without it
+ *    (the sample's own (s, t), exact transforms) sample_li measured 342. The renderer's per-camera-sample
+ *    instructions on bench_city (zsobol, callgrind, spp 8 - spp 4) are 8% above its default PBRT_V3
+ *    density's.
+ *    MEMORY: 2 bytes per vertex (bfloat16), 16 per patch (the records), 4 + 1 per patch (the integer CDFs and
+ *    guide tables), the finders and reference tables (about 200 KB at 1024x512): 11.7 MB at 1024x512
  *    (CELL_AVERAGE 4.7, PBRT_V3 18.3, the continuous warp 4.6). Maps over the cap (EL_ENVLIGHT_IMPORTANCE_CAP
- *    wide) take CELL_AVERAGE's capped tables, as PBRT_V3 does: about 190 MB for a 4096 x 2048 map, the largest.
+ *    wide) take CELL_AVERAGE's capped tables, as PBRT_V3 does: about 190 MB for a 4096 x 2048 map, the
+ *    largest.
  *    BUILD: 100 M instructions, 15 ms at 1024x512 (PBRT_V3 44 ms).
- *    IN THE RENDERER (bench/sun_rule.py --strategies pbrtv3,default: relative variance across 8 seeds x
- *    the render loop's CPU, interleaved; the map alone at diffuse vertices facing a sun), time to unit
- *    variance against PBRT_V3, whole image / lit / shadowed pixels of bench_city: zsobol 16 spp 1.10 /
- *    1.22 / 0.95, 64 spp 1.11 / 1.31 / 0.91; independent 16 spp 1.02 / 1.05 / 0.97, 64 spp 0.96 / 0.99 /
- *    0.91 (the lit pixels' variance 1.29-1.45x lower with zsobol, 1.09x with independent samples; the
- *    render loop's CPU +4-12%). The renderer takes it by default under a sun map with a low-discrepancy
- *    sampler (examples/render/README.md).
+ *    IN THE RENDERER (bench/sun_rule.py --strategies pbrtv3,default: relative variance across 8 seeds x the
+ *    render loop's CPU, interleaved; the map alone at diffuse vertices facing a sun), time to unit variance
+ *    against PBRT_V3, whole image / lit / shadowed pixels of bench_city: zsobol 16 spp 1.10 / 1.22 / 0.95, 64
+ *    spp 1.11 / 1.31 / 0.91; independent 16 spp 1.02 / 1.05 / 0.97, 64 spp 0.96 / 0.99 / 0.91 (the lit
+ *    pixels' variance 1.29-1.45x lower with zsobol, 1.09x with independent samples; the render loop's CPU
+ *    +4-12%). The renderer takes it by default under a sun map with a low-discrepancy sampler
+ *    (examples/render/README.md).
  *
  * 2. PRODUCT SAMPLING (sample_li_cos, pdf_li_cos): a density close to L(w) max(0, n.w). The map's
  *    patches are grouped into 64 x 32 cells; a cell is picked with probability proportional to its
@@ -1352,7 +1354,8 @@ static float el_envlight__luminance(const float *rgb) {
   return 0.212671f * rgb[0] + 0.715160f * rgb[1] + 0.072169f * rgb[2]; /* pbrt's y() */
 }
 
-/* >> the patch grid (product sampling, importance BILINEAR): forward declarations (the sections are near the end of the file) */
+/* >> the patch grid (product sampling, importance BILINEAR): forward declarations (the sections are near
+ * the end of the file) */
 #define EL_ENVLIGHT__CELLS_U 64
 #define EL_ENVLIGHT__CELLS_V 32
 #define EL_ENVLIGHT__NORMAL_BINS 32
