@@ -597,8 +597,9 @@ EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h);
  * the default weights (all zero). */
 EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w);
 /* Sample the mixture sum_k w_k p_k + w_rest p_rest, where p_k is sample_li's density restricted to spot k
- * (renormalised) and p_rest the density restricted to the rest: wi (world, unit), rgb = le(wi) (may be
- * NULL) and *pdf = el_envlight_pdf_li_mix(l, h, w, wi) bit for bit. u[0] picks the part and is reused
+ * (renormalised) and p_rest the density restricted to the rest: wi (world, unit), rgb (may be NULL) the
+ * radiance as sample_li gives it (le(wi); le at the sample's own (u, v) under a signed-permutation
+ * matrix) and *pdf = el_envlight_pdf_li_mix(l, h, w, wi) bit for bit. u[0] picks the part and is reused
  * (remapped) inside it. pdf 0: no sample (skip it). h must come from this light (else, or with default
  * weights: sample_li itself). About 2x sample_li's cost plus pdf_li's. */
 EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
@@ -4360,7 +4361,8 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
  * it: the fractions kept the margin inside the bin (as el_envlight__sample_bin keeps them), then the
  * direction tables or the (u, v) mapping. pb: the bin's density as the tables want it (its pdf is
  * recomputed by the caller). Both hot-spot samplers go through here. */
-static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3]) {
+static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float uv[2]) {
+  uv[0] = -1.0f;
   fu = fu > l->u_margin ? fu : l->u_margin;
   fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
   fv = fv > l->v_margin ? fv : l->v_margin;
@@ -4368,8 +4370,12 @@ static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, 
 #if EL_ENVLIGHT__SSE
   if (l->dir_tables) { /* the direction alone (el_envlight__sample_table's, without its pdf: the callers make theirs) */
     float p;
+    __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
     (void)pb;
-    (void)el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
+    if (l->table_done) { /* the sample's own (u, v), for its radiance (as sample_li_finish) */
+      uv[0] = ((float)iu + _mm_cvtss_f32(_mm_movehl_ps(f, f))) * l->dist.u_width;
+      uv[1] = ((float)iv + _mm_cvtss_f32(f)) * l->dist.v_width;
+    }
   } else
 #else
   if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
@@ -4381,6 +4387,15 @@ static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, 
     el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
     el_envlight__to_world(l, d, wi);
   }
+}
+
+/* A mixture sample's radiance: le at the sample's own (u, v) where el_envlight__hot_bin_to_world gave it
+ * (a signed-permutation matrix: sample_li's choice, without le's atan pair), else le(wi); 0 for pdf 0. */
+static void el_envlight__hot_rgb(const el_envlight *l, const float wi[3], const float uv[2], float pdf, float rgb[3]) {
+  if (!rgb) return;
+  if (!(pdf > 0.0f)) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  else if (uv[0] >= 0.0f) el_envlight__lookup(l, uv[0], uv[1], rgb);
+  else el_envlight_le(l, wi, rgb);
 }
 
 /* pdf_li_mix with usable h and normalised weights a */
@@ -4405,7 +4420,7 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
                                       const el_envlight_mix_weights *w, const float u[2], float wi[3],
                                       float rgb[3], float *pdf) {
   double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
-  float fu, fv, pb, uu;
+  float fu, fv, pb, uu, uv[2];
   int k, iu, iv;
   if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) {
     el_envlight_sample_li(l, u, wi, rgb, pdf);
@@ -4431,16 +4446,13 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
     iv += h->rect[k][1];
   }
   /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
   *pdf = el_envlight__hot_pdf(l, h, a, wi);
   if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
-    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi);
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
     *pdf = el_envlight__hot_pdf(l, h, a, wi);
   }
-  if (rgb) {
-    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
-  }
+  el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
 }
 
 EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_hotspots *h,
@@ -4551,7 +4563,7 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
   const double *a = tab->a;
   const float *nl = tab->nl, *bm = tab->bm, s = tab->s;
   double c = 0.0, u0;
-  float fu, fv, pb, uu;
+  float fu, fv, pb, uu, uv[2];
   int k, iu, iv, hn = tab->hn, cell = 0;
   if (!tab->usable || !el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, tab->n, u, wi, rgb, pdf); return; }
   u0 = (double)el_envlight__clamp_u(u[0]);
@@ -4597,16 +4609,13 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
     iu = h->cell_u0[cu] + x;
     iv = h->cell_v0[cv] + y;
   }
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
   *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
-    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi);
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
     *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   }
-  if (rgb) {
-    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
-  }
+  el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
 }
 
 EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w) {
