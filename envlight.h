@@ -698,8 +698,12 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    cells; per call every cell gets B = max(1e-3, cos(max(0, angle(n, centre) - radius))), an upper
  *    bound of n.w over the cell (its cone: the farthest of 5 x 5 points plus a tenth of the cell's
  *    angle; the floor keeps every cell with mass reachable, so light sampling alone stays unbiased);
- *    a cell is picked with probability B x its rest mass / S(n), then sample_li's density inside it.
- *    pdf = pdf_li x B / S(n) on the rest, as sample_li_mix on the spots. Shadowed point (table 3, the
+ *    a cell is picked with probability B x its rest mass / S(n), then a rest bin of the cell from the
+ *    cell's table (uint16 integer CDFs of 32768 units: its rows, then the row's bins, each with the product
+ *    section's 8-bucket guide), uniform in (u, v) inside the bin: sample_li's density inside the cell up
+ *    to the tables' rounding (every bin with mass keeps at least one unit). pdf = a_rest x B x the cell's
+ *    mass / S(n) x the bin's two widths / 2^30 over its solid angle (the entries the sample just read, not
+ *    the light's pdf table), as sample_li_mix on the spots. Shadowed point (table 3, the
  *    spot's weight 0.02 / 0) against sample_li_cos: sunrise 16x / 20x less variance (n up), 111x / 165x
  *    (n towards the sun); city 10x / 19x and 12x / 21x; two suns 1.7x and 3.0x; forest 0.96x / 1.3x and
  *    1.6x / 2.0x; but night 0.76x-1.3x and studio 0.43x-0.76x (more variance: their other lamps stay lit
@@ -712,9 +716,16 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    normal: issue 22's renderer first kept 8 per thread, 4.6x -> 1.8x its render time with the cache on
  *    scenes/sun_shadow_object.pbrt; now one per shadowed cell of its cache, shared, 1.3x). The pdfs of
  *    the mixtures find pdf_li's bin once (el_envlight__hot_pdf_li_bin: its search and hot_bin's were a
- *    third of the pdf's instructions). What is left is memory: a sample reads a cell's distribution,
- *    then the pdf table, the direction table and the texels at random places. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
- *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
+ *    third of the pdf's instructions). A sample then read a cell's el_distribution2d (its marginal and a
+ *    row, uint32), the light's pdf table twice (the direction's pdf, then the mixture's) and the texels at
+ *    random places; now (issue 22's cost round) one row of its cell table (guided searches, no pdf-table
+ *    read: the pdf comes from the same entries; the direction from the direction tables without their pdf;
+ *    under a signed-permutation matrix the radiance at the sample's own (u, v), as sample_li's) and the
+ *    texels. bench/callgrind_product.sh with OPS="sample_mix_cos_rgb pdf_mix_cos" (city.hdr, spots at 3%,
+ *    256 prepared tables): sample with radiance 1060 -> 846 instructions, pdf 287 -> 266; the renderer's
+ *    dark-cell CPU: see examples/render/sun.c. MEMORY: the cell tables, 2 bytes per rest bin plus 10 per
+ *    cell row (1.3 MB at 1024x512 bins, 4.6 MB at 2048x1024; the el_distribution2d cells were twice that),
+ *    the rest's own distribution (sample_li_mix's) and the light's tables.
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
  *    those of the compensated density. COST: sample_li_mix with radiance 3.9-4.4x sample_li's time on

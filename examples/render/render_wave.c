@@ -528,8 +528,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       if (elr_isblack(f) || pdf == 0.f) { W->alive[j] = 0; nalive--; continue; }
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
       p->specular = spec; p->prev_pdf = pdf;
-      p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL; /* its sun-cache cell, */
-      p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      if (W->light[j] >= 0) { /* its sun-cache cell and the normal its light sample used (above) */
+        p->prev_sun = W->sc[W->light[j]]; p->prev_has_n = W->has_n[W->light[j]]; p->prev_n = W->normal[W->light[j]];
+      } else {
+        p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
+        p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n);
+      }
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
