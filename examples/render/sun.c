@@ -34,20 +34,38 @@
  * are made once per lowered cell after the pilot and shared read-only (a per-thread memo of 8 was 1.8x);
  * the hash keeps only lowered cells; the light's hot spots are found once per light (elr_light.sun_hs).
  * Callgrind, 16 spp, the render loop and the pilot against --sun off: 1.15x (sun_shadow_object), 1.24x
- * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time is 1.3-1.45x: what is left is
- * memory (a light sample in a dark cell reads a cell's distribution, the pdf table, the direction table
- * and the texels at random places: perf shows el_distribution2d_sample_bins waiting on its row's loads).
- * Loading ahead does not pay (measured 2026-12-02, perf at 64 spp and bench_sun_render interleaved with the
- * code before): a wave's dark-cell samples in passes (pick each one's rest cell from the table's sums, load
- * its marginal, search it and load the row, then draw) moved el_distribution2d_sample_bins' wait (9% of
- * bench_city's CPU to 3%) into the passes themselves; __builtin_prefetch of the same lines did nothing (the
- * prefetches were dropped); also loading the map's pdf and direction tables at the drawn bin cut
- * el_envlight__sample_table from 5.5% to 0.7% but cost as much. CPU on / off stayed 1.24-1.35x (object),
- * 1.33-1.50x (porch), 1.33-1.42x (city) against 1.22-1.26x, 1.29-1.35x, 1.37-1.45x, images bit-identical. The
- * remaining cost is the dark-cell samples' work (the cell search, two 2D searches, the direction and
- * the pdf with its cell bound): elr_sun_lookup and elr_sun_cos_normal, what every vertex pays, are 3%.
- * bench/bench_sun_render.c: 1.3-1.9x less variance in the shadow at equal samples, lit pixels unchanged;
- * at equal time 0.9-1.45x in the shadow, 0.7x lit: off by default.
+ * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time was then 1.3-1.45x: memory (a light
+ * sample in a dark cell read a cell's el_distribution2d, the pdf table twice, the direction table and the
+ * texels at random places; perf: el_distribution2d_sample_bins 9% of sun_porch's CPU, waiting on its row,
+ * el_envlight__sample_table 6.5% on the pdf table, elr_sun_lookup 7% on this hash's 112-byte slots).
+ * Loading ahead did not pay (measured 2026-12-02, perf at 64 spp and bench_sun_render interleaved): a wave's
+ * dark-cell samples in passes moved the wait into the passes, __builtin_prefetch of the same lines did
+ * nothing, loading the pdf and direction tables ahead cost as much as it saved. What paid is reading less
+ * (issue 22's cost round, envlight.h NOTES ON HOT SPOTS 4): the cell tables as uint16 CDFs with the product
+ * sampler's 8-bucket guides (half the bytes; one row line per sample), the pdf from those entries (no pdf
+ * table), the direction without sample_table's pdf (and, under a general rotation, without its second
+ * pdf), the radiance at the sample's (u, v) under a signed-permutation matrix (as sample_li), a branch-free
+ * search of the cells' sums; here the lookup probes an array of 8-byte keys (elr_sun.keys) and the path
+ * loop takes a vertex's cell and normal from its light sample instead of a second lookup. Per sample
+ * (bench/callgrind_product.sh, city.hdr, 3% spots): 1060 -> 846 instructions with the radiance, pdf 287 ->
+ * 266; callgrind, the render loop alone 1.035x, 1.029x, 1.064x the instructions of --sun off (object,
+ * porch, city), with the pilot at 16 spp 1.065x, 1.047x, 1.106x. The render loop's CPU against --sun off
+ * (16 spp, 1 thread, best of 5 interleaved process runs, two runs): 1.23-1.26x -> 1.06-1.10x (object),
+ * 1.41-1.43x -> 1.15-1.17x (porch), 1.21-1.22x -> 1.02-1.04x (city; bench_sun_render's renders in one
+ * process: 1.11x, 1.19x, 1.14x), plus the pilot (0.011, 0.011, 0.035 s against loops of 0.20, 0.34, 0.46 s). Not in those: finding the hot spots and their cell tables,
+ * once per light (city.hdr, 2048x1024 bins: 0.28 G instructions, plus the light's own sampling tables where
+ * the render would not build them, plus the cells' dilation 0.09 G: a fresh render --sun on pays them).
+ * bench/bench_sun_render.c (16 spp, 16 seeds, CPU from 5 interleaved renders): 1.40x less variance in the
+ * shadow at equal samples on sun_shadow_object (1.20x at equal time), 1.01x on sun_porch, 0.92x on
+ * bench_city; the whole image 1.04x, 1.01x, 0.99x at equal samples, 0.89x, 0.82x, 0.81x at equal time:
+ * off by default (the whole image cannot gain more than its 1-4% at equal samples, and the pilot and the
+ * lookups alone cost more). Tried: counting a pilot ray below its point's horizon as seeing the spot (such
+ * cells keep the default, whose product sampling bounds the cosine more tightly than the rest's 32 x 16
+ * cells): bench_city's shadow 0.92x -> 0.98x, sun_shadow_object's 1.40x -> 1.16x, whole images 1.02x,
+ * 1.02x, 1.00x at equal samples: dropped. The porch's path tracing: the cache is applied at every vertex whose cell the
+ * pilot saw (all depths); at the camera vertices alone the shadow's variance is 1.006x less, at all 1.009x
+ * (its direct light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is
+ * indirect light from the sunlit ground, which no light-sample density changes.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
