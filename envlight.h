@@ -4239,55 +4239,56 @@ static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, in
 /* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
  * first half: keep the two in step), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN,
  * infinite). The chi-square tests of tests/test_envlight_sun.c fail if they disagree. */
-static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
-  float d[3], r, pu, t;
+static inline void el_envlight__hot_find_bin(const el_envlight *l, const float d[3], float r, uint32_t *iu, uint32_t *iv) {
+  /* pdf_core's bin finders for the light-space d, r = sqrt(d0^2 + d1^2) */
+  float pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]), t;
   size_t c;
-  uint32_t iu, iv;
-  if (!el_envlight__to_light_dir(l, dir, d)) return -1; /* as pdf_li: rescaled in world space if needed */
-  r = el_envlight__sqrt(d[0] * d[0] + d[1] * d[1]);
-  pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
   pu = pu < 3.99999976f ? pu : 3.99999976f;
   c = (size_t)(int64_t)(pu * l->u_cell_scale);
-  iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
+  *iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
   t = 1.0f - d[2] / (r + fabsf(d[2]));
   c = (size_t)(int64_t)(t * l->v_cell_scale);
-  iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+  *iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+}
+static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
+  float d[3];
+  uint32_t iu, iv;
+  if (!el_envlight__to_light_dir(l, dir, d)) return -1; /* as pdf_li: rescaled in world space if needed */
+  el_envlight__hot_find_bin(l, d, el_envlight__sqrt(d[0] * d[0] + d[1] * d[1]), &iu, &iv);
   return (int64_t)iv * (int64_t)l->dist.nu + (int64_t)iu;
 }
 
-/* pdf_li(dir) and the bin it reads (iu, iv; -1 where el_envlight__hot_bin gives -1), from one bin search:
- * on pdf_li's inline path (EL_ENVLIGHT__HOT_PDF, a normal-length direction) el_envlight__pdf_core's own
- * arithmetic, so both equal pdf_li's and hot_bin's bit for bit; elsewhere those two calls. (Issue 22:
- * the rest x cosine's pdf made the search twice, a third of its cost.) */
-static float el_envlight__hot_pdf_li_bin(const el_envlight *l, const float dir[3], int *biu, int *biv) {
-  float d[3], r2, len2, r, len, pu, t, p;
+/* pdf_li's inline path up to its table read (EL_ENVLIGHT__HOT_PDF, a normal-length direction:
+ * el_envlight__pdf_core's own arithmetic): the bin (iu, iv), the direction's length and r = sin(theta)
+ * len with pdf_li's floor, so that pdf_li = pdf_table[bin] x len / r bit for bit. 0 elsewhere. */
+static int el_envlight__hot_bin_core(const el_envlight *l, const float dir[3], int *biu, int *biv, float *blen, float *br) {
+  float d[3], r2, len2, r, len;
   uint32_t iu, iv;
-  size_t c;
-  int64_t b;
 #if EL_ENVLIGHT__ATOMICS
   int hot = (__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF) != 0;
 #else
   int hot = (l->hot & EL_ENVLIGHT__HOT_PDF) != 0;
 #endif
-  if (hot) {
-    el_envlight__to_light(l, dir, d);
-    r2 = d[0] * d[0] + d[1] * d[1];
-    len2 = r2 + d[2] * d[2];
-    if (len2 >= FLT_MIN && len2 <= FLT_MAX) { /* el_envlight__pdf_core with the bin kept */
-      r = el_envlight__sqrt(r2); len = el_envlight__sqrt(len2);
-      pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
-      pu = pu < 3.99999976f ? pu : 3.99999976f;
-      c = (size_t)(int64_t)(pu * l->u_cell_scale);
-      iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
-      t = 1.0f - d[2] / (r + fabsf(d[2]));
-      c = (size_t)(int64_t)(t * l->v_cell_scale);
-      iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
-      p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)];
-      r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
-      *biu = (int)iu; *biv = (int)iv;
-      return p * len / r;
-    }
-  }
+  if (!hot) return 0;
+  el_envlight__to_light(l, dir, d);
+  r2 = d[0] * d[0] + d[1] * d[1];
+  len2 = r2 + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return 0;
+  r = el_envlight__sqrt(r2); len = el_envlight__sqrt(len2);
+  el_envlight__hot_find_bin(l, d, r, &iu, &iv);
+  *biu = (int)iu; *biv = (int)iv; *blen = len;
+  *br = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
+  return 1;
+}
+
+/* pdf_li(dir) and the bin it reads (iu, iv; -1 where el_envlight__hot_bin gives -1), from one bin search:
+ * on pdf_li's inline path el_envlight__hot_bin_core, so both equal pdf_li's and hot_bin's bit for bit;
+ * elsewhere those two calls. (Issue 22: the rest x cosine's pdf made the search twice, a third of its cost.) */
+static float el_envlight__hot_pdf_li_bin(const el_envlight *l, const float dir[3], int *biu, int *biv) {
+  float p, len, r;
+  int64_t b;
+  if (el_envlight__hot_bin_core(l, dir, biu, biv, &len, &r))
+    return l->pdf_table[(size_t)*biv * (size_t)l->dist.nu + (size_t)*biu] * len / r;
   p = el_envlight_pdf_li(l, dir);
   b = p > 0.0f ? el_envlight__hot_bin(l, dir) : -1;
   *biu = b < 0 ? -1 : (int)(b % l->dist.nu); *biv = b < 0 ? -1 : (int)(b / l->dist.nu);
@@ -4295,42 +4296,18 @@ static float el_envlight__hot_pdf_li_bin(const el_envlight *l, const float dir[3
 }
 
 /* The bin pdf_li reads for dir (iu, iv) and the factor it applies to the bin's table entry (len / r: 1 /
- * sin(theta) with pdf_li's floor), without reading the table: el_envlight__hot_pdf_li_bin's arithmetic;
- * elsewhere (an odd length, a mapping without the inline pdf) pdf_li / its table entry. Returns 0 where
- * pdf_li is 0. (Issue 22: the rest x cosine part's pdf comes from its cell tables, which its sample has
- * just read, not from the light's pdf table: one random read less per sample.) */
+ * sin(theta) with pdf_li's floor), without reading the table (el_envlight__hot_bin_core); elsewhere (an
+ * odd length, a mapping without the inline pdf) pdf_li / its table entry. Returns 0 where pdf_li is 0.
+ * (Issue 22: the rest x cosine part's pdf comes from its cell tables, which its sample has just read, not
+ * from the light's pdf table: one random read less per sample.) */
 static int el_envlight__hot_locate(const el_envlight *l, const float dir[3], int *biu, int *biv, float *isin) {
-  float d[3], r2, len2, r, len, pu, t, p;
-  uint32_t iu, iv;
-  size_t c;
-  int64_t b;
-#if EL_ENVLIGHT__ATOMICS
-  int hot = (__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF) != 0;
-#else
-  int hot = (l->hot & EL_ENVLIGHT__HOT_PDF) != 0;
-#endif
-  if (hot) {
-    el_envlight__to_light(l, dir, d);
-    r2 = d[0] * d[0] + d[1] * d[1];
-    len2 = r2 + d[2] * d[2];
-    if (len2 >= FLT_MIN && len2 <= FLT_MAX) {
-      r = el_envlight__sqrt(r2); len = el_envlight__sqrt(len2);
-      pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
-      pu = pu < 3.99999976f ? pu : 3.99999976f;
-      c = (size_t)(int64_t)(pu * l->u_cell_scale);
-      iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
-      t = 1.0f - d[2] / (r + fabsf(d[2]));
-      c = (size_t)(int64_t)(t * l->v_cell_scale);
-      iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
-      r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
-      *biu = (int)iu; *biv = (int)iv; *isin = len / r;
-      return 1;
-    }
-  }
-  p = el_envlight_pdf_li(l, dir);
-  b = p > 0.0f ? el_envlight__hot_bin(l, dir) : -1;
-  if (b < 0 || !(l->pdf_table[b] > 0.0f)) return 0;
-  *biu = (int)(b % l->dist.nu); *biv = (int)(b / l->dist.nu); *isin = p / l->pdf_table[b];
+  float p, len, r, e;
+  if (el_envlight__hot_bin_core(l, dir, biu, biv, &len, &r)) { *isin = len / r; return 1; }
+  p = el_envlight__hot_pdf_li_bin(l, dir, biu, biv); /* (its slow path: the inline one just failed) */
+  if (!(p > 0.0f) || *biu < 0) return 0;
+  e = l->pdf_table[(size_t)*biv * (size_t)l->dist.nu + (size_t)*biu];
+  if (!(e > 0.0f)) return 0;
+  *isin = p / e;
   return 1;
 }
 
