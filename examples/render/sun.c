@@ -95,6 +95,8 @@ struct elr_sun_cell {
   float seen[EL_ENVLIGHT_HOTSPOT_MAX]; /* the pilot's rays that saw spot k; then v_k, then after dilation */
   float alpha;                         /* sum P_k v_k / sum P_k */
   int lowered;                         /* some v_k < 1 */
+  int horizon;                         /* every lowered spot lay below all the cell's pilot points' horizons */
+  int tested[EL_ENVLIGHT_HOTSPOT_MAX]; /* the pilot's rays towards spot k above their point's horizon */
   el_envlight_mix_weights w;
   float nsum[3];                       /* the sum of the pilot's normals in the cell */
   const el_envlight_mix_cos_table *tab; /* the rest x cosine table of a lowered cell (shared, read-only) */
@@ -174,7 +176,7 @@ const elr_sun_cell *elr_sun_lookup(const elr_sun *S, const elr_hit *h, elr_v3 wo
   }
 }
 
-typedef struct { elr_v3 p, n; float fp; int hit; int seen[EL_ENVLIGHT_HOTSPOT_MAX]; } elr__sun_pt;
+typedef struct { elr_v3 p, n; float fp; int hit; int seen[EL_ENVLIGHT_HOTSPOT_MAX], tested[EL_ENVLIGHT_HOTSPOT_MAX]; } elr__sun_pt;
 static int elr__cmp_float(const void *a, const void *b) {
   float x = *(const float *)a, y = *(const float *)b;
   return x < y ? -1 : x > y ? 1 : 0;
@@ -197,12 +199,13 @@ static void elr__sun_pilot_pixel(const elr_ctx *C, const elr_sun *S, int x, int 
   wo = elr_mul(ray.d, -1.f);
   q->p = h.p; q->n = elr__sun_side(&h, wo); q->hit = 1;
   for (k = 0; k < S->hs->count; k++) {
-    q->seen[k] = 0;
+    q->seen[k] = q->tested[k] = 0;
     for (r = 0; r < ELR_SUN_RAYS; r++) { /* (a direction of the spot's ELR_SUN_DIRS, stratum r of them) */
       elr_v3 d;
       hs = hs * 747796405u + 2891336453u;
       d = S->dirs[k][r * (ELR_SUN_DIRS / ELR_SUN_RAYS) + (int)((hs >> 16) % (ELR_SUN_DIRS / ELR_SUN_RAYS))];
       if (!(elr_dot(d, d) > 0.f) || elr_dot(d, q->n) <= 0.f) continue;
+      q->tested[k]++;
       if (!elr_occluded(s, elr_spawn_origin(&h, d), d, INFINITY)) q->seen[k]++;
     }
   }
@@ -374,7 +377,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
     elr_sun_cell *c = elr__sun_insert(S, elr__sun_key(S, pt[i].p, pt[i].n));
     c->rays += ELR_SUN_RAYS;
     c->nsum[0] += pt[i].n.x; c->nsum[1] += pt[i].n.y; c->nsum[2] += pt[i].n.z;
-    for (k = 0; k < nk; k++) c->seen[k] += (float)pt[i].seen[k];
+    for (k = 0; k < nk; k++) { c->seen[k] += (float)pt[i].seen[k]; c->tested[k] += pt[i].tested[k]; }
   }
   for (i = 0; i <= S->mask; i++) { /* v_k */
     elr_sun_cell *c = &S->tab[i];
@@ -408,6 +411,8 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
         c->w.spot[k] = S->hs->spot[k].share * (v > S->eps ? v : S->eps);
       }
       c->w.rest = S->hs->rest_share;
+      c->horizon = c->lowered;
+      for (k = 0; k < nk; k++) if (c->seen[k] < 1.f && c->tested[k] > 0) c->horizon = 0;
       c->alpha = (float)(a / Ps);
       S->info.cells++;
       if (c->lowered) S->info.cells_lowered++;
@@ -452,6 +457,12 @@ int elr_sun_in_spot(const elr_sun *S, const float wi[3]) {
 
 void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], float wi[3], float L[3], float *pdf) {
   const el_envlight *e = S->l->env_sample;
+  if (n && c->horizon) { /* the spots below the horizon: product sampling at n draws none of them already */
+    float nn[3];
+    elr_to3(*n, nn);
+    el_envlight_sample_li_cos(e, nn, u, wi, L, pdf);
+    return;
+  }
   if (n && c->tab) {
     float nn[3], uu[2], a = c->alpha, pc, pm;
     uu[1] = u[1];
@@ -476,6 +487,7 @@ void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, co
 
 float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float wi[3]) {
   const el_envlight *e = S->l->env_sample;
+  if (n && c->horizon) { float nn[3]; elr_to3(*n, nn); return el_envlight_pdf_li_cos(e, nn, wi); }
   if (n && c->tab) {
     float nn[3], a = c->alpha, pm = el_envlight_pdf_li_mix_cos_table(e, S->hs, c->tab, wi);
     if (!(a > 0.f)) return pm;
@@ -513,6 +525,7 @@ void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 
 int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
   int i;
   if (!c || !(b->env_map || b->env_sun_test)) return elr_bsdf_cos_normal(b, wo, n); /* (env_sun_test: the sun rule by the normal, ELR_ENVSD_SUNCOS) */
+  if (c->horizon) return elr_bsdf_cos_normal(b, wo, n); /* (the renderer's choice; with a normal, elr_sun_sample's product) */
   if (elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha) return 0; /* a peaked glossy lobe: the map alone, with MIS */
   for (i = 0; i < b->nlobes; i++)
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
