@@ -15,7 +15,9 @@
  * light's density: measured, scaling the weights by v_k cost the lit side of a sphere 2-4x).
  *
  * THE DENSITY at a vertex whose cell has a dark spot (elsewhere, and at vertices the pilot never saw, the
- * renderer's density unchanged, bit for bit): the spot's weight P_k e, the other parts their shares P
+ * renderer's density unchanged, bit for bit; where every pilot ray of the cell towards its dark spots lay
+ * below the horizon, the renderer's product sampling at vertices that have a product normal, COST below):
+ * the spot's weight P_k e, the other parts their shares P
  * (e makes the dark spots' total ELR_SUN_FLOOR of the samples), as
  *   the rest x cosine (el_envlight_sample_li_mix_cos) where the vertex reflects only (elr_sun_cos_normal:
  *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the CELL's normal
@@ -50,22 +52,27 @@
  * (bench/callgrind_product.sh, city.hdr, 3% spots): 1060 -> 846 instructions with the radiance, pdf 287 ->
  * 266; callgrind, the render loop alone 1.035x, 1.029x, 1.064x the instructions of --sun off (object,
  * porch, city), with the pilot at 16 spp 1.065x, 1.047x, 1.106x. The render loop's CPU against --sun off
- * (16 spp, 1 thread, best of 5 interleaved process runs, two runs): 1.23-1.26x -> 1.06-1.10x (object),
- * 1.41-1.43x -> 1.15-1.17x (porch), 1.21-1.22x -> 1.02-1.04x (city; bench_sun_render's renders in one
- * process: 1.11x, 1.19x, 1.14x), plus the pilot (0.011, 0.011, 0.035 s against loops of 0.20, 0.34, 0.46 s). Not in those: finding the hot spots and their cell tables,
+ * (16 spp, 1 thread, best of 5 interleaved process runs, three runs on a loaded machine): 1.23-1.26x ->
+ * 1.06-1.14x (object), 1.31-1.43x -> 1.07-1.17x (porch), 1.21-1.26x -> 1.02-1.04x (city;
+ * bench_sun_render's renders in one process: 1.09x, 1.17x, 1.09x), plus the pilot (0.011, 0.011, 0.035 s
+ * against loops of 0.20, 0.34, 0.46 s). Not in those: finding the hot spots and their cell tables,
  * once per light (city.hdr, 2048x1024 bins: 0.28 G instructions, plus the light's own sampling tables where
  * the render would not build them, plus the cells' dilation 0.09 G: a fresh render --sun on pays them).
- * bench/bench_sun_render.c (16 spp, 16 seeds, CPU from 5 interleaved renders): 1.40x less variance in the
- * shadow at equal samples on sun_shadow_object (1.20x at equal time), 1.01x on sun_porch, 0.92x on
- * bench_city; the whole image 1.04x, 1.01x, 0.99x at equal samples, 0.89x, 0.82x, 0.81x at equal time:
- * off by default (the whole image cannot gain more than its 1-4% at equal samples, and the pilot and the
- * lookups alone cost more). Tried: counting a pilot ray below its point's horizon as seeing the spot (such
- * cells keep the default, whose product sampling bounds the cosine more tightly than the rest's 32 x 16
- * cells): bench_city's shadow 0.92x -> 0.98x, sun_shadow_object's 1.40x -> 1.16x, whole images 1.02x,
- * 1.02x, 1.00x at equal samples: dropped. The porch's path tracing: the cache is applied at every vertex whose cell the
- * pilot saw (all depths); at the camera vertices alone the shadow's variance is 1.006x less, at all 1.009x
- * (its direct light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is
- * indirect light from the sunlit ground, which no light-sample density changes.
+ * THE HORIZON (this round): a cell whose pilot rays towards its lowered spots all lay below their points'
+ * horizons (elr_sun_cell.horizon: the sphere's far side, a wall facing away) keeps the renderer's product
+ * sampling where the vertex has a product normal: it draws no spot there already and bounds the cosine
+ * more tightly than the rest's 32 x 16 cells; the map-alone vertices there (a peaked glossy lobe) keep the
+ * mixture. Counting those rays as seeing the spot instead (the whole cell back to the default) gave
+ * bench_city's shadow 0.98x but cost sun_shadow_object's glossy sphere: 1.40x -> 1.16x.
+ * bench/bench_sun_render.c (16 spp, 16 seeds, CPU from 5 interleaved renders), against today's default:
+ * in the shadow 1.45x less variance at equal samples on sun_shadow_object (1.26x at equal time), 1.03x on
+ * sun_porch (0.86x), 0.98x on bench_city (0.84x; 0.92x before the horizon rule); the whole image 1.05x,
+ * 1.02x, 1.00x at equal samples, 0.91x, 0.85x, 0.86x at equal time: off by default (the whole image has
+ * at most 5% to gain at equal samples, less than the pilot and the lookups cost). The porch's path
+ * tracing: the cache is applied at every vertex whose cell the pilot saw (all depths); at the camera
+ * vertices alone the shadow's variance is 1.006x less, at all 1.009x (before the horizon rule; its direct
+ * light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is indirect
+ * light from the sunlit ground, which no light-sample density changes.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
