@@ -4984,7 +4984,10 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
     if (found > 0) {
       el_distribution_options dopt;
       int anyrest = 0;
-      for (b = 0; b < nb; ++b) rest += (double)f[b] * rowk[b / nu];
+      for (b = 0; b < nb; b += nu) { /* (row by row: no division per bin) */
+        int i;
+        for (i = 0; i < nu; ++i) rest += (double)f[b + i] * rowk[b / nu];
+      }
       rest /= total;
       h->share_d[found] = rest > 0.0 ? rest : 0.0;
       h->rest_share = (float)h->share_d[found];
