@@ -722,10 +722,11 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    read: the pdf comes from the same entries; the direction from the direction tables without their pdf;
  *    under a signed-permutation matrix the radiance at the sample's own (u, v), as sample_li's) and the
  *    texels. bench/callgrind_product.sh with OPS="sample_mix_cos_rgb pdf_mix_cos" (city.hdr, spots at 3%,
- *    256 prepared tables): sample with radiance 1060 -> 846 instructions, pdf 287 -> 266; the renderer's
- *    dark-cell CPU: see examples/render/sun.c. MEMORY: the cell tables, 2 bytes per rest bin plus 10 per
- *    cell row (1.3 MB at 1024x512 bins, 4.6 MB at 2048x1024; the el_distribution2d cells were twice that),
- *    the rest's own distribution (sample_li_mix's) and the light's tables.
+ *    256 prepared tables): sample with radiance 1060 -> 845 instructions, pdf 287 -> 265 (sunrise.hdr:
+ *    1043 -> 827, 288 -> 265); the renderer's dark-cell CPU: see examples/render/sun.c. MEMORY: the cell
+ *    tables, 2 bytes per rest bin plus 10 per cell row (1.3 MB at 1024x512 bins, 4.6 MB at 2048x1024; the
+ *    el_distribution2d cells were twice that), the rest's own distribution (sample_li_mix's) and the
+ *    light's tables.
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
  *    those of the compensated density. COST: sample_li_mix with radiance 3.9-4.4x sample_li's time on

@@ -49,8 +49,8 @@
  * pdf), the radiance at the sample's (u, v) under a signed-permutation matrix (as sample_li), a branch-free
  * search of the cells' sums; here the lookup probes an array of 8-byte keys (elr_sun.keys) and the path
  * loop takes a vertex's cell and normal from its light sample instead of a second lookup. Per sample
- * (bench/callgrind_product.sh, city.hdr, 3% spots): 1060 -> 846 instructions with the radiance, pdf 287 ->
- * 266; callgrind, the render loop alone 1.035x, 1.029x, 1.064x the instructions of --sun off (object,
+ * (bench/callgrind_product.sh, city.hdr, 3% spots): 1060 -> 845 instructions with the radiance, pdf 287 ->
+ * 265; callgrind, the render loop alone 1.035x, 1.029x, 1.064x the instructions of --sun off (object,
  * porch, city), with the pilot at 16 spp 1.065x, 1.047x, 1.106x. The render loop's CPU against --sun off
  * (16 spp, 1 thread, best of 5 interleaved process runs, three runs on a loaded machine): 1.23-1.26x ->
  * 1.06-1.14x (object), 1.31-1.43x -> 1.07-1.17x (porch), 1.21-1.26x -> 1.02-1.04x (city;
