@@ -69,9 +69,10 @@
  * sun_porch (0.86x), 0.98x on bench_city (0.84x; 0.92x before the horizon rule); the whole image 1.05x,
  * 1.02x, 1.00x at equal samples, 0.91x, 0.85x, 0.86x at equal time: off by default (the whole image has
  * at most 5% to gain at equal samples, less than the pilot and the lookups cost). At 64 spp (8 seeds):
- * shadowed 1.45x, 1.01x, 0.75x (median pixel 1.40x, 1.04x, 0.95x: on bench_city a few shadowed pixels
- * near the shadow's edge, where the sun's 3% floor meets a partly visible sun, pull the mean), the whole
- * image 1.05x, 1.01x, 0.96x at equal samples and 0.96x, 0.88x, 0.88x at equal time. The porch's path
+ * shadowed 1.45x, 1.01x, 0.75x (median pixel 1.40x, 1.04x, 0.95x; SUN_DUMP/SUN_RATIO at 32 spp: on
+ * bench_city the sphere's dark side is now even, and the sphere's cast shadow on the ground, where the
+ * default samples the map alone with MIS, is mixed, slightly worse with the cache, a few pixels much
+ * worse), the whole image 1.05x, 1.01x, 0.96x at equal samples and 0.96x, 0.88x, 0.88x at equal time. The porch's path
  * tracing: the cache is applied at every vertex whose cell the pilot saw (all depths); at the camera
  * vertices alone the shadow's variance is 1.006x less, at all 1.009x (before the horizon rule; its direct
  * light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is indirect
