@@ -931,6 +931,7 @@ typedef struct elr_sun_info {
   el_envlight_hotspot spot[ELR_SUN_INFO_SPOTS];
   float cell, floor;                        /* the cells' edge (world units); the spots' share where none is seen */
   int64_t pilot_points, pilot_rays, cells, cells_lowered, cells_dark; /* dark: no spot seen */
+  int64_t cells_horizon;                    /* lowered cells whose spots all lay below the pilot's horizons */
   double seconds, cpu_seconds;              /* the pilot and the table: wall time, CPU time (all threads) */
 } elr_sun_info;
 /* 0 and *out set (NULL when the light has no hot spot), -1 out of memory. The pilot runs on nthreads threads

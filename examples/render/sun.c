@@ -424,6 +424,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
       c->w.rest = S->hs->rest_share;
       c->horizon = c->lowered;
       for (k = 0; k < nk; k++) if (c->seen[k] < 1.f && c->tested[k] > 0) c->horizon = 0;
+      S->info.cells_horizon += c->horizon;
       c->alpha = (float)(a / Ps);
       S->info.cells++;
       if (c->lowered) S->info.cells_lowered++;
