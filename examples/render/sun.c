@@ -55,7 +55,10 @@
  * (16 spp, 1 thread, best of 5 interleaved process runs, three runs on a loaded machine): 1.23-1.26x ->
  * 1.06-1.14x (object), 1.31-1.43x -> 1.07-1.17x (porch), 1.21-1.26x -> 1.02-1.04x (city;
  * bench_sun_render's renders in one process: 1.09x, 1.17x, 1.09x), plus the pilot (0.011, 0.011, 0.035 s
- * against loops of 0.20, 0.34, 0.46 s). Not in those: finding the hot spots and their cell tables,
+ * against loops of 0.20, 0.34, 0.46 s). Since issue 20's batched product sampling reached the wave loop
+ * (el_envlight_sample_li_cos_n: the default's loop 0.21 -> 0.16, 0.35 -> 0.28, 0.53 -> 0.42 s) while a
+ * dark cell's samples stay single calls: 1.19x, 1.28x, 1.19x (best of 5 interleaved, after the merge);
+ * batching the mixture's samples the same way is the next step. Not in those: finding the hot spots and their cell tables,
  * once per light (city.hdr, 2048x1024 bins: 0.28 G instructions, plus the light's own sampling tables where
  * the render would not build them, plus the cells' dilation 0.09 G: a fresh render --sun on pays them).
  * THE HORIZON (this round): a cell whose pilot rays towards its lowered spots all lay below their points'
@@ -65,9 +68,10 @@
  * mixture. Counting those rays as seeing the spot instead (the whole cell back to the default) gave
  * bench_city's shadow 0.98x but cost sun_shadow_object's glossy sphere: 1.40x -> 1.16x.
  * bench/bench_sun_render.c (16 spp, 16 seeds, CPU from 5 interleaved renders), against today's default:
- * in the shadow 1.45x less variance at equal samples on sun_shadow_object (1.26x at equal time), 1.03x on
- * sun_porch (0.86x), 0.98x on bench_city (0.84x; 0.92x before the horizon rule); the whole image 1.05x,
- * 1.02x, 1.00x at equal samples, 0.91x, 0.85x, 0.86x at equal time: off by default (the whole image has
+ * in the shadow 1.45x less variance at equal samples on sun_shadow_object (1.26x at equal time; 1.13x
+ * after the batched default), 1.03x on sun_porch (0.86x; 0.68x), 0.98x on bench_city (0.84x; 0.76x; 0.92x
+ * before the horizon rule); the whole image 1.05x, 1.02x, 1.00x at equal samples, 0.91x, 0.85x, 0.86x at
+ * equal time (0.82x, 0.68x, 0.77x after the batched default): off by default (the whole image has
  * at most 5% to gain at equal samples, less than the pilot and the lookups cost). At 64 spp (8 seeds):
  * shadowed 1.45x, 1.01x, 0.75x (median pixel 1.40x, 1.04x, 0.95x; SUN_DUMP/SUN_RATIO at 32 spp: on
  * bench_city the sphere's dark side is now even, and the sphere's cast shadow on the ground, where the
