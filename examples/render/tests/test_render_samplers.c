@@ -403,15 +403,19 @@ static void test_renders(void) {
  * ELR_ZSOBOL_REFERENCE). */
 static void test_zsobol_fast(void) {
   static const int rz[4] = {ELR_RANDOMIZE_NONE, ELR_RANDOMIZE_PERMUTE_DIGITS, ELR_RANDOMIZE_FAST_OWEN, ELR_RANDOMIZE_OWEN};
-  int L, r, bad = 0, fast_used = 0, draws = 0;
-  for (L = 0; L <= 9; L++)
+  int L, r, bad = 0, fast_used = 0, draws = 0, simd, nsimd = elr_zsobol_simd(), runs = 0;
+  /* fastowen's loops: AVX2, SSE2 and the plain one, each that this CPU runs */
+  for (simd = 0; simd <= nsimd; simd++) for (L = 0; L <= 9; L++)
     for (r = 0; r < 4; r++) {
       int spp = 1 << L, x, y, k, j, pass;
       tsamp a, b;
+      if (rz[r] != ELR_RANDOMIZE_FAST_OWEN && simd < nsimd) continue;
       if (tsamp_init(&a, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0 || tsamp_init(&b, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0) {
         rt_check(0, "zsobol init"); return;
       }
-      fast_used += a.S.zlow != NULL;
+      runs++;
+      fast_used += a.S.zlow != NULL && a.S.zsimd == nsimd;
+      a.S.zsimd = simd;
       for (pass = 0; pass < 2; pass++)
         for (y = -1; y < 13; y += 5 + pass)
           for (x = -1; x < 21; x += 7 - pass) {
@@ -438,8 +442,9 @@ static void test_zsobol_fast(void) {
           }
       tsamp_free(&a); tsamp_free(&b);
     }
-  rt_check(bad == 0 && fast_used == 9 * 4, "zsobol: the fast path's numbers are the reference's bit for bit (%d of %d draws differ; "
-           "fast path used for %d of 36 sample counts x randomizations up to 256 spp)", bad, draws, fast_used);
+  rt_check(bad == 0 && fast_used == runs - 4 - nsimd, "zsobol: the fast path's numbers are the reference's bit for bit (%d of %d draws differ; "
+           "fast path used for %d of %d sample counts x randomizations x SIMD loops up to 256 spp; the widest SIMD loop %d)",
+           bad, draws, fast_used, runs - 4 - nsimd, nsimd);
   {
     static const char *integs[2] = {"\"directlighting\"", "\"path\" \"integer maxdepth\" 4"};
     int ig;
