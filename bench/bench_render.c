@@ -102,7 +102,9 @@
  * 4063, soa 3919, single 4809 (packet16 3777 then), the sphere test two lanes at a time with SSE2
  * (Embree 995 -> 1009), active lanes by bit mask (907 -> 936). Loop CPU, one thread, interleaved rounds
  * against main's binary: bench_city 64 spp 0.85-0.90x, bench_studio 0.92-0.95x, path 0.95-0.98x.
- * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path). */
+ * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path).
+ * Measured 2026-12-02 (issue 21), zsobol's fast path, second step (sampler_zsobol.c): sampler part
+ * 461 -> 253 (direct), 1411 -> 551 (path); totals 4062 -> 3854, 6452 -> 5585; the same images. */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"

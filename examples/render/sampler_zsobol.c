@@ -18,7 +18,7 @@
  * _2d), and the fast path (up to 256 spp; the environment variable ELR_ZSOBOL_REFERENCE forces the
  * reference), which makes a pixel's points of a dimension for all its samples at once (below).
  * Instructions per camera sample on bench_city (16 spp, direct lighting, bench/callgrind_parts.py):
- * 1225 -> 512 for the sampler (path, 4 spp: 2123 -> 1411). */
+ * 1225 -> 512 -> 253 for the sampler (path, 4 spp: 2123 -> 1411 -> 551; the second step below). */
 #include "elr_internal.h"
 #include <string.h>
 
@@ -85,8 +85,14 @@ void elr_zsobol_ref_2d(elr_sampler *S, int dim, float u[2]) {
  *   - fastowen works on the bit-reversed point: the tables are kept reversed for it; its hash, the final
  *     reversal and the conversion run on 8 values at a time with AVX2 (where the CPU has it: chosen at
  *     run time, elr_zsobol_simd), else 4 with SSE2, else one at a time (the plain loop: the definition).
+ *   - The samplers of a wave (render_wave.c: neighbouring pixels in turn) share what they keep of their
+ *     last pixels (elr_sampler_share), and the digit's permutation is kept too: a pixel whose Morton
+ *     code differs from the last one's first in digit J needs hashes for the digits below J only (about
+ *     one per table in a wave's row order, against 4.6 with each sampler's own last pixel at 4 spp).
  * Instructions per camera sample on bench_city (bench/callgrind_parts.sh), sampler part: direct lighting
- * 16 spp 461 -> ?, path 4 spp 1411 -> ?. */
+ * 16 spp 461 -> 253, path 4 spp 1411 -> 551 (with the wave's unused BSDF draw skipped: one table in
+ * three fewer); per table at 4 spp about 350 (the hashes ~50 each, fastowen with AVX2 ~75, the rest
+ * calls and bookkeeping). pbrt-v4 makes log2(res) + log2(spp) / 2 hashes and two scrambles per draw. */
 
 /* the fast path's tables for a render at 2^log2spp samples per pixel: each pixel digit's Sobol' point */
 void elr_zsobol_tables_init(elr_sampler_tables *T, int log2spp) {
@@ -255,6 +261,7 @@ static int elr__fast_owen_sse2(const uint64_t *in, int n, uint32_t a, uint32_t b
 #endif
 static void elr__fast_owen_floats(int simd, const uint64_t *in, int n, uint32_t a, uint32_t b, float *out) {
   int k = 0;
+  (void)simd;
 #if defined(__SSE2__) && !defined(ELR_NO_SIMD)
   if (simd >= 1 && n >= 4) k = elr__fast_owen_sse2(in, n, a, b, out);
 #endif
