@@ -786,6 +786,7 @@ static inline void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]) {
 #define ELR_ZSOBOL_FAST_SPP 256
 void elr_zsobol_start_pixel(elr_sampler *S, uint64_t morton);
 void elr_zsobol_tables_init(elr_sampler_tables *T, int log2spp);
+void elr_zsobol_draw2d(elr_sampler *S, float u[2]); /* elr_sampler_get2d's zsobol case out of line */
 int elr_zsobol_simd(void);
 float elr_paddedsobol_1d(const elr_sampler *S, int dim);
 void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);

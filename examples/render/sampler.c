@@ -217,7 +217,11 @@ static ELR_NOINLINE void elr__get2d(elr_sampler *S, float u[2]) {
 }
 void elr_sampler_get2d(elr_sampler *S, float u[2]) {
   const float *t; /* zsobol's points of the pixel made: a load (the common case, ahead of the switch) */
-  if (S->kind == ELR_SAMPLER_ZSOBOL && (t = elr_zsobol_made2(S, S->dim)) != NULL) { u[0] = t[0]; u[1] = t[1]; S->dim += 2; return; }
+  if (S->kind == ELR_SAMPLER_ZSOBOL) {
+    if ((t = elr_zsobol_made2(S, S->dim)) != NULL) { u[0] = t[0]; u[1] = t[1]; S->dim += 2; return; }
+    elr_zsobol_draw2d(S, u);
+    return;
+  }
   elr__get2d(S, u);
 }
 
@@ -230,7 +234,7 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
   if (S->kind == ELR_SAMPLER_ZSOBOL) { /* (the steps below without the other samplers' tests) */
     S->sample = k; S->d1 = S->d2 = 0;
     S->hindex = elr__zsobol_hindex(S, k);
-    if (!(t = elr_zsobol_made2(S, 0))) { S->dim = 0; elr__get2d(S, u); t = u; }
+    if (!(t = elr_zsobol_made2(S, 0))) { S->dim = 0; elr_zsobol_draw2d(S, u); t = u; }
     S->dim = 5;
     *fx = t[0] + (float)x; *fy = t[1] + (float)y;
     return;

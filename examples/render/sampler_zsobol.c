@@ -329,3 +329,4 @@ const float *elr_zsobol_table(elr_sampler *S, int dim, int two) {
   elr__zsobol_points(S, S->zsob[dim], low, two, h, t);
   return two ? t + 2 * s : t + s;
 }
+void elr_zsobol_draw2d(elr_sampler *S, float u[2]) { elr_zsobol_2d(S, S->dim, u); S->dim += 2; }
