@@ -104,7 +104,7 @@
  * against main's binary: bench_city 64 spp 0.85-0.90x, bench_studio 0.92-0.95x, path 0.95-0.98x.
  * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path).
  * Measured 2026-12-02 (issue 21), zsobol's fast path, second step (sampler_zsobol.c): sampler part
- * 461 -> 248 (direct), 1411 -> 531 (path); totals 4062 -> 3847, 6452 -> 5566; the same images. Loop
+ * 461 -> 234 (direct), 1411 -> 527 (path); totals 4062 -> 3833, 6452 -> 5562; the same images. Loop
  * CPU (render --stats, one thread, interleaved): median ratios 0.96-0.98 (direct), 0.93-0.95 (path). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"

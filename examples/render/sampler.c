@@ -228,22 +228,22 @@ void elr_sampler_get2d(elr_sampler *S, float u[2]) {
 /* pbrt-v3's GetCameraSample for camera sample k of pixel (x, y): starts the sample and draws its film
  * position (continuous raster coordinates). Drawing it again gives the same position and leaves the
  * sampler in the same state. */
-void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
+static ELR_NOINLINE void elr__camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
   float u[2];
-  const float *t;
-  if (S->kind == ELR_SAMPLER_ZSOBOL) { /* (the steps below without the other samplers' tests) */
-    S->sample = k; S->d1 = S->d2 = 0;
-    S->hindex = elr__zsobol_hindex(S, k);
-    if (!(t = elr_zsobol_made2(S, 0))) { S->dim = 0; elr_zsobol_draw2d(S, u); t = u; }
-    S->dim = 5;
-    *fx = t[0] + (float)x; *fy = t[1] + (float)y;
-    return;
-  }
   elr_sampler_start_sample(S, k);
   elr_sampler_get2d(S, u);
   /* global samplers: time and lens take dimensions 2..4 (pbrt-v3's GetCameraSample; pbrt-v4's too) */
   if (S->kind == ELR_SAMPLER_HALTON || S->kind == ELR_SAMPLER_SOBOL || S->kind == ELR_SAMPLER_ZSOBOL || S->kind == ELR_SAMPLER_PADDEDSOBOL) S->dim = 5;
   *fx = u[0] + (float)x; *fy = u[1] + (float)y;
+}
+void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
+  const float *t;
+  if (S->kind == ELR_SAMPLER_ZSOBOL && S->zlow) { /* zsobol's point made: the steps above without the other samplers' tests */
+    S->sample = k; S->d1 = S->d2 = 0;
+    S->hindex = elr__zsobol_hindex(S, k);
+    if ((t = elr_zsobol_made2(S, 0)) != NULL) { S->dim = 5; *fx = t[0] + (float)x; *fy = t[1] + (float)y; return; }
+  }
+  elr__camera_sample(S, k, x, y, fx, fy);
 }
 
 void elr_sampler_share(elr_sampler *S, elr_sampler *with) {

@@ -18,7 +18,7 @@
  * _2d), and the fast path (up to 256 spp; the environment variable ELR_ZSOBOL_REFERENCE forces the
  * reference), which makes a pixel's points of a dimension for all its samples at once (below).
  * Instructions per camera sample on bench_city (16 spp, direct lighting, bench/callgrind_parts.py):
- * 1225 -> 512 -> 248 for the sampler (path, 4 spp: 2123 -> 1411 -> 531; the second step below). */
+ * 1225 -> 512 -> 234 for the sampler (path, 4 spp: 2123 -> 1411 -> 527; the second step below). */
 #include "elr_internal.h"
 #include <string.h>
 
@@ -90,7 +90,7 @@ void elr_zsobol_ref_2d(elr_sampler *S, int dim, float u[2]) {
  *     code differs from the last one's first in digit J needs hashes for the digits below J only (about
  *     one per table in a wave's row order, against 4.6 with each sampler's own last pixel at 4 spp).
  * Instructions per camera sample on bench_city (bench/callgrind_parts.sh), sampler part: direct lighting
- * 16 spp 461 -> 248, path 4 spp 1411 -> 531 (with the wave's unused BSDF draw skipped: one table in
+ * 16 spp 461 -> 234, path 4 spp 1411 -> 527 (with the wave's unused BSDF draw skipped: one table in
  * three fewer); per table at 4 spp about 350 (the hashes ~50 each, fastowen with AVX2 ~75, the rest
  * calls and bookkeeping). pbrt-v4 makes log2(res) + log2(spp) / 2 hashes and two scrambles per draw. */
 
