@@ -333,8 +333,9 @@ typedef struct el_envlight_product_options {
  * contributes nothing. How many depends on the light near the horizon (NOTES 2: 0.1-39% per orientation
  * on the CC0 maps, 1.2-7.5% averaged over six; 89-95% for a sun just below the horizon; sample_li:
  * 46-58%), so a caller cannot count on most samples being usable. pdf 0: no sample
- * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 810
- * instructions (930 with rgb), the pdf included. Builds its tables on first use (5.4 MiB for a
+ * (a black map, nothing emits above this surface, or an unusable n); skip it. Cost: about 815
+ * instructions (940 with rgb), the pdf included; sample_li_cos_n below: about 625 (755). Builds its
+ * tables on first use (5.4 MiB for a
  * 1024x512 map, at most 12 MiB for any map: larger maps use a 2048x1024 coarse grid); thread-safe
  * like sample_li's lazy build; the light's own sampling tables (sample_li's) are not needed. */
 EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], const float u[2], float wi[3],
@@ -342,8 +343,18 @@ EL_DEF void el_envlight_sample_li_cos(const el_envlight *l, const float n[3], co
 /* The density with which sample_li_cos(l, n, .) picks wi, for MIS against BSDF sampling at the same
  * point: pdf_li_cos(n, sample_li_cos(n, u).wi) is the returned pdf, bit for bit. > 0 wherever le(wi) > 0
  * and n.wi > 0 (without compensation); also > 0 slightly below the horizon. A zero or NaN wi, or a
- * zero, NaN or infinite n, gives 0. About 410 instructions. Builds the tables on first use. */
+ * zero, NaN or infinite n, gives 0. About 400 instructions (pdf_li_cos_n: 335). Builds the tables on
+ * first use. */
 EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], const float wi[3]);
+/* n at once, for wave loops (a renderer's shading points of one stage): normals[3i..] and u[2i..] in,
+ * wi[3i..], rgb[3i..] (may be NULL) and pdf[i] out (arrays of points, as sample_li_n), bit for bit what
+ * n calls of sample_li_cos return; pdf_li_cos_n likewise pdf[i] = pdf_li_cos(normals[3i..], wi[3i..]).
+ * With SSE2 the arithmetic runs on four samples at once and the table reads of 16 samples are started
+ * together: about 625 / 335 instructions per sample and 2-3.5x less time with random normals (NOTES 2,
+ * COST); without SSE2 (or with FMA contraction: -mfma) a loop of single calls. n <= 0 does nothing. */
+EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float *normals, const float *u, float *wi,
+                                        float *rgb, float *pdf);
+EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *normals, const float *wi, float *pdf);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
  * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
  * EL_ERROR_INVALID_ARGUMENT for sizes out of range or different from those of tables already built
@@ -433,8 +444,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    warping of the product (Clarberg et al. 2005) needs a product map per point, O(cells) work like
  *    "exact". The default is the best variance at a fixed cost per sample, for 2.9 MB of normal tables.
  *    COST (bench/callgrind_product.sh: callgrind, city.hdr 1024x512, default options, a new random normal per
- *    call, the loop's own 9 subtracted): sample_li_cos 806 instructions (933 with the radiance; 855 under a
- *    general rotation), pdf_li_cos 408 (436); sample_li 97 (265 with the radiance), pdf_li 76. With binary
+ *    call, the loop's own 9 subtracted): sample_li_cos 814 instructions (941 with the radiance; 863 under a
+ *    general rotation), pdf_li_cos 400 (424); sample_li 97 (265 with the radiance), pdf_li 76 (the pick
+ *    in stages shared with the batched call below: 806, 933, 855, 408 and 436 before). With binary
  *    searches in place of the guide tables (below): 902 (1029; 951); before the round before: 988 (1116;
  *    1034), 408 (432); before issue 20: 1179, 1310 and 444. Issue 20's targets (sample_li_cos <= 400 and <=
  *    1.25x sample_li, pdf_li_cos <= 150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about
@@ -445,6 +457,26 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    entries: about 190 as binary searches, about 95 with the guide tables), two linear inversions, the
  *    direction (sinpi, cospi) and the atan pair again (bit-for-bit agreement with pdf_li_cos needs the
  *    direction located as the pdf locates it).
+ *    N AT ONCE (sample_li_cos_n, pdf_li_cos_n; issue 20): the same work, bit for bit, with the arithmetic
+ *    on four lanes of SSE2 (normal -> bin, the linear inversions, the direction's sinpi / cospi, the atan
+ *    pair, the density) and the table reads lane by lane, in four stages over 16 samples (cell row, cell,
+ *    patch row, patch: each stage requests the next stage's lines, then the corners and the texels), so
+ *    that 16 samples' cache misses overlap. Counted the same way in batches of 64 (bench_envlight
+ *    --callgrind sample_cos_n ...: callgrind_product.sh): sample 624 instructions per sample (756 with the
+ *    radiance: its texels located once, for the prefetch and the blend; 640 under a general rotation), pdf
+ *    333 (341); city and studio alike. The four lanes alone (4 samples per block, no stages): 542 and 245;
+ *    the stages and prefetches cost about 80 / 88 instructions and save far more time. Time (bench_product
+ *    --batch: a new random normal per sample, radiance included, CPU ns, best of 2-3 interleaved rounds,
+ *    2-core machine at load 3-7): city sample_li_cos 373-478 -> 127-142 ns (2.8-3.5x), pdf_li_cos 94-130 ->
+ *    52-56 ns (2-2.3x; sample_li 100-114); studio 325 -> 122 and 91 -> 48; without the prefetches city
+ *    217-224 and 59 ns. Issue 20's targets are not met this way either: the floor is the scalar part, the
+ *    four searches (about 125 per sample, the guides' forward scans) and the pick's address and fraction
+ *    arithmetic (about 110), the normal's table and the lanes' bookkeeping; the vector part is about 120
+ *    per sample. In render's wave loop (render_wave.c, the wave's product samples in one call):
+ *    callgrind_parts.sh, instructions per camera sample, city 4064 -> 3993 (light part 1066 -> 996), studio
+ *    3264 -> 3114 (1011 -> 860; four lanes without stages or the texel reuse: 3969 and 3058); render CPU
+ *    time, one thread, 64 spp, best of 3 interleaved: bench_city 1.98 -> 1.88 s, bench_studio 1.47 -> 1.18
+ *    s, images byte-identical.
  *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
  *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
  *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
@@ -476,9 +508,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    piecewise-constant bins inside the cells (pdf_li_cos = pdf_li x a per-cell ratio, about 110 / 340
  *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
  *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
- *    place of the binary searches (1049 instructions against 953). Not tried: alias tables (they break
- *    the stratification), a batched call for n normals (no instruction
- *    saving without SIMD across samples: the work is table lookups), Conty and Lecocq's per-point 12x12
+ *    place of the binary searches (1049 instructions against 953). Tried since: the batched call for n
+ *    normals (N AT ONCE above: 624 / 333 instructions, 2-3.5x less time). Not tried: alias tables (they
+ *    break the stratification), Conty and Lecocq's per-point 12x12
  *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
  *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
  *    density would no longer be le's, and the atans are about a quarter of the pdf).
@@ -1253,19 +1285,23 @@ static inline void el_envlight__bilerp_texels(const el_envlight *l, float u, flo
   p[3] = l->texels + ((size_t)y1 * (size_t)w + (size_t)x1) * 3;
 }
 
-/* Bilinear lookup at (u, v) in [0,1]^2: Repeat in u, Clamp in v. */
-static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rgb[3]) {
-  const float *p[4], *p00, *p01, *p10, *p11;
-  float fx, fy;
+/* The bilinear blend of the four texels p (el_envlight__bilerp_texels) with weights fx, fy. */
+static inline void el_envlight__bilerp_at(const float *const p[4], float fx, float fy, float rgb[3]) {
+  const float *p00 = p[0], *p01 = p[1], *p10 = p[2], *p11 = p[3];
   int c;
-  el_envlight__bilerp_texels(l, u, v, p, &fx, &fy);
-  p00 = p[0]; p01 = p[1]; p10 = p[2]; p11 = p[3];
   for (c = 0; c < 3; ++c) {
     float a = p00[c] + fx * (p01[c] - p00[c]);
     float b = p10[c] + fx * (p11[c] - p10[c]);
     rgb[c] = a + fy * (b - a);
     if (rgb[c] < 0.0f) rgb[c] = 0.0f; /* rounding of a + f (b - a) with huge ranges */
   }
+}
+/* Bilinear lookup at (u, v) in [0,1]^2: Repeat in u, Clamp in v. */
+static void el_envlight__bilerp(const el_envlight *l, float u, float v, float rgb[3]) {
+  const float *p[4];
+  float fx, fy;
+  el_envlight__bilerp_texels(l, u, v, p, &fx, &fy);
+  el_envlight__bilerp_at(p, fx, fy, rgb);
 }
 
 /* The radiance at light-space (u, v). */
@@ -3662,7 +3698,7 @@ static inline float el_envlight__bf16(uint16_t h) {
 }
 
 /* <<Build the product tables>>: vertex grid, cells, patch CDFs, cell masses, plain and normal tables. */
-static el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
+static EL_ENVLIGHT__NOINLINE el_result el_envlight__prod_build(const el_envlight *l, int ku, int kv, int m, struct el_envlight__warp **out) {
   struct el_envlight__warp *W;
   int w = l->width, h = l->height, gw, gh, i, j, a, b, r, k;
   double *wgt = NULL, *rs = NULL, total = 0.0;
@@ -3835,7 +3871,7 @@ fail:
 
 /* The product tables' once-scheme (cos_state; the same scheme as the sampling tables). NULL: failed.
  * The built case is inlined into the queries (el_envlight__prod_ensure); the build stays out of line. */
-static const struct el_envlight__warp *el_envlight__prod_ensure_slow(const el_envlight *cl, int ku, int kv, int m) {
+static EL_ENVLIGHT__NOINLINE const struct el_envlight__warp *el_envlight__prod_ensure_slow(const el_envlight *cl, int ku, int kv, int m) {
   el_envlight *l = (el_envlight *)cl;
 #if EL_ENVLIGHT__ATOMICS
   int expected = 0;
@@ -3946,72 +3982,106 @@ static inline float el_envlight__prod_eval(const struct el_envlight__warp *W, co
   return p < FLT_MAX ? p : FLT_MAX;
 }
 
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__PROD_INLINE inline __attribute__((always_inline)) /* into the single and the batched calls */
+#else
+#define EL_ENVLIGHT__PROD_INLINE inline
+#endif
+/* The integer widths the pdf reads for patch (i, r) under cell table tab: the cell's (cell row x cell)
+ * and the patch's (patch row x patch). Returns 0 when either is 0 (no density there). */
+static EL_ENVLIGHT__PROD_INLINE int el_envlight__prod_widths(const struct el_envlight__warp *W, const uint16_t *tab, int i, int r, uint32_t *wc, uint32_t *wr) {
+  int a = W->cu_of[i], b = W->cv_of[r], k;
+  const uint16_t *row = el_envlight__sparse_row(W, tab, b), *pc, *pr;
+  k = a - (int)row[0]; /* the cell's place in its row's span */
+  k += k < 0 ? W->ku : 0;
+  *wc = k < (int)row[1] ? (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[k + 3] - row[k + 2]) : 0u;
+  pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a] + (size_t)(i - W->a0[a]);
+  pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
+  *wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
+  return *wc != 0 && *wr != 0;
+}
+
 /* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
  * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
  * be NULL) gets the (u, v) at which le() looks d up. */
 static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
   el_envlight__ploc q;
   float c[4];
-  int i, r, a, b, k;
-  const uint16_t *row, *pc, *pr;
   uint32_t wc, wr;
   if (uv) uv[0] = uv[1] = 0.0f;
   if (!el_envlight__prod_locate(W, dir, &q)) return 0.0f;
   if (uv) { uv[0] = q.u; uv[1] = q.v; }
-  i = q.i; r = q.r;
-  a = W->cu_of[i]; b = W->cv_of[r];
-  row = el_envlight__sparse_row(W, tab, b);
-  k = a - (int)row[0]; /* the cell's place in its row's span */
-  k += k < 0 ? W->ku : 0;
-  wc = k < (int)row[1] ? (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(row[k + 3] - row[k + 2]) : 0u;
-  pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a] + (size_t)(i - W->a0[a]);
-  pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)r + (size_t)b;
-  wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
-  if (wc == 0 || wr == 0) return 0.0f;
-  el_envlight__prod_corners(W, i, r, c);
+  if (!el_envlight__prod_widths(W, tab, q.i, q.r, &wc, &wr)) return 0.0f;
+  el_envlight__prod_corners(W, q.i, q.r, c);
   return el_envlight__prod_eval(W, &q, wc, wr, c);
+}
+
+/* <<Pick a cell>>, then its patch row and the patch for u, in four stages (each ends at the next table
+ * it reads, P->p, so that the batched call can start those reads for several samples before it needs
+ * them): the patch (P->i, P->r), the fractions P->q (of the patch row's units) and P->s (of the
+ * patch's), the cell's integer width P->wc and the patch's P->wr (as the pdf reads them). */
+typedef struct el_envlight__pick { const uint16_t *p; float x0, f0, f1, q, s; int a, b, r, i; uint32_t wc, wr; } el_envlight__pick;
+/* 1: the cell row b, from the table's rows CDF; P->p: the row's span [a_s, L, CDF] */
+static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick1(const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], el_envlight__pick *P) {
+  float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS;
+  int b;
+  P->x0 = el_envlight__clamp01(uu[0]) * (float)EL_ENVLIGHT__CELL_UNITS;
+  b = el_envlight__search_guided(tab, W->kv, (const uint8_t *)(tab + (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv), (uint32_t)x1);
+  P->f1 = (x1 - (float)tab[b]) / (float)(tab[b + 1] - tab[b]);
+  P->wc = (uint32_t)(tab[b + 1] - tab[b]);
+  P->p = el_envlight__sparse_row(W, tab, b);
+  P->b = b;
+}
+/* 2: a cell a of the row's span; P->p: the cell's CDF over its patch rows */
+static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick2(const struct el_envlight__warp *W, el_envlight__pick *P) {
+  const uint16_t *row = P->p, *cc = row + 2;
+  int a = el_envlight__search_guided(cc, (int)row[1], (const uint8_t *)(row - EL_ENVLIGHT__GUIDE_E), (uint32_t)P->x0), b = P->b;
+  P->f0 = (P->x0 - (float)cc[a]) / (float)(cc[a + 1] - cc[a]);
+  P->wc *= (uint32_t)(cc[a + 1] - cc[a]);
+  a += (int)row[0];
+  a -= a >= W->ku ? W->ku : 0;
+  P->a = a;
+  P->p = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
+}
+/* 3: the patch row r, with f1; P->p: the row's CDF over the cell column */
+static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick3(const struct el_envlight__warp *W, el_envlight__pick *P) {
+  const uint16_t *pr = P->p;
+  int a = P->a, n = W->b0[P->b + 1] - W->b0[P->b], r;
+  float x = el_envlight__clamp01(P->f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
+  r = W->grow ? el_envlight__search_guided(pr, n, W->grow + ((size_t)a * (size_t)W->kv + (size_t)P->b) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
+              : el_envlight__search16(pr, n, (uint32_t)x);
+  P->q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
+  P->wr = (uint32_t)(pr[r + 1] - pr[r]);
+  r += W->b0[P->b];
+  P->r = r;
+  P->p = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a];
+}
+/* 4: the patch i, with f0 */
+static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick4(const struct el_envlight__warp *W, el_envlight__pick *P) {
+  const uint16_t *pc = P->p;
+  int a = P->a, n = W->a0[a + 1] - W->a0[a], i;
+  float x = el_envlight__clamp01(P->f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
+  i = W->gcol ? el_envlight__search_guided(pc, n, W->gcol + ((size_t)P->r * (size_t)W->ku + (size_t)a) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
+              : el_envlight__search16(pc, n, (uint32_t)x);
+  P->s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
+  P->wr *= (uint32_t)(pc[i + 1] - pc[i]);
+  P->i = i + W->a0[a];
 }
 
 /* <<Sample the product>>: cell, patch row, patch, then (s, t) from the bilinear; wi and the pdf as
  * pdf_li_cos computes it at wi: the direction located again (the atans), and when it lands in the
  * patch it came from (all but a measure-zero set), the density from the widths already read. */
-static void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], uv[2], f0, f1, x, q, t, s, u, v, vp, c[4], p;
-  int a, b, gh = W->h, r, i, n;
+static EL_ENVLIGHT__PROD_INLINE void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  float d[3], uv[2], q, t, s, u, v, vp, c[4], p;
+  int gh = W->h, r, i, n;
   uint32_t wc, wr;
-  const uint16_t *pr, *pc;
   el_envlight__ploc loc;
-  { /* <<Pick a cell>> from the sparse table: the cell row, then a cell of its span */
-    float x1 = el_envlight__clamp01(uu[1]) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(uu[0]) * (float)EL_ENVLIGHT__CELL_UNITS;
-    const uint16_t *row, *cc;
-    b = el_envlight__search_guided(tab, W->kv, (const uint8_t *)(tab + (size_t)((W->kv + 2) & ~1) + 2 * (size_t)W->kv), (uint32_t)x1);
-    f1 = (x1 - (float)tab[b]) / (float)(tab[b + 1] - tab[b]);
-    row = el_envlight__sparse_row(W, tab, b);
-    cc = row + 2;
-    a = el_envlight__search_guided(cc, (int)row[1], (const uint8_t *)(row - EL_ENVLIGHT__GUIDE_E), (uint32_t)x0);
-    f0 = (x0 - (float)cc[a]) / (float)(cc[a + 1] - cc[a]);
-    wc = (uint32_t)(tab[b + 1] - tab[b]) * (uint32_t)(cc[a + 1] - cc[a]);
-    a += (int)row[0];
-    a -= a >= W->ku ? W->ku : 0;
-  }
-  /* the patch row: the cell's CDF over its rows, with f1 */
-  n = W->b0[b + 1] - W->b0[b];
-  pr = W->prow + (size_t)a * ((size_t)gh + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
-  x = el_envlight__clamp01(f1) * (float)EL_ENVLIGHT__PATCH_UNITS;
-  r = W->grow ? el_envlight__search_guided(pr, n, W->grow + ((size_t)a * (size_t)W->kv + (size_t)b) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
-              : el_envlight__search16(pr, n, (uint32_t)x);
-  q = (x - (float)pr[r]) / (float)(pr[r + 1] - pr[r]);
-  wr = (uint32_t)(pr[r + 1] - pr[r]);
-  r += W->b0[b];
-  /* the patch: the row's CDF over the cell column, with f0 */
-  n = W->a0[a + 1] - W->a0[a];
-  pc = W->pcol + (size_t)r * W->cond_stride + (size_t)W->coff[a];
-  x = el_envlight__clamp01(f0) * (float)EL_ENVLIGHT__PATCH_UNITS;
-  i = W->gcol ? el_envlight__search_guided(pc, n, W->gcol + ((size_t)r * (size_t)W->ku + (size_t)a) * EL_ENVLIGHT__GUIDE_K, (uint32_t)x)
-              : el_envlight__search16(pc, n, (uint32_t)x);
-  s = (x - (float)pc[i]) / (float)(pc[i + 1] - pc[i]);
-  wr *= (uint32_t)(pc[i + 1] - pc[i]);
-  i += W->a0[a];
+  el_envlight__pick P;
+  el_envlight__pick1(W, tab, uu, &P);
+  el_envlight__pick2(W, &P);
+  el_envlight__pick3(W, &P);
+  el_envlight__pick4(W, &P);
+  i = P.i; r = P.r; q = P.q; s = P.s; wc = P.wc; wr = P.wr;
   /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
   el_envlight__prod_corners(W, i, r, c);
   t = el_envlight__lin_invf(c[0] + c[1], c[2] + c[3], q);
@@ -4068,7 +4138,7 @@ static float el_envlight__cos_pdf_constant(const el_envlight *l, const float n[3
   c = (nn[0] * ww[0] + nn[1] * ww[1] + nn[2] * ww[2]) / (sqrtf(ln) * sqrtf(lw));
   return c > 0.0f ? c * 0.318309886f : 0.0f;
 }
-static void el_envlight__cos_sample_constant(const el_envlight *l, const float n[3], const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__cos_sample_constant(const el_envlight *l, const float n[3], const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float nn[3], b1[3], b2[3], ln, a, b, dx, dy, rr, q, z;
   int k;
   nn[0] = n[0]; nn[1] = n[1]; nn[2] = n[2];
@@ -4178,6 +4248,369 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   if (!tab || tab[W->kv] == 0) return 0.0f;
   if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f; /* rescaled in world space first (issue 24) */
   return el_envlight__prod_pdf_light(W, tab, d, NULL);
+}
+
+/* >> product sampling, n at once (issue 20): the single calls' arithmetic on four lanes with SSE2, the
+ * table reads (the normal's table, the four searches, the widths, the corners) lane by lane. Every vector
+ * step is the scalar step's operations in the scalar code's order (min/max as SSE's MINPS/MAXPS, which
+ * are the scalar code's `a < b ? a : b` / `a > b ? a : b`; selects for its branches), so each lane gets
+ * the single call's bits. A lane off the common path (a normal or direction that needs rescaling, a
+ * sample whose round trip leaves its patch or finds no density) is recomputed by the single call's own
+ * code. The plain loop over single calls: without SSE2 (EL_NO_SIMD, other CPUs), with x87 float
+ * evaluation, and where a compiler may fuse multiply-adds (FMA code: scalar and vector would fuse
+ * differently; measured: clang -march=native fuses the scalar code and not the intrinsics, and 1 batch
+ * in 3-4 differs; gcc happened to fuse both alike). */
+#if EL_ENVLIGHT__SSE && defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0 && !defined(__FMA__)
+#define EL_ENVLIGHT__COS4 1
+#define EL_ENVLIGHT__V(x) _mm_set1_ps(x)
+static inline __m128 el_envlight__sel4(__m128 m, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b)); }
+static inline __m128 el_envlight__abs4(__m128 x) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), x); }
+/* x < 1 ? (x > 0 ? x : 0) : 1 */
+static inline __m128 el_envlight__clamp01_4(__m128 x) { return _mm_min_ps(_mm_max_ps(x, _mm_setzero_ps()), EL_ENVLIGHT__V(1.0f)); }
+/* integer x > hi ? hi : x (SSE2 has no pminsd) */
+static inline __m128i el_envlight__mini4(__m128i x, int hi) {
+  __m128i h = _mm_set1_epi32(hi), gt = _mm_cmpgt_epi32(x, h);
+  return _mm_or_si128(_mm_and_si128(gt, h), _mm_andnot_si128(gt, x));
+}
+static inline __m128 el_envlight__sinpi4(__m128 x) { /* el_envlight__sinpi */
+  __m128 x2 = _mm_mul_ps(x, x), p = _mm_mul_ps(x2, EL_ENVLIGHT__V(0.0775603462f));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(-0.598242108f), p));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(2.55006972f), p));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(-5.16770968f), p));
+  return _mm_mul_ps(x, _mm_add_ps(EL_ENVLIGHT__V(3.14159264f), p));
+}
+static inline __m128 el_envlight__cospi4(__m128 x) { /* el_envlight__cospi */
+  __m128 x2 = _mm_mul_ps(x, x), p = _mm_mul_ps(x2, EL_ENVLIGHT__V(-0.0244206859f));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(0.234953918f), p));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(-1.33521610f), p));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(4.05870960f), p));
+  p = _mm_mul_ps(x2, _mm_add_ps(EL_ENVLIGHT__V(-4.93480216f), p));
+  return _mm_add_ps(EL_ENVLIGHT__V(1.0f), p);
+}
+/* el_envlight__atan01 of mn / max(mx, FLT_MIN) */
+static inline __m128 el_envlight__atan_ratio4(__m128 mn, __m128 mx) {
+  __m128 t = _mm_div_ps(mn, _mm_max_ps(mx, EL_ENVLIGHT__V(FLT_MIN))), t2 = _mm_mul_ps(t, t);
+  __m128 p = _mm_mul_ps(t2, EL_ENVLIGHT__V(0.00681166904f));
+  p = _mm_mul_ps(t2, _mm_add_ps(EL_ENVLIGHT__V(-0.0336038535f), p));
+  p = _mm_mul_ps(t2, _mm_add_ps(EL_ENVLIGHT__V(0.0796232593f), p));
+  p = _mm_mul_ps(t2, _mm_add_ps(EL_ENVLIGHT__V(-0.132333200f), p));
+  p = _mm_mul_ps(t2, _mm_add_ps(EL_ENVLIGHT__V(0.198078099f), p));
+  p = _mm_mul_ps(t2, _mm_add_ps(EL_ENVLIGHT__V(-0.333173674f), p));
+  return _mm_mul_ps(t, _mm_add_ps(EL_ENVLIGHT__V(0.999996111f), p));
+}
+/* to world space (el_envlight__to_world) or, with back = 1, to light space (el_envlight__to_light):
+ * x[3] -> y[3], the same operations in the same order */
+static inline void el_envlight__xform4(const el_envlight *l, int back, const __m128 x[3], __m128 y[3]) {
+  const float *m = l->to_world, *sg = back ? l->isign : l->sign;
+  const int *pm = back ? l->iperm : l->perm;
+  const int a = back ? 1 : 3, b = back ? 3 : 1; /* M's row k (to world) or column k (to light) */
+  int k;
+  if (l->exact_transform)
+    for (k = 0; k < 3; ++k) y[k] = _mm_mul_ps(_mm_set1_ps(sg[k]), x[pm[k]]);
+  else
+    for (k = 0; k < 3; ++k)
+      y[k] = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m[a * k]), x[0]), _mm_mul_ps(_mm_set1_ps(m[a * k + b]), x[1])), _mm_mul_ps(_mm_set1_ps(m[a * k + 2 * b]), x[2]));
+}
+/* three rows of four floats <-> four points of three (AoS, p[3 k + c]); lanes >= m are padded with lane 0 */
+static inline void el_envlight__load3x4(const float *p, int m, __m128 x[3]) {
+  float t[12];
+  int k, c;
+  if (m == 4) { /* a0 = x0 y0 z0 x1, a1 = y1 z1 x2 y2, a2 = z2 x3 y3 z3 */
+    __m128 a0 = _mm_loadu_ps(p), a1 = _mm_loadu_ps(p + 4), a2 = _mm_loadu_ps(p + 8);
+    __m128 b = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(1, 0, 3, 2));  /* x2 y2 z2 x3 */
+    __m128 e = _mm_shuffle_ps(a0, a1, _MM_SHUFFLE(1, 0, 2, 1));  /* y0 z0 y1 z1 */
+    __m128 d = _mm_shuffle_ps(a1, a2, _MM_SHUFFLE(3, 2, 3, 3));  /* y2 y2 y3 z3 */
+    x[0] = _mm_shuffle_ps(a0, b, _MM_SHUFFLE(3, 0, 3, 0));
+    x[1] = _mm_shuffle_ps(e, d, _MM_SHUFFLE(2, 0, 2, 0));
+    x[2] = _mm_shuffle_ps(e, _mm_shuffle_ps(b, d, _MM_SHUFFLE(3, 3, 2, 2)), _MM_SHUFFLE(2, 0, 3, 1));
+    return;
+  }
+  for (k = 0; k < 4; ++k)
+    for (c = 0; c < 3; ++c) t[4 * c + k] = p[3 * (k < m ? k : 0) + c];
+  x[0] = _mm_loadu_ps(t); x[1] = _mm_loadu_ps(t + 4); x[2] = _mm_loadu_ps(t + 8);
+}
+/* Where the pdf finds four light-space directions (el_envlight__prod_locate, its common path): lanes
+ * whose squared length is not a normal float are 0 in the returned mask (the scalar code rescales them). */
+typedef struct el_envlight__ploc4 { __m128 u, v, vp, rr, len2, s, Y; __m128i i, r; } el_envlight__ploc4;
+static inline __m128 el_envlight__prod_locate4(const struct el_envlight__warp *W, const __m128 d[3], el_envlight__ploc4 *q) {
+  __m128 r2 = _mm_add_ps(_mm_mul_ps(d[0], d[0]), _mm_mul_ps(d[1], d[1])), len2 = _mm_add_ps(r2, _mm_mul_ps(d[2], d[2]));
+  __m128 ok = _mm_and_ps(_mm_cmpge_ps(len2, EL_ENVLIGHT__V(FLT_MIN)), _mm_cmple_ps(len2, EL_ENVLIGHT__V(FLT_MAX)));
+  __m128 ax = el_envlight__abs4(d[0]), ay = el_envlight__abs4(d[1]), az = el_envlight__abs4(d[2]), zero = _mm_setzero_ps(), a, X, Y, gw = _mm_set1_ps((float)W->w);
+  q->len2 = len2;
+  q->rr = _mm_sqrt_ps(r2);
+  /* el_envlight__phi_turns(d[1], d[0]) */
+  a = _mm_mul_ps(el_envlight__atan_ratio4(_mm_min_ps(ay, ax), _mm_max_ps(ax, ay)), EL_ENVLIGHT__V(0.159154943f));
+  a = el_envlight__sel4(_mm_cmpgt_ps(ay, ax), _mm_sub_ps(EL_ENVLIGHT__V(0.25f), a), a);
+  a = el_envlight__sel4(_mm_cmplt_ps(d[0], zero), _mm_sub_ps(EL_ENVLIGHT__V(0.5f), a), a);
+  q->u = el_envlight__sel4(_mm_cmplt_ps(d[1], zero), _mm_sub_ps(EL_ENVLIGHT__V(1.0f), a), a);
+  /* el_envlight__theta_vp(rr, d[2]) */
+  a = _mm_mul_ps(el_envlight__atan_ratio4(_mm_min_ps(q->rr, az), _mm_max_ps(az, q->rr)), EL_ENVLIGHT__V(0.318309886f));
+  q->vp = a = el_envlight__sel4(_mm_cmpgt_ps(q->rr, az), _mm_sub_ps(EL_ENVLIGHT__V(0.5f), a), a);
+  q->v = el_envlight__sel4(_mm_cmplt_ps(d[2], zero), _mm_sub_ps(EL_ENVLIGHT__V(1.0f), a), a);
+  X = _mm_sub_ps(_mm_mul_ps(q->u, gw), EL_ENVLIGHT__V(0.5f));
+  X = _mm_add_ps(X, _mm_and_ps(_mm_cmplt_ps(X, zero), gw)); /* + 0 leaves X's bits: X >= -0.5, never -0 */
+  q->i = el_envlight__mini4(_mm_cvttps_epi32(X), W->w - 1);
+  q->s = el_envlight__clamp01_4(_mm_sub_ps(X, _mm_cvtepi32_ps(q->i)));
+  q->Y = Y = _mm_add_ps(_mm_mul_ps(q->v, _mm_set1_ps((float)W->h)), EL_ENVLIGHT__V(0.5f));
+  q->r = el_envlight__mini4(_mm_cvttps_epi32(Y), W->h);
+  return ok;
+}
+/* el_envlight__prod_eval on four lanes: widths as floats fwc, fwr; corners c[4] */
+static inline __m128 el_envlight__prod_eval4(const struct el_envlight__warp *W, const el_envlight__ploc4 *q, __m128 fwc, __m128 fwr, const __m128 c[4]) {
+  __m128 sum = _mm_add_ps(_mm_add_ps(c[0], c[1]), _mm_add_ps(c[2], c[3]));
+  __m128 e0 = _mm_add_ps(c[0], _mm_mul_ps(q->s, _mm_sub_ps(c[1], c[0]))), e1 = _mm_add_ps(c[2], _mm_mul_ps(q->s, _mm_sub_ps(c[3], c[2])));
+  __m128 p = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(_mm_mul_ps(fwc, fwr), _mm_set1_ps(W->dens_k)), EL_ENVLIGHT__V(4.0f)), sum);
+  __m128 len = _mm_sqrt_ps(q->len2), t = el_envlight__clamp01_4(_mm_sub_ps(q->Y, _mm_cvtepi32_ps(q->r)));
+  __m128 f = _mm_div_ps(_mm_mul_ps(_mm_add_ps(e0, _mm_mul_ps(t, _mm_sub_ps(e1, e0))), len), q->rr);
+  __m128i ri = _mm_sub_epi32(q->r, _mm_set1_epi32(1)); /* pole rows (0, h): r - 1 outside [0, h - 2] */
+  if (_mm_movemask_epi8(_mm_or_si128(_mm_cmpgt_epi32(_mm_setzero_si128(), ri), _mm_cmpgt_epi32(ri, _mm_set1_epi32(W->h - 2))))) {
+    __m128 top = _mm_castsi128_ps(_mm_cmpeq_epi32(q->r, _mm_setzero_si128()));
+    __m128 pole = _mm_or_ps(top, _mm_castsi128_ps(_mm_cmpeq_epi32(q->r, _mm_set1_epi32(W->h))));
+    __m128 ratio = el_envlight__sel4(_mm_cmpgt_ps(q->rr, _mm_setzero_ps()), _mm_div_ps(_mm_mul_ps(q->vp, len), q->rr), EL_ENVLIGHT__V(0.318309886f));
+    f = el_envlight__sel4(pole, _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(EL_ENVLIGHT__V(4.0f), _mm_set1_ps((float)W->h)), el_envlight__sel4(top, e1, e0)), ratio), f);
+  }
+  return _mm_min_ps(_mm_mul_ps(p, f), EL_ENVLIGHT__V(FLT_MAX));
+}
+/* el_envlight__lin_invf on four lanes */
+static inline __m128 el_envlight__lin_invf4(__m128 a, __m128 b, __m128 q) {
+  __m128 m = _mm_max_ps(a, b), zero = _mm_setzero_ps(), d, den, t;
+  a = _mm_div_ps(a, m); b = _mm_div_ps(b, m);
+  d = _mm_add_ps(_mm_mul_ps(a, a), _mm_mul_ps(q, _mm_sub_ps(_mm_mul_ps(b, b), _mm_mul_ps(a, a))));
+  den = _mm_add_ps(a, _mm_sqrt_ps(_mm_max_ps(d, zero)));
+  t = _mm_and_ps(_mm_cmpgt_ps(den, zero), _mm_div_ps(_mm_mul_ps(q, _mm_add_ps(a, b)), den));
+  return el_envlight__sel4(_mm_cmpgt_ps(m, zero), el_envlight__clamp01_4(t), q);
+}
+/* The normal tables of four world normals x[3] (el_envlight__prod_table): tab[k] for each lane < m. */
+static EL_ENVLIGHT__PROD_INLINE void el_envlight__prod_table4(const el_envlight *l, const struct el_envlight__warp *W, const float *n, int m, const __m128 x[3], const uint16_t *tab[4]) {
+  __m128 d[3], s, px, py, one = EL_ENVLIGHT__V(1.0f), zero = _mm_setzero_ps(), half = EL_ENVLIGHT__V(0.5f), neg = EL_ENVLIGHT__V(-1.0f), fm = _mm_set1_ps((float)W->m), low;
+  __m128i bi, bj;
+  int ok, k, ii[4], jj[4];
+  s = _mm_add_ps(_mm_add_ps(el_envlight__abs4(x[0]), el_envlight__abs4(x[1])), el_envlight__abs4(x[2]));
+  ok = _mm_movemask_ps(_mm_and_ps(_mm_cmpge_ps(s, EL_ENVLIGHT__V(1e-18f)), _mm_cmple_ps(s, EL_ENVLIGHT__V(1e18f))));
+  el_envlight__xform4(l, 1, x, d);
+  /* el_envlight__oct_encode */
+  s = _mm_add_ps(_mm_add_ps(el_envlight__abs4(d[0]), el_envlight__abs4(d[1])), el_envlight__abs4(d[2]));
+  px = _mm_div_ps(d[0], s); py = _mm_div_ps(d[1], s);
+  low = _mm_cmplt_ps(d[2], zero);
+  s = _mm_mul_ps(_mm_sub_ps(one, el_envlight__abs4(py)), el_envlight__sel4(_mm_cmpge_ps(px, zero), one, neg));
+  py = el_envlight__sel4(low, _mm_mul_ps(_mm_sub_ps(one, el_envlight__abs4(px)), el_envlight__sel4(_mm_cmpge_ps(py, zero), one, neg)), py);
+  px = el_envlight__sel4(low, s, px);
+  px = _mm_add_ps(_mm_mul_ps(half, px), half); py = _mm_add_ps(_mm_mul_ps(half, py), half);
+  bi = _mm_cvttps_epi32(_mm_mul_ps(px, fm)); bj = _mm_cvttps_epi32(_mm_mul_ps(py, fm));
+  /* i < m - 1 ? (i > 0 ? i : 0) : m - 1 */
+  bi = el_envlight__mini4(_mm_and_si128(bi, _mm_cmpgt_epi32(bi, _mm_setzero_si128())), W->m - 1);
+  bj = el_envlight__mini4(_mm_and_si128(bj, _mm_cmpgt_epi32(bj, _mm_setzero_si128())), W->m - 1);
+  _mm_storeu_si128((__m128i *)(void *)ii, bi); _mm_storeu_si128((__m128i *)(void *)jj, bj);
+  for (k = 0; k < m; ++k)
+    tab[k] = (ok >> k) & 1 ? W->cos_tab + W->cos_off[(size_t)jj[k] * (size_t)W->m + (size_t)ii[k]] : el_envlight__prod_table(l, W, n + 3 * k);
+}
+#else
+#define EL_ENVLIGHT__COS4 0
+#endif
+
+#define EL_ENVLIGHT__CB 16 /* samples per block: their table reads are started stage by stage, together */
+/* a read of the line at byte offset off from p requested (integer arithmetic: the address may lie past
+ * the table's end, where prefetching is harmless but pointer arithmetic would not be defined) */
+#define EL_ENVLIGHT__PF(p, off) _mm_prefetch((const char *)((uintptr_t)(const void *)(p) + (uintptr_t)(off)), _MM_HINT_T0)
+
+EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float *normals, const float *u, float *wi, float *rgb, float *pdf) {
+  int j;
+#if EL_ENVLIGHT__COS4
+  const struct el_envlight__warp *W;
+  if (n > 1 && l->width > 0 && l->mapping == EL_ENVLIGHT_MAPPING_LATLONG &&
+      (W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS)) != NULL) {
+    const float lo = 2.44140625e-4f, hi = 0.999755859f;
+    const int gw = W->w;
+    for (j = 0; j < n; j += EL_ENVLIGHT__CB) {
+      const uint16_t *tab[EL_ENVLIGHT__CB];
+      el_envlight__pick P[EL_ENVLIGHT__CB];
+      float fq[EL_ENVLIGHT__CB], fs[EL_ENVLIGHT__CB], fwc[EL_ENVLIGHT__CB], fwr[EL_ENVLIGHT__CB], cs[4][EL_ENVLIGHT__CB];
+      float ow[EL_ENVLIGHT__CB][4], pp[EL_ENVLIGHT__CB], uvs[2 * EL_ENVLIGHT__CB], c4[4], fxy[2 * EL_ENVLIGHT__CB];
+      const float *tp[EL_ENVLIGHT__CB][4];
+      int ii[EL_ENVLIGHT__CB], rr[EL_ENVLIGHT__CB], m = n - j < EL_ENVLIGHT__CB ? n - j : EL_ENVLIGHT__CB, k, g;
+      unsigned live = 0, good = 0;
+      for (g = 0; g < m; g += 4) { /* the normals' tables; their first lines requested */
+        __m128 x[3];
+        int mg = m - g < 4 ? m - g : 4;
+        el_envlight__load3x4(normals + 3 * (j + g), mg, x);
+        el_envlight__prod_table4(l, W, normals + 3 * (j + g), mg, x, tab + g);
+        for (k = g; k < g + mg; ++k)
+          if (tab[k]) { EL_ENVLIGHT__PF(tab[k], 0); EL_ENVLIGHT__PF(tab[k], 64); EL_ENVLIGHT__PF(tab[k], 128); EL_ENVLIGHT__PF(tab[k], 192); }
+      }
+      /* <<Pick a cell>>, its patch row and the patch, stage by stage over the block's samples */
+      for (k = 0; k < m; ++k)
+        if (tab[k] && !W->all_zero && tab[k][W->kv] != 0) {
+          live |= 1u << k;
+          el_envlight__pick1(W, tab[k], u + 2 * (j + k), &P[k]);
+          EL_ENVLIGHT__PF(P[k].p, -2 * EL_ENVLIGHT__GUIDE_E); EL_ENVLIGHT__PF(P[k].p, 56);
+        }
+      for (k = 0; k < m; ++k)
+        if ((live >> k) & 1) {
+          el_envlight__pick2(W, &P[k]);
+          EL_ENVLIGHT__PF(P[k].p, 0);
+          if (W->grow) EL_ENVLIGHT__PF(W->grow, ((size_t)P[k].a * (size_t)W->kv + (size_t)P[k].b) * EL_ENVLIGHT__GUIDE_K);
+        }
+      for (k = 0; k < m; ++k)
+        if ((live >> k) & 1) {
+          el_envlight__pick3(W, &P[k]);
+          EL_ENVLIGHT__PF(P[k].p, 0);
+          if (W->gcol) EL_ENVLIGHT__PF(W->gcol, ((size_t)P[k].r * (size_t)W->ku + (size_t)P[k].a) * EL_ENVLIGHT__GUIDE_K);
+        }
+      for (k = 0; k < m; ++k)
+        if ((live >> k) & 1) {
+          const uint16_t *V;
+          el_envlight__pick4(W, &P[k]);
+          V = W->V16 + (size_t)P[k].r * (size_t)gw + (size_t)P[k].i;
+          EL_ENVLIGHT__PF(V, 0); EL_ENVLIGHT__PF(V, 2 * gw);
+        }
+      for (k = 0; k < m; ++k) /* the lanes in rows of four; no sample (or padding): harmless values */
+        if ((live >> k) & 1) {
+          ii[k] = P[k].i; rr[k] = P[k].r; fq[k] = P[k].q; fs[k] = P[k].s;
+          fwc[k] = (float)(int)P[k].wc; fwr[k] = (float)(int)P[k].wr; /* < 2^31 */
+          el_envlight__prod_corners(W, P[k].i, P[k].r, c4);
+          cs[0][k] = c4[0]; cs[1][k] = c4[1]; cs[2][k] = c4[2]; cs[3][k] = c4[3];
+        } else {
+          ii[k] = 0; rr[k] = 1; fq[k] = fs[k] = 0.5f; fwc[k] = fwr[k] = 1.0f; cs[0][k] = cs[1][k] = cs[2][k] = cs[3][k] = 1.0f;
+        }
+      for (g = 0; g < m; g += 4) {
+        __m128 c[4], t, s, uu, v, vp, vm, d[3], w[3], w3, p, ok, zero = _mm_setzero_ps(), one = EL_ENVLIGHT__V(1.0f);
+        __m128i vi, vr, nn;
+        el_envlight__ploc4 q;
+        for (k = m; k < g + 4; ++k) { /* padding lanes of the last row */
+          ii[k] = 0; rr[k] = 1; fq[k] = fs[k] = 0.5f; fwc[k] = fwr[k] = 1.0f; cs[0][k] = cs[1][k] = cs[2][k] = cs[3][k] = 1.0f;
+        }
+        c[0] = _mm_loadu_ps(cs[0] + g); c[1] = _mm_loadu_ps(cs[1] + g); c[2] = _mm_loadu_ps(cs[2] + g); c[3] = _mm_loadu_ps(cs[3] + g);
+        /* (s, t) in the patch, 2^-12 inside its edges (el_envlight__prod_sample) */
+        t = el_envlight__lin_invf4(_mm_add_ps(c[0], c[1]), _mm_add_ps(c[2], c[3]), _mm_loadu_ps(fq + g));
+        s = el_envlight__lin_invf4(_mm_add_ps(c[0], _mm_mul_ps(t, _mm_sub_ps(c[2], c[0]))), _mm_add_ps(c[1], _mm_mul_ps(t, _mm_sub_ps(c[3], c[1]))),
+                                   _mm_loadu_ps(fs + g));
+        t = _mm_min_ps(_mm_max_ps(t, EL_ENVLIGHT__V(lo)), EL_ENVLIGHT__V(hi));
+        s = _mm_min_ps(_mm_max_ps(s, EL_ENVLIGHT__V(lo)), EL_ENVLIGHT__V(hi));
+        /* <<Compute direction>> */
+        vi = _mm_loadu_si128((const __m128i *)(const void *)(ii + g)); vr = _mm_loadu_si128((const __m128i *)(const void *)(rr + g));
+        uu = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_cvtepi32_ps(vi), EL_ENVLIGHT__V(0.5f)), s), _mm_set1_ps(W->inv_w));
+        uu = _mm_sub_ps(uu, _mm_and_ps(_mm_cmpge_ps(uu, one), one));
+        uu = _mm_min_ps(uu, EL_ENVLIGHT__V(0.99999994f));
+        v = _mm_mul_ps(_mm_add_ps(_mm_sub_ps(_mm_cvtepi32_ps(vr), EL_ENVLIGHT__V(0.5f)), t), _mm_set1_ps(W->inv_h));
+        vp = el_envlight__sel4(_mm_cmplt_ps(v, EL_ENVLIGHT__V(0.5f)), v, _mm_sub_ps(one, v));
+        if (_mm_movemask_ps(_mm_castsi128_ps(_mm_or_si128(_mm_cmpeq_epi32(vr, _mm_setzero_si128()), _mm_cmpeq_epi32(vr, _mm_set1_epi32(W->h)))))) { /* pole rows */
+          __m128 top = _mm_castsi128_ps(_mm_cmpeq_epi32(vr, _mm_setzero_si128())), bot = _mm_castsi128_ps(_mm_cmpeq_epi32(vr, _mm_set1_epi32(W->h)));
+          __m128 vt = _mm_mul_ps(t, _mm_set1_ps(W->half_inv_h)), vb = _mm_mul_ps(_mm_sub_ps(one, t), _mm_set1_ps(W->half_inv_h));
+          vp = el_envlight__sel4(top, vt, el_envlight__sel4(bot, vb, vp));
+          v = el_envlight__sel4(top, vt, el_envlight__sel4(bot, _mm_sub_ps(one, vb), v));
+        }
+        /* el_envlight__uvp_to_dir */
+        vm = _mm_add_ps(uu, uu); /* 2 u */
+        nn = _mm_cvttps_epi32(_mm_add_ps(vm, EL_ENVLIGHT__V(0.5f)));
+        vm = _mm_sub_ps(vm, _mm_cvtepi32_ps(nn));
+        { /* sgn = n odd ? -1 : 1, as a sign bit */
+          __m128 sgn = _mm_castsi128_ps(_mm_slli_epi32(nn, 31)), st = el_envlight__sinpi4(vp);
+          d[0] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__cospi4(vm)));
+          d[1] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__sinpi4(vm)));
+          d[2] = el_envlight__sinpi4(_mm_sub_ps(EL_ENVLIGHT__V(0.5f), v));
+        }
+        el_envlight__xform4(l, 0, d, w);
+        if (!l->exact_transform) el_envlight__xform4(l, 1, w, d); /* as pdf_li_cos brings wi back */
+        /* the pdf's own path at wi (el_envlight__prod_locate, el_envlight__prod_eval), its reads skipped */
+        ok = el_envlight__prod_locate4(W, d, &q);
+        ok = _mm_and_ps(ok, _mm_castsi128_ps(_mm_and_si128(_mm_cmpeq_epi32(q.i, vi), _mm_cmpeq_epi32(q.r, vr))));
+        p = el_envlight__prod_eval4(W, &q, _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c);
+        good |= (unsigned)_mm_movemask_ps(_mm_and_ps(ok, _mm_cmpgt_ps(p, zero))) << g;
+        w3 = zero;
+        _MM_TRANSPOSE4_PS(w[0], w[1], w[2], w3);
+        _mm_storeu_ps(ow[g], w[0]); _mm_storeu_ps(ow[g + 1], w[1]); _mm_storeu_ps(ow[g + 2], w[2]); _mm_storeu_ps(ow[g + 3], w3);
+        _mm_storeu_ps(pp + g, p);
+        _mm_storeu_ps(uvs + 2 * g, _mm_unpacklo_ps(q.u, q.v)); _mm_storeu_ps(uvs + 2 * g + 4, _mm_unpackhi_ps(q.u, q.v));
+      }
+      good &= live;
+      if (rgb) /* le(wi) at the same (u, v): its texels requested, blended below */
+        for (k = 0; k < m; ++k)
+          if ((good >> k) & 1) {
+            el_envlight__bilerp_texels(l, uvs[2 * k], uvs[2 * k + 1], tp[k], &fxy[2 * k], &fxy[2 * k + 1]);
+            EL_ENVLIGHT__PF(tp[k][0], 0); EL_ENVLIGHT__PF(tp[k][1], 8); EL_ENVLIGHT__PF(tp[k][2], 0); EL_ENVLIGHT__PF(tp[k][3], 8);
+          }
+      for (k = 0; k < m; ++k) {
+        float *wk = wi + 3 * (j + k), *ck = rgb ? rgb + 3 * (j + k) : NULL;
+        if ((good >> k) & 1) {
+          wk[0] = ow[k][0]; wk[1] = ow[k][1]; wk[2] = ow[k][2]; pdf[j + k] = pp[k];
+          if (ck) el_envlight__bilerp_at(tp[k], fxy[2 * k], fxy[2 * k + 1], ck);
+        } else if ((live >> k) & 1) el_envlight_sample_li_cos(l, normals + 3 * (j + k), u + 2 * (j + k), wk, ck, pdf + j + k); /* rare */
+        else { /* as sample_li_cos: no sample */
+          wk[0] = l->to_world[2]; wk[1] = l->to_world[5]; wk[2] = l->to_world[8]; pdf[j + k] = 0.0f;
+          if (ck) ck[0] = ck[1] = ck[2] = 0.0f;
+        }
+      }
+    }
+    return;
+  }
+#endif
+  for (j = 0; j < n; ++j) el_envlight_sample_li_cos(l, normals + 3 * j, u + 2 * j, wi + 3 * j, rgb ? rgb + 3 * j : NULL, pdf + j);
+}
+
+EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *normals, const float *wi, float *pdf) {
+  int j;
+#if EL_ENVLIGHT__COS4
+  const struct el_envlight__warp *W;
+  if (n > 1 && l->width > 0 && l->mapping == EL_ENVLIGHT_MAPPING_LATLONG &&
+      (W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS)) != NULL && !W->all_zero) {
+    const int gw = W->w;
+    for (j = 0; j < n; j += EL_ENVLIGHT__CB) {
+      const uint16_t *tab[EL_ENVLIGHT__CB];
+      el_envlight__ploc4 q[EL_ENVLIGHT__CB / 4];
+      float fwc[EL_ENVLIGHT__CB], fwr[EL_ENVLIGHT__CB], cs[4][EL_ENVLIGHT__CB], c4[4];
+      int ii[EL_ENVLIGHT__CB], rr[EL_ENVLIGHT__CB], m = n - j < EL_ENVLIGHT__CB ? n - j : EL_ENVLIGHT__CB, k, g;
+      unsigned ok = 0, live = 0;
+      for (g = 0; g < m; g += 4) { /* the normals' tables and where the directions lie; the reads requested */
+        __m128 x[3], d[3];
+        int mg = m - g < 4 ? m - g : 4;
+        el_envlight__load3x4(normals + 3 * (j + g), mg, x);
+        el_envlight__prod_table4(l, W, normals + 3 * (j + g), mg, x, tab + g);
+        el_envlight__load3x4(wi + 3 * (j + g), mg, x);
+        el_envlight__xform4(l, 1, x, d); /* el_envlight__to_light_dir: lanes that need rescaling go to the single call */
+        ok |= (unsigned)_mm_movemask_ps(el_envlight__prod_locate4(W, d, &q[g / 4])) << g;
+        _mm_storeu_si128((__m128i *)(void *)(ii + g), q[g / 4].i); _mm_storeu_si128((__m128i *)(void *)(rr + g), q[g / 4].r);
+        for (k = g; k < g + mg; ++k) {
+          int a, b;
+          const uint16_t *V;
+          if (!tab[k] || !((ok >> k) & 1)) continue;
+          a = W->cu_of[ii[k]]; b = W->cv_of[rr[k]];
+          V = W->V16 + (size_t)rr[k] * (size_t)gw + (size_t)ii[k];
+          EL_ENVLIGHT__PF(tab[k], 2 * b); EL_ENVLIGHT__PF(tab[k], 2 * (((W->kv + 2) & ~1) + 2 * b));
+          EL_ENVLIGHT__PF(W->pcol + (size_t)rr[k] * W->cond_stride + (size_t)W->coff[a] + (size_t)(ii[k] - W->a0[a]), 0);
+          EL_ENVLIGHT__PF(W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)rr[k] + (size_t)b, 0);
+          EL_ENVLIGHT__PF(V, 0); EL_ENVLIGHT__PF(V, 2 * gw);
+        }
+      }
+      for (k = 0; k < m; ++k) /* the cell's row span, requested */
+        if (tab[k] && ((ok >> k) & 1)) EL_ENVLIGHT__PF(el_envlight__sparse_row(W, tab[k], W->cv_of[rr[k]]), 4 + 2 * (W->cu_of[ii[k]] & ~15));
+      for (k = 0; k < m; ++k) { /* the table reads, lane by lane */
+        uint32_t wc, wr;
+        if (tab[k] && tab[k][W->kv] != 0 && ((ok >> k) & 1) && el_envlight__prod_widths(W, tab[k], ii[k], rr[k], &wc, &wr)) {
+          live |= 1u << k;
+          fwc[k] = (float)(int)wc; fwr[k] = (float)(int)wr; /* < 2^31 */
+          el_envlight__prod_corners(W, ii[k], rr[k], c4);
+          cs[0][k] = c4[0]; cs[1][k] = c4[1]; cs[2][k] = c4[2]; cs[3][k] = c4[3];
+        } else {
+          fwc[k] = fwr[k] = 1.0f; cs[0][k] = cs[1][k] = cs[2][k] = cs[3][k] = 1.0f;
+        }
+      }
+      for (k = m; k < ((m + 3) & ~3); ++k) { fwc[k] = fwr[k] = 1.0f; cs[0][k] = cs[1][k] = cs[2][k] = cs[3][k] = 1.0f; }
+      for (g = 0; g < m; g += 4) {
+        __m128 c[4];
+        float pp[4];
+        c[0] = _mm_loadu_ps(cs[0] + g); c[1] = _mm_loadu_ps(cs[1] + g); c[2] = _mm_loadu_ps(cs[2] + g); c[3] = _mm_loadu_ps(cs[3] + g);
+        _mm_storeu_ps(pp, el_envlight__prod_eval4(W, &q[g / 4], _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c));
+        for (k = g; k < g + 4 && k < m; ++k) {
+          if ((live >> k) & 1) pdf[j + k] = pp[k - g];
+          else if (tab[k] && tab[k][W->kv] != 0 && !((ok >> k) & 1)) pdf[j + k] = el_envlight_pdf_li_cos(l, normals + 3 * (j + k), wi + 3 * (j + k));
+          else pdf[j + k] = 0.0f;
+        }
+      }
+    }
+    return;
+  }
+#endif
+  for (j = 0; j < n; ++j) pdf[j] = el_envlight_pdf_li_cos(l, normals + 3 * j, wi + 3 * j);
 }
 
 EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {

@@ -12,7 +12,9 @@
  *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear;
  *                                        product sampling (a new normal per call): sample_cos
  *                                        sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated
- *                                        build_product
+ *                                        build_product; n at once (sample_li_cos_n, pdf_li_cos_n,
+ *                                        batches of 64, the same normals and u): sample_cos_n
+ *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated
  *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
@@ -173,6 +175,41 @@ static double run_pdf_cos(el_envlight *l, long n) {
   for (k = 0; k < n; ++k) acc += el_envlight_pdf_li_cos(l, g_dir + 3 * ((k * 7) & (NP - 1)), g_dir + 3 * (k & (NP - 1)));
   return acc;
 }
+/* the same calls n at once (sample_li_cos_n, pdf_li_cos_n), batches of 64: g_nrm holds the single loops'
+ * normals in call order (g_nrm[3k..] = g_dir[3 (7k mod NP)..]), so the samples are the same */
+#define CB 64
+static float *g_nrm;
+static void make_normals(void) {
+  long k;
+  g_nrm = (float *)malloc(3 * (size_t)NP * sizeof(float));
+  for (k = 0; k < NP; ++k) memcpy(g_nrm + 3 * k, g_dir + 3 * ((k * 7) & (NP - 1)), 3 * sizeof(float));
+}
+static double run_sample_cos_n(el_envlight *l, long n, int rgb) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float wi[3 * CB], L[3 * CB], p[CB];
+  for (k = 0; k < n; k += CB) {
+    long o = k & (NP - 1);
+    m = n - k < CB ? (int)(n - k) : CB;
+    el_envlight_sample_li_cos_n(l, m, g_nrm + 3 * o, g_u + 2 * o, wi, rgb ? L : NULL, p);
+    for (j = 0; j < m; ++j) acc += p[j] + wi[3 * j];
+  }
+  return acc;
+}
+static double run_pdf_cos_n(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float p[CB];
+  for (k = 0; k < n; k += CB) {
+    long o = k & (NP - 1);
+    m = n - k < CB ? (int)(n - k) : CB;
+    el_envlight_pdf_li_cos_n(l, m, g_nrm + 3 * o, g_dir + 3 * o, p);
+    for (j = 0; j < m; ++j) acc += p[j];
+  }
+  return acc;
+}
 static double run_loop(long n) { /* the loop alone: read the inputs, sum */
   double acc = 0;
   long k;
@@ -255,7 +292,8 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   if (!strcmp(op, "sample_cdf")) sampler = EL_ENVLIGHT_SAMPLER_CDF;
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
-  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated")) {
+  if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated") ||
+      !strcmp(op, "sample_cos_n_rotated") || !strcmp(op, "pdf_cos_n_rotated")) {
     sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot();
   }
   if (!strcmp(op, "sample_bilinear") || !strcmp(op, "sample_bilinear_rgb") || !strcmp(op, "pdf_bilinear")) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
@@ -286,6 +324,12 @@ static int callgrind_mode(const char *op, long n, const char *map) {
       el_envlight_prepare_sampling(&b);
       el_envlight_free(&b);
     }
+  } else if (!strcmp(op, "sample_cos_n") || !strcmp(op, "sample_cos_n_rgb") || !strcmp(op, "sample_cos_n_rotated")) {
+    make_normals();
+    sink = run_sample_cos_n(&l, n, !strcmp(op, "sample_cos_n_rgb"));
+  } else if (!strcmp(op, "pdf_cos_n") || !strcmp(op, "pdf_cos_n_rotated")) {
+    make_normals();
+    sink = run_pdf_cos_n(&l, n);
   } else if (!strcmp(op, "sample_cos") || !strcmp(op, "sample_cos_rgb") || !strcmp(op, "sample_cos_rotated")) sink = run_sample_cos(&l, n, !strcmp(op, "sample_cos_rgb"));
   else if (!strcmp(op, "pdf_cos") || !strcmp(op, "pdf_cos_rotated")) sink = run_pdf_cos(&l, n);
   else if (!strcmp(op, "pdf_bilinear")) sink = run_pdf(&l, n);

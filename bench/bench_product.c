@@ -13,6 +13,10 @@
  *                             sample (best of 3 runs, interleaved) and the time-to-unit-variance
  *                             (relative variance x ns per sample; lower is better). Default maps: city
  *                             and studio from data/envmaps. NSAMP as below.
+ *   bench_product --batch [MAP ...]   el_envlight_sample_li_cos_n and pdf_li_cos_n (n at once, batches of 64)
+ *                             against the single calls and sample_li, with a new random normal per sample:
+ *                             CPU ns per sample, best of REPS (5) interleaved rounds. Default maps: city
+ *                             and studio from data/envmaps.
  *   environment: NSAMP=n (samples per cell, 200000), ONLY=text (only strategies whose name holds it),
  *                MS=a,b,c (the three normal-table sizes, 8,16,32), BUILD=digits (build only tables
  *                3 * cells index + size index), DENSE=1 (an optimistic, NOT conservative bound: the
@@ -778,6 +782,58 @@ static void library_map(const char *path, int nsamp) {
   el_image_free(&img);
 }
 
+/* ---- --batch: n at once (el_envlight_sample_li_cos_n, pdf_li_cos_n) against the single calls ---- */
+/* A new random normal per sample (renderer-like: the normal tables' rows are cache-cold), 2^20 samples
+ * precomputed (normals, u); the calls with the radiance, in batches of 64. CPU ns per sample, best of
+ * REPS rounds, each round running every variant once (interleaved, so a load change hits all alike). */
+static void batch_map(const char *path, int reps) {
+  enum { NB = 1 << 20, CB = 64, NV = 5 };
+  static const char *names[NV] = {"sample_li_cos", "sample_li_cos_n", "pdf_li_cos", "pdf_li_cos_n", "sample_li"};
+  el_image img;
+  char err[512];
+  el_envlight l;
+  float *nrm = (float *)malloc(3 * (size_t)NB * sizeof(float)), *uu = (float *)malloc(2 * (size_t)NB * sizeof(float));
+  float *wi = (float *)malloc(3 * (size_t)NB * sizeof(float)), *rgb = (float *)malloc(3 * (size_t)NB * sizeof(float));
+  float *pdf = (float *)malloc((size_t)NB * sizeof(float));
+  double best[NV], sum[NV];
+  int k, v, rep;
+  rng g;
+  if (!nrm || !uu || !wi || !rgb || !pdf) return;
+  if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
+  if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
+  el_envlight_prepare_product(&l, NULL);
+  el_envlight_prepare_sampling(&l);
+  g.s = 0x853c49e6748fea9bull;
+  for (k = 0; k < NB; ++k) { /* uniform directions */
+    float z = 1.0f - 2.0f * rng_f(&g), r = sqrtf(z < 1.0f && z > -1.0f ? 1.0f - z * z : 0.0f), ph = 6.2831853f * rng_f(&g);
+    nrm[3 * k] = r * cosf(ph); nrm[3 * k + 1] = r * sinf(ph); nrm[3 * k + 2] = z;
+    uu[2 * k] = rng_f(&g); uu[2 * k + 1] = rng_f(&g);
+  }
+  for (v = 0; v < NV; ++v) best[v] = 1e30;
+  for (rep = 0; rep < reps; ++rep)
+    for (v = 0; v < NV; ++v) {
+      double t0 = process_now(), acc = 0;
+      if (v == 0) for (k = 0; k < NB; ++k) el_envlight_sample_li_cos(&l, nrm + 3 * k, uu + 2 * k, wi + 3 * k, rgb + 3 * k, pdf + k);
+      else if (v == 1) for (k = 0; k < NB; k += CB) el_envlight_sample_li_cos_n(&l, CB, nrm + 3 * k, uu + 2 * k, wi + 3 * k, rgb + 3 * k, pdf + k);
+      else if (v == 2) for (k = 0; k < NB; ++k) pdf[k] = el_envlight_pdf_li_cos(&l, nrm + 3 * k, wi + 3 * ((k + CB) & (NB - 1)));
+      else if (v == 3) for (k = 0; k < NB; k += CB) el_envlight_pdf_li_cos_n(&l, CB, nrm + 3 * k, wi + 3 * ((k + CB) & (NB - 1)), pdf + k);
+      else for (k = 0; k < NB; ++k) el_envlight_sample_li(&l, uu + 2 * k, wi + 3 * k, rgb + 3 * k, pdf + k);
+      t0 = process_now() - t0;
+      for (k = 0; k < NB; ++k) acc += pdf[k];
+      sum[v] = acc;
+      if (t0 < best[v]) best[v] = t0;
+      if (v == 4) /* the pdfs' directions: product samples again */
+        for (k = 0; k < NB; k += CB) el_envlight_sample_li_cos_n(&l, CB, nrm + 3 * k, uu + 2 * k, wi + 3 * k, NULL, pdf + k);
+    }
+  printf("\n%s (%dx%d): a new random normal per sample, %d samples, batches of %d, best of %d interleaved rounds (CPU ns per sample)\n",
+         path, img.width, img.height, NB, CB, reps);
+  for (v = 0; v < NV; ++v) printf("  %-16s %7.1f ns   (sum of pdfs %.6g)\n", names[v], best[v] / NB * 1e9, sum[v]);
+  printf("  batched / single: sample %.2fx, pdf %.2fx the time\n", best[1] / best[0], best[3] / best[2]);
+  el_envlight_free(&l);
+  el_image_free(&img);
+  free(nrm); free(uu); free(wi); free(rgb); free(pdf);
+}
+
 int main(int argc, char **argv) {
   const char *maps[5] = {"city", "sunset", "night", "forest", "studio"};
   const char *only = getenv("ONLY");
@@ -788,6 +844,15 @@ int main(int argc, char **argv) {
       library_map(EL_SOURCE_DIR "/data/envmaps/studio.hdr", nsamp);
     }
     for (i = 2; i < argc; ++i) library_map(argv[i], nsamp);
+    return 0;
+  }
+  if (argc > 1 && !strcmp(argv[1], "--batch")) {
+    int reps = getenv("REPS") ? atoi(getenv("REPS")) : 5;
+    if (argc == 2) {
+      batch_map(EL_SOURCE_DIR "/data/envmaps/city.hdr", reps);
+      batch_map(EL_SOURCE_DIR "/data/envmaps/studio.hdr", reps);
+    }
+    for (i = 2; i < argc; ++i) batch_map(argv[i], reps);
     return 0;
   }
   if (argc > 1 && !strcmp(argv[1], "--picture"))

@@ -105,7 +105,13 @@
  * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path).
  * Measured 2026-12-02 (issue 21), zsobol's fast path, second step (sampler_zsobol.c): sampler part
  * 461 -> 234 (direct), 1411 -> 527 (path); totals 4062 -> 3833, 6452 -> 5562; the same images. Loop
- * CPU (render --stats, one thread, interleaved): median ratios 0.96-0.98 (direct), 0.93-0.95 (path). */
+ * CPU (render --stats, one thread, interleaved): median ratios 0.96-0.98 (direct), 0.93-0.95 (path).
+ * Measured 2026-12-02 (issue 21, third round: the wave's shading and bookkeeping), callgrind_parts.sh:
+ * direct 4060 -> 3630, path 6453 -> 5765 (BSDF 614 -> 406 and 811 -> 485, now inline in the loop's
+ * file; a material's constant BSDF copied per hit, Lambertian sampling and f/pdf inline, elr_wave_add
+ * inline; examples/render/README.md has the table); the same images. Loop CPU, one thread, 64 spp, 7
+ * interleaved rounds against main's binary: bench_city direct 0.870-0.931x, path 0.873-0.945x,
+ * bench_studio 0.917-0.969x. */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"
@@ -276,6 +282,7 @@ static double wave_rate(elr_scene *s, const bray *r, int n, int api, int occlude
   double t0 = elr_now(), cnt = 0;
   volatile float sink = 0;
   int pass, i, k;
+  elr_wave_rays_init(&w);
   for (pass = 0; elr_now() - t0 < 0.3 || pass < 2; pass++) {
     for (i = 0; i < n; i += 256) {
       w.n = 0;
@@ -525,13 +532,14 @@ int main(int argc, char **argv) {
     else if (!strcmp(argv[i], "--ref-spp") && i + 1 < argc) ref_spp = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
     else if (!strcmp(argv[i], "--callgrind") && i + 2 < argc) { cg_op = argv[++i]; cg_n = atoi(argv[++i]); }
-    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--integrator path] [--loop one|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
+    else { fprintf(stderr, "usage: bench_render [--quick] [--full] [--rays-only] [--packets] [--samplers [--scene bench_city|bench_studio] [--integrator directlighting|path]] [--ref-spp N] [--threads N] [--loops] [--split] [--callgrind intersect|occluded|samples|samples1 N [--sampler S] [--scene bench_studio] [--integrator path] [--loop one|wave] [--wave-api single|packet16|stream|soa]]\n"); return 1; }
   }
   if (ref_spp < 2) ref_spp = 2;
   setvbuf(stdout, NULL, _IOLBF, 0);
   if (samplers) { sampler_table(ref_spp, threads, quick, only_scene, only_integrator); return 0; }
   if (split_only) { split_table(threads, quick ? 1 : 3); return 0; }
-  snprintf(path, sizeof path, "%s/scenes/bench_city.pbrt", EL_SOURCE_DIR);
+  /* (--callgrind ... --scene bench_studio: the studio map's scene instead) */
+  snprintf(path, sizeof path, "%s/scenes/%s.pbrt", EL_SOURCE_DIR, cg_op && only_scene ? only_scene : "bench_city");
   if (packets) setenv("ELR_EMBREE_SPHERES", "1", 1);
   if (elr_scene_load(path, &s, 1, err, sizeof err) != 0) { fprintf(stderr, "bench_render: %s\n", err); return 1; }
   w = s->d.xres; h = s->d.yres;

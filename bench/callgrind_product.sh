@@ -10,7 +10,8 @@
 # same with 0 calls, and prints (Ir(N) - Ir(0)) / N minus the "loop" operation's own count (reading the
 # precomputed random numbers and summing the results). Product sampling draws a new random normal on every
 # call (the random directions, as a renderer's shading points); sample_li and sample_li_cos with _rgb
-# also return the radiance. Instruction counts do not depend on the machine's load. build_product: one
+# also return the radiance; the _n operations are the same calls n at once (el_envlight_sample_li_cos_n,
+# el_envlight_pdf_li_cos_n) in batches of 64, per sample. Instruction counts do not depend on the machine's load. build_product: one
 # build of the product tables with the light's init (2 builds counted, per build). Table bytes, build
 # milliseconds, variance and time per sample (time-to-unit-variance): build/bin/bench_product --library.
 set -e
@@ -24,7 +25,8 @@ ir() { # OP CALLS -> the "Collected" count
 per_call() { a=$(ir "$1" 0); b=$(ir "$1" "$N"); echo "($b - $a) / $N" | bc -l; }
 LOOP=$(per_call loop)
 printf '%-22s %10s   (map %s, %s calls, the loop'"'"'s %.1f subtracted)\n' operation instr/call "$MAP" "$N" "$LOOP"
-for op in ${OPS:-sample_guide sample_guide_rgb pdf sample_cos sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated}; do
+for op in ${OPS:-sample_guide sample_guide_rgb pdf sample_cos sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated \
+             sample_cos_n sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated}; do
   c=$(per_call "$op")
   printf '%-22s %10.1f\n' "$op" "$(echo "$c - $LOOP" | bc -l)"
 done

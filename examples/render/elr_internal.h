@@ -402,7 +402,17 @@ typedef struct elr_wave_rays {
   float ngx[ELR_WAVE_RAYS], ngy[ELR_WAVE_RAYS], ngz[ELR_WAVE_RAYS], u[ELR_WAVE_RAYS], v[ELR_WAVE_RAYS];
   unsigned prim[ELR_WAVE_RAYS], geom[ELR_WAVE_RAYS], inst[ELR_WAVE_RAYS];
 } elr_wave_rays;
-void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax);
+/* the fields of every ray of w that elr_wave_add leaves as they are: tnear and time 0, mask ~0, id its
+ * index, flags 0 (once, before the first elr_wave_add) */
+void elr_wave_rays_init(elr_wave_rays *w);
+/* ray n of the wave (inline: the wave loop adds a few rays per camera sample); geom and inst
+ * RTC_INVALID_GEOMETRY_ID (~0u), as a miss leaves them */
+static inline void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax) {
+  int i = w->n++;
+  w->ox[i] = o.x; w->oy[i] = o.y; w->oz[i] = o.z;
+  w->dx[i] = d.x; w->dy[i] = d.y; w->dz[i] = d.z;
+  w->tfar[i] = tmax; w->geom[i] = w->inst[i] = ~0u;
+}
 void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
 void elr_wave_occluded(const elr_scene *s, elr_wave_rays *w, int api, int coherent);
 int elr_wave_hit(const elr_scene *s, const elr_wave_rays *w, int i, elr_hit *h); /* 0: ray i left the scene */
@@ -458,11 +468,74 @@ typedef struct elr_bsdf {
   elr_bxdf lobe[ELR_MAX_BXDFS];
 } elr_bsdf;
 void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, elr_bsdf *b);
+/* a material whose BSDF is the same at every hit but for its frame (constant textures, no anisotropic
+ * lobe): 1 and its BSDF t, else 0 (materials.c; render_wave.c makes a hit's BSDF from t by a copy and
+ * the frame) */
+int elr_bsdf_constant(const elr_scene *s, int mi, elr_bsdf *t);
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi);
 /* Returns f; *specular is 0 when the sampled lobe was not specular, 1 for a specular reflection, 2 for a
  * specular transmission. */
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular);
+/* f and pdf of a BSDF of no lobe list and no glossy lobe (elr_bsdf_f and elr_bsdf_pdf there: Lambertian
+ * alone needs no local frame), and elr_bsdf_f and elr_bsdf_pdf with that case inline (the wave loop) */
+static inline elr_v3 elr_bsdf_lambert_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
+  int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
+  return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
+}
+static inline float elr_bsdf_lambert_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
+  float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
+  return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
+}
+/* both, with the dot products they share computed once (the same floats as the two calls) */
+static inline elr_v3 elr_bsdf_f_pdf_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi, float *pdf) {
+  float co, ci;
+  if (b->nlobes || b->has_glossy) { *pdf = elr_bsdf_pdf(b, wo, wi); return elr_bsdf_f(b, wo, wi); }
+  co = elr_dot(wo, b->ns); ci = elr_dot(wi, b->ns);
+  *pdf = b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
+  return elr_dot(wi, b->ng) * elr_dot(wo, b->ng) > 0.f && b->has_diffuse && co != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
+}
+static inline elr_v3 elr_bsdf_f_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
+  return b->nlobes || b->has_glossy ? elr_bsdf_f(b, wo, wi) : elr_bsdf_lambert_f(b, wo, wi);
+}
+static inline float elr_bsdf_pdf_inl(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
+  return b->nlobes || b->has_glossy ? elr_bsdf_pdf(b, wo, wi) : elr_bsdf_lambert_pdf(b, wo, wi);
+}
+/* a direction of the shading frame in world space */
+static inline elr_v3 elr_bsdf_to_world(const elr_bsdf *b, elr_v3 v) {
+  return elr_add(elr_add(elr_mul(b->ss, v.x), elr_mul(b->ts, v.y)), elr_mul(b->ns, v.z));
+}
+/* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) for the fixed
+ * lobes (z from r^2 (cos^2 + sin^2), as they always computed it; the clamp is fmaxf(0, z^2)'s value,
+ * NaN to 0, without its libm call) */
+static inline elr_v3 elr_bsdf_fixed_cosine_sample(float woz, float u0, float u1) {
+  float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th, z2;
+  elr_v3 wi;
+  if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
+  else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
+  else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
+  z2 = 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th));
+  wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(z2 > 0.f ? z2 : 0.f));
+  if (woz < 0.f) wi.z = -wi.z;
+  return wi;
+}
+/* elr_bsdf_sample of a Lambertian lobe alone (matte) and u0 in [0, 1): its general steps where the
+ * component is 0 and u0 stays as it is, with wo.z alone of the local wo (the same floats); inline, and
+ * elr_bsdf_sample_inl with it (the wave loop) */
+static inline int elr_bsdf_lambert_alone(const elr_bsdf *b, float u0) {
+  return b->ncomp == 1 && b->has_diffuse && !b->nlobes && u0 >= 0.f && u0 < 1.f;
+}
+static inline elr_v3 elr_bsdf_lambert_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3 *wiW, float *pdf, int *specular) {
+  float woz = elr_dot(woW, b->ns);
+  *pdf = 0.f; *specular = 0;
+  if (woz == 0.f) return elr_v(0, 0, 0);
+  *wiW = elr_bsdf_to_world(b, elr_bsdf_fixed_cosine_sample(woz, u0, u1));
+  *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
+  return elr_bsdf_lambert_f(b, woW, *wiW);
+}
+static inline elr_v3 elr_bsdf_sample_inl(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular) {
+  return elr_bsdf_lambert_alone(b, u0) ? elr_bsdf_lambert_sample(b, wo, u0, u1, wi, pdf, specular) : elr_bsdf_sample(b, wo, u0, u1, wi, pdf, specular);
+}
 /* pbrt-v3's BSDF::Sample_f restricted to the lobes whose flags all lie in `type` (ELR_BSDF_*): the
  * direct-lighting integrator's specular reflection and transmission; *flags: the sampled lobe's */
 elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 wo, float u0, float u1, int type, elr_v3 *wi, float *pdf, int *flags);

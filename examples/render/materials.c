@@ -16,6 +16,7 @@
  *   substrate.cpp FresnelBlend(Kd, Ks, Trowbridge-Reitz(uroughness, vroughness))
  * Spectra are RGB (pbrt-v3's default RGBSpectrum); "Clamp" is pbrt-v3's Spectrum::Clamp (negatives to 0). */
 #include "elr_internal.h"
+#include <string.h>
 
 /* max(v, 0) per component, NaN to 0: fmaxf(x, 0.f)'s values (-0 to +0 as well), without its libm call */
 static elr_v3 elr__clamp0(elr_v3 v) { return elr_v(v.x > 0.f ? v.x : 0.f, v.y > 0.f ? v.y : 0.f, v.z > 0.f ? v.z : 0.f); }
@@ -199,4 +200,27 @@ void elr_bsdf_init(const elr_scene *s, const elr_hit *h, const elr_tex_ctx *c, e
   b->ncomp = b->has_diffuse + b->has_glossy + b->has_specular;
   b->spec_r = b->has_specular; b->spec_t = 0;
   elr__env_choice(s, b);
+}
+
+/* The BSDF of material mi where it is the same at every hit but for its frame: every texture of the
+ * material constant (elr_scene.mat_textured 0) and no anisotropic lobe (whose frame follows the hit's
+ * dp/du). Returns 1 and t (elr_bsdf_init at a made-up hit, ns = ng = +z), or 0. elr_bsdf_init_like then
+ * makes a hit's BSDF from t: the same fields elr_bsdf_init writes, with the same values (the frame is
+ * elr_onb around the hit's ns in both), for a copy and a frame instead of the material's evaluation
+ * (the wave loop, render_wave.c: elr_wave_new makes one t per material). */
+int elr_bsdf_constant(const elr_scene *s, int mi, elr_bsdf *t) {
+  elr_hit h;
+  elr_tex_ctx c;
+  int k;
+  if (mi < 0 || mi >= s->nmat || !s->mat_textured || s->mat_textured[mi]) return 0;
+  memset(&h, 0, sizeof h); memset(&c, 0, sizeof c); memset(t, 0, sizeof *t);
+  h.material = mi; h.ns = h.ng = elr_v(0.f, 0.f, 1.f); h.inst = -1;
+  h.has_uv = 1; /* (an anisotropic lobe's frame asks elr_hit_uv: nothing to look up at a made-up hit; refused below) */
+  elr_bsdf_init(s, &h, &c, t);
+  for (k = 0; k < t->nlobes; k++) {
+    const elr_bxdf *l = &t->lobe[k];
+    if ((l->type == ELR_BXDF_MICROFACET_REFLECTION || l->type == ELR_BXDF_MICROFACET_TRANSMISSION || l->type == ELR_BXDF_FRESNEL_BLEND) && l->ax != l->ay)
+      return 0;
+  }
+  return 1;
 }

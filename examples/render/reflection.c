@@ -69,9 +69,6 @@ float elr_fr_dielectric(float cosi, float etai, float etat) {
 
 /* >> BSDF (core/reflection.cpp) */
 static elr_v3 elr__to_local(const elr_bsdf *b, elr_v3 v) { return elr_v(elr_dot(v, b->ss), elr_dot(v, b->ts), elr_dot(v, b->ns)); }
-static elr_v3 elr__to_world(const elr_bsdf *b, elr_v3 v) {
-  return elr_add(elr_add(elr_mul(b->ss, v.x), elr_mul(b->ts, v.y)), elr_mul(b->ns, v.z));
-}
 static elr_v3 elr__glossy_f(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
   float co = fabsf(wo.z), ci = fabsf(wi.z), F;
   elr_v3 wh = elr_add(wi, wo);
@@ -93,21 +90,11 @@ static float elr__glossy_pdf(const elr_bsdf *b, elr_v3 wo, elr_v3 wi) {
 }
 static ELR_NOINLINE elr_v3 elr__list_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
 static ELR_NOINLINE float elr__list_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW, int type);
-/* f and pdf of a BSDF of no lobe list and no glossy lobe (Lambertian alone needs no local frame):
- * inlined into elr_bsdf_sample too, which evaluates both in the sampled direction */
-static inline elr_v3 elr__lambert_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
-  int reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
-  return reflect && b->has_diffuse && elr_dot(woW, b->ns) != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
-}
-static inline float elr__lambert_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
-  float co = elr_dot(woW, b->ns), ci = elr_dot(wiW, b->ns);
-  return b->has_diffuse && co * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
-}
 elr_v3 elr_bsdf_f(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi, f = elr_v(0, 0, 0);
   int reflect;
   if (b->nlobes) return elr__list_f(b, woW, wiW, ELR_BSDF_ALL);
-  if (!b->has_glossy) return elr__lambert_f(b, woW, wiW);
+  if (!b->has_glossy) return elr_bsdf_lambert_f(b, woW, wiW);
   reflect = elr_dot(wiW, b->ng) * elr_dot(woW, b->ng) > 0.f;
   wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || !reflect) return f;
@@ -119,7 +106,7 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
   elr_v3 wo, wi;
   float pdf = 0.f;
   if (b->nlobes) return elr__list_pdf(b, woW, wiW, ELR_BSDF_ALL);
-  if (!b->has_glossy) return elr__lambert_pdf(b, woW, wiW);
+  if (!b->has_glossy) return elr_bsdf_lambert_pdf(b, woW, wiW);
   wo = elr__to_local(b, woW); wi = elr__to_local(b, wiW);
   if (wo.z == 0.f || b->ncomp == 0) return 0.f;
   if (b->has_diffuse && wo.z * wi.z > 0.f) pdf += fabsf(wi.z) * ELR_INV_PI;
@@ -129,6 +116,7 @@ float elr_bsdf_pdf(const elr_bsdf *b, elr_v3 woW, elr_v3 wiW) {
 elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3 *wiW, float *pdf, int *specular) {
   elr_v3 wo, wi;
   int comp, k = 0, which = -1;
+  if (elr_bsdf_lambert_alone(b, u0)) return elr_bsdf_lambert_sample(b, woW, u0, u1, wiW, pdf, specular);
   if (b->nlobes) {
     int flags = 0;
     elr_v3 f = elr_bsdf_sample_type(b, woW, u0, u1, ELR_BSDF_ALL, wiW, pdf, &flags);
@@ -149,20 +137,14 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
   if (which == 2) {
     /* SpecularReflection with FresnelNoOp: f = R / |cos wi|, pdf 1 (only lobe of a mirror) */
     wi = elr_v(-wo.x, -wo.y, wo.z);
-    *wiW = elr__to_world(b, wi);
+    *wiW = elr_bsdf_to_world(b, wi);
     *specular = 1;
     *pdf = 1.f / (float)b->ncomp;
     if (wi.z == 0.f) { *pdf = 0.f; return elr_v(0, 0, 0); }
     return elr_mul(b->kr, 1.f / fabsf(wi.z));
   }
   if (which == 0) {
-    /* <<Cosine-sample the hemisphere, flipping the direction if necessary>> (concentric disk) */
-    float ox = 2.f * u0 - 1.f, oy = 2.f * u1 - 1.f, r, th;
-    if (ox == 0.f && oy == 0.f) { r = 0.f; th = 0.f; }
-    else if (fabsf(ox) > fabsf(oy)) { r = ox; th = (ELR_PI / 4.f) * (oy / ox); }
-    else { r = oy; th = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy); }
-    wi = elr_v(r * cosf(th), r * sinf(th), sqrtf(fmaxf(0.f, 1.f - r * r * (cosf(th) * cosf(th) + sinf(th) * sinf(th)))));
-    if (wo.z < 0.f) wi.z = -wi.z;
+    wi = elr_bsdf_fixed_cosine_sample(wo.z, u0, u1);
   } else {
     elr_v3 wh = elr__tr_sample_wh(b->alpha, wo, u0, u1);
     float d = elr_dot(wo, wh);
@@ -170,10 +152,10 @@ elr_v3 elr_bsdf_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3
     wi = elr_sub(elr_mul(wh, 2.f * d), wo);
     if (wo.z * wi.z <= 0.f) return elr_v(0, 0, 0);
   }
-  *wiW = elr__to_world(b, wi);
+  *wiW = elr_bsdf_to_world(b, wi);
   if (!b->has_glossy) { /* (elr_bsdf_pdf and elr_bsdf_f, inlined) */
-    *pdf = elr__lambert_pdf(b, woW, *wiW);
-    return elr__lambert_f(b, woW, *wiW);
+    *pdf = elr_bsdf_lambert_pdf(b, woW, *wiW);
+    return elr_bsdf_lambert_f(b, woW, *wiW);
   }
   *pdf = elr_bsdf_pdf(b, woW, *wiW);
   if (b->has_specular) *pdf *= 1.f; /* a specular lobe never matches a non-specular direction */
@@ -542,7 +524,7 @@ elr_v3 elr_bsdf_sample_type(const elr_bsdf *b, elr_v3 woW, float u0, float u1, i
   if (wo.z == 0.f) return elr_v(0, 0, 0);
   f = elr__bxdf_sample(x, wo, u0, u1, &wi, pdf, flags);
   if (*pdf == 0.f) { *flags = 0; return elr_v(0, 0, 0); }
-  *wiW = elr__to_world(b, wi);
+  *wiW = elr_bsdf_to_world(b, wi);
   /* <<Compute overall PDF with all matching BxDFs>> */
   if (!(x->flags & ELR_BSDF_SPECULAR) && n > 1)
     for (i = 0; i < b->nlobes; i++)

@@ -2,8 +2,8 @@
  * each stage for the whole wave before the next: the wave's rays in one Embree call (packets of 16 or
  * streams: scene.c's elr_wave_intersect / elr_wave_occluded), its environment light samples in one
  * el_envlight_sample_li_n call, its environment lookups in one pass, so that their cache misses overlap.
- * With product sampling (the default, el_envlight_sample_li_cos: a normal per sample, no n-at-once
- * form) the light samples are drawn one after another in that pass instead (elr__env_samples).
+ * With product sampling (the default: a normal per sample) in one el_envlight_sample_li_cos_n call
+ * (elr__env_samples).
  * pbrt-v3 has no such loop; the model is pbrt-v4's WavefrontPathIntegrator (src/pbrt/wavefront/
  * integrator.cpp, surfscatter.cpp), whose stages each run over a queue of many paths (over the whole
  * image, on the GPU or the CPU): here over a tile's wave on one thread, with Embree's packets.
@@ -33,6 +33,7 @@
  * order: other numbers of the same distribution (test_render_wave checks both). A change to
  * EstimateDirect or to elr_path_li must be made here too (test_render_wave fails until it is). */
 #include "elr_internal.h"
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -152,6 +153,7 @@ struct elr_wave {
   /* the first vertex shaded here (elr__direct_shade), per pair: its light sample's BSDF value times the
    * cosine and its lonly; per camera sample: shaded here (1) or by elr_direct_first (0), and its Ld */
   elr_v3 fl[ELR_WAVE];
+  float flpdf[ELR_WAVE]; /* and the BSDF's pdf in its direction (computed with fl: the dot products they share) */
   int lonly[ELR_WAVE], fast[ELR_WAVE];
   elr_v3 Ld[ELR_WAVE];
   float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
@@ -171,11 +173,33 @@ struct elr_wave {
   elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
   elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
   elr_wave_rays rays, shadows;
+  /* per material, the BSDF it has at every hit but for the frame (elr_bsdf_constant), or -1: its index in tmpl */
+  int *tmpl_of;
+  elr_bsdf *tmpl;
 };
+
+/* elr_sun_cos_normal with its first case inline (no lowered cell, or a BSDF whose choice the cell does not
+ * change: elr_bsdf_cos_normal, inline in elr_internal.h); sun.c's test, repeated: keep the two alike */
+static inline int elr__cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
+  return !c || !(b->env_map || b->env_sun_test) ? elr_bsdf_cos_normal(b, wo, n) : elr_sun_cos_normal(s, c, b, wo, n);
+}
+
+/* elr_bsdf_init for the wave: from the material's constant BSDF where it has one (a copy of the fields
+ * elr_bsdf_init writes, then the frame elr_bsdf_init makes: the same BSDF), else elr_bsdf_init */
+static inline void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b) {
+  int t = W->tmpl_of[h->material];
+  const elr_bsdf *c;
+  if (t < 0) { elr_bsdf_init(s, h, tc, b); return; }
+  c = &W->tmpl[t];
+  memcpy(b, c, offsetof(elr_bsdf, lobe)); /* (a size the compiler knows: moves, no call) */
+  if (c->nlobes) memcpy(b->lobe, c->lobe, (size_t)c->nlobes * sizeof(elr_bxdf));
+  b->ns = h->ns; b->ng = h->ng;
+  elr_onb(b->ns, &b->ss, &b->ts);
+}
 
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile) {
   elr_wave *W = (elr_wave *)calloc(1, sizeof *W);
-  int i, npix;
+  int i, k, npix;
   if (!W) return NULL;
   /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
@@ -191,6 +215,17 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
     elr_sampler_share(&W->S[i], &W->S[0]); /* (zsobol: the wave's neighbouring pixels share their digits) */
   }
   W->npix = npix;
+  elr_wave_rays_init(&W->rays); elr_wave_rays_init(&W->shadows);
+  /* the materials' constant BSDFs (counted first: memory for those alone) */
+  W->tmpl_of = (int *)malloc(((size_t)C->s->nmat + 1) * sizeof(int));
+  if (!W->tmpl_of) { elr_wave_free(W); return NULL; }
+  for (i = 0, k = 0; i < C->s->nmat; i++) {
+    elr_bsdf t;
+    W->tmpl_of[i] = elr_bsdf_constant(C->s, i, &t) ? k++ : -1;
+  }
+  W->tmpl = (elr_bsdf *)malloc(((size_t)k + 1) * sizeof(elr_bsdf));
+  if (!W->tmpl) { elr_wave_free(W); return NULL; }
+  for (i = 0; i < C->s->nmat; i++) if (W->tmpl_of[i] >= 0) elr_bsdf_constant(C->s, i, &W->tmpl[W->tmpl_of[i]]);
   return W;
 }
 
@@ -198,12 +233,12 @@ void elr_wave_free(elr_wave *W) {
   int i;
   if (!W) return;
   for (i = 0; i < W->nS; i++) elr_sampler_free(&W->S[i]);
-  free(W->S);
+  free(W->S); free(W->tmpl_of); free(W->tmpl);
   free(W);
 }
 
 /* the n light samples whose draws are in W->u, into wi, Le, pdf: in one el_envlight_sample_li_n call
- * for the map alone; with product sampling one el_envlight_sample_li_cos each, for the normal of its
+ * for the map alone; with product sampling in one el_envlight_sample_li_cos_n call, each for the normal of its
  * vertex (normal[i], or the map alone where has_n[i] is 0, as elr_light_sample_li does); with portals
  * one el_envlight_portal_sample_li each, at its point pos[i] (counted for --stats as elr_estimate_direct);
  * at a vertex whose sun-cache cell lowers a hot spot (sc[i], sun.c) elr_sun_sample */
@@ -229,16 +264,20 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
     for (i = 0; i < n && !has_n[i]; i++) {}
     if (i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
   }
-  for (i = 0; i < n; i++) {
-    if (sun && sc[i]) continue;
-    if (has_n[i]) {
-      float nn[3];
-      elr_to3(normal[i], nn);
-      el_envlight_sample_li_cos(l->env_sample, nn, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
-    } else { /* (gathered: the map's samples in one el_envlight_sample_li_n call below, as the map alone draws them) */
-      idx[nm] = i; um[2 * nm] = u[2 * i]; um[2 * nm + 1] = u[2 * i + 1]; nm++;
+  { /* the product samples (a normal each) in one el_envlight_sample_li_cos_n call: the same bits as one
+     * el_envlight_sample_li_cos each, four samples' arithmetic at a time (issue 20) */
+    float nn[3 * ELR_WAVE];
+    int nc = 0;
+    for (i = 0; i < n; i++)
+      if (!(sun && sc[i]) && has_n[i]) { idx[nc] = i; elr_to3(normal[i], &nn[3 * nc]); um[2 * nc] = u[2 * i]; um[2 * nc + 1] = u[2 * i + 1]; nc++; }
+    if (nc > 0) el_envlight_sample_li_cos_n(l->env_sample, nc, nn, um, wm, Lm, pm);
+    for (k = 0; k < nc; k++) {
+      i = idx[k];
+      memcpy(&wi[3 * i], &wm[3 * k], 3 * sizeof(float)); memcpy(&Le[3 * i], &Lm[3 * k], 3 * sizeof(float)); pdf[i] = pm[k];
     }
   }
+  for (i = 0; i < n; i++) /* (gathered: the map's samples in one el_envlight_sample_li_n call below, as the map alone draws them) */
+    if (!(sun && sc[i]) && !has_n[i]) { idx[nm] = i; um[2 * nm] = u[2 * i]; um[2 * nm + 1] = u[2 * i + 1]; nm++; }
   if (nm > 0) {
     el_envlight_sample_li_n(l->env_sample, nm, um, wm, Lm, pm);
     for (k = 0; k < nm; k++) {
@@ -268,7 +307,7 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
       ts->shadow++;
       if (!p->occ_l) {
         float w = 1.f;
-        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, elr_bsdf_pdf(b, elr_mul(W->cam[j].d, -1.f), p->wi));
+        if (C->ls == ELR_LS_MIS && !W->lonly[k]) w = elr_power_heuristic(p->pdf, W->flpdf[k]);
         Ld = elr_add(Ld, elr_mul(elr_vmul(W->fl[k], p->L), w / p->pdf));
       }
     }
@@ -297,17 +336,13 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *q = &W->f[j];
     elr_sampler *S = &W->S[W->pix[j]];
     elr_v3 wo = elr_mul(W->cam[j].d, -1.f);
-    q->h = &W->h[j];
-    q->bs = q->bray = 0;
-    q->occ_l = q->occ_b = -1;
-    q->pdf = 0.f;
-    q->more = NULL; q->nmore = 0; q->sun = NULL;
+    q->h = &W->h[j]; /* (the pair loop below sets the light sampling's fields: elr_direct_first reads them nowhere else) */
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
     if (!q->hit) continue;
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
-    elr_bsdf_init(C->s, &W->h[j], &q->tc, &q->b);
+    elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
     /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
     W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t));
@@ -324,7 +359,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
         W->sc[n] = W->vsc[j];
-        W->has_n[n] = elr_sun_cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
+        W->has_n[n] = elr__cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
         lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
         if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
@@ -333,7 +368,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       }
       if (C->ls != ELR_LS_LIGHT && !lonly) {
         int spec;
-        p->fb = elr_bsdf_sample(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
+        p->fb = elr_bsdf_sample_inl(&q->b, wo, us[0], us[1], &p->wb, &p->bpdf, &spec);
         p->bs = 1;
         p->bray = !spec && p->bpdf > 0.f && !elr_isblack(p->fb); /* elr_estimate_direct's BSDF ray */
       }
@@ -351,7 +386,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (i >= 0) {
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
-      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f(&q->b, wo, p->wi), fabsf(elr_dot(p->wi, q->b.ns))))) {
+      if (p->pdf > 0.f && !elr_isblack(W->fl[k] = elr_mul(elr_bsdf_f_pdf_inl(&q->b, wo, p->wi, &W->flpdf[k]), fabsf(elr_dot(p->wi, q->b.ns))))) {
         W->shadow[k] = W->shadows.n;
         elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi), p->wi, INFINITY);
       }
@@ -375,10 +410,11 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     if (!p->bray || p->occ_b) continue;
     elr_to3(p->wb, d);
     if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
-    else if (C->batch_light->product) {
+    else if (C->batch_light->product) { /* (the normal of the pair's light sample where it has one: the same call) */
       elr_v3 nc;
       const elr_sun_cell *c = W->vsc[W->pair_of[k]];
-      int has = elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      int i = W->light[k], has = i >= 0 ? W->has_n[i] : elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
+      if (i >= 0 && has) nc = W->normal[i];
       p->bpdf_env = c ? elr_sun_pdf(C->sun, c, has ? &nc : NULL, d) : elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
     } else {
       p->bpdf_env = el_envlight_pdf_li(env_sample, d);
@@ -442,7 +478,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         memset(&tc, 0, sizeof tc);
         if (s->mat_textured[h->material]) { elr_hit_uv(s, h); tc.u = h->u; tc.v = h->v; }
       }
-      elr_bsdf_init(s, h, &tc, b);
+      elr__bsdf_init(s, W, h, &tc, b);
       wo = elr_mul(p->ray.d, -1.f);
       elr_sampler_restore(S, &W->pos[j]);
       if (C->light_sampling && (b->has_diffuse || b->has_glossy)) {
@@ -451,14 +487,14 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_sampler_get2d(S, &W->u[2 * n]);
         elr_sampler_skip2d(S);
         W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
-        W->has_n[n] = elr_sun_cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
+        W->has_n[n] = elr__cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
         W->lpos[n] = h->p;
         if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
         W->light[j] = n++;
       }
       /* <<Sample BSDF to get new path direction>> */
       elr_sampler_get2d(S, u);
-      W->fs[j] = elr_bsdf_sample(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
+      W->fs[j] = elr_bsdf_sample_inl(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
       elr_sampler_save(S, &W->pos[j]);
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
@@ -499,11 +535,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         float lpdf = W->pdf[ne + i];
         W->contrib[j] = elr_v(0, 0, 0);
         if (C->ls != ELR_LS_BSDF && lpdf > 0.f) {
-          elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+          float bpdf;
+          elr_v3 fl = elr_mul(elr_bsdf_f_pdf_inl(b, wo, wi, &bpdf), fabsf(elr_dot(wi, b->ns)));
           if (!elr_isblack(fl)) {
             float w = 1.f;
             ts->shadow++;
-            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, elr_bsdf_pdf(b, wo, wi));
+            if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(pick * lpdf, bpdf);
             W->contrib[j] = elr_mul(elr_vmul(fl, elr_from3(&W->Le[3 * (ne + i)])), w / lpdf);
             W->shadow[j] = W->shadows.n;
             elr_wave_add(&W->shadows, elr_spawn_origin(&W->h[j], wi), wi, INFINITY);
@@ -528,8 +565,13 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       if (elr_isblack(f) || pdf == 0.f) { W->alive[j] = 0; nalive--; continue; }
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
       p->specular = spec; p->prev_pdf = pdf;
-      p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL; /* its sun-cache cell, */
-      p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n); /* the normal this vertex's light sample used */
+      if (W->light[j] >= 0) { /* its sun-cache cell and the normal its light sample used (the same calls, made above) */
+        int i = W->light[j];
+        p->prev_sun = W->sc[i]; p->prev_has_n = W->has_n[i]; p->prev_n = W->normal[i];
+      } else {
+        p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
+        p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n);
+      }
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {

@@ -352,7 +352,7 @@ static void elr__wave_np(elr_wave_rays *w, struct RTCRayHitNp *np) {
  * of its first ray, masked off (Embree wants the packet and its mask 64-byte aligned) */
 static void elr__wave_ray16(const elr_wave_rays *w, int i, struct RTCRay16 *r, int valid[16]) {
   int k;
-  if (i + 16 <= w->n) { /* a full packet: each component a copy of 16 (elr_wave_add wrote tnear, time 0, mask ~0, flags 0) */
+  if (i + 16 <= w->n) { /* a full packet: each component a copy of 16 (elr_wave_rays_init wrote tnear, time 0, mask ~0, flags 0) */
     static const unsigned lane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
     for (k = 0; k < 16; k++) valid[k] = -1;
     memcpy(r->org_x, w->ox + i, sizeof r->org_x); memcpy(r->org_y, w->oy + i, sizeof r->org_y); memcpy(r->org_z, w->oz + i, sizeof r->org_z);
@@ -370,12 +370,10 @@ static void elr__wave_ray16(const elr_wave_rays *w, int i, struct RTCRay16 *r, i
   }
 }
 
-void elr_wave_add(elr_wave_rays *w, elr_v3 o, elr_v3 d, float tmax) {
-  int i = w->n++;
-  w->ox[i] = o.x; w->oy[i] = o.y; w->oz[i] = o.z; w->tnear[i] = 0.f;
-  w->dx[i] = d.x; w->dy[i] = d.y; w->dz[i] = d.z; w->time[i] = 0.f;
-  w->tfar[i] = tmax; w->mask[i] = ~0u; w->id[i] = (unsigned)i; w->flags[i] = 0;
-  w->geom[i] = RTC_INVALID_GEOMETRY_ID; w->inst[i] = RTC_INVALID_GEOMETRY_ID;
+typedef char elr__wave_add_miss_id[RTC_INVALID_GEOMETRY_ID == ~0u ? 1 : -1]; /* (elr_wave_add's ~0u is Embree's miss) */
+void elr_wave_rays_init(elr_wave_rays *w) {
+  int i;
+  for (i = 0; i < ELR_WAVE_RAYS; i++) { w->tnear[i] = 0.f; w->time[i] = 0.f; w->mask[i] = ~0u; w->id[i] = (unsigned)i; w->flags[i] = 0; }
 }
 
 void elr_wave_intersect(const elr_scene *s, elr_wave_rays *w, int api, int coherent) {

@@ -13,7 +13,9 @@
  *     (luminance) must be within 4 standard errors of 0 (the standard error from the pixels' own
  *     spread: a false alarm has probability about 6e-5).
  *  4. The render chose the wave loop (elr_stats.loop) where it should, and not where it should not (BSDF
- *     sampling only samples no light: the cases of 1. with it run the reference loop). */
+ *     sampling only samples no light: the cases of 1. with it run the reference loop).
+ *  5. Bit for bit on spheres alone with constant materials: the BSDFs the wave loop copies from one made
+ *     per render (matte, Oren-Nayar, plastic, glass) and those it does not (anisotropic metal, substrate). */
 #include "render_test_util.h"
 
 static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
@@ -163,6 +165,39 @@ int main(void) {
         rt_check(st.loop == cases[c].loop, "default loop for %s, %s: %d (expected %d)", cases[c].sampler, cases[c].integrator, st.loop, cases[c].loop);
         elr_image_free(&img);
       } else rt_check(0, "default loop case %d: %s", c, err);
+      elr_scene_free(s);
+    }
+  }
+  /* 5. materials whose BSDF the wave loop copies from one made per render (elr_bsdf_constant: constant
+   * textures) and those it does not (anisotropic lobes, whose frame follows the hit), in a scene of
+   * spheres alone (no mesh for a made-up hit to look up): bit for bit against the reference */
+  {
+    static const char *integ[2] = {"Integrator \"directlighting\"", "Integrator \"path\" \"integer maxdepth\" 5"};
+    int c;
+    for (c = 0; c < 2; c++) {
+      static char buf[4096];
+      elr_scene *s;
+      elr_image ref, img;
+      elr_stats sr, st;
+      snprintf(buf, sizeof buf,
+               "LookAt 0 1 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 16\nSampler \"zsobol\" \"integer pixelsamples\" 8\n%s\n"
+               "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"env.pfm\"\n"
+               "AttributeBegin\nMaterial \"metal\" \"float uroughness\" 0.05 \"float vroughness\" 0.3\nTranslate -0.9 0.5 0\nShape \"sphere\" \"float radius\" 0.45\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"substrate\" \"float uroughness\" 0.1 \"float vroughness\" 0.4\nTranslate 0 0.5 0\nShape \"sphere\" \"float radius\" 0.45\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"float sigma\" 20\nTranslate 0.9 0.5 0\nShape \"sphere\" \"float radius\" 0.45\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"plastic\" \"float roughness\" 0.2\nTranslate -0.5 1.3 0.5\nShape \"sphere\" \"float radius\" 0.4\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"glass\"\nTranslate 0.5 1.3 0.5\nShape \"sphere\" \"float radius\" 0.4\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\"\nTranslate 0 -100 0\nShape \"sphere\" \"float radius\" 100\nAttributeEnd\nWorldEnd\n",
+               integ[c]);
+      s = rt_load("wave_const.pbrt", buf, err, 512);
+      if (!s) { rt_check(0, "constant-BSDF scene: %s", err); continue; }
+      if (render(s, ELR_LOOP_ONE, -1, -1, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &img, &st, err) == 0) {
+        size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+        for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
+        rt_check(st.loop == ELR_LOOP_WAVE && diff == 0, "constant BSDFs, %s: %zu of %zu values differ from the reference", integ[c], diff, n);
+        elr_image_free(&img); elr_image_free(&ref);
+      } else rt_check(0, "constant-BSDF scene, %s: %s", integ[c], err);
       elr_scene_free(s);
     }
   }
