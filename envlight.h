@@ -3043,18 +3043,13 @@ struct el_envlight__warp {
   float *sin_row;        /* h: sin(pi v_k) of texel row k - 1 */
   float *V;              /* (h + 2) x w: the vertex values; rows 0 and h + 1 (the poles) are 0 */
   uint16_t *V16;         /* product sampling: V as bfloat16 (the top half of the float, rounded up) */
-  double *S;             /* (h + 2) x ku: vertex row k's integral over cell column a, in u */
-  float *cond;           /* (h + 2) x (w + ku): vertex row k's integer CDF over the patches of each cell
-                            column, as floats (integers <= 2^24: exact); all 0 in the pole rows */
-  size_t cond_stride;    /* w + ku */
-  int *coff;             /* ku: the first CDF entry of cell column a in a row of cond (a0[a] + a) */
+  size_t cond_stride;    /* w + ku: a patch row's entries in pcol */
+  int *coff;             /* ku: the first CDF entry of cell column a in a row of pcol (a0[a] + a) */
   int row_len, marg_len; /* a cell table's CDF lengths: ku + 1 and kv + 1 */
   float inv_w, inv_h, half_inv_h; /* 1 / w, 1 / h, 0.5 / h */
-  uint32_t *marg;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
   int *a0, *b0;          /* ku + 1 patch-column, kv + 1 patch-row bounds of the cells */
   int *cu_of, *cv_of;    /* w, h + 1: the cell column / row of a patch column / row */
   double *mass;          /* kv x ku: each cell's integral over (u, v) */
-  uint16_t *plain;       /* the cell table of the mass alone (importance BILINEAR, invalid normals) */
   size_t table_len;      /* entries of a cell table: the cell rows' CDF (kv + 1 entries), then kv rows'
                             CDFs over their cells (ku + 1 entries each) */
   size_t warp_bytes;
@@ -3064,7 +3059,7 @@ struct el_envlight__warp {
   uint32_t *cos_off;     /* m * m: where each bin's table starts in cos_tab */
   size_t cos_bytes;
   /* product sampling's patches (issue 20; a product table set uses w, h, ku, kv, a0, b0, cu_of, cv_of,
-     coff, sin_row, V, mass, plain and the normal tables above, and these two instead of S, cond, marg) */
+     coff, sin_row, V, mass and the normal tables above, and these two) */
   uint16_t *pcol;        /* (h + 1) x (w + ku): patch row r's CDF over the patches of each cell column */
   uint16_t *prow;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
   int coarse;            /* 1: V is a max-filtered coarse grid of the map (maps over the size cap) */
@@ -3209,8 +3204,8 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
 
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
-  EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
-  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16); EL_FREE(W->gcol); EL_FREE(W->grow);
+  EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->a0); EL_FREE(W->b0);
+  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16); EL_FREE(W->gcol); EL_FREE(W->grow);
   EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
