@@ -281,6 +281,11 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float 
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
+/* n at once: pdf[i] = pdf_li(dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit, for a wave's
+ * escaped rays: the table entries (le's texels) of up to 16 directions are prefetched together, so that
+ * their cache misses overlap (NOTES 2: COST). n <= 0 does nothing. */
+EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf);
+EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
  * sphere facing it. ray_dir points INTO the scene; normal = ray_dir (pbrt's nLight). pdf_pos is w.r.t.
  * area of the disk (1 / (pi r^2)), pdf_dir w.r.t. solid angle. Before preprocess (radius 0): all zero. */
@@ -2380,10 +2385,9 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 }
 
 
-/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
- * for a map: no calls, no branches. */
-static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
-  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2), pu, t, p;
+/* pdf_core's first half: the pdf_table entry of (x, y, z), r = sqrt(x^2 + y^2) (pdf_li_n prefetches it) */
+static inline size_t el_envlight__pdf_bin(const el_envlight *l, float x, float y, float z, float r) {
+  float pu, t;
   uint32_t iu, iv;
   size_t c;
   /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell. + FLT_MIN: x = y = 0 (a pole)
@@ -2400,12 +2404,21 @@ static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y
   EL_ASSERT(c < (size_t)l->v_cells);
   iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
   EL_ASSERT(iu < (uint32_t)l->dist.nu && iv < (uint32_t)l->dist.nv);
-  p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)]; /* mapPdf / (2 pi^2); nu * nv < 2^32 (checked at build) */
+  return (size_t)(iv * (uint32_t)l->dist.nu + iu); /* nu * nv < 2^32 (checked at build) */
+}
+/* pdf_core's second half: the entry p (mapPdf / (2 pi^2)) over sin(theta) */
+static inline float el_envlight__pdf_at(float p, float r, float len) {
   /* p / sin(theta), sin(theta) = r / len, floored at SIN_MIN */
   r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
   p = p * len / r;
   EL_ASSERT(p >= 0.0f && p <= FLT_MAX);
   return p;
+}
+/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
+ * for a map: no calls, no branches. */
+static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
+  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2);
+  return el_envlight__pdf_at(l->pdf_table[el_envlight__pdf_bin(l, x, y, z, r)], r, len);
 }
 
 /* The rare cases: a direction whose squared length is not a normal float (rescaled; zero, NaN, Inf: 0),
@@ -2861,6 +2874,80 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
   }
 #endif
   for (i = 0; i < n; ++i) el_envlight_sample_li(l, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
+}
+
+/* pdf_li_n and le_n: two passes over up to 16 directions; the first maps each to light space and finds
+ * the table entry (pdf_li's pdf_table bin; le's four texels) and prefetches it, so that the cache misses
+ * of the 16 overlap; the second reads them with the single call's arithmetic. Cold lanes (zero, NaN,
+ * infinite or rescaled directions) go through the single call's own cold path in the first pass. */
+EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf) {
+  int i;
+#ifdef EL_ENVLIGHT__BATCH
+  int hot;
+#if EL_ENVLIGHT__ATOMICS
+  hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
+#else
+  hot = l->hot;
+#endif
+  if (n > 1 && (hot & EL_ENVLIGHT__HOT_PDF)) {
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      float rs[EL_ENVLIGHT__BATCH], lens[EL_ENVLIGHT__BATCH];
+      size_t bin[EL_ENVLIGHT__BATCH];
+      unsigned char cold[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) { /* el_envlight_pdf_li's hot path up to the table read */
+        const float *w = dirs + 3 * (i0 + i);
+        float d[3], r2, len2;
+        el_envlight__to_light(l, w, d);
+        r2 = d[0] * d[0] + d[1] * d[1];
+        len2 = r2 + d[2] * d[2];
+        cold[i] = !(len2 >= FLT_MIN && len2 <= FLT_MAX);
+        if (cold[i]) { pdf[i0 + i] = el_envlight__pdf_world_cold(l, w); continue; }
+        rs[i] = el_envlight__sqrt(r2);
+        lens[i] = el_envlight__sqrt(len2);
+        bin[i] = el_envlight__pdf_bin(l, d[0], d[1], d[2], rs[i]);
+        __builtin_prefetch(l->pdf_table + bin[i]);
+      }
+      for (i = 0; i < m; ++i)
+        if (!cold[i]) pdf[i0 + i] = el_envlight__pdf_at(l->pdf_table[bin[i]], rs[i], lens[i]);
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) pdf[i] = el_envlight_pdf_li(l, dirs + 3 * i);
+}
+
+EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb) {
+  int i;
+#ifdef EL_ENVLIGHT__BATCH
+  if (n > 1 && l->width > 0 && l->mapping == EL_ENVLIGHT_MAPPING_LATLONG) {
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      const float *p[4 * EL_ENVLIGHT__BATCH];
+      float fx[EL_ENVLIGHT__BATCH], fy[EL_ENVLIGHT__BATCH];
+      unsigned char cold[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) { /* el_envlight_le up to the texel reads (el_envlight__le_light's (u, v)) */
+        const float *w = dirs + 3 * (i0 + i);
+        float d[3], r2, len2;
+        int q;
+        el_envlight__to_light(l, w, d);
+        r2 = d[0] * d[0] + d[1] * d[1];
+        len2 = r2 + d[2] * d[2];
+        cold[i] = !(len2 >= FLT_MIN && len2 <= FLT_MAX);
+        if (cold[i]) { el_envlight__le_cold(l, w, rgb + 3 * (i0 + i)); continue; }
+        el_envlight__bilerp_texels(l, el_envlight__phi_turns(d[1], d[0]), el_envlight__theta_halfturns(sqrtf(r2), d[2]),
+                                   p + 4 * i, &fx[i], &fy[i]);
+        for (q = 0; q < 4; ++q) __builtin_prefetch(p[4 * i + q] + 2 * (q & 1)); /* as sample_li_n */
+      }
+      for (i = 0; i < m; ++i)
+        if (!cold[i]) el_envlight__bilerp_at(p + 4 * i, fx[i], fy[i], rgb + 3 * (i0 + i));
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) el_envlight_le(l, dirs + 3 * i, rgb + 3 * i);
 }
 
 static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {
