@@ -276,13 +276,13 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
- * (a pixel's samples, a wavefront): the table and texel reads of up to 16 samples are started together
+ * (a pixel's samples, a wavefront): the table and texel reads of up to 32 samples are started together
  * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
 /* n at once: pdf[i] = pdf_li(dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit, for a wave's
- * escaped rays: the table entries (le's texels) of up to 16 directions are prefetched together, so that
+ * escaped rays: the table entries (le's texels) of up to 32 directions are prefetched together, so that
  * their cache misses overlap (NOTES 2: COST). n <= 0 does nothing. */
 EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf);
 EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb);
@@ -1000,7 +1000,7 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
  *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
  *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
- *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
+ *    and prefetches in stages, 32 samples at a time (guide entries, then CDF pairs, then the samples
  *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
  *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
  *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
@@ -2807,7 +2807,7 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
 }
 
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-#define EL_ENVLIGHT__BATCH 16
+#define EL_ENVLIGHT__BATCH 32 /* lanes per staged pass (16: 10% slower per sample, issue 21) */
 #endif
 
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
@@ -2820,7 +2820,7 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
   hot = l->hot;
 #endif
   if (n > 1 && (hot & EL_ENVLIGHT__HOT_SAMPLE)) {
-    /* Four passes over up to 16 samples; each pass starts the next pass's cache misses for all of
+    /* Four passes over up to 32 samples; each pass starts the next pass's cache misses for all of
      * them, so that they overlap: (1) the guide entry, (2) the CDF entries it points to, (3) the sample
      * itself (sample_li's inline path; its radiance's texels), (4) the radiance. Passes 1, 2 and the
      * texel prefetch only read; every result comes from the code sample_li runs. */
@@ -2876,9 +2876,9 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
   for (i = 0; i < n; ++i) el_envlight_sample_li(l, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
 }
 
-/* pdf_li_n and le_n: two passes over up to 16 directions; the first maps each to light space and finds
+/* pdf_li_n and le_n: two passes over up to 32 directions; the first maps each to light space and finds
  * the table entry (pdf_li's pdf_table bin; le's four texels) and prefetches it, so that the cache misses
- * of the 16 overlap; the second reads them with the single call's arithmetic. Cold lanes (zero, NaN,
+ * of the 32 overlap; the second reads them with the single call's arithmetic. Cold lanes (zero, NaN,
  * infinite or rescaled directions) go through the single call's own cold path in the first pass. */
 EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf) {
   int i;

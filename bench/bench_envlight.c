@@ -14,7 +14,8 @@
  *                                        sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated
  *                                        build_product; n at once (sample_li_cos_n, pdf_li_cos_n,
  *                                        batches of 64, the same normals and u): sample_cos_n
- *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated
+ *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated;
+ *                                        pdf_li_n, le_n (batches of 64, run_pdf's directions): pdf_n le_n
  *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
@@ -210,6 +211,31 @@ static double run_pdf_cos_n(el_envlight *l, long n) {
   }
   return acc;
 }
+/* pdf_li_n and le_n (issue 21: a wave's escaped rays), batches of 64 of the directions run_pdf / run_le use */
+static double run_pdf_n(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float p[CB];
+  for (k = 0; k < n; k += CB) {
+    m = n - k < CB ? (int)(n - k) : CB;
+    el_envlight_pdf_li_n(l, m, g_dir + 3 * (k & (NP - 1)), p);
+    for (j = 0; j < m; ++j) acc += p[j];
+  }
+  return acc;
+}
+static double run_le_n(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float L[3 * CB];
+  for (k = 0; k < n; k += CB) {
+    m = n - k < CB ? (int)(n - k) : CB;
+    el_envlight_le_n(l, m, g_dir + 3 * (k & (NP - 1)), L);
+    for (j = 0; j < m; ++j) acc += L[3 * j + 1];
+  }
+  return acc;
+}
 static double run_loop(long n) { /* the loop alone: read the inputs, sum */
   double acc = 0;
   long k;
@@ -243,13 +269,21 @@ static double pollute(long k) {
   for (j = 0; j < 8; ++j) a += g_pollute[hash32((uint32_t)(k * 8 + j)) & (POLLUTE_N - 1)];
   return a;
 }
+/* batch = 2, 3: an escaped ray's pdf_li and le (random directions), one at a time or pdf_li_n + le_n
+ * for 16 (issue 21) */
 static double run_interleaved(el_envlight *l, long n, int batch) {
   double acc = 0;
   long k, j;
   float wi[3 * 16], L[3 * 16], p[16];
   for (k = 0; k + 16 <= n; k += 16) {
-    const float *u = g_u + 2 * (k & (NP - 1));
-    if (batch) {
+    const float *u = g_u + 2 * (k & (NP - 1)), *d = g_dir + 3 * (k & (NP - 1));
+    if (batch == 3) {
+      el_envlight_pdf_li_n(l, 16, d, p);
+      el_envlight_le_n(l, 16, d, L);
+      for (j = 0; j < 16; ++j) acc += p[j] + L[3 * j] + pollute(k + j);
+    } else if (batch == 2)
+      for (j = 0; j < 16; ++j) { p[0] = el_envlight_pdf_li(l, d + 3 * j); el_envlight_le(l, d + 3 * j, L); acc += p[0] + L[0] + pollute(k + j); }
+    else if (batch) {
       el_envlight_sample_li_n(l, 16, u, wi, L, p);
       for (j = 0; j < 16; ++j) acc += p[j] + L[3 * j] + pollute(k + j);
     } else
@@ -269,6 +303,8 @@ static double fn_sample_cos(el_envlight *l, long n, int rgb) { return run_sample
 static double fn_pdf_cos(el_envlight *l, long n, int a) { (void)a; return run_pdf_cos(l, n); }
 static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l, n); }
 static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
+static double fn_pdf_n(el_envlight *l, long n, int a) { (void)a; return run_pdf_n(l, n); }
+static double fn_le_n(el_envlight *l, long n, int a) { (void)a; return run_le_n(l, n); }
 
 /* ---- --callgrind OP N ---- */
 static int callgrind_mode(const char *op, long n, const char *map) {
@@ -337,6 +373,8 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "le")) sink = run_le(&l, n);
+  else if (!strcmp(op, "pdf_n")) sink = run_pdf_n(&l, n);
+  else if (!strcmp(op, "le_n")) sink = run_le_n(&l, n);
   else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
   (void)sink;
   el_envlight_free(&l);
@@ -945,6 +983,12 @@ int main(int argc, char **argv) {
         printf("  in a loop with other memory work between samples (%.1f ns per sample of it, taken off):\n"
                "    sample_li + radiance one at a time %5.1f ns;  sample_li_n, 16 at a time %5.1f ns (%.1fx)\n",
                t_work, t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
+        t_one = 1e3 / rate(run_interleaved, &l, 2);
+        t_batch = 1e3 / rate(run_interleaved, &l, 3);
+        printf("    pdf_li + le one at a time %5.1f ns;  pdf_li_n + le_n, 16 at a time %5.1f ns (%.1fx)\n",
+               t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
+        printf("  alone (batches of 64): pdf_li %5.1f ns, pdf_li_n %5.1f ns; le %5.1f ns, le_n %5.1f ns\n", 1e3 / rate(fn_pdf, &l, 0),
+               1e3 / rate(fn_pdf_n, &l, 0), 1e3 / rate(fn_le, &l, 0), 1e3 / rate(fn_le_n, &l, 0));
         el_envlight_free(&l);
       }
     }

@@ -13,7 +13,8 @@
  *   - normals: random directions of random lengths (2^-40 .. 2^40), and hostile lanes among ordinary
  *     ones: NaN, +-Inf, zero, -0, denormal, FLT_MAX components, the poles, the seam (y = +-0, x < 0),
  *     grazing; u at 0, 1 - ulp, 1, -0.25, 2 and NaN;
- *   - n = 0, 1, 2, 3, 4, 5, 17 and 64 (the tails of the four-lane blocks), rgb NULL and not;
+ *   - n = 0, 1, 2, 3, 4, 5, 17 and 45 (the tails of the four-lane blocks and of the 32-lane staged
+ *     passes), rgb NULL and not;
  *   - pdf_li_cos_n on the sampled directions (equal to the returned pdfs: the round trip) and on hostile
  *     directions (NaN, zero, denormal, huge, non-unit);
  *   - el_envlight_pdf_li_n and el_envlight_le_n (issue 21: a wave's escaped rays) against pdf_li and le
@@ -88,7 +89,8 @@ static void hostile_normal(int which, float n[3]) {
 
 /* one light: batches of every size, hostile lanes, both outputs against the single calls */
 static void check_light(const char *name, el_envlight *l, uint64_t seed) {
-  static const int sizes[] = {17, 0, 1, 2, 3, 4, 5, 64}; /* 17 first: the batched call builds the tables */
+  static const int sizes[] = {17, 0, 1, 2, 3, 4, 5, 45}; /* 17 first: the batched call builds the tables; 45: a
+                                                                * full staged pass of 32 lanes and a tail */
   rng r = rng_make(seed);
   int rep, bad_s = 0, bad_p = 0, bad_trip = 0, bad_pl = 0, bad_le = 0, batches = 0, lanes = 0, sampled = 0;
   for (rep = 0; rep < 800; ++rep) {
