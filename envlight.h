@@ -2228,6 +2228,15 @@ static inline int el_envlight__ensure(const el_envlight *l) {
   return el_envlight__ensure_slow((el_envlight *)l);
 }
 
+/* The hot bits (el_envlight__hot_bits) as the queries read them. */
+static inline int el_envlight__hot_now(const el_envlight *l) {
+#if EL_ENVLIGHT__ATOMICS
+  return __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
+#else
+  return l->hot;
+#endif
+}
+
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l) {
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   el_envlight__ensure(l);
@@ -2813,13 +2822,7 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
   int i;
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-  int hot;
-#if EL_ENVLIGHT__ATOMICS
-  hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
-#else
-  hot = l->hot;
-#endif
-  if (n > 1 && (hot & EL_ENVLIGHT__HOT_SAMPLE)) {
+  if (n > 1 && (el_envlight__hot_now(l) & EL_ENVLIGHT__HOT_SAMPLE)) {
     /* Four passes over up to 32 samples; each pass starts the next pass's cache misses for all of
      * them, so that they overlap: (1) the guide entry, (2) the CDF entries it points to, (3) the sample
      * itself (sample_li's inline path; its radiance's texels), (4) the radiance. Passes 1, 2 and the
@@ -2883,13 +2886,7 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
 EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf) {
   int i;
 #ifdef EL_ENVLIGHT__BATCH
-  int hot;
-#if EL_ENVLIGHT__ATOMICS
-  hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
-#else
-  hot = l->hot;
-#endif
-  if (n > 1 && (hot & EL_ENVLIGHT__HOT_PDF)) {
+  if (n > 1 && (el_envlight__hot_now(l) & EL_ENVLIGHT__HOT_PDF)) {
     int i0, m;
     for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
       float rs[EL_ENVLIGHT__BATCH], lens[EL_ENVLIGHT__BATCH];

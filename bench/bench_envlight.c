@@ -211,28 +211,18 @@ static double run_pdf_cos_n(el_envlight *l, long n) {
   }
   return acc;
 }
-/* pdf_li_n and le_n (issue 21: a wave's escaped rays), batches of 64 of the directions run_pdf / run_le use */
-static double run_pdf_n(el_envlight *l, long n) {
+/* pdf_li_n (le = 0) and le_n (le = 1) (issue 21: a wave's escaped rays), batches of 64 of the
+ * directions run_pdf / run_le use */
+static double run_escape_n(el_envlight *l, long n, int le) {
   double acc = 0;
   long k;
   int j, m;
-  float p[CB];
+  float v[3 * CB];
   for (k = 0; k < n; k += CB) {
     m = n - k < CB ? (int)(n - k) : CB;
-    el_envlight_pdf_li_n(l, m, g_dir + 3 * (k & (NP - 1)), p);
-    for (j = 0; j < m; ++j) acc += p[j];
-  }
-  return acc;
-}
-static double run_le_n(el_envlight *l, long n) {
-  double acc = 0;
-  long k;
-  int j, m;
-  float L[3 * CB];
-  for (k = 0; k < n; k += CB) {
-    m = n - k < CB ? (int)(n - k) : CB;
-    el_envlight_le_n(l, m, g_dir + 3 * (k & (NP - 1)), L);
-    for (j = 0; j < m; ++j) acc += L[3 * j + 1];
+    if (le) el_envlight_le_n(l, m, g_dir + 3 * (k & (NP - 1)), v);
+    else el_envlight_pdf_li_n(l, m, g_dir + 3 * (k & (NP - 1)), v);
+    for (j = 0; j < m; ++j) acc += v[le ? 3 * j + 1 : j];
   }
   return acc;
 }
@@ -303,8 +293,7 @@ static double fn_sample_cos(el_envlight *l, long n, int rgb) { return run_sample
 static double fn_pdf_cos(el_envlight *l, long n, int a) { (void)a; return run_pdf_cos(l, n); }
 static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l, n); }
 static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
-static double fn_pdf_n(el_envlight *l, long n, int a) { (void)a; return run_pdf_n(l, n); }
-static double fn_le_n(el_envlight *l, long n, int a) { (void)a; return run_le_n(l, n); }
+static double fn_escape_n(el_envlight *l, long n, int le) { return run_escape_n(l, n, le); }
 
 /* ---- --callgrind OP N ---- */
 static int callgrind_mode(const char *op, long n, const char *map) {
@@ -373,8 +362,7 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "le")) sink = run_le(&l, n);
-  else if (!strcmp(op, "pdf_n")) sink = run_pdf_n(&l, n);
-  else if (!strcmp(op, "le_n")) sink = run_le_n(&l, n);
+  else if (!strcmp(op, "pdf_n") || !strcmp(op, "le_n")) sink = run_escape_n(&l, n, !strcmp(op, "le_n"));
   else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
   (void)sink;
   el_envlight_free(&l);
@@ -988,7 +976,7 @@ int main(int argc, char **argv) {
         printf("    pdf_li + le one at a time %5.1f ns;  pdf_li_n + le_n, 16 at a time %5.1f ns (%.1fx)\n",
                t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
         printf("  alone (batches of 64): pdf_li %5.1f ns, pdf_li_n %5.1f ns; le %5.1f ns, le_n %5.1f ns\n", 1e3 / rate(fn_pdf, &l, 0),
-               1e3 / rate(fn_pdf_n, &l, 0), 1e3 / rate(fn_le, &l, 0), 1e3 / rate(fn_le_n, &l, 0));
+               1e3 / rate(fn_escape_n, &l, 0), 1e3 / rate(fn_le, &l, 0), 1e3 / rate(fn_escape_n, &l, 1));
         el_envlight_free(&l);
       }
     }

@@ -23,7 +23,8 @@
  *   goes to the film in one el_film_tile_add_samples call.
  * Path: every vertex is a wave. For the paths still alive: their rays in one call; at each hit the
  *   BSDF, the light-sample and BSDF draws; the light samples in one el_envlight_sample_li_n call and
- *   the escaped rays' environment (pdf and radiance) in one pass; the shadow rays in one call; then
+ *   the escaped rays' environment (pdf and radiance) in el_envlight_pdf_li_n (pdf_li_cos_n with product
+ *   sampling) and el_envlight_le_n calls, as in direct lighting; the shadow rays in one call; then
  *   each path's radiance, throughput and Russian roulette as elr_path_li computes them.
  * Each sample's sums are made in the reference's order, and the film takes the samples in the
  * reference's order, so the image is bit for bit the one-at-a-time image where the sampler gives the
