@@ -283,7 +283,7 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
 /* n at once: pdf[i] = pdf_li(dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit, for a wave's
  * escaped rays: the table entries (le's texels) of up to 32 directions are prefetched together, so that
- * their cache misses overlap (NOTES 2: COST). n <= 0 does nothing. */
+ * their cache misses overlap: 2-2.5x less time on a 2048x1024 map (NOTES 5: BATCHES). n <= 0 does nothing. */
 EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf);
 EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
@@ -1005,7 +1005,16 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
  *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
  *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
- *    with it (the same image).
+ *    with it (the same image). el_envlight_pdf_li_n and el_envlight_le_n (issue 21: a wave's escaped
+ *    rays) do the same in two passes: each direction to light space and its pdf bin (le: its four
+ *    texels) prefetched, then the single call's arithmetic (bit for bit). Instructions as the single
+ *    calls' (callgrind, loop subtracted: pdf_li 82, pdf_li_n 88; le 255, le_n 252); time (2048x1024,
+ *    random directions, batches of 64, CPU ns per call, loaded 2-core machine): pdf_li 29-38 -> 14-17,
+ *    le 101-132 -> 40-69; bench_envlight's loop with other memory work: pdf_li + le 160-186 -> 100-114
+ *    ns (1.6x). Passes over 32 lanes (16: about 10% slower per call, sample_li_n too); le_n then waits
+ *    on its prefetches (perf: a third of its samples), the line-fill buffers full. The renderer's wave
+ *    loop (render --stats loop CPU, 1 thread, 32 spp, 5 interleaved runs): bench_city direct 0.96 ->
+ *    0.78 s, path 1.43 -> 1.21 s, bench_studio path 1.45 -> 1.18 s, direct 0.58 -> 0.57 s.
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
  *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
