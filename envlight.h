@@ -604,7 +604,11 @@ typedef struct el_envlight_hotspots {
   float *cell_cone;                           /* 6 arrays of a float per cell: the cone's centre x, y, z
                                                  (light space), cos and sin of its radius; the rest's mass */
   double *cell_mass;                          /* per cell: the rest's probability under sample_li */
-  el_distribution2d *cell_dist;               /* per cell: the rest's bins in it */
+  uint16_t *cell_tab;                         /* per cell: the rest's bins in it as integer CDFs with guides
+                                                 (el_envlight__hot_cells), one cell after another */
+  uint32_t *cell_off;                         /* per cell: where its table starts in cell_tab */
+  unsigned char *cell_of_col, *cell_of_row;   /* per bin column / row: its cell column / row */
+  int cell_u0[33], cell_v0[17];               /* the cells' first bin column / row (and the end) */
 } el_envlight_hotspots;
 
 /* Mixture weights: the probability of drawing from spot k (spot[k], k < count) and from the rest of the
@@ -630,8 +634,9 @@ EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h);
  * the default weights (all zero). */
 EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w);
 /* Sample the mixture sum_k w_k p_k + w_rest p_rest, where p_k is sample_li's density restricted to spot k
- * (renormalised) and p_rest the density restricted to the rest: wi (world, unit), rgb = le(wi) (may be
- * NULL) and *pdf = el_envlight_pdf_li_mix(l, h, w, wi) bit for bit. u[0] picks the part and is reused
+ * (renormalised) and p_rest the density restricted to the rest: wi (world, unit), rgb (may be NULL) the
+ * radiance as sample_li gives it (le(wi); le at the sample's own (u, v) under a signed-permutation
+ * matrix) and *pdf = el_envlight_pdf_li_mix(l, h, w, wi) bit for bit. u[0] picks the part and is reused
  * (remapped) inside it. pdf 0: no sample (skip it). h must come from this light (else, or with default
  * weights: sample_li itself). About 2x sample_li's cost plus pdf_li's. */
 EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_hotspots *h,
@@ -730,8 +735,12 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    cells; per call every cell gets B = max(1e-3, cos(max(0, angle(n, centre) - radius))), an upper
  *    bound of n.w over the cell (its cone: the farthest of 5 x 5 points plus a tenth of the cell's
  *    angle; the floor keeps every cell with mass reachable, so light sampling alone stays unbiased);
- *    a cell is picked with probability B x its rest mass / S(n), then sample_li's density inside it.
- *    pdf = pdf_li x B / S(n) on the rest, as sample_li_mix on the spots. Shadowed point (table 3, the
+ *    a cell is picked with probability B x its rest mass / S(n), then a rest bin of the cell from the
+ *    cell's table (uint16 integer CDFs of 32768 units: its rows, then the row's bins, each with the product
+ *    section's 8-bucket guide), uniform in (u, v) inside the bin: sample_li's density inside the cell up
+ *    to the tables' rounding (every bin with mass keeps at least one unit). pdf = a_rest x B x the cell's
+ *    mass / S(n) x the bin's two widths / 2^30 over its solid angle (the entries the sample just read, not
+ *    the light's pdf table), as sample_li_mix on the spots. Shadowed point (table 3, the
  *    spot's weight 0.02 / 0) against sample_li_cos: sunrise 16x / 20x less variance (n up), 111x / 165x
  *    (n towards the sun); city 10x / 19x and 12x / 21x; two suns 1.7x and 3.0x; forest 0.96x / 1.3x and
  *    1.6x / 2.0x; but night 0.76x-1.3x and studio 0.43x-0.76x (more variance: their other lamps stay lit
@@ -744,9 +753,17 @@ EL_DEF float el_envlight_pdf_li_mix(const el_envlight *l, const el_envlight_hots
  *    normal: issue 22's renderer first kept 8 per thread, 4.6x -> 1.8x its render time with the cache on
  *    scenes/sun_shadow_object.pbrt; now one per shadowed cell of its cache, shared, 1.3x). The pdfs of
  *    the mixtures find pdf_li's bin once (el_envlight__hot_pdf_li_bin: its search and hot_bin's were a
- *    third of the pdf's instructions). What is left is memory: a sample reads a cell's distribution,
- *    then the pdf table, the direction table and the texels at random places. MEMORY: per-cell distributions of the rest, as much again as its table (4.9 MB
- *    of hot-spot tables at 1024x512 in all, the light's own 4.9 MB).
+ *    third of the pdf's instructions). A sample then read a cell's el_distribution2d (its marginal and a
+ *    row, uint32), the light's pdf table twice (the direction's pdf, then the mixture's) and the texels at
+ *    random places; now (issue 22's cost round) one row of its cell table (guided searches, no pdf-table
+ *    read: the pdf comes from the same entries; the direction from the direction tables without their pdf;
+ *    under a signed-permutation matrix the radiance at the sample's own (u, v), as sample_li's) and the
+ *    texels. bench/callgrind_product.sh with OPS="sample_mix_cos_rgb pdf_mix_cos" (city.hdr, spots at 3%,
+ *    256 prepared tables): sample with radiance 1060 -> 845 instructions, pdf 287 -> 265 (sunrise.hdr:
+ *    1043 -> 827, 288 -> 265); the renderer's dark-cell CPU: see examples/render/sun.c. MEMORY: the cell
+ *    tables, 2 bytes per rest bin plus 10 per cell row (1.3 MB at 1024x512 bins, 4.6 MB at 2048x1024; the
+ *    el_distribution2d cells were twice that), the rest's own distribution (sample_li_mix's) and the
+ *    light's tables.
  * 5. USE. A weight of 0 makes its part's pdf 0: unbiased only where the integrand is 0 there (a shadowed
  *    sun) or with MIS against another technique; keep a floor otherwise. Compensation: the shares are
  *    those of the compensated density. COST: sample_li_mix with radiance 3.9-4.4x sample_li's time on
@@ -4737,64 +4754,88 @@ static inline float el_envlight__hot_b(float ca, float cr, float sr) {
   return b > 1e-3f ? b : 1e-3f;  /* a floor: every cell with rest mass stays reachable */
 }
 static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float nl[3]);
+#define EL_ENVLIGHT__HOT_ROW(cols) ((size_t)EL_ENVLIGHT__GUIDE_E + (size_t)(cols) + 1u) /* uint16 entries of a row */
+/* index i of a cell table's CDF c[0..n] (guide g) with c[i] <= k < c[i + 1]: the guide for n <= 256 (what
+ * el_envlight__guide_build allows), else the binary search: the same i */
+static inline int el_envlight__hot_search(const uint16_t *c, int n, const uint8_t *g, uint32_t k) {
+  return n <= 256 ? el_envlight__search_guided(c, n, g, k) : el_envlight__search16(c, n, k < 32767u ? k : 32767u);
+}
+
 static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, int iv);
 
 /* The importance bin pdf_li finds for a world direction (its own bin search, el_envlight__pdf_core's
  * first half: keep the two in step), as iv * nu + iu; -1 for a direction pdf_li gives 0 (zero, NaN,
  * infinite). The chi-square tests of tests/test_envlight_sun.c fail if they disagree. */
-static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
-  float d[3], r, pu, t;
+static inline void el_envlight__hot_find_bin(const el_envlight *l, const float d[3], float r, uint32_t *iu, uint32_t *iv) {
+  /* pdf_core's bin finders for the light-space d, r = sqrt(d0^2 + d1^2) */
+  float pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]), t;
   size_t c;
-  uint32_t iu, iv;
-  if (!el_envlight__to_light_dir(l, dir, d)) return -1; /* as pdf_li: rescaled in world space if needed */
-  r = el_envlight__sqrt(d[0] * d[0] + d[1] * d[1]);
-  pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
   pu = pu < 3.99999976f ? pu : 3.99999976f;
   c = (size_t)(int64_t)(pu * l->u_cell_scale);
-  iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
+  *iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
   t = 1.0f - d[2] / (r + fabsf(d[2]));
   c = (size_t)(int64_t)(t * l->v_cell_scale);
-  iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+  *iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
+}
+static int64_t el_envlight__hot_bin(const el_envlight *l, const float dir[3]) {
+  float d[3];
+  uint32_t iu, iv;
+  if (!el_envlight__to_light_dir(l, dir, d)) return -1; /* as pdf_li: rescaled in world space if needed */
+  el_envlight__hot_find_bin(l, d, el_envlight__sqrt(d[0] * d[0] + d[1] * d[1]), &iu, &iv);
   return (int64_t)iv * (int64_t)l->dist.nu + (int64_t)iu;
 }
 
-/* pdf_li(dir) and the bin it reads (iu, iv; -1 where el_envlight__hot_bin gives -1), from one bin search:
- * on pdf_li's inline path (EL_ENVLIGHT__HOT_PDF, a normal-length direction) el_envlight__pdf_core's own
- * arithmetic, so both equal pdf_li's and hot_bin's bit for bit; elsewhere those two calls. (Issue 22:
- * the rest x cosine's pdf made the search twice, a third of its cost.) */
-static float el_envlight__hot_pdf_li_bin(const el_envlight *l, const float dir[3], int *biu, int *biv) {
-  float d[3], r2, len2, r, len, pu, t, p;
+/* pdf_li's inline path up to its table read (EL_ENVLIGHT__HOT_PDF, a normal-length direction:
+ * el_envlight__pdf_core's own arithmetic): the bin (iu, iv), the direction's length and r = sin(theta)
+ * len with pdf_li's floor, so that pdf_li = pdf_table[bin] x len / r bit for bit. 0 elsewhere. */
+static int el_envlight__hot_bin_core(const el_envlight *l, const float dir[3], int *biu, int *biv, float *blen, float *br) {
+  float d[3], r2, len2, r, len;
   uint32_t iu, iv;
-  size_t c;
-  int64_t b;
 #if EL_ENVLIGHT__ATOMICS
   int hot = (__atomic_load_n(&l->hot, __ATOMIC_ACQUIRE) & EL_ENVLIGHT__HOT_PDF) != 0;
 #else
   int hot = (l->hot & EL_ENVLIGHT__HOT_PDF) != 0;
 #endif
-  if (hot) {
-    el_envlight__to_light(l, dir, d);
-    r2 = d[0] * d[0] + d[1] * d[1];
-    len2 = r2 + d[2] * d[2];
-    if (len2 >= FLT_MIN && len2 <= FLT_MAX) { /* el_envlight__pdf_core with the bin kept */
-      r = el_envlight__sqrt(r2); len = el_envlight__sqrt(len2);
-      pu = 2.0f - copysignf(1.0f + d[0] / (fabsf(d[0]) + fabsf(d[1]) + FLT_MIN), d[1]);
-      pu = pu < 3.99999976f ? pu : 3.99999976f;
-      c = (size_t)(int64_t)(pu * l->u_cell_scale);
-      iu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]);
-      t = 1.0f - d[2] / (r + fabsf(d[2]));
-      c = (size_t)(int64_t)(t * l->v_cell_scale);
-      iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
-      p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)];
-      r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
-      *biu = (int)iu; *biv = (int)iv;
-      return p * len / r;
-    }
-  }
+  if (!hot) return 0;
+  el_envlight__to_light(l, dir, d);
+  r2 = d[0] * d[0] + d[1] * d[1];
+  len2 = r2 + d[2] * d[2];
+  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return 0;
+  r = el_envlight__sqrt(r2); len = el_envlight__sqrt(len2);
+  el_envlight__hot_find_bin(l, d, r, &iu, &iv);
+  *biu = (int)iu; *biv = (int)iv; *blen = len;
+  *br = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
+  return 1;
+}
+
+/* pdf_li(dir) and the bin it reads (iu, iv; -1 where el_envlight__hot_bin gives -1), from one bin search:
+ * on pdf_li's inline path el_envlight__hot_bin_core, so both equal pdf_li's and hot_bin's bit for bit;
+ * elsewhere those two calls. (Issue 22: the rest x cosine's pdf made the search twice, a third of its cost.) */
+static float el_envlight__hot_pdf_li_bin(const el_envlight *l, const float dir[3], int *biu, int *biv) {
+  float p, len, r;
+  int64_t b;
+  if (el_envlight__hot_bin_core(l, dir, biu, biv, &len, &r))
+    return l->pdf_table[(size_t)*biv * (size_t)l->dist.nu + (size_t)*biu] * len / r;
   p = el_envlight_pdf_li(l, dir);
   b = p > 0.0f ? el_envlight__hot_bin(l, dir) : -1;
   *biu = b < 0 ? -1 : (int)(b % l->dist.nu); *biv = b < 0 ? -1 : (int)(b / l->dist.nu);
   return p;
+}
+
+/* The bin pdf_li reads for dir (iu, iv) and the factor it applies to the bin's table entry (len / r: 1 /
+ * sin(theta) with pdf_li's floor), without reading the table (el_envlight__hot_bin_core); elsewhere (an
+ * odd length, a mapping without the inline pdf) pdf_li / its table entry. Returns 0 where pdf_li is 0.
+ * (Issue 22: the rest x cosine part's pdf comes from its cell tables, which its sample has just read, not
+ * from the light's pdf table: one random read less per sample.) */
+static int el_envlight__hot_locate(const el_envlight *l, const float dir[3], int *biu, int *biv, float *isin) {
+  float p, len, r, e;
+  if (el_envlight__hot_bin_core(l, dir, biu, biv, &len, &r)) { *isin = len / r; return 1; }
+  p = el_envlight__hot_pdf_li_bin(l, dir, biu, biv); /* (its slow path: the inline one just failed) */
+  if (!(p > 0.0f) || *biu < 0) return 0;
+  e = l->pdf_table[(size_t)*biv * (size_t)l->dist.nu + (size_t)*biu];
+  if (!(e > 0.0f)) return 0;
+  *isin = p / e;
+  return 1;
 }
 
 /* Which part holds bin (iu, iv): a spot index, or h->count for the rest. */
@@ -4835,18 +4876,41 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
  * it: the fractions kept the margin inside the bin (as el_envlight__sample_bin keeps them), then the
  * direction tables or the (u, v) mapping. pb: the bin's density as the tables want it (its pdf is
  * recomputed by the caller). Both hot-spot samplers go through here. */
-static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3]) {
+static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float uv[2]) {
+  uv[0] = -1.0f;
   fu = fu > l->u_margin ? fu : l->u_margin;
   fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
   fv = fv > l->v_margin ? fv : l->v_margin;
   fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+#if EL_ENVLIGHT__SSE
+  if (l->dir_tables) { /* the direction alone (el_envlight__sample_table's, without its pdf: the callers make theirs) */
+    float p;
+    __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
+    (void)pb;
+    if (l->table_done) { /* the sample's own (u, v), for its radiance (as sample_li_finish) */
+      uv[0] = ((float)iu + _mm_cvtss_f32(_mm_movehl_ps(f, f))) * l->dist.u_width;
+      uv[1] = ((float)iv + _mm_cvtss_f32(f)) * l->dist.v_width;
+    }
+  } else
+#else
   if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
-  else {
+  else
+#endif
+  {
     float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
     float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
     el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
     el_envlight__to_world(l, d, wi);
   }
+}
+
+/* A mixture sample's radiance: le at the sample's own (u, v) where el_envlight__hot_bin_to_world gave it
+ * (a signed-permutation matrix: sample_li's choice, without le's atan pair), else le(wi); 0 for pdf 0. */
+static void el_envlight__hot_rgb(const el_envlight *l, const float wi[3], const float uv[2], float pdf, float rgb[3]) {
+  if (!rgb) return;
+  if (!(pdf > 0.0f)) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  else if (uv[0] >= 0.0f) el_envlight__lookup(l, uv[0], uv[1], rgb);
+  else el_envlight_le(l, wi, rgb);
 }
 
 /* pdf_li_mix with usable h and normalised weights a */
@@ -4871,7 +4935,7 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
                                       const el_envlight_mix_weights *w, const float u[2], float wi[3],
                                       float rgb[3], float *pdf) {
   double a[EL_ENVLIGHT_HOTSPOT_MAX + 1], c = 0.0, u0;
-  float fu, fv, pb, uu;
+  float fu, fv, pb, uu, uv[2];
   int k, iu, iv;
   if (!el_envlight__hot_usable(l, h) || !el_envlight__hot_weights(h, w, a)) {
     el_envlight_sample_li(l, u, wi, rgb, pdf);
@@ -4897,12 +4961,13 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
     iv += h->rect[k][1];
   }
   /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
   *pdf = el_envlight__hot_pdf(l, h, a, wi);
-  if (rgb) {
-    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
+    *pdf = el_envlight__hot_pdf(l, h, a, wi);
   }
+  el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
 }
 
 EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_hotspots *h,
@@ -4925,27 +4990,46 @@ static void el_envlight__hot_weights_cos(const el_envlight_hotspots *h, const el
   for (k = 0; k <= h->count; ++k) a[k] = h->share_d[k];
 }
 
+/* The rest x cosine part's pdf of a rest bin (iu, iv) of cell c: the part's weight a_r x the cell's share
+ * B_c m_c / S(n) x the bin's share in the cell (its two integer widths / 2^30) over the bin's solid angle
+ * (nu nv / (2 pi^2) x isin, as pdf_li). 0 for a bin without rest mass (a spot's, or a black one). */
+static float el_envlight__hot_rest_pdf(const el_envlight_hotspots *h, double ar, const float *nl, float s,
+                                       int c, int iu, int iv, float isin) {
+  const float *q = h->cell_cone;
+  const uint16_t *t = h->cell_tab + h->cell_off[c], *row;
+  size_t nc = (size_t)h->cells_u * (size_t)h->cells_v, cc = (size_t)c;
+  int cu = c % h->cells_u, cv = c / h->cells_u, rows = h->cell_v0[cv + 1] - h->cell_v0[cv];
+  int cols = h->cell_u0[cu + 1] - h->cell_u0[cu], y = iv - h->cell_v0[cv], x = iu - h->cell_u0[cu];
+  uint32_t wv, wu;
+  double bnd = 1.0, p;
+  row = t + EL_ENVLIGHT__HOT_ROW(rows) + (size_t)y * EL_ENVLIGHT__HOT_ROW(cols) + EL_ENVLIGHT__GUIDE_E;
+  wv = (uint32_t)t[EL_ENVLIGHT__GUIDE_E + (size_t)y + 1] - t[EL_ENVLIGHT__GUIDE_E + (size_t)y];
+  wu = (uint32_t)row[x + 1] - row[x];
+  if (!(wv * wu > 0u) || !(s > 0.0f)) return 0.0f;
+  if (nl) bnd = el_envlight__hot_b(nl[0] * q[cc] + nl[1] * q[nc + cc] + nl[2] * q[2 * nc + cc], q[3 * nc + cc], q[4 * nc + cc]);
+  p = ar * bnd * (double)q[5 * nc + cc] / (double)s * (double)(wv * wu) *
+      ((double)h->nu * (double)h->nv / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI * 1073741824.0)) * (double)isin;
+  return p < (double)FLT_MAX ? (float)p : FLT_MAX;
+}
+
 static float el_envlight__hot_pdf_cos(const el_envlight *l, const el_envlight_hotspots *h, const double *a, const float *nl,
                                       float s, const float dir[3]) {
-  float p;
-  int k, c, iu, iv;
-  double bnd = 1.0;
-  p = el_envlight__hot_pdf_li_bin(l, dir, &iu, &iv); /* (pdf_li and hot_bin from one search) */
-  if (!(p > 0.0f)) return 0.0f;
-  if (iu < 0) return 0.0f;
-  k = el_envlight__hot_part_uv(h, iu, iv);
-  if (k < h->count || !h->cell_dist) {
+  float p, isin;
+  int k, iu, iv;
+  if (!h->cell_tab) { /* no rest: the spots alone */
+    p = el_envlight__hot_pdf_li_bin(l, dir, &iu, &iv);
+    if (!(p > 0.0f) || iu < 0) return 0.0f;
+    k = el_envlight__hot_part_uv(h, iu, iv);
     p = (float)((double)p * (a[k] / h->share_d[k]));
     return p < FLT_MAX ? p : FLT_MAX;
   }
-  c = el_envlight__hot_cell_of_uv(h, iu, iv);
-  if (nl) {
-    const float *q = h->cell_cone;
-    size_t nc = (size_t)h->cells_u * (size_t)h->cells_v, cc = (size_t)c;
-    bnd = el_envlight__hot_b(nl[0] * q[cc] + nl[1] * q[nc + cc] + nl[2] * q[2 * nc + cc], q[3 * nc + cc], q[4 * nc + cc]);
-  }
-  if (!(s > 0.0f)) return 0.0f;
-  p = (float)((double)p * a[k] * bnd / (double)s); /* pdf_li's density of the cell's rest bins x B_c / S(n) */
+  if (!el_envlight__hot_locate(l, dir, &iu, &iv, &isin)) return 0.0f;
+  p = el_envlight__hot_rest_pdf(h, a[h->count], nl, s, el_envlight__hot_cell_of_uv(h, iu, iv), iu, iv, isin);
+  if (p > 0.0f) return p;
+  k = el_envlight__hot_part_uv(h, iu, iv); /* (no rest mass there: a spot's bin, or none) */
+  if (k == h->count) return 0.0f;
+  p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu] * isin; /* pdf_li, as el_envlight__hot_pdf_li_bin forms it */
+  p = (float)((double)p * (a[k] / h->share_d[k]));
   return p < FLT_MAX ? p : FLT_MAX;
 }
 
@@ -4957,7 +5041,7 @@ EL_DEF float el_envlight_pdf_li_mix_cos(const el_envlight *l, const el_envlight_
   if (!el_envlight__hot_usable(l, h)) return el_envlight_pdf_li_cos(l, n, dir);
   el_envlight__hot_weights_cos(h, w, a);
   hn = el_envlight__hot_normal(l, n, nl);
-  if (h->cell_dist) s = el_envlight__hot_bounds(h, hn ? nl : NULL, NULL);
+  if (h->cell_tab) s = el_envlight__hot_bounds(h, hn ? nl : NULL, NULL);
   return el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, dir);
 }
 
@@ -4971,7 +5055,7 @@ EL_DEF void el_envlight_mix_cos_prepare(const el_envlight *l, const el_envlight_
   if (!t->usable) return;
   el_envlight__hot_weights_cos(h, w, t->a);
   t->hn = el_envlight__hot_normal(l, t->n, t->nl);
-  if (h->cell_dist) t->s = el_envlight__hot_bounds(h, t->hn ? t->nl : NULL, t->bm);
+  if (h->cell_tab) t->s = el_envlight__hot_bounds(h, t->hn ? t->nl : NULL, t->bm);
 }
 
 EL_DEF float el_envlight_pdf_li_mix_cos_table(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_cos_table *tab,
@@ -4994,7 +5078,7 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
   const double *a = tab->a;
   const float *nl = tab->nl, *bm = tab->bm, s = tab->s;
   double c = 0.0, u0;
-  float fu, fv, pb, uu;
+  float fu, fv, pb, uu, uv[2];
   int k, iu, iv, hn = tab->hn, cell = 0;
   if (!tab->usable || !el_envlight__hot_usable(l, h)) { el_envlight_sample_li_cos(l, tab->n, u, wi, rgb, pdf); return; }
   u0 = (double)el_envlight__clamp_u(u[0]);
@@ -5002,7 +5086,7 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
     if (a[k] > 0.0 && u0 < c + a[k]) break;
     c += a[k];
   }
-  if (k == h->count && !(a[k] > 0.0 && h->cell_dist && s > 0.0f)) {
+  if (k == h->count && !(a[k] > 0.0 && h->cell_tab && s > 0.0f)) {
     for (k = h->count - 1; k > 0 && !(a[k] > 0.0); --k) {}
     c = 0.0;
     { int t; for (t = 0; t < k; ++t) c += a[t]; }
@@ -5014,26 +5098,39 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
     iu += h->rect[k][0];
     if (iu >= h->nu) iu -= h->nu;
     iv += h->rect[k][1];
-  } else { /* the rest: a cell by its bound x mass, then its bins */
-    int lo = 0, hi = h->cells_u * h->cells_v - 1, cu, cv;
-    float t = uu * s, prev;
-    while (lo < hi) { int mid = (lo + hi) / 2; if (bm[mid] > t) hi = mid; else lo = mid + 1; }
+  } else { /* the rest: a cell by its bound x mass (a branch-free search of the running sums), then its
+            * row and column from the cell's table (guided searches) */
+    int n = h->cells_u * h->cells_v, lo = 0, cu, cv, rows, cols, y, x;
+    float t = uu * s, prev, xv, xu;
+    const uint16_t *tb, *rc, *row;
+    while (n > 1) { int half = n >> 1; lo = bm[lo + half - 1] > t ? lo : lo + half; n -= half; }
     cell = lo;
     while (cell > 0 && !(h->cell_mass[cell] > 0.0)) --cell; /* never a cell without mass */
     while (!(h->cell_mass[cell] > 0.0) && cell + 1 < h->cells_u * h->cells_v) ++cell;
     prev = cell > 0 ? bm[cell - 1] : 0.0f;
     uu = el_envlight__clamp_u((t - prev) / (bm[cell] - prev > 0.0f ? bm[cell] - prev : 1.0f));
-    el_distribution2d_sample_bins(&h->cell_dist[cell], uu, u[1], &iu, &iv, &fu, &fv, &pb);
     cu = cell % h->cells_u; cv = cell / h->cells_u;
-    iu += (int)((int64_t)cu * h->nu / h->cells_u);
-    iv += (int)((int64_t)cv * h->nv / h->cells_v);
+    rows = h->cell_v0[cv + 1] - h->cell_v0[cv]; cols = h->cell_u0[cu + 1] - h->cell_u0[cu];
+    tb = h->cell_tab + h->cell_off[cell];
+    rc = tb + EL_ENVLIGHT__GUIDE_E;
+    xv = el_envlight__clamp_u(u[1]) * 32768.0f; xu = uu * 32768.0f;
+    y = el_envlight__hot_search(rc, rows, (const uint8_t *)tb, (uint32_t)xv);
+    row = tb + EL_ENVLIGHT__HOT_ROW(rows) + (size_t)y * EL_ENVLIGHT__HOT_ROW(cols);
+    x = el_envlight__hot_search(row + EL_ENVLIGHT__GUIDE_E, cols, (const uint8_t *)row, (uint32_t)xu);
+    row += EL_ENVLIGHT__GUIDE_E;
+    fv = (xv - (float)rc[y]) / (float)(rc[y + 1] - rc[y]);
+    fu = (xu - (float)row[x]) / (float)(row[x + 1] - row[x]);
+    pb = 0.0f;
+    iu = h->cell_u0[cu] + x;
+    iv = h->cell_v0[cv] + y;
   }
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
   *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
-  if (rgb) {
-    if (*pdf > 0.0f) el_envlight_le(l, wi, rgb);
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
+    *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   }
+  el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
 }
 
 EL_DEF void el_envlight_hotspots_weights(const el_envlight_hotspots *h, float spot_share, el_envlight_mix_weights *w) {
@@ -5056,9 +5153,8 @@ EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h) {
   if (h->rest_fast_ok) el_distribution2d_fast_free(&h->rest_fast); /* before the distribution it shares */
   for (k = 0; k <= EL_ENVLIGHT_HOTSPOT_MAX; ++k) el_distribution2d_free(&h->dist[k]);
   for (k = 0; k < EL_ENVLIGHT_HOTSPOT_MAX; ++k) EL_FREE(h->mask[k]);
-  if (h->cell_dist)
-    for (k = 0; k < h->cells_u * h->cells_v; ++k) el_distribution2d_free(&h->cell_dist[k]);
-  EL_FREE(h->cell_dist); EL_FREE(h->cell_cone); EL_FREE(h->cell_mass);
+  EL_FREE(h->cell_tab); EL_FREE(h->cell_off); EL_FREE(h->cell_of_col); EL_FREE(h->cell_of_row);
+  EL_FREE(h->cell_cone); EL_FREE(h->cell_mass);
   memset(h, 0, sizeof *h);
 }
 
@@ -5143,50 +5239,74 @@ static int el_envlight__hot_cone(const el_envlight *l, const int64_t *queue, int
 
 /* The rest x cosine part's cells: cells_u x cells_v rectangles of bins, each with the rest's mass, a
  * bounding cone (centre, cos and sin of its radius: the farthest of 5 x 5 points of the cell, plus a
- * tenth of the cell's larger angle, since the cell's edges bulge between the points) and a distribution
- * over its rest bins (f: the pdf table with the spots' bins zeroed). */
+ * tenth of the cell's larger angle, since the cell's edges bulge between the points) and a table of its
+ * rest bins (f: the pdf table with the spots' bins zeroed): in EL_ENVLIGHT__CELL_UNITS (uint16), the
+ * cell's rows' CDF with its guide (the product section's el_envlight__guide_build: 8 one-byte buckets),
+ * then per row its guide and its CDF over the cell's columns: [g 4][rows + 1] then rows x [g 4][cols + 1].
+ * A bin's probability in the cell is its two integer widths / 2^30 (the pdf reads the same entries). */
 static el_result el_envlight__hot_cells(el_envlight_hotspots *h, const el_envlight *l, const float *f, const double *rowk, double total) {
   int cu, cv, nu = l->dist.nu, nv = l->dist.nv, i, j, a, b;
-  size_t nc;
+  size_t nc, len = 0;
+  double *wts = NULL;
+  uint32_t *tmp = NULL;
   h->cells_u = nu < 32 ? nu : 32;
   h->cells_v = nv < 16 ? nv : 16;
   nc = (size_t)h->cells_u * (size_t)h->cells_v;
-  h->cell_cone = (float *)EL_MALLOC(nc * 6 * sizeof(float));
-  h->cell_mass = (double *)EL_MALLOC(nc * sizeof(double));
-  h->cell_dist = (el_distribution2d *)EL_MALLOC(nc * sizeof(el_distribution2d));
-  if (!h->cell_cone || !h->cell_mass || !h->cell_dist) return EL_ERROR_OUT_OF_MEMORY;
-  memset(h->cell_dist, 0, nc * sizeof(el_distribution2d));
+  for (cu = 0; cu <= h->cells_u; ++cu) h->cell_u0[cu] = (int)((int64_t)cu * nu / h->cells_u);
+  for (cv = 0; cv <= h->cells_v; ++cv) h->cell_v0[cv] = (int)((int64_t)cv * nv / h->cells_v);
   for (cv = 0; cv < h->cells_v; ++cv)
     for (cu = 0; cu < h->cells_u; ++cu) {
-      int u0 = (int)((int64_t)cu * nu / h->cells_u), u1 = (int)((int64_t)(cu + 1) * nu / h->cells_u);
-      int v0 = (int)((int64_t)cv * nv / h->cells_v), v1 = (int)((int64_t)(cv + 1) * nv / h->cells_v);
+      size_t rows = (size_t)(h->cell_v0[cv + 1] - h->cell_v0[cv]), cols = (size_t)(h->cell_u0[cu + 1] - h->cell_u0[cu]);
+      len += EL_ENVLIGHT__HOT_ROW(rows) + rows * EL_ENVLIGHT__HOT_ROW(cols);
+    }
+  h->cell_cone = (float *)EL_MALLOC(nc * 6 * sizeof(float));
+  h->cell_mass = (double *)EL_MALLOC(nc * sizeof(double));
+  h->cell_tab = (uint16_t *)EL_MALLOC(len * sizeof(uint16_t));
+  h->cell_off = (uint32_t *)EL_MALLOC(nc * sizeof(uint32_t));
+  h->cell_of_col = (unsigned char *)EL_MALLOC((size_t)nu);
+  h->cell_of_row = (unsigned char *)EL_MALLOC((size_t)nv);
+  wts = (double *)EL_MALLOC(((size_t)nu + (size_t)nv) * sizeof(double));
+  tmp = (uint32_t *)EL_MALLOC(((size_t)nu + (size_t)nv + 2) * sizeof(uint32_t));
+  if (!h->cell_cone || !h->cell_mass || !h->cell_tab || !h->cell_off || !h->cell_of_col || !h->cell_of_row || !wts || !tmp ||
+      len > 0xFFFFFFFFu) {
+    EL_FREE(wts); EL_FREE(tmp);
+    return len > 0xFFFFFFFFu ? EL_ERROR_SIZE_OVERFLOW : EL_ERROR_OUT_OF_MEMORY;
+  }
+  for (cu = 0; cu < h->cells_u; ++cu) for (i = h->cell_u0[cu]; i < h->cell_u0[cu + 1]; ++i) h->cell_of_col[i] = (unsigned char)cu;
+  for (cv = 0; cv < h->cells_v; ++cv) for (j = h->cell_v0[cv]; j < h->cell_v0[cv + 1]; ++j) h->cell_of_row[j] = (unsigned char)cv;
+  len = 0;
+  for (cv = 0; cv < h->cells_v; ++cv)
+    for (cu = 0; cu < h->cells_u; ++cu) {
+      int u0 = h->cell_u0[cu], u1 = h->cell_u0[cu + 1], v0 = h->cell_v0[cv], v1 = h->cell_v0[cv + 1];
       size_t c = (size_t)cv * (size_t)h->cells_u + (size_t)cu;
-      double m = 0.0, ctr[3] = {0.0, 0.0, 0.0}, len, cmin = 1.0, d[3], rad, ext;
-      float *g = (float *)EL_MALLOC((size_t)(u1 - u0) * (size_t)(v1 - v0) * sizeof(float));
-      el_distribution_options dopt;
-      if (!g) return EL_ERROR_OUT_OF_MEMORY;
-      for (j = v0; j < v1; ++j)
-        for (i = u0; i < u1; ++i) {
-          float x = f[(size_t)j * (size_t)nu + (size_t)i];
-          g[(size_t)(j - v0) * (size_t)(u1 - u0) + (size_t)(i - u0)] = x;
-          m += (double)x * rowk[j];
-        }
+      double m = 0.0, ctr[3] = {0.0, 0.0, 0.0}, vlen, cmin = 1.0, d[3], rad, ext;
+      uint16_t *t = h->cell_tab + len, *rc = t + EL_ENVLIGHT__GUIDE_E;
+      h->cell_off[c] = (uint32_t)len;
+      len += EL_ENVLIGHT__HOT_ROW(v1 - v0) + (size_t)(v1 - v0) * EL_ENVLIGHT__HOT_ROW(u1 - u0);
+      for (j = v0; j < v1; ++j) { /* each row: its CDF over the cell's columns, and its weight */
+        uint16_t *row = t + EL_ENVLIGHT__HOT_ROW(v1 - v0) + (size_t)(j - v0) * EL_ENVLIGHT__HOT_ROW(u1 - u0);
+        double rs = 0.0;
+        for (i = u0; i < u1; ++i) { wts[i - u0] = (double)f[(size_t)j * (size_t)nu + (size_t)i]; rs += wts[i - u0]; }
+        wts[(size_t)(u1 - u0) + (size_t)(j - v0)] = rs;
+        m += rs * rowk[j];
+        el_envlight__int_cdf(wts, u1 - u0, EL_ENVLIGHT__CELL_UNITS, tmp);
+        for (i = 0; i <= u1 - u0; ++i) row[EL_ENVLIGHT__GUIDE_E + (size_t)i] = (uint16_t)tmp[i];
+        memset(row, 0, EL_ENVLIGHT__GUIDE_E * sizeof(uint16_t));
+        if (u1 - u0 <= 256) el_envlight__guide_build(row + EL_ENVLIGHT__GUIDE_E, u1 - u0, (uint8_t *)row);
+      }
+      el_envlight__int_cdf(wts + (u1 - u0), v1 - v0, EL_ENVLIGHT__CELL_UNITS, tmp); /* the rows' CDF */
+      for (j = 0; j <= v1 - v0; ++j) rc[j] = (uint16_t)tmp[j];
+      memset(t, 0, EL_ENVLIGHT__GUIDE_E * sizeof(uint16_t));
+      if (v1 - v0 <= 256) el_envlight__guide_build(rc, v1 - v0, (uint8_t *)t);
       h->cell_mass[c] = m / total;
       h->cell_cone[5 * nc + c] = (float)(m / total);
-      if (m > 0.0) {
-        el_result r;
-        memset(&dopt, 0, sizeof dopt);
-        r = el_distribution2d_init(&h->cell_dist[c], g, u1 - u0, v1 - v0, &dopt);
-        if (r != EL_SUCCESS) { EL_FREE(g); return r; }
-      }
-      EL_FREE(g);
       for (b = 0; b <= 4; ++b)
         for (a = 0; a <= 4; ++a) {
           el_envlight__hot_dir(l, u0 + (u1 - u0) * a / 4.0, v0 + (v1 - v0) * b / 4.0, d);
           ctr[0] += d[0]; ctr[1] += d[1]; ctr[2] += d[2];
         }
-      len = sqrt(ctr[0] * ctr[0] + ctr[1] * ctr[1] + ctr[2] * ctr[2]);
-      if (len > 0.0) { ctr[0] /= len; ctr[1] /= len; ctr[2] /= len; } else { ctr[0] = 0.0; ctr[1] = 0.0; ctr[2] = 1.0; }
+      vlen = sqrt(ctr[0] * ctr[0] + ctr[1] * ctr[1] + ctr[2] * ctr[2]);
+      if (vlen > 0.0) { ctr[0] /= vlen; ctr[1] /= vlen; ctr[2] /= vlen; } else { ctr[0] = 0.0; ctr[1] = 0.0; ctr[2] = 1.0; }
       for (b = 0; b <= 4; ++b)
         for (a = 0; a <= 4; ++a) {
           double cc;
@@ -5200,6 +5320,7 @@ static el_result el_envlight__hot_cells(el_envlight_hotspots *h, const el_envlig
       h->cell_cone[c] = (float)ctr[0]; h->cell_cone[nc + c] = (float)ctr[1]; h->cell_cone[2 * nc + c] = (float)ctr[2];
       h->cell_cone[3 * nc + c] = (float)cos(rad); h->cell_cone[4 * nc + c] = (float)sin(rad);
     }
+  EL_FREE(wts); EL_FREE(tmp);
   return EL_SUCCESS;
 }
 
@@ -5235,13 +5356,7 @@ static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float
 
 /* the cell of bin (iu, iv) */
 static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, int iv) {
-  int cu = (int)(((int64_t)iu * h->cells_u + h->cells_u) / h->nu), cv = (int)(((int64_t)iv * h->cells_v + h->cells_v) / h->nv);
-  /* the cell whose range [c nu / C, (c+1) nu / C) holds iu: step back while its start is past iu */
-  while (cu > 0 && (int)((int64_t)cu * h->nu / h->cells_u) > iu) --cu;
-  while (cv > 0 && (int)((int64_t)cv * h->nv / h->cells_v) > iv) --cv;
-  if (cu >= h->cells_u) cu = h->cells_u - 1;
-  if (cv >= h->cells_v) cv = h->cells_v - 1;
-  return cv * h->cells_u + cu;
+  return (int)h->cell_of_row[iv] * h->cells_u + (int)h->cell_of_col[iu];
 }
 
 /* Keep a candidate among the max_spots largest shares >= min_share (sorted, largest first). */
@@ -5396,7 +5511,10 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
     if (found > 0) {
       el_distribution_options dopt;
       int anyrest = 0;
-      for (b = 0; b < nb; ++b) rest += (double)f[b] * rowk[b / nu];
+      for (b = 0; b < nb; b += nu) { /* (row by row: no division per bin) */
+        int i;
+        for (i = 0; i < nu; ++i) rest += (double)f[b + i] * rowk[b / nu];
+      }
       rest /= total;
       h->share_d[found] = rest > 0.0 ? rest : 0.0;
       h->rest_share = (float)h->share_d[found];

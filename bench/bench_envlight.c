@@ -15,7 +15,9 @@
  *                                        build_product; n at once (sample_li_cos_n, pdf_li_cos_n,
  *                                        batches of 64, the same normals and u): sample_cos_n
  *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated;
- *                                        pdf_li_n, le_n (batches of 64, run_pdf's directions): pdf_n le_n
+ *                                        pdf_li_n, le_n (batches of 64, run_pdf's directions): pdf_n le_n;
+ *                                        the hot-spot mixture with the rest x cosine (256 prepared
+ *                                        tables, spots at 3%): sample_mix_cos_rgb pdf_mix_cos
  *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
  *
  * Instructions per call, by hand: valgrind --tool=callgrind --callgrind-out-file=/dev/null
@@ -174,6 +176,38 @@ static double run_pdf_cos(el_envlight *l, long n) {
   double acc = 0;
   long k;
   for (k = 0; k < n; ++k) acc += el_envlight_pdf_li_cos(l, g_dir + 3 * ((k * 7) & (NP - 1)), g_dir + 3 * (k & (NP - 1)));
+  return acc;
+}
+/* the hot-spot mixture with the rest x cosine (issue 22's sun cache in a shadowed cell): the spots at a 3%
+ * floor, MIXN tables prepared beforehand for random normals (the renderer's per-cell tables), each call
+ * another table; sample with the radiance, and the pdf of a random direction */
+#define MIXN 256
+static el_envlight_hotspots g_hs;
+static el_envlight_mix_cos_table *g_mixt;
+static int prepare_mix(el_envlight *l) {
+  el_envlight_mix_weights w;
+  int k;
+  if (el_envlight_hotspots_init(&g_hs, l, NULL) != EL_SUCCESS || g_hs.count == 0) { fprintf(stderr, "no hot spot\n"); return 1; }
+  el_envlight_hotspots_weights(&g_hs, 0.03f, &w);
+  g_mixt = (el_envlight_mix_cos_table *)malloc(MIXN * sizeof *g_mixt);
+  if (!g_mixt) return 1;
+  for (k = 0; k < MIXN; ++k) el_envlight_mix_cos_prepare(l, &g_hs, &w, g_dir + 3 * (size_t)(k * 4099 & (NP - 1)), &g_mixt[k]);
+  return 0;
+}
+static double run_sample_mix_cos(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  float wi[3], L[3], p;
+  for (k = 0; k < n; ++k) {
+    el_envlight_sample_li_mix_cos_table(l, &g_hs, &g_mixt[(k * 7) & (MIXN - 1)], g_u + 2 * (k & (NP - 1)), wi, L, &p);
+    acc += p + wi[0];
+  }
+  return acc;
+}
+static double run_pdf_mix_cos(el_envlight *l, long n) {
+  double acc = 0;
+  long k;
+  for (k = 0; k < n; ++k) acc += el_envlight_pdf_li_mix_cos_table(l, &g_hs, &g_mixt[(k * 7) & (MIXN - 1)], g_dir + 3 * (k & (NP - 1)));
   return acc;
 }
 /* the same calls n at once (sample_li_cos_n, pdf_li_cos_n), batches of 64: g_nrm holds the single loops'
@@ -357,6 +391,12 @@ static int callgrind_mode(const char *op, long n, const char *map) {
     sink = run_pdf_cos_n(&l, n);
   } else if (!strcmp(op, "sample_cos") || !strcmp(op, "sample_cos_rgb") || !strcmp(op, "sample_cos_rotated")) sink = run_sample_cos(&l, n, !strcmp(op, "sample_cos_rgb"));
   else if (!strcmp(op, "pdf_cos") || !strcmp(op, "pdf_cos_rotated")) sink = run_pdf_cos(&l, n);
+  else if (!strcmp(op, "sample_mix_cos_rgb") || !strcmp(op, "pdf_mix_cos")) {
+    if (prepare_mix(&l)) return 1;
+    sink = op[0] == 's' ? run_sample_mix_cos(&l, n) : run_pdf_mix_cos(&l, n);
+    el_envlight_hotspots_free(&g_hs);
+    free(g_mixt);
+  }
   else if (!strcmp(op, "pdf_bilinear")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "loop")) sink = run_loop(n);
   else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));

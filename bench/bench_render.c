@@ -103,6 +103,9 @@
  * (Embree 995 -> 1009), active lanes by bit mask (907 -> 936). Loop CPU, one thread, interleaved rounds
  * against main's binary: bench_city 64 spp 0.85-0.90x, bench_studio 0.92-0.95x, path 0.95-0.98x.
  * After merging main's sun cache and product sampler: main 4120 -> 3540 (direct), 6146 -> 5862 (path).
+ * Measured 2026-12-02 (issue 21), zsobol's fast path, second step (sampler_zsobol.c): sampler part
+ * 461 -> 234 (direct), 1411 -> 527 (path); totals 4062 -> 3833, 6452 -> 5562; the same images. Loop
+ * CPU (render --stats, one thread, interleaved): median ratios 0.96-0.98 (direct), 0.93-0.95 (path).
  * Measured 2026-12-02 (issue 21, third round: the wave's shading and bookkeeping), callgrind_parts.sh:
  * direct 4060 -> 3630, path 6453 -> 5765 (BSDF 614 -> 406 and 811 -> 485, now inline in the loop's
  * file; a material's constant BSDF copied per hit, Lambertian sampling and f/pdf inline, elr_wave_add

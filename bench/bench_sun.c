@@ -204,7 +204,10 @@ static void cost(const el_envlight *l) {
       if (t > worst[which]) worst[which] = t;
     }
   for (i = 0; i <= h.count; ++i) bytes += el_distribution2d_bytes(&h.dist[i]);
-  for (i = 0; h.cell_dist && i < h.cells_u * h.cells_v; ++i) bytes += el_distribution2d_bytes(&h.cell_dist[i]);
+  if (h.cell_tab) { /* the rest x cosine part's cell tables (uint16, one after another) and their offsets */
+    int nc = h.cells_u * h.cells_v, cu = (nc - 1) % h.cells_u, cv = (nc - 1) / h.cells_u, rows = h.cell_v0[cv + 1] - h.cell_v0[cv];
+    bytes += 2 * ((size_t)h.cell_off[nc - 1] + 5 + (size_t)rows * (size_t)(6 + h.cell_u0[cu + 1] - h.cell_u0[cu])) + 4 * (size_t)nc + (size_t)(h.nu + h.nv);
+  }
   bytes += el_distribution2d_fast_bytes(&h.rest_fast);
   printf("4. cost on the sunrise map (2^20 samples, best - worst of 5 interleaved rounds, loaded machine):\n");
   printf("   sample_li + radiance %.0f - %.0f ns, sample_li_mix (spots 0.02) + radiance %.0f - %.0f ns (%.2fx at best); hot-spot tables %.2f MB (light's sampling tables %.2f MB) [%g]\n",

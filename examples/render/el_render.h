@@ -167,6 +167,7 @@ typedef struct elr_stats {
   float sun_spot_axis[8][3], sun_spot_half_angle[8], sun_spot_share[8]; /* the hot spots (radians; sample_li's share) */
   float sun_cell, sun_floor;  /* the cells' edge (world units); the spots' share of the samples where none is seen */
   int64_t sun_pilot_points, sun_pilot_rays, sun_cells, sun_cells_lowered, sun_cells_dark;
+  int64_t sun_cells_horizon;  /* lowered cells whose spots all lay below the pilot's horizons (product kept) */
   double t_sun, t_sun_cpu;    /* the pilot's wall and CPU time (in t_total, not in t_render) */
   uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* the sun light's samples; at lowered cells; at cells where
                                                               no spot was seen; landing in a spot's cone */

@@ -737,7 +737,9 @@ typedef struct elr_sobol {
   uint64_t inv[64], delta[64];        /* its tables (lowdiscrepancy.c) */
   uint32_t lut[2][7][256];            /* dimensions 0 and 1 a byte of the index at a time: the XOR of the
                                          columns of each byte value (the zsobol, paddedsobol and 02sequence loops) */
-  uint32_t rlut[2][256];              /* lut[d][0] bit-reversed (zsobol's fast path with fastowen) */
+  uint64_t q64[2][256];               /* lut[0][0] | lut[1][0] << 32: both dimensions of an index byte in one
+                                         word, as they are ([0]) and each half bit-reversed ([1]: zsobol's
+                                         fast path with fastowen) */
   uint8_t rev8[256];                  /* each byte bit-reversed */
 } elr_sobol;
 int elr_sobol_init(elr_sobol *T, int ndims, int log2res);
@@ -762,12 +764,15 @@ uint32_t elr_randomize(uint32_t v, int strategy, uint32_t seed);
 uint32_t elr_permutation_element(uint32_t i, uint32_t n, uint32_t p);
 void elr_gray_code_sample(const uint32_t *C, uint32_t n, uint32_t scramble, uint32_t *out);
 
+#define ELR_ZSOBOL_LEVELS 24 /* zsobol's fast path: images up to 2^24 pixels square */
 /* a render's sampler tables, made once and shared by its threads: Halton's permutations, Sobol's
  * matrices, the sample bounds the global samplers index their sequence over */
 typedef struct elr_sampler_tables {
   elr_halton halton;
   elr_sobol sobol;
   int bx0, by0, res, log2res; /* sample bounds' corner; the power-of-two square that covers them (sobol, zsobol) */
+  uint64_t zdig[2][ELR_ZSOBOL_LEVELS][4]; /* zsobol's fast path: the Sobol' point (both dimensions, as q64) of
+                                             pixel digit v at level j (index bits log2spp + 2j, + 1) */
 } elr_sampler_tables;
 
 /* which sampler a render's threads make, with pbrt's parameters (elr_sampler_choose) */
@@ -801,12 +806,18 @@ typedef struct elr_sampler {
   uint64_t zvalid, zpixel[64]; /* zsobol: the pixel's permuted digits for dimensions 0..63 (bit d of zvalid: known) */
   /* zsobol's fast path (sampler_zsobol.c; spp <= ELR_ZSOBOL_FAST_SPP): per pixel the Morton code, and per
    * dimension d < 64 met in the pixel (bit d of zfast) the permuted sample digits of each sample
-   * (zlow[d * spp + s]) and the Sobol' points' pixel part (zsob[d][c], bit-reversed for fastowen) */
+   * (zlow[d * spp + s]) and the Sobol' point of the pixel's digits (zsob[d], both dimensions as the
+   * tables' q64) */
   uint64_t zmorton, zfast, zf1, zf2; /* zf1, zf2: bit d, dimension d's 1D or 2D points of the pixel made */
   uint8_t *zlow;
-  uint32_t zsob[64][2];
-  float *zpt;                 /* zsobol's fast path: the pixel's points, 2D (zpt[(d * spp + s) * 3 + 0, 1]) and 1D (+ 2) */
-  uint64_t zpm[64], zpp[64], zpvalid; /* the Morton code and the permuted pixel digits of dimension d's last pixel */
+  float *zpt, *zp1;           /* zsobol's fast path: the pixel's points, 2D (zpt[(d * spp + s) * 2 + 0, 1]), 1D (zp1[d * spp + s]) */
+  uint64_t zsob[64];
+  int zsimd;                  /* zsobol's fast path: 0 scalar, 1 SSE2, 2 AVX2 (elr_zsobol_simd) */
+  const uint64_t *zq, (*zdig)[4]; /* the tables' q64 and zdig for the sampler's randomization */
+  /* the Morton code and the permuted pixel digits' point of the last pixel met in each dimension, with
+   * each digit's permutation p (an index into the 24) and permuted digit d (pd[dim][j] = 4 p + d): the
+   * sampler's own (zown), or another's when they share (zshare: elr_sampler_share) */
+  struct elr_zsobol_last { uint64_t m[64], P[64], valid; uint8_t pd[64][ELR_ZSOBOL_LEVELS]; } zown, *zshare;
   uint64_t dhash[72];          /* elr_dim_hash(d, sseed) of the first dimensions: the scrambles' seeds */
 } elr_sampler;
 int elr_sampler_choose(elr_sampler_desc *d, const elr_scene *s, const elr_render_options *o, char *err, size_t errlen);
@@ -817,6 +828,9 @@ void elr_sampler_start_sample(elr_sampler *S, int sample);
 float elr_sampler_get1d(elr_sampler *S);
 void elr_sampler_get2d(elr_sampler *S, float u[2]);
 void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy);
+/* S keeps what it remembers from pixel to pixel (zsobol's last pixel per dimension) in `with`'s: the
+ * samplers of one thread that take neighbouring pixels in turn share it (the numbers do not change) */
+void elr_sampler_share(elr_sampler *S, elr_sampler *with);
 void elr_stratified_make(elr_sampler *S, int two, int d);
 void elr_zerotwo_make(elr_sampler *S, int two, int d);
 float elr_sobol_sampler_1d(const elr_sampler *S, int dim);
@@ -827,20 +841,26 @@ float elr_zsobol_ref_1d(elr_sampler *S, int dim);
 void elr_zsobol_ref_2d(elr_sampler *S, int dim, float u[2]);
 static inline float elr_zsobol_1d(elr_sampler *S, int dim) {
   const float *t;
-  if ((unsigned)dim < 64u && ((S->zf1 >> dim) & 1u)) return S->zpt[((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 3u + 2u];
+  if ((unsigned)dim < 64u && ((S->zf1 >> dim) & 1u)) return S->zp1[(size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))];
   t = elr_zsobol_table(S, dim, 0);
-  return t ? t[2] : elr_zsobol_ref_1d(S, dim);
+  return t ? t[0] : elr_zsobol_ref_1d(S, dim);
+}
+/* the current sample's 2D point of dimension dim where the pixel's are made, else NULL */
+static inline const float *elr_zsobol_made2(const elr_sampler *S, int dim) {
+  return (unsigned)dim < 64u && ((S->zf2 >> dim) & 1u) ? S->zpt + ((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 2u : NULL;
 }
 static inline void elr_zsobol_2d(elr_sampler *S, int dim, float u[2]) {
-  const float *t;
-  if ((unsigned)dim < 64u && ((S->zf2 >> dim) & 1u)) t = S->zpt + ((size_t)dim * (size_t)S->spp + ((size_t)S->hindex & (size_t)(S->spp - 1))) * 3u;
-  else if (!(t = elr_zsobol_table(S, dim, 1))) { elr_zsobol_ref_2d(S, dim, u); return; }
+  const float *t = elr_zsobol_made2(S, dim);
+  if (!t && !(t = elr_zsobol_table(S, dim, 1))) { elr_zsobol_ref_2d(S, dim, u); return; }
   u[0] = t[0]; u[1] = t[1];
 }
 /* zsobol's reference path (pbrt-v4's GetSampleIndex, SobolSample and randomizer as written there): the
  * fast path above gives the same bits (test_render_samplers) */
 #define ELR_ZSOBOL_FAST_SPP 256
 void elr_zsobol_start_pixel(elr_sampler *S, uint64_t morton);
+void elr_zsobol_tables_init(elr_sampler_tables *T, int log2spp);
+void elr_zsobol_draw2d(elr_sampler *S, float u[2]); /* elr_sampler_get2d's zsobol case out of line */
+int elr_zsobol_simd(void);
 float elr_paddedsobol_1d(const elr_sampler *S, int dim);
 void elr_paddedsobol_2d(const elr_sampler *S, int dim, float u[2]);
 /* a 64-bit hash of a dimension and a seed (pbrt-v4's Hash(dimension, seed)): a scramble's seed */
@@ -1004,6 +1024,7 @@ typedef struct elr_sun_info {
   el_envlight_hotspot spot[ELR_SUN_INFO_SPOTS];
   float cell, floor;                        /* the cells' edge (world units); the spots' share where none is seen */
   int64_t pilot_points, pilot_rays, cells, cells_lowered, cells_dark; /* dark: no spot seen */
+  int64_t cells_horizon;                    /* lowered cells whose spots all lay below the pilot's horizons */
   double seconds, cpu_seconds;              /* the pilot and the table: wall time, CPU time (all threads) */
 } elr_sun_info;
 /* 0 and *out set (NULL when the light has no hot spot), -1 out of memory. The pilot runs on nthreads threads

@@ -108,7 +108,13 @@ int elr_sobol_init(elr_sobol *T, int ndims, int log2res) {
         for (j = 0; j < 8; j++) if (((v >> j) & 1) && byte * 8 + j < ELR_SOBOL_COLUMNS) x ^= c[byte * 8 + j];
         T->lut[d][byte][v] = x;
       }
-    for (v = 0; v < 256; v++) T->rlut[d][v] = elr_reverse_bits32(T->lut[d][0][v]);
+  }
+  { /* dimensions 0 and 1 of the first byte in one word, as they are and each half reversed */
+    int v;
+    for (v = 0; v < 256; v++) {
+      T->q64[0][v] = (uint64_t)T->lut[0][0][v] | (uint64_t)T->lut[1][0][v] << 32;
+      T->q64[1][v] = (uint64_t)elr_reverse_bits32(T->lut[0][0][v]) | (uint64_t)elr_reverse_bits32(T->lut[1][0][v]) << 32;
+    }
   }
   { int v; for (v = 0; v < 256; v++) T->rev8[v] = (uint8_t)(elr_reverse_bits32((uint32_t)v) >> 24); }
   if (elr__interval_tables(T) != 0) { elr_sobol_free(T); return -1; }

@@ -617,7 +617,7 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
         st->sun_spot_half_angle[k] = in->spot[k].half_angle; st->sun_spot_share[k] = in->spot[k].share;
       }
       st->sun_pilot_points = in->pilot_points; st->sun_pilot_rays = in->pilot_rays; st->sun_cells = in->cells;
-      st->sun_cells_lowered = in->cells_lowered; st->sun_cells_dark = in->cells_dark; st->t_sun = in->seconds;
+      st->sun_cells_lowered = in->cells_lowered; st->sun_cells_dark = in->cells_dark; st->sun_cells_horizon = in->cells_horizon; st->t_sun = in->seconds;
       st->t_sun_cpu = in->cpu_seconds;
     }
     return 0;

@@ -213,6 +213,7 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   for (i = 0; i < npix; i++) {
     if (elr_sampler_init(&W->S[i], &C->sampler, seed, T) != 0) { elr_wave_free(W); return NULL; }
     W->nS++;
+    elr_sampler_share(&W->S[i], &W->S[0]); /* (zsobol: the wave's neighbouring pixels share their digits) */
   }
   W->npix = npix;
   elr_wave_rays_init(&W->rays); elr_wave_rays_init(&W->shadows);
@@ -494,10 +495,9 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_sampler_restore(S, &W->pos[j]);
       if (C->light_sampling && (b->has_diffuse || b->has_glossy)) {
         /* UniformSampleOneLight with the one light: its light draw, then the BSDF draw it makes and
-         * does not use (sample_bsdf = 0) */
-        float us[2];
+         * does not use (sample_bsdf = 0): skipped, the sampler left where the draw leaves it */
         elr_sampler_get2d(S, &W->u[2 * n]);
-        elr_sampler_get2d(S, us);
+        elr_sampler_skip2d(S);
         W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
         W->has_n[n] = elr__cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
         W->lpos[n] = h->p;

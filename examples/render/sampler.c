@@ -79,8 +79,11 @@ int elr_sampler_tables_init(elr_sampler_tables *T, const elr_sampler_desc *d, co
   if (d->kind == ELR_SAMPLER_HALTON) return elr_halton_init(&T->halton, w, h, seed);
   if (d->kind == ELR_SAMPLER_SOBOL) return elr_sobol_init(&T->sobol, ELR_SOBOL_DIMS, T->log2res);
   /* the others use Sobol' dimensions 0 and 1 only */
-  if (d->kind == ELR_SAMPLER_ZEROTWO || d->kind == ELR_SAMPLER_ZSOBOL || d->kind == ELR_SAMPLER_PADDEDSOBOL)
-    return elr_sobol_init(&T->sobol, 2, 0);
+  if (d->kind == ELR_SAMPLER_ZEROTWO || d->kind == ELR_SAMPLER_PADDEDSOBOL) return elr_sobol_init(&T->sobol, 2, 0);
+  if (d->kind == ELR_SAMPLER_ZSOBOL) {
+    if (elr_sobol_init(&T->sobol, 2, 0) != 0) return -1;
+    elr_zsobol_tables_init(T, elr__log2(d->spp));
+  }
   return 0;
 }
 void elr_sampler_tables_free(elr_sampler_tables *T) { elr_halton_free(&T->halton); elr_sobol_free(&T->sobol); }
@@ -99,10 +102,13 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
   S->sseed = d->has_seed ? (uint32_t)d->seed : (uint32_t)(seed ^ (seed >> 32));
   S->log2spp = elr__log2(d->spp);
   { int k; for (k = 0; k < 72; k++) S->dhash[k] = elr_dim_hash(k, S->sseed); }
-  if (S->kind == ELR_SAMPLER_ZSOBOL && S->spp <= ELR_ZSOBOL_FAST_SPP && !getenv("ELR_ZSOBOL_REFERENCE")) {
+  if (S->kind == ELR_SAMPLER_ZSOBOL && S->spp <= ELR_ZSOBOL_FAST_SPP && T->log2res <= ELR_ZSOBOL_LEVELS && !getenv("ELR_ZSOBOL_REFERENCE")) {
     S->zlow = (uint8_t *)malloc((size_t)64 * (size_t)S->spp); /* the fast path's tables (sampler_zsobol.c) */
     S->zpt = (float *)malloc(sizeof(float) * 3 * 64 * (size_t)S->spp);
     if (!S->zlow || !S->zpt) { elr_sampler_free(S); return -1; }
+    S->zp1 = S->zpt + 2 * 64 * (size_t)S->spp;
+    S->zsimd = elr_zsobol_simd();
+    S->zq = T->sobol.q64[S->randomize == ELR_RANDOMIZE_FAST_OWEN]; S->zdig = T->zdig[S->randomize == ELR_RANDOMIZE_FAST_OWEN];
   }
   if (S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) {
     S->s1d = (float *)malloc(sizeof(float) * (size_t)S->spp * (size_t)(S->dims + 1));
@@ -117,7 +123,7 @@ int elr_sampler_init(elr_sampler *S, const elr_sampler_desc *d, uint64_t seed, c
 }
 void elr_sampler_free(elr_sampler *S) {
   free(S->s1d); free(S->s2d); free(S->bits); free(S->zlow); free(S->zpt);
-  S->s1d = S->s2d = NULL; S->bits = NULL; S->zlow = NULL; S->zpt = NULL;
+  S->s1d = S->s2d = NULL; S->bits = NULL; S->zlow = NULL; S->zpt = S->zp1 = NULL;
 }
 
 /* a Morton code of (x, y): x in the even bits, y in the odd */
@@ -133,7 +139,8 @@ static uint64_t elr__spread2(uint32_t x) {
 /* pbrt-v3's StartPixel */
 void elr_sampler_start_pixel(elr_sampler *S, int px, int py) {
   S->px = px; S->py = py;
-  elr_rng_seed(&S->rng, elr_mix64(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr_mix64(elr_mix64(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py) ^ S->seed));
+  if (S->kind != ELR_SAMPLER_ZSOBOL) /* (zsobol draws nothing from the pixel's stream) */
+    elr_rng_seed(&S->rng, elr_mix64(S->seed * 0x9e3779b97f4a7c15ULL + 1), elr_mix64(elr_mix64(((uint64_t)(uint32_t)px << 32) ^ (uint64_t)(uint32_t)py) ^ S->seed));
   if (S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) {
     /* strata (or (0,2)-sequence points) are made on the first request of each dimension in this pixel (every request of a
      * dimension comes with sample 0 first), so dimensions a render never asks for cost nothing */
@@ -146,14 +153,16 @@ void elr_sampler_start_pixel(elr_sampler *S, int px, int py) {
     elr_zsobol_start_pixel(S, (elr__spread2((uint32_t)(py - S->T->by0)) << 1) | elr__spread2((uint32_t)(px - S->T->bx0)));
 }
 
+/* pbrt-v4's StartPixelSample: the Morton index of the pixel, then the sample */
+static int64_t elr__zsobol_hindex(const elr_sampler *S, int sample) { return (int64_t)((S->zmorton << S->log2spp) | (uint64_t)(uint32_t)sample); }
+
 /* pbrt-v3's SetSampleNumber: sample `sample` of the pixel, from its first dimension */
 void elr_sampler_start_sample(elr_sampler *S, int sample) {
   S->sample = sample; S->d1 = S->d2 = 0; S->dim = 0;
   if (S->kind == ELR_SAMPLER_HALTON) S->hindex = S->hoffset + (int64_t)sample * S->T->halton.stride;
   /* <<GetIndexForSample>>: the sample's index in the image-wide Sobol' sequence */
   if (S->kind == ELR_SAMPLER_SOBOL) S->hindex = (int64_t)elr_sobol_interval_to_index(&S->T->sobol, (uint64_t)sample, S->px - S->T->bx0, S->py - S->T->by0);
-  /* pbrt-v4's StartPixelSample: the Morton index of the pixel, then the sample */
-  if (S->kind == ELR_SAMPLER_ZSOBOL) S->hindex = (int64_t)((S->zmorton << S->log2spp) | (uint64_t)(uint32_t)sample);
+  if (S->kind == ELR_SAMPLER_ZSOBOL) S->hindex = elr__zsobol_hindex(S, sample);
   if (S->kind == ELR_SAMPLER_RANDOM) {
     /* every pixel sample its own stream: the same numbers whatever the tile order */
     uint64_t k = elr_mix64(elr_mix64(elr_mix64(S->seed ^ 0x632be59bd9b4e019ULL) ^ (uint64_t)(uint32_t)S->px) ^ (uint64_t)(uint32_t)S->py);
@@ -181,7 +190,7 @@ float elr_sampler_get1d(elr_sampler *S) {
   }
   return elr_rng_float(&S->rng);
 }
-void elr_sampler_get2d(elr_sampler *S, float u[2]) {
+static ELR_NOINLINE void elr__get2d(elr_sampler *S, float u[2]) {
   switch (S->kind) {
   case ELR_SAMPLER_STRATIFIED: case ELR_SAMPLER_ZEROTWO: {
     const float *b;
@@ -206,11 +215,20 @@ void elr_sampler_get2d(elr_sampler *S, float u[2]) {
   }
   u[0] = elr_rng_float(&S->rng); u[1] = elr_rng_float(&S->rng);
 }
+void elr_sampler_get2d(elr_sampler *S, float u[2]) {
+  const float *t; /* zsobol's points of the pixel made: a load (the common case, ahead of the switch) */
+  if (S->kind == ELR_SAMPLER_ZSOBOL) {
+    if ((t = elr_zsobol_made2(S, S->dim)) != NULL) { u[0] = t[0]; u[1] = t[1]; S->dim += 2; return; }
+    elr_zsobol_draw2d(S, u);
+    return;
+  }
+  elr__get2d(S, u);
+}
 
 /* pbrt-v3's GetCameraSample for camera sample k of pixel (x, y): starts the sample and draws its film
  * position (continuous raster coordinates). Drawing it again gives the same position and leaves the
  * sampler in the same state. */
-void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
+static ELR_NOINLINE void elr__camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
   float u[2];
   elr_sampler_start_sample(S, k);
   elr_sampler_get2d(S, u);
@@ -218,16 +236,30 @@ void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, f
   if (S->kind == ELR_SAMPLER_HALTON || S->kind == ELR_SAMPLER_SOBOL || S->kind == ELR_SAMPLER_ZSOBOL || S->kind == ELR_SAMPLER_PADDEDSOBOL) S->dim = 5;
   *fx = u[0] + (float)x; *fy = u[1] + (float)y;
 }
+void elr_sampler_camera_sample(elr_sampler *S, int k, int x, int y, float *fx, float *fy) {
+  const float *t;
+  if (S->kind == ELR_SAMPLER_ZSOBOL && S->zlow) { /* zsobol's point made: the steps above without the other samplers' tests */
+    S->sample = k; S->d1 = S->d2 = 0;
+    S->hindex = elr__zsobol_hindex(S, k);
+    if ((t = elr_zsobol_made2(S, 0)) != NULL) { S->dim = 5; *fx = t[0] + (float)x; *fy = t[1] + (float)y; return; }
+  }
+  elr__camera_sample(S, k, x, y, fx, fy);
+}
+
+void elr_sampler_share(elr_sampler *S, elr_sampler *with) {
+  if (S != with && S->kind == ELR_SAMPLER_ZSOBOL && with->kind == ELR_SAMPLER_ZSOBOL && S->spp == with->spp && S->randomize == with->randomize)
+    S->zshare = with->zshare ? with->zshare : &with->zown;
+}
 
 /* >> for draws made ahead (render_wave.c) */
 /* the sampler's state after a 2D draw, without the draw's work */
 void elr_sampler_skip2d(elr_sampler *S) {
   float u[2];
-  if ((S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) && S->d2 < S->dims && S->d2 < S->made2) { S->d2++; return; }
-  if (S->kind == ELR_SAMPLER_HALTON && S->dim + 1 < S->T->halton.ndims) { S->dim += 2; return; }
   /* sobol, zsobol, paddedsobol: every (pixel, sample, dimension) computed on its own (past the Sobol'
    * table, a hash) */
-  if (S->kind == ELR_SAMPLER_SOBOL || S->kind == ELR_SAMPLER_ZSOBOL || S->kind == ELR_SAMPLER_PADDEDSOBOL) { S->dim += 2; return; }
+  if (S->kind == ELR_SAMPLER_ZSOBOL || S->kind == ELR_SAMPLER_SOBOL || S->kind == ELR_SAMPLER_PADDEDSOBOL) { S->dim += 2; return; }
+  if ((S->kind == ELR_SAMPLER_STRATIFIED || S->kind == ELR_SAMPLER_ZEROTWO) && S->d2 < S->dims && S->d2 < S->made2) { S->d2++; return; }
+  if (S->kind == ELR_SAMPLER_HALTON && S->dim + 1 < S->T->halton.ndims) { S->dim += 2; return; }
   elr_sampler_get2d(S, u);
 }
 /* where a camera sample's draws have got to. The random sampler's stream is the sample's own and part

@@ -116,9 +116,10 @@ void elr_stats_print(const elr_stats *st, void *fp) {
     for (k = 0; k < st->sun_spots && k < 8; k++)
       fprintf(f, " (axis %.3f %.3f %.3f, half-angle %.2f deg, share %.3f)", (double)st->sun_spot_axis[k][0], (double)st->sun_spot_axis[k][1],
               (double)st->sun_spot_axis[k][2], (double)st->sun_spot_half_angle[k] * 57.29577951308232, (double)st->sun_spot_share[k]);
-    fprintf(f, "; pilot %lld points, %lld rays, %.3f s; %lld cells of %.4g, %lld lowered (%lld where no spot was seen), floor %.2f\n",
+    fprintf(f, "; pilot %lld points, %lld rays, %.3f s; %lld cells of %.4g, %lld lowered (%lld where no spot was seen; "
+               "%lld with the spots below the horizon: product sampling kept where the lobe takes it), floor %.2f\n",
             (long long)st->sun_pilot_points, (long long)st->sun_pilot_rays, st->t_sun, (long long)st->sun_cells, (double)st->sun_cell,
-            (long long)st->sun_cells_lowered, (long long)st->sun_cells_dark, (double)st->sun_floor);
+            (long long)st->sun_cells_lowered, (long long)st->sun_cells_dark, (long long)st->sun_cells_horizon, (double)st->sun_floor);
     fprintf(f, "  sun sharing        %llu light samples of the sun's light: %.1f%% at vertices where the cache lowered the spots "
                "(%.1f%% where it saw none: shadowed), %.1f%% elsewhere; %.1f%% of all landed in a spot's cone (sun), %.1f%% in the rest (sky)\n",
             (unsigned long long)st->sun_looked, n > 0 ? 100.0 * (double)st->sun_lowered / n : 0.0, n > 0 ? 100.0 * (double)st->sun_dark / n : 0.0,

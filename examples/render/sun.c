@@ -15,7 +15,9 @@
  * light's density: measured, scaling the weights by v_k cost the lit side of a sphere 2-4x).
  *
  * THE DENSITY at a vertex whose cell has a dark spot (elsewhere, and at vertices the pilot never saw, the
- * renderer's density unchanged, bit for bit): the spot's weight P_k e, the other parts their shares P
+ * renderer's density unchanged, bit for bit; where every pilot ray of the cell towards its dark spots lay
+ * below the horizon, the renderer's product sampling at vertices that have a product normal, COST below):
+ * the spot's weight P_k e, the other parts their shares P
  * (e makes the dark spots' total ELR_SUN_FLOOR of the samples), as
  *   the rest x cosine (el_envlight_sample_li_mix_cos) where the vertex reflects only (elr_sun_cos_normal:
  *     also the diffuse vertices that a sun map otherwise sends to the map alone), for the CELL's normal
@@ -34,20 +36,51 @@
  * are made once per lowered cell after the pilot and shared read-only (a per-thread memo of 8 was 1.8x);
  * the hash keeps only lowered cells; the light's hot spots are found once per light (elr_light.sun_hs).
  * Callgrind, 16 spp, the render loop and the pilot against --sun off: 1.15x (sun_shadow_object), 1.24x
- * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time is 1.3-1.45x: what is left is
- * memory (a light sample in a dark cell reads a cell's distribution, the pdf table, the direction table
- * and the texels at random places: perf shows el_distribution2d_sample_bins waiting on its row's loads).
- * Loading ahead does not pay (measured 2026-12-02, perf at 64 spp and bench_sun_render interleaved with the
- * code before): a wave's dark-cell samples in passes (pick each one's rest cell from the table's sums, load
- * its marginal, search it and load the row, then draw) moved el_distribution2d_sample_bins' wait (9% of
- * bench_city's CPU to 3%) into the passes themselves; __builtin_prefetch of the same lines did nothing (the
- * prefetches were dropped); also loading the map's pdf and direction tables at the drawn bin cut
- * el_envlight__sample_table from 5.5% to 0.7% but cost as much. CPU on / off stayed 1.24-1.35x (object),
- * 1.33-1.50x (porch), 1.33-1.42x (city) against 1.22-1.26x, 1.29-1.35x, 1.37-1.45x, images bit-identical. The
- * remaining cost is the dark-cell samples' work (the cell search, two 2D searches, the direction and
- * the pdf with its cell bound): elr_sun_lookup and elr_sun_cos_normal, what every vertex pays, are 3%.
- * bench/bench_sun_render.c: 1.3-1.9x less variance in the shadow at equal samples, lit pixels unchanged;
- * at equal time 0.9-1.45x in the shadow, 0.7x lit: off by default.
+ * (sun_porch), 1.09x (bench_city), from 1.38x, 1.42x, 1.28x. The CPU time was then 1.3-1.45x: memory (a light
+ * sample in a dark cell read a cell's el_distribution2d, the pdf table twice, the direction table and the
+ * texels at random places; perf: el_distribution2d_sample_bins 9% of sun_porch's CPU, waiting on its row,
+ * el_envlight__sample_table 6.5% on the pdf table, elr_sun_lookup 7% on this hash's 112-byte slots).
+ * Loading ahead did not pay (measured 2026-12-02, perf at 64 spp and bench_sun_render interleaved): a wave's
+ * dark-cell samples in passes moved the wait into the passes, __builtin_prefetch of the same lines did
+ * nothing, loading the pdf and direction tables ahead cost as much as it saved. What paid is reading less
+ * (issue 22's cost round, envlight.h NOTES ON HOT SPOTS 4): the cell tables as uint16 CDFs with the product
+ * sampler's 8-bucket guides (half the bytes; one row line per sample), the pdf from those entries (no pdf
+ * table), the direction without sample_table's pdf (and, under a general rotation, without its second
+ * pdf), the radiance at the sample's (u, v) under a signed-permutation matrix (as sample_li), a branch-free
+ * search of the cells' sums; here the lookup probes an array of 8-byte keys (elr_sun.keys) and the path
+ * loop takes a vertex's cell and normal from its light sample instead of a second lookup. Per sample
+ * (bench/callgrind_product.sh, city.hdr, 3% spots): 1060 -> 845 instructions with the radiance, pdf 287 ->
+ * 265; callgrind, the render loop alone 1.035x, 1.029x, 1.064x the instructions of --sun off (object,
+ * porch, city), with the pilot at 16 spp 1.065x, 1.047x, 1.106x. The render loop's CPU against --sun off
+ * (16 spp, 1 thread, best of 5 interleaved process runs, three runs on a loaded machine): 1.23-1.26x ->
+ * 1.06-1.14x (object), 1.31-1.43x -> 1.07-1.17x (porch), 1.21-1.26x -> 1.02-1.04x (city;
+ * bench_sun_render's renders in one process: 1.09x, 1.17x, 1.09x), plus the pilot (0.011, 0.011, 0.035 s
+ * against loops of 0.20, 0.34, 0.46 s). Since issue 20's batched product sampling reached the wave loop
+ * (el_envlight_sample_li_cos_n: the default's loop 0.21 -> 0.16, 0.35 -> 0.28, 0.53 -> 0.42 s) while a
+ * dark cell's samples stay single calls: 1.19x, 1.28x, 1.19x (best of 5 interleaved, after the merge);
+ * batching the mixture's samples the same way is the next step. Not in those: finding the hot spots and their cell tables,
+ * once per light (city.hdr, 2048x1024 bins: 0.28 G instructions, plus the light's own sampling tables where
+ * the render would not build them, plus the cells' dilation 0.09 G: a fresh render --sun on pays them).
+ * THE HORIZON (this round): a cell whose pilot rays towards its lowered spots all lay below their points'
+ * horizons (elr_sun_cell.horizon: the sphere's far side, a wall facing away) keeps the renderer's product
+ * sampling where the vertex has a product normal: it draws no spot there already and bounds the cosine
+ * more tightly than the rest's 32 x 16 cells; the map-alone vertices there (a peaked glossy lobe) keep the
+ * mixture. Counting those rays as seeing the spot instead (the whole cell back to the default) gave
+ * bench_city's shadow 0.98x but cost sun_shadow_object's glossy sphere: 1.40x -> 1.16x.
+ * bench/bench_sun_render.c (16 spp, 16 seeds, CPU from 5 interleaved renders), against today's default:
+ * in the shadow 1.45x less variance at equal samples on sun_shadow_object (1.26x at equal time; 1.13x
+ * after the batched default), 1.03x on sun_porch (0.86x; 0.68x), 0.98x on bench_city (0.84x; 0.76x; 0.92x
+ * before the horizon rule); the whole image 1.05x, 1.02x, 1.00x at equal samples, 0.91x, 0.85x, 0.86x at
+ * equal time (0.82x, 0.68x, 0.77x after the batched default): off by default (the whole image has
+ * at most 5% to gain at equal samples, less than the pilot and the lookups cost). At 64 spp (8 seeds):
+ * shadowed 1.45x, 1.01x, 0.75x (median pixel 1.40x, 1.04x, 0.95x; SUN_DUMP/SUN_RATIO at 32 spp: on
+ * bench_city the sphere's dark side is now even, and the sphere's cast shadow on the ground, where the
+ * default samples the map alone with MIS, is mixed, slightly worse with the cache, a few pixels much
+ * worse), the whole image 1.05x, 1.01x, 0.96x at equal samples and 0.96x, 0.88x, 0.88x at equal time. The porch's path
+ * tracing: the cache is applied at every vertex whose cell the pilot saw (all depths); at the camera
+ * vertices alone the shadow's variance is 1.006x less, at all 1.009x (before the horizon rule; its direct
+ * light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is indirect
+ * light from the sunlit ground, which no light-sample density changes.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
@@ -77,6 +110,8 @@ struct elr_sun_cell {
   float seen[EL_ENVLIGHT_HOTSPOT_MAX]; /* the pilot's rays that saw spot k; then v_k, then after dilation */
   float alpha;                         /* sum P_k v_k / sum P_k */
   int lowered;                         /* some v_k < 1 */
+  int horizon;                         /* every lowered spot lay below all the cell's pilot points' horizons */
+  int tested[EL_ENVLIGHT_HOTSPOT_MAX]; /* the pilot's rays towards spot k above their point's horizon */
   el_envlight_mix_weights w;
   float nsum[3];                       /* the sum of the pilot's normals in the cell */
   const el_envlight_mix_cos_table *tab; /* the rest x cosine table of a lowered cell (shared, read-only) */
@@ -89,6 +124,8 @@ struct elr_sun {
   float inv_cell;
   elr_sun_cell *tab;
   size_t mask, used;
+  uint64_t *keys; /* after the pilot: tab[i].key for every slot, probed alone (8 bytes a slot, not the cell's
+                   * 112: the lookup every vertex makes was 7% of sun_porch's CPU, waiting on the table) */
   float eps;      /* e above */
   float cos_half[EL_ENVLIGHT_HOTSPOT_MAX];
   elr_v3 dirs[EL_ENVLIGHT_HOTSPOT_MAX][ELR_SUN_DIRS]; /* the pilot's directions towards each spot (0: none) */
@@ -143,13 +180,18 @@ static elr_sun_cell *elr__sun_insert(elr_sun *S, uint64_t key) {
 static elr_v3 elr__sun_side(const elr_hit *h, elr_v3 wo) { return elr_dot(h->ng, wo) >= 0.f ? h->ng : elr_mul(h->ng, -1.f); }
 
 const elr_sun_cell *elr_sun_lookup(const elr_sun *S, const elr_hit *h, elr_v3 wo) {
-  const elr_sun_cell *c;
-  if (!S || !S->tab) return NULL; /* (no cell: the pilot saw no surface) */
-  c = elr__sun_find(S, elr__sun_key(S, h->p, elr__sun_side(h, wo)));
-  return c && c->lowered ? c : NULL;
+  uint64_t key;
+  size_t i;
+  if (!S || !S->keys) return NULL; /* (no cell: the pilot saw no surface) */
+  key = elr__sun_key(S, h->p, elr__sun_side(h, wo));
+  for (i = elr__sun_hash(key) & S->mask;; i = (i + 1) & S->mask) { /* (elr__sun_find on the keys alone) */
+    uint64_t k = S->keys[i];
+    if (k == key) return &S->tab[i]; /* (the table holds only lowered cells) */
+    if (k == 0) return NULL;
+  }
 }
 
-typedef struct { elr_v3 p, n; float fp; int hit; int seen[EL_ENVLIGHT_HOTSPOT_MAX]; } elr__sun_pt;
+typedef struct { elr_v3 p, n; float fp; int hit; int seen[EL_ENVLIGHT_HOTSPOT_MAX], tested[EL_ENVLIGHT_HOTSPOT_MAX]; } elr__sun_pt;
 static int elr__cmp_float(const void *a, const void *b) {
   float x = *(const float *)a, y = *(const float *)b;
   return x < y ? -1 : x > y ? 1 : 0;
@@ -172,12 +214,13 @@ static void elr__sun_pilot_pixel(const elr_ctx *C, const elr_sun *S, int x, int 
   wo = elr_mul(ray.d, -1.f);
   q->p = h.p; q->n = elr__sun_side(&h, wo); q->hit = 1;
   for (k = 0; k < S->hs->count; k++) {
-    q->seen[k] = 0;
+    q->seen[k] = q->tested[k] = 0;
     for (r = 0; r < ELR_SUN_RAYS; r++) { /* (a direction of the spot's ELR_SUN_DIRS, stratum r of them) */
       elr_v3 d;
       hs = hs * 747796405u + 2891336453u;
       d = S->dirs[k][r * (ELR_SUN_DIRS / ELR_SUN_RAYS) + (int)((hs >> 16) % (ELR_SUN_DIRS / ELR_SUN_RAYS))];
       if (!(elr_dot(d, d) > 0.f) || elr_dot(d, q->n) <= 0.f) continue;
+      q->tested[k]++;
       if (!elr_occluded(s, elr_spawn_origin(&h, d), d, INFINITY)) q->seen[k]++;
     }
   }
@@ -261,6 +304,9 @@ static int elr__sun_tables(elr_sun *S) {
     c->tab = &S->tabs[slot[j] - 1];
   }
   free(old); free(keys); free(slot);
+  S->keys = (uint64_t *)malloc((S->mask + 1) * sizeof *S->keys);
+  if (!S->keys) return -1;
+  for (i = 0; i <= S->mask; i++) S->keys[i] = S->tab[i].key;
   return 0;
 }
 
@@ -346,7 +392,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
     elr_sun_cell *c = elr__sun_insert(S, elr__sun_key(S, pt[i].p, pt[i].n));
     c->rays += ELR_SUN_RAYS;
     c->nsum[0] += pt[i].n.x; c->nsum[1] += pt[i].n.y; c->nsum[2] += pt[i].n.z;
-    for (k = 0; k < nk; k++) c->seen[k] += (float)pt[i].seen[k];
+    for (k = 0; k < nk; k++) { c->seen[k] += (float)pt[i].seen[k]; c->tested[k] += pt[i].tested[k]; }
   }
   for (i = 0; i <= S->mask; i++) { /* v_k */
     elr_sun_cell *c = &S->tab[i];
@@ -380,6 +426,9 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
         c->w.spot[k] = S->hs->spot[k].share * (v > S->eps ? v : S->eps);
       }
       c->w.rest = S->hs->rest_share;
+      c->horizon = c->lowered;
+      for (k = 0; k < nk; k++) if (c->seen[k] < 1.f && c->tested[k] > 0) c->horizon = 0;
+      S->info.cells_horizon += c->horizon;
       c->alpha = (float)(a / Ps);
       S->info.cells++;
       if (c->lowered) S->info.cells_lowered++;
@@ -406,7 +455,7 @@ fail:
 void elr_sun_free(elr_sun *S) {
   if (!S) return;
   free(S->tabs); /* (S->hs: the light's) */
-  free(S->tab);
+  free(S->tab); free(S->keys);
   free(S);
 }
 
@@ -424,6 +473,12 @@ int elr_sun_in_spot(const elr_sun *S, const float wi[3]) {
 
 void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], float wi[3], float L[3], float *pdf) {
   const el_envlight *e = S->l->env_sample;
+  if (n && c->horizon) { /* the spots below the horizon: product sampling at n draws none of them already */
+    float nn[3];
+    elr_to3(*n, nn);
+    el_envlight_sample_li_cos(e, nn, u, wi, L, pdf);
+    return;
+  }
   if (n && c->tab) {
     float nn[3], uu[2], a = c->alpha, pc, pm;
     uu[1] = u[1];
@@ -448,6 +503,7 @@ void elr_sun_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, co
 
 float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float wi[3]) {
   const el_envlight *e = S->l->env_sample;
+  if (n && c->horizon) { float nn[3]; elr_to3(*n, nn); return el_envlight_pdf_li_cos(e, nn, wi); }
   if (n && c->tab) {
     float nn[3], a = c->alpha, pm = el_envlight_pdf_li_mix_cos_table(e, S->hs, c->tab, wi);
     if (!(a > 0.f)) return pm;
@@ -485,6 +541,7 @@ void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 
 int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
   int i;
   if (!c || !(b->env_map || b->env_sun_test)) return elr_bsdf_cos_normal(b, wo, n); /* (env_sun_test: the sun rule by the normal, ELR_ENVSD_SUNCOS) */
+  if (c->horizon) return elr_bsdf_cos_normal(b, wo, n); /* (the renderer's choice; with a normal, elr_sun_sample's product) */
   if (elr_bsdf_lobe_alpha(b) < s->env_lobe_alpha) return 0; /* a peaked glossy lobe: the map alone, with MIS */
   for (i = 0; i < b->nlobes; i++)
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;

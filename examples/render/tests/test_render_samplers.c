@@ -398,48 +398,58 @@ static void test_renders(void) {
 
 /* >> 7. zsobol's fast path (per-pixel tables, sampler_zsobol.c) gives the reference's bits: every
  * sample count it takes (1 .. 256, odd and even powers of two) and one past it, every randomization, 1D
- * and 2D draws mixed, dimensions past its 64, samples in a scrambled order and pixels revisited; and
+ * and 2D draws mixed, dimensions past its 64, samples in a scrambled order and pixels revisited, far
+ * apart and along rows, by two samplers that share their last pixels' digits (elr_sampler_share), with
+ * each fastowen loop the CPU runs (plain, SSE2, AVX2); and
  * the rendered image is the same bit for bit (direct lighting and path, reference path forced with
  * ELR_ZSOBOL_REFERENCE). */
 static void test_zsobol_fast(void) {
   static const int rz[4] = {ELR_RANDOMIZE_NONE, ELR_RANDOMIZE_PERMUTE_DIGITS, ELR_RANDOMIZE_FAST_OWEN, ELR_RANDOMIZE_OWEN};
-  int L, r, bad = 0, fast_used = 0, draws = 0;
-  for (L = 0; L <= 9; L++)
+  int L, r, bad = 0, fast_used = 0, draws = 0, simd, nsimd = elr_zsobol_simd(), runs = 0;
+  /* fastowen's loops: AVX2, SSE2 and the plain one, each that this CPU runs */
+  for (simd = 0; simd <= nsimd; simd++) for (L = 0; L <= 9; L++)
     for (r = 0; r < 4; r++) {
-      int spp = 1 << L, x, y, k, j, pass;
-      tsamp a, b;
-      if (tsamp_init(&a, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0 || tsamp_init(&b, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0) {
+      int spp = 1 << L, x, y, k, j, pass, npix = 0;
+      tsamp a, b, c;
+      if (rz[r] != ELR_RANDOMIZE_FAST_OWEN && simd < nsimd) continue;
+      if (tsamp_init(&a, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0 || tsamp_init(&b, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0 ||
+          tsamp_init(&c, ELR_SAMPLER_ZSOBOL, spp, 4, rz[r], 11) != 0) {
         rt_check(0, "zsobol init"); return;
       }
-      fast_used += a.S.zlow != NULL;
-      for (pass = 0; pass < 2; pass++)
-        for (y = -1; y < 13; y += 5 + pass)
-          for (x = -1; x < 21; x += 7 - pass) {
-            elr_sampler_start_pixel(&a.S, x, y);
+      runs++;
+      fast_used += a.S.zlow != NULL && a.S.zsimd == nsimd;
+      a.S.zsimd = c.S.zsimd = simd;
+      elr_sampler_share(&c.S, &a.S); /* a and c take pixels in turn, as the wave's samplers do */
+      for (pass = 0; pass < 3; pass++) /* pixels far apart, then (pass 2) along rows */
+        for (y = -1; y < (pass < 2 ? 13 : 3); y += pass < 2 ? 5 + pass : 3)
+          for (x = -1; x < 21; x += pass < 2 ? 7 - pass : 1) {
+            elr_sampler *f = npix++ % 3 == 2 ? &c.S : &a.S;
+            elr_sampler_start_pixel(f, x, y);
             elr_sampler_start_pixel(&b.S, x, y);
-            for (k = 0; k < spp && k < 64; k++) {
+            for (k = 0; k < spp && k < (pass < 2 ? 64 : 16); k++) {
               int sample = (int)(((unsigned)k * 37u + (unsigned)pass * 5u) & (unsigned)(spp - 1)); /* not in order */
               float fa, fb, ga, gb;
-              elr_sampler_camera_sample(&a.S, sample, x, y, &fa, &ga);
+              elr_sampler_camera_sample(f, sample, x, y, &fa, &ga);
               elr_sampler_camera_sample(&b.S, sample, x, y, &fb, &gb);
               bad += memcmp(&fa, &fb, sizeof fa) != 0 || memcmp(&ga, &gb, sizeof ga) != 0;
               for (j = 5; j < 72; j++) {
                 float u[2], v[2];
                 if ((j * 7 + k) % 3 == 0) {
-                  u[0] = elr_zsobol_1d(&a.S, j); v[0] = elr_zsobol_ref_1d(&b.S, j);
+                  u[0] = elr_zsobol_1d(f, j); v[0] = elr_zsobol_ref_1d(&b.S, j);
                   bad += memcmp(u, v, sizeof(float)) != 0;
                 } else {
-                  elr_zsobol_2d(&a.S, j, u); elr_zsobol_ref_2d(&b.S, j, v);
+                  elr_zsobol_2d(f, j, u); elr_zsobol_ref_2d(&b.S, j, v);
                   bad += memcmp(u, v, sizeof u) != 0;
                 }
                 draws++;
               }
             }
           }
-      tsamp_free(&a); tsamp_free(&b);
+      tsamp_free(&a); tsamp_free(&b); tsamp_free(&c);
     }
-  rt_check(bad == 0 && fast_used == 9 * 4, "zsobol: the fast path's numbers are the reference's bit for bit (%d of %d draws differ; "
-           "fast path used for %d of 36 sample counts x randomizations up to 256 spp)", bad, draws, fast_used);
+  rt_check(bad == 0 && fast_used == runs - 4 - nsimd, "zsobol: the fast path's numbers are the reference's bit for bit (%d of %d draws differ; "
+           "fast path used for %d of %d sample counts x randomizations x SIMD loops up to 256 spp; the widest SIMD loop %d)",
+           bad, draws, fast_used, runs - 4 - nsimd, nsimd);
   {
     static const char *integs[2] = {"\"directlighting\"", "\"path\" \"integer maxdepth\" 4"};
     int ig;
