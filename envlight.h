@@ -1031,7 +1031,8 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    ns (1.6x). Passes over 32 lanes (16: about 10% slower per call, sample_li_n too); le_n then waits
  *    on its prefetches (perf: a third of its samples), the line-fill buffers full. The renderer's wave
  *    loop (render --stats loop CPU, 1 thread, 32 spp, 5 interleaved runs): bench_city direct 0.96 ->
- *    0.78 s, path 1.43 -> 1.21 s, bench_studio path 1.45 -> 1.18 s, direct 0.58 -> 0.57 s.
+ *    0.78 s, path 1.43 -> 1.21 s, bench_studio path 1.45 -> 1.18 s, direct 0.58 -> 0.57 s; against a
+ *    later main (4 runs): 0.87x, 0.85x, 0.82x, 1.00x (the map alone on bench_city direct: 0.84x).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
  *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
