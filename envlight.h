@@ -276,11 +276,16 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
- * (a pixel's samples, a wavefront): the table and texel reads of up to 16 samples are started together
+ * (a pixel's samples, a wavefront): the table and texel reads of up to 32 samples are started together
  * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
+/* n at once: pdf[i] = pdf_li(dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit, for a wave's
+ * escaped rays: the table entries (le's texels) of up to 32 directions are prefetched together, so that
+ * their cache misses overlap: 2-2.5x less time on a 2048x1024 map (NOTES 5: BATCHES). n <= 0 does nothing. */
+EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf);
+EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
  * sphere facing it. ray_dir points INTO the scene; normal = ray_dir (pbrt's nLight). pdf_pos is w.r.t.
  * area of the disk (1 / (pi r^2)), pdf_dir w.r.t. solid angle. Before preprocess (radius 0): all zero. */
@@ -1049,12 +1054,22 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
  *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
  *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
- *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
+ *    and prefetches in stages, 32 samples at a time (guide entries, then CDF pairs, then the samples
  *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
  *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
  *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
  *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
- *    with it (the same image).
+ *    with it (the same image). el_envlight_pdf_li_n and el_envlight_le_n (issue 21: a wave's escaped
+ *    rays) do the same in two passes: each direction to light space and its pdf bin (le: its four
+ *    texels) prefetched, then the single call's arithmetic (bit for bit). Instructions as the single
+ *    calls' (callgrind, loop subtracted: pdf_li 82, pdf_li_n 88; le 255, le_n 252); time (2048x1024,
+ *    random directions, batches of 64, CPU ns per call, loaded 2-core machine): pdf_li 29-38 -> 14-17,
+ *    le 101-132 -> 40-69; bench_envlight's loop with other memory work: pdf_li + le 160-186 -> 100-114
+ *    ns (1.6x). Passes over 32 lanes (16: about 10% slower per call, sample_li_n too); le_n then waits
+ *    on its prefetches (perf: a third of its samples), the line-fill buffers full. The renderer's wave
+ *    loop (render --stats loop CPU, 1 thread, 32 spp, 5 interleaved runs): bench_city direct 0.96 ->
+ *    0.78 s, path 1.43 -> 1.21 s, bench_studio path 1.45 -> 1.18 s, direct 0.58 -> 0.57 s; against a
+ *    later main (4 runs): 0.87x, 0.85x, 0.82x, 1.00x (the map alone on bench_city direct: 0.84x).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
  *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
@@ -2279,6 +2294,15 @@ static inline int el_envlight__ensure(const el_envlight *l) {
   return el_envlight__ensure_slow((el_envlight *)l);
 }
 
+/* The hot bits (el_envlight__hot_bits) as the queries read them. */
+static inline int el_envlight__hot_now(const el_envlight *l) {
+#if EL_ENVLIGHT__ATOMICS
+  return __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
+#else
+  return l->hot;
+#endif
+}
+
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l) {
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   el_envlight__ensure(l);
@@ -2436,10 +2460,9 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 }
 
 
-/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
- * for a map: no calls, no branches. */
-static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
-  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2), pu, t, p;
+/* pdf_core's first half: the pdf_table entry of (x, y, z), r = sqrt(x^2 + y^2) (pdf_li_n prefetches it) */
+static inline size_t el_envlight__pdf_bin(const el_envlight *l, float x, float y, float z, float r) {
+  float pu, t;
   uint32_t iu, iv;
   size_t c;
   /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell. + FLT_MIN: x = y = 0 (a pole)
@@ -2456,12 +2479,21 @@ static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y
   EL_ASSERT(c < (size_t)l->v_cells);
   iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
   EL_ASSERT(iu < (uint32_t)l->dist.nu && iv < (uint32_t)l->dist.nv);
-  p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)]; /* mapPdf / (2 pi^2); nu * nv < 2^32 (checked at build) */
+  return (size_t)(iv * (uint32_t)l->dist.nu + iu); /* nu * nv < 2^32 (checked at build) */
+}
+/* pdf_core's second half: the entry p (mapPdf / (2 pi^2)) over sin(theta) */
+static inline float el_envlight__pdf_at(float p, float r, float len) {
   /* p / sin(theta), sin(theta) = r / len, floored at SIN_MIN */
   r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
   p = p * len / r;
   EL_ASSERT(p >= 0.0f && p <= FLT_MAX);
   return p;
+}
+/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
+ * for a map: no calls, no branches. */
+static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
+  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2);
+  return el_envlight__pdf_at(l->pdf_table[el_envlight__pdf_bin(l, x, y, z, r)], r, len);
 }
 
 /* The rare cases: a direction whose squared length is not a normal float (rescaled; zero, NaN, Inf: 0),
@@ -2857,20 +2889,14 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
 }
 
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-#define EL_ENVLIGHT__BATCH 16
+#define EL_ENVLIGHT__BATCH 32 /* lanes per staged pass (16: 10% slower per sample, issue 21) */
 #endif
 
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
   int i;
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-  int hot;
-#if EL_ENVLIGHT__ATOMICS
-  hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
-#else
-  hot = l->hot;
-#endif
-  if (n > 1 && (hot & EL_ENVLIGHT__HOT_SAMPLE)) {
-    /* Four passes over up to 16 samples; each pass starts the next pass's cache misses for all of
+  if (n > 1 && (el_envlight__hot_now(l) & EL_ENVLIGHT__HOT_SAMPLE)) {
+    /* Four passes over up to 32 samples; each pass starts the next pass's cache misses for all of
      * them, so that they overlap: (1) the guide entry, (2) the CDF entries it points to, (3) the sample
      * itself (sample_li's inline path; its radiance's texels), (4) the radiance. Passes 1, 2 and the
      * texel prefetch only read; every result comes from the code sample_li runs. */
@@ -2928,6 +2954,74 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
     return;
   }
   for (i = 0; i < n; ++i) el_envlight_sample_li(l, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
+}
+
+/* pdf_li_n and le_n: two passes over up to 32 directions; the first maps each to light space and finds
+ * the table entry (pdf_li's pdf_table bin; le's four texels) and prefetches it, so that the cache misses
+ * of the 32 overlap; the second reads them with the single call's arithmetic. Cold lanes (zero, NaN,
+ * infinite or rescaled directions) go through the single call's own cold path in the first pass. */
+EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf) {
+  int i;
+#ifdef EL_ENVLIGHT__BATCH
+  if (n > 1 && (el_envlight__hot_now(l) & EL_ENVLIGHT__HOT_PDF)) {
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      float rs[EL_ENVLIGHT__BATCH], lens[EL_ENVLIGHT__BATCH];
+      size_t bin[EL_ENVLIGHT__BATCH];
+      unsigned char cold[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) { /* el_envlight_pdf_li's hot path up to the table read */
+        const float *w = dirs + 3 * (i0 + i);
+        float d[3], r2, len2;
+        el_envlight__to_light(l, w, d);
+        r2 = d[0] * d[0] + d[1] * d[1];
+        len2 = r2 + d[2] * d[2];
+        cold[i] = !(len2 >= FLT_MIN && len2 <= FLT_MAX);
+        if (cold[i]) { pdf[i0 + i] = el_envlight__pdf_world_cold(l, w); continue; }
+        rs[i] = el_envlight__sqrt(r2);
+        lens[i] = el_envlight__sqrt(len2);
+        bin[i] = el_envlight__pdf_bin(l, d[0], d[1], d[2], rs[i]);
+        __builtin_prefetch(l->pdf_table + bin[i]);
+      }
+      for (i = 0; i < m; ++i)
+        if (!cold[i]) pdf[i0 + i] = el_envlight__pdf_at(l->pdf_table[bin[i]], rs[i], lens[i]);
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) pdf[i] = el_envlight_pdf_li(l, dirs + 3 * i);
+}
+
+EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb) {
+  int i;
+#ifdef EL_ENVLIGHT__BATCH
+  if (n > 1 && l->width > 0 && l->mapping == EL_ENVLIGHT_MAPPING_LATLONG) {
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      const float *p[4 * EL_ENVLIGHT__BATCH];
+      float fx[EL_ENVLIGHT__BATCH], fy[EL_ENVLIGHT__BATCH];
+      unsigned char cold[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) { /* el_envlight_le up to the texel reads (el_envlight__le_light's (u, v)) */
+        const float *w = dirs + 3 * (i0 + i);
+        float d[3], r2, len2;
+        int q;
+        el_envlight__to_light(l, w, d);
+        r2 = d[0] * d[0] + d[1] * d[1];
+        len2 = r2 + d[2] * d[2];
+        cold[i] = !(len2 >= FLT_MIN && len2 <= FLT_MAX);
+        if (cold[i]) { el_envlight__le_cold(l, w, rgb + 3 * (i0 + i)); continue; }
+        el_envlight__bilerp_texels(l, el_envlight__phi_turns(d[1], d[0]), el_envlight__theta_halfturns(sqrtf(r2), d[2]),
+                                   p + 4 * i, &fx[i], &fy[i]);
+        for (q = 0; q < 4; ++q) __builtin_prefetch(p[4 * i + q] + 2 * (q & 1)); /* as sample_li_n */
+      }
+      for (i = 0; i < m; ++i)
+        if (!cold[i]) el_envlight__bilerp_at(p + 4 * i, fx[i], fy[i], rgb + 3 * (i0 + i));
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) el_envlight_le(l, dirs + 3 * i, rgb + 3 * i);
 }
 
 static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {

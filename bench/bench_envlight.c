@@ -16,6 +16,7 @@
  *                                        build_product; n at once (sample_li_cos_n, pdf_li_cos_n,
  *                                        batches of 64, the same normals and u): sample_cos_n
  *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated;
+ *                                        pdf_li_n, le_n (batches of 64, run_pdf's directions): pdf_n le_n;
  *                                        the hot-spot mixture with the rest x cosine (256 prepared
  *                                        tables, spots at 3%): sample_mix_cos_rgb pdf_mix_cos
  *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
@@ -245,6 +246,21 @@ static double run_pdf_cos_n(el_envlight *l, long n) {
   }
   return acc;
 }
+/* pdf_li_n (le = 0) and le_n (le = 1) (issue 21: a wave's escaped rays), batches of 64 of the
+ * directions run_pdf / run_le use */
+static double run_escape_n(el_envlight *l, long n, int le) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float v[3 * CB];
+  for (k = 0; k < n; k += CB) {
+    m = n - k < CB ? (int)(n - k) : CB;
+    if (le) el_envlight_le_n(l, m, g_dir + 3 * (k & (NP - 1)), v);
+    else el_envlight_pdf_li_n(l, m, g_dir + 3 * (k & (NP - 1)), v);
+    for (j = 0; j < m; ++j) acc += v[le ? 3 * j + 1 : j];
+  }
+  return acc;
+}
 static double run_loop(long n) { /* the loop alone: read the inputs, sum */
   double acc = 0;
   long k;
@@ -278,13 +294,21 @@ static double pollute(long k) {
   for (j = 0; j < 8; ++j) a += g_pollute[hash32((uint32_t)(k * 8 + j)) & (POLLUTE_N - 1)];
   return a;
 }
+/* batch = 2, 3: an escaped ray's pdf_li and le (random directions), one at a time or pdf_li_n + le_n
+ * for 16 (issue 21) */
 static double run_interleaved(el_envlight *l, long n, int batch) {
   double acc = 0;
   long k, j;
   float wi[3 * 16], L[3 * 16], p[16];
   for (k = 0; k + 16 <= n; k += 16) {
-    const float *u = g_u + 2 * (k & (NP - 1));
-    if (batch) {
+    const float *u = g_u + 2 * (k & (NP - 1)), *d = g_dir + 3 * (k & (NP - 1));
+    if (batch == 3) {
+      el_envlight_pdf_li_n(l, 16, d, p);
+      el_envlight_le_n(l, 16, d, L);
+      for (j = 0; j < 16; ++j) acc += p[j] + L[3 * j] + pollute(k + j);
+    } else if (batch == 2)
+      for (j = 0; j < 16; ++j) { p[0] = el_envlight_pdf_li(l, d + 3 * j); el_envlight_le(l, d + 3 * j, L); acc += p[0] + L[0] + pollute(k + j); }
+    else if (batch) {
       el_envlight_sample_li_n(l, 16, u, wi, L, p);
       for (j = 0; j < 16; ++j) acc += p[j] + L[3 * j] + pollute(k + j);
     } else
@@ -304,6 +328,7 @@ static double fn_sample_cos(el_envlight *l, long n, int rgb) { return run_sample
 static double fn_pdf_cos(el_envlight *l, long n, int a) { (void)a; return run_pdf_cos(l, n); }
 static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l, n); }
 static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
+static double fn_escape_n(el_envlight *l, long n, int le) { return run_escape_n(l, n, le); }
 
 /* ---- --callgrind OP N ---- */
 static int callgrind_mode(const char *op, long n, const char *map) {
@@ -379,6 +404,7 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "le")) sink = run_le(&l, n);
+  else if (!strcmp(op, "pdf_n") || !strcmp(op, "le_n")) sink = run_escape_n(&l, n, !strcmp(op, "le_n"));
   else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
   (void)sink;
   el_envlight_free(&l);
@@ -987,6 +1013,12 @@ int main(int argc, char **argv) {
         printf("  in a loop with other memory work between samples (%.1f ns per sample of it, taken off):\n"
                "    sample_li + radiance one at a time %5.1f ns;  sample_li_n, 16 at a time %5.1f ns (%.1fx)\n",
                t_work, t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
+        t_one = 1e3 / rate(run_interleaved, &l, 2);
+        t_batch = 1e3 / rate(run_interleaved, &l, 3);
+        printf("    pdf_li + le one at a time %5.1f ns;  pdf_li_n + le_n, 16 at a time %5.1f ns (%.1fx)\n",
+               t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
+        printf("  alone (batches of 64): pdf_li %5.1f ns, pdf_li_n %5.1f ns; le %5.1f ns, le_n %5.1f ns\n", 1e3 / rate(fn_pdf, &l, 0),
+               1e3 / rate(fn_escape_n, &l, 0), 1e3 / rate(fn_le, &l, 0), 1e3 / rate(fn_escape_n, &l, 1));
         el_envlight_free(&l);
       }
     }
