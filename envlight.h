@@ -388,7 +388,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    variance of one estimate, independent / Owen-scrambled Sobol'): the light sample alone 3.78e-3 / 2.07e-6
  *    (CELL_AVERAGE 6.30e-3 / 1.76e-3, PBRT_V3 4.41e-3 / 4.24e-4), with one cosine sample and the power
  *    heuristic 4.12e-3 / 2.32e-4 (6.59e-3 / 1.82e-3, 4.76e-3 / 5.53e-4): 2.4x less than PBRT_V3 with the
- *    low-discrepancy points, 1.15x with independent ones.
+ *    low-discrepancy points, 1.16x with independent ones.
  *    SAMPLING: one discrete table over the w x (h + 1) patches (distribution2d.h's integer CDFs, each patch's
  *    weight the mean of its corners x its height, so every patch with a positive corner is reachable at any
  *    dynamic range; the light's own guide tables, or its CDF or alias sampler), then (s, t) inside the patch
