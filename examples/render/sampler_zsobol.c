@@ -99,7 +99,11 @@ void elr_zsobol_tables_init(elr_sampler_tables *T, int log2spp) {
   int j, v;
   for (j = 0; j < ELR_ZSOBOL_LEVELS; j++)
     for (v = 0; v < 4; v++) {
-      uint64_t index = (uint64_t)v << (log2spp + 2 * j); /* (bits past the matrices' 52 columns add nothing) */
+      /* (bits past the matrices' 52 columns add nothing; the tables are made for every spp up to 2^24,
+       * where log2spp + 2j reaches 70: a shift of 64 or more is undefined, and its index bits are past
+       * the columns too) */
+      int sh = log2spp + 2 * j;
+      uint64_t index = sh < 64 ? (uint64_t)v << sh : 0u;
       uint32_t c0 = elr_sobol_bits(&T->sobol, index, 0), c1 = elr_sobol_bits(&T->sobol, index, 1);
       T->zdig[0][j][v] = (uint64_t)c0 | (uint64_t)c1 << 32;
       T->zdig[1][j][v] = (uint64_t)elr_reverse_bits32(c0) | (uint64_t)elr_reverse_bits32(c1) << 32;
