@@ -2596,22 +2596,12 @@ static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt,
 }
 #endif
 
-/* sample_li from a bin and its fractions through the direction tables (every sampler but sample_li's
- * inline guide path comes here). A leaf (its only call is a tail call), so it saves no registers. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
-  /* mapPdf / (2 pi^2): the bin's pdf_table entry, the value pdf_li finds (sample_li's inline path forms
-   * the same value from the CDF entries its search read) */
-  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu];
-#if EL_ENVLIGHT__SSE
-  __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu,
-                                  _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), p, wi, pdf);
-  if (l->table_done && !rgb) return;
-  fu = _mm_cvtss_f32(_mm_movehl_ps(f, f));
-  fv = _mm_cvtss_f32(f);
-#else
-  /* the SSE code's operations, lane by lane (see el_envlight__dir_sse) */
+#if !EL_ENVLIGHT__SSE
+/* <<Compute direction for infinite light sample>> without SSE: el_envlight__dir_sse's operations, lane
+ * by lane (see there); *fu, *fv clamped as it clamps them. Returns sin(theta). */
+static float el_envlight__dir_scalar(const el_envlight *l, int iu, int iv, float *pfu, float *pfv, float wi[3]) {
   const float *rt = l->row_tab + 16 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu, *dc = l->dir_consts;
-  float a, b, a2, b2, sa, ca, sb, cb, st, cth;
+  float fu = *pfu, fv = *pfv, a, b, a2, b2, sa, ca, sb, cb, st, cth;
   fv = fv > dc[0] ? fv : dc[0];
   fv = fv < dc[4] ? fv : dc[4];
   fu = fu > dc[2] ? fu : dc[2];
@@ -2625,6 +2615,25 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   wi[0] = st * (cb * ct[0] + sb * ct[4]) + cth * dc[12];
   wi[1] = st * (cb * ct[1] + sb * ct[5]) + cth * dc[13];
   wi[2] = st * (cb * ct[2] + sb * ct[6]) + cth * dc[14];
+  *pfu = fu; *pfv = fv;
+  return st;
+}
+#endif
+
+/* sample_li from a bin and its fractions through the direction tables (every sampler but sample_li's
+ * inline guide path comes here). A leaf (its only call is a tail call), so it saves no registers. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+  /* mapPdf / (2 pi^2): the bin's pdf_table entry, the value pdf_li finds (sample_li's inline path forms
+   * the same value from the CDF entries its search read) */
+  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu];
+#if EL_ENVLIGHT__SSE
+  __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu,
+                                  _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), p, wi, pdf);
+  if (l->table_done && !rgb) return;
+  fu = _mm_cvtss_f32(_mm_movehl_ps(f, f));
+  fv = _mm_cvtss_f32(f);
+#else
+  float st = el_envlight__dir_scalar(l, iu, iv, &fu, &fv, wi);
   EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
   *pdf = p / st;
   if (l->table_done && !rgb) return;
@@ -4781,29 +4790,25 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
 
 /* The world direction of bin (iu, iv) at fractions (fu, fv) of the light's own grid, as sample_li builds
  * it: the fractions kept the margin inside the bin (as el_envlight__sample_bin keeps them), then the
- * direction tables or the (u, v) mapping. pb: the bin's density as the tables want it (its pdf is
- * recomputed by the caller). Both hot-spot samplers go through here. */
-static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float uv[2]) {
+ * direction tables (without their pdf: the callers make theirs) or the (u, v) mapping. uv: the sample's
+ * own (u, v) where the tables are exact (table_done: a signed-permutation matrix), for its radiance as
+ * sample_li_finish looks it up; else uv[0] = -1. Both hot-spot samplers go through here; with and without
+ * SSE the same operations (el_envlight__dir_sse, el_envlight__dir_scalar). */
+static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float uv[2]) {
   uv[0] = -1.0f;
   fu = fu > l->u_margin ? fu : l->u_margin;
   fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
   fv = fv > l->v_margin ? fv : l->v_margin;
   fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  if (l->dir_tables) { /* (the tables clamp to the same margins: fu and fv stay as they are) */
 #if EL_ENVLIGHT__SSE
-  if (l->dir_tables) { /* the direction alone (el_envlight__sample_table's, without its pdf: the callers make theirs) */
     float p;
-    __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
-    (void)pb;
-    if (l->table_done) { /* the sample's own (u, v), for its radiance (as sample_li_finish) */
-      uv[0] = ((float)iu + _mm_cvtss_f32(_mm_movehl_ps(f, f))) * l->dist.u_width;
-      uv[1] = ((float)iv + _mm_cvtss_f32(f)) * l->dist.v_width;
-    }
-  } else
+    (void)el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
 #else
-  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
-  else
+    (void)el_envlight__dir_scalar(l, iu, iv, &fu, &fv, wi);
 #endif
-  {
+    if (l->table_done) { uv[0] = ((float)iu + fu) * l->dist.u_width; uv[1] = ((float)iv + fv) * l->dist.v_width; }
+  } else {
     float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
     float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
     el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
@@ -4868,10 +4873,10 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
     iv += h->rect[k][1];
   }
   /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, wi, uv);
   *pdf = el_envlight__hot_pdf(l, h, a, wi);
   if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
-    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, wi, uv);
     *pdf = el_envlight__hot_pdf(l, h, a, wi);
   }
   el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
@@ -5027,14 +5032,13 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
     row += EL_ENVLIGHT__GUIDE_E;
     fv = (xv - (float)rc[y]) / (float)(rc[y + 1] - rc[y]);
     fu = (xu - (float)row[x]) / (float)(row[x + 1] - row[x]);
-    pb = 0.0f;
     iu = h->cell_u0[cu] + x;
     iv = h->cell_v0[cv] + y;
   }
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, wi, uv);
   *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
-    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, wi, uv);
     *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   }
   el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
