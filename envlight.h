@@ -619,8 +619,9 @@ typedef struct el_envlight_mix_weights {
  * A constant light, importance mode BILINEAR, a black map or a map without a compact bright region: count
  * 0 (success; the mixture is then sample_li itself). EL_ERROR_INVALID_ARGUMENT for NULL pointers or
  * options out of range (negative, NaN, max_spots > EL_ENVLIGHT_HOTSPOT_MAX), EL_ERROR_OUT_OF_MEMORY, or
- * the light's own table build result. On failure *h is zeroed. Extra memory: about 4 bytes per bin
- * (the rest's distribution) when a spot is found, nothing otherwise. */
+ * the light's own table build result. On failure *h is zeroed. Extra memory: about 6 bytes per bin
+ * (the rest's distribution, 4; the rest x cosine part's cell tables, 2: NOTES ON HOT SPOTS 4) when a
+ * spot is found, nothing otherwise. */
 EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_envlight *l,
                                            const el_envlight_hotspot_options *opt);
 EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h);
@@ -644,7 +645,8 @@ EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_
                                         float *rgb, float *pdf);
 /* The mixture with the rest drawn in proportion to the map times a cosine bound of the surface of world
  * normal n (NOTES ON HOT SPOTS 4): spot k as in sample_li_mix, the rest's cells (32 x 16) picked by their
- * mass times max(1e-3, an upper bound of n.w over the cell), then sample_li's density inside the cell.
+ * mass times max(1e-3, an upper bound of n.w over the cell), then sample_li's density inside the cell
+ * (up to its 16-bit tables' rounding).
  * Default weights here mean each part's own share. No spot (or h unusable): sample_li_cos itself, and
  * pdf_li_mix_cos is pdf_li_cos. A zero or NaN n: bound 1 (sample_li_mix's density). *pdf equals
  * pdf_li_mix_cos(l, h, w, n, wi) bit for bit. Cost: O(cells) per call (512 bounds), sample and pdf. */
@@ -4674,7 +4676,7 @@ static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float
 /* index i of a cell table's CDF c[0..n] (guide g) with c[i] <= k < c[i + 1]: the guide for n <= 256 (what
  * el_envlight__guide_build allows), else the binary search: the same i */
 static inline int el_envlight__hot_search(const uint16_t *c, int n, const uint8_t *g, uint32_t k) {
-  return n <= 256 ? el_envlight__search_guided(c, n, g, k) : el_envlight__search16(c, n, k < 32767u ? k : 32767u);
+  return n <= 256 ? el_envlight__search_guided(c, n, g, k) : el_envlight__search16(c, n, k < EL_ENVLIGHT__CELL_UNITS - 1u ? k : EL_ENVLIGHT__CELL_UNITS - 1u);
 }
 
 static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, int iv);
@@ -5025,7 +5027,7 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
     rows = h->cell_v0[cv + 1] - h->cell_v0[cv]; cols = h->cell_u0[cu + 1] - h->cell_u0[cu];
     tb = h->cell_tab + h->cell_off[cell];
     rc = tb + EL_ENVLIGHT__GUIDE_E;
-    xv = el_envlight__clamp_u(u[1]) * 32768.0f; xu = uu * 32768.0f;
+    xv = el_envlight__clamp_u(u[1]) * (float)EL_ENVLIGHT__CELL_UNITS; xu = uu * (float)EL_ENVLIGHT__CELL_UNITS;
     y = el_envlight__hot_search(rc, rows, (const uint8_t *)tb, (uint32_t)xv);
     row = tb + EL_ENVLIGHT__HOT_ROW(rows) + (size_t)y * EL_ENVLIGHT__HOT_ROW(cols);
     x = el_envlight__hot_search(row + EL_ENVLIGHT__GUIDE_E, cols, (const uint8_t *)row, (uint32_t)xu);
