@@ -19,7 +19,11 @@
  *      and for a shadowed point (f = 0 on the sun) with the sun's weight 0; for sample_li_mix and the
  *      rest x cosine mixture (sample_li_mix_cos, also chi-square tested for normals up, sideways, down
  *      and NaN, and on 512 x 256 with the direction tables);
- *   5. hostile inputs: NaN / infinite u and directions, bad options, hot spots of another light.
+ *   5. hostile inputs: NaN / infinite u and directions, bad options, hot spots of another light;
+ *   6. cells of more than 256 bins a side (8208 x 32 and 128 x 4104 maps), where the rest x cosine tables
+ *      have no guide and are searched by bisection: chi-square over every bin, sampled pdf == pdf_li_mix_cos,
+ *      unbiasedness, hostile u, normals, directions and weights 0 and 1; that such cells exist is read from
+ *      el_envlight_hotspots' private cell_u0 / cell_v0 (the one white-box check here).
  */
 #define EL_IMPLEMENTATION
 #include "envlight.h"
@@ -245,12 +249,34 @@ static void test_defaults(void) {
 /* ---- 3. chi-square over the importance bins ---- */
 static int g_chi2 = 0;
 static const float *g_cosn = NULL; /* non-NULL: the rest x cosine mixture for this world normal */
+static const el_envlight_mix_cos_table *g_cost = NULL; /* non-NULL: mix_pdf through this prepared (w, g_cosn) */
 static void mix_sample(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w, const float u[2], float wi[3], float rgb[3], float *pdf) {
   if (g_cosn) el_envlight_sample_li_mix_cos(l, h, w, g_cosn, u, wi, rgb, pdf);
   else el_envlight_sample_li_mix(l, h, w, u, wi, rgb, pdf);
 }
 static float mix_pdf(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w, const float d[3]) {
+  if (g_cost) return el_envlight_pdf_li_mix_cos_table(l, h, g_cost, d); /* (== pdf_li_mix_cos bit for bit: test_table) */
   return g_cosn ? el_envlight_pdf_li_mix_cos(l, h, w, g_cosn, d) : el_envlight_pdf_li_mix(l, h, w, d);
+}
+/* the bin (x, y) of nu x nv lat-long bins that holds the light-space direction d, and d's (u, v), in double */
+static void dir_bin(const float d[3], int nu, int nv, double *uu, double *vv, int *x, int *y) {
+  float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  *uu = atan2(d[1], d[0]) / (2 * PI); if (*uu < 0) *uu += 1;
+  *vv = acos(d[2] / len > 1 ? 1 : (d[2] / len < -1 ? -1 : d[2] / len)) / PI;
+  *x = (int)(*uu * nu); *y = (int)(*vv * nv);
+  if (*x >= nu) *x = nu - 1;
+  if (*y >= nv) *y = nv - 1;
+}
+/* the integral of mix_pdf over bin (x, y) of nu x nv: pdf(centre) sin(theta_c) dtheta dphi, exact for the
+ * mixtures' densities c / sin(theta) in a bin; m: the light's rotation (NULL: none) */
+static double bin_mass(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w, const float *m,
+                       int x, int y, int nu, int nv) {
+  double dd[3];
+  float a[3], b[3];
+  uv_dir((x + 0.5) / nu, (y + 0.5) / nv, dd);
+  a[0] = (float)dd[0]; a[1] = (float)dd[1]; a[2] = (float)dd[2];
+  if (m) mul(m, a, b); else memcpy(b, a, sizeof a);
+  return mix_pdf(l, h, w, b) * sin(PI * (y + 0.5) / nv) * (PI / nv) * (2 * PI / nu);
 }
 #define CHI2_PLANNED 29
 static void chi2(const char *name, int kind, int rot, float spot_share) {
@@ -271,18 +297,12 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
   el_envlight_hotspots_weights(&h, spot_share, &w);
   memset(obs, 0, sizeof obs);
   memset(frac, 0, sizeof frac);
-  for (i = 0; i < W * H; ++i) { /* the integral of pdf_li_mix over bin i: pdf(centre) sin(theta_c) dtheta dphi */
-    int x = i % W, y = i / W;
-    double dd[3];
-    float a[3], b[3];
-    uv_dir((x + 0.5) / W, (y + 0.5) / H, dd);
-    a[0] = (float)dd[0]; a[1] = (float)dd[1]; a[2] = (float)dd[2];
-    if (rot) mul(m, a, b); else memcpy(b, a, sizeof a);
-    expect[i] = mix_pdf(&l, &h, &w, b) * sin(PI * (y + 0.5) / H) * (PI / H) * (2 * PI / W);
+  for (i = 0; i < W * H; ++i) { /* the integral of pdf_li_mix over bin i */
+    expect[i] = bin_mass(&l, &h, &w, rot ? m : NULL, i % W, i / W, W, H);
     total += expect[i];
   }
   for (i = 0; i < n; ++i) {
-    float u[2], wi[3], rgb[3], pdf, q, d[3], len;
+    float u[2], wi[3], rgb[3], pdf, q, d[3];
     double uu, vv;
     int x, y;
     u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
@@ -291,12 +311,7 @@ static void chi2(const char *name, int kind, int rot, float spot_share) {
     if (memcmp(&q, &pdf, sizeof q)) ++mismatch;
     if (!isfinite(pdf) || !isfinite(rgb[0]) || !isfinite(wi[0]) || !(pdf > 0)) ++nonfinite;
     if (rot) mul_t(m, wi, d); else memcpy(d, wi, sizeof d);
-    len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    uu = atan2(d[1], d[0]) / (2 * PI); if (uu < 0) uu += 1;
-    vv = acos(d[2] / len > 1 ? 1 : (d[2] / len < -1 ? -1 : d[2] / len)) / PI;
-    x = (int)(uu * W); y = (int)(vv * H);
-    if (x >= W) x = W - 1;
-    if (y >= H) y = H - 1;
+    dir_bin(d, W, H, &uu, &vv, &x, &y);
     obs[y * W + x]++;
     { /* inside its bin the point is uniform in (u, v), as sample_li's */
       int fx = (int)((uu * W - x) * 16), fy = (int)((vv * H - y) * 16);
@@ -389,20 +404,21 @@ static void test_chi2(void) {
 }
 
 /* ---- 4. unbiasedness ---- */
-static double cosine_integral(const el_envlight *l, const float n[3], const double sun[3], double cone) {
-  /* brute force: 4 x 4 points per texel of le itself (16 x 16 in the two rows at each pole, where le x
-   * sin(theta) is far from linear: 4 x 4 was 0.9% off there), times the solid angle; 0 within `cone` of sun */
+static double cosine_integral_q(const el_envlight *l, const float n[3], const double sun[3], double cone, int qu, int qv, int qpu, int qpv) {
+  /* brute force: qu x qv points per texel of le itself (qpu x qpv in the two rows at each pole, where
+   * le x sin(theta) is far from linear), times the solid angle; 0 within `cone` of sun. An even count
+   * per axis puts the texel centres, where le's bilinear pieces meet, on the points' cell edges */
   int x, y, a, b;
   double s = 0;
   for (y = 0; y < H; ++y) {
-    int q = y < 2 || y >= H - 2 ? 16 : 4;
+    int pole = y < 2 || y >= H - 2, q = pole ? qpv : qv, p = pole ? qpu : qu;
     for (b = 0; b < q; ++b) {
-      double v = (y + (b + 0.5) / q) / H, dw = sin(PI * v) * (PI / (q * H)) * (2 * PI / (q * W));
+      double v = (y + (b + 0.5) / q) / H, dw = sin(PI * v) * (PI / (q * H)) * (2 * PI / (p * W));
       for (x = 0; x < W; ++x)
-        for (a = 0; a < q; ++a) {
+        for (a = 0; a < p; ++a) {
           double dd[3], c;
           float d[3], rgb[3];
-          uv_dir((x + (a + 0.5) / q) / W, v, dd);
+          uv_dir((x + (a + 0.5) / p) / W, v, dd);
           c = n[0] * dd[0] + n[1] * dd[1] + n[2] * dd[2];
           if (c <= 0) continue;
           if (sun && dd[0] * sun[0] + dd[1] * sun[1] + dd[2] * sun[2] >= cos(cone)) continue;
@@ -414,6 +430,29 @@ static double cosine_integral(const el_envlight *l, const float n[3], const doub
   }
   return s;
 }
+static double cosine_integral(const el_envlight *l, const float n[3], const double sun[3], double cone) {
+  return cosine_integral_q(l, n, sun, cone, 4, 4, 16, 16); /* (4 x 4 was 0.9% off in the pole rows of 128 x 64) */
+}
+
+/* the mean of f / pdf and its standard error over count samples, f = le x max(0, n.w) (0 within `cone` of
+ * sun when sun is non-NULL), from sample_li_mix_cos (cos_mix) or sample_li_mix */
+static void estimate(const el_envlight *l, const el_envlight_hotspots *h, const el_envlight_mix_weights *w, const float n[3],
+                     const double *sun, double cone, int cos_mix, int count, double *mean, double *sd) {
+  double sum = 0, sum2 = 0;
+  int i;
+  for (i = 0; i < count; ++i) {
+    float u[2], wi[3], rgb[3], pdf, c;
+    double f = 0;
+    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
+    if (cos_mix) el_envlight_sample_li_mix_cos(l, h, w, n, u, wi, rgb, &pdf);
+    else el_envlight_sample_li_mix(l, h, w, u, wi, rgb, &pdf);
+    c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
+    if (pdf > 0 && c > 0 && !(sun && wi[0] * sun[0] + wi[1] * sun[1] + wi[2] * sun[2] >= cos(cone))) f = rgb[1] * c / pdf;
+    sum += f; sum2 += f * f;
+  }
+  *mean = sum / count;
+  *sd = sqrt((sum2 / count - *mean * *mean) / count);
+}
 
 static void unbiased(int kind, float spot_share, int shadow, int cos_mix) {
   static float px[MAXWH * 3];
@@ -421,8 +460,8 @@ static void unbiased(int kind, float spot_share, int shadow, int cos_mix) {
   el_envlight_hotspots h;
   el_envlight_mix_weights w;
   float n[3] = {0.3f, -0.2f, 0.93f};
-  double ref, sum = 0, sum2 = 0, mean, sd, sun[3], cone = 0;
-  int i, count = cos_mix ? 150000 : 400000;
+  double ref, mean, sd, sun[3], cone = 0;
+  int count = cos_mix ? 150000 : 400000;
   make_map(kind, px);
   make_light(&l, px, 0);
   el_envlight_hotspots_init(&h, &l, NULL);
@@ -432,18 +471,7 @@ static void unbiased(int kind, float spot_share, int shadow, int cos_mix) {
     cone = h.spot[0].half_angle + 2 * PI / H;
   }
   ref = cosine_integral(&l, n, shadow ? sun : NULL, cone);
-  for (i = 0; i < count; ++i) {
-    float u[2], wi[3], rgb[3], pdf, c;
-    double f = 0;
-    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
-    if (cos_mix) el_envlight_sample_li_mix_cos(&l, &h, &w, n, u, wi, rgb, &pdf);
-    else el_envlight_sample_li_mix(&l, &h, &w, u, wi, rgb, &pdf);
-    c = n[0] * wi[0] + n[1] * wi[1] + n[2] * wi[2];
-    if (pdf > 0 && c > 0 && !(shadow && wi[0] * sun[0] + wi[1] * sun[1] + wi[2] * sun[2] >= cos(cone))) f = rgb[1] * c / pdf;
-    sum += f; sum2 += f * f;
-  }
-  mean = sum / count;
-  sd = sqrt((sum2 / count - mean * mean) / count);
+  estimate(&l, &h, &w, n, shadow ? sun : NULL, cone, cos_mix, count, &mean, &sd);
   check(fabs(mean - ref) < 4.5 * sd + 2e-3 * ref,
         "unbiased %-20s%s spots %.2f%s: mean of f/pdf %.5f, quadrature %.5f (%.1f sd)", map_name[kind], cos_mix ? " x cos" : "", spot_share,
         shadow ? " (sun occluded)" : "", mean, ref, fabs(mean - ref) / (sd > 0 ? sd : 1));
@@ -591,6 +619,184 @@ static void test_table(void) {
   check(bad == 0, "mix_cos_prepare + the _table calls == sample_li_mix_cos / pdf_li_mix_cos bit for bit, one table reused (%d of %d differ)", bad, calls);
 }
 
+/* ---- 6. cells of more than 256 bins a side: the rest x cosine tables' binary search ---- */
+/* The rest x cosine part cuts the importance bins into 32 x 16 cells (el_envlight_hotspots' cell_u0 and
+ * cell_v0); a cell row of more than 256 bins (nu > 8192) or a cell of more than 256 rows (nv > 4096) has no
+ * guide table and is searched by bisection (el_envlight__hot_search). Two maps reach it, each with the
+ * image's own resolution as its importance grid (the default cell averages; no cap): 8208 x 32 (cells of
+ * 256 and 257 bins across, alternately: the guide and the bisection side by side) and 128 x 4104 (cells of
+ * 256 and 257 rows). Along the long axis the sky is sparse, 2 lit texels in 24 with random values and the
+ * first and last texel of every cell, so a bin's mass differs from its neighbours' (the bilinear spill:
+ * 1/8 of a lit neighbour; 0 beyond) and a search one bin off, or one that never reaches a cell's last
+ * bin, shows in the chi-square or as samples with pdf 0; a 24-texel sun gives the spot. */
+#define LONG_MAXB (128 * 4104)
+static int long_lit(int p, int n, int cells) { /* 2 in 24, and the first and last of each cell (el_envlight__hot_cells' split) */
+  int c;
+  for (c = 0; c <= cells; ++c) if (p == c * n / cells || p == c * n / cells - 1) return 1;
+  return p % 24 < 2;
+}
+static void long_map(int tall, float *px) {
+  int x, y, c;
+  for (y = 0; y < H; ++y)
+    for (x = 0; x < W; ++x) {
+      double v = (y + 0.5) / H, r = hash32((uint32_t)(y * W + x) * 2654435761u) / 4294967296.0;
+      double val = long_lit(tall ? y : x, tall ? H : W, tall ? 16 : 32) ? (0.2 + 2.8 * r) * (v < 0.5 ? 1.0 : 0.25) : 0.0;
+      for (c = 0; c < 3; ++c) px[3 * (y * W + x) + c] = (float)(val * (c == 2 ? 1.2 : 1.0));
+    }
+  for (y = 0; y < (tall ? 24 : 1); ++y)
+    for (x = 0; x < (tall ? 2 : 24); ++x)
+      for (c = 0; c < 3; ++c) px[3 * ((y + (tall ? 1500 : 10)) * W + x + (tall ? 40 : 3000)) + c] = 3e3f;
+}
+static el_result long_light(el_envlight *l, const float *px) {
+  el_envlight_options o;
+  memset(&o, 0, sizeof o);
+  o.importance_width = W; o.importance_height = H;
+  return el_envlight_init(l, px, W, H, 3, &o);
+}
+/* the cells (across for rows, down for tall) longer than 256 bins, and those of 256 or fewer */
+static void long_cells(const el_envlight_hotspots *h, int tall, int *longer, int *shorter) {
+  int c, nc = tall ? h->cells_v : h->cells_u;
+  const int *c0 = tall ? h->cell_v0 : h->cell_u0;
+  *longer = *shorter = 0;
+  for (c = 0; c < nc; ++c) { if (c0[c + 1] - c0[c] > 256) ++*longer; else ++*shorter; }
+}
+static void long_chi2(const el_envlight *l, const el_envlight_hotspots *h, const char *name, int tall, const float n[3],
+                      float spot_share, int count) {
+  static double expect[LONG_MAXB], obs[LONG_MAXB];
+  el_envlight_mix_weights w;
+  el_envlight_mix_cos_table t;
+  const int *c0 = tall ? h->cell_v0 : h->cell_u0;
+  int i, dof = 0, mismatch = 0, mismatch_t = 0, bad = 0, zero_hits = 0, in_long = 0;
+  double total = 0, x2, pval;
+  el_envlight_hotspots_weights(h, spot_share, &w);
+  g_cosn = n;
+  el_envlight_mix_cos_prepare(l, h, &w, n, &t);
+  g_cost = &t; /* (the expected counts of 263 K / 525 K bins: 5x faster than pdf_li_mix_cos) */
+  for (i = 0; i < W * H; ++i) { expect[i] = bin_mass(l, h, &w, NULL, i % W, i / W, W, H); total += expect[i]; obs[i] = 0; }
+  g_cost = NULL;
+  for (i = 0; i < count; ++i) {
+    float u[2], wi[3], rgb[3], pdf, q, wt[3], rt[3], pt;
+    double uu, vv;
+    int x, y, c = 0;
+    u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
+    el_envlight_sample_li_mix_cos(l, h, &w, n, u, wi, rgb, &pdf);
+    q = el_envlight_pdf_li_mix_cos(l, h, &w, n, wi);
+    if (memcmp(&q, &pdf, sizeof q)) ++mismatch;
+    el_envlight_sample_li_mix_cos_table(l, h, &t, u, wt, rt, &pt); /* the prepared table's sample: the same bits */
+    if (memcmp(wt, wi, sizeof wt) || memcmp(rt, rgb, sizeof rt) || memcmp(&pt, &pdf, sizeof pt)) ++mismatch_t;
+    if (!(pdf > 0) || !isfinite(pdf) || !isfinite(wi[0] + wi[1] + wi[2]) || !isfinite(rgb[0] + rgb[1] + rgb[2])) ++bad;
+    dir_bin(wi, W, H, &uu, &vv, &x, &y);
+    obs[y * W + x] += 1;
+    if (expect[y * W + x] == 0) ++zero_hits;
+    while (c0[c + 1] <= (tall ? y : x)) ++c;
+    in_long += c0[c + 1] - c0[c] > 256;
+  }
+  x2 = chisq_pooled(expect, obs, (size_t)(W * H), 1.0, count, NULL, &dof);
+  dof -= 1;
+  pval = dof > 0 ? gammq(0.5 * dof, 0.5 * x2) : 1.0;
+  check(pval > 0.01 / 4 && fabs(total - 1) < 2e-3 && zero_hits == 0 && in_long > count / 4,
+        "long %s x cos spots %.2f: chi2 = %.1f over the bins, %d dof, p = %.3g (> %.2g), pdf sums to %.5f, %d hits in zero-pdf bins, "
+        "%.1f%% of the samples in cells of > 256 %s", name, spot_share, x2, dof, pval, 0.01 / 4, total, zero_hits,
+        100.0 * in_long / count, tall ? "rows" : "bins across");
+  check(mismatch == 0 && mismatch_t == 0 && bad == 0, "long %s x cos spots %.2f: sampled pdf == pdf_li_mix_cos(wi) for all %d samples (%d differ, "
+        "%d with pdf 0 or non-finite); sample_li_mix_cos_table gives the same bits (%d differ)", name, spot_share, count, mismatch, bad, mismatch_t);
+  g_cosn = NULL;
+}
+/* hostile inputs on the long maps: u at 0, 1 - ulp, 1, -1, NaN, Inf; normals zero, NaN, Inf, 2^+-120 x a
+ * unit one; weights 0 (all on the rest), 1 (all on the spot) and the default; directions zero, NaN, Inf,
+ * 2^+-120 x a unit one */
+static void long_hostile(const el_envlight *l, const el_envlight_hotspots *h, const char *name) {
+  static const float us[6] = {0.0f, 0.99999994f, 1.0f, -1.0f, NAN, INFINITY};
+  float normals[7][3] = {{0, 0, 0}, {NAN, 0, 1}, {INFINITY, 0, 1}, {0.5f, -0.5f, 0.7071068f}, {0, 0, 0}, {0, 0, 0}, {0, 0, -1}};
+  const float shares[3] = {0.0f, 1.0f, NAN};
+  int k, ni, i, j, t, bad = 0, mism = 0, nscaled = 0, scaled = 0, edge = 0, unusable = 0, zero = 0;
+  for (k = 0; k < 3; ++k) { normals[4][k] = ldexpf(normals[3][k], 120); normals[5][k] = ldexpf(normals[3][k], -120); }
+  for (t = 0; t < 3; ++t) {
+    el_envlight_mix_weights w;
+    float pz[3];
+    el_envlight_hotspots_weights(h, shares[t], &w);
+    for (ni = 0; ni < 7; ++ni)
+      for (i = 0; i < 6; ++i)
+        for (j = 0; j < 6; ++j) {
+          float u[2], wi[3], rgb[3], pdf, q;
+          u[0] = us[i]; u[1] = us[j];
+          el_envlight_sample_li_mix_cos(l, h, &w, normals[ni], u, wi, rgb, &pdf);
+          q = el_envlight_pdf_li_mix_cos(l, h, &w, normals[ni], wi);
+          if (!(pdf > 0) || !isfinite(pdf) || !isfinite(wi[0] + wi[1] + wi[2]) || !isfinite(rgb[0] + rgb[1] + rgb[2])) ++bad;
+          if (memcmp(&q, &pdf, sizeof q)) ++mism;
+        }
+    for (i = 0; i < 2000; ++i) { /* random directions: scaled normals give the unit one's pdf, unusable ones the zero normal's */
+      float d[3], p3, p4, p5, p0, p1, p2, pl;
+      d[0] = 2 * rng_f(&g_rng) - 1; d[1] = 2 * rng_f(&g_rng) - 1; d[2] = 2 * rng_f(&g_rng) - 1;
+      p3 = el_envlight_pdf_li_mix_cos(l, h, &w, normals[3], d);
+      pl = el_envlight_pdf_li(l, d);
+      p4 = el_envlight_pdf_li_mix_cos(l, h, &w, normals[4], d); p5 = el_envlight_pdf_li_mix_cos(l, h, &w, normals[5], d);
+      p0 = el_envlight_pdf_li_mix_cos(l, h, &w, normals[0], d);
+      p1 = el_envlight_pdf_li_mix_cos(l, h, &w, normals[1], d); p2 = el_envlight_pdf_li_mix_cos(l, h, &w, normals[2], d);
+      if (p4 != p3 || p5 != p3) ++nscaled;
+      if (p1 != p0 || p2 != p0 || el_envlight_pdf_li_mix_cos(l, h, &w, NULL, d) != p0) ++unusable;
+      for (k = 0; k < 3; ++k) { pz[k] = ldexpf(d[k], 120); }
+      if (!(fabsf(el_envlight_pdf_li(l, pz) - pl) <= 1e-6f * pl)) ++edge;
+      else if (!(fabsf(el_envlight_pdf_li_mix_cos(l, h, &w, normals[3], pz) - p3) <= 1e-6f * p3)) ++scaled;
+      for (k = 0; k < 3; ++k) { pz[k] = ldexpf(d[k], -120); }
+      if (!(fabsf(el_envlight_pdf_li(l, pz) - pl) <= 1e-6f * pl)) ++edge;
+      else if (!(fabsf(el_envlight_pdf_li_mix_cos(l, h, &w, normals[3], pz) - p3) <= 1e-6f * p3)) ++scaled;
+    }
+    {
+      float dz[3] = {0, 0, 0}, dn[3] = {NAN, 0, 1}, di[3] = {INFINITY, 0, 0};
+      for (ni = 0; ni < 7; ++ni)
+        zero += el_envlight_pdf_li_mix_cos(l, h, &w, normals[ni], dz) != 0 || el_envlight_pdf_li_mix_cos(l, h, &w, normals[ni], dn) != 0 ||
+                el_envlight_pdf_li_mix_cos(l, h, &w, normals[ni], di) != 0;
+    }
+  }
+  check(bad == 0 && mism == 0, "long %s: u at 0, 1 - ulp, 1, -1, NaN, Inf x normals zero, NaN, Inf, huge, tiny, unit, down x spot weights 0, 1, "
+        "default: pdf > 0, finite, == pdf_li_mix_cos(wi) (%d bad, %d differ)", name, bad, mism);
+  /* (a scaled direction leaves pdf_li's inline path, whose 1 / sin(theta) is len / r, for pdf_li / its table
+   * entry: an ulp apart; and on a bin's edge pdf_li's own slow path may pick the neighbour: those are
+   * counted apart, where pdf_li of the two differs by more than 1e-6 too) */
+  check(nscaled == 0 && scaled == 0 && edge <= 4 && unusable == 0 && zero == 0, "long %s: pdf_li_mix_cos of normals x 2^+-120 = that of the unit "
+        "one bit for bit (%d differ), of directions x 2^+-120 within 1e-6 (%d not; %d of 12000 on a bin edge where pdf_li differs too); NaN, Inf "
+        "and NULL normals = the zero normal (bound 1; %d differ); zero, NaN, Inf directions: 0 (%d not)", name, nscaled, scaled, edge, unusable, zero);
+}
+static void test_long_cells(void) {
+  static float px[LONG_MAXB * 3];
+  static const float nup[3] = {0.3f, -0.2f, 0.93f}, nside[3] = {0.8f, 0.6f, 0.0f};
+  int tall;
+  for (tall = 0; tall < 2; ++tall) {
+    el_envlight l;
+    el_envlight_hotspots h;
+    el_envlight_mix_weights w;
+    const char *name = tall ? "128x4104 (cells of 256-257 rows)" : "8208x32 (cell rows of 256-257 bins)";
+    int longer, shorter;
+    double ref, mean, sd, sun[3], cone;
+    g_w = tall ? 128 : 8208; g_h = tall ? 4104 : 32;
+    long_map(tall, px);
+    if (long_light(&l, px) != EL_SUCCESS || el_envlight_hotspots_init(&h, &l, NULL) != EL_SUCCESS) { check(0, "long %s: init", name); continue; }
+    long_cells(&h, tall, &longer, &shorter);
+    check(h.count == 1 && longer > 0 && shorter > 0, "long %s: %d spot (share %.3f), %d cells %s of > 256 bins, %d of <= 256",
+          name, h.count, h.count ? h.spot[0].share : 0.0f, longer, tall ? "down" : "across", shorter);
+    long_chi2(&l, &h, name, tall, nup, 0.3f, 200000);
+    long_chi2(&l, &h, name, tall, nside, 0.0f, 100000);
+    /* unbiasedness: f = le x max(0, n.w), with the sun's weight 0.3, and 0 with the sun occluded */
+    el_envlight_hotspots_weights(&h, 0.3f, &w);
+    ref = cosine_integral_q(&l, nup, NULL, 0, 2, 2, 2, tall ? 2 : 16);
+    estimate(&l, &h, &w, nup, NULL, 0, 1, 100000, &mean, &sd);
+    check(fabs(mean - ref) < 4.5 * sd + 2e-3 * ref, "unbiased long %s x cos spots 0.30: mean of f/pdf %.5f, quadrature %.5f (%.1f sd)",
+          name, mean, ref, fabs(mean - ref) / (sd > 0 ? sd : 1));
+    sun[0] = h.spot[0].axis[0]; sun[1] = h.spot[0].axis[1]; sun[2] = h.spot[0].axis[2];
+    cone = h.spot[0].half_angle + 0.05;
+    el_envlight_hotspots_weights(&h, 0.0f, &w);
+    ref = cosine_integral_q(&l, nup, sun, cone, 2, 2, 2, tall ? 2 : 16);
+    estimate(&l, &h, &w, nup, sun, cone, 1, 100000, &mean, &sd);
+    check(fabs(mean - ref) < 4.5 * sd + 2e-3 * ref, "unbiased long %s x cos spots 0.00 (sun occluded): mean of f/pdf %.5f, quadrature %.5f (%.1f sd)",
+          name, mean, ref, fabs(mean - ref) / (sd > 0 ? sd : 1));
+    long_hostile(&l, &h, name);
+    el_envlight_hotspots_free(&h);
+    el_envlight_free(&l);
+  }
+  g_w = 128; g_h = 64;
+}
+
 int main(void) {
   test_table();
   test_detection();
@@ -598,6 +804,7 @@ int main(void) {
   test_chi2();
   test_unbiased();
   test_hostile();
+  test_long_cells();
   printf("%d passed, %d failed\n", g_pass, g_fail);
   return g_fail ? 1 : 0;
 }
