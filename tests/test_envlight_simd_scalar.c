@@ -1,7 +1,8 @@
 /* test_envlight_simd_scalar.c: the header promises that EL_NO_SIMD gives the same results as the SSE2
  * code (the scalar code does the same operations in the same order). One program holds both builds
  * (envlight_simd_part.c compiled twice, EL_STATIC) and compares their bits: sample_li, sample_li_mix
- * and the rest x cosine mixture (wi, rgb, pdf) on a 512 x 256 map with a sun (the direction tables),
+ * and the rest x cosine mixture (wi, rgb, pdf), sample_li_cos_n and pdf_li_cos_n (four lanes against
+ * the plain loop) on a 512 x 256 map with a sun (the direction tables),
  * under the identity (a signed permutation: the radiance at the sample's own (u, v)) and a general
  * rotation. Neither build is the reference: they must agree (before the fix of the mixtures' scalar
  * path, the rgb of the mixture samples differed under the identity). On a CPU without SSE2 both halves
@@ -17,7 +18,7 @@
 enum { W = 512, H = 256, N = 20000 };
 
 int main(void) {
-  static const char *part[3] = {"sample_li", "sample_li_mix", "sample_li_mix_cos_table"};
+  static const char *part[4] = {"sample_li", "sample_li_mix", "sample_li_mix_cos_table", "sample_li_cos_n (the rgb: pdf_li_cos_n at wi)"};
   float rot[9], *px = (float *)malloc((size_t)W * H * 3 * sizeof(float)), *u = (float *)malloc(2 * (size_t)N * sizeof(float));
   float *a = (float *)malloc((size_t)N * ELS_FLOATS * sizeof(float)), *b = (float *)malloc((size_t)N * ELS_FLOATS * sizeof(float));
   rng r = rng_make(7);
@@ -33,7 +34,7 @@ int main(void) {
   for (mi = 0; mi < 2; ++mi) {
     int sa = els_simd_draws(px, W, H, mi ? rot : NULL, u, N, a), sb = els_scalar_draws(px, W, H, mi ? rot : NULL, u, N, b);
     check(sa == 1 && sb == 1, "%s: one hot spot in each build (%d, %d)", mi ? "rotated" : "identity", sa, sb);
-    for (p = 0; p < 3; ++p)
+    for (p = 0; p < 4; ++p)
       for (c = 0; c < 3; ++c) { /* wi, rgb, pdf */
         int diff = 0, first = -1, off = 7 * p + 3 * c, len = c == 2 ? 1 : 3;
         for (i = 0; i < N; ++i)
