@@ -17,8 +17,9 @@
  * reference, pbrt-v4's GetSampleIndex and SobolSample for one sample as written there (elr_zsobol_ref_1d,
  * _2d), and the fast path (up to 256 spp; the environment variable ELR_ZSOBOL_REFERENCE forces the
  * reference), which makes a pixel's points of a dimension for all its samples at once (below).
- * Instructions per camera sample on bench_city (16 spp, direct lighting, bench/callgrind_parts.py):
- * 1225 -> 512 -> 234 for the sampler (path, 4 spp: 2123 -> 1411 -> 527; the second step below). */
+ * Instructions per camera sample on bench_city (16 spp, direct lighting, bench/callgrind_parts.sh):
+ * 1225 -> 512 for the sampler, 461 after the wave loop's own changes (examples/render/README.md), -> 234
+ * (path, 4 spp: 2123 -> 1411 -> 527; the second step below). */
 #include "elr_internal.h"
 #include <string.h>
 
