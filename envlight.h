@@ -276,11 +276,16 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float wi[3], float rgb[3], float *pdf);
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
- * (a pixel's samples, a wavefront): the table and texel reads of up to 16 samples are started together
+ * (a pixel's samples, a wavefront): the table and texel reads of up to 32 samples are started together
  * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
+/* n at once: pdf[i] = pdf_li(dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit, for a wave's
+ * escaped rays: the table entries (le's texels) of up to 32 directions are prefetched together, so that
+ * their cache misses overlap: 2-2.5x less time on a 2048x1024 map (NOTES 5: BATCHES). n <= 0 does nothing. */
+EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf);
+EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
  * sphere facing it. ray_dir points INTO the scene; normal = ray_dir (pbrt's nLight). pdf_pos is w.r.t.
  * area of the disk (1 / (pi r^2)), pdf_dir w.r.t. solid angle. Before preprocess (radius 0): all zero. */
@@ -314,9 +319,11 @@ EL_DEF void el_envlight_square_to_dir(float u, float v, float dir[3]);
 
 /* >> declarations: product sampling and the bilinear warp (issue 13; NOTES ON PRODUCT SAMPLING below) */
 
-/* Importance mode 3: the density follows the luminance of le()'s own bilinear reconstruction times
- * sin(theta), sampled by a continuous warp of its bilinear patches (Mitsuba 3's density). sample_li,
- * pdf_li, sample_le and pdf_le use it; about 1100 / 400 instructions instead of 95 / 75 (NOTES 1). */
+/* Importance mode 3: the density is the bilinear interpolant of le()'s luminance times sin(theta) over
+ * le()'s own patches (Mitsuba 3's density), so lum(le) / pdf is nearly constant and low-discrepancy points
+ * keep their stratification through the warp: a discrete table over the patches, then a bilinear warp
+ * inside one. sample_li, sample_li_n, pdf_li, sample_le and pdf_le use it; about 515 / 240 instructions
+ * instead of 97 / 76 (NOTES ON PRODUCT SAMPLING 1). */
 #define EL_ENVLIGHT_IMPORTANCE_BILINEAR 3
 
 /* Table sizes of product sampling (all zero: the defaults, 64 x 32 cells and 32 x 32 normal bins). */
@@ -371,28 +378,63 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  * NOTES ON PRODUCT SAMPLING AND THE BILINEAR WARP (issue 13; the numbers: bench/bench_envlight.c tables
  * 1, 2, 4, 5 and bench/bench_product.c, gcc 12 -O3, no -march, this project's shared 2-core machine)
  *
- * 1. THE BILINEAR WARP (importance mode BILINEAR, and inside product sampling's cells). The density is
- *    the bilinear interpolant of le()'s luminance x sin(theta) at the texel centres (the vertices of
- *    le()'s bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density.
- *    Where the cell-average density (the default) is constant over a texel while le() is bilinear,
- *    this one follows le() inside the texel: lum(le) / pdf has a relative variance of 1.5e-5 on city
- *    instead of 0.10 (table 3), so a sun stops adding variance of its own. It is sampled by CDF
- *    inversion of the patches, marginal then conditional, both linear inside a patch (two square
- *    roots, no libm), so every step is monotone in its u: 16x16 jittered u give 114x less variance
- *    than independent u for an up-facing point on city (the cell-average sampler: 3.4x; table 5).
- *    Robust where a float CDF is not: each vertex row has its own integer CDF over its patches
- *    (distribution2d.h's idea: every patch with a positive vertex gets a unit), the conditional at t
- *    is the blend of the two rows' CDFs with weight alpha = (1-t) A / ((1-t) A + t B) kept within
- *    [2^-20, 1 - 2^-20] while both rows have mass (the density is defined with that alpha), so no
- *    patch next to a sun becomes unreachable. At the poles the density and sin(theta) both vanish;
- *    their ratio is computed without 0/0 (its limit at the pole itself).
- *    COST: sample_li 1086-1113 instructions (+radiance 1217-1244), pdf_li 403 (table 2; CELL_AVERAGE:
- *    93.5-97.4, 257-261, 75); 2-3x the time of CELL_AVERAGE per estimate in table 4. MEMORY: 8 bytes per
- *    texel (a float vertex value and a float CDF entry) plus 16 bytes per vertex row and cell column:
- *    4.6 MB at 1024x512 (CELL_AVERAGE: 4.7). BUILD: 45 M instructions, 8-12 ms at 1024x512; 168 M, 34 ms
- *    at 2048x1024 (with init). It wins on variance only where a sun dominates the estimate (1.6x on
- *    city, <= 1.2x on the other CC0 maps), not on variance x time (0.4-0.6 of CELL_AVERAGE's efficiency
- *    for light sampling alone): CELL_AVERAGE stays the default. Its place is inside product sampling.
+ * 1. IMPORTANCE MODE BILINEAR: LE()'S PATCHES (issue 22; before it, a continuous warp of cells). The density
+ *    is the bilinear interpolant of V = lum x sin(theta) at the texel centres (the vertices of le()'s
+ *    bilinear patches; two vertex rows of value 0 at the poles): Mitsuba 3's envmap density. Where the
+ *    cell-average density (the default) is constant over a texel while le() is bilinear, this one follows
+ *    le() inside the texel: the relative variance of lum(le) / pdf per sample is 3.2e-6 on city against 0.099
+ *    (tests/test_envlight_patch.c), so a sun stops adding variance of its own and low-discrepancy points keep
+ *    their stratification: bench/bench_ld_point.c (city, an upward normal, 64 points per estimate, relative
+ *    variance of one estimate, independent / Owen-scrambled Sobol'): the light sample alone 3.78e-3 / 2.07e-6
+ *    (CELL_AVERAGE 6.30e-3 / 1.76e-3, PBRT_V3 4.41e-3 / 4.24e-4), with one cosine sample and the power
+ *    heuristic 4.12e-3 / 2.32e-4 (6.59e-3 / 1.82e-3, 4.76e-3 / 5.53e-4): 2.4x less than PBRT_V3 with the
+ *    low-discrepancy points, 1.15x with independent ones.
+ *    SAMPLING: one discrete table over the w x (h + 1) patches (distribution2d.h's integer CDFs, each patch's
+ *    weight the mean of its corners x its height, so every patch with a positive corner is reachable at any
+ *    dynamic range; the light's own guide tables, or its CDF or alias sampler), then (s, t) inside the patch
+ *    in closed form: t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s from the conditional at t,
+ *    each the inverse of a linear density (a quadratic, in the form without cancellation: exact at zero and
+ *    at equal corners), kept 2^-12 of a patch inside its edges. Every step is monotone in its u. The corners
+ *    are bfloat16 rounded up, scaled by a power of two (the density is bil / mean: unchanged) so that the
+ *    squares stay normal floats. The density of a patch is its integer share x bil(s, t) / mean(corners) /
+ *    (du dv 2 pi^2 sin theta): one factor K per patch stored with its four corners in a 16-byte record (one
+ *    cache line per query).
+ *    THE PDF (maps of at least 256 x 128; smaller ones take le()'s atans, product sampling's locate): no
+ *    atan. The patch column and row come from bin finders over half texels (pdf_li's diamond angle and its t
+ *    = 1 - z / (r + |z|), 2w and 2h bins: the texel centres are the odd edges); s and t from the angle to a
+ *    reference edge of the patch, atan of the tangent of the difference ((y c - x s) / (x c + y s), at most
+ *    pi / 128: q - q^3 / 3). sample_li forms its direction from the same references by angle addition, then
+ *    finds it again as pdf_li does, so its pdf is pdf_li(wi) bit for bit (tested on every sample of the
+ *    chi-square tests, for identity, y-up and general rotations); its radiance is le at that point's (u, v)
+ *    under a signed permutation (le(wi) but for le()'s atan polynomial: within 2e-4 of the four texels'
+ *    range, tested), le(wi) itself under a general rotation; when rounding moves the point into another patch
+ *    the pdf is that patch's, and if that has no mass the sample moves to its patch's centre (issue 24's
+ *    rule).
+ *    sample_li_n prefetches in passes (the marginal row and its guide entry, the CDF entries, the patch's
+ *    record, its texels), bit-identical to sample_li: the renderer's waves draw their map samples through it
+ *    (without it, bench_city's render loop took 1.24x pbrt-v3's density's CPU; with it 1.04-1.05x).
+ *    COST (bench/callgrind_product.sh with OPS=...bilinear..., city 1024x512, the loop subtracted): sample_li
+ *    515 instructions (668 with the radiance: le at the point's own (u, v), as the other modes under a signed
+ *    permutation; 552 under a general rotation, whose radiance is le(wi)), pdf_li 241 (257); before (the
+ *    continuous warp): 1174 (1301), 422. CELL_AVERAGE: 97.6 (266), 76. The issue's targets (250 / 150) are
+ *    NOT met: the pick (the guide search, ~60), the two inversions (~50), the direction (~40), finding it
+ *    again (~90) and the density (~30), plus the calls: the relocation buys the bit-for-bit pdf; without it
+ *    (the sample's own (s, t), exact transforms) sample_li measured 342. The renderer's per-camera-sample
+ *    instructions on bench_city (zsobol, callgrind, spp 8 - spp 4) are 8% above its default PBRT_V3
+ *    density's.
+ *    MEMORY: 2 bytes per vertex (bfloat16), 16 per patch (the records), 4 + 1 per patch (the integer CDFs and
+ *    guide tables), the finders and reference tables (about 200 KB at 1024x512): 11.7 MB at 1024x512
+ *    (CELL_AVERAGE 4.7, PBRT_V3 18.3, the continuous warp 4.6). Maps over the cap (EL_ENVLIGHT_IMPORTANCE_CAP
+ *    wide) take CELL_AVERAGE's capped tables, as PBRT_V3 does: about 190 MB for a 4096 x 2048 map, the
+ *    largest.
+ *    BUILD: 100 M instructions, 15 ms at 1024x512 (PBRT_V3 44 ms).
+ *    IN THE RENDERER (bench/sun_rule.py --strategies pbrtv3,default: relative variance across 8 seeds x the
+ *    render loop's CPU, interleaved; the map alone at diffuse vertices facing a sun), time to unit variance
+ *    against PBRT_V3, whole image / lit / shadowed pixels of bench_city: zsobol 16 spp 1.10 / 1.22 / 0.95, 64
+ *    spp 1.11 / 1.31 / 0.91; independent 16 spp 1.02 / 1.05 / 0.97, 64 spp 0.96 / 0.99 / 0.91 (the lit
+ *    pixels' variance 1.29-1.45x lower with zsobol, 1.09x with independent samples; the render loop's CPU
+ *    +4-12%). The renderer takes it by default under a sun map with a low-discrepancy sampler
+ *    (examples/render/README.md).
  *
  * 2. PRODUCT SAMPLING (sample_li_cos, pdf_li_cos): a density close to L(w) max(0, n.w). The map's
  *    patches are grouped into 64 x 32 cells; a cell is picked with probability proportional to its
@@ -1014,12 +1056,22 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
  *    BATCHES. Each sample_li is a chain of dependent cache misses on a large map (the guide entry, the
  *    CDF pair it points to, the texels), and in a renderer's loop the work between two samples (ray
  *    traversal, shading) keeps their misses from overlapping. el_envlight_sample_li_n takes n samples
- *    and prefetches in stages, 16 samples at a time (guide entries, then CDF pairs, then the samples
+ *    and prefetches in stages, 32 samples at a time (guide entries, then CDF pairs, then the samples
  *    and their texel rows, then the radiance), running sample_li's own code for every result, so the
  *    results are bit-identical. bench_envlight (2048x1024, a loop with other memory work between
  *    samples, quiet machine): 114-135 ns per sample one at a time, 64-92 ns batched (1.4-1.9x); the
  *    renderer's bench_render loop, which draws a pixel's light samples together, runs 1.2x faster
- *    with it (the same image).
+ *    with it (the same image). el_envlight_pdf_li_n and el_envlight_le_n (issue 21: a wave's escaped
+ *    rays) do the same in two passes: each direction to light space and its pdf bin (le: its four
+ *    texels) prefetched, then the single call's arithmetic (bit for bit). Instructions as the single
+ *    calls' (callgrind, loop subtracted: pdf_li 82, pdf_li_n 88; le 255, le_n 252); time (2048x1024,
+ *    random directions, batches of 64, CPU ns per call, loaded 2-core machine): pdf_li 29-38 -> 14-17,
+ *    le 101-132 -> 40-69; bench_envlight's loop with other memory work: pdf_li + le 160-186 -> 100-114
+ *    ns (1.6x). Passes over 32 lanes (16: about 10% slower per call, sample_li_n too); le_n then waits
+ *    on its prefetches (perf: a third of its samples), the line-fill buffers full. The renderer's wave
+ *    loop (render --stats loop CPU, 1 thread, 32 spp, 5 interleaved runs): bench_city direct 0.96 ->
+ *    0.78 s, path 1.43 -> 1.21 s, bench_studio path 1.45 -> 1.18 s, direct 0.58 -> 0.57 s; against a
+ *    later main (4 runs): 0.87x, 0.85x, 0.82x, 1.00x (the map alone on bench_city direct: 0.84x).
  *    MEMORY: the texels (12 bytes each) + the distribution (4 bytes per bin) + the pdf table (4 bytes per
  *    bin) + the guide (1 byte per bin) or alias (8 bytes per bin) table when chosen + the bin finders
  *    and direction tables (64 bytes per row, 32 per column: tiny). 2048x1024: 25 MB + 18 MB with the
@@ -1336,15 +1388,18 @@ static float el_envlight__luminance(const float *rgb) {
   return 0.212671f * rgb[0] + 0.715160f * rgb[1] + 0.072169f * rgb[2]; /* pbrt's y() */
 }
 
-/* >> continuous warp: forward declarations (the section is near the end of the file) */
+/* >> the patch grid (product sampling, importance BILINEAR): forward declarations (the sections are near
+ * the end of the file) */
 #define EL_ENVLIGHT__CELLS_U 64
 #define EL_ENVLIGHT__CELLS_V 32
 #define EL_ENVLIGHT__NORMAL_BINS 32
 struct el_envlight__warp;
-static const struct el_envlight__warp *el_envlight__warp_ensure(const el_envlight *cl, int ku, int kv);
 static void el_envlight__warp_free(struct el_envlight__warp *W);
-static void el_envlight__warp_sample_plain(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
-static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]);
+/* importance BILINEAR: le()'s patches (the section "importance BILINEAR" after product sampling) */
+static el_result el_envlight__patch_build(el_envlight *l);
+static void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf);
+static float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]);
+static void el_envlight__patch_sample_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 static size_t el_envlight__warp_bytes(const el_envlight *l);
 
 /* >> private helpers: validation */
@@ -2023,8 +2078,7 @@ static el_result el_envlight__build(el_envlight *l) {
   el_result r = EL_SUCCESS;
   el_distribution_options dopt;
   if (l->width == 0) return EL_SUCCESS; /* constant light: uniform sampling, no tables */
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) /* the warp's own tables only (continuous warp section) */
-    return el_envlight__warp_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V) ? EL_SUCCESS : l->warp_result;
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return el_envlight__patch_build(l); /* le()'s patches */
   nb = (size_t)nu * (size_t)nv;
   /* pdf_li indexes the pdf table with 32-bit arithmetic: at most 2^32 - 1 bins (a 16 GB table) */
   if (nb > ((size_t)-1) / sizeof(float) || (uint64_t)nb > 0xffffffffu) return EL_ERROR_SIZE_OVERFLOW;
@@ -2242,6 +2296,15 @@ static inline int el_envlight__ensure(const el_envlight *l) {
   return el_envlight__ensure_slow((el_envlight *)l);
 }
 
+/* The hot bits (el_envlight__hot_bits) as the queries read them. */
+static inline int el_envlight__hot_now(const el_envlight *l) {
+#if EL_ENVLIGHT__ATOMICS
+  return __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
+#else
+  return l->hot;
+#endif
+}
+
 EL_DEF el_result el_envlight_prepare_sampling(el_envlight *l) {
   if (!l) return EL_ERROR_INVALID_ARGUMENT;
   el_envlight__ensure(l);
@@ -2399,10 +2462,9 @@ EL_DEF void el_envlight_le(const el_envlight *l, const float dir[3], float rgb[3
 }
 
 
-/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
- * for a map: no calls, no branches. */
-static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
-  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2), pu, t, p;
+/* pdf_core's first half: the pdf_table entry of (x, y, z), r = sqrt(x^2 + y^2) (pdf_li_n prefetches it) */
+static inline size_t el_envlight__pdf_bin(const el_envlight *l, float x, float y, float z, float r) {
+  float pu, t;
   uint32_t iu, iv;
   size_t c;
   /* <<Find the u bin>>: the diamond angle of (x, y), then its table cell. + FLT_MIN: x = y = 0 (a pole)
@@ -2419,12 +2481,21 @@ static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y
   EL_ASSERT(c < (size_t)l->v_cells);
   iv = (uint32_t)l->v_base[c] + (t >= l->v_edge[c]);
   EL_ASSERT(iu < (uint32_t)l->dist.nu && iv < (uint32_t)l->dist.nv);
-  p = l->pdf_table[(size_t)(iv * (uint32_t)l->dist.nu + iu)]; /* mapPdf / (2 pi^2); nu * nv < 2^32 (checked at build) */
+  return (size_t)(iv * (uint32_t)l->dist.nu + iu); /* nu * nv < 2^32 (checked at build) */
+}
+/* pdf_core's second half: the entry p (mapPdf / (2 pi^2)) over sin(theta) */
+static inline float el_envlight__pdf_at(float p, float r, float len) {
   /* p / sin(theta), sin(theta) = r / len, floored at SIN_MIN */
   r = r > EL_ENVLIGHT__SIN_MIN * len ? r : EL_ENVLIGHT__SIN_MIN * len;
   p = p * len / r;
   EL_ASSERT(p >= 0.0f && p <= FLT_MAX);
   return p;
+}
+/* pdf_li for a light-space direction (x, y, z) with r2 = x^2 + y^2 and len2 = r2 + z^2 a normal float,
+ * for a map: no calls, no branches. */
+static inline float el_envlight__pdf_core(const el_envlight *l, float x, float y, float z, float r2, float len2) {
+  float r = el_envlight__sqrt(r2), len = el_envlight__sqrt(len2);
+  return el_envlight__pdf_at(l->pdf_table[el_envlight__pdf_bin(l, x, y, z, r)], r, len);
 }
 
 /* The rare cases: a direction whose squared length is not a normal float (rescaled; zero, NaN, Inf: 0),
@@ -2458,15 +2529,20 @@ static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_world_cold(const el_envlight
   return el_envlight__pdf_light(l, d);
 }
 
-static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_rest(const el_envlight *l, const float dir[3]) {
   float d[3], len2;
-  if (!el_envlight__ensure(l)) return 0.0f;
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__warp_pdf_li(l, dir);
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) return el_envlight__ea_pdf_li(l, dir);
   el_envlight__to_light(l, dir, d);
   len2 = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
   if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) return el_envlight__pdf_world_cold(l, dir);
   return el_envlight__pdf_light(l, d);
+}
+
+/* pdf_li without the inline path: a small frame, so that importance BILINEAR's call is a tail call */
+static EL_ENVLIGHT__NOINLINE float el_envlight__pdf_li_slow(const el_envlight *l, const float dir[3]) {
+  if (!el_envlight__ensure(l)) return 0.0f;
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) return el_envlight__patch_pdf_li(l, dir);
+  return el_envlight__pdf_li_rest(l, dir);
 }
 
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]) {
@@ -2643,17 +2719,8 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   el_envlight__sample_li_finish(l, iu, iv, fu, fv, wi, rgb, pdf);
 }
 
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_rest(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
   float d[3], u, v, p;
-  if (!el_envlight__ensure(l)) {
-    wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
-    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    return;
-  }
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { /* the continuous warp */
-    el_envlight__warp_sample_plain(l, uu, wi, rgb, pdf);
-    return;
-  }
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG && l->width > 0) { /* pbrt-v4's equal-area map */
     el_envlight__ea_sample(l, uu, wi, rgb, pdf);
     return;
@@ -2692,6 +2759,17 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight 
     if (p > 0.0f) el_envlight__lookup(l, u, v, rgb);
     else rgb[0] = rgb[1] = rgb[2] = 0.0f;
   }
+}
+
+/* sample_li without the inline path: a small frame, so that importance BILINEAR's call is a tail call */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_li_slow(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  if (!el_envlight__ensure(l)) {
+    wi[0] = 0.0f; wi[1] = 0.0f; wi[2] = 1.0f; *pdf = 0.0f;
+    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    return;
+  }
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0) { el_envlight__patch_sample(l, uu, wi, rgb, pdf); return; } /* le()'s patches */
+  el_envlight__sample_li_rest(l, uu, wi, rgb, pdf);
 }
 
 #if EL_ENVLIGHT__SSE
@@ -2822,20 +2900,14 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float uu[2], float
 }
 
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-#define EL_ENVLIGHT__BATCH 16
+#define EL_ENVLIGHT__BATCH 32 /* lanes per staged pass (16: 10% slower per sample, issue 21) */
 #endif
 
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
   int i;
 #if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
-  int hot;
-#if EL_ENVLIGHT__ATOMICS
-  hot = __atomic_load_n(&l->hot, __ATOMIC_ACQUIRE);
-#else
-  hot = l->hot;
-#endif
-  if (n > 1 && (hot & EL_ENVLIGHT__HOT_SAMPLE)) {
-    /* Four passes over up to 16 samples; each pass starts the next pass's cache misses for all of
+  if (n > 1 && (el_envlight__hot_now(l) & EL_ENVLIGHT__HOT_SAMPLE)) {
+    /* Four passes over up to 32 samples; each pass starts the next pass's cache misses for all of
      * them, so that they overlap: (1) the guide entry, (2) the CDF entries it points to, (3) the sample
      * itself (sample_li's inline path; its radiance's texels), (4) the radiance. Passes 1, 2 and the
      * texel prefetch only read; every result comes from the code sample_li runs. */
@@ -2888,7 +2960,79 @@ EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u,
     return;
   }
 #endif
+  if (n > 1 && l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR && l->width > 0 && el_envlight__ensure(l)) {
+    el_envlight__patch_sample_n(l, n, u, wi, rgb, pdf); /* (importance BILINEAR: its own batches) */
+    return;
+  }
   for (i = 0; i < n; ++i) el_envlight_sample_li(l, u + 2 * i, wi + 3 * i, rgb ? rgb + 3 * i : NULL, pdf + i);
+}
+
+/* pdf_li_n and le_n: two passes over up to 32 directions; the first maps each to light space and finds
+ * the table entry (pdf_li's pdf_table bin; le's four texels) and prefetches it, so that the cache misses
+ * of the 32 overlap; the second reads them with the single call's arithmetic. Cold lanes (zero, NaN,
+ * infinite or rescaled directions) go through the single call's own cold path in the first pass. */
+EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf) {
+  int i;
+#ifdef EL_ENVLIGHT__BATCH
+  if (n > 1 && (el_envlight__hot_now(l) & EL_ENVLIGHT__HOT_PDF)) {
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      float rs[EL_ENVLIGHT__BATCH], lens[EL_ENVLIGHT__BATCH];
+      size_t bin[EL_ENVLIGHT__BATCH];
+      unsigned char cold[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) { /* el_envlight_pdf_li's hot path up to the table read */
+        const float *w = dirs + 3 * (i0 + i);
+        float d[3], r2, len2;
+        el_envlight__to_light(l, w, d);
+        r2 = d[0] * d[0] + d[1] * d[1];
+        len2 = r2 + d[2] * d[2];
+        cold[i] = !(len2 >= FLT_MIN && len2 <= FLT_MAX);
+        if (cold[i]) { pdf[i0 + i] = el_envlight__pdf_world_cold(l, w); continue; }
+        rs[i] = el_envlight__sqrt(r2);
+        lens[i] = el_envlight__sqrt(len2);
+        bin[i] = el_envlight__pdf_bin(l, d[0], d[1], d[2], rs[i]);
+        __builtin_prefetch(l->pdf_table + bin[i]);
+      }
+      for (i = 0; i < m; ++i)
+        if (!cold[i]) pdf[i0 + i] = el_envlight__pdf_at(l->pdf_table[bin[i]], rs[i], lens[i]);
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) pdf[i] = el_envlight_pdf_li(l, dirs + 3 * i);
+}
+
+EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb) {
+  int i;
+#ifdef EL_ENVLIGHT__BATCH
+  if (n > 1 && l->width > 0 && l->mapping == EL_ENVLIGHT_MAPPING_LATLONG) {
+    int i0, m;
+    for (i0 = 0; i0 < n; i0 += EL_ENVLIGHT__BATCH) {
+      const float *p[4 * EL_ENVLIGHT__BATCH];
+      float fx[EL_ENVLIGHT__BATCH], fy[EL_ENVLIGHT__BATCH];
+      unsigned char cold[EL_ENVLIGHT__BATCH];
+      m = n - i0 < EL_ENVLIGHT__BATCH ? n - i0 : EL_ENVLIGHT__BATCH;
+      for (i = 0; i < m; ++i) { /* el_envlight_le up to the texel reads (el_envlight__le_light's (u, v)) */
+        const float *w = dirs + 3 * (i0 + i);
+        float d[3], r2, len2;
+        int q;
+        el_envlight__to_light(l, w, d);
+        r2 = d[0] * d[0] + d[1] * d[1];
+        len2 = r2 + d[2] * d[2];
+        cold[i] = !(len2 >= FLT_MIN && len2 <= FLT_MAX);
+        if (cold[i]) { el_envlight__le_cold(l, w, rgb + 3 * (i0 + i)); continue; }
+        el_envlight__bilerp_texels(l, el_envlight__phi_turns(d[1], d[0]), el_envlight__theta_halfturns(sqrtf(r2), d[2]),
+                                   p + 4 * i, &fx[i], &fy[i]);
+        for (q = 0; q < 4; ++q) __builtin_prefetch(p[4 * i + q] + 2 * (q & 1)); /* as sample_li_n */
+      }
+      for (i = 0; i < m; ++i)
+        if (!cold[i]) el_envlight__bilerp_at(p + 4 * i, fx[i], fy[i], rgb + 3 * (i0 + i));
+    }
+    return;
+  }
+#endif
+  for (i = 0; i < n; ++i) el_envlight_le(l, dirs + 3 * i, rgb + 3 * i);
 }
 
 static void el_envlight__basis(const float n[3], float b1[3], float b2[3]) {
@@ -2956,7 +3100,7 @@ EL_DEF size_t el_envlight_sampling_bytes(const el_envlight *l) {
   int s = l->state;
 #endif
   if (s != 2 || l->width == 0) return 0;
-  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return el_envlight__warp_bytes(l); /* the warp */
+  if (l->importance == EL_ENVLIGHT_IMPORTANCE_BILINEAR) return el_envlight__warp_bytes(l); /* the patch tables */
   b += el_distribution2d_bytes(&l->dist);
   b += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float));
   b += (size_t)l->dist.nu * (size_t)l->dist.nv * sizeof(float); /* pdf_table */
@@ -2983,26 +3127,18 @@ EL_DEF void el_envlight_zup_matrix(float m[9]) {
   memcpy(m, k, sizeof k);
 }
 
-/* >> continuous warp
+/* >> the patch grid
  * The density of importance mode BILINEAR and, times a per-cell cosine bound, of sample_li_cos: the
  * luminance of le()'s bilinear reconstruction times sin(theta), taken as the bilinear interpolant of its
  * values at the texel centres (the vertices) - Mitsuba 3's envmap density. Vertex row k is at v_k =
  * (k - 0.5) / h for k = 1..h (texel row k - 1), with two pole rows v_0 = 0 and v_{h+1} = 1 whose value
  * is 0 (sin 0); so there are h + 1 patch rows (the two at the poles half as tall) and w patch columns
- * (patch column i spans the texel centres i and i + 1, wrapping at the seam). Patches are grouped into
- * ku x kv cells. Within a cell the warp is marginal-conditional CDF inversion of the patches: a patch row
- * (integer CDF of the row masses), t in it (the marginal is linear in t: a quadratic), then a patch of
- * the row at that t (the conditional is the blend of the two vertex rows' own conditionals, with
- * weights alpha = (1 - t) A / ((1 - t) A + t B), A and B the rows' integrals over the cell column), s in
- * it (linear again). Every step is monotone in its u, so stratified input stays stratified. The vertex
- * values are not stored: they are the luminance of the texels the radiance lookup reads anyway, times
- * a per-row sin. Plain CDF inversion of a blended float CDF would lose patches next to a sun (pbrt's
- * float-CDF problem); here each vertex row has its own integer CDF (every patch with mass has a unit)
- * and alpha is kept within [2^-20, 1 - 2^-20] when both rows have mass, so every patch with a positive
- * vertex is reachable at any dynamic range; the density is defined with that alpha (the pdf uses it). */
+ * (patch column i spans the texel centres i and i + 1, wrapping at the seam). Product sampling groups
+ * the patches into cells (its section below); importance BILINEAR samples them from one table (the
+ * section "importance BILINEAR"). Until issue 22 mode BILINEAR had a continuous warp of its own here
+ * (per-row integer CDFs blended at t, about 1100 instructions per sample). */
 
 #define EL_ENVLIGHT__CELL_UNITS 32768u  /* a cell table's integer total (its entries are uint16_t) */
-#define EL_ENVLIGHT__ALPHA_MIN 9.5367431640625e-7 /* 2^-20 */
 
 struct el_envlight__warp {
   int w, h, ku, kv;      /* the image (w patch columns, h + 1 patch rows); cells */
@@ -3012,18 +3148,13 @@ struct el_envlight__warp {
   float *sin_row;        /* h: sin(pi v_k) of texel row k - 1 */
   float *V;              /* (h + 2) x w: the vertex values; rows 0 and h + 1 (the poles) are 0 */
   uint16_t *V16;         /* product sampling: V as bfloat16 (the top half of the float, rounded up) */
-  double *S;             /* (h + 2) x ku: vertex row k's integral over cell column a, in u */
-  float *cond;           /* (h + 2) x (w + ku): vertex row k's integer CDF over the patches of each cell
-                            column, as floats (integers <= 2^24: exact); all 0 in the pole rows */
-  size_t cond_stride;    /* w + ku */
-  int *coff;             /* ku: the first CDF entry of cell column a in a row of cond (a0[a] + a) */
+  size_t cond_stride;    /* w + ku: a patch row's entries in pcol */
+  int *coff;             /* ku: the first CDF entry of cell column a in a row of pcol (a0[a] + a) */
   int row_len, marg_len; /* a cell table's CDF lengths: ku + 1 and kv + 1 */
   float inv_w, inv_h, half_inv_h; /* 1 / w, 1 / h, 0.5 / h */
-  uint32_t *marg;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
   int *a0, *b0;          /* ku + 1 patch-column, kv + 1 patch-row bounds of the cells */
   int *cu_of, *cv_of;    /* w, h + 1: the cell column / row of a patch column / row */
   double *mass;          /* kv x ku: each cell's integral over (u, v) */
-  uint16_t *plain;       /* the cell table of the mass alone (importance BILINEAR, invalid normals) */
   size_t table_len;      /* entries of a cell table: the cell rows' CDF (kv + 1 entries), then kv rows'
                             CDFs over their cells (ku + 1 entries each) */
   size_t warp_bytes;
@@ -3033,7 +3164,7 @@ struct el_envlight__warp {
   uint32_t *cos_off;     /* m * m: where each bin's table starts in cos_tab */
   size_t cos_bytes;
   /* product sampling's patches (issue 20; a product table set uses w, h, ku, kv, a0, b0, cu_of, cv_of,
-     coff, sin_row, V, mass, plain and the normal tables above, and these two instead of S, cond, marg) */
+     coff, sin_row, V, mass and the normal tables above, and these two) */
   uint16_t *pcol;        /* (h + 1) x (w + ku): patch row r's CDF over the patches of each cell column */
   uint16_t *prow;        /* ku x (h + 1 + kv): per cell column, each cell's CDF over its patch rows */
   int coarse;            /* 1: V is a max-filtered coarse grid of the map (maps over the size cap) */
@@ -3077,15 +3208,6 @@ static void el_envlight__cell_rows_cdf(const struct el_envlight__warp *W, const 
   }
   el_envlight__int_cdf(rows, kv, EL_ENVLIGHT__CELL_UNITS, tmp);
   for (b = 0; b <= kv; ++b) tab[b] = (uint16_t)tmp[b];
-}
-static void el_envlight__cell_table(const struct el_envlight__warp *W, const double *wgt, uint16_t *tab, uint32_t *tmp, double *rows) {
-  int a, b, ku = W->ku, kv = W->kv;
-  el_envlight__cell_rows_cdf(W, wgt, tab, tmp, rows);
-  for (b = 0; b < kv; ++b) {
-    uint16_t *row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
-    el_envlight__int_cdf(wgt + (size_t)b * (size_t)ku, ku, EL_ENVLIGHT__CELL_UNITS, tmp);
-    for (a = 0; a <= ku; ++a) row[a] = (uint16_t)tmp[a];
-  }
 }
 
 /* Guide tables (Chen's cutpoint method, issue 20): for a CDF c[0..n] over 32768 units, g[j] (j < 8) is the
@@ -3187,251 +3309,16 @@ static inline float el_envlight__vertex_of(const el_envlight *l, const struct el
 
 static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
-  EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->S); EL_FREE(W->cond); EL_FREE(W->marg); EL_FREE(W->a0); EL_FREE(W->b0);
-  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->plain); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16); EL_FREE(W->gcol); EL_FREE(W->grow);
+  EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->a0); EL_FREE(W->b0);
+  EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16); EL_FREE(W->gcol); EL_FREE(W->grow);
   EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
-}
-
-/* <<Build the warp>>: vertex rows, cells, the integer CDFs, cell masses and the plain cell table. */
-static el_result el_envlight__warp_build(const el_envlight *l, int ku, int kv, struct el_envlight__warp **out) {
-  struct el_envlight__warp *W;
-  int w = l->width, h = l->height, i, j, a, b, r, k;
-  double *vrow = NULL, *wgt = NULL, total = 0.0;
-  uint32_t *tmp = NULL;
-  size_t nc, nm;
-  *out = NULL;
-  W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
-  if (!W) return EL_ERROR_OUT_OF_MEMORY;
-  memset(W, 0, sizeof *W);
-  ku = ku < w ? ku : w;
-  kv = kv < h + 1 ? kv : h + 1;
-  /* a cell column's patches and a cell's patch rows each fit the integer CDFs (at most 2^22 entries) */
-  if ((w + ku - 1) / ku > 4194304 || (h + kv) / kv > 4194304) { EL_FREE(W); return EL_ERROR_SIZE_OVERFLOW; }
-  W->w = w; W->h = h; W->ku = ku; W->kv = kv;
-  W->marg_len = kv + 1;
-  W->row_len = ku + 1;
-  W->table_len = (size_t)W->marg_len + (size_t)kv * (size_t)W->row_len;
-  W->cond_stride = (size_t)w + (size_t)ku;
-  W->inv_w = 1.0f / (float)w; W->inv_h = 1.0f / (float)h; W->half_inv_h = 0.5f / (float)h;
-  nc = ((size_t)h + 2) * W->cond_stride;
-  nm = (size_t)ku * ((size_t)h + 1 + (size_t)kv);
-  if (nc > ((size_t)-1) / sizeof(uint32_t) / 2) { EL_FREE(W); return EL_ERROR_SIZE_OVERFLOW; }
-  W->sin_row = (float *)EL_MALLOC((size_t)h * sizeof(float));
-  W->V = (float *)EL_MALLOC(((size_t)h + 2) * (size_t)w * sizeof(float));
-  W->coff = (int *)EL_MALLOC((size_t)ku * sizeof(int));
-  W->S = (double *)EL_MALLOC(((size_t)h + 2) * (size_t)ku * sizeof(double));
-  W->cond = (float *)EL_MALLOC(nc * sizeof(float));
-  W->marg = (uint32_t *)EL_MALLOC(nm * sizeof(uint32_t));
-  W->a0 = (int *)EL_MALLOC(((size_t)ku + 1) * sizeof(int));
-  W->b0 = (int *)EL_MALLOC(((size_t)kv + 1) * sizeof(int));
-  W->cu_of = (int *)EL_MALLOC((size_t)w * sizeof(int));
-  W->cv_of = (int *)EL_MALLOC(((size_t)h + 1) * sizeof(int));
-  W->mass = (double *)EL_MALLOC((size_t)ku * (size_t)kv * sizeof(double));
-  W->plain = (uint16_t *)EL_MALLOC(W->table_len * sizeof(uint16_t));
-  vrow = (double *)EL_MALLOC(((size_t)w + 1) * sizeof(double));
-  wgt = (double *)EL_MALLOC(((size_t)(w > h + 1 ? w : h + 1) + (size_t)ku * (size_t)kv) * sizeof(double));
-  tmp = (uint32_t *)EL_MALLOC(((size_t)(w > h + 1 ? w : h + 1) + (size_t)ku + (size_t)kv + 2) * sizeof(uint32_t));
-  if (!W->sin_row || !W->V || !W->coff || !W->S || !W->cond || !W->marg || !W->a0 || !W->b0 || !W->cu_of || !W->cv_of || !W->mass ||
-      !W->plain || !vrow || !wgt || !tmp) {
-    EL_FREE(vrow); EL_FREE(wgt); EL_FREE(tmp);
-    el_envlight__warp_free(W);
-    return EL_ERROR_OUT_OF_MEMORY;
-  }
-  for (a = 0; a <= ku; ++a) W->a0[a] = (int)((int64_t)a * w / ku);
-  for (b = 0; b <= kv; ++b) W->b0[b] = (int)((int64_t)b * (h + 1) / kv);
-  for (a = 0; a < ku; ++a) for (i = W->a0[a]; i < W->a0[a + 1]; ++i) W->cu_of[i] = a;
-  for (a = 0; a < ku; ++a) W->coff[a] = W->a0[a] + a;
-  for (b = 0; b < kv; ++b) for (r = W->b0[b]; r < W->b0[b + 1]; ++r) W->cv_of[r] = b;
-  for (j = 0; j < h; ++j) W->sin_row[j] = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / h);
-  /* <<Initialize compensated PDF>> (pbrt-v4): subtract the mean luminance over the sphere (the exact
-   * integral of le / 4 pi) from every vertex; none above it: the plain density */
-  W->offset = 0.0f;
-  if (l->compensated) {
-    double mean = (0.212671 * l->integral[0] + 0.715160 * l->integral[1] + 0.072169 * l->integral[2]) / (4.0 * EL_ENVLIGHT__PI);
-    int any = 0;
-    W->offset = mean < (double)FLT_MAX ? (float)mean : FLT_MAX;
-    for (j = 0; j < h && !any; ++j)
-      for (i = 0; i < w; ++i) if (el_envlight__vertex_of(l, W, i, j) > 0.0f) { any = 1; break; }
-    if (!any) { W->offset = 0.0f; W->fell_back = 1; }
-  }
-  /* vertex rows: the pole rows are 0 (their V, S and CDFs); texel row j is vertex row j + 1 */
-  for (a = 0; a < ku; ++a) { W->S[a] = 0.0; W->S[((size_t)h + 1) * (size_t)ku + (size_t)a] = 0.0; }
-  for (i = 0; i < w; ++i) W->V[i] = W->V[((size_t)h + 1) * (size_t)w + (size_t)i] = 0.0f;
-  for (k = 0; k < (int)W->cond_stride; ++k) W->cond[k] = W->cond[((size_t)h + 1) * W->cond_stride + (size_t)k] = 0.0f;
-  for (j = 0; j < h; ++j) {
-    for (i = 0; i < w; ++i) vrow[i] = (double)(W->V[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__vertex_of(l, W, i, j));
-    vrow[w] = vrow[0];
-    for (a = 0; a < ku; ++a) {
-      int n = W->a0[a + 1] - W->a0[a];
-      double s = 0.0;
-      for (i = 0; i < n; ++i) { wgt[i] = 0.5 * (vrow[W->a0[a] + i] + vrow[W->a0[a] + i + 1]); s += wgt[i]; }
-      W->S[((size_t)j + 1) * (size_t)ku + (size_t)a] = s / w;
-      float *c = W->cond + ((size_t)j + 1) * W->cond_stride + (size_t)W->coff[a];
-      el_envlight__int_cdf(wgt, n, 16777216u, tmp);
-      for (i = 0; i <= n; ++i) c[i] = (float)tmp[i];
-    }
-  }
-  /* each cell's patch rows: mass (A + B) / 2 dv, dv = 1 / h (0.5 / h at the poles) */
-  for (a = 0; a < ku; ++a)
-    for (b = 0; b < kv; ++b) {
-      int n = W->b0[b + 1] - W->b0[b];
-      double s = 0.0;
-      for (k = 0; k < n; ++k) {
-        r = W->b0[b] + k;
-        wgt[k] = 0.5 * (W->S[(size_t)r * (size_t)ku + (size_t)a] + W->S[((size_t)r + 1) * (size_t)ku + (size_t)a]) *
-                 ((r == 0 || r == h) ? 0.5 / h : 1.0 / h);
-        s += wgt[k];
-      }
-      el_envlight__int_cdf(wgt, n, 16777216u, W->marg + (size_t)a * ((size_t)h + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b);
-      W->mass[(size_t)b * (size_t)ku + (size_t)a] = s;
-      total += s;
-    }
-  W->all_zero = !(total > 0.0);
-  el_envlight__cell_table(W, W->mass, W->plain, tmp, wgt);
-  W->warp_bytes = sizeof *W + (size_t)h * sizeof(float) + ((size_t)h + 2) * (size_t)w * sizeof(float) + (size_t)ku * sizeof(int) + ((size_t)h + 2) * (size_t)ku * sizeof(double) +
-                  nc * sizeof(float) + nm * sizeof(uint32_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)w + (size_t)h + 1) * sizeof(int) +
-                  (size_t)ku * (size_t)kv * sizeof(double) + W->table_len * sizeof(uint16_t);
-  EL_FREE(vrow); EL_FREE(wgt); EL_FREE(tmp);
-  *out = W;
-  return EL_SUCCESS;
-}
-
-/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2: the inverse CDF of a linear density
- * (a, b >= 0, not both 0), in the form without cancellation. */
-static inline double el_envlight__lin_inv(double a, double b, double q) {
-  double m = a > b ? a : b, d, den, t;
-  a /= m; b /= m;
-  d = a * a + q * (b * b - a * a);
-  den = a + sqrt(d > 0.0 ? d : 0.0);
-  t = den > 0.0 ? q * (a + b) / den : 0.0; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
-  return t < 1.0 ? (t > 0.0 ? t : 0.0) : 1.0;
-}
-
-/* The conditional's blend weight at t in patch row r of cell column a (A, B: the two vertex rows'
- * integrals over the cell column), kept off 0 and 1 while both rows have mass. */
-static inline double el_envlight__alpha(double A, double B, double t) {
-  double x, y, al;
-  if (!(A > 0.0)) return 0.0;
-  if (!(B > 0.0)) return 1.0;
-  x = (1.0 - t) * A; y = t * B;
-  al = x / (x + y);
-  return al < EL_ENVLIGHT__ALPHA_MIN ? EL_ENVLIGHT__ALPHA_MIN : al > 1.0 - EL_ENVLIGHT__ALPHA_MIN ? 1.0 - EL_ENVLIGHT__ALPHA_MIN : al;
-}
-
-/* The blended conditional CDF of cell column a at patch j (0..n) of its n patches: alpha * row r's CDF +
- * (1 - alpha) * row r + 1's (a row without mass has weight exactly 0: al is 0 or 1 then) */
-static inline double el_envlight__blend(const float *c0, const float *c1, double al, double bl, int j) {
-  return al * (double)c0[j] + bl * (double)c1[j];
-}
-
-/* The two vertex rows' CDF rows for patch row r in cell column a. */
-static inline void el_envlight__cond_rows(const struct el_envlight__warp *W, int r, int a, const float **c0, const float **c1) {
-  *c0 = W->cond + (size_t)r * W->cond_stride + (size_t)W->coff[a];
-  *c1 = *c0 + W->cond_stride;
-}
-
-/* The linear density in s over patch i (absolute patch column) at the blend al: its values e0, e1 at the
- * patch's two ends, as probabilities per unit s (e0 + e1 = 2 x the patch's probability). */
-static inline void el_envlight__patch_ends(const struct el_envlight__warp *W, int r, int i, int j,
-                                           const float *c0, const float *c1, double al, double bl, double *e0, double *e1) {
-  int i1 = i + 1 < W->w ? i + 1 : 0;
-  const float *v = W->V + (size_t)r * (size_t)W->w;
-  /* each row's share of the patch (its units x its weight), spread linearly between its two vertices */
-  double a0 = (double)v[i], a1 = (double)v[i1], b0 = (double)v[(size_t)W->w + (size_t)i], b1 = (double)v[(size_t)W->w + (size_t)i1];
-  double sa = a0 + a1, sb = b0 + b1, ka, kb;
-  ka = 2.0 * al * (double)(c0[j + 1] - c0[j]) / (sa > 0.0 ? sa : 1.0); /* no units where the sum is 0 */
-  kb = 2.0 * bl * (double)(c1[j + 1] - c1[j]) / (sb > 0.0 ? sb : 1.0);
-  *e0 = (ka * a0 + kb * b0) * (1.0 / 16777216.0);
-  *e1 = (ka * a1 + kb * b1) * (1.0 / 16777216.0);
 }
 
 /* u in [0,1) as the fast samplers clamp it: NaN and <= 0 -> 0, >= 1 -> 0x1.fffffep-1 */
 static inline float el_envlight__clamp01(float u) {
   u = u > 0.0f ? u : 0.0f;
   return u < 0.99999994f ? u : 0.99999994f;
-}
-
-/* <<Pick a cell>> from a cell table with (u0, u1): u1 the cell row, u0 the cell in it (CDF inversion);
- * *f0, *f1: the positions of u0, u1 within the cell's units, for the warp inside the cell. */
-static inline void el_envlight__cell_pick(const struct el_envlight__warp *W, const uint16_t *tab, float u0, float u1,
-                                          int *a, int *b, float *f0, float *f1) {
-  float x1 = el_envlight__clamp01(u1) * (float)EL_ENVLIGHT__CELL_UNITS, x0 = el_envlight__clamp01(u0) * (float)EL_ENVLIGHT__CELL_UNITS;
-  const uint16_t *row;
-  *b = el_envlight__search16(tab, W->kv, (uint32_t)x1);
-  *f1 = (x1 - (float)tab[*b]) / (float)(tab[*b + 1] - tab[*b]);
-  row = tab + (size_t)W->marg_len + (size_t)*b * (size_t)W->row_len;
-  *a = el_envlight__search16(row, W->ku, (uint32_t)x0);
-  *f0 = (x0 - (float)row[*a]) / (float)(row[*a + 1] - row[*a]);
-}
-
-/* The patch (column i, vertex row r) in which the pdf finds the point (u, v): le()'s texels, patch column
- * i = floor(u w - 0.5) (Repeat), row floor(v h + 0.5); *X, *Y the scaled coordinates. */
-static inline void el_envlight__patch_at(const struct el_envlight__warp *W, float u, float v, int *i, int *r, float *X, float *Y) {
-  *X = u * (float)W->w - 0.5f;
-  if (*X < 0.0f) *X += (float)W->w;
-  *i = (int)*X;
-  if (*i > W->w - 1) *i = W->w - 1;
-  *Y = v * (float)W->h + 0.5f;
-  *r = (int)*Y;
-  if (*r > W->h) *r = W->h;
-}
-
-/* <<Warp inside cell (a, b)>>: (f0, f1) in [0,1]^2 -> a light-space unit direction; *pi, *pr get the
- * patch (column, vertex row) it chose. centre = 1: the same patch, but the point at its centre (s = t =
- * 1/2: el_envlight__warp_sample's fallback when rounding moved the point out of its patch). */
-static void el_envlight__warp_sample_cell(const struct el_envlight__warp *W, int a, int b, float f0, float f1, int centre, float d[3], int *pi, int *pr) {
-  int h = W->h, ku = W->ku, n, r, lo, len, i;
-  const uint32_t *mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
-  const float *c0, *c1;
-  double x, q, A, B, t, al, bl, lo_v, hi_v, e0, e1, s;
-  float u, v, vp;
-  /* the patch row: integer CDF inversion, then t in it (a linear density) */
-  x = (double)el_envlight__clamp01(f1) * 16777216.0;
-  n = W->b0[b + 1] - W->b0[b];
-  r = el_distribution2d__search(mg, 0, n, (uint32_t)x);
-  q = (x - (double)mg[r]) / (double)(mg[r + 1] - mg[r]);
-  r += W->b0[b];
-  A = W->S[(size_t)r * (size_t)ku + (size_t)a];
-  B = W->S[((size_t)r + 1) * (size_t)ku + (size_t)a];
-  t = el_envlight__lin_inv(A, B, q);
-  /* the patch at t: inversion of the blended conditional CDF, then s in the patch */
-  al = el_envlight__alpha(A, B, t);
-  bl = 1.0 - al;
-  el_envlight__cond_rows(W, r, a, &c0, &c1);
-  x = (double)el_envlight__clamp01(f0) * 16777216.0;
-  lo = 0; len = W->a0[a + 1] - W->a0[a];
-  while (len > 1) {
-    int half = len >> 1;
-    lo = el_envlight__blend(c0, c1, al, bl, lo + half) <= x ? lo + half : lo;
-    len -= half;
-  }
-  lo_v = el_envlight__blend(c0, c1, al, bl, lo);
-  hi_v = el_envlight__blend(c0, c1, al, bl, lo + 1);
-  q = hi_v > lo_v ? (x - lo_v) / (hi_v - lo_v) : 0.5;
-  q = q < 1.0 ? (q > 0.0 ? q : 0.0) : 1.0;
-  i = W->a0[a] + lo;
-  el_envlight__patch_ends(W, r, i, lo, c0, c1, al, bl, &e0, &e1);
-  s = e0 + e1 > 0.0 ? el_envlight__lin_inv(e0, e1, q) : q;
-  /* kept inside the patch by w 2^-21 (h 2^-21) of it, more than the rounding of u below and of the pdf's
-   * u w - 0.5 (a few w 2^-24), so that the pdf finds the point in this patch (issue 24: s = 1 rounded
-   * into the next patch, maybe of a cell without mass); monotone, so the warp stays monotone */
-  {
-    double ms = (double)W->w * (1.0 / 2097152.0), mt = (double)W->h * (1.0 / 2097152.0);
-    ms = ms < 0.25 ? ms : 0.25; mt = mt < 0.25 ? mt : 0.25;
-    s = s > ms ? (s < 1.0 - ms ? s : 1.0 - ms) : ms;
-    t = t > mt ? (t < 1.0 - mt ? t : 1.0 - mt) : mt;
-  }
-  if (centre) s = t = 0.5;
-  *pi = i; *pr = r;
-  /* <<Compute direction>>: u from the patch's left texel centre, v and its distance to the nearer pole */
-  u = ((float)i + 0.5f + (float)s) * W->inv_w;
-  if (u >= 1.0f) u -= 1.0f;
-  u = u < 0.99999994f ? u : 0.99999994f;
-  if (r == 0) { vp = (float)t * W->half_inv_h; v = vp; }
-  else if (r == h) { vp = (float)(1.0 - t) * W->half_inv_h; v = 1.0f - vp; }
-  else { v = ((float)r - 0.5f + (float)t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
-  el_envlight__uvp_to_dir(u, v, vp, d);
 }
 
 /* theta_halfturns with the distance to the nearer pole as well (same operations for *v) */
@@ -3443,98 +3330,6 @@ static inline void el_envlight__theta_vp(float r, float z, float *v, float *vp) 
   *vp = a;
   if (z < 0.0f) a = 1.0f - a;
   *v = a;
-}
-
-/* <<Compute PDF>> of the warp times the cell table tab at a light-space direction d (any length):
- * P(cell) x the warp's density in (u, v) inside the cell / (2 pi^2 sin theta). uv (may be NULL) gets the
- * (u, v) at which le() looks d up. */
-static float el_envlight__warp_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
-  float dd[3], r2, len2, rr, u, v, vp, X, Y;
-  int w = W->w, h = W->h, ku = W->ku, kv = W->kv, i, r, a, b, j;
-  const uint16_t *row;
-  const uint32_t *mg;
-  const float *c0, *c1;
-  double pc, prow, A, B, t, s, lin, fv, al, e0, e1, fu, p, len;
-  if (uv) uv[0] = uv[1] = 0.0f;
-  dd[0] = dir[0]; dd[1] = dir[1]; dd[2] = dir[2];
-  r2 = dd[0] * dd[0] + dd[1] * dd[1];
-  len2 = r2 + dd[2] * dd[2];
-  if (!(len2 >= FLT_MIN && len2 <= FLT_MAX)) {
-    if (!el_envlight__rescale(dd)) return 0.0f;
-    r2 = dd[0] * dd[0] + dd[1] * dd[1];
-    len2 = r2 + dd[2] * dd[2];
-  }
-  rr = sqrtf(r2);
-  u = el_envlight__phi_turns(dd[1], dd[0]);
-  el_envlight__theta_vp(rr, dd[2], &v, &vp);
-  if (uv) { uv[0] = u; uv[1] = v; }
-  /* the patch and the fractions in it (le()'s texels: patch column i = floor(u w - 0.5), row floor(v h - 0.5) + 1) */
-  el_envlight__patch_at(W, u, v, &i, &r, &X, &Y);
-  s = (double)X - (double)i;
-  s = s < 1.0 ? (s > 0.0 ? s : 0.0) : 1.0;
-  if (r == 0) t = (double)vp * 2.0 * h;
-  else if (r == h) t = 1.0 - (double)vp * 2.0 * h;
-  else t = (double)Y - (double)r;
-  t = t < 1.0 ? (t > 0.0 ? t : 0.0) : 1.0;
-  a = W->cu_of[i]; b = W->cv_of[r];
-  /* P(cell): the table's two integer widths */
-  row = tab + (size_t)W->marg_len + (size_t)b * (size_t)W->row_len;
-  pc = (double)(tab[b + 1] - tab[b]) * (double)(row[a + 1] - row[a]) * (1.0 / 1073741824.0); /* 2^-30 */
-  if (!(pc > 0.0)) return 0.0f;
-  /* the marginal in v inside the cell: the patch row's probability times the linear shape in t */
-  mg = W->marg + (size_t)a * ((size_t)h + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b;
-  j = r - W->b0[b];
-  prow = (double)(mg[j + 1] - mg[j]) * (1.0 / 16777216.0);
-  if (!(prow > 0.0)) return 0.0f;
-  A = W->S[(size_t)r * (size_t)ku + (size_t)a];
-  B = W->S[((size_t)r + 1) * (size_t)ku + (size_t)a];
-  lin = (1.0 - t) * A + t * B;
-  /* the conditional in u at t: the blend's linear density over patch i */
-  al = el_envlight__alpha(A, B, t);
-  el_envlight__cond_rows(W, r, a, &c0, &c1);
-  el_envlight__patch_ends(W, r, i, i - W->a0[a], c0, c1, al, 1.0 - al, &e0, &e1);
-  fu = ((1.0 - s) * e0 + s * e1) * (double)w;
-  len = (double)el_envlight__sqrt(len2);
-  /* density over (u, v) / sin(theta): f_v = prow (lin / mean) / dv. In the pole rows lin / mean = 2 t
-   * (2 (1 - t)) and t = 2 h vp, so f_v / sin(theta) = 8 h^2 prow vp / sin(theta), with vp / sin(theta) ->
-   * 1 / pi at the pole itself (vp and sin theta = r / len both computed without cancellation). */
-  if (r == 0 || r == h) {
-    double ratio = rr > 0.0f ? (double)vp * len / (double)rr : 0.318309886183790672;
-    fv = 8.0 * (double)h * (double)h * prow * ratio;
-  } else {
-    fv = prow * (lin / (0.5 * (A + B))) * (double)h * len / (double)rr;
-  }
-  p = pc * fv * fu * (1.0 / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI));
-  return p < (double)FLT_MAX ? (float)p : FLT_MAX;
-}
-
-/* The once-scheme of the warp (as el_envlight__ensure_slow): returns the tables or NULL (failed). The
- * build writes into *l through a cast: queries take const lights, so never define an el_envlight object
- * itself const (a const pointer to it is fine). */
-static const struct el_envlight__warp *el_envlight__warp_ensure(const el_envlight *cl, int ku, int kv) {
-  el_envlight *l = (el_envlight *)cl;
-#if EL_ENVLIGHT__ATOMICS
-  int expected = 0;
-  if (__atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE) == 2) return l->warp;
-  if (__atomic_compare_exchange_n(&l->warp_state, &expected, 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
-    struct el_envlight__warp *W = NULL;
-    el_result r = el_envlight__warp_build(l, ku, kv, &W);
-    l->warp = W;
-    l->warp_result = r;
-    __atomic_store_n(&l->warp_state, r == EL_SUCCESS ? 2 : 3, __ATOMIC_RELEASE);
-  } else {
-    while (__atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE) == 1) { /* another thread builds */ }
-  }
-  return __atomic_load_n(&l->warp_state, __ATOMIC_ACQUIRE) == 2 ? l->warp : NULL;
-#else
-  if (l->warp_state == 0) {
-    struct el_envlight__warp *W = NULL;
-    l->warp_result = el_envlight__warp_build(l, ku, kv, &W);
-    l->warp = W;
-    l->warp_state = l->warp_result == EL_SUCCESS ? 2 : 3;
-  }
-  return l->warp_state == 2 ? l->warp : NULL;
-#endif
 }
 
 /* >> product sampling
@@ -4190,43 +3985,6 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__cos_sample_constant(const el_envl
   if (rgb) for (k = 0; k < 3; ++k) rgb[k] = *pdf > 0.0f ? l->constant[k] : 0.0f;
 }
 
-/* sample_li_cos and sample_li in mode BILINEAR: the warp times cell table tab */
-static void el_envlight__warp_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], uv[2], f0, f1, p, X, Y;
-  int a, b, i, r, pi, pr, k;
-  if (W->all_zero || tab[W->kv] == 0) { /* nothing emits (above this surface, for a normal's table) */
-    wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
-    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    return;
-  }
-  el_envlight__cell_pick(W, tab, uu[0], uu[1], &a, &b, &f0, &f1);
-  /* the point, then its pdf: the pdf function's at wi (so pdf_li_cos(wi) equals it bit for bit), from d
-   * itself for a signed permutation (the round trip is exact), else from wi brought back as pdf_li_cos
-   * does. Rounding can move a point at the very edge of its patch (u0 within ulps of 1: (i + 0.5 + s) / w
-   * rounds up to the next patch) or near a pole under a rotation (phi is ill-conditioned there) into
-   * another patch, maybe of another cell without mass, and a u on a CDF step can land on a patch's
-   * massless end: then the sample is its patch's centre instead (a point of the same patch; a
-   * measure-zero set of u moves, issue 24). */
-  for (k = 0; k < 2; ++k) {
-    el_envlight__warp_sample_cell(W, a, b, f0, f1, k, d, &i, &r);
-    el_envlight__to_world(l, d, wi);
-    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d);
-    p = el_envlight__warp_pdf_light(W, tab, d, uv);
-    el_envlight__patch_at(W, uv[0], uv[1], &pi, &pr, &X, &Y);
-    if (pi == i && pr == r && p > 0.0f) break;
-  }
-  *pdf = p;
-  if (rgb) {
-    if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb); /* le(wi): the same (u, v) */
-    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
-  }
-}
-
-/* sample_li in importance mode BILINEAR (the tables are built: el_envlight__build made them) */
-static void el_envlight__warp_sample_plain(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  el_envlight__warp_sample(l, l->warp, l->warp->plain, uu, wi, rgb, pdf);
-}
-
 EL_DEF el_result el_envlight_prepare_product(const el_envlight *l, const el_envlight_product_options *opt) {
   int ku = EL_ENVLIGHT__CELLS_U, kv = EL_ENVLIGHT__CELLS_V, m = EL_ENVLIGHT__NORMAL_BINS;
   const struct el_envlight__warp *W;
@@ -4651,14 +4409,440 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l) {
   return (cs == 2 && l->prod) ? l->prod->warp_bytes + l->prod->cos_bytes : 0;
 }
 
+/* >> importance BILINEAR: le()'s patches (issue 22's patch density; NOTES ON PRODUCT SAMPLING, point 1)
+ * The density is the bilinear interpolant, over each of le()'s patches (the patch grid's layout above: w patch
+ * columns between texel centres, h + 1 patch rows, the two pole rows half as tall with a vertex row of
+ * 0), of the vertex values V = lum x sin(theta) at the texel centres, as bfloat16 rounded up (the product
+ * sampler's grid: el_envlight__prod_corners reads both). A patch is picked from one discrete 2D table
+ * over the patches (distribution2d.h's integer CDFs, each patch's mass its corners' mean x its height,
+ * and its guide tables: the light's own sampler, l->dist and l->fast), then (s, t) inside it by two
+ * linear inversions (t from the marginal (1 - t)(V00 + V01) + t (V10 + V11), s from the conditional at
+ * t). Its density is the patch's integer share x bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta):
+ * el_envlight__prod_eval's expression with the distribution's 2^24 x 2^24 units (dens_k = 2^-48 w h /
+ * (2 pi^2)), stored per patch as the factor K of its record. pdf_li locates the direction (the fast path
+ * below on maps of at least 256 x 128; on smaller ones le()'s own atans, product sampling's locate) and
+ * reads one record. sample_li locates its own direction the same way, so its pdf is pdf_li(wi)'s, bit
+ * for bit. */
+
+/* t in [0, 1] with int_0^t ((1 - x) a + x b) dx = q (a + b) / 2 for a, b >= 0, not both 0: the inverse
+ * CDF of a linear density in the form without cancellation (a = b: t = q; a = 0: sqrt(q); b = 0: 1 -
+ * sqrt(1 - q)). For the patch grid's values (at most 2^61 for a sum of two: the squares stay finite);
+ * sums below 2^-40 are scaled up first, so that the squares stay normal floats. */
+static inline float el_envlight__lin_inv(float a, float b, float q) {
+  float d, den, t;
+  if (a + b < 9.09494702e-13f) { a *= 1.20892582e24f; b *= 1.20892582e24f; } /* 2^-40, 2^80 */
+  d = a * a + q * (b * b - a * a);
+  den = a + el_envlight__sqrt(d > 0.0f ? d : 0.0f);
+  t = den > 0.0f ? q * (a + b) / den : 0.0f; /* den = 0: a = 0 and q = 0, the start of a ramp from 0 */
+  return t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
+}
+
+/* (u, v) and the light-space unit direction of (s, t) in patch (i, r), as le() maps them: u from the
+ * patch's left texel centre (wrapping at the seam), v and its distance vp to the nearer pole. */
+static inline float el_envlight__patch_uv(const struct el_envlight__warp *W, int i, int r, float s, float t, float *u, float *v) {
+  float vp;
+  *u = ((float)i + 0.5f + s) * W->inv_w;
+  if (*u >= 1.0f) *u -= 1.0f;
+  *u = *u < 0.99999994f ? *u : 0.99999994f;
+  if (r == 0) { vp = t * W->half_inv_h; *v = vp; }
+  else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; *v = 1.0f - vp; }
+  else { *v = ((float)r - 0.5f + t) * W->inv_h; vp = *v < 0.5f ? *v : 1.0f - *v; }
+  return vp;
+}
+static inline void el_envlight__patch_dir(const struct el_envlight__warp *W, int i, int r, float s, float t, float d[3]) {
+  float u, v, vp = el_envlight__patch_uv(W, i, r, s, t, &u, &v);
+  el_envlight__uvp_to_dir(u, v, vp, d);
+}
+
+/* THE FAST PATH (maps of at least 256 x 128: patch angles <= pi / 128): where pdf_li finds a direction
+ * without atan. The patch column and row come from bin finders over half texels (el_envlight__finder
+ * with 2w and 2h bins: the texel centres are the odd edges), as pdf_li's own bins; s and t from the angle
+ * to a reference edge of the patch, atan of the tangent of the difference, (y c - x s) / (x c + y s) for
+ * phi and (r c - z s) / (z c + r s) for theta (|angle| <= pi / 128: atan q = q - q^3 / 3 to float
+ * precision). Column i's reference is its texel centre phi_i (cos, sin: col_tab[2 i]); patch row r's
+ * (row_tab[8 r]: cos, sin, t0, 1 / dtheta, dtheta) is its edge nearer the pole (the pole itself for the
+ * two pole rows), so that sample_li's sin(theta) = s cos a + c sin a never cancels; t = t0 + angle /
+ * dtheta. sample_li forms its direction from the same references by angle addition (sin b = b - b^3 / 6,
+ * cos b = 1 - b^2 / 2). The light's own pdf_li tables (u_base, u_edge, v_base, v_edge; col_tab, row_tab
+ * in dir_alloc) hold them: mode BILINEAR has no others. */
+static el_result el_envlight__patch_tables(el_envlight *l, int w, int h) {
+  int i, r;
+  el_result res = el_envlight__finder(2 * w, 4, &l->u_base, &l->u_edge, &l->u_cells);
+  if (res == EL_SUCCESS) res = el_envlight__finder(2 * h, 2, &l->v_base, &l->v_edge, &l->v_cells);
+  if (res != EL_SUCCESS) return res;
+  l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
+  l->v_cell_scale = (float)(l->v_cells - 2) * 0.5f;
+  l->dir_alloc = EL_MALLOC(((size_t)2 * (size_t)w + 8 * ((size_t)h + 1)) * sizeof(float));
+  if (!l->dir_alloc) return EL_ERROR_OUT_OF_MEMORY;
+  l->col_tab = (float *)l->dir_alloc;
+  l->row_tab = l->col_tab + 2 * (size_t)w;
+  for (i = 0; i < w; ++i) {
+    double a = 2.0 * EL_ENVLIGHT__PI * (i + 0.5) / w;
+    l->col_tab[2 * i] = (float)cos(a); l->col_tab[2 * i + 1] = (float)sin(a);
+  }
+  for (r = 0; r <= h; ++r) {
+    float *t = l->row_tab + 8 * (size_t)r;
+    double dt = (r == 0 || r == h ? 0.5 : 1.0) * EL_ENVLIGHT__PI / h, ref;
+    int north = 2 * r <= h; /* the middle row (h even) may take either edge */
+    ref = north ? (r == 0 ? 0.0 : EL_ENVLIGHT__PI * (r - 0.5) / h) : (r == h ? EL_ENVLIGHT__PI : EL_ENVLIGHT__PI * (r + 0.5) / h);
+    memset(t, 0, 8 * sizeof(float));
+    t[0] = (float)cos(ref); t[1] = north ? (float)sin(ref) : (float)sin(EL_ENVLIGHT__PI - ref); /* sin 0 and sin pi: exactly 0 */
+    t[2] = north ? 0.0f : 1.0f;
+    t[3] = (float)(1.0 / dt); t[4] = (float)dt;
+  }
+  return EL_SUCCESS;
+}
+
+/* atan(q) for |q| <= tan(pi / 128): q - q^3 / 3 (the next term, q^5 / 5, is below 2e-9 q) */
+static inline float el_envlight__atan_small(float q) { return q - q * q * q * 0.333333343f; }
+
+/* The fast path's <<Locate the patch>> of a light-space direction (x, y, z), r2 = x^2 + y^2 and len2
+ * normal floats: patch (i, r), fractions (s, t), and rr = sqrt(r2), len = sqrt(len2) in q (q.u, q.v,
+ * q.vp, q.Y unused). */
+static inline void el_envlight__patch_find(const el_envlight *l, float x, float y, float z, float r2, float len2, el_envlight__ploc *q) {
+  float rr = el_envlight__sqrt(r2), pu, tv, cs, sn, a;
+  const float *rt;
+  uint32_t hu, hv;
+  size_t c;
+  int i, r;
+  pu = 2.0f - copysignf(1.0f + x / (fabsf(x) + fabsf(y) + FLT_MIN), y); /* pdf_li's diamond angle */
+  pu = pu < 3.99999976f ? pu : 3.99999976f;
+  c = (size_t)(int64_t)(pu * l->u_cell_scale);
+  hu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]); /* the half texel */
+  tv = 1.0f - z / (rr + fabsf(z));
+  c = (size_t)(int64_t)(tv * l->v_cell_scale);
+  hv = (uint32_t)l->v_base[c] + (tv >= l->v_edge[c]);
+  i = hu == 0 ? l->width - 1 : (int)((hu - 1u) >> 1);
+  r = (int)((hv + 1u) >> 1);
+  cs = l->col_tab[2 * i]; sn = l->col_tab[2 * i + 1];
+  a = el_envlight__atan_small((y * cs - x * sn) / (x * cs + y * sn)) * ((float)l->width * 0.159154943f);
+  q->s = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f;
+  rt = l->row_tab + 8 * (size_t)r;
+  a = rt[2] + el_envlight__atan_small((rr * rt[0] - z * rt[1]) / (z * rt[0] + rr * rt[1])) * rt[3];
+  q->Y = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f; /* t */
+  q->i = i; q->r = r; q->rr = rr; q->len2 = el_envlight__sqrt(len2); /* len */
+}
+
+/* The fast path's density at a found point of patch (q->i, q->r) with factor K (pdf_table) and corners c:
+ * K bil(s, t) / sin(theta), sin(theta) = rr / len; in the pole rows (one edge 0) bil / sin -> the other
+ * edge x (1 / dtheta) at the pole itself (rr = 0). */
+static inline float el_envlight__patch_density(const el_envlight *l, const el_envlight__ploc *q, float K, const float c[4]) {
+  float s = q->s, t = q->Y, e0 = c[0] + s * (c[1] - c[0]), e1 = c[2] + s * (c[3] - c[2]), p;
+  if (q->rr > 0.0f) p = K * (e0 + t * (e1 - e0)) * (q->len2 / q->rr);
+  else p = K * (e0 + e1) * l->row_tab[8 * (size_t)q->r + 3]; /* the exact pole: one of e0, e1 is 0 */
+  return p < FLT_MAX ? p : FLT_MAX;
+}
+
+/* Patch (i, r)'s record: returns K, c gets the corners (el_envlight__prod_corners' values) */
+static inline float el_envlight__patch_rec(const el_envlight *l, int i, int r, float c[4]) {
+  const float *rec = l->pdf_table + 4 * ((size_t)r * (size_t)l->width + (size_t)i);
+  uint32_t a, b;
+  memcpy(&a, rec + 1, 4); memcpy(&b, rec + 2, 4);
+  c[0] = el_envlight__bf16((uint16_t)(a & 0xffffu)); c[1] = el_envlight__bf16((uint16_t)(a >> 16));
+  c[2] = el_envlight__bf16((uint16_t)(b & 0xffffu)); c[3] = el_envlight__bf16((uint16_t)(b >> 16));
+  return rec[0];
+}
+
+/* The fast path's pdf_li of a light-space direction (x, y, z) whose r2 and len2 are normal floats */
+static inline float el_envlight__patch_pdf_fast(const el_envlight *l, float x, float y, float z, float r2, float len2) {
+  el_envlight__ploc q;
+  float c[4], K;
+  el_envlight__patch_find(l, x, y, z, r2, len2, &q);
+  K = el_envlight__patch_rec(l, q.i, q.r, c);
+  if (!(K > 0.0f)) return 0.0f; /* a patch without mass */
+  return el_envlight__patch_density(l, &q, K, c);
+}
+
+/* <<Build the patch tables>>: the vertex grid (bfloat16), the patches' masses, the distribution over them
+ * and its guide tables. The patches are the image's, whatever importance_width says (maps over the cap
+ * never get here: init gives them CELL_AVERAGE). */
+static el_result el_envlight__patch_build(el_envlight *l) {
+  struct el_envlight__warp *W;
+  int w = l->width, h = l->height, i, j, r;
+  float *f = NULL;
+  size_t nv = ((size_t)h + 2) * (size_t)w;
+  el_result res = EL_ERROR_OUT_OF_MEMORY;
+  el_distribution_options dopt;
+  W = (struct el_envlight__warp *)EL_MALLOC(sizeof *W);
+  if (!W) return EL_ERROR_OUT_OF_MEMORY;
+  memset(W, 0, sizeof *W);
+  W->w = w; W->h = h;
+  W->inv_w = 1.0f / (float)w; W->inv_h = 1.0f / (float)h; W->half_inv_h = 0.5f / (float)h;
+  W->dens_k = (float)(3.552713678800501e-15 * (double)w * (double)h / (2.0 * EL_ENVLIGHT__PI * EL_ENVLIGHT__PI)); /* 2^-48 */
+  W->sin_row = (float *)EL_MALLOC((size_t)h * sizeof(float));
+  W->V16 = (uint16_t *)EL_MALLOC(nv * sizeof(uint16_t));
+  f = (float *)EL_MALLOC(((size_t)h + 1) * (size_t)w * sizeof(float));
+  if (!W->sin_row || !W->V16 || !f) goto fail;
+  for (j = 0; j < h; ++j) W->sin_row[j] = (float)sin(EL_ENVLIGHT__PI * (j + 0.5) / h);
+  /* <<Initialize compensated PDF>> (pbrt-v4): the mean luminance (the exact integral of le / 4 pi)
+   * subtracted from every vertex, clamped at 0; none above it: the plain density */
+  if (l->compensated) {
+    double mean = (0.212671 * l->integral[0] + 0.715160 * l->integral[1] + 0.072169 * l->integral[2]) / (4.0 * EL_ENVLIGHT__PI);
+    int any = 0;
+    W->offset = mean < (double)FLT_MAX ? (float)mean : FLT_MAX;
+    for (j = 0; j < h && !any; ++j)
+      for (i = 0; i < w; ++i) if (el_envlight__vertex_of(l, W, i, j) > 0.0f) { any = 1; break; }
+    if (!any) { W->offset = 0.0f; W->fell_back = l->fell_back = 1; }
+  }
+  /* the vertex rows: 0 at the poles; the values scaled by a power of two so that the largest is 2^60 (the
+   * density does not change: it is bil / mean), positive ones at least 2^-60, so that el_envlight__lin_inv's
+   * squares stay normal floats */
+  {
+    float vmax = 0.0f, k = 1.0f;
+    int e;
+    for (j = 0; j < h; ++j)
+      for (i = 0; i < w; ++i) { float v = el_envlight__vertex_of(l, W, i, j); vmax = v > vmax ? v : vmax; }
+    if (vmax > 0.0f) { (void)frexpf(vmax, &e); k = ldexpf(1.0f, 60 - e); }
+    for (i = 0; i < w; ++i) W->V16[i] = W->V16[((size_t)h + 1) * (size_t)w + (size_t)i] = 0;
+    for (j = 0; j < h; ++j)
+      for (i = 0; i < w; ++i) {
+        double v = (double)el_envlight__vertex_of(l, W, i, j) * (double)k;
+        W->V16[((size_t)j + 1) * (size_t)w + (size_t)i] = el_envlight__bf16_up(v > 0.0 ? (float)(v > 8.67361738e-19 ? v : 8.67361738e-19) : 0.0f);
+      }
+  }
+  /* each patch's mass over the table's equal bins: the mean of its (rounded) corners x its height (the
+   * pole rows half) */
+  for (r = 0; r <= h; ++r)
+    for (i = 0; i < w; ++i) {
+      float c[4];
+      el_envlight__prod_corners(W, i, r, c);
+      f[(size_t)r * (size_t)w + (size_t)i] = ((c[0] + c[1]) + (c[2] + c[3])) * (r == 0 || r == h ? 0.125f : 0.25f);
+    }
+  memset(&dopt, 0, sizeof dopt);
+  res = el_distribution2d_init(&l->dist, f, w, h + 1, &dopt);
+  if (res != EL_SUCCESS) goto fail;
+  W->all_zero = l->dist.all_zero;
+  /* each patch's record (l->pdf_table, 16 bytes: one cache line for everything the pdf reads of it): its
+   * density factor K = P / (mean(corners) du dv 2 pi^2), P from its integer widths, so that the pdf is K
+   * bil(s, t) / sin(theta); then its four corners as bfloat16 pairs (V[r][i], V[r][i + 1]) and (V[r + 1][i],
+   * V[r + 1][i + 1]) */
+  EL_FREE(f);
+  f = NULL;
+  l->pdf_table = (float *)EL_MALLOC(((size_t)h + 1) * (size_t)w * 4 * sizeof(float));
+  if (!l->pdf_table) { el_envlight__free_tables(l); res = EL_ERROR_OUT_OF_MEMORY; goto fail; }
+  for (r = 0; r <= h; ++r) {
+    const uint32_t *row = l->dist.cdf + (size_t)r * ((size_t)w + 1);
+    const uint16_t *V = W->V16 + (size_t)r * (size_t)w;
+    float wv = (float)(int32_t)(l->dist.marginal[r + 1] - l->dist.marginal[r]);
+    for (i = 0; i < w; ++i) {
+      float c[4], wu = (float)(int32_t)(row[i + 1] - row[i]), sum, *rec = l->pdf_table + 4 * ((size_t)r * (size_t)w + (size_t)i);
+      int i1 = i + 1 < w ? i + 1 : 0;
+      uint32_t top = (uint32_t)V[i] | (uint32_t)V[i1] << 16, bottom = (uint32_t)V[(size_t)w + (size_t)i] | (uint32_t)V[(size_t)w + (size_t)i1] << 16;
+      el_envlight__prod_corners(W, i, r, c);
+      sum = (c[0] + c[1]) + (c[2] + c[3]);
+      rec[0] = wu > 0.0f ? wv * wu * W->dens_k * (r == 0 || r == h ? 8.0f : 4.0f) / sum : 0.0f;
+      memcpy(rec + 1, &top, 4); memcpy(rec + 2, &bottom, 4); rec[3] = 0.0f;
+    }
+  }
+  if (l->sampler != EL_ENVLIGHT_SAMPLER_CDF) {
+    el_distribution_fast_options fo;
+    memset(&fo, 0, sizeof fo);
+    fo.method = l->sampler == EL_ENVLIGHT_SAMPLER_ALIAS ? EL_DISTRIBUTION_FAST_ALIAS : EL_DISTRIBUTION_FAST_GUIDE;
+    fo.guide_shrink_log2 = 2; /* as the other modes: 1 byte per patch */
+    res = el_distribution2d_fast_init_ex(&l->fast, &l->dist, &fo);
+    if (res != EL_SUCCESS) { el_envlight__free_tables(l); goto fail; }
+  }
+  W->warp_bytes = sizeof *W + (size_t)h * sizeof(float) + nv * sizeof(uint16_t) + el_distribution2d_bytes(&l->dist) +
+                  ((size_t)h + 1) * (size_t)w * 4 * sizeof(float) + /* the records */
+                  (l->sampler != EL_ENVLIGHT_SAMPLER_CDF ? el_distribution2d_fast_bytes(&l->fast) : 0);
+  if (w >= 256 && h >= 128) { /* the fast path's tables (below): patch edges without atan, directions by angle addition */
+    res = el_envlight__patch_tables(l, w, h);
+    if (res != EL_SUCCESS) { el_envlight__free_tables(l); goto fail; }
+    W->warp_bytes += (size_t)(l->u_cells + l->v_cells) * (sizeof(int) + sizeof(float)) + ((size_t)2 * (size_t)w + 8 * ((size_t)h + 1)) * sizeof(float);
+  }
+  l->warp = W;
+  l->warp_state = 2;
+  return EL_SUCCESS;
+fail:
+  EL_FREE(f);
+  el_envlight__warp_free(W);
+  return res;
+}
+
 static size_t el_envlight__warp_bytes(const el_envlight *l) { return l->warp ? l->warp->warp_bytes : 0; }
 
-/* pdf_li in importance mode BILINEAR (the tables are built: el_envlight__build made them) */
-static float el_envlight__warp_pdf_li(const el_envlight *l, const float dir[3]) {
+/* The density of patch (q->i, q->r) at a located point: its two integer widths, then the corners. */
+static inline float el_envlight__patch_eval(const el_envlight *l, const el_envlight__ploc *q) {
+  const uint32_t *row = l->dist.cdf + (size_t)q->r * ((size_t)l->dist.nu + 1);
+  uint32_t wv = l->dist.marginal[q->r + 1] - l->dist.marginal[q->r], wu = row[q->i + 1] - row[q->i];
+  float c[4];
+  if (wv == 0 || wu == 0) return 0.0f; /* a patch without mass (all four corners 0) */
+  el_envlight__prod_corners(l->warp, q->i, q->r, c);
+  return el_envlight__prod_eval(l->warp, q, wv, wu, c);
+}
+
+/* pdf_li in importance mode BILINEAR (the tables are built) */
+static EL_ENVLIGHT__NOINLINE float el_envlight__patch_pdf_li(const el_envlight *l, const float dir[3]) {
   float d[3];
+  el_envlight__ploc q;
   if (!l->warp || l->warp->all_zero) return 0.0f;
   if (!el_envlight__to_light_dir(l, dir, d)) return 0.0f; /* rescaled in world space first (issue 24) */
-  return el_envlight__warp_pdf_light(l->warp, l->warp->plain, d, NULL);
+  if (l->col_tab) { /* (to_light_dir left len2 a normal float) */
+    float r2 = d[0] * d[0] + d[1] * d[1], len2 = r2 + d[2] * d[2];
+    if (len2 < 8.67361738e-19f) { /* 2^-60: a short d's squares may be denormal (inexact); 2^40 d is exact */
+      d[0] *= 1.09951163e12f; d[1] *= 1.09951163e12f; d[2] *= 1.09951163e12f;
+      r2 = d[0] * d[0] + d[1] * d[1]; len2 = r2 + d[2] * d[2];
+    }
+    return el_envlight__patch_pdf_fast(l, d[0], d[1], d[2], r2, len2);
+  }
+  if (!el_envlight__prod_locate(l->warp, d, &q)) return 0.0f;
+  return el_envlight__patch_eval(l, &q);
+}
+
+#if defined(__GNUC__) || defined(__clang__)
+#define EL_ENVLIGHT__HOT_INLINE inline __attribute__((always_inline))
+#else
+#define EL_ENVLIGHT__HOT_INLINE inline
+#endif
+/* The sample at (s, t) of patch (i, r) (factor K, corners c): its world direction and its pdf, pdf_li's
+ * at wi; q gets where pdf_li located it (the small maps' path: its (u, v) too). */
+static EL_ENVLIGHT__HOT_INLINE float el_envlight__patch_point(const el_envlight *l, int i, int r, float s, float t, float K, const float c[4],
+                                                             float wi[3], el_envlight__ploc *q) {
+  float d[3];
+  if (l->col_tab) { /* the fast path: angle addition from the patch's references */
+    const float *ct = l->col_tab + 2 * (size_t)i, *rt = l->row_tab + 8 * (size_t)r;
+    float b = s * (6.28318531f * l->warp->inv_w), a = (t - rt[2]) * rt[4], b2 = b * b, a2 = a * a;
+    float cb = 1.0f - 0.5f * b2, sb = b - b * b2 * 0.166666672f, ca = 1.0f - 0.5f * a2, sa = a - a * a2 * 0.166666672f;
+    float st = rt[1] * ca + rt[0] * sa, r2, len2;
+    d[0] = st * (ct[0] * cb - ct[1] * sb);
+    d[1] = st * (ct[1] * cb + ct[0] * sb);
+    d[2] = rt[0] * ca - rt[1] * sa;
+    el_envlight__to_world(l, d, wi);
+    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li brings wi back */
+    r2 = d[0] * d[0] + d[1] * d[1]; len2 = r2 + d[2] * d[2];
+    el_envlight__patch_find(l, d[0], d[1], d[2], r2, len2, q);
+    if (q->i == i && q->r == r) return el_envlight__patch_density(l, q, K, c); /* pdf_li's arithmetic, its reads done */
+    return el_envlight__patch_pdf_fast(l, d[0], d[1], d[2], r2, len2);
+  }
+  el_envlight__patch_dir(l->warp, i, r, s, t, d);
+  el_envlight__to_world(l, d, wi);
+  if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li brings wi back */
+  if (!el_envlight__prod_locate(l->warp, d, q)) return 0.0f; /* (not for a unit d) */
+  return el_envlight__patch_eval(l, q);
+}
+
+/* the rare retry at the patch's centre, out of line */
+static EL_ENVLIGHT__NOINLINE float el_envlight__patch_centre(const el_envlight *l, int i, int r, float K, const float c[4], float wi[3],
+                                                           el_envlight__ploc *q) {
+  return el_envlight__patch_point(l, i, r, 0.5f, 0.5f, K, c, wi, q);
+}
+
+/* The sample of patch (i, r) at fractions (fu, fv) of its units: (s, t), the direction, its pdf, its
+ * radiance. With uvout (sample_li_n) and rgb wanted, a fast-path sample under a signed permutation leaves
+ * its radiance's (u, v) there (returns 1) for the caller to look up later. */
+static int el_envlight__patch_finish(const el_envlight *l, int i, int r, float fu, float fv, float wi[3], float rgb[3], float *pdf, float *uvout) {
+  float c[4], s, t, p, K;
+  el_envlight__ploc q;
+  q.u = q.v = 0.0f;
+  K = el_envlight__patch_rec(l, i, r, c);
+  /* (s, t) in the patch: t from the marginal (linear), s from the conditional at t (linear) */
+  t = el_envlight__lin_inv(c[0] + c[1], c[2] + c[3], fv);
+  s = el_envlight__lin_inv(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), fu);
+  /* 2^-12 of a patch inside its edges (as product sampling): pdf_li, which locates the direction again,
+   * finds this patch on maps up to 4096 x 2048, so that a sample at the edge of a patch next to one
+   * without mass does not get pdf 0 */
+  t = t > 2.44140625e-4f ? (t < 0.999755859f ? t : 0.999755859f) : 2.44140625e-4f;
+  s = s > 2.44140625e-4f ? (s < 0.999755859f ? s : 0.999755859f) : 2.44140625e-4f;
+  p = el_envlight__patch_point(l, i, r, s, t, K, c, wi, &q);
+  /* the round trip left the patch for one without mass (near a pole under a general rotation, or a map
+   * over 4096 wide): the patch's centre instead, as issue 24 did */
+  if (!(p > 0.0f)) p = el_envlight__patch_centre(l, i, r, K, c, wi, &q);
+  *pdf = p;
+  if (rgb) {
+    if (!(p > 0.0f)) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    else if (!l->col_tab) el_envlight__bilerp(l, q.u, q.v, rgb); /* le(wi): the same (u, v) */
+    else if (!l->exact_transform) el_envlight_le(l, wi, rgb); /* le(wi) itself, as the other modes' rotations */
+    else { /* as the other modes under a signed permutation: le at the point's own (u, v), where pdf_li
+            * found it (its patch, s, t): le(wi) but for le()'s atan polynomial, 1e-4 texel at most */
+      float uv[2];
+      el_envlight__patch_uv(l->warp, q.i, q.r, q.s, q.Y, uv, uv + 1);
+      if (uvout) { uvout[0] = uv[0]; uvout[1] = uv[1]; return 1; }
+      el_envlight__bilerp(l, uv[0], uv[1], rgb);
+    }
+  }
+  return 0;
+}
+
+/* <<Pick a patch>>: the light's sampler over the patch table (guide: CDF inversion's patch) */
+static inline void el_envlight__patch_pick(const el_envlight *l, const float uu[2], int *i, int *r, float *fu, float *fv) {
+  float pb;
+  if (l->sampler == EL_ENVLIGHT_SAMPLER_CDF) el_distribution2d_sample_bins(&l->dist, uu[0], uu[1], i, r, fu, fv, &pb);
+  else el_distribution2d_fast_sample_bins(&l->fast, uu[0], uu[1], i, r, fu, fv, &pb);
+}
+
+/* sample_li in importance mode BILINEAR (the tables are built) */
+static EL_ENVLIGHT__NOINLINE void el_envlight__patch_sample(const el_envlight *l, const float uu[2], float wi[3], float rgb[3], float *pdf) {
+  float fu, fv;
+  int i, r;
+  if (!l->warp || l->warp->all_zero) { /* nothing emits */
+    wi[0] = l->to_world[2]; wi[1] = l->to_world[5]; wi[2] = l->to_world[8]; *pdf = 0.0f;
+    if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    return;
+  }
+  el_envlight__patch_pick(l, uu, &i, &r, &fu, &fv);
+  el_envlight__patch_finish(l, i, r, fu, fv, wi, rgb, pdf, NULL);
+}
+
+/* sample_li_n in importance mode BILINEAR, the tables built: up to 16 samples at a time in passes that
+ * start the next pass's cache misses for all of them (as the other modes' sample_li_n): (1) the row
+ * search in the small marginal, then the guide entry of the row; (2) the CDF entries it points to; (3)
+ * the patch (sample_li's own pick), then its record; (4) the sample (sample_li's own code), then the
+ * texels of its patch; (5) the radiance, le(wi). The results are sample_li's, bit for bit. */
+static void el_envlight__patch_sample_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf) {
+#if defined(__GNUC__) || defined(__clang__)
+  const el_distribution2d_fast *f = &l->fast;
+  int i0, m, k;
+  if (l->warp->all_zero || l->sampler != EL_ENVLIGHT_SAMPLER_GUIDE) {
+    for (k = 0; k < n; ++k) el_envlight__patch_sample(l, u + 2 * k, wi + 3 * k, rgb ? rgb + 3 * k : NULL, pdf + k);
+    return;
+  }
+  for (i0 = 0; i0 < n; i0 += 16) {
+    size_t gix[16];
+    int pi[16], pr[16];
+    float pfu[16], pfv[16], uv[32];
+    const float *tx[16][4];
+    unsigned char later[16];
+    m = n - i0 < 16 ? n - i0 : 16;
+    for (k = 0; k < m; ++k) { /* (1) */
+      const float *uk = u + 2 * (i0 + k);
+      uint32_t g, kv;
+      size_t v;
+      gix[k] = (size_t)-1;
+      if (!el_distribution2d_u_in_range(uk[0], uk[1])) continue;
+      g = f->guide_v[(size_t)(int64_t)(uk[1] * f->gv_scale)];
+      if (g & EL_DISTRIBUTION__GUIDE_CROWDED) continue;
+      kv = (uint32_t)(int32_t)(uk[1] * 16777216.0f);
+      for (v = g; f->marginal[v + 1] <= kv; ++v) {}
+      gix[k] = v * f->guide_stride + (size_t)(int64_t)(uk[0] * f->gu_scale);
+      __builtin_prefetch(f->guide_u + gix[k]);
+      __builtin_prefetch(f->cdf + v * f->row_stride); /* (the row's start, for the search's first step) */
+    }
+    for (k = 0; k < m; ++k) { /* (2) */
+      uint32_t g;
+      if (gix[k] == (size_t)-1) continue;
+      g = f->guide_u[gix[k]];
+      if (!(g & EL_DISTRIBUTION__GUIDE_CROWDED)) __builtin_prefetch(f->cdf + (gix[k] / f->guide_stride) * f->row_stride + g + 1);
+    }
+    for (k = 0; k < m; ++k) { /* (3) */
+      el_envlight__patch_pick(l, u + 2 * (i0 + k), &pi[k], &pr[k], &pfu[k], &pfv[k]);
+      __builtin_prefetch(l->pdf_table + 4 * ((size_t)pr[k] * (size_t)l->width + (size_t)pi[k]));
+    }
+    for (k = 0; k < m; ++k) { /* (4); the radiance of a fast-path sample waits for (5), its texels prefetched */
+      const int j = i0 + k;
+      later[k] = (unsigned char)el_envlight__patch_finish(l, pi[k], pr[k], pfu[k], pfv[k], wi + 3 * j, rgb ? rgb + 3 * j : NULL, pdf + j, uv + 2 * k);
+      if (later[k]) { /* (uv becomes the weights fx, fy) */
+        int q;
+        el_envlight__bilerp_texels(l, uv[2 * k], uv[2 * k + 1], tx[k], uv + 2 * k, uv + 2 * k + 1);
+        for (q = 0; q < 4; ++q) __builtin_prefetch(tx[k][q] + 2 * (q & 1)); /* (as the other modes' batches) */
+      }
+    }
+    for (k = 0; k < m; ++k) /* (5) the radiance, as el_envlight__patch_finish forms it (el_envlight__bilerp) */
+      if (later[k]) el_envlight__bilerp_at(tx[k], uv[2 * k], uv[2 * k + 1], rgb + 3 * (i0 + k));
+  }
+#else
+  int k;
+  for (k = 0; k < n; ++k) el_envlight__patch_sample(l, u + 2 * k, wi + 3 * k, rgb ? rgb + 3 * k : NULL, pdf + k);
+#endif
 }
 
 /* >> hot spots and the mixture sampler (issue 22; NOTES ON HOT SPOTS) */

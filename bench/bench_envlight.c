@@ -9,12 +9,14 @@
  *                                        the pbrt-v3 target's size, or the RGB map file MAP). OP: loop
  *                                        sample_cdf sample_guide sample_alias sample_guide_rgb pdf le
  *                                        sample_rotated pdf_rotated build; importance BILINEAR:
- *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear;
+ *                                        sample_bilinear sample_bilinear_rgb pdf_bilinear build_bilinear
+ *                                        sample_bilinear_rotated pdf_bilinear_rotated;
  *                                        product sampling (a new normal per call): sample_cos
  *                                        sample_cos_rgb pdf_cos sample_cos_rotated pdf_cos_rotated
  *                                        build_product; n at once (sample_li_cos_n, pdf_li_cos_n,
  *                                        batches of 64, the same normals and u): sample_cos_n
  *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated;
+ *                                        pdf_li_n, le_n (batches of 64, run_pdf's directions): pdf_n le_n;
  *                                        the hot-spot mixture with the rest x cosine (256 prepared
  *                                        tables, spots at 3%): sample_mix_cos_rgb pdf_mix_cos
  *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
@@ -48,7 +50,7 @@
  *     bilinear reconstruction, ns per sample, and the efficiency 1 / (relative variance * time) normalised
  *     to light sampling with CELL_AVERAGE and the default (guide) sampler; and, for light sampling, the
  *     relative variance of lum(le) / pdf (how well the density matches the map, whatever the cosine).
- *     BILINEAR (the continuous warp) is among the rows.
+ *     BILINEAR (le()'s patch density, issue 22) is among the rows.
  *  4. Product sampling: for each CC0 map and six normals (up, down, two sideways, facing the brightest
  *     texel and away from it) the relative variance per sample of the irradiance estimate with
  *     sample_li, sample_li in importance BILINEAR and sample_li_cos, each alone and with one cosine
@@ -244,6 +246,21 @@ static double run_pdf_cos_n(el_envlight *l, long n) {
   }
   return acc;
 }
+/* pdf_li_n (le = 0) and le_n (le = 1) (issue 21: a wave's escaped rays), batches of 64 of the
+ * directions run_pdf / run_le use */
+static double run_escape_n(el_envlight *l, long n, int le) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float v[3 * CB];
+  for (k = 0; k < n; k += CB) {
+    m = n - k < CB ? (int)(n - k) : CB;
+    if (le) el_envlight_le_n(l, m, g_dir + 3 * (k & (NP - 1)), v);
+    else el_envlight_pdf_li_n(l, m, g_dir + 3 * (k & (NP - 1)), v);
+    for (j = 0; j < m; ++j) acc += v[le ? 3 * j + 1 : j];
+  }
+  return acc;
+}
 static double run_loop(long n) { /* the loop alone: read the inputs, sum */
   double acc = 0;
   long k;
@@ -277,13 +294,21 @@ static double pollute(long k) {
   for (j = 0; j < 8; ++j) a += g_pollute[hash32((uint32_t)(k * 8 + j)) & (POLLUTE_N - 1)];
   return a;
 }
+/* batch = 2, 3: an escaped ray's pdf_li and le (random directions), one at a time or pdf_li_n + le_n
+ * for 16 (issue 21) */
 static double run_interleaved(el_envlight *l, long n, int batch) {
   double acc = 0;
   long k, j;
   float wi[3 * 16], L[3 * 16], p[16];
   for (k = 0; k + 16 <= n; k += 16) {
-    const float *u = g_u + 2 * (k & (NP - 1));
-    if (batch) {
+    const float *u = g_u + 2 * (k & (NP - 1)), *d = g_dir + 3 * (k & (NP - 1));
+    if (batch == 3) {
+      el_envlight_pdf_li_n(l, 16, d, p);
+      el_envlight_le_n(l, 16, d, L);
+      for (j = 0; j < 16; ++j) acc += p[j] + L[3 * j] + pollute(k + j);
+    } else if (batch == 2)
+      for (j = 0; j < 16; ++j) { p[0] = el_envlight_pdf_li(l, d + 3 * j); el_envlight_le(l, d + 3 * j, L); acc += p[0] + L[0] + pollute(k + j); }
+    else if (batch) {
       el_envlight_sample_li_n(l, 16, u, wi, L, p);
       for (j = 0; j < 16; ++j) acc += p[j] + L[3 * j] + pollute(k + j);
     } else
@@ -303,6 +328,7 @@ static double fn_sample_cos(el_envlight *l, long n, int rgb) { return run_sample
 static double fn_pdf_cos(el_envlight *l, long n, int a) { (void)a; return run_pdf_cos(l, n); }
 static double fn_pdf(el_envlight *l, long n, int a) { (void)a; return run_pdf(l, n); }
 static double fn_le(el_envlight *l, long n, int a) { (void)a; return run_le(l, n); }
+static double fn_escape_n(el_envlight *l, long n, int le) { return run_escape_n(l, n, le); }
 
 /* ---- --callgrind OP N ---- */
 static int callgrind_mode(const char *op, long n, const char *map) {
@@ -327,10 +353,11 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
   if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated") ||
-      !strcmp(op, "sample_cos_n_rotated") || !strcmp(op, "pdf_cos_n_rotated")) {
+      !strcmp(op, "sample_cos_n_rotated") || !strcmp(op, "pdf_cos_n_rotated") ||
+      !strcmp(op, "sample_bilinear_rotated") || !strcmp(op, "pdf_bilinear_rotated")) {
     sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot();
   }
-  if (!strcmp(op, "sample_bilinear") || !strcmp(op, "sample_bilinear_rgb") || !strcmp(op, "pdf_bilinear")) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (!strncmp(op, "sample_bilinear", 15) || !strncmp(op, "pdf_bilinear", 12)) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
   if (make_light(&l, px, w, h, imp, sampler, 0, rot ? ROT : NULL) != EL_SUCCESS) return 1;
   if (strstr(op, "_cos") || !strcmp(op, "build_product")) el_envlight_prepare_product(&l, NULL);
   else el_envlight_prepare_sampling(&l);
@@ -372,11 +399,12 @@ static int callgrind_mode(const char *op, long n, const char *map) {
     el_envlight_hotspots_free(&g_hs);
     free(g_mixt);
   }
-  else if (!strcmp(op, "pdf_bilinear")) sink = run_pdf(&l, n);
+  else if (!strcmp(op, "pdf_bilinear") || !strcmp(op, "pdf_bilinear_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "loop")) sink = run_loop(n);
   else if (!strncmp(op, "sample_", 7)) sink = run_sample(&l, n, !strcmp(op, "sample_guide_rgb") || !strcmp(op, "sample_bilinear_rgb"));
   else if (!strcmp(op, "pdf") || !strcmp(op, "pdf_rotated")) sink = run_pdf(&l, n);
   else if (!strcmp(op, "le")) sink = run_le(&l, n);
+  else if (!strcmp(op, "pdf_n") || !strcmp(op, "le_n")) sink = run_escape_n(&l, n, !strcmp(op, "le_n"));
   else { fprintf(stderr, "unknown OP %s\n", op); return 2; }
   (void)sink;
   el_envlight_free(&l);
@@ -750,7 +778,7 @@ static void strat_table(const char *path) {
  *       city-like map (make_map), CPU ms (median of 3 interleaved runs; 1 above 2048), el_envlight_bytes. */
 enum { C_UNIFORM, C_COSINE, C_CELL, C_CELL2, C_PBRT, C_TEXEL, C_BILIN, C_PROD, C_MIS, C_MIS_COMP, C_N };
 static const char *C_NAME[C_N] = {"uniform sphere", "cosine (BSDF)", "CELL_AVERAGE (default)", "CELL_AVERAGE 2x",
-                                  "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
+                                  "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (patches)",
                                   "product sample_li_cos", "MIS pair (light + cosine)", "MIS pair compensated"};
 static double c_estimate(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u) {
   static const int to_s[C_N] = {S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_BILIN, 0, S_COMP_MIS, S_COMP_MIS};
@@ -820,7 +848,7 @@ static void csv_variance(const char *path, const char *name, int nsamp, int reps
   el_image_free(&img);
 }
 static void csv_build(int quick) {
-  static const char *name[5] = {"CELL_AVERAGE (default)", "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
+  static const char *name[5] = {"CELL_AVERAGE (default)", "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (patches)",
                                 "product sample_li_cos"};
   int widths[5] = {512, 1024, 2048, 4096, 8192}, nw = quick ? 2 : 5, k, imp, r;
   for (k = 0; k < nw; ++k) {
@@ -937,7 +965,7 @@ int main(int argc, char **argv) {
         if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
       }
       printf("  %-22s %9.1f %7.1f ms %4dx%-5d %10.1f %10.1f\n",
-             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : imp == 2 ? "TEXEL" : "BILINEAR (warp)", t1 * 1e3, t2 * 1e3,
+             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : imp == 2 ? "TEXEL" : "BILINEAR (patches)", t1 * 1e3, t2 * 1e3,
              l.imp_w, l.imp_h, el_envlight_sampling_bytes(&l) / 1048576.0, el_envlight_bytes(&l) / 1048576.0);
       el_envlight_free(&l);
     }
@@ -956,7 +984,7 @@ int main(int argc, char **argv) {
         el_envlight l;
         if (make_light(&l, px, w, h, EL_ENVLIGHT_IMPORTANCE_BILINEAR, 0, 0, NULL) == EL_SUCCESS) {
           el_envlight_prepare_sampling(&l);
-          printf("  %-22s %12.1f %14.1f %12.1f %12s\n", "BILINEAR (warp)", rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), "");
+          printf("  %-22s %12.1f %14.1f %12.1f %12s\n", "BILINEAR (patches)", rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), "");
           el_envlight_free(&l);
         }
         if (make_light(&l, px, w, h, 0, 0, 0, NULL) == EL_SUCCESS) {
@@ -985,6 +1013,12 @@ int main(int argc, char **argv) {
         printf("  in a loop with other memory work between samples (%.1f ns per sample of it, taken off):\n"
                "    sample_li + radiance one at a time %5.1f ns;  sample_li_n, 16 at a time %5.1f ns (%.1fx)\n",
                t_work, t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
+        t_one = 1e3 / rate(run_interleaved, &l, 2);
+        t_batch = 1e3 / rate(run_interleaved, &l, 3);
+        printf("    pdf_li + le one at a time %5.1f ns;  pdf_li_n + le_n, 16 at a time %5.1f ns (%.1fx)\n",
+               t_one - t_work, t_batch - t_work, (t_one - t_work) / (t_batch - t_work));
+        printf("  alone (batches of 64): pdf_li %5.1f ns, pdf_li_n %5.1f ns; le %5.1f ns, le_n %5.1f ns\n", 1e3 / rate(fn_pdf, &l, 0),
+               1e3 / rate(fn_escape_n, &l, 0), 1e3 / rate(fn_le, &l, 0), 1e3 / rate(fn_escape_n, &l, 1));
         el_envlight_free(&l);
       }
     }

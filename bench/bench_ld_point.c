@@ -20,7 +20,11 @@
  * (a) against (b) shows whether the radiance that varies inside a texel while the pdf does not (pbrt-v3's
  * piecewise-constant density under a bilinear lookup) eats the gain in the sun's few texels.
  *   (f), (g): (a), (d) with a prototype of the proposed fix (below: the bilinear density, sampled by the
- * discrete table over le()'s patches and a bilinear warp inside the patch). */
+ * discrete table over le()'s patches and a bilinear warp inside the patch).
+ * The prototype became the library's importance mode BILINEAR (issue 22; envlight.h, NOTES ON PRODUCT
+ * SAMPLING 1): with IMPORTANCE 3, rows (a) and (d) are the library's sampler and match (f) and (g) (city,
+ * 64 points, 4000 trials, Owen-scrambled Sobol': light alone 2.07e-6 against the prototype's 2.37e-6,
+ * MIS 2.32e-4 against 2.32e-4); the prototype stays as the double-precision reference it was. */
 #define EL_IMPLEMENTATION
 #include "envlight.h"
 #include "image_io.h"

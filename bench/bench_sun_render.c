@@ -56,6 +56,8 @@ static int picture(const char *out) {
   if (elr_scene_load(EL_SOURCE_DIR "/scenes/sun_shadow_object.pbrt", &s, 1, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   elr_render_options_default(&o);
   o.spp = 1; o.quiet = 1; o.nthreads = 1;
+  o.importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3; /* (the scene's own density, whose hot spots the cache needs: the
+                                                    default under a sun is le()'s patch density since issue 22) */
   if (elr_render(s, &o, &im, NULL, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   elr_image_free(&im);
   l = &s->light[0]; e = l->env_sample;

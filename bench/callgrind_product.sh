@@ -14,6 +14,9 @@
 # el_envlight_pdf_li_cos_n) in batches of 64, per sample. Instruction counts do not depend on the machine's load. build_product: one
 # build of the product tables with the light's init (2 builds counted, per build). Table bytes, build
 # milliseconds, variance and time per sample (time-to-unit-variance): build/bin/bench_product --library.
+# Importance BILINEAR's patch density (issue 22), the same way:
+#   OPS="sample_guide pdf sample_bilinear sample_bilinear_rgb pdf_bilinear sample_bilinear_rotated pdf_bilinear_rotated" \
+#     sh bench/callgrind_product.sh build/bin/bench_envlight data/envmaps/city.hdr
 set -e
 BENCH=${1:-build/bin/bench_envlight}
 MAP=${2:-data/envmaps/city.hdr}

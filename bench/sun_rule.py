@@ -14,6 +14,9 @@ TTUV(map alone) / TTUV(strategy) (relvar x CPU s; above 1 the strategy beats the
 relvar ratio alone (per sample) in brackets.
   python3 bench/sun_rule.py [--seeds 6] [--spp 16] [--scenes bench_city,lobes_city,sun_shadow_object,sun_porch]
                             [--sampler zsobol] [--strategies map,default,product,alone]
+  (--strategies pbrtv3,default: the map alone's density before issue 22 (pbrt-v3's) against the default,
+  which is le()'s patch density under a sun (--importance bilinear); without product the lit / shadowed
+  split is over the pixels where those two images differ; the ratios are against the first strategy)
 """
 import argparse, os, re, subprocess, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -23,7 +26,9 @@ ROOT = lobes.ROOT
 STRATS = {'map': ['--env-sampling', 'map'], 'default': [], 'product': ['--env-sun-diffuse', 'product'],
           'alone': ['--env-sun-diffuse', 'alone'], 'mapmis': ['--env-sun-diffuse', 'map'],
           'suncos': ['--env-sun-diffuse', 'suncos'], 'suncos.3': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.3'],
-          'suncos.7': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.7']}
+          'suncos.7': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.7'],
+          'bilinear': ['--importance', 'bilinear'],  # issue 22's patch density for the map alone
+          'pbrtv3': ['--importance', 'pbrt-v3']}  # the map alone's density before issue 22 made bilinear the default under a sun
 
 
 def lum(img, i):
@@ -82,9 +87,11 @@ def main():
                     cpu[k].append(t)
             npx = len(imgs[strats[0]][0]) // 3
             regions = [(reg, list(range(npx)))]
-            if reg in ('full',) + (('crop ' + a.crop,) if a.crop else ()) and 'product' in imgs and ('mapmis' in imgs or 'default' in imgs):
+            others = [k for k in ('product', 'bilinear', 'pbrtv3') if k in imgs]
+            if reg in ('full',) + (('crop ' + a.crop,) if a.crop else ()) and others and ('mapmis' in imgs or 'default' in imgs):
                 base = imgs['mapmis' if 'mapmis' in imgs else 'default'][0]
-                ch = [p for p in range(npx) if any(base[3 * p + c] != imgs['product'][0][3 * p + c] for c in range(3))]
+                other = imgs[others[0]][0]
+                ch = [p for p in range(npx) if any(base[3 * p + c] != other[3 * p + c] for c in range(3))]
                 allimgs = [im for k in strats for im in imgs[k]]
                 ml = {p: sum(lum(im, p) for im in allimgs) / len(allimgs) for p in ch}
                 if ch:

@@ -30,6 +30,25 @@ static void check(int ok, const char *fmt, ...) {
   if (ok) ++g_pass; else ++g_fail;
 }
 
+/* 1 when rgb is within 2e-4 of the range of the four texels le() reads at light-space (u, v) of a w x h
+ * RGB map (Repeat in u, Clamp in v) from le (+ 1e-6 le): le at a point shifted by 1e-4 texel at most, as
+ * sample_li's radiance under a signed permutation (envlight.h) */
+static inline int rgb_near_le(const float *texels, int w, int h, double u, double v, const float le[3], const float rgb[3]) {
+  int x0 = (int)floor(u * w - 0.5), y0 = (int)floor(v * h - 0.5), c, k;
+  for (c = 0; c < 3; ++c) {
+    float lo = 3e38f, hi = 0.0f;
+    for (k = 0; k < 4; ++k) {
+      int xx = ((x0 + (k & 1)) % w + w) % w, yy = y0 + (k >> 1);
+      float t;
+      yy = yy < 0 ? 0 : yy > h - 1 ? h - 1 : yy;
+      t = texels[3 * ((size_t)yy * (size_t)w + (size_t)xx) + c];
+      lo = t < lo ? t : lo; hi = t > hi ? t : hi;
+    }
+    if (!(fabsf(le[c] - rgb[c]) <= 2e-4f * (hi - lo) + 1e-6f * le[c])) return 0;
+  }
+  return 1;
+}
+
 static void rotation37(float m[9]) {
   double ax[3] = {1, 2, 3}, n = sqrt(14.0), a = 37.0 * 3.14159265358979323846 / 180.0, c = cos(a), s = sin(a), t = 1 - c;
   double x = ax[0] / n, y = ax[1] / n, z = ax[2] / n;

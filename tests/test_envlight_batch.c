@@ -1,5 +1,6 @@
 /* test_envlight_batch.c: product sampling n at once (el_envlight_sample_li_cos_n, el_envlight_pdf_li_cos_n,
- * issue 20) against the single calls, bit for bit: every output (wi, rgb, pdf) of every lane equals what
+ * issue 20; el_envlight_pdf_li_n, el_envlight_le_n, issue 21) against the single calls, bit for bit:
+ * every output (wi, rgb, pdf) of every lane equals what
  * el_envlight_sample_li_cos / el_envlight_pdf_li_cos return for that lane's inputs, compared as bytes
  * (a NaN or a -0 would differ). The single calls are the reference (test_envlight tests them against
  * mathematics); the batched calls run another code path (four lanes of SSE2), so the comparison can fail.
@@ -12,9 +13,13 @@
  *   - normals: random directions of random lengths (2^-40 .. 2^40), and hostile lanes among ordinary
  *     ones: NaN, +-Inf, zero, -0, denormal, FLT_MAX components, the poles, the seam (y = +-0, x < 0),
  *     grazing; u at 0, 1 - ulp, 1, -0.25, 2 and NaN;
- *   - n = 0, 1, 2, 3, 4, 5, 17 and 64 (the tails of the four-lane blocks), rgb NULL and not;
+ *   - n = 0, 1, 2, 3, 4, 5, 17 and 45 (the tails of the four-lane blocks and of the 32-lane staged
+ *     passes), rgb NULL and not;
  *   - pdf_li_cos_n on the sampled directions (equal to the returned pdfs: the round trip) and on hostile
- *     directions (NaN, zero, denormal, huge, non-unit).
+ *     directions (NaN, zero, denormal, huge, non-unit);
+ *   - el_envlight_pdf_li_n and el_envlight_le_n (issue 21: a wave's escaped rays) against pdf_li and le
+ *     at the same random, hostile and sampled directions, n as above (the first call of a light's pdf
+ *     builds its sampling tables).
  * Built twice: as is, and with EL_NO_SIMD (test_envlight_batch_scalar: the plain loop).
  */
 #define EL_IMPLEMENTATION
@@ -84,9 +89,10 @@ static void hostile_normal(int which, float n[3]) {
 
 /* one light: batches of every size, hostile lanes, both outputs against the single calls */
 static void check_light(const char *name, el_envlight *l, uint64_t seed) {
-  static const int sizes[] = {17, 0, 1, 2, 3, 4, 5, 64}; /* 17 first: the batched call builds the tables */
+  static const int sizes[] = {17, 0, 1, 2, 3, 4, 5, 45}; /* 17 first: the batched call builds the tables; 45: a
+                                                                * full staged pass of 32 lanes and a tail */
   rng r = rng_make(seed);
-  int rep, bad_s = 0, bad_p = 0, bad_trip = 0, batches = 0, lanes = 0, sampled = 0;
+  int rep, bad_s = 0, bad_p = 0, bad_trip = 0, bad_pl = 0, bad_le = 0, batches = 0, lanes = 0, sampled = 0;
   for (rep = 0; rep < 800; ++rep) {
     float nrm[3 * NMAX], u[2 * NMAX], wa[3 * NMAX], wb[3 * NMAX], La[3 * NMAX], Lb[3 * NMAX], pa[NMAX], pb[NMAX];
     float dirs[3 * NMAX], qa[NMAX], qb[NMAX];
@@ -137,8 +143,26 @@ static void check_light(const char *name, el_envlight *l, uint64_t seed) {
             break;
           }
     }
+    /* pdf_li_n and le_n at the same directions (random, hostile) and at the sampled ones, as pdf_li and le */
+    for (i = 0; i < 2; ++i) {
+      const float *dd = i ? wb : dirs;
+      float La2[3 * NMAX], Lb2[3 * NMAX];
+      int k;
+      memset(qa, 0x7f, sizeof qa); memset(qb, 0x7f, sizeof qb); memset(La2, 0x7f, sizeof La2); memcpy(Lb2, La2, sizeof La2);
+      el_envlight_pdf_li_n(l, n, dd, qa);
+      el_envlight_le_n(l, n, dd, La2);
+      for (k = 0; k < n; ++k) { qb[k] = el_envlight_pdf_li(l, dd + 3 * k); el_envlight_le(l, dd + 3 * k, Lb2 + 3 * k); }
+      if (memcmp(qa, qb, sizeof qa) && bad_pl++ < 3)
+        for (k = 0; k < n; ++k)
+          if (memcmp(qa + k, qb + k, 4)) { printf("  %s rep %d lane %d of %d: pdf_li_n %.9g, pdf_li %.9g\n", name, rep, k, n, qa[k], qb[k]); break; }
+      if (memcmp(La2, Lb2, sizeof La2) && bad_le++ < 3)
+        for (k = 0; k < n; ++k)
+          if (memcmp(La2 + 3 * k, Lb2 + 3 * k, 12)) { printf("  %s rep %d lane %d of %d: le_n %.9g, le %.9g\n", name, rep, k, n, La2[3 * k], Lb2[3 * k]); break; }
+    }
     ++batches; lanes += n;
   }
+  check(bad_pl == 0, "pdf_li_n: %s: %d of %d batches bit-identical to pdf_li", name, 2 * batches - bad_pl, 2 * batches);
+  check(bad_le == 0, "le_n: %s: %d of %d batches bit-identical to le", name, 2 * batches - bad_le, 2 * batches);
   check(bad_s == 0, "sample_li_cos_n: %s: %d of %d batches (%d lanes) bit-identical to sample_li_cos", name, batches - bad_s, batches, lanes);
   check(bad_p == 0, "pdf_li_cos_n: %s: %d of %d batches bit-identical to pdf_li_cos", name, batches - bad_p, batches);
   check(bad_trip == 0, "pdf_li_cos_n: %s: the pdf of each of %d samples at its direction is the returned pdf (%d differ)", name, sampled, bad_trip);

@@ -128,6 +128,7 @@ typedef struct elr_light_stats {
   float env_sun_share;   /* the share of the map's power above 100x its mean radiance (> 0.5: diffuse lobes take the map) */
   int env_map_built;    /* environment: the map's own tables (el_envlight_sample_li) were built */
   int env_importance;   /* environment: the map's importance mode (EL_ENVLIGHT_IMPORTANCE_*) */
+  int env_importance_auto; /* 1: BILINEAR because the scene gave none and the map has a sun (issue 22) */
   int env_portals;      /* environment: pbrt-v4's portals (issue 23), 0 without */
   size_t env_portal_bytes;
   float env_portal_share; /* "float portalmapshare": the map's share where a portal is seen */

@@ -205,6 +205,7 @@ typedef struct elr_light {
   el_envlight *env_sample; /* the density sample_li and pdf_li use: env, or env_alt */
   el_envlight *env_alt;    /* another density the render options asked for, or NULL */
   int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
+  int importance_auto;         /* 1: the scene gave no "importance": BILINEAR under a sun (issue 22), else importance; 2: so chosen */
   int alt_compensated, alt_importance;
   int sampling;            /* the scene's "sampling": ELR_ENVLS_PRODUCT (the default) or ELR_ENVLS_MAP */
   int product;             /* this render: reflection-only vertices sample el_envlight_sample_li_cos */

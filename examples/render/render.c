@@ -316,15 +316,26 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
       double t0 = elr_now();
       /* (the map's own tables too where some vertex may choose the map alone: a rough transmission or,
        * issue 20's per-lobe choice, a glossy lobe that may be below the threshold) */
-      int need_map = elr__mat_transmits_rough(s) || (lobe_alpha > 0.f && elr__mat_glossy(s, lobe_alpha));
-      if (elr_infinite_prepare(l, o->compensated, o->importance, o->env_sampling, need_map) != 0) {
+      int need_map = elr__mat_transmits_rough(s) || (lobe_alpha > 0.f && elr__mat_glossy(s, lobe_alpha)), importance = o->importance;
+      float axis[3] = {0, 0, 0};
+      double share = -1.0;
+      /* no importance given (scene nor --importance): under a sun the map alone samples le()'s patches
+       * (EL_ENVLIGHT_IMPORTANCE_BILINEAR, issue 22: bench/sun_rule.py --strategies pbrtv3,default; README)
+       * with a low-discrepancy sampler, whose points it keeps stratified; not with independent samples
+       * (about break-even there: its CPU for 1.06x less variance), nor with --sun on, whose cache needs
+       * the hot spots of a piecewise-constant density */
+      if (l->importance_auto) l->importance_auto = 1; /* (2: chosen below, for --stats) */
+      if (importance < 0 && l->importance_auto && o->env_sun <= 0 && C->sampler.kind != ELR_SAMPLER_RANDOM && l->env->mapping == EL_ENVLIGHT_MAPPING_LATLONG && !l->portal) {
+        share = elr__sun_share(l->env, axis);
+        if (share > ELR_ENV_SUN_SHARE) { importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR; l->importance_auto = 2; /* (--stats) */ }
+      }
+      if (elr_infinite_prepare(l, o->compensated, importance, o->env_sampling, need_map) != 0) {
         snprintf(err, errlen, "environment: cannot build the sampling distribution");
         return -1;
       }
       if (l->product) {
         s->env_lobe_alpha = lobe_alpha; s->env_light_alpha = light_alpha;
-        float axis[3] = {0, 0, 0};
-        s->env_sun_share = (float)elr__sun_share(l->env, axis);
+        s->env_sun_share = (float)(share >= 0.0 ? share : elr__sun_share(l->env, axis));
         s->env_sunny = s->env_sun_share > ELR_ENV_SUN_SHARE;
         s->env_sun_diffuse = o->env_sun_diffuse < 0 ? ELR_ENV_SUN_DIFFUSE : o->env_sun_diffuse;
         s->env_sun_cos = o->env_sun_cos > -2.f ? o->env_sun_cos : ELR_ENV_SUN_COS;
@@ -421,6 +432,7 @@ static void elr__fill_stats(elr_stats *st, const elr_scene *s, const elr_ctx *C,
       ls->env_sun_share = l->product ? s->env_sun_share : 0.f;
       ls->env_map_built = el_envlight_sampling_bytes(l->env_sample) > 0;
       ls->env_importance = l->env_sample->importance;
+      ls->env_importance_auto = l->importance_auto == 2;
     }
     if (l->kind == ELR_LIGHT_INFINITE && l->portal) {
       ls->env_portals = l->portal->count; ls->env_portal_bytes = el_envlight_portal_bytes(l->portal); ls->env_portal_share = l->portal->map_share;

@@ -23,7 +23,8 @@
  *   goes to the film in one el_film_tile_add_samples call.
  * Path: every vertex is a wave. For the paths still alive: their rays in one call; at each hit the
  *   BSDF, the light-sample and BSDF draws; the light samples in one el_envlight_sample_li_n call and
- *   the escaped rays' environment (pdf and radiance) in one pass; the shadow rays in one call; then
+ *   the escaped rays' environment (pdf and radiance) in el_envlight_pdf_li_n (pdf_li_cos_n with product
+ *   sampling) and el_envlight_le_n calls, as in direct lighting; the shadow rays in one call; then
  *   each path's radiance, throughput and Russian roulette as elr_path_li computes them.
  * Each sample's sums are made in the reference's order, and the film takes the samples in the
  * reference's order, so the image is bit for bit the one-at-a-time image where the sampler gives the
@@ -403,24 +404,35 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
   }
   /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the directions
-   * of the BSDF samples whose rays escaped (the others' are never read) */
-  for (k = 0; k < np; k++) {
-    elr_first *p = W->pair[k];
-    float d[3], L3[3];
-    if (!p->bray || p->occ_b) continue;
-    elr_to3(p->wb, d);
-    if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
-    else if (C->batch_light->product) { /* (the normal of the pair's light sample where it has one: the same call) */
-      elr_v3 nc;
-      const elr_sun_cell *c = W->vsc[W->pair_of[k]];
-      int i = W->light[k], has = i >= 0 ? W->has_n[i] : elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nc);
-      if (i >= 0 && has) nc = W->normal[i];
-      p->bpdf_env = c ? elr_sun_pdf(C->sun, c, has ? &nc : NULL, d) : elr_light_pdf_li(C->batch_light, has ? &nc : NULL, p->wb);
-    } else {
-      p->bpdf_env = el_envlight_pdf_li(env_sample, d);
+   * of the BSDF samples whose rays escaped (the others' are never read): gathered into one
+   * el_envlight_pdf_li_n, one el_envlight_pdf_li_cos_n and one el_envlight_le_n call, the same bits as
+   * one call each (issue 21: their table reads' cache misses overlap) */
+  {
+    float de[3 * ELR_WAVE], dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nn[3 * ELR_WAVE], Le[3 * ELR_WAVE], pq[ELR_WAVE];
+    int ke[ELR_WAVE], km[ELR_WAVE], kc[ELR_WAVE], ne = 0, nm = 0, nc = 0;
+    for (k = 0; k < np; k++) {
+      elr_first *p = W->pair[k];
+      float *d = &de[3 * ne];
+      if (!p->bray || p->occ_b) continue;
+      elr_to3(p->wb, d);
+      ke[ne++] = k;
+      if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+      else if (C->batch_light->product) { /* (the normal of the pair's light sample where it has one: the same call) */
+        elr_v3 nv;
+        const elr_sun_cell *c = W->vsc[W->pair_of[k]];
+        int i = W->light[k], has = i >= 0 ? W->has_n[i] : elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nv);
+        if (i >= 0 && has) nv = W->normal[i];
+        if (c) p->bpdf_env = elr_sun_pdf(C->sun, c, has ? &nv : NULL, d);
+        else if (has) { elr_to3(nv, &nn[3 * nc]); memcpy(&dc[3 * nc], d, 3 * sizeof(float)); kc[nc++] = k; } /* (elr_light_pdf_li) */
+        else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = k; }
+      } else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = k; }
     }
-    el_envlight_le(env, d, L3);
-    p->Lb = elr_from3(L3);
+    el_envlight_pdf_li_n(env_sample, nm, dm, pq);
+    for (k = 0; k < nm; k++) W->pair[km[k]]->bpdf_env = pq[k];
+    el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
+    for (k = 0; k < nc; k++) W->pair[kc[k]]->bpdf_env = pq[k];
+    el_envlight_le_n(env, ne, de, Le);
+    for (k = 0; k < ne; k++) W->pair[ke[k]]->Lb = elr_from3(&Le[3 * k]);
   }
   elr__direct_shade(C, W, np, ts);
 }
@@ -499,19 +511,30 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
     }
     /* the light samples in one call; the escaped rays' environment in one pass */
     elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, C->sun, W->sc, ts);
-    for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
-      int e = W->escaped[j];
-      if (e < 0) continue;
-      if (l->portal) /* (at the vertex the ray left, as elr_path_li's prev_p) */
-        W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
-      else if (!l->product) W->pdf[e] = el_envlight_pdf_li(env_sample, &W->wi[3 * e]);
-      else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) /* (only where the weight is
-        * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
-        W->pdf[e] = W->p[j].prev_sun ? elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e])
-                                     : elr_light_pdf_li(l, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, elr_from3(&W->wi[3 * e]));
-      else W->pdf[e] = 0.f;
-      el_envlight_le(env, &W->wi[3 * e], &W->Le[3 * e]);
+    /* (batched: el_envlight_pdf_li_n, el_envlight_pdf_li_cos_n and el_envlight_le_n over the escaped rays,
+     * the same bits as one call each; issue 21) */
+    if (!l->portal && !l->product) el_envlight_pdf_li_n(env_sample, ne, W->wi, W->pdf);
+    else {
+      float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nn[3 * ELR_WAVE], pq[ELR_WAVE];
+      int km[ELR_WAVE], kc[ELR_WAVE], nm = 0, nc = 0, k;
+      for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
+        int e = W->escaped[j];
+        if (e < 0) continue;
+        if (l->portal) /* (at the vertex the ray left, as elr_path_li's prev_p) */
+          W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
+        else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) { /* (only where the weight is
+          * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
+          if (W->p[j].prev_sun) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
+          else if (W->p[j].prev_has_n) { elr_to3(W->p[j].prev_n, &nn[3 * nc]); memcpy(&dc[3 * nc], &W->wi[3 * e], 3 * sizeof(float)); kc[nc++] = e; } /* (elr_light_pdf_li) */
+          else { memcpy(&dm[3 * nm], &W->wi[3 * e], 3 * sizeof(float)); km[nm++] = e; }
+        } else W->pdf[e] = 0.f;
+      }
+      el_envlight_pdf_li_n(env_sample, nm, dm, pq);
+      for (k = 0; k < nm; k++) W->pdf[km[k]] = pq[k];
+      el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
+      for (k = 0; k < nc; k++) W->pdf[kc[k]] = pq[k];
     }
+    el_envlight_le_n(env, ne, W->wi, W->Le);
     /* escaped paths end; the light samples' BSDF values, MIS weights and shadow rays */
     W->shadows.n = 0;
     for (j = 0; j < m; j++) {

@@ -80,9 +80,11 @@ void elr_stats_print(const elr_stats *st, void *fp) {
         if (l->env_portals) {
           /* below */
         } else if (l->env_product)
-          fprintf(f, "; sampled by product sampling (map x cosine: el_envlight_sample_li_cos)%s",
-                  l->env_map_built ? ", the map alone where a rough lobe transmits or a glossy lobe is peaked" : "");
+          fprintf(f, "; sampled by product sampling (map x cosine: el_envlight_sample_li_cos)%s%s%s",
+                  l->env_map_built ? ", the map alone where a rough lobe transmits or a glossy lobe is peaked" : "",
+                  l->env_map_built ? ", importance " : "", l->env_map_built ? im[l->env_importance & 3] : "");
         else fprintf(f, "; sampled by the map alone (el_envlight_sample_li, importance %s)", im[l->env_importance & 3]);
+        if (l->env_importance_auto) fprintf(f, " (le()'s patch density: the default under a sun map, issue 22)");
       }
       if (l->kind == 0 && l->env_portals) {
         double n = (double)(l->env_portal_used + l->env_portal_fallback);

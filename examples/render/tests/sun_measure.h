@@ -25,7 +25,9 @@ static unsigned char *sm_classes(elr_scene *s, int *w, int *h) {
   elr_v3 axis;
   int fb[4], x, y, i;
   for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE && s->light[i].env_sample) { l = &s->light[i]; break; }
-  if (!l || el_envlight_hotspots_init(&hs, l->env_sample, NULL) != EL_SUCCESS) return NULL;
+  /* (the scene's own light l->env: the sun's direction does not depend on the density a render samples, and
+   * the default render samples le()'s patches under a sun, which has no hot spots: issue 22) */
+  if (!l || el_envlight_hotspots_init(&hs, l->env, NULL) != EL_SUCCESS) return NULL;
   if (hs.count == 0) { el_envlight_hotspots_free(&hs); return NULL; }
   axis = elr_v(hs.spot[0].axis[0], hs.spot[0].axis[1], hs.spot[0].axis[2]);
   el_envlight_hotspots_free(&hs);
