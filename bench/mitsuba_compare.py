@@ -43,11 +43,12 @@ The default run (variance mode; issues 13 and 14)
   Mitsuba is installed from PyPI (pip install mitsuba numpy) when it is missing; its llvm variants
   need libLLVM (Debian: apt-get install libllvm19), else scalar_rgb is used.
   Measured (2026-12-02, --var-res 320 240 --var-spp 64,256 --seeds 3 --regions --no-stratified-splitting,
-  25 minutes on the shared 2-core machine at load average 3-10; examples/render/README.md, "Against
-  Mitsuba 3"): (c) our CPU per camera sample 2.0-2.2x Mitsuba's (direct), 1.5-1.7x (path, sun map),
-  2.1-2.2x (path, smooth map); (a) zsobol / multijitter 1.41-1.52 (sun, direct), 1.19-1.21 (sun, path),
-  0.13-0.21 (smooth); (b) 3.1 (sun, direct), 1.8-2.0 (sun, path), 0.23-0.25 (smooth, direct), 0.43-0.46
-  (smooth, path).
+  the binary of commit 31bc383, 921 s on the shared 2-core machine at load average 4-7;
+  examples/render/README.md, "Against Mitsuba 3"): (c) our CPU per camera sample 1.65-1.84x Mitsuba's
+  (sun, direct), 1.25-1.35x (sun, path), 1.08-1.10x (smooth, direct), 1.25-1.34x (smooth, path); (a)
+  zsobol / multijitter 0.69-0.79 (sun, direct), 0.94-0.98 (sun, path), 0.13-0.21 (smooth); (b) 1.27-1.32
+  (sun, direct), 1.18-1.32 (sun, path), 0.13-0.14 (smooth, direct), 0.27 (smooth, path). The run before
+  (the same day, before issue 21's third round): (c) 1.5-2.2x, (b) 3.1, 1.8-2.0, 0.23-0.25, 0.43-0.46.
 
 The older measure (--reference; issue 5)
   Accuracy against time for direct lighting of a diffuse sphere on a plane under the city map
