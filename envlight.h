@@ -277,13 +277,15 @@ EL_DEF void el_envlight_sample_li(const el_envlight *l, const float u[2], float 
 /* n samples at once: wi[3i..], rgb[3i..] (rgb may be NULL) and pdf[i] for u[2i], u[2i+1], bit for bit
  * what n calls of sample_li return. For renderers that draw several light samples before using them
  * (a pixel's samples, a wavefront): the table and texel reads of up to 32 samples are started together
- * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. */
+ * (prefetched in stages) instead of one dependent cache miss after another. n <= 0 does nothing. The
+ * output arrays must not overlap u (as for every _n call below: outputs never alias inputs). */
 EL_DEF void el_envlight_sample_li_n(const el_envlight *l, int n, const float *u, float *wi, float *rgb, float *pdf);
 /* The solid-angle density with which sample_li picks dir. */
 EL_DEF float el_envlight_pdf_li(const el_envlight *l, const float dir[3]);
 /* n at once: pdf[i] = pdf_li(dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit, for a wave's
  * escaped rays: the table entries (le's texels) of up to 32 directions are prefetched together, so that
- * their cache misses overlap: 2-2.5x less time on a 2048x1024 map (NOTES 5: BATCHES). n <= 0 does nothing. */
+ * their cache misses overlap: 2-2.5x less time on a 2048x1024 map (NOTES 5: BATCHES). n <= 0 does nothing;
+ * pdf and rgb must not overlap dirs. */
 EL_DEF void el_envlight_pdf_li_n(const el_envlight *l, int n, const float *dirs, float *pdf);
 EL_DEF void el_envlight_le_n(const el_envlight *l, int n, const float *dirs, float *rgb);
 /* pbrt-v3 Sample_Le: u[0],u[1] pick the direction, u[2],u[3] the point on the disk of the bounding
@@ -358,7 +360,8 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
  * n calls of sample_li_cos return; pdf_li_cos_n likewise pdf[i] = pdf_li_cos(normals[3i..], wi[3i..]).
  * With SSE2 the arithmetic runs on four samples at once and the table reads of 16 samples are started
  * together: about 625 / 335 instructions per sample and 2-3.5x less time with random normals (NOTES 2,
- * COST); without SSE2 (or with FMA contraction: -mfma) a loop of single calls. n <= 0 does nothing. */
+ * COST); without SSE2 (or with FMA contraction: -mfma) a loop of single calls. n <= 0 does nothing. The
+ * outputs must not overlap normals, u or wi (an input of pdf_li_cos_n). */
 EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float *normals, const float *u, float *wi,
                                         float *rgb, float *pdf);
 EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *normals, const float *wi, float *pdf);
