@@ -1,6 +1,12 @@
 #!/usr/bin/env python3
 """lobes.py: issue 20's "every lobe" measurement: the renderer's default environment sampling against
-the map alone (--env-sampling map, pbrt-v3's), per material and over the image.
+the map alone, per material and over the image. Two map-alone baselines: "map" (--env-sampling map with
+render's default density: le()'s patch density, importance bilinear, under a sun map with a low-discrepancy
+sampler since issue 22, so on lobes_city; pbrt-v3's elsewhere) and "map3" (--env-sampling map --importance
+pbrt-v3, pbrt-v3's own strategy); every other strategy's ratio is printed against both.
+Last run (2026-12-02, 8 seeds, 16 spp; examples/render/README.md "Sampling the environment"), default
+against map / map3: city image 1.38 / 1.19, metal 1.03 / 0.88, glossy 2.70 / 2.29, rough 3.93 / 3.56, plane
+1.14 / 1.06, shadows 1.14 / 0.91; studio image 5.01 / 5.02, every region 4.2-23x.
 
 Scenes: scenes/lobes_city.pbrt and scenes/lobes_studio.pbrt (a near-specular metal, alpha 0.02; a glossy
 plastic, pbrt-v3 roughness 0.1 remapped, alpha 0.46; a rough plastic, roughness 0.5, alpha 1.13; on a
@@ -12,11 +18,13 @@ Error: the RELATIVE VARIANCE ACROSS SEEDS, the mean over pixels and channels of 
 seeds' images over (mean^2 + 1e-2), as bench/mitsuba_compare.py. Time: the render loop's CPU seconds
 (render --stats, one thread), the mean over seeds. Time to unit variance (TTUV) = relvar x CPU s; the
 ratio printed is TTUV(map alone) / TTUV(default): above 1 the default wins.
-Runs are interleaved (every strategy once per seed, the order alternating), as the machine is shared.
+Runs are interleaved (every strategy once per seed, the order rotating), as the machine is shared.
   python3 bench/lobes.py [--seeds 8] [--spp 16] [--render build/bin/render] [--maps city,studio]
                          [--regions full,metal,glossy,rough,plane,shadows] [--extra "--env-lobe-alpha 0"] [--metal-alpha 0.2]
+                         [--variants "s2=--split 2;sc=--env-sun-diffuse suncos"]
 --extra: options added to the default's command line (e.g. render's --env-lobe-alpha and --env-light-alpha, the
-per-lobe thresholds); --metal-alpha, --glossy-alpha: the metal's and the glossy plastic's Trowbridge-Reitz alpha
+per-lobe thresholds); --variants: more strategies (name=options, ';'-separated: levers), each against both
+baselines; --metal-alpha, --glossy-alpha: the metal's and the glossy plastic's Trowbridge-Reitz alpha
 (sweeps for the thresholds).
 """
 import argparse, os, re, struct, subprocess, sys, tempfile, array
