@@ -388,7 +388,7 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    variance of one estimate, independent / Owen-scrambled Sobol'): the light sample alone 3.78e-3 / 2.07e-6
  *    (CELL_AVERAGE 6.30e-3 / 1.76e-3, PBRT_V3 4.41e-3 / 4.24e-4), with one cosine sample and the power
  *    heuristic 4.12e-3 / 2.32e-4 (6.59e-3 / 1.82e-3, 4.76e-3 / 5.53e-4): 2.4x less than PBRT_V3 with the
- *    low-discrepancy points, 1.15x with independent ones.
+ *    low-discrepancy points, 1.16x with independent ones.
  *    SAMPLING: one discrete table over the w x (h + 1) patches (distribution2d.h's integer CDFs, each patch's
  *    weight the mean of its corners x its height, so every patch with a positive corner is reachable at any
  *    dynamic range; the light's own guide tables, or its CDF or alias sampler), then (s, t) inside the patch
@@ -661,8 +661,9 @@ typedef struct el_envlight_mix_weights {
  * A constant light, importance mode BILINEAR, a black map or a map without a compact bright region: count
  * 0 (success; the mixture is then sample_li itself). EL_ERROR_INVALID_ARGUMENT for NULL pointers or
  * options out of range (negative, NaN, max_spots > EL_ENVLIGHT_HOTSPOT_MAX), EL_ERROR_OUT_OF_MEMORY, or
- * the light's own table build result. On failure *h is zeroed. Extra memory: about 4 bytes per bin
- * (the rest's distribution) when a spot is found, nothing otherwise. */
+ * the light's own table build result. On failure *h is zeroed. Extra memory: about 6 bytes per bin
+ * (the rest's distribution, 4; the rest x cosine part's cell tables, 2: NOTES ON HOT SPOTS 4) when a
+ * spot is found, nothing otherwise. */
 EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_envlight *l,
                                            const el_envlight_hotspot_options *opt);
 EL_DEF void el_envlight_hotspots_free(el_envlight_hotspots *h);
@@ -686,7 +687,8 @@ EL_DEF void el_envlight_sample_li_mix_n(const el_envlight *l, const el_envlight_
                                         float *rgb, float *pdf);
 /* The mixture with the rest drawn in proportion to the map times a cosine bound of the surface of world
  * normal n (NOTES ON HOT SPOTS 4): spot k as in sample_li_mix, the rest's cells (32 x 16) picked by their
- * mass times max(1e-3, an upper bound of n.w over the cell), then sample_li's density inside the cell.
+ * mass times max(1e-3, an upper bound of n.w over the cell), then sample_li's density inside the cell
+ * (up to its 16-bit tables' rounding).
  * Default weights here mean each part's own share. No spot (or h unusable): sample_li_cos itself, and
  * pdf_li_mix_cos is pdf_li_cos. A zero or NaN n: bound 1 (sample_li_mix's density). *pdf equals
  * pdf_li_mix_cos(l, h, w, n, wi) bit for bit. Cost: O(cells) per call (512 bounds), sample and pdf. */
@@ -2672,22 +2674,12 @@ static inline __m128 el_envlight__dir_sse(const el_envlight *l, const float *rt,
 }
 #endif
 
-/* sample_li from a bin and its fractions through the direction tables (every sampler but sample_li's
- * inline guide path comes here). A leaf (its only call is a tail call), so it saves no registers. */
-static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
-  /* mapPdf / (2 pi^2): the bin's pdf_table entry, the value pdf_li finds (sample_li's inline path forms
-   * the same value from the CDF entries its search read) */
-  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu];
-#if EL_ENVLIGHT__SSE
-  __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu,
-                                  _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), p, wi, pdf);
-  if (l->table_done && !rgb) return;
-  fu = _mm_cvtss_f32(_mm_movehl_ps(f, f));
-  fv = _mm_cvtss_f32(f);
-#else
-  /* the SSE code's operations, lane by lane (see el_envlight__dir_sse) */
+#if !EL_ENVLIGHT__SSE
+/* <<Compute direction for infinite light sample>> without SSE: el_envlight__dir_sse's operations, lane
+ * by lane (see there); *fu, *fv clamped as it clamps them. Returns sin(theta). */
+static float el_envlight__dir_scalar(const el_envlight *l, int iu, int iv, float *pfu, float *pfv, float wi[3]) {
   const float *rt = l->row_tab + 16 * (size_t)iv, *ct = l->col_tab + 8 * (size_t)iu, *dc = l->dir_consts;
-  float a, b, a2, b2, sa, ca, sb, cb, st, cth;
+  float fu = *pfu, fv = *pfv, a, b, a2, b2, sa, ca, sb, cb, st, cth;
   fv = fv > dc[0] ? fv : dc[0];
   fv = fv < dc[4] ? fv : dc[4];
   fu = fu > dc[2] ? fu : dc[2];
@@ -2701,6 +2693,25 @@ static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l
   wi[0] = st * (cb * ct[0] + sb * ct[4]) + cth * dc[12];
   wi[1] = st * (cb * ct[1] + sb * ct[5]) + cth * dc[13];
   wi[2] = st * (cb * ct[2] + sb * ct[6]) + cth * dc[14];
+  *pfu = fu; *pfv = fv;
+  return st;
+}
+#endif
+
+/* sample_li from a bin and its fractions through the direction tables (every sampler but sample_li's
+ * inline guide path comes here). A leaf (its only call is a tail call), so it saves no registers. */
+static EL_ENVLIGHT__NOINLINE void el_envlight__sample_table(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float rgb[3], float *pdf) {
+  /* mapPdf / (2 pi^2): the bin's pdf_table entry, the value pdf_li finds (sample_li's inline path forms
+   * the same value from the CDF entries its search read) */
+  float p = l->pdf_table[(size_t)iv * (size_t)l->dist.nu + (size_t)iu];
+#if EL_ENVLIGHT__SSE
+  __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu,
+                                  _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), p, wi, pdf);
+  if (l->table_done && !rgb) return;
+  fu = _mm_cvtss_f32(_mm_movehl_ps(f, f));
+  fv = _mm_cvtss_f32(f);
+#else
+  float st = el_envlight__dir_scalar(l, iu, iv, &fu, &fv, wi);
   EL_ASSERT(st >= EL_ENVLIGHT__SIN_MIN);
   *pdf = p / st;
   if (l->table_done && !rgb) return;
@@ -4849,7 +4860,7 @@ static int el_envlight__hot_normal(const el_envlight *l, const float n[3], float
 /* index i of a cell table's CDF c[0..n] (guide g) with c[i] <= k < c[i + 1]: the guide for n <= 256 (what
  * el_envlight__guide_build allows), else the binary search: the same i */
 static inline int el_envlight__hot_search(const uint16_t *c, int n, const uint8_t *g, uint32_t k) {
-  return n <= 256 ? el_envlight__search_guided(c, n, g, k) : el_envlight__search16(c, n, k < 32767u ? k : 32767u);
+  return n <= 256 ? el_envlight__search_guided(c, n, g, k) : el_envlight__search16(c, n, k < EL_ENVLIGHT__CELL_UNITS - 1u ? k : EL_ENVLIGHT__CELL_UNITS - 1u);
 }
 
 static int el_envlight__hot_cell_of_uv(const el_envlight_hotspots *h, int iu, int iv);
@@ -4965,29 +4976,25 @@ static int el_envlight__hot_usable(const el_envlight *l, const el_envlight_hotsp
 
 /* The world direction of bin (iu, iv) at fractions (fu, fv) of the light's own grid, as sample_li builds
  * it: the fractions kept the margin inside the bin (as el_envlight__sample_bin keeps them), then the
- * direction tables or the (u, v) mapping. pb: the bin's density as the tables want it (its pdf is
- * recomputed by the caller). Both hot-spot samplers go through here. */
-static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float pb, float wi[3], float uv[2]) {
+ * direction tables (without their pdf: the callers make theirs) or the (u, v) mapping. uv: the sample's
+ * own (u, v) where the tables are exact (table_done: a signed-permutation matrix), for its radiance as
+ * sample_li_finish looks it up; else uv[0] = -1. Both hot-spot samplers go through here; with and without
+ * SSE the same operations (el_envlight__dir_sse, el_envlight__dir_scalar). */
+static void el_envlight__hot_bin_to_world(const el_envlight *l, int iu, int iv, float fu, float fv, float wi[3], float uv[2]) {
   uv[0] = -1.0f;
   fu = fu > l->u_margin ? fu : l->u_margin;
   fu = fu < l->u_margin_hi ? fu : l->u_margin_hi;
   fv = fv > l->v_margin ? fv : l->v_margin;
   fv = fv < l->v_margin_hi ? fv : l->v_margin_hi;
+  if (l->dir_tables) { /* (the tables clamp to the same margins: fu and fv stay as they are) */
 #if EL_ENVLIGHT__SSE
-  if (l->dir_tables) { /* the direction alone (el_envlight__sample_table's, without its pdf: the callers make theirs) */
     float p;
-    __m128 f = el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
-    (void)pb;
-    if (l->table_done) { /* the sample's own (u, v), for its radiance (as sample_li_finish) */
-      uv[0] = ((float)iu + _mm_cvtss_f32(_mm_movehl_ps(f, f))) * l->dist.u_width;
-      uv[1] = ((float)iv + _mm_cvtss_f32(f)) * l->dist.v_width;
-    }
-  } else
+    (void)el_envlight__dir_sse(l, l->row_tab + 16 * (size_t)iv, l->col_tab + 8 * (size_t)iu, _mm_movelh_ps(_mm_set1_ps(fv), _mm_set1_ps(fu)), 1.0f, wi, &p);
 #else
-  if (l->dir_tables) el_envlight__sample_table(l, iu, iv, fu, fv, wi, NULL, &pb);
-  else
+    (void)el_envlight__dir_scalar(l, iu, iv, &fu, &fv, wi);
 #endif
-  {
+    if (l->table_done) { uv[0] = ((float)iu + fu) * l->dist.u_width; uv[1] = ((float)iv + fv) * l->dist.v_width; }
+  } else {
     float d[3], pu = ((float)iu + fu) * l->dist.u_width, pv = ((float)iv + fv) * l->dist.v_width;
     float st = ((float)(l->dist.nv - 1 - iv) + (1.0f - fv)) * l->dist.v_width;
     el_envlight__uvp_to_dir(pu, pv, pv < st ? pv : st, d);
@@ -5052,10 +5059,10 @@ EL_DEF void el_envlight_sample_li_mix(const el_envlight *l, const el_envlight_ho
     iv += h->rect[k][1];
   }
   /* <<Compute direction for infinite light sample>>: sample_li's own construction for this bin */
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, wi, uv);
   *pdf = el_envlight__hot_pdf(l, h, a, wi);
   if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
-    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, wi, uv);
     *pdf = el_envlight__hot_pdf(l, h, a, wi);
   }
   el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);
@@ -5204,21 +5211,20 @@ EL_DEF void el_envlight_sample_li_mix_cos_table(const el_envlight *l, const el_e
     rows = h->cell_v0[cv + 1] - h->cell_v0[cv]; cols = h->cell_u0[cu + 1] - h->cell_u0[cu];
     tb = h->cell_tab + h->cell_off[cell];
     rc = tb + EL_ENVLIGHT__GUIDE_E;
-    xv = el_envlight__clamp_u(u[1]) * 32768.0f; xu = uu * 32768.0f;
+    xv = el_envlight__clamp_u(u[1]) * (float)EL_ENVLIGHT__CELL_UNITS; xu = uu * (float)EL_ENVLIGHT__CELL_UNITS;
     y = el_envlight__hot_search(rc, rows, (const uint8_t *)tb, (uint32_t)xv);
     row = tb + EL_ENVLIGHT__HOT_ROW(rows) + (size_t)y * EL_ENVLIGHT__HOT_ROW(cols);
     x = el_envlight__hot_search(row + EL_ENVLIGHT__GUIDE_E, cols, (const uint8_t *)row, (uint32_t)xu);
     row += EL_ENVLIGHT__GUIDE_E;
     fv = (xv - (float)rc[y]) / (float)(rc[y + 1] - rc[y]);
     fu = (xu - (float)row[x]) / (float)(row[x + 1] - row[x]);
-    pb = 0.0f;
     iu = h->cell_u0[cu] + x;
     iv = h->cell_v0[cv] + y;
   }
-  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, pb, wi, uv);
+  el_envlight__hot_bin_to_world(l, iu, iv, fu, fv, wi, uv);
   *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   if (!(*pdf > 0.0f) && !l->exact_transform) { /* rounded into a bin without mass near a pole: its centre (as sample_li_finish) */
-    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, pb, wi, uv);
+    el_envlight__hot_bin_to_world(l, iu, iv, 0.5f, 0.5f, wi, uv);
     *pdf = el_envlight__hot_pdf_cos(l, h, a, hn ? nl : NULL, s, wi);
   }
   el_envlight__hot_rgb(l, wi, uv, *pdf, rgb);

@@ -778,7 +778,7 @@ static void strat_table(const char *path) {
  *       city-like map (make_map), CPU ms (median of 3 interleaved runs; 1 above 2048), el_envlight_bytes. */
 enum { C_UNIFORM, C_COSINE, C_CELL, C_CELL2, C_PBRT, C_TEXEL, C_BILIN, C_PROD, C_MIS, C_MIS_COMP, C_N };
 static const char *C_NAME[C_N] = {"uniform sphere", "cosine (BSDF)", "CELL_AVERAGE (default)", "CELL_AVERAGE 2x",
-                                  "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
+                                  "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (patches)",
                                   "product sample_li_cos", "MIS pair (light + cosine)", "MIS pair compensated"};
 static double c_estimate(int s, el_envlight *l, const double n[3], const double b1[3], const double b2[3], const float *u) {
   static const int to_s[C_N] = {S_UNIFORM, S_COSINE, S_CELL, S_CELL2, S_PBRT, S_TEXEL, S_BILIN, 0, S_COMP_MIS, S_COMP_MIS};
@@ -848,7 +848,7 @@ static void csv_variance(const char *path, const char *name, int nsamp, int reps
   el_image_free(&img);
 }
 static void csv_build(int quick) {
-  static const char *name[5] = {"CELL_AVERAGE (default)", "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (continuous warp)",
+  static const char *name[5] = {"CELL_AVERAGE (default)", "PBRT_V3 2x (pbrt-v3)", "TEXEL", "BILINEAR (patches)",
                                 "product sample_li_cos"};
   int widths[5] = {512, 1024, 2048, 4096, 8192}, nw = quick ? 2 : 5, k, imp, r;
   for (k = 0; k < nw; ++k) {
@@ -965,7 +965,7 @@ int main(int argc, char **argv) {
         if (rep < (w > 2048 ? 0 : 2)) el_envlight_free(&l);
       }
       printf("  %-22s %9.1f %7.1f ms %4dx%-5d %10.1f %10.1f\n",
-             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : imp == 2 ? "TEXEL" : "BILINEAR (warp)", t1 * 1e3, t2 * 1e3,
+             imp == 0 ? "CELL_AVERAGE (default)" : imp == 1 ? "PBRT_V3 (2x res)" : imp == 2 ? "TEXEL" : "BILINEAR (patches)", t1 * 1e3, t2 * 1e3,
              l.imp_w, l.imp_h, el_envlight_sampling_bytes(&l) / 1048576.0, el_envlight_bytes(&l) / 1048576.0);
       el_envlight_free(&l);
     }
@@ -984,7 +984,7 @@ int main(int argc, char **argv) {
         el_envlight l;
         if (make_light(&l, px, w, h, EL_ENVLIGHT_IMPORTANCE_BILINEAR, 0, 0, NULL) == EL_SUCCESS) {
           el_envlight_prepare_sampling(&l);
-          printf("  %-22s %12.1f %14.1f %12.1f %12s\n", "BILINEAR (warp)", rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), "");
+          printf("  %-22s %12.1f %14.1f %12.1f %12s\n", "BILINEAR (patches)", rate(fn_sample, &l, 0), rate(fn_sample, &l, 1), rate(fn_pdf, &l, 0), "");
           el_envlight_free(&l);
         }
         if (make_light(&l, px, w, h, 0, 0, 0, NULL) == EL_SUCCESS) {

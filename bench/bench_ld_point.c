@@ -2,7 +2,7 @@
  * one lit ground point (issue 21/22's finding: on bench_city, Mitsuba's multijitter gains 8x over
  * independent, our zsobol 6x, lit pixels 2.4-2.75x Mitsuba's).
  *
- *   bench_ld_point [MAP.hdr [N [TRIALS [IMPORTANCE [RES]]]]]   map (data/envmaps/city.hdr), points per estimate (64),
+ *   bench_ld_point [MAP.hdr [N [TRIALS [IMPORTANCE [RES]]]]]   map (data/envmaps/city.hdr; - for it), points per estimate (64),
  *                  trials (4000), the light's importance map (EL_ENVLIGHT_IMPORTANCE_*: 0 cell average, 1 pbrt-v3
  *                  (the renderer's default), 2 texel, 3 bilinear (Mitsuba 3's density); default 1), RES: the
  *                  importance map's bins per texel and axis (0: the mode's own)
@@ -188,7 +188,7 @@ static void cos_sample(const float u[2], float d[3], float *pdf) {
 }
 
 int main(int argc, char **argv) {
-  const char *path = argc > 1 ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
+  const char *path = argc > 1 && strcmp(argv[1], "-") ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr"; /* - : the default (the tutorial's quote) */
   int N = argc > 2 ? atoi(argv[2]) : 64, T = argc > 3 ? atoi(argv[3]) : 4000, imp = argc > 4 ? atoi(argv[4]) : 1, res = argc > 5 ? atoi(argv[5]) : 0, kind, e, t, i;
   el_envlight_options opt;
   el_image img;

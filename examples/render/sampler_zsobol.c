@@ -17,8 +17,9 @@
  * reference, pbrt-v4's GetSampleIndex and SobolSample for one sample as written there (elr_zsobol_ref_1d,
  * _2d), and the fast path (up to 256 spp; the environment variable ELR_ZSOBOL_REFERENCE forces the
  * reference), which makes a pixel's points of a dimension for all its samples at once (below).
- * Instructions per camera sample on bench_city (16 spp, direct lighting, bench/callgrind_parts.py):
- * 1225 -> 512 -> 234 for the sampler (path, 4 spp: 2123 -> 1411 -> 527; the second step below). */
+ * Instructions per camera sample on bench_city (16 spp, direct lighting, bench/callgrind_parts.sh):
+ * 1225 -> 512 for the sampler, 461 after the wave loop's own changes (examples/render/README.md), -> 234
+ * (path, 4 spp: 2123 -> 1411 -> 527; the second step below). */
 #include "elr_internal.h"
 #include <string.h>
 
@@ -99,7 +100,11 @@ void elr_zsobol_tables_init(elr_sampler_tables *T, int log2spp) {
   int j, v;
   for (j = 0; j < ELR_ZSOBOL_LEVELS; j++)
     for (v = 0; v < 4; v++) {
-      uint64_t index = (uint64_t)v << (log2spp + 2 * j); /* (bits past the matrices' 52 columns add nothing) */
+      /* (bits past the matrices' 52 columns add nothing; the tables are made for every spp up to 2^24,
+       * where log2spp + 2j reaches 70: a shift of 64 or more is undefined, and its index bits are past
+       * the columns too) */
+      int sh = log2spp + 2 * j;
+      uint64_t index = sh < 64 ? (uint64_t)v << sh : 0u;
       uint32_t c0 = elr_sobol_bits(&T->sobol, index, 0), c1 = elr_sobol_bits(&T->sobol, index, 1);
       T->zdig[0][j][v] = (uint64_t)c0 | (uint64_t)c1 << 32;
       T->zdig[1][j][v] = (uint64_t)elr_reverse_bits32(c0) | (uint64_t)elr_reverse_bits32(c1) << 32;

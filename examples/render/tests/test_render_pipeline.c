@@ -154,8 +154,10 @@ int main(void) {
    * vertex's light sample), sample counts that fill no wave (up to 256 camera samples) evenly, an environment
    * with several samples per vertex (the first drawn with the wave, then the others one at a time), and the
    * cases that turn batching off (a second emitting light; stratified strata or 02sequence dimensions
-   * that cover fewer draws). Batching draws the map's own samples (product sampling has no n-at-once
-   * form): the environment is sampled by the map alone here. The path tracer with a pixel sampler ("2")
+   * that cover fewer draws). These cases batch the map's own samples (el_envlight_sample_li_n): the
+   * environment is sampled by the map alone here; the wave loop's batched product samples
+   * (el_envlight_sample_li_cos_n, the default) are compared with the reference loop in test_render_wave
+   * and with the single calls in test_envlight_batch. The path tracer with a pixel sampler ("2")
    * draws past the sampler's dimensions in another order in the wave loop: other numbers of the same
    * distribution (test_render_wave compares the means), so only the loops that ran are checked there. */
   {

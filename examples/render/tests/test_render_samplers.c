@@ -450,6 +450,20 @@ static void test_zsobol_fast(void) {
   rt_check(bad == 0 && fast_used == runs - 4 - nsimd, "zsobol: the fast path's numbers are the reference's bit for bit (%d of %d draws differ; "
            "fast path used for %d of %d sample counts x randomizations x SIMD loops up to 256 spp; the widest SIMD loop %d)",
            bad, draws, fast_used, runs - 4 - nsimd, nsimd);
+  { /* the largest sample count a render takes (2^24): the tables' digit points are made for every level,
+     * at index bits up to 24 + 2 x 23 = 70; bits past the 52 Sobol' columns add nothing (a shift of 64 or
+     * more was undefined: the sanitizer build stops on it) */
+    tsamp t;
+    int j, v, nonzero = 0;
+    if (tsamp_init(&t, ELR_SAMPLER_ZSOBOL, 1 << 24, 4, ELR_RANDOMIZE_FAST_OWEN, 5) != 0) rt_check(0, "zsobol init at 2^24 spp");
+    else {
+      for (j = (ELR_SOBOL_COLUMNS - 24) / 2; j < ELR_ZSOBOL_LEVELS; j++)
+        for (v = 0; v < 4; v++) nonzero += t.T.zdig[0][j][v] != 0 || t.T.zdig[1][j][v] != 0;
+      rt_check(nonzero == 0 && t.S.zlow == NULL, "zsobol at 2^24 spp: the digit points past the Sobol' columns are 0 (%d of %d are not), "
+               "no fast path", nonzero, 4 * (ELR_ZSOBOL_LEVELS - (ELR_SOBOL_COLUMNS - 24) / 2));
+      tsamp_free(&t);
+    }
+  }
   {
     static const char *integs[2] = {"\"directlighting\"", "\"path\" \"integer maxdepth\" 4"};
     int ig;
