@@ -1,6 +1,12 @@
 #!/usr/bin/env python3
 """lobes.py: issue 20's "every lobe" measurement: the renderer's default environment sampling against
-the map alone (--env-sampling map, pbrt-v3's), per material and over the image.
+the map alone, per material and over the image. Two map-alone baselines: "map" (--env-sampling map with
+render's default density: le()'s patch density, importance bilinear, under a sun map with a low-discrepancy
+sampler since issue 22, so on lobes_city; pbrt-v3's elsewhere) and "map3" (--env-sampling map --importance
+pbrt-v3, pbrt-v3's own strategy); every other strategy's ratio is printed against both.
+Last run (2026-12-02, 8 seeds, 16 spp; examples/render/README.md "Sampling the environment"), default
+against map / map3: city image 1.38 / 1.19, metal 1.03 / 0.88, glossy 2.70 / 2.29, rough 3.93 / 3.56, plane
+1.14 / 1.06, shadows 1.14 / 0.91; studio image 5.01 / 5.02, every region 4.2-23x.
 
 Scenes: scenes/lobes_city.pbrt and scenes/lobes_studio.pbrt (a near-specular metal, alpha 0.02; a glossy
 plastic, pbrt-v3 roughness 0.1 remapped, alpha 0.46; a rough plastic, roughness 0.5, alpha 1.13; on a
@@ -12,11 +18,13 @@ Error: the RELATIVE VARIANCE ACROSS SEEDS, the mean over pixels and channels of 
 seeds' images over (mean^2 + 1e-2), as bench/mitsuba_compare.py. Time: the render loop's CPU seconds
 (render --stats, one thread), the mean over seeds. Time to unit variance (TTUV) = relvar x CPU s; the
 ratio printed is TTUV(map alone) / TTUV(default): above 1 the default wins.
-Runs are interleaved (every strategy once per seed, the order alternating), as the machine is shared.
+Runs are interleaved (every strategy once per seed, the order rotating), as the machine is shared.
   python3 bench/lobes.py [--seeds 8] [--spp 16] [--render build/bin/render] [--maps city,studio]
                          [--regions full,metal,glossy,rough,plane,shadows] [--extra "--env-lobe-alpha 0"] [--metal-alpha 0.2]
+                         [--variants "s2=--split 2;sc=--env-sun-diffuse suncos"]
 --extra: options added to the default's command line (e.g. render's --env-lobe-alpha and --env-light-alpha, the
-per-lobe thresholds); --metal-alpha, --glossy-alpha: the metal's and the glossy plastic's Trowbridge-Reitz alpha
+per-lobe thresholds); --variants: more strategies (name=options, ';'-separated: levers), each against both
+baselines; --metal-alpha, --glossy-alpha: the metal's and the glossy plastic's Trowbridge-Reitz alpha
 (sweeps for the thresholds).
 """
 import argparse, os, re, struct, subprocess, sys, tempfile, array
@@ -78,14 +86,24 @@ def main():
     ap.add_argument('--maps', default='city,studio')
     ap.add_argument('--regions', default='full,metal,glossy,rough,plane,shadows')
     ap.add_argument('--extra', default='')
+    ap.add_argument('--variants', default='', help='more default-like strategies, "name=options;name2=options" (levers), each against both baselines')
     ap.add_argument('--metal-alpha', type=float, default=None, help="the metal sphere's alpha instead of 0.02 (threshold sweeps)")
     ap.add_argument('--glossy-alpha', type=float, default=None, help="the glossy plastic's alpha instead of 0.46")
     a = ap.parse_args()
     TMP = tempfile.mkdtemp(prefix='lobes')
-    strategies = [('default', a.extra.split()), ('map', ['--env-sampling', 'map'])]
-    print('relvar across %d seeds, %d spp, CPU s of the render loop (1 thread; machine shared)' % (a.seeds, a.spp))
-    print('| map | region | default relvar | default CPU s | map relvar | map CPU s | TTUV map / default |')
-    print('|---|---|---|---|---|---|---|')
+    # the baselines: the map alone with render's default density ("map": le()'s patch density under a sun
+    # map with a low-discrepancy sampler since issue 22, pbrt-v3's elsewhere) and with pbrt-v3's ("map3")
+    strategies = [('default', a.extra.split()), ('map', ['--env-sampling', 'map']),
+                  ('map3', ['--env-sampling', 'map', '--importance', 'pbrt-v3'])]
+    for v in filter(None, a.variants.split(';')):
+        k, _, ex = v.partition('=')
+        strategies.append((k.strip(), ex.split()))
+    others = [k for k, _ in strategies if k not in ('map', 'map3')]
+    print('relvar across %d seeds, %d spp, CPU s of the render loop (1 thread; machine shared); TTUV ratios against'
+          ' the map alone with the default density (map) and with pbrt-v3\'s (map3)' % (a.seeds, a.spp))
+    print('| map | region | ' + ' | '.join('%s relvar | %s CPU s' % (k, k) for k, _ in strategies) + ' | ' +
+          ' | '.join('%s: map/x, map3/x' % k for k in others) + ' |')
+    print('|---|---|' + '---|---|' * len(strategies) + '---|' * len(others))
     for mp in a.maps.split(','):
         src = open(os.path.join(ROOT, 'scenes', 'lobes_%s.pbrt' % mp)).read()
         src = src.replace('"../data/', '"%s/data/' % ROOT)
@@ -102,7 +120,8 @@ def main():
             imgs = {k: [] for k, _ in strategies}
             cpu = {k: [] for k, _ in strategies}
             for s in range(a.seeds):
-                order = strategies if s % 2 == 0 else strategies[::-1]
+                rot = s % len(strategies)  # the order rotating per seed (the machine is shared)
+                order = strategies[rot:] + strategies[:rot]
                 for k, ex in order:
                     img, t, _ = run(a.render, scene, s + 1, a.spp, ex)
                     imgs[k].append(img)
@@ -112,10 +131,9 @@ def main():
                 v = relvar(imgs[k])
                 t = sum(cpu[k]) / len(cpu[k])
                 r[k] = (v, t, min(cpu[k]), max(cpu[k]))
-            ratio = (r['map'][0] * r['map'][1]) / (r['default'][0] * r['default'][1])
-            print('| %s | %s | %.4g | %.3f (%.3f-%.3f) | %.4g | %.3f (%.3f-%.3f) | %.2f |' %
-                  (mp, reg, r['default'][0], r['default'][1], r['default'][2], r['default'][3],
-                   r['map'][0], r['map'][1], r['map'][2], r['map'][3], ratio))
+            ttuv = {k: r[k][0] * r[k][1] for k in r}
+            print('| %s | %s | ' % (mp, reg) + ' | '.join('%.4g | %.3f' % (r[k][0], r[k][1]) for k, _ in strategies) + ' | ' +
+                  ' | '.join('%.2f, %.2f' % (ttuv['map'] / ttuv[k], ttuv['map3'] / ttuv[k]) for k in others) + ' |')
             sys.stdout.flush()
 
 

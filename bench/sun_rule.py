@@ -27,6 +27,8 @@ STRATS = {'map': ['--env-sampling', 'map'], 'default': [], 'product': ['--env-su
           'alone': ['--env-sun-diffuse', 'alone'], 'mapmis': ['--env-sun-diffuse', 'map'],
           'suncos': ['--env-sun-diffuse', 'suncos'], 'suncos.3': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.3'],
           'suncos.7': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.7'],
+          'suncos.87': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.866'],  # the sun rule at 30 degrees
+          'suncos1': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '1'],  # the rule never true (product everywhere)
           'bilinear': ['--importance', 'bilinear'],  # issue 22's patch density for the map alone
           'pbrtv3': ['--importance', 'pbrt-v3']}  # the map alone's density before issue 22 made bilinear the default under a sun
 

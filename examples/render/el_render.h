@@ -105,7 +105,8 @@ typedef struct elr_render_options {
                            vertices with only diffuse lobes sample it: ELR_ENVSD_MAP the map alone with MIS, ELR_ENVSD_PRODUCT
                            the product with MIS, ELR_ENVSD_ALONE the product light sample alone, ELR_ENVSD_SUNCOS the map
                            alone where the sun is within acos(env_sun_cos) of the normal, the product with MIS elsewhere
-                           (issue 20's sun rule) */
+                           (issue 20's sun rule, the default until the wave loop batched product samples; now
+                           ELR_ENVSD_PRODUCT: elr_internal.h) */
   float env_sun_cos;    /* < -2: ELR_ENV_SUN_COS; else that threshold */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);

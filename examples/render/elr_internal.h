@@ -175,10 +175,17 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * the normal (sunrise.hdr's plane, the sun at cos 0.42: 2.3-2.5x; spheres' far sides, sunrise's shadows) and
  * loses where it is high (city.hdr's plane, cos 0.74: 0.82-0.91x; its shadows 0.69-0.73x), as the map alone
  * then sends the sun's share where the cosine is near its maximum and the product sample costs 1.3-1.4x;
- * the normal's test keeps both halves (bench_city 1.32-1.36x, was 0.88-0.97x; lobes_city unchanged) */
+ * the normal's test keeps both halves (bench_city 1.32-1.36x, was 0.88-0.97x; lobes_city unchanged).
+ * Since the wave loop draws product samples in batches (el_envlight_sample_li_cos_n: 2.8-3.5x cheaper per
+ * sample) the product with MIS everywhere (ELR_ENVSD_PRODUCT) is the default: bench/sun_rule.py, 6 seeds,
+ * 16 spp, against the map alone (its default density), default sun rule -> product everywhere: bench_city
+ * 1.58 -> 1.84x (the pixels the rule sent to the map 0.95 -> 1.10x), lobes_city 1.23 -> 1.35x, sun_shadow_object
+ * 1.68 -> 1.70x, sun_porch 1.63 -> 1.66x, and sun_shadow_object with the sun raised to 80 degrees (10 from the
+ * ground's normal) 1.08 -> 1.89x (per sample 1.07 -> 1.63x): the product sample now costs less than the
+ * map's (le()'s patch density) and its cosine still helps where the sun is high */
 enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3 };
 #define ELR_ENV_SUN_COS 0.5f
-#define ELR_ENV_SUN_DIFFUSE ELR_ENVSD_SUNCOS
+#define ELR_ENV_SUN_DIFFUSE ELR_ENVSD_PRODUCT
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
 enum { ELR_SHAPE_MESH = 0, ELR_SHAPE_SPHERE = 1, ELR_SHAPE_DISK = 2 }; /* also elr_hit.kind */
 typedef struct elr_light {

@@ -15,8 +15,9 @@
  * diffuse lobe sample the map alone under a sun map, the product around the mirror direction otherwise; 0 never;
  * default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
- * --env-sun-diffuse map|product|alone (under a sun map, diffuse-only vertices: the map alone with MIS, the
- * product with MIS, the product light sample alone; default ELR_ENV_SUN_DIFFUSE),
+ * --env-sun-diffuse map|product|alone|suncos (under a sun map, diffuse-only vertices: the map alone with MIS, the
+ * product with MIS, the product light sample alone, the sun rule by the normal; default ELR_ENV_SUN_DIFFUSE: product),
+ * --env-sun-cos C (the sun rule's threshold: the map alone where the sun is within acos(C) of the normal),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
  * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|wave (the per-tile loop: the reference or the wave loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree),

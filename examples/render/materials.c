@@ -140,9 +140,10 @@ static ELR_NOINLINE void elr__bsdf_list(const elr_scene *s, const elr_material *
  * product around the normal 1.86x (city) and 5.95x (studio), the map alone then being what it lost
  * before (0.92x, 0.91x: the same variance at the product tables' extra time), the mirror 0.51x (studio:
  * the diffuse lobe is not around the mirror direction). Diffuse-only lobes under a sun map (elr__sun_share):
- * MIS, never the light sample alone (it leaves the sky unsampled in the shadows: 0.18-0.41x), by the map
- * alone where the sun is within acos(ELR_ENV_SUN_COS) = 60 degrees of the normal (elr_bsdf_cos_normal tests
- * it on wo's side), by the product elsewhere (bench/sun_rule.py: elr_internal.h's ELR_ENVSD_SUNCOS). */
+ * MIS, never the light sample alone (it leaves the sky unsampled in the shadows: 0.18-0.41x): by default
+ * product MIS (ELR_ENVSD_PRODUCT since the wave loop's batched product samples); with ELR_ENVSD_SUNCOS (the
+ * sun rule) by the map alone where the sun is within acos(ELR_ENV_SUN_COS) = 60 degrees of the normal
+ * (elr_bsdf_cos_normal tests it on wo's side), by the product elsewhere (bench/sun_rule.py, elr_internal.h). */
 static void elr__env_choice(const elr_scene *s, elr_bsdf *b) {
   float a = elr_bsdf_lobe_alpha(b);
   int diffuse = b->has_diffuse, peaked, sun_diffuse, i;

@@ -192,8 +192,8 @@ static int elr__mat_transmits_rough(const elr_scene *s) {
 /* The share of the environment's power (luminance x solid angle) that its brightest texels covering
  * ELR_ENV_SUN_AREA of the sphere hold: a sun's. Issue 20: under such a map the product light sample alone
  * misses the sky wherever the sun is occluded (bench/lobes.py's shadows region: 0.41x the map alone's
- * efficiency on city.hdr), so diffuse-only lobes there keep MIS (elr_scene.env_sunny): the map alone where
- * the sun is within 60 degrees of the normal, the product elsewhere (ELR_ENVSD_SUNCOS, bench/sun_rule.py). */
+ * efficiency on city.hdr), so diffuse-only lobes there keep MIS (elr_scene.env_sunny): product MIS
+ * (ELR_ENVSD_PRODUCT; the sun rule by the normal, ELR_ENVSD_SUNCOS, before batched product samples: bench/sun_rule.py). */
 typedef struct { float lum, w; } elr__texel_lw;
 static int elr__cmp_lum(const void *a, const void *b) {
   float x = ((const elr__texel_lw *)a)->lum, y = ((const elr__texel_lw *)b)->lum;

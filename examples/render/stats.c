@@ -109,7 +109,7 @@ void elr_stats_print(const elr_stats *st, void *fp) {
                "alone (metal of alpha < %g under a sun, rough transmission%s); "
                "the map's sun share %.3f\n",
             (unsigned long long)st->env_product_samples, (unsigned long long)st->env_light_only_samples, (double)b, (double)a,
-            (unsigned long long)st->env_map_samples, (double)a, sun > ELR_ENV_SUN_SHARE ? ", diffuse lobes with the sun within 60 degrees of the normal" : "", (double)sun);
+            (unsigned long long)st->env_map_samples, (double)a, sun > ELR_ENV_SUN_SHARE ? ", diffuse lobes under a sun by --env-sun-diffuse map or suncos" : "", (double)sun);
   }
   if (st->sun_used) { /* issue 22 (sun.c) */
     double n = (double)st->sun_looked;

@@ -8,11 +8,12 @@
  *     light sample alone (at or above the second with a diffuse lobe, twice the second without: metal;
  *     matte: then no BSDF-sampled ray either). With --env-sampling map nothing is counted as product.
  *     Under a sun map (one texel 1e6x the sky: render.c's elr__sun_share above ELR_ENV_SUN_SHARE) metal of
- *     alpha 0.05 takes the map alone, metal 0.7 the product light sample alone, matte (the sun rule,
- *     ELR_ENVSD_SUNCOS) the map alone where the sun is within 60 degrees of its normal (every visible one:
- *     the sun is 40 degrees from the view direction), product MIS elsewhere; with --env-sun-cos 0.8 both
- *     (each > 10%, none alone), with 1 all product MIS. Seen to fail with the rule's test in
- *     elr_bsdf_cos_normal taken on the normal turned away from wo (all product MIS at 0.5).
+ *     alpha 0.05 takes the map alone, metal 0.7 the product light sample alone, matte product MIS (the
+ *     default, ELR_ENVSD_PRODUCT); with the sun rule (--env-sun-diffuse suncos, ELR_ENVSD_SUNCOS) matte takes
+ *     the map alone where the sun is within 60 degrees of its normal (every visible one: the sun is 40
+ *     degrees from the view direction), product MIS elsewhere; with --env-sun-cos 0.8 both (each > 10%,
+ *     none alone), with 1 all product MIS. Seen to fail with the rule's test in elr_bsdf_cos_normal taken
+ *     on the normal turned away from wo (all product MIS at 0.5).
  *     Seen to fail with the mirror's strategy taken alone (no BSDF sample): the two metals below the first
  *     threshold and the count of product MIS samples in 2.
  *  2. Unbiased: a near-specular metal (alpha 0.02), a glossy plastic (roughness 0.1 remapped: alpha 0.46)
@@ -28,8 +29,8 @@
  *     power-heuristic weight (elr_estimate_direct and the wave loop's): directlighting image mean z = -47
  *     (default thresholds) and -37 (second threshold 1); the path tracer is not affected (it never takes
  *     the light sample alone).
- *     And under that sun map (directlighting, path): the diffuse vertices split by the sun rule, against
- *     the map alone.
+ *     And under that sun map (directlighting, path): the metal by the map alone, the diffuse vertices by
+ *     product MIS (and, directlighting, split by the sun rule), against the map alone.
  *  3. The mirror's product against the map alone on one metal sphere (unbiased_mirror, below).
  */
 #include "render_test_util.h"
@@ -91,11 +92,12 @@ static void make_map(void) {
 }
 
 static float g_sun_cos = -3.f; /* render's --env-sun-cos (< -2: the default) */
+static int g_sun_diffuse = -1; /* render's --env-sun-diffuse (-1: the default) */
 static int render(elr_scene *s, int env_sampling, float lobe_a, float light_a, uint64_t seed, elr_image *img, elr_stats *st) {
   elr_render_options o;
   char err[512];
   elr_render_options_default(&o);
-  o.env_sun_cos = g_sun_cos;
+  o.env_sun_cos = g_sun_cos; o.env_sun_diffuse = g_sun_diffuse;
   o.nthreads = 2; o.quiet = 1; o.seed = seed; o.env_sampling = env_sampling; o.env_lobe_alpha = lobe_a; o.env_light_alpha = light_a;
   if (elr_render(s, &o, img, st, err, sizeof err) != 0) { printf("render failed: %s\n", err); return -1; }
   return 0;
@@ -125,8 +127,8 @@ static void decisions(void) {
   };
   static const char *what[4] = {"the map alone", "product MIS", "the product light sample alone",
                                 "the map alone near the sun, product MIS elsewhere (both > 10%)"};
-  /* a sun map (1024 x 512, one texel 1e6x the sky: share 0.7 within ELR_ENV_SUN_AREA): matte takes the map alone, the
-   * glossy lobes keep their choice (render.c's elr__sun_share) */
+  /* a sun map (1024 x 512, one texel 1e6x the sky: share 0.7 within ELR_ENV_SUN_AREA): matte takes product MIS (the
+   * map alone near the sun with the sun rule), the glossy lobes keep their choice (render.c's elr__sun_share) */
   {
     static float m[3 * 1024 * 512];
     char err[256];
@@ -136,17 +138,19 @@ static void decisions(void) {
     if (el_image_write_pfm(rt_path("sun.pfm"), m, 1024, 512, 3, err, sizeof err) != 0) printf("write: %s\n", err);
   }
   int k;
-  for (k = 0; k < (int)(sizeof c / sizeof c[0]) + 5; k++) {
+  for (k = 0; k < (int)(sizeof c / sizeof c[0]) + 6; k++) {
     char err[512], mat[256];
     int sun = k >= (int)(sizeof c / sizeof c[0]), want;
     elr_scene *s;
     int ks = k - (int)(sizeof c / sizeof c[0]);
-    /* (the last five: matte, metal 0.05 and 0.7 under the sun map; matte with the sun rule's threshold at 0.8, at 1) */
+    /* (the last six: matte, metal 0.05 and 0.7 under the sun map; matte with the sun rule at its threshold 0.8, at 1,
+     * at the default 0.5) */
     snprintf(mat, sizeof mat, "%s", sun ? (ks == 0 || ks >= 3 ? "Material \"matte\"" : ks == 1
                                                 ? "Material \"metal\" \"float roughness\" [ 0.05 ] \"bool remaproughness\" \"false\""
                                                 : "Material \"metal\" \"float roughness\" [ 0.7 ] \"bool remaproughness\" \"false\"") : c[k].mat);
-    want = sun ? (ks == 3 ? 3 : ks == 2 ? 2 : ks == 4 ? 1 : 0) : c[k].want;
+    want = sun ? (ks == 3 ? 3 : ks == 2 ? 2 : ks == 4 || ks == 0 ? 1 : 0) : c[k].want;
     g_sun_cos = ks == 3 ? 0.8f : ks == 4 ? 1.f : -3.f;
+    g_sun_diffuse = ks >= 3 ? ELR_ENVSD_SUNCOS : -1;
     {
       char text[2048];
       snprintf(text, sizeof text, "%s", one_sphere(mat));
@@ -163,11 +167,11 @@ static void decisions(void) {
         : st.env_product_samples == st.samples && st.env_map_samples == 0 ? (st.env_light_only_samples == st.samples ? 2 : st.env_light_only_samples == 0 ? 1 : -1)
         : st.env_map_samples > st.samples / 10 && st.env_product_samples > st.samples / 10 && st.env_light_only_samples == 0 &&
           st.env_map_samples + st.env_product_samples == st.samples ? 3 : -1;
-    g_sun_cos = -3.f;
+    g_sun_cos = -3.f; g_sun_diffuse = -1;
     rt_check(got == want && (got != 2 || st.bsdf_light_rays == 0) && (got == 2 || st.bsdf_light_rays > 0) &&
              (sun ? st.light[0].env_sun_share > 0.5f : st.light[0].env_sun_share < ELR_ENV_SUN_SHARE),
              "%s%s, thresholds %g / %g: %s (sun share %.3f; samples %llu: product %llu, of them alone %llu, map %llu; BSDF rays %llu)", mat,
-             sun ? (ks == 3 ? " under the sun map, --env-sun-cos 0.8" : ks == 4 ? " under the sun map, --env-sun-cos 1" : " under the sun map") : "",
+             sun ? (ks == 3 ? " under the sun map, suncos 0.8" : ks == 4 ? " under the sun map, suncos 1" : ks == 5 ? " under the sun map, suncos" : " under the sun map") : "",
              sun ? -1.0 : (double)c[k].lobe_a, sun ? -1.0 : (double)c[k].light_a, what[want],
              (double)st.light[0].env_sun_share, (unsigned long long)st.samples,
              (unsigned long long)st.env_product_samples, (unsigned long long)st.env_light_only_samples,
@@ -246,7 +250,7 @@ static void unbiased(const char *integ, float lobe_a, float light_a, float metal
            worst, NSEED);
   if (strcmp(g_map, "sky.pfm"))
     rt_check(st0.env_map_samples > 0 && st0.env_product_samples > 0 && st0.light[0].env_sun_share > ELR_ENV_SUN_SHARE,
-             "%s under the sun map: the sun rule takes both the map alone (%llu light samples) and the product (%llu)", integ,
+             "%s under the sun map: both the map alone (%llu light samples: the metal, and the sun rule's) and the product (%llu)", integ,
              (unsigned long long)st0.env_map_samples, (unsigned long long)st0.env_product_samples);
   else if (!strstr(integ, "path"))
     rt_check(st0.env_map_samples == 0 && st0.env_light_only_samples > 0 && st0.env_product_samples > st0.env_light_only_samples,
@@ -302,9 +306,12 @@ int main(void) {
   /* the mirror's product on a broader metal lobe (alpha 0.2, threshold 0.25): light and BSDF samples both count there */
   unbiased("\"directlighting\"", 0.25f, -1.f, 0.2f);
   unbiased("\"path\" \"integer maxdepth\" [ 3 ]", 0.25f, -1.f, 0.2f);
-  g_map = "sun.pfm"; /* (written by decisions: the sun rule splits the diffuse vertices) */
+  g_map = "sun.pfm"; /* (written by decisions: the metal takes the map alone, the diffuse vertices product MIS) */
   unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
   unbiased("\"path\" \"integer maxdepth\" [ 3 ]", -1.f, -1.f, 0.02f);
+  g_sun_diffuse = ELR_ENVSD_SUNCOS; /* (the sun rule splits the diffuse vertices) */
+  unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
+  g_sun_diffuse = -1;
   g_map = "sky.pfm";
   unbiased_mirror();
   return rt_finish("test_render_lobes");
