@@ -49,6 +49,24 @@ static int parse_int(const char *s, long lo, long hi, long *out) {
   return 0;
 }
 
+/* The index of m among the '|'-separated names of choices ("mis|light|bsdf": "light" is 1); else
+ * prints "render: OPT CHOICES" and gives -1. */
+static int parse_choice(const char *opt, const char *m, const char *choices) {
+  const char *c = choices;
+  size_t n = strlen(m);
+  int k = 0;
+  for (;;) {
+    const char *end = strchr(c, '|');
+    size_t len = end ? (size_t)(end - c) : strlen(c);
+    if (len == n && !strncmp(c, m, n)) return k;
+    if (!end) break;
+    c = end + 1;
+    k++;
+  }
+  fprintf(stderr, "render: %s %s\n", opt, choices);
+  return -1;
+}
+
 int main(int argc, char **argv) {
   const char *scene = NULL, *outfile = NULL;
   elr_render_options o;
@@ -77,17 +95,14 @@ int main(int argc, char **argv) {
     } else if (!strcmp(a, "--stats")) stats = 1;
     else if (!strcmp(a, "--quiet")) o.quiet = 1;
     else if (!strcmp(a, "--light-sampling") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "mis")) o.light_sampling = 0; else if (!strcmp(m, "light")) o.light_sampling = 1;
-      else if (!strcmp(m, "bsdf")) o.light_sampling = 2;
-      else { fprintf(stderr, "render: --light-sampling mis|light|bsdf\n"); return 1; }
+      if ((o.light_sampling = parse_choice(a, argv[++i], "mis|light|bsdf")) < 0) return 1;
     } else if (!strcmp(a, "--compensated") && i + 1 < argc) {
       if (parse_int(argv[++i], 0, 1, &v)) { fprintf(stderr, "render: --compensated 0|1\n"); return 1; }
       o.compensated = (int)v;
     } else if (!strcmp(a, "--env-sampling") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "product")) o.env_sampling = 1; else if (!strcmp(m, "map")) o.env_sampling = 0;
-      else { fprintf(stderr, "render: --env-sampling product|map\n"); return 1; }
+      int k = parse_choice(a, argv[++i], "product|map");
+      if (k < 0) return 1;
+      o.env_sampling = 1 - k; /* product 1, map 0 */
     } else if (!strcmp(a, "--env-lobe-alpha") && i + 1 < argc) {
       char *e;
       double x;
@@ -101,24 +116,15 @@ int main(int argc, char **argv) {
       if (errno || *e || e == argv[i] || !(x >= 0.0)) { fprintf(stderr, "render: --env-light-alpha must be a number >= 0 or inf, got \"%s\"\n", argv[i]); return 1; }
       o.env_light_alpha = (float)x;
     } else if (!strcmp(a, "--importance") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "cellaverage")) o.importance = 0; else if (!strcmp(m, "pbrt-v3")) o.importance = 1;
-      else if (!strcmp(m, "texel")) o.importance = 2; else if (!strcmp(m, "bilinear")) o.importance = 3;
-      else { fprintf(stderr, "render: --importance cellaverage|pbrt-v3|texel|bilinear\n"); return 1; }
+      if ((o.importance = parse_choice(a, argv[++i], "cellaverage|pbrt-v3|texel|bilinear")) < 0) return 1;
     } else if (!strcmp(a, "--sampler") && i + 1 < argc) {
       int k = elr_sampler_kind_from_name(argv[++i]);
       if (k <= 0) { fprintf(stderr, "render: --sampler %s\n", SAMPLERS); return 1; }
       o.sampler = k;
     } else if (!strcmp(a, "--randomization") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "none")) o.randomization = 0; else if (!strcmp(m, "permutedigits")) o.randomization = 1;
-      else if (!strcmp(m, "fastowen")) o.randomization = 2; else if (!strcmp(m, "owen")) o.randomization = 3;
-      else { fprintf(stderr, "render: --randomization none|permutedigits|fastowen|owen\n"); return 1; }
+      if ((o.randomization = parse_choice(a, argv[++i], "none|permutedigits|fastowen|owen")) < 0) return 1;
     } else if (!strcmp(a, "--env-sun-diffuse") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "map")) o.env_sun_diffuse = 0; else if (!strcmp(m, "product")) o.env_sun_diffuse = 1;
-      else if (!strcmp(m, "alone")) o.env_sun_diffuse = 2; else if (!strcmp(m, "suncos")) o.env_sun_diffuse = 3;
-      else { fprintf(stderr, "render: --env-sun-diffuse map|product|alone|suncos\n"); return 1; }
+      if ((o.env_sun_diffuse = parse_choice(a, argv[++i], "map|product|alone|suncos")) < 0) return 1;
     } else if (!strcmp(a, "--env-sun-cos") && i + 1 < argc) {
       char *e;
       double x;
@@ -126,9 +132,9 @@ int main(int argc, char **argv) {
       if (errno || *e || e == argv[i] || !(x >= -1.0 && x <= 1.0)) { fprintf(stderr, "render: --env-sun-cos must be a number in [-1, 1], got \"%s\"\n", argv[i]); return 1; }
       o.env_sun_cos = (float)x;
     } else if (!strcmp(a, "--sun") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "auto")) o.env_sun = -1; else if (!strcmp(m, "off")) o.env_sun = 0; else if (!strcmp(m, "on")) o.env_sun = 1;
-      else { fprintf(stderr, "render: --sun auto|off|on\n"); return 1; }
+      int k = parse_choice(a, argv[++i], "auto|off|on");
+      if (k < 0) return 1;
+      o.env_sun = k - 1; /* auto -1, off 0, on 1 */
     } else if (!strcmp(a, "--loop") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "one")) o.loop = ELR_LOOP_ONE; else if (!strcmp(m, "wave")) o.loop = ELR_LOOP_WAVE;
@@ -143,10 +149,7 @@ int main(int argc, char **argv) {
       else if (!parse_int(m, 2, 1024, &v)) o.split = (int)v;
       else { fprintf(stderr, "render: --split off|auto|N (N in [2, 1024])\n"); return 1; }
     } else if (!strcmp(a, "--wave-api") && i + 1 < argc) {
-      const char *m = argv[++i];
-      if (!strcmp(m, "single")) o.wave_api = 0; else if (!strcmp(m, "packet16")) o.wave_api = 1;
-      else if (!strcmp(m, "stream")) o.wave_api = 2; else if (!strcmp(m, "soa")) o.wave_api = 3;
-      else { fprintf(stderr, "render: --wave-api single|packet16|stream|soa\n"); return 1; }
+      if ((o.wave_api = parse_choice(a, argv[++i], "single|packet16|stream|soa")) < 0) return 1;
     } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(); return 0; }
     else if (a[0] == '-' && a[1] == '-') { fprintf(stderr, "render: unknown or incomplete option \"%s\"\n", a); usage(); return 1; }
     else if (!scene) scene = a;
