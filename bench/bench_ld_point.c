@@ -28,24 +28,16 @@
 #define EL_IMPLEMENTATION
 #include "envlight.h"
 #include "image_io.h"
+#include "../tests/test_rng.h" /* splitmix64, hash32 */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static uint64_t g_s = 0x9E3779B97F4A7C15ull;
-static uint64_t rnd64(void) {
-  uint64_t z = (g_s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-static float rndf(void) { return (float)(rnd64() >> 40) * (1.0f / 16777216.0f); }
-static uint32_t hash32(uint32_t x) {
-  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
-  return x;
-}
+static splitmix64 g_s = {0x9E3779B97F4A7C15ull};
+static uint64_t rnd64(void) { return splitmix64_next(&g_s); }
+static float rndf(void) { return splitmix64_f(&g_s); }
 /* nested uniform (Owen) scramble of the top 24 bits of v with seed: bit i flipped by a hash of the bits above */
 static float owen(uint32_t v, uint32_t seed) {
   uint32_t out = 0;

@@ -38,16 +38,9 @@ static double now(void) { return (double)clock() / CLOCKS_PER_SEC; }
 #define UNITS 16777216.0
 #define ONE_MINUS 0.99999994f /* 0x1.fffffep-1 */
 
-/* splitmix64 */
-static uint64_t g_rng = 0x9E3779B97F4A7C15ull;
-static uint64_t rnd64(void) {
-  uint64_t z = (g_rng += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-static float rndu(void) { return (float)(rnd64() >> 40) * (1.0f / 16777216.0f); }
-#include "test_rng.h" /* hash32 */
+#include "test_rng.h" /* splitmix64, hash32 */
+static splitmix64 g_rng = {0x9E3779B97F4A7C15ull};
+static float rndu(void) { return splitmix64_f(&g_rng); }
 
 #include "test_chisq.h" /* gammq: the chi-square p-value */
 #define N_CHI2_TESTS 4 /* Bonferroni: every chi-square test in this file */

@@ -12,7 +12,9 @@
  *                                 Recipes' constants, 32-bit unsigned; lcg_next: the next state), floats
  *                                 in [0, 1) from its top 24 bits;
  *   xorshift32 x = {seed}; xorshift32_f(&x)  the MIP map tests' Marsaglia xorshift (13, 17, 5), likewise;
- *   xorshift64 x = {seed}; xorshift64_f(&x)  the portal's 64-bit xorshift (13, 7, 17), its top 24 bits.
+ *   xorshift64 x = {seed}; xorshift64_f(&x)  the portal's 64-bit xorshift (13, 7, 17), its top 24 bits;
+ *   splitmix64 g = {seed}; splitmix64_next(&g), splitmix64_f(&g)  Steele et al.'s SplitMix64 (the
+ *                                 distribution tests' and bench_ld_point's stream), floats from its top 24 bits.
  *
  * The streams are fixed: tests that check numbers drawn from a given seed rely on them. */
 #ifndef EL_TEST_RNG_H
@@ -59,5 +61,14 @@ static inline float xorshift64_f(xorshift64 *r) {
   r->s ^= r->s << 13; r->s ^= r->s >> 7; r->s ^= r->s << 17;
   return (float)(r->s >> 40) * (1.0f / 16777216.0f);
 }
+
+typedef struct { uint64_t s; } splitmix64;
+static inline uint64_t splitmix64_next(splitmix64 *r) {
+  uint64_t z = (r->s += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+static inline float splitmix64_f(splitmix64 *r) { return (float)(splitmix64_next(r) >> 40) * (1.0f / 16777216.0f); }
 
 #endif
