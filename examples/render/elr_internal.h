@@ -125,6 +125,10 @@ typedef struct elr_sphere {
   int material, light;
   int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
   int object;    /* -1, or the prototype it belongs to */
+  /* the intersection callbacks' (elr_sphere_prepare): the centre wc in o2w's target space (in float), o2w.inv's
+   * 3x3 with wc's place in object space as the fourth column, radius^2; sim: o2w is a similarity, of scale wr / radius */
+  float wc[3], w2o[12], r2, wr;
+  int sim;
 } elr_sphere;
 
 /* pbrt-v3's Disk (shapes/disk.cpp): the annulus innerradius <= r <= radius, 0 <= phi <= phimax, at
@@ -139,7 +143,9 @@ typedef struct elr_disk {
  * meshes and spheres with .object == its index, in its own space (the CTM at each Shape); ObjectInstance
  * places it with the CTM of that line (pbrt-v3's TransformedPrimitive). scene.c makes each prototype that
  * is instanced one Embree scene, and each instance an Embree instance of it: one copy of the geometry. */
-typedef struct elr_sphere_set { const struct elr_sphere *sph; const int *idx; } elr_sphere_set; /* user-geometry primID -> sphere */
+typedef struct elr_sphere_set { /* user-geometry primID -> sphere; simd: elr_sphere_simd() */
+  const struct elr_sphere *sph; const int *idx; int simd;
+} elr_sphere_set;
 typedef struct elr_object {
   int nmesh, nsph, ninstances;
   double lo[3], hi[3];        /* the bounds of its shapes, in its space */
@@ -379,6 +385,12 @@ void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, floa
 struct RTCBoundsFunctionArguments;
 struct RTCIntersectFunctionNArguments;
 struct RTCOccludedFunctionNArguments;
+void elr_sphere_prepare(elr_sphere *sp); /* w2o and r2, before Embree's build (scene.c) */
+/* the sphere callbacks' intersection of rays i0 .. i0 + 15 of N in Embree's RTCRayN layout (valid[i]
+ * -1: a ray to answer) with vectors of width simd (0 none, 1 SSE2, 2 AVX; at most elr_sphere_simd()):
+ * the bits of the rays that hit (bit i - i0), with t[i - i0] (the same t for every width) */
+unsigned elr_sphere_hit_rays(const elr_sphere *sp, int simd, const float *ray, unsigned N, unsigned i0, const int *valid, float t[16]);
+int elr_sphere_simd(void); /* the widest this CPU runs (or the environment's ELR_SPHERE_SIMD when lower) */
 void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
 void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
 void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);

@@ -43,6 +43,7 @@ static unsigned elr__attach_spheres(RTCDevice dev, RTCScene sc, elr_sphere_set *
   RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
   unsigned id;
   rtcSetGeometryUserPrimitiveCount(g, (unsigned)n);
+  set->simd = elr_sphere_simd();
   rtcSetGeometryUserData(g, set);
   rtcSetGeometryBoundsFunction(g, elr_sphere_bounds, NULL);
   rtcSetGeometryIntersectFunction(g, elr_sphere_intersect);
@@ -100,6 +101,7 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   if (!s->geom_kind || !s->geom_index) { snprintf(err, errlen, "out of memory"); return -1; }
   s->sphere_geom = ~0u;
   s->disk_geom = ~0u;
+  for (i = 0; i < s->nsph; i++) elr_sphere_prepare(&s->sph[i]); /* the callbacks' float copies */
   /* the world's meshes, one geometry each (a prototype's belong to its own scene, below) */
   for (i = 0; i < s->nmesh; i++) {
     unsigned id;
