@@ -103,29 +103,44 @@ void elr_sphere_prepare(elr_sphere *sp) {
 #define ELR__SPH_REDO 0.01f /* |disc| below this times r^2: double */
 #define ELR__SPH_FAR 1e6f   /* |o|^2 - r^2 above this times r^2: double */
 #define ELR__SPH_NEAR 1.5e-5f /* |o|^2 - r^2 within this times |o|^2 of 0: double */
-#define ELR__SPH_NAME elr__sph_hit_w1 /* one lane in plain C (no SIMD: the scalar instance) */
-#define ELR__SPH_W 1
-#define ELR__SPH_TARGET
-#define V float
-#define M int
-#define LOAD(p) (*(p))
-#define SET1(x) (x)
-#define ADD(a, b) ((a) + (b))
-#define SUB(a, b) ((a) - (b))
-#define MUL(a, b) ((a) * (b))
-#define DIV(a, b) ((a) / (b))
-#define SQRT(a) sqrtf(a)
-#define MIN(a, b) ((a) < (b) ? (a) : (b))
-#define MAX(a, b) ((a) > (b) ? (a) : (b))
-#define LT(a, b) ((a) < (b))
-#define GT(a, b) ((a) > (b))
-#define GE(a, b) ((a) >= (b))
-#define AND(a, b) ((a) & (b))
-#define OR(a, b) ((a) | (b))
-#define SEL(m, a, b) ((m) ? (a) : (b))
-#define BITS(m) (m)
-#define VALID(p) ((p)[0] == -1)
-#include "sphere_simd.h"
+/* one ray (rtcIntersect1, rtcOccluded1, and every ray without SIMD): sphere_simd.h's steps in plain C, in
+ * the same order (the same t as the vectors: test_render_sphere_float), leaving at the first sign of a miss;
+ * returns 1 on a hit (t in *t), 0 on a miss, -1 where float is not enough (elr__sph_hit decides) */
+#if defined(__GNUC__) && !defined(__clang__)
+#define ELR__SCALAR __attribute__((optimize("no-tree-vectorize"))) /* (gcc's SLP: more shuffles than it saves here) */
+#else
+#define ELR__SCALAR
+#endif
+ELR__SCALAR static int elr__sph_one(const elr_sphere *sp, const float *ray, size_t N, float *t) {
+  const float *m = sp->w2o, r2 = sp->r2;
+  float ox = ray[0] - sp->wc[0], oy = ray[N] - sp->wc[1], oz = ray[2 * N] - sp->wc[2], dx = ray[4 * N], dy = ray[5 * N], dz = ray[6 * N];
+  float o[3], d[3], a, b, ox2, c, l, l2, ar2, disc, q, t0, t1, lo, hi;
+  int k;
+  for (k = 0; k < 3; k++) {
+    const float *row = m + 4 * k;
+    d[k] = row[0] * dx + row[1] * dy + row[2] * dz;
+    o[k] = row[0] * ox + row[1] * oy + row[2] * oz + row[3];
+  }
+  a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  b = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
+  ox2 = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
+  c = ox2 - r2;
+  l = o[1] * d[2] - o[2] * d[1]; l2 = l * l;
+  l = o[2] * d[0] - o[0] * d[2]; l2 = l2 + l * l;
+  l = o[0] * d[1] - o[1] * d[0]; l2 = l2 + l * l;
+  ar2 = a * r2;
+  disc = ar2 - l2;
+  if ((disc < ar2 * ELR__SPH_REDO && disc > ar2 * -ELR__SPH_REDO) || c > r2 * ELR__SPH_FAR || (c < ox2 * ELR__SPH_NEAR && c > ox2 * -ELR__SPH_NEAR))
+    return -1;
+  if (!(disc >= 0.f)) return 0;
+  q = sqrtf(disc);
+  q = b < 0.f ? q - b : (0.f - b) - q;
+  t0 = q / a; t1 = c / q;
+  lo = t0 < t1 ? t0 : t1; hi = t0 > t1 ? t0 : t1;
+  if (lo > ray[3 * N] && lo < ray[8 * N]) { *t = lo; return 1; }
+  if (hi > ray[3 * N] && hi < ray[8 * N]) { *t = hi; return 1; }
+  return 0;
+}
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__) && !defined(ELR_NO_SIMD)
 #define ELR_SPHERE_SIMD 1
 #include <immintrin.h>
@@ -188,7 +203,17 @@ int elr_sphere_simd(void) {
   return w;
 }
 
-/* one vector of W lanes (the kernel of width W), then its ill-conditioned lanes in double */
+/* one ray in float, or in double where float is not enough: 1 on a hit (t in *t) */
+static int elr__sph_ray(const elr_sphere *sp, const float *ray, size_t N, float *t) {
+  int hit = elr__sph_one(sp, ray, N, t);
+  if (hit < 0) {
+    double td = elr__sph_hit(sp, ray[0], ray[N], ray[2 * N], ray[4 * N], ray[5 * N], ray[6 * N], ray[3 * N], ray[8 * N]);
+    *t = (float)td;
+    hit = td >= 0;
+  }
+  return hit;
+}
+/* W rays: a vector of SSE2's or AVX's, or one ray, then the lanes float cannot answer in double */
 static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *ray, size_t N, const int *valid, float *t) {
   int hit, redo, k;
 #if defined(ELR_SPHERE_SIMD)
@@ -196,7 +221,7 @@ static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *r
   else if (W == 4) hit = elr__sph_hit_sse2(sp, ray, N, valid, t, &redo);
   else
 #endif
-    hit = elr__sph_hit_w1(sp, ray, N, valid, t, &redo);
+    return valid[0] == -1 && elr__sph_ray(sp, ray, N, t);
   for (k = 0; redo >> k; k++)
     if (redo >> k & 1) {
       double td = elr__sph_hit(sp, ray[k], ray[N + k], ray[2 * N + k], ray[4 * N + k], ray[5 * N + k], ray[6 * N + k], ray[3 * N + k], ray[8 * N + k]);
@@ -205,23 +230,12 @@ static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *r
     }
   return (unsigned)hit;
 }
-/* the n < W last rays (N = 1 for rtcIntersect1): copies of the first fill the other lanes, not valid */
-static ELR_NOINLINE unsigned elr__sph_padded(const elr_sphere *sp, unsigned W, const float *ray, unsigned N, unsigned n, const int *valid,
-                                             float *t) {
-  float pad[9 * 8];
-  int vpad[8];
-  unsigned j, k;
-  for (k = 0; k < 9; k++)
-    for (j = 0; j < W; j++) pad[k * W + j] = ray[(size_t)k * N + (j < n ? j : 0)];
-  for (j = 0; j < W; j++) vpad[j] = j < n ? valid[j] : 0;
-  return elr__sph_vector(sp, W, pad, W, vpad, t);
-}
 unsigned elr_sphere_hit_rays(const elr_sphere *sp, int simd, const float *ray, unsigned N, unsigned i0, const int *valid, float t[16]) {
-  /* the widest vector the CPU runs and the rays fill (4 lanes for 1 to 3 rays) */
-  unsigned W = simd >= 2 && N >= 8 ? 8 : simd >= 1 ? 4 : 1, bits = 0, i, end = i0 + 16 < N ? i0 + 16 : N;
-  for (i = i0; i < end; i += W)
-    bits |= (i + W <= N ? elr__sph_vector(sp, W, ray + i, N, valid + i, t + (i - i0))
-                        : elr__sph_padded(sp, W, ray + i, N, N - i, valid + i, t + (i - i0))) << (i - i0);
+  unsigned bits = 0, i, end = i0 + 16 < N ? i0 + 16 : N, W;
+  for (i = i0; i < end; i += W) { /* the widest vector the CPU runs that the rays fill (one ray at a time for the rest) */
+    W = simd >= 2 && end - i >= 8 ? 8 : simd >= 1 && end - i >= 4 ? 4 : 1;
+    bits |= elr__sph_vector(sp, W, ray + i, N, valid + i, t + (i - i0)) << (i - i0);
+  }
   return bits;
 }
 
@@ -238,7 +252,8 @@ void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a) {
   unsigned N = a->N, i, k;
   for (i = 0; i < N; i += 16) {
     float t[16];
-    unsigned bits = elr_sphere_hit_rays(sp, set->simd, (const float *)rh, N, i, a->valid, t);
+    unsigned bits = N == 1 ? (unsigned)(a->valid[0] == -1 && elr__sph_ray(sp, (const float *)rh, 1, t)) /* rtcIntersect1 */
+                           : elr_sphere_hit_rays(sp, set->simd, (const float *)rh, N, i, a->valid, t);
     for (k = 0; bits; k++, bits >>= 1) {
       unsigned j = i + k;
       if (!(bits & 1)) continue;
@@ -259,7 +274,8 @@ void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a) {
   unsigned N = a->N, i, k;
   for (i = 0; i < N; i += 16) {
     float t[16];
-    unsigned bits = elr_sphere_hit_rays(sp, set->simd, (const float *)r, N, i, a->valid, t);
+    unsigned bits = N == 1 ? (unsigned)(a->valid[0] == -1 && elr__sph_ray(sp, (const float *)r, 1, t)) /* rtcOccluded1 */
+                           : elr_sphere_hit_rays(sp, set->simd, (const float *)r, N, i, a->valid, t);
     for (k = 0; bits; k++, bits >>= 1)
       if (bits & 1) ELR__RN(r, 8, N, i + k) = -INFINITY;
   }
