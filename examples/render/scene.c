@@ -110,8 +110,9 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     if (id == RTC_INVALID_GEOMETRY_ID) return -1;
     s->geom_kind[id] = 0; s->geom_index[id] = i;
   }
-  /* Spheres are the user geometry above (pbrt-v3's Sphere in object space, in double precision: any
-   * affine transform, so a non-uniform Scale gives an exact ellipsoid). With the environment variable
+  /* Spheres are the user geometry above (pbrt-v3's Sphere in object space, in float several rays at a
+   * time and in double where float is not enough, shapes.c: any affine transform, so a non-uniform
+   * Scale gives an exact ellipsoid). With the environment variable
    * ELR_EMBREE_SPHERES set, spheres whose object-to-world transform is a similarity (rotation, uniform
    * scale, translation) use Embree's RTC_GEOMETRY_TYPE_SPHERE_POINT instead; on the benchmark scene that
    * was not faster (830 vs 734 instructions per rtcIntersect1 under callgrind, and lower measured rates),
@@ -122,7 +123,11 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
    * the image differs in the sphere's pixels by at most 4.6e-5 relative (Embree's float t before the
    * projection onto the sphere); on 200000 random rays at the bench sphere the hit distances differ by
    * at most 1.4e-6 relative, the normals by 4.4e-6, and no ray hits one and misses the other. Exact
-   * enough, but not faster: still not the default. */
+   * enough, but not faster: still not the default. Since the callbacks test 4 or 8 rays at once in
+   * float (issue 21), Embree and intersection take 764 instructions per camera sample on bench_city
+   * (direct, callgrind_parts.sh) against 1396 with ELR_EMBREE_SPHERES=1 on the same build. The scene's
+   * build quality (LOW instead of HIGH) and RTC_SCENE_FLAG_DYNAMIC change nothing there (764: a sphere
+   * and two triangles), RTC_SCENE_FLAG_COMPACT costs more (796): HIGH, no flags stay. */
   s->sph_builtin = (int *)calloc((size_t)s->nsph + 1, sizeof(int));
   if (!s->sph_builtin) { snprintf(err, errlen, "out of memory"); return -1; }
   s->builtin_geom = ~0u;
