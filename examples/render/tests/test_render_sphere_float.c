@@ -101,7 +101,7 @@ int main(void) {
   s = rt_load("spheres.pbrt", scene, err, sizeof err);
   if (!s || s->nsph != NSPH || !rays || !kind) { printf("FAIL: loading the scene: %s\n", s ? "not 5 spheres" : err); return 1; }
   simd = elr_sphere_simd();
-  printf("vector widths tested: plain C%s%s%s\n", simd >= 1 ? ", SSE2" : "", simd >= 2 ? ", AVX" : "", simd >= 3 ? ", AVX-512" : "");
+  printf("vector widths tested: plain C%s%s\n", simd >= 1 ? ", SSE2" : "", simd >= 2 ? ", AVX" : "");
   for (si = 0; si < NSPH; si++) {
     const elr_sphere *sp = &s->sph[si];
     int n0 = si * (NRAYS / NSPH), n = NRAYS / NSPH;
