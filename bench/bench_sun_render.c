@@ -7,6 +7,10 @@
  *                    Run from the repository's root.
  *   bench_sun_render --csv [SPP [SEEDS [THREADS [SCENE ...]]]]   the same as CSV rows
  *                    (kind,option,scene,class,spp,pixels,mean,variance,cpu_s; option off / on)
+ *   bench_sun_render [--csv] [--split] [--loop-one] ...   --split: --sun split (sun.c: one spot and one sky sample per
+ *                    diffuse vertex, the one-sample loop) in place of --sun on; --loop-one: every render in the one-sample loop
+ *                    (the default's wave loop left out of the comparison); --pbrt-v3: every render with pbrt-v3's importance
+ *                    map (the default under a sun is le()'s patch density, on which no hot spot is found)
  *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
  *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below
  *   bench_sun_render --picture [OUT.png]   where 2000 light samples of a shadowed ground point land, without
@@ -192,8 +196,15 @@ int main(int argc, char **argv) {
   if (argc > 1 && !strcmp(argv[1], "--shadow-point")) return shadow_point();
   if (argc > 1 && !strcmp(argv[1], "--picture")) return picture(argc > 2 ? argv[2] : "out/03-sun-samples.png");
   static const char *defaults[3] = {"scenes/sun_shadow_object.pbrt", "scenes/sun_porch.pbrt", "scenes/bench_city.pbrt"};
-  int csv = argc > 1 && !strcmp(argv[1], "--csv");
+  int csv = argc > 1 && !strcmp(argv[1], "--csv"), cmp = 1; /* cmp: the env_sun compared with off (1 on, 2 split) */
   if (csv) { argc--; argv++; }
+  for (;;) { /* --split: --sun split instead of on; --loop-one: every render in the one-sample loop */
+    if (argc > 1 && !strcmp(argv[1], "--split")) cmp = 2;
+    else if (argc > 1 && !strcmp(argv[1], "--loop-one")) sm_loop = ELR_LOOP_ONE;
+    else if (argc > 1 && !strcmp(argv[1], "--pbrt-v3")) sm_importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
+    else break;
+    argc--; argv++;
+  }
   {
   int spp = argc > 1 ? atoi(argv[1]) : 16, ns = argc > 2 ? atoi(argv[2]) : 16, nt = argc > 3 ? atoi(argv[3]) : 2;
   const char **scenes = argc > 4 ? (const char **)(argv + 4) : defaults;
@@ -226,7 +237,7 @@ int main(int argc, char **argv) {
     } else
       cls = sm_classes(s, &w, &h);
     if (!cls) { printf("%s: no hot spot\n", scenes[i]); elr_scene_free(s); continue; }
-    if (sm_run(s, spp, ns, 0, nt, cls, w, h, &off) || sm_run(s, spp, ns, 1, nt, cls, w, h, &on)) return 1;
+    if (sm_run(s, spp, ns, 0, nt, cls, w, h, &off) || sm_run(s, spp, ns, cmp, nt, cls, w, h, &on)) return 1;
     toff = off.cpu / ns; ton = on.cpu / ns + on.st.t_sun_cpu;
     { /* the CPU per render for the equal-time columns: the best of CPU_ROUNDS interleaved rounds (off, on; the
        * render loop, plus the pilot for on), since the runs above take every off render, then every on one,
@@ -237,7 +248,7 @@ int main(int argc, char **argv) {
         for (mode = 0; mode < 2; mode++) {
           elr_stats st;
           double t;
-          o.spp = spp; o.seed = 1000; o.env_sun = mode;
+          o.spp = spp; o.seed = 1000; o.env_sun = mode ? cmp : 0; o.loop = sm_loop; o.importance = sm_importance;
           if (elr_render(s, &o, &im, &st, err, sizeof err) != 0) { printf("%s: %s\n", scenes[i], err); return 1; }
           elr_image_free(&im);
           t = st.t_render_cpu + (mode ? st.t_sun_cpu : 0.0);
@@ -247,12 +258,17 @@ int main(int argc, char **argv) {
     if (csv) {
       for (c = 1; c <= 2; c++) {
         printf("sun_cache,off,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, off.n[c], off.mean[c], off.var[c], toff);
-        printf("sun_cache,on,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, on.n[c], on.mean[c], on.var[c], ton);
+        printf("sun_cache,%s,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", cmp == 2 ? "split" : "on", scenes[i], c == 1 ? "shadowed" : "lit", spp, on.n[c], on.mean[c], on.var[c], ton);
       }
       sm_free(&off); sm_free(&on); free(cls);
       elr_scene_free(s);
       continue;
     }
+    if (cmp == 2)
+      printf("%s (%dx%d, %s): cpu per render off %.3f s, split %.3f s (tables %.3f s CPU); %llu vertices split, %llu of them the sky "
+             "alone (\"on\" below: split)\n", scenes[i], w, h, on.st.integrator_path ? "path" : "directlighting", toff, ton, on.st.t_sun_cpu,
+             (unsigned long long)on.st.sunsplit_vertices, (unsigned long long)on.st.sunsplit_sky_only);
+    else
     printf("%s (%dx%d, %s): cpu per render off %.3f s, on %.3f s (pilot %.3f s CPU); %.1f%% of the sun's light samples at lowered "
            "vertices, %.1f%% in a spot's cone (off: see --stats)\n",
            scenes[i], w, h, on.st.integrator_path ? "path" : "directlighting", toff, ton, on.st.t_sun_cpu,

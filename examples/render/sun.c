@@ -310,6 +310,20 @@ static int elr__sun_tables(elr_sun *S) {
   return 0;
 }
 
+/* the light's hot spots: found once per light and density, kept in the light (the scene's lights are never
+ * const objects; renders of one scene do not run concurrently); NULL: out of memory */
+static const el_envlight_hotspots *elr__sun_spots(const elr_light *l, const el_envlight *e) {
+  elr_light *lm = (elr_light *)l;
+  if (lm->sun_hs && lm->sun_hs_of != e) { el_envlight_hotspots_free(lm->sun_hs); free(lm->sun_hs); lm->sun_hs = NULL; }
+  if (!lm->sun_hs) {
+    lm->sun_hs = (el_envlight_hotspots *)calloc(1, sizeof *lm->sun_hs);
+    if (!lm->sun_hs) return NULL;
+    if (el_envlight_hotspots_init(lm->sun_hs, e, NULL) != EL_SUCCESS) memset(lm->sun_hs, 0, sizeof *lm->sun_hs);
+    lm->sun_hs_of = e;
+  }
+  return lm->sun_hs;
+}
+
 int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nthreads, elr_sun **out) {
   const elr_scene *s = C->s;
   elr_sun *S;
@@ -322,18 +336,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
   S = (elr_sun *)calloc(1, sizeof *S);
   if (!S) return -1;
   S->l = l;
-  { /* the light's hot spots: found once per light and density, kept in the light (the scene's lights are
-     * never const objects; renders of one scene do not run concurrently) */
-    elr_light *lm = (elr_light *)l;
-    if (lm->sun_hs && lm->sun_hs_of != l->env_sample) { el_envlight_hotspots_free(lm->sun_hs); free(lm->sun_hs); lm->sun_hs = NULL; }
-    if (!lm->sun_hs) {
-      lm->sun_hs = (el_envlight_hotspots *)calloc(1, sizeof *lm->sun_hs);
-      if (!lm->sun_hs) { free(S); return -1; }
-      if (el_envlight_hotspots_init(lm->sun_hs, l->env_sample, NULL) != EL_SUCCESS) memset(lm->sun_hs, 0, sizeof *lm->sun_hs);
-      lm->sun_hs_of = l->env_sample;
-    }
-    S->hs = lm->sun_hs;
-  }
+  if (!(S->hs = elr__sun_spots(l, l->env_sample))) { free(S); return -1; }
   if (S->hs->count == 0) { free(S); return 0; } /* nothing to learn */
   nk = S->hs->count;
   for (k = 0; k < nk; k++) { Ps += S->hs->spot[k].share; S->cos_half[k] = cosf(S->hs->spot[k].half_angle); }
@@ -547,4 +550,147 @@ int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
   return 1;
+}
+
+/* >> --sun split: one sample of the hot spots and one of the rest x cosine (issue 22's "draw one sun and one
+ * sky sample"; see the comment at the top). The parts' supports are disjoint (a bin is in a spot or in the
+ * rest), so the multi-sample MIS weights over the three techniques (spots p_s, sky p_r, BSDF p_b; one sample
+ * each) are, with the power heuristic, p_s^2 / (p_s^2 + p_b^2) for the spot sample, p_r^2 / (p_r^2 + p_b^2)
+ * for the sky sample and p_b^2 / (p_b^2 + (p_s + p_r)^2) for the BSDF sample (p_s + p_r: the part that holds
+ * wi, elr_sunsplit_pdf); at every direction the weights of the techniques that can draw it sum to 1. */
+#ifndef ELR_SUNSPLIT_HORIZON
+#define ELR_SUNSPLIT_HORIZON 1 /* where every spot lies below the normal's horizon (f is 0 there): 1 the renderer's product
+                                * sample (no split), 2 the sky sample alone, 0 both samples anyway */
+#endif
+#ifndef ELR_SUNSPLIT_SKY_COS
+#define ELR_SUNSPLIT_SKY_COS 1 /* 1: the sky by the rest x cosine (el_envlight_sample_li_mix_cos); 0: the map's rest */
+#endif
+#ifndef ELR_SUNSPLIT_SPOT_PRODUCT
+#define ELR_SUNSPLIT_SPOT_PRODUCT 0 /* 1: the first sample by product sampling (sample_li_cos: the sun and the sky) */
+#endif
+#define ELR_SUNSPLIT_NO 33 /* the normals of the sky's tables: an octahedral grid of 33 x 33 points, the axes among
+                            * them, the rest within about 4 degrees */
+struct elr_sunsplit {
+  const elr_light *l;
+  const el_envlight *e; /* the density whose hot spots and mixtures are sampled (l->env) */
+  const el_envlight_hotspots *hs;
+  el_envlight_mix_weights wspot, wsky; /* the spots at their shares and the rest 0; the rest alone */
+  float cos_half[EL_ENVLIGHT_HOTSPOT_MAX], sin_half[EL_ENVLIGHT_HOTSPOT_MAX];
+  el_envlight_mix_cos_table *tabs;     /* the rest x cosine for each grid normal (ELR_SUNSPLIT_NO^2) */
+  double cpu;
+};
+
+/* the grid point of the octahedral map (y the pole: Y-up scenes' ground is a point) nearest to unit n */
+static int elr__sunsplit_qi(elr_v3 n) {
+  float a = fabsf(n.x) + fabsf(n.y) + fabsf(n.z), x, z, h = 0.5f * (float)(ELR_SUNSPLIT_NO - 1);
+  int i, j;
+  if (!(a > 0.f)) return 0;
+  x = n.x / a; z = n.z / a;
+  if (n.y < 0.f) {
+    float tx = (1.f - fabsf(z)) * (x >= 0.f ? 1.f : -1.f), tz = (1.f - fabsf(x)) * (z >= 0.f ? 1.f : -1.f);
+    x = tx; z = tz;
+  }
+  i = (int)lrintf((x + 1.f) * h); j = (int)lrintf((z + 1.f) * h);
+  i = i < 0 ? 0 : i >= ELR_SUNSPLIT_NO ? ELR_SUNSPLIT_NO - 1 : i;
+  j = j < 0 ? 0 : j >= ELR_SUNSPLIT_NO ? ELR_SUNSPLIT_NO - 1 : j;
+  return j * ELR_SUNSPLIT_NO + i;
+}
+static void elr__sunsplit_qn(int q, float n[3]) {
+  float x = 2.f * (float)(q % ELR_SUNSPLIT_NO) / (float)(ELR_SUNSPLIT_NO - 1) - 1.f;
+  float z = 2.f * (float)(q / ELR_SUNSPLIT_NO) / (float)(ELR_SUNSPLIT_NO - 1) - 1.f, y = 1.f - fabsf(x) - fabsf(z), l2;
+  if (y < 0.f) {
+    float tx = (1.f - fabsf(z)) * (x >= 0.f ? 1.f : -1.f), tz = (1.f - fabsf(x)) * (z >= 0.f ? 1.f : -1.f);
+    x = tx; z = tz;
+  }
+  l2 = 1.f / sqrtf(x * x + y * y + z * z);
+  n[0] = x * l2; n[1] = y * l2; n[2] = z * l2;
+}
+
+int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
+  elr_sunsplit *P;
+  double c0 = elr_cpu_now();
+  int k, q;
+  *out = NULL;
+  P = (elr_sunsplit *)calloc(1, sizeof *P);
+  if (!P) return -1;
+  P->l = l;
+  /* (the light's own density, not its env_sample: under a sun the render samples the map alone by le()'s
+   * patches, EL_ENVLIGHT_IMPORTANCE_BILINEAR, on which no hot spot is found) */
+  P->e = l->env;
+  if (!(P->hs = elr__sun_spots(l, P->e))) { free(P); return -1; }
+  if (P->hs->count == 0) { free(P); return 0; } /* nothing to split */
+  c0 = elr_cpu_now(); /* (the tables' time: the hot spots are the light's, found once) */
+  for (k = 0; k < P->hs->count; k++) {
+    P->wspot.spot[k] = P->hs->spot[k].share;
+    float a = 1.1f * P->hs->spot[k].half_angle + 1e-3f; /* (a margin: the cone bounds its bins' corners and edge midpoints) */
+    P->cos_half[k] = cosf(a); P->sin_half[k] = sinf(a);
+  }
+  P->wsky.rest = 1.f;
+  if (ELR_SUNSPLIT_SKY_COS) {
+    P->tabs = (el_envlight_mix_cos_table *)malloc((size_t)ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO * sizeof *P->tabs);
+    if (!P->tabs) { free(P); return -1; }
+    for (q = 0; q < ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO; q++) {
+      float n[3];
+      elr__sunsplit_qn(q, n);
+      el_envlight_mix_cos_prepare(P->e, P->hs, &P->wsky, n, &P->tabs[q]);
+    }
+  }
+  P->cpu = elr_cpu_now() - c0;
+  *out = P;
+  return 0;
+}
+void elr_sunsplit_free(elr_sunsplit *P) {
+  if (!P) return;
+  free(P->tabs);
+  free(P);
+}
+double elr_sunsplit_cpu(const elr_sunsplit *P) { return P ? P->cpu : 0.0; }
+const elr_light *elr_sunsplit_light(const elr_sunsplit *P) { return P ? P->l : NULL; }
+
+int elr_sunsplit_at(const elr_sunsplit *P, const elr_light *l, const elr_bsdf *b, const elr_v3 *n) {
+  int k;
+  if (!P || l != P->l || !n || b->env_mirror) return 0; /* (env_mirror: n is a lobe's proxy, not the normal) */
+  if (!ELR_SUNSPLIT_HORIZON) return 2;
+  for (k = 0; k < P->hs->count; k++) /* some of spot k's cone above n's horizon: angle(n, axis) < 90 deg + half-angle */
+    if (elr_dot(*n, elr_v(P->hs->spot[k].axis[0], P->hs->spot[k].axis[1], P->hs->spot[k].axis[2])) > -P->sin_half[k]) return 2;
+  return ELR_SUNSPLIT_HORIZON == 2 ? 1 : 0;
+}
+
+/* the sky part's density at d (world, unit) for normal n */
+static float elr__sunsplit_sky_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  const el_envlight *e = P->e;
+  return ELR_SUNSPLIT_SKY_COS ? el_envlight_pdf_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], d) : el_envlight_pdf_li_mix(e, P->hs, &P->wsky, d);
+}
+/* the first part's density at d: the spots' (0 outside their cones) or product sampling's */
+static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  const el_envlight *e = P->e;
+  int k;
+  if (ELR_SUNSPLIT_SPOT_PRODUCT) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
+  for (k = 0; k < P->hs->count; k++)
+    if (d[0] * P->hs->spot[k].axis[0] + d[1] * P->hs->spot[k].axis[1] + d[2] * P->hs->spot[k].axis[2] >= P->cos_half[k])
+      return el_envlight_pdf_li_mix(e, P->hs, &P->wspot, d);
+  return 0.f;
+}
+
+void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, const float u[2], elr_light_sample *ls, float *other, elr_tstats *ts) {
+  const el_envlight *e = P->e;
+  float wi[3], L[3];
+  ls->at_point = 0; ls->dist = INFINITY; ls->portal = -1;
+  if (k == 0 && ELR_SUNSPLIT_SPOT_PRODUCT) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
+  else if (k == 0) el_envlight_sample_li_mix(e, P->hs, &P->wspot, u, wi, L, &ls->pdf);
+  else if (ELR_SUNSPLIT_SKY_COS) el_envlight_sample_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], u, wi, L, &ls->pdf);
+  else el_envlight_sample_li_mix(e, P->hs, &P->wsky, u, wi, L, &ls->pdf);
+  ls->wi = elr_from3(wi); ls->L = elr_from3(L);
+  /* (the other part's density there: 0 between the spots and the sky, whose supports are disjoint) */
+  *other = !(ls->pdf > 0.f) || !ELR_SUNSPLIT_SPOT_PRODUCT || parts != 2 ? 0.f : k == 0 ? elr__sunsplit_sky_pdf(P, n, wi) : elr__sunsplit_spot_pdf(P, n, wi);
+  ts->env_product++;
+}
+
+float elr_sunsplit_pdf(const elr_sunsplit *P, int parts, elr_v3 n, elr_v3 wi) {
+  float d[3], p, q;
+  elr_to3(wi, d);
+  p = elr__sunsplit_sky_pdf(P, n, d);
+  if (parts != 2) return p;
+  q = elr__sunsplit_spot_pdf(P, n, d);
+  return q > 0.f ? sqrtf(p * p + q * q) : p;
 }
