@@ -1063,6 +1063,7 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out); /* 0 and *out (N
 void elr_sunsplit_free(elr_sunsplit *P);
 double elr_sunsplit_cpu(const elr_sunsplit *P); /* CPU seconds of the build (hot spots and tables) */
 const elr_light *elr_sunsplit_light(const elr_sunsplit *P);
+int elr_sunsplit_spot(const elr_sunsplit *P); /* how the spot sample is drawn (sun.c's ELR_SUNSPLIT_SPOT) */
 /* whether vertex (BSDF b, product normal n or NULL) of light l splits, and then from which part: 2 both, 1 the sky only
  * (every spot below n's horizon), 0 no split */
 int elr_sunsplit_at(const elr_sunsplit *P, const elr_light *l, const elr_bsdf *b, const elr_v3 *n);

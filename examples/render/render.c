@@ -624,7 +624,7 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
       if (elr_sunsplit_build(l, split) != 0) return -1;
       C->sunsplit = *split;
       if (*split) C->loop = ELR_LOOP_ONE;
-      if (st && *split) { st->sunsplit_used = 1; st->t_sun_cpu = elr_sunsplit_cpu(*split); }
+      if (st && *split) { st->sunsplit_used = 1; st->sunsplit_spot = elr_sunsplit_spot(*split); st->t_sun_cpu = elr_sunsplit_cpu(*split); }
       return 0;
     }
     if (elr_sun_build(C, l, fb, nthreads, sun) != 0) return -1;

@@ -565,9 +565,13 @@ int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf
 #ifndef ELR_SUNSPLIT_SKY_COS
 #define ELR_SUNSPLIT_SKY_COS 1 /* 1: the sky by the rest x cosine (el_envlight_sample_li_mix_cos); 0: the map's rest */
 #endif
-#ifndef ELR_SUNSPLIT_SPOT_PRODUCT
-#define ELR_SUNSPLIT_SPOT_PRODUCT 0 /* 1: the first sample by product sampling (sample_li_cos: the sun and the sky) */
+#ifndef ELR_SUNSPLIT_SPOT
+#define ELR_SUNSPLIT_SPOT -1 /* the first sample: 0 the spots' bins (sample_li_mix, the spots alone), 1 product sampling
+                              * (sample_li_cos: the sun and the sky), 2 the render's own density of the map (sample_li:
+                              * le()'s patches under a sun), kept only inside the spots' cones; -1: 2 where the spots
+                              * hold at least ELR_SUNSPLIT_SPOT_SHARE of the map's power (few samples dropped), else 0 */
 #endif
+#define ELR_SUNSPLIT_SPOT_SHARE 0.5f
 #define ELR_SUNSPLIT_NO 33 /* the normals of the sky's tables: an octahedral grid of 33 x 33 points, the axes among
                             * them, the rest within about 4 degrees */
 struct elr_sunsplit {
@@ -577,6 +581,7 @@ struct elr_sunsplit {
   el_envlight_mix_weights wspot, wsky; /* the spots at their shares and the rest 0; the rest alone */
   float cos_half[EL_ENVLIGHT_HOTSPOT_MAX], sin_half[EL_ENVLIGHT_HOTSPOT_MAX];
   el_envlight_mix_cos_table *tabs;     /* the rest x cosine for each grid normal (ELR_SUNSPLIT_NO^2) */
+  int spot;                            /* how the first sample is drawn (ELR_SUNSPLIT_SPOT) */
   double cpu;
 };
 
@@ -610,6 +615,7 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   elr_sunsplit *P;
   double c0 = elr_cpu_now();
   int k, q;
+  float ps = 0.f;
   *out = NULL;
   P = (elr_sunsplit *)calloc(1, sizeof *P);
   if (!P) return -1;
@@ -626,6 +632,9 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
     P->cos_half[k] = cosf(a); P->sin_half[k] = sinf(a);
   }
   P->wsky.rest = 1.f;
+  for (k = 0; k < P->hs->count; k++) ps += P->hs->spot[k].share;
+  P->spot = ELR_SUNSPLIT_SPOT >= 0 ? ELR_SUNSPLIT_SPOT : ps >= ELR_SUNSPLIT_SPOT_SHARE ? 2 : 0;
+  if (P->spot == 2 && el_envlight_prepare_sampling(l->env_sample) != EL_SUCCESS) { free(P); return -1; }
   if (ELR_SUNSPLIT_SKY_COS) {
     P->tabs = (el_envlight_mix_cos_table *)malloc((size_t)ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO * sizeof *P->tabs);
     if (!P->tabs) { free(P); return -1; }
@@ -646,6 +655,7 @@ void elr_sunsplit_free(elr_sunsplit *P) {
 }
 double elr_sunsplit_cpu(const elr_sunsplit *P) { return P ? P->cpu : 0.0; }
 const elr_light *elr_sunsplit_light(const elr_sunsplit *P) { return P ? P->l : NULL; }
+int elr_sunsplit_spot(const elr_sunsplit *P) { return P ? P->spot : -1; }
 
 int elr_sunsplit_at(const elr_sunsplit *P, const elr_light *l, const elr_bsdf *b, const elr_v3 *n) {
   int k;
@@ -661,28 +671,34 @@ static float elr__sunsplit_sky_pdf(const elr_sunsplit *P, elr_v3 n, const float 
   const el_envlight *e = P->e;
   return ELR_SUNSPLIT_SKY_COS ? el_envlight_pdf_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], d) : el_envlight_pdf_li_mix(e, P->hs, &P->wsky, d);
 }
-/* the first part's density at d: the spots' (0 outside their cones) or product sampling's */
-static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
-  const el_envlight *e = P->e;
+/* whether d lies in a spot's cone (widened: cos_half) */
+static int elr__sunsplit_in_cone(const elr_sunsplit *P, const float d[3]) {
   int k;
-  if (ELR_SUNSPLIT_SPOT_PRODUCT) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
   for (k = 0; k < P->hs->count; k++)
-    if (d[0] * P->hs->spot[k].axis[0] + d[1] * P->hs->spot[k].axis[1] + d[2] * P->hs->spot[k].axis[2] >= P->cos_half[k])
-      return el_envlight_pdf_li_mix(e, P->hs, &P->wspot, d);
-  return 0.f;
+    if (d[0] * P->hs->spot[k].axis[0] + d[1] * P->hs->spot[k].axis[1] + d[2] * P->hs->spot[k].axis[2] >= P->cos_half[k]) return 1;
+  return 0;
+}
+/* the first part's density at d (ELR_SUNSPLIT_SPOT) */
+static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  if (P->spot == 1) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
+  if (!elr__sunsplit_in_cone(P, d)) return 0.f;
+  return P->spot == 2 ? el_envlight_pdf_li(P->l->env_sample, d) : el_envlight_pdf_li_mix(P->e, P->hs, &P->wspot, d);
 }
 
 void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, const float u[2], elr_light_sample *ls, float *other, elr_tstats *ts) {
   const el_envlight *e = P->e;
   float wi[3], L[3];
   ls->at_point = 0; ls->dist = INFINITY; ls->portal = -1;
-  if (k == 0 && ELR_SUNSPLIT_SPOT_PRODUCT) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
-  else if (k == 0) el_envlight_sample_li_mix(e, P->hs, &P->wspot, u, wi, L, &ls->pdf);
+  if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
+  else if (k == 0 && P->spot == 2) { /* (a sample outside the cones is dropped: the part's density is 0 there) */
+    el_envlight_sample_li(P->l->env_sample, u, wi, L, &ls->pdf);
+    if (!elr__sunsplit_in_cone(P, wi)) ls->pdf = 0.f;
+  } else if (k == 0) el_envlight_sample_li_mix(e, P->hs, &P->wspot, u, wi, L, &ls->pdf);
   else if (ELR_SUNSPLIT_SKY_COS) el_envlight_sample_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], u, wi, L, &ls->pdf);
   else el_envlight_sample_li_mix(e, P->hs, &P->wsky, u, wi, L, &ls->pdf);
   ls->wi = elr_from3(wi); ls->L = elr_from3(L);
-  /* (the other part's density there: 0 between the spots and the sky, whose supports are disjoint) */
-  *other = !(ls->pdf > 0.f) || !ELR_SUNSPLIT_SPOT_PRODUCT || parts != 2 ? 0.f : k == 0 ? elr__sunsplit_sky_pdf(P, n, wi) : elr__sunsplit_spot_pdf(P, n, wi);
+  /* (the other part's density there: with the spots' bins (ELR_SUNSPLIT_SPOT 0) none, the supports are disjoint) */
+  *other = !(ls->pdf > 0.f) || P->spot == 0 || parts != 2 ? 0.f : k == 0 ? elr__sunsplit_sky_pdf(P, n, wi) : elr__sunsplit_spot_pdf(P, n, wi);
   ts->env_product++;
 }
 
