@@ -1,5 +1,5 @@
-/* sun.c: where the sun is hidden (issue 22; render --sun on, off by default). The environment's hot spots
- * (envlight.h's el_envlight_hotspots: a sun, a lamp) are sampled less where a pilot found them hidden,
+/* sun.c: where the sun is hidden (issue 22; render --sun on, off by default; --sun split, SPLITTING below). The
+ * environment's hot spots (envlight.h's el_envlight_hotspots: a sun, a lamp) are sampled less where a pilot found them hidden,
  * and the sky that lights those places gets their samples. No pbrt counterpart (pbrt-v3 and -v4 sample
  * the map whole; Cycles cone-samples only its procedural sky's sun, with a fixed MIS weight).
  *
@@ -81,6 +81,36 @@
  * vertices alone the shadow's variance is 1.006x less, at all 1.009x (before the horizon rule; its direct
  * light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is indirect
  * light from the sunlit ground, which no light-sample density changes.
+ *
+ * SPLITTING BY COMPONENT (render --sun split, issue 22's "one sun and one sky sample"; no pilot, no cache). At a
+ * vertex with a product normal n (elr_bsdf_cos_normal: diffuse and broad lobes) under a sun map, instead of the one
+ * product light sample: a SPOT sample and a SKY sample (the rest x cosine, el_envlight_sample_li_mix_cos_table with
+ * the spots' weight 0, one table per normal of an octahedral grid of 33 x 33, made once: 2 ms), plus the BSDF sample,
+ * one each, weighted by the power heuristic over the three techniques: a light sample of density p in direction w
+ * gets p^2 / (p^2 + p_o(w)^2 + p_b(w)^2) (p_o the other light sample's density there, p_b the BSDF's), the BSDF sample
+ * p_b^2 / (p_b^2 + p_s^2 + p_r^2) (elr_sunsplit_pdf); so the weights of the techniques that reach w sum to 1 and the
+ * estimate is unbiased (test_render_sun: |z| < 4 against the default, 8 seeds per class). The spot sample is the
+ * render's own density of the map (sample_li: le()'s patches under a sun) kept only inside the spots' cones (widened
+ * 10%; the rest dropped) where the spots hold at least half the power (sunrise.hdr: 0.75), else the spots' own bins
+ * (sample_li_mix, the rest's weight 0; city.hdr: 0.245). Where every spot lies below n's horizon, the renderer's
+ * product sample (no split). Both samples use the same two numbers (a third draw from the sampler: shadow 1.47x
+ * against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
+ * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
+ * shadowed 1.45x / 0.97x / 1.02x less variance at equal spp, lit 0.78x / 0.77x / 1.33x, the whole image 0.85x /
+ * 0.93x / 1.27x; at equal time against the default's wave loop 0.40x / 0.46x / 0.55x (the CPU 2.1x, 2.0x, 2.3x),
+ * against the default in the same one-sample loop (--loop-one) 0.68x / 0.74x / 1.09x (CPU 1.24x, 1.25x, 1.16x).
+ * sun_rule.py (time to unit variance against the default, 4 seeds, 16 spp): 0.50, 0.54, 0.49. So off (an option).
+ * Variants (on sun_shadow_object, the first with the spots' bins on sunrise.hdr too: shadow 1.48x, lit 0.54x, whole
+ * 0.61x: its one-texel sun's bins have a constant density under a bilinear le(), and every spot sample lands there;
+ * the next as changes of that): the map's density in the cone on city: lit 0.77x (three quarters of its draws leave
+ * the cone); product sampling as the first sample (sample_li_cos, MIS with the sky sample where both reach): shadow
+ * 1.59x (city 1.29x), lit 0.91x (0.73x), whole 0.97x (0.79x); the sky by the map's rest without the cosine: shadow
+ * 1.37x; the two light samples without the BSDF sample at diffuse-only vertices: shadow 1.14x (1.24x with product
+ * sampling first); a third sampler draw for the sky sample: 1.47x against 1.54x; the sky sample alone where the spots
+ * are below the horizon (the same variance as drawing both there: the spot sample's f is 0):
+ * shadow 1.54x against 1.48x, lit unchanged. The shadow gains little because the default's BSDF sample already finds
+ * the sky there (A3.14); the lit pixels lose wherever the spot sample is worse than the product sampler's bilinear
+ * patches, and the extra sample and shadow ray cost 16-25% in the same loop.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
