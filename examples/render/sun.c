@@ -99,7 +99,10 @@
  * shadowed 1.45x / 0.97x / 1.02x less variance at equal spp, lit 0.78x / 0.77x / 1.33x, the whole image 0.85x /
  * 0.93x / 1.27x; at equal time against the default's wave loop 0.40x / 0.46x / 0.55x (the CPU 2.1x, 2.0x, 2.3x),
  * against the default in the same one-sample loop (--loop-one) 0.68x / 0.74x / 1.09x (CPU 1.24x, 1.25x, 1.16x).
- * sun_rule.py (time to unit variance against the default, 4 seeds, 16 spp): 0.50, 0.54, 0.49. So off (an option).
+ * At 64 spp (4 seeds): shadowed 1.63x / 0.94x / 0.83x, lit 0.96x / 0.87x / 1.01x, whole 1.03x / 0.93x / 0.98x at
+ * equal spp, 0.47x / 0.44x / 0.46x at equal time. bench/sun_rule.py (the whole image's relative variance over 4 seeds,
+ * 16 spp, one thread: time to unit variance against the default) 0.71x / 0.49x / 0.48x (per sample 1.31x / 1.01x /
+ * 1.11x). So off: an option.
  * Variants (on sun_shadow_object, the first with the spots' bins on sunrise.hdr too: shadow 1.48x, lit 0.54x, whole
  * 0.61x: its one-texel sun's bins have a constant density under a bilinear le(), and every spot sample lands there;
  * the next as changes of that): the map's density in the cone on city: lit 0.77x (three quarters of its draws leave
