@@ -1053,6 +1053,7 @@ int elr_sun_in_spot(const elr_sun *S, const float wi[3]);
  * choice for diffuse lobes asked for the map alone (sun.c) */
 int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n);
 float elr_sun_cell_alpha(const elr_sun_cell *c); /* sum P_k v_k / sum P_k of the cell (NULL: 1) */
+int elr_sun_cell_product(const elr_sun_cell *c, int has_n); /* the cell's density at a vertex with a product normal is the product's */
 void elr_sun_count(const elr_sun *S, const elr_sun_cell *c, const float wi[3], float pdf, elr_tstats *ts); /* --stats */
 /* elr_light_sample_li for the sun's light at a vertex of cell c (not NULL), counted for --stats */
 void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], elr_light_sample *ls, elr_tstats *ts);

@@ -257,10 +257,11 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
     return;
   }
   if (!l->product) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
-  if (sun) { /* (sun.c: the vertices whose cell lowers a hot spot's weight, then the rest as below; --stats) */
+  if (sun) { /* (sun.c: the vertices whose cell lowers a hot spot's weight, then the rest as below; --stats; a horizon cell's
+             * product samples with the others: elr_sun_cell_product) */
     nm = 0;
     for (i = 0; i < n; i++)
-      if (sc[i]) elr_sun_sample(sun, sc[i], has_n[i] ? &normal[i] : NULL, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
+      if (sc[i] && !elr_sun_cell_product(sc[i], has_n[i])) elr_sun_sample(sun, sc[i], has_n[i] ? &normal[i] : NULL, &u[2 * i], &wi[3 * i], &Le[3 * i], &pdf[i]);
   } else { /* the map alone for all (diffuse vertices under a sun): one call on the arrays themselves */
     for (i = 0; i < n && !has_n[i]; i++) {}
     if (i == n) { el_envlight_sample_li_n(l->env_sample, n, u, wi, Le, pdf); return; }
@@ -270,7 +271,7 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
     float nn[3 * ELR_WAVE];
     int nc = 0;
     for (i = 0; i < n; i++)
-      if (!(sun && sc[i]) && has_n[i]) { idx[nc] = i; elr_to3(normal[i], &nn[3 * nc]); um[2 * nc] = u[2 * i]; um[2 * nc + 1] = u[2 * i + 1]; nc++; }
+      if (!(sun && sc[i] && !elr_sun_cell_product(sc[i], 1)) && has_n[i]) { idx[nc] = i; elr_to3(normal[i], &nn[3 * nc]); um[2 * nc] = u[2 * i]; um[2 * nc + 1] = u[2 * i + 1]; nc++; }
     if (nc > 0) el_envlight_sample_li_cos_n(l->env_sample, nc, nn, um, wm, Lm, pm);
     for (k = 0; k < nc; k++) {
       i = idx[k];
@@ -422,7 +423,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
         const elr_sun_cell *c = W->vsc[W->pair_of[k]];
         int i = W->light[k], has = i >= 0 ? W->has_n[i] : elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nv);
         if (i >= 0 && has) nv = W->normal[i];
-        if (c) p->bpdf_env = elr_sun_pdf(C->sun, c, has ? &nv : NULL, d);
+        if (c && !elr_sun_cell_product(c, has)) p->bpdf_env = elr_sun_pdf(C->sun, c, has ? &nv : NULL, d);
         else if (has) { elr_to3(nv, &nn[3 * nc]); memcpy(&dc[3 * nc], d, 3 * sizeof(float)); kc[nc++] = k; } /* (elr_light_pdf_li) */
         else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = k; }
       } else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = k; }
@@ -524,7 +525,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
         else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) { /* (only where the weight is
           * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
-          if (W->p[j].prev_sun) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
+          if (W->p[j].prev_sun && !elr_sun_cell_product(W->p[j].prev_sun, W->p[j].prev_has_n)) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
           else if (W->p[j].prev_has_n) { elr_to3(W->p[j].prev_n, &nn[3 * nc]); memcpy(&dc[3 * nc], &W->wi[3 * e], 3 * sizeof(float)); kc[nc++] = e; } /* (elr_light_pdf_li) */
           else { memcpy(&dm[3 * nm], &W->wi[3 * e], 3 * sizeof(float)); km[nm++] = e; }
         } else W->pdf[e] = 0.f;

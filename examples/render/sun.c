@@ -550,6 +550,9 @@ float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, cons
 }
 
 float elr_sun_cell_alpha(const elr_sun_cell *c) { return c ? c->alpha : 1.f; }
+/* whether elr_sun_sample / elr_sun_pdf at a vertex of cell c (with a product normal: has_n) are the renderer's product
+ * sampling itself (a horizon cell): render_wave.c then draws them with the default's batched calls, the same bits */
+int elr_sun_cell_product(const elr_sun_cell *c, int has_n) { return c && has_n && c->horizon; }
 
 /* --stats: a light sample of the sun's light in direction wi (pdf 0: none), at a vertex of cell c (NULL: the
  * light's own density) */
