@@ -109,6 +109,10 @@ static void no_spot(void) {
   o.spp = 2; o.quiet = 1; o.nthreads = 1; o.env_sun = 1;
   rt_check(elr_render(s, &o, &im, &st, err, sizeof err) == 0 && !st.sun_used, "a map without a hot spot (overcast), --sun on: no cache");
   elr_image_free(&im);
+  o.env_sun = 2;
+  rt_check(elr_render(s, &o, &im, &st, err, sizeof err) == 0 && !st.sunsplit_used, "a map without a hot spot (overcast), --sun split: no split");
+  elr_image_free(&im);
+  o.env_sun = 1;
   elr_scene_free(s);
   snprintf(text, sizeof text, "Camera \"perspective\"\nFilm \"image\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
            "WorldBegin\nLightSource \"infinite\" \"string mapname\" \"%s/envmaps/studio.hdr\"\n"
@@ -116,6 +120,9 @@ static void no_spot(void) {
   s = rt_load("studio.pbrt", text, err, sizeof err);
   if (!s) { rt_check(0, "studio scene loads: %s", err); return; }
   rt_check(elr_render(s, &o, &im, &st, err, sizeof err) == 0 && !st.sun_used, "lamps without a sun (studio.hdr: 4 hot spots), --sun on: no cache");
+  elr_image_free(&im);
+  o.env_sun = 2;
+  rt_check(elr_render(s, &o, &im, &st, err, sizeof err) == 0 && !st.sunsplit_used, "lamps without a sun (studio.hdr), --sun split: no split");
   elr_image_free(&im);
   elr_scene_free(s);
 }
@@ -145,6 +152,11 @@ static void hostile(void) {
     for (i = 0; ok && i < im.width * im.height * 3; i++) ok = isfinite(im.rgb[i]) && im.rgb[i] >= 0.f;
     rt_check(ok && st.sun_used, "--sun on, %s: renders, finite pixels (%lld pilot points, %lld cells)",
              k == 0 ? "a camera that sees no surface" : k == 1 ? "1 x 1 pixel" : "a crop window", (long long)st.sun_pilot_points, (long long)st.sun_cells);
+    if (ok) elr_image_free(&im);
+    o.env_sun = 2;
+    ok = elr_render(s, &o, &im, &st, err, sizeof err) == 0;
+    for (i = 0; ok && i < im.width * im.height * 3; i++) ok = isfinite(im.rgb[i]) && im.rgb[i] >= 0.f;
+    rt_check(ok && st.sunsplit_used, "--sun split, %s: renders, finite pixels", k == 0 ? "a camera that sees no surface" : k == 1 ? "1 x 1 pixel" : "a crop window");
     if (ok) elr_image_free(&im);
     elr_scene_free(s);
   }
