@@ -324,9 +324,10 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
        * (EL_ENVLIGHT_IMPORTANCE_BILINEAR, issue 22: bench/sun_rule.py --strategies pbrtv3,default; README)
        * with a low-discrepancy sampler, whose points it keeps stratified; not with independent samples
        * (about break-even there: its CPU for 1.06x less variance), nor with --sun on, whose cache needs
-       * the hot spots of a piecewise-constant density (--sun split finds them on the light's own density) */
+       * the hot spots of a piecewise-constant density (--sun split finds them on the light's own density, and
+       * takes the patches with any sampler: its spot sample draws them, sun.c) */
       if (l->importance_auto) l->importance_auto = 1; /* (2: chosen below, for --stats) */
-      if (importance < 0 && l->importance_auto && (o->env_sun <= 0 || o->env_sun == 2) && C->sampler.kind != ELR_SAMPLER_RANDOM && l->env->mapping == EL_ENVLIGHT_MAPPING_LATLONG && !l->portal) {
+      if (importance < 0 && l->importance_auto && (o->env_sun <= 0 || o->env_sun == 2) && (C->sampler.kind != ELR_SAMPLER_RANDOM || o->env_sun == 2) && l->env->mapping == EL_ENVLIGHT_MAPPING_LATLONG && !l->portal) {
         share = elr__sun_share(l->env, axis);
         if (share > ELR_ENV_SUN_SHARE) { importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR; l->importance_auto = 2; /* (--stats) */ }
       }
