@@ -3143,69 +3143,6 @@ EL_DEF void el_envlight_zup_matrix(float m[9]) {
 
 #define EL_ENVLIGHT__CELL_UNITS 32768u  /* a cell table's integer total (its entries are uint16_t) */
 
-/* The atan-free locate's tables (grids of at least 256 x 128: patch angles <= pi / 128; importance BILINEAR
- * keeps its own in the light's fields, product sampling in its warp): bin finders over half texels (2w
- * bins over pdf_li's diamond angle, 2h over its t; el_envlight__finder), then the column references
- * (col: cos, sin of each texel centre's phi) and the patch rows' (row, 8 floats per row: cos, sin of the
- * edge nearer the pole, t0, 1 / dtheta, dtheta, the row's height factor 4 or 8 (the pole rows), 0, 0).
- * el_envlight__half_find reads them; el_envlight__half_build makes them. */
-typedef struct el_envlight__hf {
-  int *ub, *vb;     /* the finders' bases (edges below each cell) */
-  float *ue, *ve;   /* the finders' edges (the one edge inside each cell, or 5) */
-  float us, vs;     /* cells per unit of the diamond angle / of t */
-  float wk;         /* w / 2 pi: an angle in phi -> a fraction of a patch column */
-  int w, uc, vc;    /* patch columns; the finders' cells */
-  float *col, *row; /* the references (one allocation: col first) */
-  float *edge;      /* h + 2 (cos, sin) of the patch rows' edges: row r spans edges r and r + 1 (edge 0 the
-                       north pole, (1, 0), edge h + 1 the south pole, (-1, 0)); each row's reference edge is the
-                       same two floats as in row; in the same allocation */
-} el_envlight__hf;
-static void el_envlight__half_free(el_envlight__hf *F) {
-  EL_FREE(F->ub); EL_FREE(F->vb); EL_FREE(F->ue); EL_FREE(F->ve); EL_FREE(F->col);
-  memset(F, 0, sizeof *F);
-}
-static el_result el_envlight__half_build(int w, int h, el_envlight__hf *F) {
-  int i, r;
-  el_result res;
-  memset(F, 0, sizeof *F);
-  res = el_envlight__finder(2 * w, 4, &F->ub, &F->ue, &F->uc);
-  if (res == EL_SUCCESS) res = el_envlight__finder(2 * h, 2, &F->vb, &F->ve, &F->vc);
-  if (res != EL_SUCCESS) return res;
-  F->us = (float)(F->uc - 2) * 0.25f;
-  F->vs = (float)(F->vc - 2) * 0.5f;
-  F->w = w;
-  F->wk = (float)w * 0.159154943f;
-  F->col = (float *)EL_MALLOC(((size_t)2 * (size_t)w + 2 + 8 * ((size_t)h + 1) + 2 * ((size_t)h + 2)) * sizeof(float));
-  if (!F->col) return EL_ERROR_OUT_OF_MEMORY;
-  F->row = F->col + 2 * (size_t)w + 2;
-  F->edge = F->row + 8 * ((size_t)h + 1);
-  F->edge[0] = 1.0f; F->edge[1] = 0.0f; F->edge[2 * (size_t)h + 2] = -1.0f; F->edge[2 * (size_t)h + 3] = 0.0f;
-  for (i = 0; i < w; ++i) {
-    double a = 2.0 * EL_ENVLIGHT__PI * (i + 0.5) / w;
-    F->col[2 * i] = (float)cos(a); F->col[2 * i + 1] = (float)sin(a);
-  }
-  F->col[2 * w] = F->col[0]; F->col[2 * w + 1] = F->col[1];
-  for (r = 0; r <= h; ++r) {
-    float *t = F->row + 8 * (size_t)r;
-    double dt = (r == 0 || r == h ? 0.5 : 1.0) * EL_ENVLIGHT__PI / h, ref;
-    int north = 2 * r <= h; /* the middle row (h even) may take either edge */
-    ref = north ? (r == 0 ? 0.0 : EL_ENVLIGHT__PI * (r - 0.5) / h) : (r == h ? EL_ENVLIGHT__PI : EL_ENVLIGHT__PI * (r + 0.5) / h);
-    memset(t, 0, 8 * sizeof(float));
-    t[0] = (float)cos(ref); t[1] = north ? (float)sin(ref) : (float)sin(EL_ENVLIGHT__PI - ref); /* sin 0 and sin pi: exactly 0 */
-    t[2] = north ? 0.0f : 1.0f;
-    t[3] = (float)(1.0 / dt); t[4] = (float)dt;
-    t[5] = r == 0 || r == h ? 8.0f : 4.0f;
-    if (r > 0) { /* edge r, the top of row r: the reference of row r (north) or of row r - 1 (south) */
-      F->edge[2 * r] = north ? t[0] : (float)cos(EL_ENVLIGHT__PI * (r - 0.5) / h);
-      F->edge[2 * r + 1] = north ? t[1] : (float)sin(EL_ENVLIGHT__PI - EL_ENVLIGHT__PI * (r - 0.5) / h);
-    }
-  }
-  return EL_SUCCESS;
-}
-static size_t el_envlight__half_bytes(const el_envlight__hf *F, int w, int h) {
-  return (size_t)(F->uc + F->vc) * (sizeof(int) + sizeof(float)) + ((size_t)2 * (size_t)w + 8 * ((size_t)h + 1)) * sizeof(float);
-}
-
 struct el_envlight__warp {
   int w, h, ku, kv;      /* the image (w patch columns, h + 1 patch rows); cells */
   int all_zero;          /* no mass anywhere: every pdf is 0 */
@@ -3236,7 +3173,6 @@ struct el_envlight__warp {
   int coarse;            /* 1: V is a max-filtered coarse grid of the map (maps over the size cap) */
   uint8_t *gcol, *grow;  /* guide tables (issue 20) of pcol per (r, a) and prow per (a, b), or NULL */
   float dens_k;          /* 2^-60 w h / (2 pi^2): integer widths -> density per solid angle x sin */
-  el_envlight__hf hf;    /* product sampling's atan-free locate (grids of at least 256 x 128; else hf.row NULL) */
 };
 
 /* cdf[0..n] for n weights >= 0, total `units`: every positive weight gets at least one unit and the rest
@@ -3378,7 +3314,7 @@ static void el_envlight__warp_free(struct el_envlight__warp *W) {
   if (!W) return;
   EL_FREE(W->sin_row); EL_FREE(W->V); EL_FREE(W->coff); EL_FREE(W->a0); EL_FREE(W->b0);
   EL_FREE(W->cu_of); EL_FREE(W->cv_of); EL_FREE(W->mass); EL_FREE(W->cos_tab); EL_FREE(W->cos_off); EL_FREE(W->V16); EL_FREE(W->gcol); EL_FREE(W->grow);
-  EL_FREE(W->pcol); EL_FREE(W->prow); el_envlight__half_free(&W->hf);
+  EL_FREE(W->pcol); EL_FREE(W->prow);
   EL_FREE(W);
 }
 
@@ -3748,11 +3684,7 @@ static EL_ENVLIGHT__NOINLINE el_result el_envlight__prod_build(const el_envlight
   res = el_envlight__cos_build(W, m);
   if (res != EL_SUCCESS) goto fail;
   EL_FREE(W->mass); W->mass = NULL; /* only the build needs the cells' masses (and no plain table) */
-  if (gw >= 256 && gh >= 128) { /* the atan-free locate's tables */
-    res = el_envlight__half_build(gw, gh, &W->hf);
-    if (res != EL_SUCCESS) goto fail;
-  }
-  W->warp_bytes = (W->hf.row ? el_envlight__half_bytes(&W->hf, gw, gh) : 0) + sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(uint16_t) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
+  W->warp_bytes = sizeof *W + (size_t)gh * sizeof(float) + nv * sizeof(uint16_t) + (size_t)ku * sizeof(int) + np * sizeof(uint16_t) +
                   nr * sizeof(uint16_t) + ((size_t)ku + (size_t)kv + 2 + (size_t)gw + (size_t)gh + 1) * sizeof(int) +
                   (W->gcol ? ((size_t)gh + 1 + (size_t)kv) * (size_t)ku * EL_ENVLIGHT__GUIDE_K : 0);
   *out = W;
@@ -3854,120 +3786,6 @@ static inline int el_envlight__prod_locate(const struct el_envlight__warp *W, co
   return 1;
 }
 
-/* THE ATAN-FREE LOCATE (importance BILINEAR's pdf_li and product sampling's, grids of at least 256 x 128:
- * patch angles <= pi / 128). The patch column and row come from bin finders over half texels
- * (el_envlight__finder with 2w and 2h bins: the texel centres are the odd edges), as pdf_li's own bins;
- * s and t from the angle to a reference edge of the patch, atan of the tangent of the difference,
- * (y c - x s) / (x c + y s) for phi and (r c - z s) / (z c + r s) for theta (|angle| <= pi / 128: atan q =
- * q - q^3 / 3 to float precision). Column i's reference is its texel centre phi_i; patch row r's is its
- * edge nearer the pole (the pole itself for the two pole rows), so that a sampler's sin(theta) = s cos a +
- * c sin a never cancels; t = t0 + angle / dtheta. The samplers form their directions from the same
- * references by angle addition (el_envlight__half_dir). */
-/* atan(q) for |q| <= tan(pi / 128): q - q^3 / 3 (the next term, q^5 / 5, is below 2e-9 q) */
-static inline float el_envlight__atan_small(float q) { return q - q * q * q * 0.333333343f; }
-
-/* The half-texel bin finders' patch (i, r) of a light-space direction (x, y, z), rr = sqrt(x^2 + y^2). */
-static inline void el_envlight__half_bins(const el_envlight__hf *F, float x, float y, float z, float rr, int *i, int *r) {
-  float pu, tv;
-  uint32_t hu, hv;
-  size_t c;
-  pu = 2.0f - copysignf(1.0f + x / (fabsf(x) + fabsf(y) + FLT_MIN), y); /* pdf_li's diamond angle */
-  pu = pu < 3.99999976f ? pu : 3.99999976f;
-  c = (size_t)(int64_t)(pu * F->us);
-  hu = (uint32_t)F->ub[c] + (pu >= F->ue[c]); /* the half texel */
-  tv = 1.0f - z / (rr + fabsf(z));
-  c = (size_t)(int64_t)(tv * F->vs);
-  hv = (uint32_t)F->vb[c] + (tv >= F->ve[c]);
-  *i = hu == 0 ? F->w - 1 : (int)((hu - 1u) >> 1); /* half texel 0: the last column's second half */
-  *r = (int)((hv + 1u) >> 1);
-}
-/* (s, t) of (x, y, z) in patch (i, r) from the angles to its references; q gets them, (i, r), rr, len */
-static inline void el_envlight__half_st(const el_envlight__hf *F, int i, int r, float x, float y, float z, float rr, float len2, el_envlight__ploc *q) {
-  float cs = F->col[2 * i], sn = F->col[2 * i + 1], a;
-  const float *rt = F->row + 8 * (size_t)r;
-  a = el_envlight__atan_small((y * cs - x * sn) / (x * cs + y * sn)) * F->wk;
-  q->s = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f;
-  a = rt[2] + el_envlight__atan_small((rr * rt[0] - z * rt[1]) / (z * rt[0] + rr * rt[1])) * rt[3];
-  q->Y = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f; /* t */
-  q->i = i; q->r = r; q->rr = rr; q->len2 = el_envlight__sqrt(len2); /* len */
-}
-/* <<Locate the patch>> of a light-space direction (x, y, z), r2 = x^2 + y^2 and len2 normal floats, without
- * atan: patch (i, r), fractions (s, t), and rr = sqrt(r2), len = sqrt(len2) in q (q.s, q.Y = t, q.rr,
- * q.len2 = len; q.u, q.v, q.vp unused). */
-static inline void el_envlight__half_find(const el_envlight__hf *F, float x, float y, float z, float r2, float len2, el_envlight__ploc *q) {
-  float rr = el_envlight__sqrt(r2);
-  int i, r;
-  el_envlight__half_bins(F, x, y, z, rr, &i, &r);
-  el_envlight__half_st(F, i, r, x, y, z, rr, len2, q);
-}
-
-/* Product sampling's rule for the patch of a direction (its atan-free locate): column i holds the
- * directions with phi >= phi_i and < phi_{i + 1} (the texel centres), row r those with theta >= edge r
- * and < edge r + 1, each side decided by the sign of the direction's cross product with that edge, in
- * float (y cos phi_e - x sin phi_e; rr cos theta_e - z sin theta_e), the same operations whoever asks:
- * so a sampler that knows its patch checks it without the finders (el_envlight__prod_st_in), and the pdf
- * starts from the finders' patch and steps to the neighbour the signs point to (at most twice per axis;
- * on the axis, where no column's signs agree, the finders' column). */
-static inline float el_envlight__cross_phi(const el_envlight__hf *F, int i, float x, float y) {
-  return y * F->col[2 * i] - x * F->col[2 * i + 1];
-}
-static inline float el_envlight__cross_theta(const el_envlight__hf *F, int e, float z, float rr) {
-  return rr * F->edge[2 * e] - z * F->edge[2 * e + 1];
-}
-/* (s, t) of (x, y, z) in patch (i, r) (el_envlight__half_st), and 1 when the rule puts it there. Two of the
- * four signs are those of the numerators of s and t (the cross products with the references); the other
- * two follow from the fractions unless the point lies within 2^-10 of the far edges (the fractions' error
- * is below 1e-4 of a patch on grids up to 2048 x 1024, and 2^-10 of a patch is more than 2.6e-6 rad
- * there, far above the cross product's rounding), and are computed only then. */
-static inline int el_envlight__prod_st_in(const el_envlight__hf *F, int i, int r, float x, float y, float z, float rr, float len2, el_envlight__ploc *q) {
-  float cs = F->col[2 * i], sn = F->col[2 * i + 1], cl, nt, a, b;
-  const float *rt = F->row + 8 * (size_t)r;
-  int in;
-  cl = y * cs - x * sn;
-  a = el_envlight__atan_small(cl / (x * cs + y * sn)) * F->wk;
-  nt = rr * rt[0] - z * rt[1];
-  b = rt[2] + el_envlight__atan_small(nt / (z * rt[0] + rr * rt[1])) * rt[3];
-  q->s = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f;
-  q->Y = b < 1.0f ? (b > 0.0f ? b : 0.0f) : 1.0f; /* t */
-  q->i = i; q->r = r; q->rr = rr; q->len2 = el_envlight__sqrt(len2); /* len */
-  in = cl >= 0.0f && (a < 0.999023438f || el_envlight__cross_phi(F, i + 1, x, y) < 0.0f); /* (col holds w + 1 entries) */
-  if (rt[2] == 0.0f) return in && nt >= 0.0f && (b < 0.999023438f || el_envlight__cross_theta(F, r + 1, z, rr) < 0.0f); /* north: the reference is edge r */
-  return in && nt < 0.0f && (b > 9.765625e-4f || el_envlight__cross_theta(F, r, z, rr) >= 0.0f); /* south: edge r + 1 */
-}
-static EL_ENVLIGHT__NOINLINE void el_envlight__prod_half_fix(const el_envlight__hf *F, int h, float x, float y, float z, float rr, float len2, el_envlight__ploc *q) {
-  int i = q->i, r = q->r, k;
-  for (k = 0; k < 3; ++k) {
-    if (el_envlight__cross_phi(F, i, x, y) < 0.0f) i = i > 0 ? i - 1 : F->w - 1;
-    else if (el_envlight__cross_phi(F, i + 1, x, y) >= 0.0f) i = i + 1 < F->w ? i + 1 : 0;
-    else break;
-  }
-  if (k == 3) i = q->i;
-  for (k = 0; k < 3; ++k) {
-    if (el_envlight__cross_theta(F, r, z, rr) < 0.0f && r > 0) --r;
-    else if (el_envlight__cross_theta(F, r + 1, z, rr) >= 0.0f && r < h) ++r;
-    else break;
-  }
-  if (k == 3) r = q->r;
-  el_envlight__half_st(F, i, r, x, y, z, rr, len2, q);
-}
-static inline void el_envlight__prod_half_find(const el_envlight__hf *F, int h, float x, float y, float z, float r2, float len2, el_envlight__ploc *q) {
-  float rr = el_envlight__sqrt(r2);
-  int i, r;
-  el_envlight__half_bins(F, x, y, z, rr, &i, &r);
-  if (!el_envlight__prod_st_in(F, i, r, x, y, z, rr, len2, q)) el_envlight__prod_half_fix(F, h, x, y, z, rr, len2, q);
-}
-
-/* The light-space direction at angle b (phi, from column reference ct) and fraction t of patch row rt,
- * by angle addition from the references (sin b = b - b^3 / 6, cos b = 1 - b^2 / 2: |b| <= pi / 128). */
-static inline void el_envlight__half_dir(const float *ct, const float *rt, float b, float t, float d[3]) {
-  float a = (t - rt[2]) * rt[4], b2 = b * b, a2 = a * a;
-  float cb = 1.0f - 0.5f * b2, sb = b - b * b2 * 0.166666672f, ca = 1.0f - 0.5f * a2, sa = a - a * a2 * 0.166666672f;
-  float st = rt[1] * ca + rt[0] * sa;
-  d[0] = st * (ct[0] * cb - ct[1] * sb);
-  d[1] = st * (ct[1] * cb + ct[0] * sb);
-  d[2] = rt[0] * ca - rt[1] * sa;
-}
-
 /* The density at a located point of patch (q->i, q->r) whose cell has integer width wc (cell row x cell)
  * and patch width wr (patch row x patch): P / (mean(corners) du dv 2 pi^2) x bil(s, t) / sin(theta).
  * The sampler calls it with the widths it picked from, the pdf with the widths it reads: the same bits. */
@@ -4009,51 +3827,19 @@ static EL_ENVLIGHT__PROD_INLINE int el_envlight__prod_widths(const struct el_env
   return *wc != 0 && *wr != 0;
 }
 
-/* Where product sampling's pdf finds a light-space direction d (any length): the atan-free locate on grids
- * of at least 256 x 128 (as importance BILINEAR's pdf_li: a d shorter than 2^-30 is scaled by 2^40 first,
- * exactly, so that its squares stay normal floats), else le()'s atans (el_envlight__prod_locate). 0: a
- * zero or NaN d. */
-static inline int el_envlight__prod_find(const struct el_envlight__warp *W, const float dir[3], el_envlight__ploc *q) {
-  float d[3], r2, len2;
-  if (!W->hf.row) return el_envlight__prod_locate(W, dir, q);
-  d[0] = dir[0]; d[1] = dir[1]; d[2] = dir[2];
-  r2 = d[0] * d[0] + d[1] * d[1];
-  len2 = r2 + d[2] * d[2];
-  if (!(len2 >= 8.67361738e-19f && len2 <= FLT_MAX)) { /* 2^-60 */
-    if (len2 >= FLT_MIN && len2 <= FLT_MAX) { d[0] *= 1.09951163e12f; d[1] *= 1.09951163e12f; d[2] *= 1.09951163e12f; }
-    else if (!el_envlight__rescale(d)) return 0;
-    r2 = d[0] * d[0] + d[1] * d[1];
-    len2 = r2 + d[2] * d[2];
-  }
-  el_envlight__prod_half_find(&W->hf, W->h, d[0], d[1], d[2], r2, len2, q);
-  return 1;
-}
-
-/* The density at a point found by the atan-free locate (el_envlight__prod_eval's quantity, the pole rows
- * as importance BILINEAR's el_envlight__patch_density): P / (mean(corners) du dv 2 pi^2) x bil(s, t) / sin
- * theta, sin theta = rr / len; at the pole itself (rr = 0) bil / sin -> the other edge / dtheta. */
-static inline float el_envlight__prod_eval_half(const struct el_envlight__warp *W, const el_envlight__ploc *q, uint32_t wc, uint32_t wr, const float c[4]) {
-  const float *rt = W->hf.row + 8 * (size_t)q->r;
-  float s = q->s, t = q->Y, e0 = c[0] + s * (c[1] - c[0]), e1 = c[2] + s * (c[3] - c[2]), sum = (c[0] + c[1]) + (c[2] + c[3]), p;
-  p = (float)wc * (float)wr * (W->dens_k * rt[5]) / sum;
-  if (q->rr > 0.0f) p *= (e0 + t * (e1 - e0)) * (q->len2 / q->rr);
-  else p *= (e0 + e1) * rt[3]; /* the exact pole: one of e0, e1 is 0 */
-  return p < FLT_MAX ? p : FLT_MAX;
-}
-static inline float el_envlight__prod_density(const struct el_envlight__warp *W, const el_envlight__ploc *q, uint32_t wc, uint32_t wr, const float c[4]) {
-  return W->hf.row ? el_envlight__prod_eval_half(W, q, wc, wr, c) : el_envlight__prod_eval(W, q, wc, wr, c);
-}
-
 /* <<Compute PDF>> of product sampling at a light-space direction d (any length) for cell table tab:
- * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). q gets
- * where it found d. */
-static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], el_envlight__ploc *q) {
+ * P(cell) P(patch row | cell) P(patch | row) bil(s, t) / mean(corners) / (du dv 2 pi^2 sin theta). uv (may
+ * be NULL) gets the (u, v) at which le() looks d up. */
+static float el_envlight__prod_pdf_light(const struct el_envlight__warp *W, const uint16_t *tab, const float dir[3], float *uv) {
+  el_envlight__ploc q;
   float c[4];
   uint32_t wc, wr;
-  if (!el_envlight__prod_find(W, dir, q)) return 0.0f;
-  if (!el_envlight__prod_widths(W, tab, q->i, q->r, &wc, &wr)) return 0.0f;
-  el_envlight__prod_corners(W, q->i, q->r, c);
-  return el_envlight__prod_density(W, q, wc, wr, c);
+  if (uv) uv[0] = uv[1] = 0.0f;
+  if (!el_envlight__prod_locate(W, dir, &q)) return 0.0f;
+  if (uv) { uv[0] = q.u; uv[1] = q.v; }
+  if (!el_envlight__prod_widths(W, tab, q.i, q.r, &wc, &wr)) return 0.0f;
+  el_envlight__prod_corners(W, q.i, q.r, c);
+  return el_envlight__prod_eval(W, &q, wc, wr, c);
 }
 
 /* <<Pick a cell>>, then its patch row and the patch for u, in four stages (each ends at the next table
@@ -4108,33 +3894,12 @@ static EL_ENVLIGHT__PROD_INLINE void el_envlight__pick4(const struct el_envlight
   P->i = i + W->a0[a];
 }
 
-/* (u, v) and the light-space unit direction of (s, t) in patch (i, r), as le() maps them: u from the
- * patch's left texel centre (wrapping at the seam), v and its distance vp to the nearer pole. */
-static inline float el_envlight__patch_uv(const struct el_envlight__warp *W, int i, int r, float s, float t, float *u, float *v) {
-  float vp;
-  *u = ((float)i + 0.5f + s) * W->inv_w;
-  if (*u >= 1.0f) *u -= 1.0f;
-  *u = *u < 0.99999994f ? *u : 0.99999994f;
-  if (r == 0) { vp = t * W->half_inv_h; *v = vp; }
-  else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; *v = 1.0f - vp; }
-  else { *v = ((float)r - 0.5f + t) * W->inv_h; vp = *v < 0.5f ? *v : 1.0f - *v; }
-  return vp;
-}
-/* the light-space unit direction of (s, t) in patch (i, r), as le() maps it (el_envlight__patch_uv) */
-static inline void el_envlight__patch_dir(const struct el_envlight__warp *W, int i, int r, float s, float t, float d[3]) {
-  float u, v, vp = el_envlight__patch_uv(W, i, r, s, t, &u, &v);
-  el_envlight__uvp_to_dir(u, v, vp, d);
-}
-
 /* <<Sample the product>>: cell, patch row, patch, then (s, t) from the bilinear; wi and the pdf as
- * pdf_li_cos computes it at wi: the direction located again, and when it lands in the patch it came from
- * (all but a measure-zero set), the density from the widths already read. On grids of at least 256 x 128
- * the direction comes from the patch's references by angle addition and is found again without atan (the
- * radiance: le at that point's (u, v) under a signed permutation, le(wi) under a general rotation); on
- * smaller ones from (u, v) and found again by le()'s atans (the radiance: le(wi), the same (u, v)). */
+ * pdf_li_cos computes it at wi: the direction located again (the atans), and when it lands in the
+ * patch it came from (all but a measure-zero set), the density from the widths already read. */
 static EL_ENVLIGHT__PROD_INLINE void el_envlight__prod_sample(const el_envlight *l, const struct el_envlight__warp *W, const uint16_t *tab, const float uu[2], float wi[3], float rgb[3], float *pdf) {
-  float d[3], q, t, s, c[4], p;
-  int r, i, n;
+  float d[3], uv[2], q, t, s, u, v, vp, c[4], p;
+  int gh = W->h, r, i, n;
   uint32_t wc, wr;
   el_envlight__ploc loc;
   el_envlight__pick P;
@@ -4153,18 +3918,20 @@ static EL_ENVLIGHT__PROD_INLINE void el_envlight__prod_sample(const el_envlight 
   t = t > 2.44140625e-4f ? (t < 0.999755859f ? t : 0.999755859f) : 2.44140625e-4f;
   s = s > 2.44140625e-4f ? (s < 0.999755859f ? s : 0.999755859f) : 2.44140625e-4f;
   for (n = 0; n < 2; ++n) {
-    /* <<Compute direction>> */
-    if (W->hf.row) el_envlight__half_dir(W->hf.col + 2 * (size_t)i, W->hf.row + 8 * (size_t)r, s * (6.28318531f * W->inv_w), t, d);
-    else el_envlight__patch_dir(W, i, r, s, t, d);
+    /* <<Compute direction>>: u from the patch's left vertex, v and its distance to the nearer pole */
+    u = ((float)i + 0.5f + s) * W->inv_w;
+    if (u >= 1.0f) u -= 1.0f;
+    u = u < 0.99999994f ? u : 0.99999994f;
+    if (r == 0) { vp = t * W->half_inv_h; v = vp; }
+    else if (r == gh) { vp = (1.0f - t) * W->half_inv_h; v = 1.0f - vp; }
+    else { v = ((float)r - 0.5f + t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
+    el_envlight__uvp_to_dir(u, v, vp, d);
     el_envlight__to_world(l, d, wi);
     if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li_cos brings wi back */
-    if (W->hf.row) { /* patch (i, r) checked by the pdf's rule, without the finders */
-      float r2 = d[0] * d[0] + d[1] * d[1], rr = el_envlight__sqrt(r2);
-      if (el_envlight__prod_st_in(&W->hf, i, r, d[0], d[1], d[2], rr, r2 + d[2] * d[2], &loc)) p = el_envlight__prod_eval_half(W, &loc, wc, wr, c);
-      else p = el_envlight__prod_pdf_light(W, tab, d, &loc);
-    } else if (el_envlight__prod_find(W, d, &loc) && loc.i == i && loc.r == r) /* the pdf's own path, its reads skipped */
-      p = el_envlight__prod_density(W, &loc, wc, wr, c);
-    else p = el_envlight__prod_pdf_light(W, tab, d, &loc);
+    if (el_envlight__prod_locate(W, d, &loc) && loc.i == i && loc.r == r) { /* the pdf's own path, its reads skipped */
+      p = el_envlight__prod_eval(W, &loc, wc, wr, c);
+      uv[0] = loc.u; uv[1] = loc.v;
+    } else p = el_envlight__prod_pdf_light(W, tab, d, uv);
     if (p > 0.0f) break;
     /* the round trip left the patch for one without mass (near a pole under a general rotation, where
      * 1e-7 of direction is a large step in phi): the patch's centre instead, as issue 24 did */
@@ -4172,14 +3939,8 @@ static EL_ENVLIGHT__PROD_INLINE void el_envlight__prod_sample(const el_envlight 
   }
   *pdf = p;
   if (rgb) {
-    if (!(p > 0.0f)) rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    else if (!W->hf.row) el_envlight__bilerp(l, loc.u, loc.v, rgb); /* le(wi): the same (u, v) */
-    else if (!l->exact_transform) el_envlight_le(l, wi, rgb);
-    else { /* le at the point's own (u, v), where the pdf found it: le(wi) but for le()'s atan polynomial */
-      float uv[2];
-      el_envlight__patch_uv(W, loc.i, loc.r, loc.s, loc.Y, uv, uv + 1);
-      el_envlight__bilerp(l, uv[0], uv[1], rgb);
-    }
+    if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb); /* le(wi): the same (u, v) */
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
   }
 }
 
@@ -4268,7 +4029,6 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   const struct el_envlight__warp *W;
   const uint16_t *tab;
   float d[3];
-  el_envlight__ploc q;
   if (l->width == 0) return el_envlight__cos_pdf_constant(l, n, wi);
   if (l->mapping != EL_ENVLIGHT_MAPPING_LATLONG) return el_envlight_pdf_li(l, wi); /* sample_li_cos is sample_li there */
   W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
@@ -4276,7 +4036,7 @@ EL_DEF float el_envlight_pdf_li_cos(const el_envlight *l, const float n[3], cons
   tab = el_envlight__prod_table(l, W, n);
   if (!tab || tab[W->kv] == 0) return 0.0f;
   if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f; /* rescaled in world space first (issue 24) */
-  return el_envlight__prod_pdf_light(W, tab, d, &q);
+  return el_envlight__prod_pdf_light(W, tab, d, NULL);
 }
 
 /* >> product sampling, n at once (issue 20): the single calls' arithmetic on four lanes with SSE2, the
@@ -4400,82 +4160,6 @@ static inline __m128 el_envlight__prod_eval4(const struct el_envlight__warp *W, 
   }
   return _mm_min_ps(_mm_mul_ps(p, f), EL_ENVLIGHT__V(FLT_MAX));
 }
-/* The atan-free locate on four lanes (grids of at least 256 x 128): the references of patches (i[k], r[k])
- * read lane by lane (16 bytes each, then transposed), the arithmetic of el_envlight__half_dir,
- * el_envlight__prod_st_in and el_envlight__prod_eval_half in their operations' order. */
-typedef struct el_envlight__href4 { __m128 ci, si, ci1, si1, cr, sr, t0, idt, dt, f, ct, st, cb, sb; } el_envlight__href4;
-static inline void el_envlight__gather4(const float *a, const float *b, const float *c, const float *d, __m128 o[4]) {
-  o[0] = _mm_loadu_ps(a); o[1] = _mm_loadu_ps(b); o[2] = _mm_loadu_ps(c); o[3] = _mm_loadu_ps(d);
-  _MM_TRANSPOSE4_PS(o[0], o[1], o[2], o[3]);
-}
-static inline void el_envlight__href4_load(const el_envlight__hf *F, const int *i, const int *r, el_envlight__href4 *R) {
-  __m128 o[4];
-  el_envlight__gather4(F->col + 2 * i[0], F->col + 2 * i[1], F->col + 2 * i[2], F->col + 2 * i[3], o); /* (col has w + 1 entries) */
-  R->ci = o[0]; R->si = o[1]; R->ci1 = o[2]; R->si1 = o[3];
-  el_envlight__gather4(F->row + 8 * r[0], F->row + 8 * r[1], F->row + 8 * r[2], F->row + 8 * r[3], o);
-  R->cr = o[0]; R->sr = o[1]; R->t0 = o[2]; R->idt = o[3];
-  el_envlight__gather4(F->row + 8 * r[0] + 4, F->row + 8 * r[1] + 4, F->row + 8 * r[2] + 4, F->row + 8 * r[3] + 4, o);
-  R->dt = o[0]; R->f = o[1];
-  el_envlight__gather4(F->edge + 2 * r[0], F->edge + 2 * r[1], F->edge + 2 * r[2], F->edge + 2 * r[3], o);
-  R->ct = o[0]; R->st = o[1]; R->cb = o[2]; R->sb = o[3];
-}
-static inline __m128 el_envlight__atan_small4(__m128 q) {
-  return _mm_sub_ps(q, _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(q, q), q), EL_ENVLIGHT__V(0.333333343f)));
-}
-/* a < 1 ? (a > 0 ? a : 0) : 1, NaN -> 1 (the scalar expression's value) */
-static inline __m128 el_envlight__clamp01n4(__m128 a) {
-  return el_envlight__sel4(_mm_cmplt_ps(a, EL_ENVLIGHT__V(1.0f)), _mm_max_ps(a, _mm_setzero_ps()), EL_ENVLIGHT__V(1.0f));
-}
-/* el_envlight__half_dir */
-static inline void el_envlight__half_dir4(const el_envlight__href4 *R, __m128 b, __m128 t, __m128 d[3]) {
-  __m128 a = _mm_mul_ps(_mm_sub_ps(t, R->t0), R->dt), b2 = _mm_mul_ps(b, b), a2 = _mm_mul_ps(a, a), half = EL_ENVLIGHT__V(0.5f), one = EL_ENVLIGHT__V(1.0f);
-  __m128 cb = _mm_sub_ps(one, _mm_mul_ps(half, b2)), sb = _mm_sub_ps(b, _mm_mul_ps(_mm_mul_ps(b, b2), EL_ENVLIGHT__V(0.166666672f)));
-  __m128 ca = _mm_sub_ps(one, _mm_mul_ps(half, a2)), sa = _mm_sub_ps(a, _mm_mul_ps(_mm_mul_ps(a, a2), EL_ENVLIGHT__V(0.166666672f)));
-  __m128 st = _mm_add_ps(_mm_mul_ps(R->sr, ca), _mm_mul_ps(R->cr, sa));
-  d[0] = _mm_mul_ps(st, _mm_sub_ps(_mm_mul_ps(R->ci, cb), _mm_mul_ps(R->si, sb)));
-  d[1] = _mm_mul_ps(st, _mm_add_ps(_mm_mul_ps(R->si, cb), _mm_mul_ps(R->ci, sb)));
-  d[2] = _mm_sub_ps(_mm_mul_ps(R->cr, ca), _mm_mul_ps(R->sr, sa));
-}
-/* el_envlight__prod_st_in: q gets s, t (Y), rr, len (len2); returns the rule's mask */
-static inline __m128 el_envlight__half_st4(const el_envlight__hf *F, const el_envlight__href4 *R, const __m128 d[3], __m128 rr, __m128 len2, el_envlight__ploc4 *q) {
-  __m128 x = d[0], y = d[1], z = d[2], zero = _mm_setzero_ps(), a, b, cl, nt, in, north, south, hi = EL_ENVLIGHT__V(0.999023438f);
-  cl = _mm_sub_ps(_mm_mul_ps(y, R->ci), _mm_mul_ps(x, R->si));
-  a = _mm_mul_ps(el_envlight__atan_small4(_mm_div_ps(cl, _mm_add_ps(_mm_mul_ps(x, R->ci), _mm_mul_ps(y, R->si)))), _mm_set1_ps(F->wk));
-  nt = _mm_sub_ps(_mm_mul_ps(rr, R->cr), _mm_mul_ps(z, R->sr));
-  b = _mm_add_ps(R->t0, _mm_mul_ps(el_envlight__atan_small4(_mm_div_ps(nt, _mm_add_ps(_mm_mul_ps(z, R->cr), _mm_mul_ps(rr, R->sr)))), R->idt));
-  q->s = el_envlight__clamp01n4(a);
-  q->Y = el_envlight__clamp01n4(b);
-  q->rr = rr; q->len2 = _mm_sqrt_ps(len2);
-  in = _mm_and_ps(_mm_cmpge_ps(cl, zero), _mm_or_ps(_mm_cmplt_ps(a, hi), _mm_cmplt_ps(_mm_sub_ps(_mm_mul_ps(y, R->ci1), _mm_mul_ps(x, R->si1)), zero)));
-  north = _mm_and_ps(_mm_cmpge_ps(nt, zero), _mm_or_ps(_mm_cmplt_ps(b, hi), _mm_cmplt_ps(_mm_sub_ps(_mm_mul_ps(rr, R->cb), _mm_mul_ps(z, R->sb)), zero)));
-  south = _mm_and_ps(_mm_cmplt_ps(nt, zero), _mm_or_ps(_mm_cmpgt_ps(b, EL_ENVLIGHT__V(9.765625e-4f)), _mm_cmpge_ps(_mm_sub_ps(_mm_mul_ps(rr, R->ct), _mm_mul_ps(z, R->st)), zero)));
-  return _mm_and_ps(in, el_envlight__sel4(_mm_cmpeq_ps(R->t0, zero), north, south));
-}
-/* el_envlight__prod_eval_half */
-static inline __m128 el_envlight__prod_eval_half4(const struct el_envlight__warp *W, __m128 rf, __m128 ridt, const el_envlight__ploc4 *q, __m128 fwc, __m128 fwr, const __m128 c[4]) {
-  __m128 s = q->s, t = q->Y, e0 = _mm_add_ps(c[0], _mm_mul_ps(s, _mm_sub_ps(c[1], c[0]))), e1 = _mm_add_ps(c[2], _mm_mul_ps(s, _mm_sub_ps(c[3], c[2])));
-  __m128 sum = _mm_add_ps(_mm_add_ps(c[0], c[1]), _mm_add_ps(c[2], c[3]));
-  __m128 p = _mm_div_ps(_mm_mul_ps(_mm_mul_ps(fwc, fwr), _mm_mul_ps(_mm_set1_ps(W->dens_k), rf)), sum);
-  __m128 f = _mm_mul_ps(_mm_add_ps(e0, _mm_mul_ps(t, _mm_sub_ps(e1, e0))), _mm_div_ps(q->len2, q->rr));
-  f = el_envlight__sel4(_mm_cmpgt_ps(q->rr, _mm_setzero_ps()), f, _mm_mul_ps(_mm_add_ps(e0, e1), ridt));
-  return _mm_min_ps(_mm_mul_ps(p, f), EL_ENVLIGHT__V(FLT_MAX));
-}
-/* el_envlight__patch_uv: (u, v) and vp of (s, t) in patches (i, r) */
-static inline void el_envlight__patch_uv4(const struct el_envlight__warp *W, __m128i vi, __m128i vr, __m128 s, __m128 t, __m128 *pu, __m128 *pv, __m128 *pvp) {
-  __m128 one = EL_ENVLIGHT__V(1.0f), uu, v, vp;
-  uu = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_cvtepi32_ps(vi), EL_ENVLIGHT__V(0.5f)), s), _mm_set1_ps(W->inv_w));
-  uu = _mm_sub_ps(uu, _mm_and_ps(_mm_cmpge_ps(uu, one), one));
-  *pu = _mm_min_ps(uu, EL_ENVLIGHT__V(0.99999994f));
-  v = _mm_mul_ps(_mm_add_ps(_mm_sub_ps(_mm_cvtepi32_ps(vr), EL_ENVLIGHT__V(0.5f)), t), _mm_set1_ps(W->inv_h));
-  vp = el_envlight__sel4(_mm_cmplt_ps(v, EL_ENVLIGHT__V(0.5f)), v, _mm_sub_ps(one, v));
-  if (_mm_movemask_ps(_mm_castsi128_ps(_mm_or_si128(_mm_cmpeq_epi32(vr, _mm_setzero_si128()), _mm_cmpeq_epi32(vr, _mm_set1_epi32(W->h)))))) { /* pole rows */
-    __m128 top = _mm_castsi128_ps(_mm_cmpeq_epi32(vr, _mm_setzero_si128())), bot = _mm_castsi128_ps(_mm_cmpeq_epi32(vr, _mm_set1_epi32(W->h)));
-    __m128 vt = _mm_mul_ps(t, _mm_set1_ps(W->half_inv_h)), vb = _mm_mul_ps(_mm_sub_ps(one, t), _mm_set1_ps(W->half_inv_h));
-    vp = el_envlight__sel4(top, vt, el_envlight__sel4(bot, vb, vp));
-    v = el_envlight__sel4(top, vt, el_envlight__sel4(bot, _mm_sub_ps(one, vb), v));
-  }
-  *pv = v; *pvp = vp;
-}
 /* el_envlight__lin_invf on four lanes */
 static inline __m128 el_envlight__lin_invf4(__m128 a, __m128 b, __m128 q) {
   __m128 m = _mm_max_ps(a, b), zero = _mm_setzero_ps(), d, den, t;
@@ -4578,7 +4262,7 @@ EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float
           ii[k] = 0; rr[k] = 1; fq[k] = fs[k] = 0.5f; fwc[k] = fwr[k] = 1.0f; cs[0][k] = cs[1][k] = cs[2][k] = cs[3][k] = 1.0f;
         }
       for (g = 0; g < m; g += 4) {
-        __m128 c[4], t, s, uu, v, vp, vm, d[3], w[3], w3, p, ok, zero = _mm_setzero_ps();
+        __m128 c[4], t, s, uu, v, vp, vm, d[3], w[3], w3, p, ok, zero = _mm_setzero_ps(), one = EL_ENVLIGHT__V(1.0f);
         __m128i vi, vr, nn;
         el_envlight__ploc4 q;
         for (k = m; k < g + 4; ++k) { /* padding lanes of the last row */
@@ -4593,42 +4277,34 @@ EL_DEF void el_envlight_sample_li_cos_n(const el_envlight *l, int n, const float
         s = _mm_min_ps(_mm_max_ps(s, EL_ENVLIGHT__V(lo)), EL_ENVLIGHT__V(hi));
         /* <<Compute direction>> */
         vi = _mm_loadu_si128((const __m128i *)(const void *)(ii + g)); vr = _mm_loadu_si128((const __m128i *)(const void *)(rr + g));
-        if (W->hf.row) { /* the patch's references, angle addition; found again without atan (el_envlight__prod_sample) */
-          el_envlight__href4 R;
-          __m128 r2, len2;
-          el_envlight__href4_load(&W->hf, ii + g, rr + g, &R);
-          el_envlight__half_dir4(&R, _mm_mul_ps(s, _mm_set1_ps(6.28318531f * W->inv_w)), t, d);
-          el_envlight__xform4(l, 0, d, w);
-          if (!l->exact_transform) el_envlight__xform4(l, 1, w, d); /* as pdf_li_cos brings wi back */
-          r2 = _mm_add_ps(_mm_mul_ps(d[0], d[0]), _mm_mul_ps(d[1], d[1]));
-          len2 = _mm_add_ps(r2, _mm_mul_ps(d[2], d[2]));
-          ok = el_envlight__half_st4(&W->hf, &R, d, _mm_sqrt_ps(r2), len2, &q);
-          q.i = vi; q.r = vr;
-          p = el_envlight__prod_eval_half4(W, R.f, R.idt, &q, _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c);
-          good |= (unsigned)_mm_movemask_ps(_mm_and_ps(ok, _mm_cmpgt_ps(p, zero))) << g;
-          if (!rgb) q.u = q.v = zero;
-          else if (l->exact_transform) el_envlight__patch_uv4(W, vi, vr, q.s, q.Y, &q.u, &q.v, &vp); /* where the pdf found it */
-          else (void)el_envlight__prod_locate4(W, d, &q); /* le(wi)'s own (u, v) */
-        } else {
-          el_envlight__patch_uv4(W, vi, vr, s, t, &uu, &v, &vp);
-          /* el_envlight__uvp_to_dir */
-          vm = _mm_add_ps(uu, uu); /* 2 u */
-          nn = _mm_cvttps_epi32(_mm_add_ps(vm, EL_ENVLIGHT__V(0.5f)));
-          vm = _mm_sub_ps(vm, _mm_cvtepi32_ps(nn));
-          { /* sgn = n odd ? -1 : 1, as a sign bit */
-            __m128 sgn = _mm_castsi128_ps(_mm_slli_epi32(nn, 31)), st = el_envlight__sinpi4(vp);
-            d[0] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__cospi4(vm)));
-            d[1] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__sinpi4(vm)));
-            d[2] = el_envlight__sinpi4(_mm_sub_ps(EL_ENVLIGHT__V(0.5f), v));
-          }
-          el_envlight__xform4(l, 0, d, w);
-          if (!l->exact_transform) el_envlight__xform4(l, 1, w, d); /* as pdf_li_cos brings wi back */
-          /* the pdf's own path at wi (el_envlight__prod_locate, el_envlight__prod_eval), its reads skipped */
-          ok = el_envlight__prod_locate4(W, d, &q);
-          ok = _mm_and_ps(ok, _mm_castsi128_ps(_mm_and_si128(_mm_cmpeq_epi32(q.i, vi), _mm_cmpeq_epi32(q.r, vr))));
-          p = el_envlight__prod_eval4(W, &q, _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c);
-          good |= (unsigned)_mm_movemask_ps(_mm_and_ps(ok, _mm_cmpgt_ps(p, zero))) << g;
+        uu = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_cvtepi32_ps(vi), EL_ENVLIGHT__V(0.5f)), s), _mm_set1_ps(W->inv_w));
+        uu = _mm_sub_ps(uu, _mm_and_ps(_mm_cmpge_ps(uu, one), one));
+        uu = _mm_min_ps(uu, EL_ENVLIGHT__V(0.99999994f));
+        v = _mm_mul_ps(_mm_add_ps(_mm_sub_ps(_mm_cvtepi32_ps(vr), EL_ENVLIGHT__V(0.5f)), t), _mm_set1_ps(W->inv_h));
+        vp = el_envlight__sel4(_mm_cmplt_ps(v, EL_ENVLIGHT__V(0.5f)), v, _mm_sub_ps(one, v));
+        if (_mm_movemask_ps(_mm_castsi128_ps(_mm_or_si128(_mm_cmpeq_epi32(vr, _mm_setzero_si128()), _mm_cmpeq_epi32(vr, _mm_set1_epi32(W->h)))))) { /* pole rows */
+          __m128 top = _mm_castsi128_ps(_mm_cmpeq_epi32(vr, _mm_setzero_si128())), bot = _mm_castsi128_ps(_mm_cmpeq_epi32(vr, _mm_set1_epi32(W->h)));
+          __m128 vt = _mm_mul_ps(t, _mm_set1_ps(W->half_inv_h)), vb = _mm_mul_ps(_mm_sub_ps(one, t), _mm_set1_ps(W->half_inv_h));
+          vp = el_envlight__sel4(top, vt, el_envlight__sel4(bot, vb, vp));
+          v = el_envlight__sel4(top, vt, el_envlight__sel4(bot, _mm_sub_ps(one, vb), v));
         }
+        /* el_envlight__uvp_to_dir */
+        vm = _mm_add_ps(uu, uu); /* 2 u */
+        nn = _mm_cvttps_epi32(_mm_add_ps(vm, EL_ENVLIGHT__V(0.5f)));
+        vm = _mm_sub_ps(vm, _mm_cvtepi32_ps(nn));
+        { /* sgn = n odd ? -1 : 1, as a sign bit */
+          __m128 sgn = _mm_castsi128_ps(_mm_slli_epi32(nn, 31)), st = el_envlight__sinpi4(vp);
+          d[0] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__cospi4(vm)));
+          d[1] = _mm_mul_ps(st, _mm_xor_ps(sgn, el_envlight__sinpi4(vm)));
+          d[2] = el_envlight__sinpi4(_mm_sub_ps(EL_ENVLIGHT__V(0.5f), v));
+        }
+        el_envlight__xform4(l, 0, d, w);
+        if (!l->exact_transform) el_envlight__xform4(l, 1, w, d); /* as pdf_li_cos brings wi back */
+        /* the pdf's own path at wi (el_envlight__prod_locate, el_envlight__prod_eval), its reads skipped */
+        ok = el_envlight__prod_locate4(W, d, &q);
+        ok = _mm_and_ps(ok, _mm_castsi128_ps(_mm_and_si128(_mm_cmpeq_epi32(q.i, vi), _mm_cmpeq_epi32(q.r, vr))));
+        p = el_envlight__prod_eval4(W, &q, _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c);
+        good |= (unsigned)_mm_movemask_ps(_mm_and_ps(ok, _mm_cmpgt_ps(p, zero))) << g;
         w3 = zero;
         _MM_TRANSPOSE4_PS(w[0], w[1], w[2], w3);
         _mm_storeu_ps(ow[g], w[0]); _mm_storeu_ps(ow[g + 1], w[1]); _mm_storeu_ps(ow[g + 2], w[2]); _mm_storeu_ps(ow[g + 3], w3);
@@ -4670,7 +4346,6 @@ EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *n
     for (j = 0; j < n; j += EL_ENVLIGHT__CB) {
       const uint16_t *tab[EL_ENVLIGHT__CB];
       el_envlight__ploc4 q[EL_ENVLIGHT__CB / 4];
-      __m128 Rf[EL_ENVLIGHT__CB / 4], Ri[EL_ENVLIGHT__CB / 4]; /* the rows' factors and 1 / dtheta (el_envlight__prod_eval_half4) */
       float fwc[EL_ENVLIGHT__CB], fwr[EL_ENVLIGHT__CB], cs[4][EL_ENVLIGHT__CB], c4[4];
       int ii[EL_ENVLIGHT__CB], rr[EL_ENVLIGHT__CB], m = n - j < EL_ENVLIGHT__CB ? n - j : EL_ENVLIGHT__CB, k, g;
       unsigned ok = 0, live = 0;
@@ -4681,24 +4356,8 @@ EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *n
         el_envlight__prod_table4(l, W, normals + 3 * (j + g), mg, x, tab + g);
         el_envlight__load3x4(wi + 3 * (j + g), mg, x);
         el_envlight__xform4(l, 1, x, d); /* el_envlight__to_light_dir: lanes that need rescaling go to the single call */
-        if (W->hf.row) { /* el_envlight__prod_find's rule on four lanes, from le()'s patch (the finders' patch but
-                          * near edges; the rule does not depend on where it starts); lanes off it: the single call */
-          __m128 len2, okm;
-          __m128i km;
-          (void)el_envlight__prod_locate4(W, d, &q[g / 4]);
-          len2 = q[g / 4].len2;
-          okm = _mm_and_ps(_mm_cmpge_ps(len2, EL_ENVLIGHT__V(8.67361738e-19f)), _mm_cmple_ps(len2, EL_ENVLIGHT__V(FLT_MAX)));
-          km = _mm_castps_si128(okm);
-          _mm_storeu_si128((__m128i *)(void *)(ii + g), _mm_and_si128(km, q[g / 4].i));
-          _mm_storeu_si128((__m128i *)(void *)(rr + g), _mm_or_si128(_mm_and_si128(km, q[g / 4].r), _mm_andnot_si128(km, _mm_set1_epi32(1))));
-          el_envlight__href4 R;
-          el_envlight__href4_load(&W->hf, ii + g, rr + g, &R);
-          ok |= (unsigned)_mm_movemask_ps(_mm_and_ps(okm, el_envlight__half_st4(&W->hf, &R, d, q[g / 4].rr, len2, &q[g / 4]))) << g;
-          Rf[g / 4] = R.f; Ri[g / 4] = R.idt;
-        } else {
-          ok |= (unsigned)_mm_movemask_ps(el_envlight__prod_locate4(W, d, &q[g / 4])) << g;
-          _mm_storeu_si128((__m128i *)(void *)(ii + g), q[g / 4].i); _mm_storeu_si128((__m128i *)(void *)(rr + g), q[g / 4].r);
-        }
+        ok |= (unsigned)_mm_movemask_ps(el_envlight__prod_locate4(W, d, &q[g / 4])) << g;
+        _mm_storeu_si128((__m128i *)(void *)(ii + g), q[g / 4].i); _mm_storeu_si128((__m128i *)(void *)(rr + g), q[g / 4].r);
         for (k = g; k < g + mg; ++k) {
           int a, b;
           const uint16_t *V;
@@ -4729,8 +4388,7 @@ EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *n
         __m128 c[4];
         float pp[4];
         c[0] = _mm_loadu_ps(cs[0] + g); c[1] = _mm_loadu_ps(cs[1] + g); c[2] = _mm_loadu_ps(cs[2] + g); c[3] = _mm_loadu_ps(cs[3] + g);
-        if (W->hf.row) _mm_storeu_ps(pp, el_envlight__prod_eval_half4(W, Rf[g / 4], Ri[g / 4], &q[g / 4], _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c));
-        else _mm_storeu_ps(pp, el_envlight__prod_eval4(W, &q[g / 4], _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c));
+        _mm_storeu_ps(pp, el_envlight__prod_eval4(W, &q[g / 4], _mm_loadu_ps(fwc + g), _mm_loadu_ps(fwr + g), c));
         for (k = g; k < g + 4 && k < m; ++k) {
           if ((live >> k) & 1) pdf[j + k] = pp[k - g];
           else if (tab[k] && tab[k][W->kv] != 0 && !((ok >> k) & 1)) pdf[j + k] = el_envlight_pdf_li_cos(l, normals + 3 * (j + k), wi + 3 * (j + k));
@@ -4782,28 +4440,90 @@ static inline float el_envlight__lin_inv(float a, float b, float q) {
   return t < 1.0f ? (t > 0.0f ? t : 0.0f) : 1.0f;
 }
 
+/* (u, v) and the light-space unit direction of (s, t) in patch (i, r), as le() maps them: u from the
+ * patch's left texel centre (wrapping at the seam), v and its distance vp to the nearer pole. */
+static inline float el_envlight__patch_uv(const struct el_envlight__warp *W, int i, int r, float s, float t, float *u, float *v) {
+  float vp;
+  *u = ((float)i + 0.5f + s) * W->inv_w;
+  if (*u >= 1.0f) *u -= 1.0f;
+  *u = *u < 0.99999994f ? *u : 0.99999994f;
+  if (r == 0) { vp = t * W->half_inv_h; *v = vp; }
+  else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; *v = 1.0f - vp; }
+  else { *v = ((float)r - 0.5f + t) * W->inv_h; vp = *v < 0.5f ? *v : 1.0f - *v; }
+  return vp;
+}
+static inline void el_envlight__patch_dir(const struct el_envlight__warp *W, int i, int r, float s, float t, float d[3]) {
+  float u, v, vp = el_envlight__patch_uv(W, i, r, s, t, &u, &v);
+  el_envlight__uvp_to_dir(u, v, vp, d);
+}
 
-/* THE FAST PATH (maps of at least 256 x 128): pdf_li finds a direction without atan, and sample_li forms
- * its direction by angle addition (el_envlight__half_find, el_envlight__half_dir: the atan-free locate,
- * shared with product sampling). The light's own pdf_li tables (u_base, u_edge, v_base, v_edge; col_tab,
- * row_tab in dir_alloc) hold them: mode BILINEAR has no others. */
+/* THE FAST PATH (maps of at least 256 x 128: patch angles <= pi / 128): where pdf_li finds a direction
+ * without atan. The patch column and row come from bin finders over half texels (el_envlight__finder
+ * with 2w and 2h bins: the texel centres are the odd edges), as pdf_li's own bins; s and t from the angle
+ * to a reference edge of the patch, atan of the tangent of the difference, (y c - x s) / (x c + y s) for
+ * phi and (r c - z s) / (z c + r s) for theta (|angle| <= pi / 128: atan q = q - q^3 / 3 to float
+ * precision). Column i's reference is its texel centre phi_i (cos, sin: col_tab[2 i]); patch row r's
+ * (row_tab[8 r]: cos, sin, t0, 1 / dtheta, dtheta) is its edge nearer the pole (the pole itself for the
+ * two pole rows), so that sample_li's sin(theta) = s cos a + c sin a never cancels; t = t0 + angle /
+ * dtheta. sample_li forms its direction from the same references by angle addition (sin b = b - b^3 / 6,
+ * cos b = 1 - b^2 / 2). The light's own pdf_li tables (u_base, u_edge, v_base, v_edge; col_tab, row_tab
+ * in dir_alloc) hold them: mode BILINEAR has no others. */
 static el_result el_envlight__patch_tables(el_envlight *l, int w, int h) {
-  el_envlight__hf F;
-  el_result res = el_envlight__half_build(w, h, &F);
-  if (res != EL_SUCCESS) { el_envlight__half_free(&F); return res; }
-  l->u_base = F.ub; l->u_edge = F.ue; l->u_cells = F.uc; l->u_cell_scale = F.us;
-  l->v_base = F.vb; l->v_edge = F.ve; l->v_cells = F.vc; l->v_cell_scale = F.vs;
-  l->dir_alloc = F.col; l->col_tab = F.col; l->row_tab = F.row;
+  int i, r;
+  el_result res = el_envlight__finder(2 * w, 4, &l->u_base, &l->u_edge, &l->u_cells);
+  if (res == EL_SUCCESS) res = el_envlight__finder(2 * h, 2, &l->v_base, &l->v_edge, &l->v_cells);
+  if (res != EL_SUCCESS) return res;
+  l->u_cell_scale = (float)(l->u_cells - 2) * 0.25f;
+  l->v_cell_scale = (float)(l->v_cells - 2) * 0.5f;
+  l->dir_alloc = EL_MALLOC(((size_t)2 * (size_t)w + 8 * ((size_t)h + 1)) * sizeof(float));
+  if (!l->dir_alloc) return EL_ERROR_OUT_OF_MEMORY;
+  l->col_tab = (float *)l->dir_alloc;
+  l->row_tab = l->col_tab + 2 * (size_t)w;
+  for (i = 0; i < w; ++i) {
+    double a = 2.0 * EL_ENVLIGHT__PI * (i + 0.5) / w;
+    l->col_tab[2 * i] = (float)cos(a); l->col_tab[2 * i + 1] = (float)sin(a);
+  }
+  for (r = 0; r <= h; ++r) {
+    float *t = l->row_tab + 8 * (size_t)r;
+    double dt = (r == 0 || r == h ? 0.5 : 1.0) * EL_ENVLIGHT__PI / h, ref;
+    int north = 2 * r <= h; /* the middle row (h even) may take either edge */
+    ref = north ? (r == 0 ? 0.0 : EL_ENVLIGHT__PI * (r - 0.5) / h) : (r == h ? EL_ENVLIGHT__PI : EL_ENVLIGHT__PI * (r + 0.5) / h);
+    memset(t, 0, 8 * sizeof(float));
+    t[0] = (float)cos(ref); t[1] = north ? (float)sin(ref) : (float)sin(EL_ENVLIGHT__PI - ref); /* sin 0 and sin pi: exactly 0 */
+    t[2] = north ? 0.0f : 1.0f;
+    t[3] = (float)(1.0 / dt); t[4] = (float)dt;
+  }
   return EL_SUCCESS;
 }
 
+/* atan(q) for |q| <= tan(pi / 128): q - q^3 / 3 (the next term, q^5 / 5, is below 2e-9 q) */
+static inline float el_envlight__atan_small(float q) { return q - q * q * q * 0.333333343f; }
+
 /* The fast path's <<Locate the patch>> of a light-space direction (x, y, z), r2 = x^2 + y^2 and len2
- * normal floats (el_envlight__half_find over the light's tables). */
+ * normal floats: patch (i, r), fractions (s, t), and rr = sqrt(r2), len = sqrt(len2) in q (q.u, q.v,
+ * q.vp, q.Y unused). */
 static inline void el_envlight__patch_find(const el_envlight *l, float x, float y, float z, float r2, float len2, el_envlight__ploc *q) {
-  el_envlight__hf F;
-  F.ub = l->u_base; F.ue = l->u_edge; F.us = l->u_cell_scale; F.vb = l->v_base; F.ve = l->v_edge; F.vs = l->v_cell_scale;
-  F.wk = (float)l->width * 0.159154943f; F.w = l->width; F.col = l->col_tab; F.row = l->row_tab;
-  el_envlight__half_find(&F, x, y, z, r2, len2, q);
+  float rr = el_envlight__sqrt(r2), pu, tv, cs, sn, a;
+  const float *rt;
+  uint32_t hu, hv;
+  size_t c;
+  int i, r;
+  pu = 2.0f - copysignf(1.0f + x / (fabsf(x) + fabsf(y) + FLT_MIN), y); /* pdf_li's diamond angle */
+  pu = pu < 3.99999976f ? pu : 3.99999976f;
+  c = (size_t)(int64_t)(pu * l->u_cell_scale);
+  hu = (uint32_t)l->u_base[c] + (pu >= l->u_edge[c]); /* the half texel */
+  tv = 1.0f - z / (rr + fabsf(z));
+  c = (size_t)(int64_t)(tv * l->v_cell_scale);
+  hv = (uint32_t)l->v_base[c] + (tv >= l->v_edge[c]);
+  i = hu == 0 ? l->width - 1 : (int)((hu - 1u) >> 1);
+  r = (int)((hv + 1u) >> 1);
+  cs = l->col_tab[2 * i]; sn = l->col_tab[2 * i + 1];
+  a = el_envlight__atan_small((y * cs - x * sn) / (x * cs + y * sn)) * ((float)l->width * 0.159154943f);
+  q->s = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f;
+  rt = l->row_tab + 8 * (size_t)r;
+  a = rt[2] + el_envlight__atan_small((rr * rt[0] - z * rt[1]) / (z * rt[0] + rr * rt[1])) * rt[3];
+  q->Y = a < 1.0f ? (a > 0.0f ? a : 0.0f) : 1.0f; /* t */
+  q->i = i; q->r = r; q->rr = rr; q->len2 = el_envlight__sqrt(len2); /* len */
 }
 
 /* The fast path's density at a found point of patch (q->i, q->r) with factor K (pdf_table) and corners c:
@@ -4983,8 +4703,13 @@ static EL_ENVLIGHT__HOT_INLINE float el_envlight__patch_point(const el_envlight 
                                                              float wi[3], el_envlight__ploc *q) {
   float d[3];
   if (l->col_tab) { /* the fast path: angle addition from the patch's references */
-    float r2, len2;
-    el_envlight__half_dir(l->col_tab + 2 * (size_t)i, l->row_tab + 8 * (size_t)r, s * (6.28318531f * l->warp->inv_w), t, d);
+    const float *ct = l->col_tab + 2 * (size_t)i, *rt = l->row_tab + 8 * (size_t)r;
+    float b = s * (6.28318531f * l->warp->inv_w), a = (t - rt[2]) * rt[4], b2 = b * b, a2 = a * a;
+    float cb = 1.0f - 0.5f * b2, sb = b - b * b2 * 0.166666672f, ca = 1.0f - 0.5f * a2, sa = a - a * a2 * 0.166666672f;
+    float st = rt[1] * ca + rt[0] * sa, r2, len2;
+    d[0] = st * (ct[0] * cb - ct[1] * sb);
+    d[1] = st * (ct[1] * cb + ct[0] * sb);
+    d[2] = rt[0] * ca - rt[1] * sa;
     el_envlight__to_world(l, d, wi);
     if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d); /* as pdf_li brings wi back */
     r2 = d[0] * d[0] + d[1] * d[1]; len2 = r2 + d[2] * d[2];

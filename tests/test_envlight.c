@@ -1489,10 +1489,9 @@ static double chi2_patches(const char *name, const psrc *s, const float m[9], in
     dw[0] = wi[0]; dw[1] = wi[1]; dw[2] = wi[2];
     mat_mul_t(m, dw, dl);
     ref_dir_to_uv(dl, &u, &v);
-    if (s->l->exact_transform && w >= 256 && h >= 128) {
-      /* importance BILINEAR's sample_li and sample_li_cos under a signed permutation on maps of at least 256 x
-       * 128 (the atan-free locate): le at the point's own (u, v), as the other modes (envlight.h: sample_li,
-       * NOTES ON PRODUCT SAMPLING 3) */
+    if (s->kind == 1 && s->l->exact_transform && w >= 256 && h >= 128) {
+      /* importance BILINEAR's sample_li under a signed permutation on maps of at least 256 x 128 (its fast
+       * path): le at the point's own (u, v), as the other modes (envlight.h: sample_li) */
       if (!rgb_near_le(s->l->texels, w, h, u, v, L, rgb)) ++rgb_mismatch;
     } else if (L[0] != rgb[0] || L[1] != rgb[1] || L[2] != rgb[2]) ++rgb_mismatch;
     x = u * w - 0.5;
