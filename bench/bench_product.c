@@ -1372,11 +1372,11 @@ static void candidates_map(const char *path, int nsamp, int reps) {
   printf("\n%s (%dx%d): %d samples per normal (independent), %d x %d (Owen-scrambled Sobol', one estimate of %d points per trial);\n"
          "ns per sample with the radiance, best of %d interleaved rounds of %d calls (CPU time)\n",
          path, S->img.width, S->img.height, nsamp, trials, NLD, NLD, reps, NB);
-  printf("  %-22s %6s %8s %8s %6s %6s %9s %9s %6s %7s %7s %7s %7s %7s\n", "candidate", "MiB", "build ms", "relvar", "max|z|", "chi2 z", "pdf diff", "relvar LD",
-         "LD/ind", "ns", "x ns", "ns fix", "x ns", "pdf ns");
+  printf("  %-22s %6s %8s %8s %6s %6s %9s %9s %6s %7s %7s %7s %7s %7s %s\n", "candidate", "MiB", "build ms", "relvar", "max|z|", "chi2 z", "pdf diff", "relvar LD",
+         "LD/ind", "ns", "x ns", "ns fix", "x ns", "pdf ns", "holes");
   for (q = 0; q < nc; ++q) {
     double gv = 0, gl = 0, gf = 0, zmax = 0, cmax = 0, *pc = (double *)malloc(2048 * sizeof(double));
-    long bad = 0, checked = 0, *cnt = (long *)malloc(2048 * sizeof(long));
+    long bad = 0, checked = 0, above = 0, hole = 0, *cnt = (long *)malloc(2048 * sizeof(long));
     const struct el_envlight__warp *Wc = cand_warp(&S->l, c + q);
     for (k = 0; k < NN; ++k) {
       float n[3];
@@ -1424,10 +1424,18 @@ static void candidates_map(const char *path, int nsamp, int reps) {
       gl += log((e2 / trials - m * m) * NLD / (E[k] * E[k])) / NN;
     }
     for (k = 0; k < NN; ++k) gf += log(tfix[q][k] / (NB / 4) * 1e9) / NN;
+    for (k = 0; k < NB; ++k) { /* support: a random normal and direction above it where le > 0 must have pdf > 0 */
+      const float *n = nrm + 3 * k, *w = nrm + 3 * ((k * 7 + 1) & (NB - 1));
+      float L[3];
+      if (n[0] * w[0] + n[1] * w[1] + n[2] * w[2] <= 1e-6f) continue;
+      el_envlight_le(&S->l, w, L);
+      ++above;
+      hole += lum3(L) > 0 && !(cand_pdf(&S->l, c + q, n, w) > 0);
+    }
     printf("  %-22s %6.2f %8.1f %8.4f %6.2f %6.2f %4ld/%-4ld %9.4f %6.2f %7.1f %7.2f %7.1f %7.2f", c[q].name, bytes[q] / 1048576.0, build_ms[q], exp(gv), zmax, cmax,
            bad, checked, exp(gl), exp(gl - gv), tbest[q] / NB * 1e9, exp(gv) * tbest[q] / NB * 1e9, exp(gf), exp(gv + gf));
-    if (tpdf[q] < 1e30) printf(" %7.1f", tpdf[q] / NB * 1e9);
-    printf("\n");
+    printf(" %7.1f", tpdf[q] < 1e30 ? tpdf[q] / NB * 1e9 : 0.0);
+    printf(" %ld/%ld\n", hole, above);
     free(pc); free(cnt);
     fflush(stdout);
   }
@@ -1435,7 +1443,8 @@ static void candidates_map(const char *path, int nsamp, int reps) {
          "   standard error over the normals; chi2 z: the cells' counts against their probabilities, (chi^2 - dof) / sqrt(2 dof),\n"
          "   the largest |.| of the normals; pdf diff: samples whose pdf function differs from the returned pdf, of those checked;\n"
          "   LD/ind: Sobol' variance per point over independent; ns: a new random normal per call; ns fix: one normal per run, the\n"
-         "   geometric mean over the six; x ns: relvar x ns, the time to unit variance; pdf ns: random normals and directions;\n"
+         "   geometric mean over the six; x ns: relvar x ns, the time to unit variance; pdf ns: random normals and directions\n"
+         "   (0: pdf_li_cos itself); holes: random normals and directions above them with le > 0 but pdf 0, of those tried;\n"
          "   MiB: everything a query reads)\n");
   cand_set_free(S);
 }
