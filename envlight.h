@@ -584,13 +584,16 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    which would meet the issue's memory and build targets): 12x12 2741 / 2753 instructions (the pass over
  *    the cells alone 1839: about 40 per four cells), 16x8 2493, 16x16 3821 / 3825; its pdf needs the whole
  *    pass too: 2448 / 2126, 2181, 3827 / 3186 (pdf_li_cos 410). Variance 0.052 / 0.072 (12x12), 0.063 / 0.073
- *    (16x8), 0.034 / 0.047 (16x16); Sobol' 0.0069 / 0.0063, 0.0067 / 0.0095, 0.0059 / 0.0051 (about 2x
+ *    (16x8), 0.034 / 0.047 (16x16); Sobol' 0.0069 / 0.0063, 0.0067 / 0.0095, 0.0059 / 0.0051 (1.6-3.1x
  *    today's); random normals 420 / 295, 416 / 302, 477 / 380 ns (one normal per run 333 / 279, 315 / 267,
  *    420 / 348): relvar x ns 21.9 / 21.1, 26.1 / 22.0, 16.2 / 17.8, 1.5-2.4x today's. A sample and a pdf at
  *    the same point sharing one pass would still take about 3350 instructions against today's 1351.
- *    Unbiased (both): the estimators' |z| against the quadrature and the cells' chi-square z within 2.4 but
- *    for one normal each at the default seed (4.2 alias side+x, 4.4 C&L 16x16 down), which seeds 1 and 2 at
- *    400,000 samples do not repeat (<= 2.0). Neither design replaces the tables.
+ *    Unbiased (both): the estimators' |z| against the quadrature and the cells' chi-square z within 2.7 (today's
+ *    too) but for one normal each at the default seed (4.2 alias side+x and 4.4 C&L 16x16 down on city, 3.5
+ *    C&L 16x8 on sunset), which other seeds at 4x the samples do not repeat (all <= 2.4 at 800,000, city and
+ *    sunset); no direction above a random normal with le > 0 got pdf 0 (131,790 pairs each). Sunset and night
+ *    (../shared/envmaps, 100,000 samples) repeat the pattern: alias with Sobol' points 6.5x / 5.1x today's
+ *    variance, C&L relvar x ns 1.7-2.4x today's. Neither design replaces the tables.
  *    MEMORY: the vertex grid (2 bytes per vertex, bfloat16), the patch CDFs (2 bytes per patch) and the
  *    sparse normal tables (2.9 MB for 32^2 bins x 64 x 32 cells; dense they were 4.3) and the guide tables
  *    (0.55 MB): 5,643,316 bytes = 5.38 MiB at 1024x512 (4.86 without the guides, 7.3 MiB before this round,
