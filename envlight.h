@@ -561,33 +561,37 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    density would no longer be le's, and the atans are about a quarter of the pdf).
  *    CANDIDATES BUILT IN BENCH_PRODUCT --CANDIDATES (issue 20's two designs not built before, as prototypes
  *    on the library's own tables and helpers; city / studio 1024x512. Instructions with the radiance and a
- *    new random normal per call: OPS="lib alias2 alias4 cl12x12 cl16x8 cl16x16 lib_pdf cl12x12_pdf" sh
- *    bench/callgrind_product.sh build/bin/bench_product data/envmaps/city.hdr 20000. The rest: REPS=5
+ *    new random normal per call: OPS="lib alias2 alias4 alias2c cl12x12 cl16x8 cl16x16 lib_pdf cl12x12_pdf"
+ *    sh bench/callgrind_product.sh build/bin/bench_product data/envmaps/city.hdr 20000. The rest: REPS=5
  *    bench_product --candidates: relative variance per sample, geometric mean over the six normals, 200,000
  *    independent samples, and per point with 3125 estimates of 64 Owen-scrambled Sobol' points; CPU ns per
- *    sample, best of 5 interleaved rounds, loaded 2-core machine.) Today's sampler in the same harness: 941
- *    / 945 instructions, variance 0.0338 / 0.0395, Sobol' 0.0030 / 0.0031, 319 / 258 ns with random normals
- *    (217 / 181 with one normal per run), relvar x ns 10.8 / 10.2 (7.3 / 7.2).
+ *    sample with random normals and with one normal per run, best of 5 interleaved rounds, loaded 2-core
+ *    machine.) Today's sampler in the same harness: 940 / 943 instructions, variance 0.0338 / 0.0395, Sobol'
+ *    0.0030 / 0.0031, 321 / 243 ns with random normals (212 / 171 with one normal), relvar x ns 10.9 / 9.6
+ *    (7.2 / 6.8).
  *    ALIAS TABLES (Walker / Vose in integers over the library's own widths: each entry keeps exactly its
  *    share, so density and pdf are today's; pdf_li_cos of every 16th sample equal bit for bit): the two
- *    cell levels 871 / 876 instructions, all four levels 819 / 827 (-70, -122: the guided searches); 8-byte
- *    entries (threshold, alias, both widths): 15.2 MiB of tables (cell levels) or 19.7 (all four) against
- *    5.38, built in 18 ms more. Independent points: the same variance; one normal per run 201 / 169 ns (relvar
- *    x ns 6.7 / 6.6, 8% under today's), but random normals 437 / 338 ns (+37% / +31%: the tables miss the
- *    cache; relvar x ns 14.6 / 13.2). Sobol' points: 0.0172 / 0.0098 per point, 5.7x / 3.2x today's (all four
- *    levels 5.8x / 3.5x): the rest of u that goes on to the next level is not monotone in u, so Sobol' gains
- *    2-4x over independent points instead of 11-13x. Not kept: the renderer's default points are Sobol'.
+ *    cell levels 876 / 881 instructions, all four levels 822 / 830 (the guided searches: -64, -118); 8-byte
+ *    entries (threshold, alias, both widths): 15.3 MiB (cell levels) or 19.9 (all four) against 5.38, built
+ *    in 21 ms more; 4-byte entries for the cell levels (the widths read from the library's CDFs, which the
+ *    pdf keeps) 880 / 887 instructions and 10.6 MiB. Independent points: the same variance; with one normal
+ *    per run 203 / 165 ns (4-byte 197 / 165: relvar x ns 6.6 / 6.5, 8% / 4% under today's), with random
+ *    normals 452 / 319 ns (4-byte 374 / 287: +16% / +18%, the larger tables miss the cache; relvar x ns 12.5 /
+ *    11.2). Sobol' points: 0.0172 / 0.0098 per point, 5.7x / 3.2x today's (all four levels 5.8x / 3.5x): the
+ *    rest of u that goes on to the next level is not monotone in u, so Sobol' gains 2-4x over independent
+ *    points instead of 11-13x. Not kept: the renderer's default points are low-discrepancy.
  *    CONTY AND LECOCQ'S PER-POINT COARSE LEVEL (lat-long cells, not their equal-area ones; per point the exact
  *    maximum of n.w over each cell + 1e-5, SSE2 four cells a step, times the cell's mass; a CDF over the cell
  *    rows, then over the row's cells; then the library's patch-row and patch picks and bilinear, so the pdf
  *    is exact, checked bit for bit and by a chi-square of the cells; 2.1 MiB of tables built in 6-8 ms,
  *    which would meet the issue's memory and build targets): 12x12 2741 / 2753 instructions (the pass over
  *    the cells alone 1839: about 40 per four cells), 16x8 2493, 16x16 3821 / 3825; its pdf needs the whole
- *    pass too: 2448 / 2126, 2181, 3827 / 3186 (pdf_li_cos 410). Variance 0.052 / 0.072 (12x12), 0.063 / 0.073
- *    (16x8), 0.034 / 0.047 (16x16); Sobol' 0.0069 / 0.0063, 0.0067 / 0.0095, 0.0059 / 0.0051 (1.6-3.1x
- *    today's); random normals 420 / 295, 416 / 302, 477 / 380 ns (one normal per run 333 / 279, 315 / 267,
- *    420 / 348): relvar x ns 21.9 / 21.1, 26.1 / 22.0, 16.2 / 17.8, 1.5-2.4x today's. A sample and a pdf at
- *    the same point sharing one pass would still take about 3350 instructions against today's 1351.
+ *    pass too: 2448 / 2126, 2181, 3827 / 3186 (pdf_li_cos 410; 158 / 163, 151 / 146, 216 / 215 ns against
+ *    101 / 91). Variance 0.052 / 0.072 (12x12), 0.063 / 0.073 (16x8), 0.034 / 0.047 (16x16); Sobol' 0.0069 /
+ *    0.0063, 0.0067 / 0.0095, 0.0059 / 0.0051 (1.6-3.1x today's); random normals 378 / 288, 387 / 265, 446 /
+ *    339 ns, one normal 321 / 267, 321 / 255, 401 / 313; relvar x ns 19.7 / 20.7, 24.3 / 19.3, 15.2 / 15.9
+ *    (1.4-2.2x today's; one normal 1.9-2.8x). A sample and a pdf at the same point sharing one pass would
+ *    still take about 3350 instructions against today's 1350.
  *    Unbiased (both): the estimators' |z| against the quadrature and the cells' chi-square z within 2.7 (today's
  *    too) but for one normal each at the default seed (4.2 alias side+x and 4.4 C&L 16x16 down on city, 3.5
  *    C&L 16x8 on sunset), which other seeds at 4x the samples do not repeat (all <= 2.4 at 800,000, city and

@@ -27,7 +27,7 @@
  *                             CPU ns per sample with a new random normal per call (best of REPS, 3,
  *                             interleaved rounds) and relvar x ns. Default maps: city and studio. SEED=n
  *                             shifts the independent streams; VERBOSE=1 prints each normal's z and chi2 z.
- *   bench_product --callgrind OP N [MAP]   N calls of one candidate (OP: loop, lib, alias2, alias4, cl12x12,
+ *   bench_product --callgrind OP N [MAP]   N calls of one candidate (OP: loop, lib, alias2, alias4, alias2c, cl12x12,
  *                             cl16x8, cl16x16, + "_pdf", C&L + "_pass"), for bench/callgrind_product.sh:
  *                             OPS="lib alias2 alias4 cl12x12 lib_pdf cl12x12_pdf" sh bench/callgrind_product.sh
  *                             build/bin/bench_product data/envmaps/city.hdr 20000
@@ -870,13 +870,14 @@ static void batch_map(const char *path, int reps) {
  *     patch-row and patch picks and its bilinear inside the patch. pdf: the same weights (all cells
  *     again: a pdf costs a weight pass too), P(cell) = weight / total, times the library's patch density. */
 typedef struct { uint16_t thr, w, wa, al; } aentry; /* keep k when 32768 frac < thr; else al; w, wa: the widths */
-typedef struct { uint32_t off; uint16_t as, len; } arow;
+typedef struct { uint32_t off, lib; uint16_t as, len; } arow; /* lib: the library's row, from its table's start */
 typedef struct {
   const struct el_envlight__warp *W;
   uint32_t *bin_off; /* m * m: the bin's kv cell-row entries in pool */
   arow *rows;        /* m * m * kv: each row's span (as the sparse table's) and its entries in pool */
   aentry *pool, *prow, *pcol; /* prow, pcol: at the offsets of the library's CDFs */
-  size_t cell_bytes, patch_bytes; /* the cell levels' tables, the patch levels' (besides the library's, which the pdf reads) */
+  uint32_t *pool4;   /* the compact cell levels: pool's threshold | alias << 16, the widths read from the library's CDFs */
+  size_t cell_bytes, patch_bytes, cell_bytes4; /* the cell levels' tables, the patch levels' (besides the library's, which the pdf reads) */
 } alias_tabs;
 
 /* Vose's construction over the widths c[k + 1] - c[k] of an integer CDF (32768 units), exactly: scaled
@@ -916,12 +917,14 @@ static void alias_init(alias_tabs *A, const struct el_envlight__warp *W) {
     for (b = 0; b < kv; ++b) {
       const uint16_t *row = el_envlight__sparse_row(W, tab, b);
       arow *ar = A->rows + (size_t)bin * kv + b;
-      ar->off = (uint32_t)pos; ar->as = row[0]; ar->len = row[1];
+      ar->off = (uint32_t)pos; ar->lib = (uint32_t)(row - tab); ar->as = row[0]; ar->len = row[1];
       if (row[1]) alias_build(row + 2, row[1], A->pool + pos, s, lst);
       pos += row[1];
     }
   }
   A->pool = (aentry *)realloc(A->pool, pos * sizeof(aentry));
+  A->pool4 = (uint32_t *)malloc(pos * sizeof(uint32_t));
+  for (r = 0; r < (int)pos; ++r) A->pool4[r] = (uint32_t)A->pool[r].thr | (uint32_t)A->pool[r].al << 16;
   for (a = 0; a < ku; ++a)
     for (b = 0; b < kv; ++b) {
       size_t base = (size_t)a * (size_t)(h + 1 + kv) + (size_t)W->b0[b] + (size_t)b;
@@ -934,9 +937,10 @@ static void alias_init(alias_tabs *A, const struct el_envlight__warp *W) {
     }
   A->cell_bytes = (size_t)m * m * (sizeof(uint32_t) + (size_t)kv * sizeof(arow)) + pos * sizeof(aentry);
   A->patch_bytes = (nprow + npcol) * sizeof(aentry);
+  A->cell_bytes4 = (size_t)m * m * (sizeof(uint32_t) + (size_t)kv * sizeof(arow)) + pos * sizeof(uint32_t);
   free(s); free(lst);
 }
-static void alias_free(alias_tabs *A) { free(A->bin_off); free(A->rows); free(A->pool); free(A->prow); free(A->pcol); }
+static void alias_free(alias_tabs *A) { free(A->bin_off); free(A->rows); free(A->pool); free(A->pool4); free(A->prow); free(A->pcol); }
 /* one pick among n entries with x in [0, 1]: the entry, the rest of x for the next level, its width */
 static inline int alias_pick(const aentry *e, int n, float x, float *rest, uint32_t *w) {
   float y = x * (float)n, z;
@@ -948,6 +952,21 @@ static inline int alias_pick(const aentry *e, int n, float x, float *rest, uint3
   if (z < (float)e->thr) { *rest = z / (float)e->thr; *w = e->w; return k; }
   *rest = (z - (float)e->thr) / (float)(32768 - e->thr); *w = e->wa;
   return e->al;
+}
+/* the same pick from a compact entry (threshold | alias << 16), the width from the CDF c */
+static inline int alias_pick4(const uint32_t *e, const uint16_t *c, int n, float x, float *rest, uint32_t *w) {
+  float y = x * (float)n, z, thr;
+  int k = (int)y;
+  uint32_t v;
+  k = k < n - 1 ? k : n - 1;
+  z = (y - (float)k) * 32768.0f;
+  z = z < 32767.998f ? z : 32767.998f;
+  v = e[k];
+  thr = (float)(v & 0xffffu);
+  if (z < thr) *rest = z / thr;
+  else { *rest = (z - thr) / (32768.0f - thr); k = (int)(v >> 16); }
+  *w = (uint32_t)(c[k + 1] - c[k]);
+  return k;
 }
 /* the octahedral bin of world normal n (el_envlight__prod_table's, for unit-ish n) */
 static inline int normal_bin(const el_envlight *l, const struct el_envlight__warp *W, const float n[3]) {
@@ -1011,9 +1030,15 @@ static void alias_sample(const el_envlight *l, const alias_tabs *A, int levels, 
   el_envlight__pick P;
   ctx.W = W; ctx.tab = W->cos_tab + W->cos_off[bin];
   if (ctx.tab[kv] == 0) { *pdf = 0.0f; wi[0] = wi[1] = 0.0f; wi[2] = 1.0f; if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
-  b = alias_pick(A->pool + A->bin_off[bin], kv, el_envlight__clamp01(u[1]), &P.f1, &w1);
-  ar = A->rows + (size_t)bin * (size_t)kv + (size_t)b;
-  a = ar->as + alias_pick(A->pool + ar->off, ar->len, el_envlight__clamp01(u[0]), &P.f0, &w2);
+  if (levels == 1) { /* compact entries, widths from the library's tables */
+    b = alias_pick4(A->pool4 + A->bin_off[bin], ctx.tab, kv, el_envlight__clamp01(u[1]), &P.f1, &w1);
+    ar = A->rows + (size_t)bin * (size_t)kv + (size_t)b;
+    a = ar->as + alias_pick4(A->pool4 + ar->off, ctx.tab + ar->lib + 2, ar->len, el_envlight__clamp01(u[0]), &P.f0, &w2);
+  } else {
+    b = alias_pick(A->pool + A->bin_off[bin], kv, el_envlight__clamp01(u[1]), &P.f1, &w1);
+    ar = A->rows + (size_t)bin * (size_t)kv + (size_t)b;
+    a = ar->as + alias_pick(A->pool + ar->off, ar->len, el_envlight__clamp01(u[0]), &P.f0, &w2);
+  }
   a -= a >= W->ku ? W->ku : 0;
   P.a = a; P.b = b;
   if (levels == 4) {
@@ -1185,12 +1210,12 @@ static float cl_pdf(const el_envlight *l, const cl_level *C, const float n[3], c
 }
 
 /* the candidates behind one interface */
-enum { CA_LIB, CA_ALIAS2, CA_ALIAS4, CA_CL };
+enum { CA_LIB, CA_ALIAS2, CA_ALIAS4, CA_ALIAS2C, CA_CL };
 typedef struct { int kind; const char *name; const alias_tabs *A; const cl_level *C; } cand;
 static inline void cand_sample(const el_envlight *l, const cand *c, const float n[3], const float u[2], float wi[3], float rgb[3], float *pdf) {
   if (c->kind == CA_LIB) el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf);
   else if (c->kind == CA_CL) cl_sample(l, c->C, n, u, wi, rgb, pdf);
-  else alias_sample(l, c->A, c->kind == CA_ALIAS4 ? 4 : 2, n, u, wi, rgb, pdf);
+  else alias_sample(l, c->A, c->kind == CA_ALIAS4 ? 4 : c->kind == CA_ALIAS2C ? 1 : 2, n, u, wi, rgb, pdf);
 }
 static inline float cand_pdf(const el_envlight *l, const cand *c, const float n[3], const float wi[3]) {
   return c->kind == CA_CL ? cl_pdf(l, c->C, n, wi) : el_envlight_pdf_li_cos(l, n, wi);
@@ -1220,7 +1245,8 @@ static double cand_loop(const el_envlight *l, const cand *c, int what, long n, c
   return acc;
 }
 
-#define NCAND 6
+#define NCAND 7
+#define CL0 4 /* the first C&L candidate */
 static const int CL_SIZE[3][2] = {{12, 12}, {16, 8}, {16, 16}};
 /* builds the candidates of light l (its product tables built); returns the count */
 static int cand_make(const el_envlight *l, cand *c, alias_tabs *A, cl_level *C, double *build_ms) {
@@ -1235,19 +1261,21 @@ static int cand_make(const el_envlight *l, cand *c, alias_tabs *A, cl_level *C, 
   build_ms[1] = build_ms[2] = (process_now() - t) * 1e3;
   c[1].kind = CA_ALIAS2; c[1].name = "alias, cell levels"; c[1].A = A;
   c[2].kind = CA_ALIAS4; c[2].name = "alias, all 4 levels"; c[2].A = A;
+  c[3].kind = CA_ALIAS2C; c[3].name = "alias, cells, 4-byte"; c[3].A = A;
+  build_ms[3] = build_ms[1];
   for (k = 0; k < 3; ++k) {
     t = process_now();
-    if (!cl_init(C + k, l, CL_SIZE[k][0], CL_SIZE[k][1])) return 3 + k;
-    build_ms[3 + k] = (process_now() - t) * 1e3;
+    if (!cl_init(C + k, l, CL_SIZE[k][0], CL_SIZE[k][1])) return CL0 + k;
+    build_ms[CL0 + k] = (process_now() - t) * 1e3;
     snprintf(names[k], sizeof names[k], "C&L %dx%d per point", CL_SIZE[k][0], CL_SIZE[k][1]);
-    c[3 + k].kind = CA_CL; c[3 + k].name = names[k]; c[3 + k].C = C + k;
+    c[CL0 + k].kind = CA_CL; c[CL0 + k].name = names[k]; c[CL0 + k].C = C + k;
   }
   return NCAND;
 }
 static void cand_free(alias_tabs *A, cl_level *C, int nc) {
   int k;
   alias_free(A);
-  for (k = 3; k < nc; ++k) el_envlight__warp_free(C[k - 3].W);
+  for (k = CL0; k < nc; ++k) el_envlight__warp_free(C[k - CL0].W);
 }
 
 /* the chi-square check of the cell pick: each cell's probability for normal n (the library's cell
@@ -1342,7 +1370,8 @@ static void candidates_map(const char *path, int nsamp, int reps) {
   bytes[0] = el_envlight_product_bytes(&S->l);
   bytes[1] = bytes[0] + S->A.cell_bytes;
   bytes[2] = bytes[1] + S->A.patch_bytes;
-  for (k = 3; k < nc; ++k) bytes[k] = S->C[k - 3].bytes;
+  bytes[3] = bytes[0] + S->A.cell_bytes4;
+  for (k = CL0; k < nc; ++k) bytes[k] = S->C[k - CL0].bytes;
   six_normals(&S->img, N);
   quadrature(&S->img, N, NN, E);
   for (q = 0; q < nc; ++q) { tbest[q] = tpdf[q] = 1e30; for (k = 0; k < NN; ++k) tfix[q][k] = 1e30; }
@@ -1361,7 +1390,7 @@ static void candidates_map(const char *path, int nsamp, int reps) {
       sink = cand_loop(&S->l, c + q, 1, NB, nrm, uu, NB);
       t = process_now() - t;
       if (t < tbest[q]) tbest[q] = t;
-      if (q == 0 || q >= 3) {
+      if (q == 0 || q >= CL0) {
         t = process_now();
         sink = cand_loop(&S->l, c + q, 2, NB, nrm, uu, NB);
         t = process_now() - t;
@@ -1450,10 +1479,10 @@ static void candidates_map(const char *path, int nsamp, int reps) {
 }
 
 /* --callgrind OP N [MAP]: only N calls of OP after the setup (callgrind_product.sh's interface). OP: loop,
- * lib, alias2, alias4, cl12x12, cl16x8, cl16x16 (samples with the radiance), one of those + "_pdf", or a
+ * lib, alias2, alias4, alias2c, cl12x12, cl16x8, cl16x16 (samples with the radiance), one of those + "_pdf", or a
  * C&L one + "_pass" (its per-point pass alone: the normal to light space and the cells' weights) */
 static int candidates_callgrind(const char *op, long n, const char *map) {
-  static const char *ops[NCAND] = {"lib", "alias2", "alias4", "cl12x12", "cl16x8", "cl16x16"};
+  static const char *ops[NCAND] = {"lib", "alias2", "alias4", "alias2c", "cl12x12", "cl16x8", "cl16x16"};
   cand_set *S = cand_set_make(map ? map : EL_SOURCE_DIR "/data/envmaps/city.hdr");
   volatile double sink = 0;
   int q;
@@ -1463,7 +1492,7 @@ static int candidates_callgrind(const char *op, long n, const char *map) {
   else {
     for (q = 0; q < S->nc; ++q) {
       len = strlen(ops[q]);
-      if (!strncmp(op, ops[q], len) && (op[len] == 0 || !strcmp(op + len, "_pdf") || (q >= 3 && !strcmp(op + len, "_pass")))) break;
+      if (!strncmp(op, ops[q], len) && (op[len] == 0 || !strcmp(op + len, "_pdf") || (q >= CL0 && !strcmp(op + len, "_pass")))) break;
     }
     if (q == S->nc) { fprintf(stderr, "unknown OP %s\n", op); cand_set_free(S); return 2; }
     sink = cand_loop(&S->l, S->c + q, op[len] == 0 ? 1 : op[len + 2] == 'd' ? 2 : 3, n, S->nrm, S->uu, CAND_NB);
