@@ -862,6 +862,8 @@ static void batch_map(const char *path, int reps) {
  *     when 32768 frac(u n) < thr_k, else takes al_k, so every entry is picked with exactly its integer
  *     share and the density (and the pdf, pdf_li_cos's own: checked bit for bit) is the library's. The
  *     rest of u goes on to the next level, but it is no longer monotone in u: the stratification breaks.
+ *     Entries of 8 bytes (threshold, alias, both widths); "4-byte" (the cell levels only): threshold |
+ *     alias << 16, the widths read from the library's CDFs (the same picks, less memory, one more read).
  * (2) C&L: Conty and Lecocq 2018's per-point coarse level. A KU x KV level of lat-long cells (the
  *     library's patch tables built with those cells, one normal bin), each cell's mass, and per shading
  *     point the exact maximum of n.w over every cell (the spherical rectangle's, as the normal tables'
