@@ -607,11 +607,13 @@ int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf
 }
 
 /* >> --sun split: one sample of the hot spots and one of the rest x cosine (issue 22's "draw one sun and one
- * sky sample"; see the comment at the top). The parts' supports are disjoint (a bin is in a spot or in the
- * rest), so the multi-sample MIS weights over the three techniques (spots p_s, sky p_r, BSDF p_b; one sample
- * each) are, with the power heuristic, p_s^2 / (p_s^2 + p_b^2) for the spot sample, p_r^2 / (p_r^2 + p_b^2)
- * for the sky sample and p_b^2 / (p_b^2 + (p_s + p_r)^2) for the BSDF sample (p_s + p_r: the part that holds
- * wi, elr_sunsplit_pdf); at every direction the weights of the techniques that can draw it sum to 1. */
+ * sky sample"; see the comment at the top). The multi-sample MIS weights over the three techniques (spot p_s,
+ * sky p_r, BSDF p_b; one sample each), with the power heuristic: p_s^2 / (p_s^2 + p_r^2 + p_b^2) for the spot
+ * sample, p_r^2 / (p_s^2 + p_r^2 + p_b^2) for the sky sample (the other light density: elr_sunsplit_sample's
+ * *other), p_b^2 / (p_b^2 + p_s^2 + p_r^2) for the BSDF sample (elr_sunsplit_pdf gives sqrt(p_s^2 + p_r^2)); at
+ * every direction the weights of the techniques that can draw it sum to 1. With the spots' bins the supports
+ * are disjoint (a bin is in a spot or in the rest: *other is 0); the map's density kept inside the cones
+ * overlaps the sky's rest bins there. */
 #ifndef ELR_SUNSPLIT_HORIZON
 #define ELR_SUNSPLIT_HORIZON 1 /* where every spot lies below the normal's horizon (f is 0 there): 1 the renderer's product
                                 * sample (no split), 2 the sky sample alone, 0 both samples anyway */
@@ -667,7 +669,7 @@ static void elr__sunsplit_qn(int q, float n[3]) {
 
 int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   elr_sunsplit *P;
-  double c0 = elr_cpu_now();
+  double c0;
   int k, q;
   float ps = 0.f;
   *out = NULL;
@@ -681,8 +683,8 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   if (P->hs->count == 0) { free(P); return 0; } /* nothing to split */
   c0 = elr_cpu_now(); /* (the tables' time: the hot spots are the light's, found once) */
   for (k = 0; k < P->hs->count; k++) {
-    P->wspot.spot[k] = P->hs->spot[k].share;
     float a = 1.1f * P->hs->spot[k].half_angle + 1e-3f; /* (a margin: the cone bounds its bins' corners and edge midpoints) */
+    P->wspot.spot[k] = P->hs->spot[k].share;
     P->cos_half[k] = cosf(a); P->sin_half[k] = sinf(a);
   }
   P->wsky.rest = 1.f;
