@@ -636,6 +636,7 @@ struct elr_sunsplit {
   const el_envlight_hotspots *hs;
   el_envlight_mix_weights wspot, wsky; /* the spots at their shares and the rest 0; the rest alone */
   float cos_half[EL_ENVLIGHT_HOTSPOT_MAX], sin_half[EL_ENVLIGHT_HOTSPOT_MAX];
+  float cos_wide[EL_ENVLIGHT_HOTSPOT_MAX]; /* twice as wide: where the spots' bins are looked for (their pdf, 0 outside) */
   el_envlight_mix_cos_table *tabs;     /* the rest x cosine for each grid normal (ELR_SUNSPLIT_NO^2) */
   int spot;                            /* how the first sample is drawn (ELR_SUNSPLIT_SPOT) */
   double cpu;
@@ -685,7 +686,7 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   for (k = 0; k < P->hs->count; k++) {
     float a = 1.1f * P->hs->spot[k].half_angle + 1e-3f; /* (a margin: the cone bounds its bins' corners and edge midpoints) */
     P->wspot.spot[k] = P->hs->spot[k].share;
-    P->cos_half[k] = cosf(a); P->sin_half[k] = sinf(a);
+    P->cos_half[k] = cosf(a); P->sin_half[k] = sinf(a); P->cos_wide[k] = cosf(2.f * a);
   }
   P->wsky.rest = 1.f;
   for (k = 0; k < P->hs->count; k++) ps += P->hs->spot[k].share;
@@ -727,17 +728,17 @@ static float elr__sunsplit_sky_pdf(const elr_sunsplit *P, elr_v3 n, const float 
   const el_envlight *e = P->e;
   return ELR_SUNSPLIT_SKY_COS ? el_envlight_pdf_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], d) : el_envlight_pdf_li_mix(e, P->hs, &P->wsky, d);
 }
-/* whether d lies in a spot's cone (widened: cos_half) */
-static int elr__sunsplit_in_cone(const elr_sunsplit *P, const float d[3]) {
+/* whether d lies in a spot's cone (cos_half, or cos_wide) */
+static int elr__sunsplit_in_cone(const elr_sunsplit *P, const float d[3], const float *cosk) {
   int k;
   for (k = 0; k < P->hs->count; k++)
-    if (d[0] * P->hs->spot[k].axis[0] + d[1] * P->hs->spot[k].axis[1] + d[2] * P->hs->spot[k].axis[2] >= P->cos_half[k]) return 1;
+    if (d[0] * P->hs->spot[k].axis[0] + d[1] * P->hs->spot[k].axis[1] + d[2] * P->hs->spot[k].axis[2] >= cosk[k]) return 1;
   return 0;
 }
 /* the first part's density at d (ELR_SUNSPLIT_SPOT) */
 static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
   if (P->spot == 1) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
-  if (!elr__sunsplit_in_cone(P, d)) return 0.f;
+  if (!elr__sunsplit_in_cone(P, d, P->spot == 2 ? P->cos_half : P->cos_wide)) return 0.f; /* (the bins: a shortcut only) */
   return P->spot == 2 ? el_envlight_pdf_li(P->l->env_sample, d) : el_envlight_pdf_li_mix(P->e, P->hs, &P->wspot, d);
 }
 
@@ -748,7 +749,7 @@ void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, cons
   if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
   else if (k == 0 && P->spot == 2) { /* (a sample outside the cones is dropped: the part's density is 0 there) */
     el_envlight_sample_li(P->l->env_sample, u, wi, L, &ls->pdf);
-    if (!elr__sunsplit_in_cone(P, wi)) ls->pdf = 0.f;
+    if (!elr__sunsplit_in_cone(P, wi, P->cos_half)) ls->pdf = 0.f;
   } else if (k == 0) el_envlight_sample_li_mix(e, P->hs, &P->wspot, u, wi, L, &ls->pdf);
   else if (ELR_SUNSPLIT_SKY_COS) el_envlight_sample_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], u, wi, L, &ls->pdf);
   else el_envlight_sample_li_mix(e, P->hs, &P->wsky, u, wi, L, &ls->pdf);
