@@ -179,7 +179,7 @@ struct elr_wave {
    * cosine and its lonly; per camera sample: shaded here (1) or by elr_direct_first (0), and its Ld */
   elr_v3 fl[ELR_WAVE];
   float flpdf[ELR_WAVE]; /* and the BSDF's pdf in its direction (computed with fl: the dot products they share) */
-  int lonly[ELR_WAVE], fast[ELR_WAVE];
+  int lonly[ELR_WAVE], fast[ELR_WAVE]; /* (fast 2: the camera ray left the scene; Ld its radiance) */
   elr_v3 Ld[ELR_WAVE];
   float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
@@ -515,16 +515,15 @@ static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
     A->bsh[i] = A->bsh[i] >= 0 && !(W->shadows.tfar[A->bsh[i]] < 0.f);
   }
   ts->shadow += (uint64_t)nsh; ts->bsdfl += (uint64_t)nb;
-  for (i = 0; i < n; i++) {
-    float *d = &de[3 * ne];
+  for (i = 0; i < n; i++) { /* (the escaped BSDF rays gathered without branches: every lane written, the counts
+                              * moved by its flags; whether a ray escaped is a coin toss the branch predictor loses) */
+    int e = A->bsh[i], c = e & (l->product && A->has_n[i]);
+    float x = A->wbx[i], y = A->wby[i], z = A->wbz[i];
     A->bpe[i] = 0.f; A->Lb[3 * i] = A->Lb[3 * i + 1] = A->Lb[3 * i + 2] = 0.f;
-    if (!A->bsh[i]) continue;
-    d[0] = A->wbx[i]; d[1] = A->wby[i]; d[2] = A->wbz[i];
-    ke[ne++] = i;
-    if (l->product && A->has_n[i]) {
-      nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i];
-      memcpy(&dc[3 * nc], d, 3 * sizeof(float)); kc[nc++] = i;
-    } else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = i; }
+    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e;
+    dc[3 * nc] = x; dc[3 * nc + 1] = y; dc[3 * nc + 2] = z; kc[nc] = i;
+    nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
+    dm[3 * nm] = x; dm[3 * nm + 1] = y; dm[3 * nm + 2] = z; km[nm] = i; nm += e & !c;
   }
   el_envlight_pdf_li_n(l->env_sample, nm, dm, pq);
   for (i = 0; i < nm; i++) A->bpe[km[i]] = pq[i];
@@ -553,7 +552,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
   /* (W->A's lanes: a lone Lambertian lobe under the environment alone, one pair, MIS; elr__soa_add) */
   const int soa = W->npair == 1 && C->light_sampling && C->ls == ELR_LS_MIS && !C->batch_light->portal && !C->sun;
-  int j, k, n = 0, np = 0, nm = 0;
+  int j, k, n = 0, np = 0, nm = 0, nesc = 0;
   W->shadows.n = 0; W->A.n = 0;
   for (j = 0; j < m; j++) {
     elr_first *q = &W->f[j];
@@ -562,7 +561,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     q->h = &W->h[j]; /* (the pair loop below sets the light sampling's fields: elr_direct_first reads them nowhere else) */
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
-    if (!q->hit) continue;
+    if (!q->hit) { elr_to3(W->cam[j].d, &W->wi[3 * nesc]); W->escaped[nesc++] = j; W->fast[j] = 2; continue; } /* (its radiance below) */
     if (soa && elr__soa_add(W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
@@ -599,6 +598,11 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       np++;
     }
   }
+  /* the camera rays that left the scene: their radiance, elr_direct_first's p.L + beta (0 + Le) (the
+   * environment is the only light that emits: elr_infinite_le's sum is its le), in one el_envlight_le_n
+   * call (the same bits as el_envlight_le each; their cache misses overlap) */
+  el_envlight_le_n(env, nesc, W->wi, W->Le);
+  for (k = 0; k < nesc; k++) W->Ld[W->escaped[k]] = elr_add(elr_v(0, 0, 0), elr_from3(&W->Le[3 * k]));
   /* the light samples */
   elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, C->sun, W->sc, ts);
   elr__soa_sample(C, W, ts);
@@ -882,7 +886,11 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
     for (j = 0; j < m; j++) {
       elr_v3 L;
       if (C->path) L = W->p[j].L;
-      else if (W->fast[j]) { /* elr_direct_first's sums: p.L + beta (0 + Ld / n) */
+      else if (W->fast[j] == 2) { /* (left the scene: elr_direct_first's p.L + beta Le, Le made above) */
+        elr_path_state ps;
+        elr_path_begin(&ps, &W->cam[j]);
+        L = elr_add(ps.L, elr_vmul(ps.beta, W->Ld[j]));
+      } else if (W->fast[j]) { /* elr_direct_first's sums: p.L + beta (0 + Ld / n) */
         elr_path_state ps;
         elr_path_begin(&ps, &W->cam[j]);
         L = elr_add(ps.L, elr_vmul(ps.beta, elr_add(elr_v(0, 0, 0), elr_mul(W->Ld[j], 1.f / (float)(C->direct_one ? 1 : C->batch_light->nsamples)))));
