@@ -155,10 +155,11 @@ typedef struct elr_wave_soa {
   float wbx[ELR_WAVE], wby[ELR_WAVE], wbz[ELR_WAVE], fbr[ELR_WAVE], fbg[ELR_WAVE], fbb[ELR_WAVE], bpdf[ELR_WAVE];
   /* the light sample (as envlight.h returns it), its f |cos| and BSDF pdf; the shadow rays (index in W->shadows or -1) */
   float wl[3 * ELR_WAVE], Ll[3 * ELR_WAVE], lpdf[ELR_WAVE];
+  float wlx[ELR_WAVE], wly[ELR_WAVE], wlz[ELR_WAVE], llr[ELR_WAVE], llg[ELR_WAVE], llb[ELR_WAVE]; /* (the same, by component) */
   float flr[ELR_WAVE], flg[ELR_WAVE], flb[ELR_WAVE], flpdf[ELR_WAVE], dlg[ELR_WAVE], dbg[ELR_WAVE];
   int sh[ELR_WAVE], bsh[ELR_WAVE];
   /* the environment in the BSDF sample's direction (where its ray escaped) */
-  float bpe[ELR_WAVE], Lb[3 * ELR_WAVE];
+  float bpe[ELR_WAVE], lbr[ELR_WAVE], lbg[ELR_WAVE], lbb[ELR_WAVE];
 } elr_wave_soa;
 
 struct elr_wave {
@@ -418,8 +419,13 @@ static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
     A->r[i] = zero ? 0.f : big ? ox : oy;
     A->th[i] = zero ? 0.f : big ? ta : tb;
   }
-  for (i = 0; i < n; i++) { A->c[i] = cosf(A->th[i]); A->s[i] = sinf(A->th[i]); } /* (one sincosf a lane) */
-  for (i = 0; i < n; i++) { /* the cosine sample in the frame of ns (elr_onb), in world space; its f and pdf */
+  for (i = 0; i < n; i++) nlo += A->lonly[i];
+  for (i = 0; i < n; i++) { /* (one sincosf a lane, none where the light sample is taken alone) */
+    float th = A->th[i];
+    if (A->lonly[i]) { A->c[i] = 1.f; A->s[i] = 0.f; continue; }
+    A->c[i] = cosf(th); A->s[i] = sinf(th);
+  }
+  if (nlo < n) for (i = 0; i < n; i++) { /* the cosine sample in the frame of ns (elr_onb), in world space; its f and pdf */
     float x = A->nx[i], y = A->ny[i], z = A->nz[i], sign = z >= 0.f ? 1.f : -1.f, a = -1.f / (sign + z), b = x * y * a;
     float ssx = 1.f + sign * x * x * a, ssy = sign * b, ssz = -sign * x, tsx = b, tsy = sign + y * y * a, tsz = -y;
     float r = A->r[i], c = A->c[i], sn = A->s[i], z2 = 1.f - r * r * (c * c + sn * sn);
@@ -441,7 +447,7 @@ static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
   for (i = 0; i < n; i++) /* (elr_estimate_direct's BSDF ray) */
     A->bray[i] = !A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f);
   /* the light samples (elr__env_samples' map and product cases) */
-  for (i = 0; i < n; i++) { nn += A->has_n[i]; nlo += A->lonly[i]; }
+  for (i = 0; i < n; i++) nn += A->has_n[i];
   if (l->product) { ts->env_product += (uint64_t)nn; ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)nlo; } /* (--stats) */
   if (n == 0) return;
   if (!l->product || nn == 0) el_envlight_sample_li_n(l->env_sample, n, A->ul, A->wl, A->Ll, A->lpdf);
@@ -476,8 +482,12 @@ static void elr__soa_shadows(elr_wave *W) {
   elr_wave_soa *A = &W->A;
   const int n = A->n;
   int i;
+  for (i = 0; i < n; i++) { /* (by component: the loops below take four lanes at a time, not two) */
+    A->wlx[i] = A->wl[3 * i]; A->wly[i] = A->wl[3 * i + 1]; A->wlz[i] = A->wl[3 * i + 2];
+    A->llr[i] = A->Ll[3 * i]; A->llg[i] = A->Ll[3 * i + 1]; A->llb[i] = A->Ll[3 * i + 2];
+  }
   for (i = 0; i < n; i++) {
-    float x = A->nx[i], y = A->ny[i], z = A->nz[i], wx = A->wl[3 * i], wy = A->wl[3 * i + 1], wz = A->wl[3 * i + 2];
+    float x = A->nx[i], y = A->ny[i], z = A->nz[i], wx = A->wlx[i], wy = A->wly[i], wz = A->wlz[i];
     float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
     float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
     int f0 = !((dgi * dgo > 0.f) & (co != 0.f));
@@ -491,7 +501,7 @@ static void elr__soa_shadows(elr_wave *W) {
     if (A->lpdf[i] > 0.f && !(A->flr[i] == 0.f && A->flg[i] == 0.f && A->flb[i] == 0.f)) {
       float e = A->dlg[i] >= 0.f ? A->eps[i] : -A->eps[i];
       A->sh[i] = W->shadows.n;
-      elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_from3(&A->wl[3 * i]), INFINITY);
+      elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wlx[i], A->wly[i], A->wlz[i]), INFINITY);
     }
     if (A->bray[i]) {
       float e = A->dbg[i] >= 0.f ? A->eps[i] : -A->eps[i];
@@ -519,7 +529,7 @@ static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
                               * moved by its flags; whether a ray escaped is a coin toss the branch predictor loses) */
     int e = A->bsh[i], c = e & (l->product && A->has_n[i]);
     float x = A->wbx[i], y = A->wby[i], z = A->wbz[i];
-    A->bpe[i] = 0.f; A->Lb[3 * i] = A->Lb[3 * i + 1] = A->Lb[3 * i + 2] = 0.f;
+    A->bpe[i] = 0.f; A->lbr[i] = A->lbg[i] = A->lbb[i] = 0.f;
     de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e;
     dc[3 * nc] = x; dc[3 * nc + 1] = y; dc[3 * nc + 2] = z; kc[nc] = i;
     nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
@@ -530,15 +540,15 @@ static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
   el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
   for (i = 0; i < nc; i++) A->bpe[kc[i]] = pq[i];
   el_envlight_le_n(l->env, ne, de, Le);
-  for (i = 0; i < ne; i++) memcpy(&A->Lb[3 * ke[i]], &Le[3 * i], 3 * sizeof(float));
+  for (i = 0; i < ne; i++) { A->lbr[ke[i]] = Le[3 * i]; A->lbg[ke[i]] = Le[3 * i + 1]; A->lbb[ke[i]] = Le[3 * i + 2]; }
   for (i = 0; i < n; i++) { /* (elr__direct_shade: Ld from 0, the light sample's term, then the BSDF sample's) */
     int ul = A->sh[i], ub = A->bsh[i];
     float lp = A->lpdf[i], wp = elr__ph_sel(lp, A->flpdf[i]), wl = A->lonly[i] ? 1.f : wp, sl = wl / lp;
     float bp = A->bpdf[i], wb = elr__ph_sel(bp, A->bpe[i]), sb = wb / bp;
     float ac = fabsf(A->wbx[i] * A->nx[i] + A->wby[i] * A->ny[i] + A->wbz[i] * A->nz[i]);
-    float tr = 0.f + A->flr[i] * A->Ll[3 * i] * sl, tg = 0.f + A->flg[i] * A->Ll[3 * i + 1] * sl, tb = 0.f + A->flb[i] * A->Ll[3 * i + 2] * sl;
+    float tr = 0.f + A->flr[i] * A->llr[i] * sl, tg = 0.f + A->flg[i] * A->llg[i] * sl, tb = 0.f + A->flb[i] * A->llb[i] * sl;
     float lr = ul ? tr : 0.f, lg = ul ? tg : 0.f, lb = ul ? tb : 0.f;
-    float br = lr + A->fbr[i] * ac * A->Lb[3 * i] * sb, bg = lg + A->fbg[i] * ac * A->Lb[3 * i + 1] * sb, bb = lb + A->fbb[i] * ac * A->Lb[3 * i + 2] * sb;
+    float br = lr + A->fbr[i] * ac * A->lbr[i] * sb, bg = lg + A->fbg[i] * ac * A->lbg[i] * sb, bb = lb + A->fbb[i] * ac * A->lbb[i] * sb;
     A->flr[i] = ub ? br : lr; A->flg[i] = ub ? bg : lg; A->flb[i] = ub ? bb : lb;
   }
   for (i = 0; i < n; i++) W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
