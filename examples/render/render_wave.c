@@ -41,6 +41,9 @@
 #ifndef ELR_WAVE
 #define ELR_WAVE 256 /* camera samples in a wave at most */
 #endif
+#if ELR_WAVE % 8 != 0
+#error "ELR_WAVE must be a multiple of 8 (ELR_SOA_PAD)"
+#endif
 
 /* >> a first vertex computed ahead (elr_first): its shading in the reference's order (moved here from
  * render_batched.c, the batched loop, when the wave loop replaced it) */
@@ -371,6 +374,17 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
  * floating-point operations in the same order as those functions, each condition a select, so the
  * same bits (test_render_wave). The readable one-lane form is the code those names point to. Only the
  * cosine of the disk sample's angle stays a libm call a lane (a vector sine would round otherwise). */
+/* ELR_SOA_CLONES: the SoA stages built for SSE2 and AVX2, chosen at run time by the CPU (gcc and clang's
+ * target_clones; AVX2 without FMA, so the same roundings) */
+#if defined(ELR_SOA_AVX2) && (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#define ELR_SOA_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ELR_SOA_CLONES
+#endif
+/* the vector loops run to n rounded up to 8 lanes (the arrays hold ELR_WAVE, a multiple of 8): no scalar
+ * remainder, so that gcc vectorises them at -O2 too (its very cheap cost model); the lanes past n hold
+ * an earlier wave's values (or calloc's zeros), computed and never read */
+#define ELR_SOA_PAD(n) (((n) + 7) & ~7)
 static inline float elr__ph_sel(float f, float g) { /* elr_power_heuristic, both branches computed and selected */
   float f2 = f * f, g2 = g * g, rg = g / f, rf = f / g, r = f >= g ? rg : rf, wr = 1.f / (1.f + r * r), q = f2 / (f2 + g2);
   float wbig = f >= g ? wr : 1.f - wr, wn = f2 + g2 > 0.f ? q : 0.f;
@@ -402,12 +416,12 @@ static int elr__soa_add(elr_wave *W, int j) {
 }
 
 /* the BSDF samples and product-sampling normals of W->A's lanes, then their light samples */
-static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
+ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
   elr_wave_soa *A = &W->A;
   const elr_light *l = C->batch_light;
   const int n = A->n, lo_ok = l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated;
   int i, nn = 0, nlo = 0;
-  for (i = 0; i < n; i++) { /* the normal (elr_bsdf_cos_normal), lonly; the disk sample's radius and angle */
+  for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the normal (elr_bsdf_cos_normal), lonly; the disk sample's radius and angle */
     float dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i], sg = dgo < 0.f ? -1.f : 1.f;
     float cx = A->gx[i] * sg, cy = A->gy[i] * sg, cz = A->gz[i] * sg;
     float ox = 2.f * A->v0[i] - 1.f, oy = 2.f * A->v1[i] - 1.f, ta = (ELR_PI / 4.f) * (oy / ox), tb = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy);
@@ -425,7 +439,7 @@ static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
     if (A->lonly[i]) { A->c[i] = 1.f; A->s[i] = 0.f; continue; }
     A->c[i] = cosf(th); A->s[i] = sinf(th);
   }
-  if (nlo < n) for (i = 0; i < n; i++) { /* the cosine sample in the frame of ns (elr_onb), in world space; its f and pdf */
+  if (nlo < n) for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the cosine sample in the frame of ns (elr_onb), in world space; its f and pdf */
     float x = A->nx[i], y = A->ny[i], z = A->nz[i], sign = z >= 0.f ? 1.f : -1.f, a = -1.f / (sign + z), b = x * y * a;
     float ssx = 1.f + sign * x * x * a, ssy = sign * b, ssz = -sign * x, tsx = b, tsy = sign + y * y * a, tsz = -y;
     float r = A->r[i], c = A->c[i], sn = A->s[i], z2 = 1.f - r * r * (c * c + sn * sn);
@@ -478,7 +492,7 @@ static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
 
 /* the light samples' f |cos| and BSDF pdf (elr_bsdf_f_pdf_inl) of W->A's lanes, and their shadow rays and
  * the BSDF samples' into W->shadows */
-static void elr__soa_shadows(elr_wave *W) {
+ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
   elr_wave_soa *A = &W->A;
   const int n = A->n;
   int i;
@@ -486,7 +500,7 @@ static void elr__soa_shadows(elr_wave *W) {
     A->wlx[i] = A->wl[3 * i]; A->wly[i] = A->wl[3 * i + 1]; A->wlz[i] = A->wl[3 * i + 2];
     A->llr[i] = A->Ll[3 * i]; A->llg[i] = A->Ll[3 * i + 1]; A->llb[i] = A->Ll[3 * i + 2];
   }
-  for (i = 0; i < n; i++) {
+  for (i = 0; i < ELR_SOA_PAD(n); i++) {
     float x = A->nx[i], y = A->ny[i], z = A->nz[i], wx = A->wlx[i], wy = A->wly[i], wz = A->wlz[i];
     float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
     float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
@@ -513,7 +527,7 @@ static void elr__soa_shadows(elr_wave *W) {
 
 /* after the shadow rays: the environment in the escaped BSDF samples' directions, then each lane's Ld
  * (elr__direct_shade's sums) into W->Ld */
-static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
+ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
   elr_wave_soa *A = &W->A;
   const elr_light *l = C->batch_light;
   const int n = A->n;
@@ -535,13 +549,13 @@ static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
     nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
     dm[3 * nm] = x; dm[3 * nm + 1] = y; dm[3 * nm + 2] = z; km[nm] = i; nm += e & !c;
   }
-  el_envlight_pdf_li_n(l->env_sample, nm, dm, pq);
+  if (nm > 0) el_envlight_pdf_li_n(l->env_sample, nm, dm, pq);
   for (i = 0; i < nm; i++) A->bpe[km[i]] = pq[i];
-  el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
+  if (nc > 0) el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
   for (i = 0; i < nc; i++) A->bpe[kc[i]] = pq[i];
-  el_envlight_le_n(l->env, ne, de, Le);
+  if (ne > 0) el_envlight_le_n(l->env, ne, de, Le);
   for (i = 0; i < ne; i++) { A->lbr[ke[i]] = Le[3 * i]; A->lbg[ke[i]] = Le[3 * i + 1]; A->lbb[ke[i]] = Le[3 * i + 2]; }
-  for (i = 0; i < n; i++) { /* (elr__direct_shade: Ld from 0, the light sample's term, then the BSDF sample's) */
+  for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (elr__direct_shade: Ld from 0, the light sample's term, then the BSDF sample's) */
     int ul = A->sh[i], ub = A->bsh[i];
     float lp = A->lpdf[i], wp = elr__ph_sel(lp, A->flpdf[i]), wl = A->lonly[i] ? 1.f : wp, sl = wl / lp;
     float bp = A->bpdf[i], wb = elr__ph_sel(bp, A->bpe[i]), sb = wb / bp;
