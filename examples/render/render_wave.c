@@ -17,7 +17,9 @@
  *
  * Direct lighting: the first vertex computed ahead (elr_first), with the
  *   wave's camera rays, light samples and shadow rays (light and BSDF sampled) each in one call; then
- *   its shading in the wave (elr__direct_shade) where no specular bounce follows and it emits nothing,
+ *   its shading in the wave (elr__direct_shade) where no specular bounce follows and it emits nothing
+ *   (in structure-of-arrays form, elr__soa_*, where its BSDF is a lone Lambertian lobe; an escaped camera
+ *   ray's radiance in one el_envlight_le_n call),
  *   else elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
  *   vertex (specular reflection and transmission, a light's further "samples"). The wave's radiance
  *   goes to the film in one el_film_tile_add_samples call.
