@@ -17,7 +17,8 @@
  *  5. Bit for bit on spheres alone with constant materials: the BSDFs the wave loop copies from one made
  *     per render (matte, Oren-Nayar, plastic, glass) and those it does not (anisotropic metal, substrate).
  *  6. Bit for bit, with the same ray and strategy counts, on matte surfaces alone (the waves whose first
- *     vertices render_wave.c shades in structure-of-arrays form, elr__soa_*) under a sun map: each way
+ *     vertices, and the path tracer's vertices, render_wave.c shades in structure-of-arrays form,
+ *     elr__soa_*) under a sun map: each way
  *     diffuse vertices take it (the map alone with MIS, the product with MIS, the sun test choosing
  *     per vertex, the product light sample alone), the map alone for every vertex, and a smooth map
  *     (the product light sample alone); a matte of Kd 0 in one channel, a light of 2 samples (not shaded
@@ -211,15 +212,20 @@ int main(void) {
   /* 6. matte alone (structure-of-arrays shading) under a sun map and a smooth one */
   {
     /* (expected: light samples of the product alone, of the map alone (with product sampling on), of product MIS) */
-    static const struct { const char *sampler, *light; int sun, sd; float light_alpha; int alone, map, mis; } cases[] = {
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1},
-      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3", "", 1, ELR_ENVSD_MAP, -1.f, 0, 1, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1},
-      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, ELR_ENVSD_ALONE, -1.f, 1, 0, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"string sampling\" \"map\"", 1, -1, -1.f, 0, 0, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, -1, -1.f, 0, 0, 1},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 1, 0, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, -1, INFINITY, 0, 0, 1},
+    static const struct { const char *sampler, *light; int sun, sd; float light_alpha; int alone, map, mis, path; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 0},
+      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3", "", 1, ELR_ENVSD_MAP, -1.f, 0, 1, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 0},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, ELR_ENVSD_ALONE, -1.f, 1, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"string sampling\" \"map\"", 1, -1, -1.f, 0, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, -1, -1.f, 0, 0, 1, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 1, 0, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, -1, INFINITY, 0, 0, 1, 0},
+      /* the path tracer (its vertices in SoA form too; never the light sample alone) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", " \"string sampling\" \"map\"", 0, -1, -1.f, 0, 0, 0, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 0, 0, 1, 1},
     };
     /* (a sun: one texel of a 512 x 256 map, where the sun test's share, ELR_ENV_SUN_AREA of the sphere, is a texel) */
     static float env[3 * 512 * 256];
@@ -234,13 +240,13 @@ int main(void) {
       elr_stats sr, st;
       snprintf(buf, sizeof buf,
                "LookAt 0 1.5 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
-               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 18\n%s\nIntegrator \"directlighting\"\n"
+               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 18\n%s\nIntegrator %s\n"
                "WorldBegin\nAttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string mapname\" \"%s\"%s\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.2 0.6 0.3 ]\nTranslate 0.6 0.7 0.4\nShape \"sphere\" \"float radius\" 0.6\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
                "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\nWorldEnd\n",
-               cases[c].sampler, cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light);
+               cases[c].sampler, cases[c].path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light);
       s = rt_load("wave_soa.pbrt", buf, err, 512);
       if (!s) { rt_check(0, "matte scene %d: %s", c, err); continue; }
       sun_diffuse = cases[c].sd; light_alpha = cases[c].light_alpha; lobe_alpha = -1.f;
@@ -248,6 +254,7 @@ int main(void) {
         size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
         for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
         rt_check(st.loop == ELR_LOOP_WAVE && diff == 0 && st.shadow_rays == sr.shadow_rays && st.bsdf_light_rays == sr.bsdf_light_rays &&
+                     st.bounce_rays == sr.bounce_rays &&
                      st.env_product_samples == sr.env_product_samples && st.env_map_samples == sr.env_map_samples &&
                      st.env_light_only_samples == sr.env_light_only_samples,
                  "matte case %d (%s%s, sun %d, diffuse %d): %zu of %zu values differ from the reference; shadow %llu/%llu, bsdf %llu/%llu, "
