@@ -147,7 +147,6 @@ static void elr__occluded(const elr_ctx *C, elr_wave_rays *w, elr_tstats *ts) {
  * that each stage is a loop over plain arrays that gcc and clang vectorise (SSE2 at -O3). */
 typedef struct elr_wave_soa {
   int n, lane[ELR_WAVE]; /* lanes in use; each one's camera sample (index in the wave) */
-  int li[ELR_WAVE];      /* path: each one's light sample (index in W->u, W->normal...) */
   /* the hit (point, geometric and shading normal, ray offset), wo, the material (Kd, issue 20's flags) */
   float px[ELR_WAVE], py[ELR_WAVE], pz[ELR_WAVE], gx[ELR_WAVE], gy[ELR_WAVE], gz[ELR_WAVE];
   float nx[ELR_WAVE], ny[ELR_WAVE], nz[ELR_WAVE], eps[ELR_WAVE], ox[ELR_WAVE], oy[ELR_WAVE], oz[ELR_WAVE];
@@ -196,7 +195,6 @@ struct elr_wave {
   elr_v3 fs[ELR_WAVE], wnext[ELR_WAVE], contrib[ELR_WAVE];
   float pdfs[ELR_WAVE];
   int spec[ELR_WAVE];
-  int soa[ELR_WAVE]; /* the path's lanes in W->A at this vertex: their index there, or -1 */
   /* the environment sampled (u in, directions, radiance, pdf out) and looked up */
   float u[2 * ELR_WAVE], wi[3 * ELR_WAVE], Le[3 * ELR_WAVE], pdf[ELR_WAVE];
   elr_v3 normal[ELR_WAVE]; /* product sampling: each light sample's normal (elr_bsdf_cos_normal), */
@@ -397,43 +395,34 @@ static inline float elr__ph_sel(float f, float g) { /* elr_power_heuristic, both
 
 /* lane j (a hit, not emitting) of the wave into W->A where its BSDF is a lone Lambertian lobe: 1 (its draws
  * made), or 0 (shaded by elr__direct_wave's general steps) */
-/* the material's BSDF at hit h where it is a lone Lambertian lobe (W->A's lanes), else NULL */
-static const elr_bsdf *elr__soa_lambert(const elr_wave *W, const elr_hit *h) {
-  int k = W->tmpl_of[h->material];
-  return k >= 0 && W->tmpl_lambert[k] && h->light < 0 ? &W->tmpl[k] : NULL;
-}
-/* a lane of W->A: camera sample j at hit h seen from wo, BSDF t, the BSDF draw v (u0 in [0, 1): elr_bsdf_lambert_alone) */
-static void elr__soa_fill(elr_wave *W, int j, const elr_hit *h, const elr_bsdf *t, elr_v3 wo, const float v[2]) {
+static int elr__soa_add(elr_wave *W, int j) {
   elr_wave_soa *A = &W->A;
-  int i = A->n++;
-  A->lane[i] = j; A->v0[i] = v[0]; A->v1[i] = v[1];
+  const elr_hit *h = &W->h[j];
+  const elr_bsdf *t;
+  int i = A->n, k = W->tmpl_of[h->material];
+  if (k < 0 || !W->tmpl_lambert[k] || h->light >= 0) return 0;
+  t = &W->tmpl[k];
+  elr_sampler_restore(&W->S[W->pix[j]], &W->pos[j]);
+  elr_sampler_get2d(&W->S[W->pix[j]], &A->ul[2 * i]);
+  { float us[2]; elr_sampler_get2d(&W->S[W->pix[j]], us); A->v0[i] = us[0]; A->v1[i] = us[1]; }
+  if (!(A->v0[i] >= 0.f && A->v0[i] < 1.f)) return 0; /* (elr_bsdf_lambert_alone's u0; the general steps draw again) */
+  A->lane[i] = j;
   A->px[i] = h->p.x; A->py[i] = h->p.y; A->pz[i] = h->p.z; A->gx[i] = h->ng.x; A->gy[i] = h->ng.y; A->gz[i] = h->ng.z;
   A->nx[i] = h->ns.x; A->ny[i] = h->ns.y; A->nz[i] = h->ns.z; A->eps[i] = h->eps;
-  A->ox[i] = wo.x; A->oy[i] = wo.y; A->oz[i] = wo.z;
+  A->ox[i] = W->cam[j].d.x * -1.f; A->oy[i] = W->cam[j].d.y * -1.f; A->oz[i] = W->cam[j].d.z * -1.f;
   A->kr[i] = t->kd.x; A->kg[i] = t->kd.y; A->kb[i] = t->kd.z;
   A->elo[i] = t->env_light_only; A->emap[i] = t->env_map; A->stest[i] = t->env_sun_test;
   A->sax[i] = t->env_sun_axis.x; A->say[i] = t->env_sun_axis.y; A->saz[i] = t->env_sun_axis.z; A->scos[i] = t->env_sun_cos;
-}
-/* direct lighting: lane j (a hit) into W->A where its BSDF is a lone Lambertian lobe: 1 (its draws made),
- * or 0 (shaded by elr__direct_wave's general steps, which draw again) */
-static int elr__soa_add(elr_wave *W, int j) {
-  const elr_bsdf *t = elr__soa_lambert(W, &W->h[j]);
-  float v[2];
-  if (!t) return 0;
-  elr_sampler_restore(&W->S[W->pix[j]], &W->pos[j]);
-  elr_sampler_get2d(&W->S[W->pix[j]], &W->A.ul[2 * W->A.n]);
-  elr_sampler_get2d(&W->S[W->pix[j]], v);
-  if (!(v[0] >= 0.f && v[0] < 1.f)) return 0;
-  elr__soa_fill(W, j, &W->h[j], t, elr_mul(W->cam[j].d, -1.f), v);
+  A->n++;
   return 1;
 }
 
 /* the BSDF samples and product-sampling normals of W->A's lanes, then their light samples */
-/* (the BSDF sample of every lane, its normal and lonly; lo_ok: the light sample may be taken alone,
- * elr_env_light_only's conditions on the light and the integrator: 0 in the path tracer) */
-ELR_SOA_CLONES static void elr__soa_bsdf_sample(elr_wave_soa *A, int lo_ok) {
-  const int n = A->n;
-  int i, nlo = 0;
+ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
+  elr_wave_soa *A = &W->A;
+  const elr_light *l = C->batch_light;
+  const int n = A->n, lo_ok = l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated;
+  int i, nn = 0, nlo = 0;
   for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the normal (elr_bsdf_cos_normal), lonly; the disk sample's radius and angle */
     float dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i], sg = dgo < 0.f ? -1.f : 1.f;
     float cx = A->gx[i] * sg, cy = A->gy[i] * sg, cz = A->gz[i] * sg;
@@ -473,14 +462,6 @@ ELR_SOA_CLONES static void elr__soa_bsdf_sample(elr_wave_soa *A, int lo_ok) {
   }
   for (i = 0; i < n; i++) /* (elr_estimate_direct's BSDF ray) */
     A->bray[i] = !A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f);
-}
-static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
-  elr_wave_soa *A = &W->A;
-  const elr_light *l = C->batch_light;
-  const int n = A->n;
-  int i, nn = 0, nlo = 0;
-  elr__soa_bsdf_sample(A, l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated);
-  for (i = 0; i < n; i++) nlo += A->lonly[i];
   /* the light samples (elr__env_samples' map and product cases) */
   for (i = 0; i < n; i++) nn += A->has_n[i];
   if (l->product) { ts->env_product += (uint64_t)nn; ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)nlo; } /* (--stats) */
@@ -513,7 +494,8 @@ static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
 
 /* the light samples' f |cos| and BSDF pdf (elr_bsdf_f_pdf_inl) of W->A's lanes, and their shadow rays and
  * the BSDF samples' into W->shadows */
-ELR_SOA_CLONES static void elr__soa_light_f(elr_wave_soa *A) {
+ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
+  elr_wave_soa *A = &W->A;
   const int n = A->n;
   int i;
   for (i = 0; i < n; i++) { /* (by component: the loops below take four lanes at a time, not two) */
@@ -530,21 +512,6 @@ ELR_SOA_CLONES static void elr__soa_light_f(elr_wave_soa *A) {
     A->flr[i] = (f0 ? 0.f : fr) * ac; A->flg[i] = (f0 ? 0.f : fg) * ac; A->flb[i] = (f0 ? 0.f : fb) * ac;
     A->dlg[i] = dgi;
   }
-}
-/* (the path's light term: sh 1 where it has one, pdf > 0 and f |cos| not black; fl becomes the term) */
-ELR_SOA_CLONES static void elr__soa_path_contrib(elr_wave_soa *A, float pick) {
-  int i;
-  for (i = 0; i < ELR_SOA_PAD(A->n); i++) {
-    float lp = A->lpdf[i], w = elr__ph_sel(pick * lp, A->flpdf[i]), sl = w / lp;
-    A->sh[i] = (lp > 0.f) & !((A->flr[i] == 0.f) & (A->flg[i] == 0.f) & (A->flb[i] == 0.f));
-    A->flr[i] = A->flr[i] * A->llr[i] * sl; A->flg[i] = A->flg[i] * A->llg[i] * sl; A->flb[i] = A->flb[i] * A->llb[i] * sl;
-  }
-}
-static void elr__soa_shadows(elr_wave *W) {
-  elr_wave_soa *A = &W->A;
-  const int n = A->n;
-  int i;
-  elr__soa_light_f(A);
   for (i = 0; i < n; i++) { /* (elr_wave_add, elr_spawn_origin) */
     A->sh[i] = A->bsh[i] = -1;
     if (A->lpdf[i] > 0.f && !(A->flr[i] == 0.f && A->flg[i] == 0.f && A->flb[i] == 0.f)) {
@@ -726,46 +693,6 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
   elr__direct_shade(C, W, np, ts);
 }
 
-/* the path tracer's vertices in W->A (their draws made): the BSDF sample (elr_bsdf_sample_inl's Lambertian
- * case) and the product-sampling normal of the light sample, into the wave's arrays */
-static void elr__soa_path_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
-  elr_wave_soa *A = &W->A;
-  int k;
-  if (A->n == 0) return;
-  elr__soa_bsdf_sample(A, 0); /* (never the light sample alone: the path's BSDF sample is its next ray) */
-  for (k = 0; k < A->n; k++) {
-    int j = A->lane[k], i = A->li[k];
-    W->has_n[i] = A->has_n[k]; W->normal[i] = elr_v(A->cx[k], A->cy[k], A->cz[k]);
-    if (C->batch_light->product) { if (A->has_n[k]) ts->env_product++; else ts->env_map++; } /* (--stats) */
-    W->fs[j] = elr_v(A->fbr[k], A->fbg[k], A->fbb[k]); W->wnext[j] = elr_v(A->wbx[k], A->wby[k], A->wbz[k]);
-    W->pdfs[j] = A->bpdf[k]; W->spec[j] = 0;
-  }
-}
-/* their light samples' term (the path's elr_estimate_direct: f |cos|, the MIS weight against the BSDF's
- * pdf, (f L) (w / pdf)) into W->contrib, and its shadow ray (ne: the light samples' offset in W->wi) */
-static void elr__soa_path_light(elr_wave *W, int ne, float pick, elr_tstats *ts) {
-  elr_wave_soa *A = &W->A;
-  const int n = A->n;
-  int k;
-  if (n == 0) return;
-  for (k = 0; k < n; k++) {
-    int i = ne + A->li[k];
-    memcpy(&A->wl[3 * k], &W->wi[3 * i], 3 * sizeof(float)); memcpy(&A->Ll[3 * k], &W->Le[3 * i], 3 * sizeof(float));
-    A->lpdf[k] = W->pdf[i];
-  }
-  elr__soa_light_f(A);
-  elr__soa_path_contrib(A, pick);
-  for (k = 0; k < n; k++) {
-    int j = A->lane[k];
-    W->contrib[j] = elr_v(0, 0, 0);
-    if (!A->sh[k]) continue;
-    ts->shadow++;
-    W->contrib[j] = elr_v(A->flr[k], A->flg[k], A->flb[k]);
-    W->shadow[j] = W->shadows.n;
-    elr_wave_add(&W->shadows, elr_spawn_origin(&W->h[j], elr_from3(&A->wl[3 * k])), elr_from3(&A->wl[3 * k]), INFINITY);
-  }
-}
-
 /* the path tracer (elr_path_li) for the m camera samples of the wave, every vertex a wave; their camera
  * rays in W->rays, traced */
 static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
@@ -773,13 +700,10 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
   const elr_light *l = C->batch_light;
   const el_envlight *env = l->env, *env_sample = l->env_sample;
   const float pick = C->ld.pick ? C->ld.pick[l - s->light] : 1.f; /* the one emitting light: 1 */
-  /* (W->A's lanes: a lone Lambertian lobe under the environment alone, MIS; elr__soa_path_*) */
-  const int soa = C->light_sampling && C->ls == ELR_LS_MIS && !l->portal && !C->sun && pick == 1.f;
   int j, depth, nalive = m;
   for (j = 0; j < m; j++) { elr_path_begin(&W->p[j], &W->cam[j]); W->alive[j] = 1; W->ray[j] = j; }
   for (depth = 0; nalive > 0; depth++) {
     int n = 0, ne = 0;
-    W->A.n = 0;
     if (depth > 0) { /* the rays of the paths alive, in one call */
       W->rays.n = 0;
       for (j = 0; j < m; j++) if (W->alive[j]) { W->ray[j] = W->rays.n; elr_wave_add(&W->rays, W->p[j].ray.o, W->p[j].ray.d, INFINITY); }
@@ -795,8 +719,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_tex_ctx tc;
       elr_v3 wo, dpdx, dpdy;
       float u[2];
-      const elr_bsdf *t;
-      W->light[j] = W->escaped[j] = W->soa[j] = -1;
+      W->light[j] = W->escaped[j] = -1;
       if (!W->alive[j]) continue;
       if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
         float d[3];
@@ -817,21 +740,6 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       }
       /* <<Terminate path if maxDepth was reached>> */
       if (p->depth >= C->maxdepth) { W->alive[j] = 0; nalive--; continue; }
-      if (soa && (t = elr__soa_lambert(W, h)) != NULL) { /* the draws below (light, unused BSDF, BSDF); the rest in W->A */
-        elr_sampler_restore(S, &W->pos[j]);
-        elr_sampler_get2d(S, &W->u[2 * n]);
-        elr_sampler_skip2d(S);
-        elr_sampler_get2d(S, u);
-        if (u[0] >= 0.f && u[0] < 1.f) { /* (elr_bsdf_lambert_alone's u0; else the steps below draw again) */
-          elr_sampler_save(S, &W->pos[j]);
-          W->soa[j] = W->A.n; W->A.li[W->A.n] = n;
-          elr__soa_fill(W, j, h, t, elr_mul(p->ray.d, -1.f), u);
-          W->sc[n] = NULL; W->lpos[n] = h->p;
-          W->light[j] = n++;
-          b->ns = h->ns; /* (the one field of the BSDF read after this: elr__soa_path_sample gives f, wi, pdf) */
-          continue;
-        }
-      }
       /* <<Compute scattering functions and skip over medium boundaries>> */
       if (p->depth == 0) elr_compute_differentials(s, &p->ray, h, &tc, &dpdx, &dpdy);
       else {
@@ -857,7 +765,6 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       W->fs[j] = elr_bsdf_sample_inl(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
       elr_sampler_save(S, &W->pos[j]);
     }
-    elr__soa_path_sample(C, W, ts);
     /* the light samples in one call; the escaped rays' environment in one pass */
     elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, C->sun, W->sc, ts);
     /* (batched: el_envlight_pdf_li_n, el_envlight_pdf_li_cos_n and el_envlight_le_n over the escaped rays,
@@ -901,8 +808,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         W->alive[j] = 0; nalive--;
         continue;
       }
-      if (i >= 0 && W->soa[j] < 0) { /* elr_estimate_direct's light-sampled term (no BSDF-sampled term in the path
-                                      * tracer; W->A's lanes in elr__soa_path_light below) */
+      if (i >= 0) { /* elr_estimate_direct's light-sampled term (no BSDF-sampled term in the path tracer) */
         const elr_bsdf *b = &W->b[j];
         elr_v3 wo = elr_mul(p->ray.d, -1.f), wi = elr_from3(&W->wi[3 * (ne + i)]);
         float lpdf = W->pdf[ne + i];
@@ -921,7 +827,6 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         }
       }
     }
-    elr__soa_path_light(W, ne, pick, ts);
     elr__occluded(C, &W->shadows, ts);
     /* each path's direct light, then its next ray (<<Possibly terminate the path with Russian roulette>>) */
     for (j = 0; j < m; j++) {
