@@ -17,8 +17,8 @@
  *  5. Bit for bit on spheres alone with constant materials: the BSDFs the wave loop copies from one made
  *     per render (matte, Oren-Nayar, plastic, glass) and those it does not (anisotropic metal, substrate).
  *  6. Bit for bit, with the same ray and strategy counts, on matte surfaces alone (the waves whose first
- *     vertices, and the path tracer's vertices, render_wave.c shades in structure-of-arrays form,
- *     elr__soa_*) under a sun map: each way
+ *     vertices render_wave.c shades in structure-of-arrays form, elr__soa_*; and the path tracer on
+ *     them) under a sun map: each way
  *     diffuse vertices take it (the map alone with MIS, the product with MIS, the sun test choosing
  *     per vertex, the product light sample alone), the map alone for every vertex, and a smooth map
  *     (the product light sample alone); a matte of Kd 0 in one channel, a light of 2 samples (not shaded
@@ -221,7 +221,7 @@ int main(void) {
       {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, -1, -1.f, 0, 0, 1, 0},
       {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 1, 0, 0, 0},
       {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, -1, INFINITY, 0, 0, 1, 0},
-      /* the path tracer (its vertices in SoA form too; never the light sample alone) */
+      /* the path tracer (never the light sample alone) */
       {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 1},
       {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 1},
       {"Sampler \"random\" \"integer pixelsamples\" 4", " \"string sampling\" \"map\"", 0, -1, -1.f, 0, 0, 0, 1},
