@@ -497,11 +497,12 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    1.25x sample_li, pdf_li_cos <= 150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about
  *    the pdf plus the pick. The pdf (408) is the normal's bin (to light space, octahedral encoding: about
  *    60), wi to light space (27), (u, v) to the bilinear's precision (the two atan polynomials le() itself
- *    uses, so that rgb is le(wi) bit for bit: about 110), the four table widths (about 50), the corners and
+ *    uses, so that rgb is le(wi) bit for bit: about 110; the patch density's atan-free locate costs as much,
+ *    Tried since below), the four table widths (about 50), the corners and
  *    the density (about 60) and the calls; the sample adds the pick (four searches over 32, ~37, ~16 and 16
  *    entries: about 190 as binary searches, about 95 with the guide tables), two linear inversions, the
  *    direction (sinpi, cospi) and the atan pair again (bit-for-bit agreement with pdf_li_cos needs the
- *    direction located as the pdf locates it).
+ *    direction located as the pdf locates it; by angle addition and without atan: 742, Tried since below).
  *    N AT ONCE (sample_li_cos_n, pdf_li_cos_n; issue 20): the same work, bit for bit, with the arithmetic
  *    on four lanes of SSE2 (normal -> bin, the linear inversions, the direction's sinpi / cospi, the atan
  *    pair, the density) and the table reads lane by lane, in four stages over 16 samples (cell row, cell,
@@ -517,7 +518,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    217-224 and 59 ns. Issue 20's targets are not met this way either: the floor is the scalar part, the
  *    four searches (about 125 per sample, the guides' forward scans) and the pick's address and fraction
  *    arithmetic (about 110), the normal's table and the lanes' bookkeeping; the vector part is about 120
- *    per sample. In render's wave loop (render_wave.c, the wave's product samples in one call):
+ *    per sample (the atan-free locate, Tried since below, on four lanes: 625 and 400, its references
+ *    gathered lane by lane). In render's wave loop (render_wave.c, the wave's product samples in one call):
  *    callgrind_parts.sh, instructions per camera sample, city 4064 -> 3993 (light part 1066 -> 996), studio
  *    3264 -> 3114 (1011 -> 860; four lanes without stages or the texel reuse: 3969 and 3058); render CPU
  *    time, one thread, 64 spp, best of 3 interleaved: bench_city 1.98 -> 1.88 s, bench_studio 1.47 -> 1.18
@@ -554,11 +556,59 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
  *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
  *    place of the binary searches (1049 instructions against 953). Tried since: the batched call for n
- *    normals (N AT ONCE above: 624 / 333 instructions, 2-3.5x less time). Not tried: alias tables (they
+ *    normals (N AT ONCE above: 624 / 333 instructions, 2-3.5x less time); the patch density's atan-free
+ *    locate (grids of at least 256 x 128: its half-texel finders and reference angles, the sample's
+ *    direction by angle addition, its patch checked by the signs of cross products with the patch's edges
+ *    so that the sampler skips the finders; git history: commit 7995289, reverted by the next), dropped: city,
+ *    instructions sample_li_cos 813 -> 742, pdf_li_cos 402 -> 420 (the finders alone, without the signs'
+ *    rule: 795 and 397), sample_li_cos_n 624 -> 625, pdf_li_cos_n 332 -> 400; bench_product --batch (best
+ *    of 3 interleaved) city 290 -> 276, 116.5 -> 116.0, 68 -> 71, 47.3 -> 48.1 ns, studio 259 -> 239,
+ *    112 -> 109, 69 -> 80, 44 -> 47; --library (one normal per run) city 207 -> 180 ns, studio 185 -> 174:
+ *    the single sample gains, the batched calls the renderer uses do not, the pdfs lose, and rgb would be
+ *    le(wi) only to the patch density's tolerance (188 KB more tables). Built (below): alias tables (they
  *    break the stratification), Conty and Lecocq's per-point 12x12
- *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'), an equal-area or
+ *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'). Not tried: an equal-area or
  *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
- *    density would no longer be le's, and the atans are about a quarter of the pdf).
+ *    density would no longer be le's; on le's own patches locating without atan did not pay, above).
+ *    CANDIDATES BUILT IN BENCH_PRODUCT --CANDIDATES (issue 20's two designs not built before, as prototypes
+ *    on the library's own tables and helpers; city / studio 1024x512. Instructions with the radiance and a
+ *    new random normal per call: OPS="lib alias2 alias4 alias2c cl12x12 cl16x8 cl16x16 lib_pdf cl12x12_pdf"
+ *    sh bench/callgrind_product.sh build/bin/bench_product data/envmaps/city.hdr 20000. The rest: REPS=5
+ *    bench_product --candidates: relative variance per sample, geometric mean over the six normals, 200,000
+ *    independent samples, and per point with 3125 estimates of 64 Owen-scrambled Sobol' points; CPU ns per
+ *    sample with random normals and with one normal per run, best of 5 interleaved rounds, loaded 2-core
+ *    machine.) Today's sampler in the same harness: 940 / 943 instructions, variance 0.0338 / 0.0395, Sobol'
+ *    0.0030 / 0.0031, 321 / 243 ns with random normals (212 / 171 with one normal), relvar x ns 10.9 / 9.6
+ *    (7.2 / 6.8).
+ *    ALIAS TABLES (Walker / Vose in integers over the library's own widths: each entry keeps exactly its
+ *    share, so density and pdf are today's; pdf_li_cos of every 16th sample equal bit for bit): the two
+ *    cell levels 876 / 881 instructions, all four levels 822 / 830 (the guided searches: -64, -118); 8-byte
+ *    entries (threshold, alias, both widths): 15.3 MiB (cell levels) or 19.9 (all four) against 5.38, built
+ *    in 21 ms more; 4-byte entries for the cell levels (the widths read from the library's CDFs, which the
+ *    pdf keeps) 880 / 887 instructions and 10.6 MiB. Independent points: the same variance; with one normal
+ *    per run 203 / 165 ns (4-byte 197 / 165: relvar x ns 6.6 / 6.5, 8% / 4% under today's), with random
+ *    normals 452 / 319 ns (4-byte 374 / 287: +16% / +18%, the larger tables miss the cache; relvar x ns 12.5 /
+ *    11.2). Sobol' points: 0.0172 / 0.0098 per point, 5.7x / 3.2x today's (all four levels 5.8x / 3.5x): the
+ *    rest of u that goes on to the next level is not monotone in u, so Sobol' gains 2-4x over independent
+ *    points instead of 11-13x. Not kept: the renderer's default points are low-discrepancy.
+ *    CONTY AND LECOCQ'S PER-POINT COARSE LEVEL (lat-long cells, not their equal-area ones; per point the exact
+ *    maximum of n.w over each cell + 1e-5, SSE2 four cells a step, times the cell's mass; a CDF over the cell
+ *    rows, then over the row's cells; then the library's patch-row and patch picks and bilinear, so the pdf
+ *    is exact, checked bit for bit and by a chi-square of the cells; 2.1 MiB of tables built in 6-8 ms,
+ *    which would meet the issue's memory and build targets): 12x12 2741 / 2753 instructions (the pass over
+ *    the cells alone 1839: about 40 per four cells), 16x8 2493, 16x16 3821 / 3825; its pdf needs the whole
+ *    pass too: 2448 / 2126, 2181, 3827 / 3186 (pdf_li_cos 410; 158 / 163, 151 / 146, 216 / 215 ns against
+ *    101 / 91). Variance 0.052 / 0.072 (12x12), 0.063 / 0.073 (16x8), 0.034 / 0.047 (16x16); Sobol' 0.0069 /
+ *    0.0063, 0.0067 / 0.0095, 0.0059 / 0.0051 (1.6-3.1x today's); random normals 378 / 288, 387 / 265, 446 /
+ *    339 ns, one normal 321 / 267, 321 / 255, 401 / 313; relvar x ns 19.7 / 20.7, 24.3 / 19.3, 15.2 / 15.9
+ *    (1.4-2.2x today's; one normal 1.9-2.8x). A sample and a pdf at the same point sharing one pass would
+ *    still take about 3350 instructions against today's 1350.
+ *    Unbiased (both): the estimators' |z| against the quadrature and the cells' chi-square z within 2.7 (today's
+ *    too) but for one normal each at the default seed (4.2 alias side+x and 4.4 C&L 16x16 down on city, 3.5
+ *    C&L 16x8 on sunset), which other seeds at 4x the samples do not repeat (all <= 2.4 at 800,000, city and
+ *    sunset); no direction above a random normal with le > 0 got pdf 0 (131,790 pairs each). Sunset and night
+ *    (../shared/envmaps, 100,000 samples) repeat the pattern: alias with Sobol' points 6.5x / 5.1x today's
+ *    variance, C&L relvar x ns 1.7-2.4x today's. Neither design replaces the tables.
  *    MEMORY: the vertex grid (2 bytes per vertex, bfloat16), the patch CDFs (2 bytes per patch) and the
  *    sparse normal tables (2.9 MB for 32^2 bins x 64 x 32 cells; dense they were 4.3) and the guide tables
  *    (0.55 MB): 5,643,316 bytes = 5.38 MiB at 1024x512 (4.86 without the guides, 7.3 MiB before this round,

@@ -28,7 +28,7 @@
 #define EL_IMPLEMENTATION
 #include "envlight.h"
 #include "image_io.h"
-#include "../tests/test_rng.h" /* splitmix64, hash32 */
+#include "../tests/test_rng.h" /* splitmix64, hash32, sobol0, sobol1, owen24 */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -38,24 +38,6 @@
 static splitmix64 g_s = {0x9E3779B97F4A7C15ull};
 static uint64_t rnd64(void) { return splitmix64_next(&g_s); }
 static float rndf(void) { return splitmix64_f(&g_s); }
-/* nested uniform (Owen) scramble of the top 24 bits of v with seed: bit i flipped by a hash of the bits above */
-static float owen(uint32_t v, uint32_t seed) {
-  uint32_t out = 0;
-  int i;
-  for (i = 31; i >= 8; i--) {
-    uint32_t prefix = i == 31 ? 0 : (v >> (i + 1)) | (1u << (31 - i));
-    uint32_t b = (v >> i) & 1u;
-    b ^= hash32(prefix ^ hash32(seed + (uint32_t)i)) & 1u;
-    out |= b << i;
-  }
-  return (float)(out >> 8) * (1.0f / 16777216.0f);
-}
-static uint32_t sobol0(uint32_t i) { uint32_t r = 0, b = 0x80000000u; for (; i; i >>= 1, b >>= 1) if (i & 1) r ^= b; return r; }
-static uint32_t sobol1(uint32_t i) {
-  uint32_t r = 0, v = 0x80000000u;
-  for (; i; i >>= 1, v ^= v >> 1) if (i & 1) r ^= v;
-  return r;
-}
 static void shuffle(int *p, int n) { int i; for (i = 0; i < n; i++) p[i] = i; for (i = n - 1; i > 0; i--) { int j = (int)(rnd64() % (uint64_t)(i + 1)), t = p[i]; p[i] = p[j]; p[j] = t; } }
 
 /* n 2D points of kind k (0 independent, 1 jittered k x k, 2 Owen-scrambled Sobol', 3 multi-jitter), into u[2 i] */
@@ -77,7 +59,7 @@ static void points(int kind, int n, float *u) {
     }
   } else {
     uint32_t s0 = (uint32_t)rnd64(), s1 = (uint32_t)rnd64();
-    for (i = 0; i < n; i++) { uint32_t c = (uint32_t)perm[i]; u[2 * i] = owen(sobol0(c), s0); u[2 * i + 1] = owen(sobol1(c), s1); }
+    for (i = 0; i < n; i++) { uint32_t c = (uint32_t)perm[i]; u[2 * i] = owen24(sobol0(c), s0); u[2 * i + 1] = owen24(sobol1(c), s1); }
   }
   for (i = 0; i < 2 * n; i++) if (u[i] >= 1.0f) u[i] = 0.99999994f;
 }

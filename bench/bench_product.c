@@ -17,6 +17,20 @@
  *                             against the single calls and sample_li, with a new random normal per sample:
  *                             CPU ns per sample, best of REPS (5) interleaved rounds. Default maps: city
  *                             and studio from data/envmaps.
+ *   bench_product --candidates [MAP ...]   issue 20's two unbuilt designs against the library's sampler
+ *                             (section "--candidates" below: alias tables in place of the guide-table
+ *                             searches; Conty and Lecocq's per-point coarse level, 12x12, 16x8, 16x16):
+ *                             tables (MiB), build ms, relative variance per sample (geometric mean over the
+ *                             six normals) with independent points and with Owen-scrambled Sobol' points
+ *                             (64 per estimate), the estimator's |z| against the quadrature, a chi-square
+ *                             of the cell picks, the pdf function checked bit for bit on every 16th sample,
+ *                             CPU ns per sample with a new random normal per call (best of REPS, 3,
+ *                             interleaved rounds) and relvar x ns. Default maps: city and studio. SEED=n
+ *                             shifts the independent streams; VERBOSE=1 prints each normal's z and chi2 z.
+ *   bench_product --callgrind OP N [MAP]   N calls of one candidate (OP: loop, lib, alias2, alias4, alias2c, cl12x12,
+ *                             cl16x8, cl16x16, + "_pdf", C&L + "_pass"), for bench/callgrind_product.sh:
+ *                             OPS="lib alias2 alias4 cl12x12 lib_pdf cl12x12_pdf" sh bench/callgrind_product.sh
+ *                             build/bin/bench_product data/envmaps/city.hdr 20000
  *   environment: NSAMP=n (samples per cell, 200000), ONLY=text (only strategies whose name holds it),
  *                MS=a,b,c (the three normal-table sizes, 8,16,32), BUILD=digits (build only tables
  *                3 * cells index + size index), DENSE=1 (an optimistic, NOT conservative bound: the
@@ -782,6 +796,17 @@ static void library_map(const char *path, int nsamp) {
   el_image_free(&img);
 }
 
+/* nb uniform random directions (normals) and nb pairs u, from a PCG32 stream at seed (--batch's) */
+static void random_dirs_u(float *nrm, float *uu, int nb, uint64_t seed) {
+  rng g;
+  int k;
+  g.s = seed;
+  for (k = 0; k < nb; ++k) {
+    float z = 1.0f - 2.0f * rng_f(&g), r = sqrtf(z < 1.0f && z > -1.0f ? 1.0f - z * z : 0.0f), ph = 6.2831853f * rng_f(&g);
+    nrm[3 * k] = r * cosf(ph); nrm[3 * k + 1] = r * sinf(ph); nrm[3 * k + 2] = z;
+    uu[2 * k] = rng_f(&g); uu[2 * k + 1] = rng_f(&g);
+  }
+}
 /* ---- --batch: n at once (el_envlight_sample_li_cos_n, pdf_li_cos_n) against the single calls ---- */
 /* A new random normal per sample (renderer-like: the normal tables' rows are cache-cold), 2^20 samples
  * precomputed (normals, u); the calls with the radiance, in batches of 64. CPU ns per sample, best of
@@ -797,18 +822,12 @@ static void batch_map(const char *path, int reps) {
   float *pdf = (float *)malloc((size_t)NB * sizeof(float));
   double best[NV], sum[NV];
   int k, v, rep;
-  rng g;
   if (!nrm || !uu || !wi || !rgb || !pdf) return;
   if (el_image_load(path, &img, err, sizeof err) != 0) { printf("(%s)\n", err); return; }
   if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, NULL) != EL_SUCCESS) return;
   el_envlight_prepare_product(&l, NULL);
   el_envlight_prepare_sampling(&l);
-  g.s = 0x853c49e6748fea9bull;
-  for (k = 0; k < NB; ++k) { /* uniform directions */
-    float z = 1.0f - 2.0f * rng_f(&g), r = sqrtf(z < 1.0f && z > -1.0f ? 1.0f - z * z : 0.0f), ph = 6.2831853f * rng_f(&g);
-    nrm[3 * k] = r * cosf(ph); nrm[3 * k + 1] = r * sinf(ph); nrm[3 * k + 2] = z;
-    uu[2 * k] = rng_f(&g); uu[2 * k + 1] = rng_f(&g);
-  }
+  random_dirs_u(nrm, uu, NB, 0x853c49e6748fea9bull); /* uniform directions */
   for (v = 0; v < NV; ++v) best[v] = 1e30;
   for (rep = 0; rep < reps; ++rep)
     for (v = 0; v < NV; ++v) {
@@ -834,6 +853,657 @@ static void batch_map(const char *path, int reps) {
   free(nrm); free(uu); free(wi); free(rgb); free(pdf);
 }
 
+/* ---- --candidates: issue 20's two designs not built before, as designs (the library's own tables and
+ * helpers underneath, so that instructions and time compare with el_envlight_sample_li_cos) ----
+ *
+ * (1) ALIAS: Walker's alias tables (Vose's construction, in integers) in place of the guide-table
+ *     searches, over the library's own integer widths (the normal bins' cell rows and cells, and for
+ *     "alias 4" also each cell's patch rows and each patch row's patches). Exact: bucket k of n keeps k
+ *     when 32768 frac(u n) < thr_k, else takes al_k, so every entry is picked with exactly its integer
+ *     share and the density (and the pdf, pdf_li_cos's own: checked bit for bit) is the library's. The
+ *     rest of u goes on to the next level, but it is no longer monotone in u: the stratification breaks.
+ *     Entries of 8 bytes (threshold, alias, both widths); "4-byte" (the cell levels only): threshold |
+ *     alias << 16, the widths read from the library's CDFs (the same picks, less memory, one more read).
+ * (2) C&L: Conty and Lecocq 2018's per-point coarse level. A KU x KV level of lat-long cells (the
+ *     library's patch tables built with those cells, one normal bin), each cell's mass, and per shading
+ *     point the exact maximum of n.w over every cell (the spherical rectangle's, as the normal tables'
+ *     build computes it, + 1e-5 for float rounding), with SSE2 (four cells a step), times the mass: a CDF
+ *     over the cell rows and, inside the picked row, over its cells (u[1], then u[0]), then the library's
+ *     patch-row and patch picks and its bilinear inside the patch. pdf: the same weights (all cells
+ *     again: a pdf costs a weight pass too), P(cell) = weight / total, times the library's patch density. */
+typedef struct { uint16_t thr, w, wa, al; } aentry; /* keep k when 32768 frac < thr; else al; w, wa: the widths */
+typedef struct { uint32_t off, lib; uint16_t as, len; } arow; /* lib: the library's row, from its table's start */
+typedef struct {
+  const struct el_envlight__warp *W;
+  uint32_t *bin_off; /* m * m: the bin's kv cell-row entries in pool */
+  arow *rows;        /* m * m * kv: each row's span (as the sparse table's) and its entries in pool */
+  aentry *pool, *prow, *pcol; /* prow, pcol: at the offsets of the library's CDFs */
+  uint32_t *pool4;   /* the compact cell levels: pool's threshold | alias << 16, the widths read from the library's CDFs */
+  size_t cell_bytes, patch_bytes, cell_bytes4; /* the cell levels' tables, the patch levels' (besides the library's, which the pdf reads) */
+} alias_tabs;
+
+/* Vose's construction over the widths c[k + 1] - c[k] of an integer CDF (32768 units), exactly: scaled
+ * widths s_k = w_k n, buckets of 32768 */
+static void alias_build(const uint16_t *c, int n, aentry *e, uint32_t *s, int *lst) {
+  int *small = lst, *large = lst + n, ns = 0, nl = 0, k;
+  for (k = 0; k < n; ++k) {
+    e[k].w = e[k].wa = (uint16_t)(c[k + 1] - c[k]);
+    e[k].thr = 32768; e[k].al = (uint16_t)k;
+    s[k] = (uint32_t)e[k].w * (uint32_t)n;
+    if (s[k] < 32768u) small[ns++] = k; else large[nl++] = k;
+  }
+  if (c[n] != 32768u) return; /* no mass: never picked */
+  while (ns && nl) {
+    int lo = small[--ns], g = large[--nl];
+    e[lo].thr = (uint16_t)s[lo]; e[lo].al = (uint16_t)g; e[lo].wa = e[g].w;
+    s[g] -= 32768u - s[lo];
+    if (s[g] < 32768u) small[ns++] = g; else large[nl++] = g;
+  }
+}
+static void alias_init(alias_tabs *A, const struct el_envlight__warp *W) {
+  int m = W->m, kv = W->kv, ku = W->ku, h = W->h, bin, a, b, r;
+  size_t pos = 0, nprow = (size_t)ku * (size_t)(h + 1 + kv), npcol = (size_t)(h + 1) * W->cond_stride;
+  uint32_t *s = (uint32_t *)malloc(4096 * sizeof(uint32_t));
+  int *lst = (int *)malloc(8192 * sizeof(int));
+  A->W = W;
+  A->bin_off = (uint32_t *)malloc((size_t)m * m * sizeof(uint32_t));
+  A->rows = (arow *)malloc((size_t)m * m * kv * sizeof(arow));
+  A->pool = (aentry *)malloc((size_t)m * m * (size_t)kv * (size_t)(ku + 1) * sizeof(aentry));
+  A->prow = (aentry *)calloc(nprow, sizeof(aentry));
+  A->pcol = (aentry *)calloc(npcol, sizeof(aentry));
+  for (bin = 0; bin < m * m; ++bin) {
+    const uint16_t *tab = W->cos_tab + W->cos_off[bin];
+    A->bin_off[bin] = (uint32_t)pos;
+    alias_build(tab, kv, A->pool + pos, s, lst);
+    pos += (size_t)kv;
+    for (b = 0; b < kv; ++b) {
+      const uint16_t *row = el_envlight__sparse_row(W, tab, b);
+      arow *ar = A->rows + (size_t)bin * kv + b;
+      ar->off = (uint32_t)pos; ar->lib = (uint32_t)(row - tab); ar->as = row[0]; ar->len = row[1];
+      if (row[1]) alias_build(row + 2, row[1], A->pool + pos, s, lst);
+      pos += row[1];
+    }
+  }
+  A->pool = (aentry *)realloc(A->pool, pos * sizeof(aentry));
+  A->pool4 = (uint32_t *)malloc(pos * sizeof(uint32_t));
+  for (r = 0; r < (int)pos; ++r) A->pool4[r] = (uint32_t)A->pool[r].thr | (uint32_t)A->pool[r].al << 16;
+  for (a = 0; a < ku; ++a)
+    for (b = 0; b < kv; ++b) {
+      size_t base = (size_t)a * (size_t)(h + 1 + kv) + (size_t)W->b0[b] + (size_t)b;
+      alias_build(W->prow + base, W->b0[b + 1] - W->b0[b], A->prow + base, s, lst);
+    }
+  for (r = 0; r <= h; ++r)
+    for (a = 0; a < ku; ++a) {
+      size_t base = (size_t)r * W->cond_stride + (size_t)W->coff[a];
+      alias_build(W->pcol + base, W->a0[a + 1] - W->a0[a], A->pcol + base, s, lst);
+    }
+  A->cell_bytes = (size_t)m * m * (sizeof(uint32_t) + (size_t)kv * sizeof(arow)) + pos * sizeof(aentry);
+  A->patch_bytes = (nprow + npcol) * sizeof(aentry);
+  A->cell_bytes4 = (size_t)m * m * (sizeof(uint32_t) + (size_t)kv * sizeof(arow)) + pos * sizeof(uint32_t);
+  free(s); free(lst);
+}
+static void alias_free(alias_tabs *A) { free(A->bin_off); free(A->rows); free(A->pool); free(A->pool4); free(A->prow); free(A->pcol); }
+/* one pick among n entries with x in [0, 1]: the entry, the rest of x for the next level, its width */
+static inline int alias_pick(const aentry *e, int n, float x, float *rest, uint32_t *w) {
+  float y = x * (float)n, z;
+  int k = (int)y;
+  k = k < n - 1 ? k : n - 1;
+  z = (y - (float)k) * 32768.0f;
+  z = z < 32767.998f ? z : 32767.998f;
+  e += k;
+  if (z < (float)e->thr) { *rest = z / (float)e->thr; *w = e->w; return k; }
+  *rest = (z - (float)e->thr) / (float)(32768 - e->thr); *w = e->wa;
+  return e->al;
+}
+/* the same pick from a compact entry (threshold | alias << 16), the width from the CDF c */
+static inline int alias_pick4(const uint32_t *e, const uint16_t *c, int n, float x, float *rest, uint32_t *w) {
+  float y = x * (float)n, z, thr;
+  int k = (int)y;
+  uint32_t v;
+  k = k < n - 1 ? k : n - 1;
+  z = (y - (float)k) * 32768.0f;
+  z = z < 32767.998f ? z : 32767.998f;
+  v = e[k];
+  thr = (float)(v & 0xffffu);
+  if (z < thr) *rest = z / thr;
+  else { *rest = (z - thr) / (32768.0f - thr); k = (int)(v >> 16); }
+  *w = (uint32_t)(c[k + 1] - c[k]);
+  return k;
+}
+/* the octahedral bin of world normal n (el_envlight__prod_table's, for unit-ish n) */
+static inline int normal_bin(const el_envlight *l, const struct el_envlight__warp *W, const float n[3]) {
+  float nl[3], x, y;
+  int i, j, mm = W->m;
+  el_envlight__to_light(l, n, nl);
+  el_envlight__oct_encode(nl, &x, &y);
+  i = (int)(x * (float)mm); j = (int)(y * (float)mm);
+  i = i < mm - 1 ? (i > 0 ? i : 0) : mm - 1;
+  j = j < mm - 1 ? (j > 0 ? j : 0) : mm - 1;
+  return j * mm + i;
+}
+
+/* The library's steps after its pick (el_envlight__prod_sample, copied: the bench cannot call half of
+ * it): (s, t) in patch (P->i, P->r) from the bilinear, the direction, located again as the pdf locates
+ * it; the density from the widths (wc, P->wr) times scale when it lands in that patch, else pdf_at's */
+typedef float (*pdf_at_fn)(const void *ctx, const float d[3], float uv[2]);
+static inline void finish_patch(const el_envlight *l, const struct el_envlight__warp *W, const el_envlight__pick *P, uint32_t wc, float scale,
+                                pdf_at_fn pdf_at, const void *ctx, float wi[3], float rgb[3], float *pdf) {
+  float d[3], uv[2] = {0, 0}, c[4], t, s, u, v, vp, p = 0.0f, lo = 2.44140625e-4f, hi = 0.999755859f;
+  int i = P->i, r = P->r, k;
+  el_envlight__ploc loc;
+  el_envlight__prod_corners(W, i, r, c);
+  t = el_envlight__lin_invf(c[0] + c[1], c[2] + c[3], P->q);
+  s = el_envlight__lin_invf(c[0] + t * (c[2] - c[0]), c[1] + t * (c[3] - c[1]), P->s);
+  t = t > lo ? (t < hi ? t : hi) : lo;
+  s = s > lo ? (s < hi ? s : hi) : lo;
+  for (k = 0; k < 2; ++k, s = t = 0.5f) {
+    u = ((float)i + 0.5f + s) * W->inv_w;
+    u = u >= 1.0f ? u - 1.0f : u;
+    u = u < 0.99999994f ? u : 0.99999994f;
+    if (r == 0) v = vp = t * W->half_inv_h;
+    else if (r == W->h) { vp = (1.0f - t) * W->half_inv_h; v = 1.0f - vp; }
+    else { v = ((float)r - 0.5f + t) * W->inv_h; vp = v < 0.5f ? v : 1.0f - v; }
+    el_envlight__uvp_to_dir(u, v, vp, d);
+    el_envlight__to_world(l, d, wi);
+    if (!l->exact_transform) el_envlight__mul_transpose(l->to_world, wi, d);
+    if (el_envlight__prod_locate(W, d, &loc) && loc.i == i && loc.r == r) {
+      p = el_envlight__prod_eval(W, &loc, wc, P->wr, c) * scale;
+      uv[0] = loc.u; uv[1] = loc.v;
+    } else p = pdf_at(ctx, d, uv);
+    if (p > 0.0f) break;
+  }
+  *pdf = p;
+  if (rgb) {
+    if (p > 0.0f) el_envlight__bilerp(l, uv[0], uv[1], rgb);
+    else rgb[0] = rgb[1] = rgb[2] = 0.0f;
+  }
+}
+typedef struct { const struct el_envlight__warp *W; const uint16_t *tab; } lib_ctx;
+static float lib_pdf_at(const void *ctx, const float d[3], float uv[2]) {
+  const lib_ctx *c = (const lib_ctx *)ctx;
+  return el_envlight__prod_pdf_light(c->W, c->tab, d, uv);
+}
+static void alias_sample(const el_envlight *l, const alias_tabs *A, int levels, const float n[3], const float u[2], float wi[3], float rgb[3], float *pdf) {
+  const struct el_envlight__warp *W = A->W;
+  int bin = normal_bin(l, W, n), kv = W->kv, b, a;
+  const arow *ar;
+  uint32_t w1, w2, w3, w4;
+  lib_ctx ctx;
+  el_envlight__pick P;
+  ctx.W = W; ctx.tab = W->cos_tab + W->cos_off[bin];
+  if (ctx.tab[kv] == 0) { *pdf = 0.0f; wi[0] = wi[1] = 0.0f; wi[2] = 1.0f; if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
+  if (levels == 1) { /* compact entries, widths from the library's tables */
+    b = alias_pick4(A->pool4 + A->bin_off[bin], ctx.tab, kv, el_envlight__clamp01(u[1]), &P.f1, &w1);
+    ar = A->rows + (size_t)bin * (size_t)kv + (size_t)b;
+    a = ar->as + alias_pick4(A->pool4 + ar->off, ctx.tab + ar->lib + 2, ar->len, el_envlight__clamp01(u[0]), &P.f0, &w2);
+  } else {
+    b = alias_pick(A->pool + A->bin_off[bin], kv, el_envlight__clamp01(u[1]), &P.f1, &w1);
+    ar = A->rows + (size_t)bin * (size_t)kv + (size_t)b;
+    a = ar->as + alias_pick(A->pool + ar->off, ar->len, el_envlight__clamp01(u[0]), &P.f0, &w2);
+  }
+  a -= a >= W->ku ? W->ku : 0;
+  P.a = a; P.b = b;
+  if (levels == 4) {
+    size_t base = (size_t)a * (size_t)(W->h + 1 + kv) + (size_t)W->b0[b] + (size_t)b;
+    P.r = W->b0[b] + alias_pick(A->prow + base, W->b0[b + 1] - W->b0[b], P.f1, &P.q, &w3);
+    base = (size_t)P.r * W->cond_stride + (size_t)W->coff[a];
+    P.i = W->a0[a] + alias_pick(A->pcol + base, W->a0[a + 1] - W->a0[a], P.f0, &P.s, &w4);
+    P.wr = w3 * w4;
+  } else {
+    P.p = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)kv) + (size_t)W->b0[b] + (size_t)b;
+    el_envlight__pick3(W, &P);
+    el_envlight__pick4(W, &P);
+  }
+  finish_patch(l, W, &P, w1 * w2, 1.0f, lib_pdf_at, &ctx, wi, rgb, pdf);
+}
+
+/* C&L: the coarse level, per shading point */
+#define CL_MAX 256
+typedef struct {
+  struct el_envlight__warp *W; /* the library's patch tables with ku x kv cells (one normal bin, unused) */
+  int ku, kv;                  /* ku a multiple of 4 */
+  float mass[CL_MAX], cp[4][CL_MAX / 4 + 4], ct[CL_MAX][4]; /* masses (kv x ku); per column cos, sin of phi0, phi1; per row of theta0, theta1 */
+  size_t bytes;
+} cl_level;
+typedef struct { float w[CL_MAX], rows[CL_MAX / 4], total; } cl_point;
+static int cl_init(cl_level *C, const el_envlight *l, int ku, int kv) {
+  const struct el_envlight__warp *W;
+  int a, b, i, r;
+  memset(C, 0, sizeof *C);
+  if (ku % 4 || ku * kv > CL_MAX || el_envlight__prod_build(l, ku, kv, 1, &C->W) != EL_SUCCESS) return 0;
+  W = C->W; C->ku = W->ku; C->kv = W->kv;
+  for (r = 0; r <= W->h; ++r) /* the masses: each patch's mean corner x its height (as the build's) */
+    for (i = 0; i < W->w; ++i) {
+      float c[4];
+      el_envlight__prod_corners(W, i, r, c);
+      C->mass[W->cv_of[r] * ku + W->cu_of[i]] += (c[0] + c[1] + c[2] + c[3]) * (r == 0 || r == W->h ? 0.5f : 1.0f);
+    }
+  for (a = 0; a < ku; ++a) { /* the cells' edges, as el_envlight__cos_build's */
+    double p0 = 2.0 * PI * (W->a0[a] + 0.5) / W->w, p1 = 2.0 * PI * (W->a0[a + 1] + 0.5) / W->w;
+    C->cp[0][a] = (float)cos(p0); C->cp[1][a] = (float)sin(p0); C->cp[2][a] = (float)cos(p1); C->cp[3][a] = (float)sin(p1);
+  }
+  for (b = 0; b < kv; ++b) {
+    int r0 = W->b0[b], r1 = W->b0[b + 1];
+    double v0 = r0 == 0 ? 0.0 : (r0 - 0.5) / W->h, v1 = r1 == W->h + 1 ? 1.0 : (r1 - 0.5) / W->h;
+    C->ct[b][0] = (float)cos(PI * v0); C->ct[b][1] = (float)sin(PI * v0); C->ct[b][2] = (float)cos(PI * v1); C->ct[b][3] = (float)sin(PI * v1);
+  }
+  C->bytes = W->warp_bytes + sizeof *C - sizeof C->W; /* the patch tables, and the level (its normal table is not needed) */
+  return 1;
+}
+/* the weights mass x max(0, max of n.w over the cell + 1e-5) of light-space normal n, the rows' sums, the total */
+static inline void cl_weights(const cl_level *C, const float n[3], cl_point *P) {
+  int a, b, ku = C->ku;
+  float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), nx = n[0] / len, ny = n[1] / len, nz = n[2] / len;
+  float A[CL_MAX / 4 + 4], PK[CL_MAX / 4 + 4], tot = 0.0f;
+#if EL_ENVLIGHT__SSE
+  __m128 vx = _mm_set1_ps(nx), vy = _mm_set1_ps(ny), vz = _mm_set1_ps(nz), rr = _mm_set1_ps(sqrtf(nx * nx + ny * ny)), zero = _mm_setzero_ps();
+  __m128 eps = _mm_set1_ps(1e-5f);
+  for (a = 0; a < ku; a += 4) { /* the best horizontal component per cell column: n's own phi inside, else the nearer edge */
+    __m128 c0 = _mm_loadu_ps(C->cp[0] + a), s0 = _mm_loadu_ps(C->cp[1] + a), c1 = _mm_loadu_ps(C->cp[2] + a), s1 = _mm_loadu_ps(C->cp[3] + a);
+    __m128 in = _mm_and_ps(_mm_cmpge_ps(_mm_sub_ps(_mm_mul_ps(c0, vy), _mm_mul_ps(s0, vx)), zero),
+                           _mm_cmpge_ps(_mm_sub_ps(_mm_mul_ps(vx, s1), _mm_mul_ps(vy, c1)), zero));
+    __m128 edge = _mm_max_ps(_mm_add_ps(_mm_mul_ps(vx, c0), _mm_mul_ps(vy, s0)), _mm_add_ps(_mm_mul_ps(vx, c1), _mm_mul_ps(vy, s1)));
+    __m128 av = _mm_or_ps(_mm_and_ps(in, rr), _mm_andnot_ps(in, edge));
+    _mm_storeu_ps(A + a, av);
+    _mm_storeu_ps(PK + a, _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(av, av), _mm_mul_ps(vz, vz))));
+  }
+  for (b = 0; b < C->kv; ++b) { /* a sin(theta) + b cos(theta): its peak if inside the rows' theta range, else the better edge */
+    __m128 c0 = _mm_set1_ps(C->ct[b][0]), s0 = _mm_set1_ps(C->ct[b][1]), c1 = _mm_set1_ps(C->ct[b][2]), s1 = _mm_set1_ps(C->ct[b][3]), sum = zero;
+    for (a = 0; a < ku; a += 4) {
+      __m128 av = _mm_loadu_ps(A + a), f0 = _mm_add_ps(_mm_mul_ps(av, s0), _mm_mul_ps(vz, c0)), f1 = _mm_add_ps(_mm_mul_ps(av, s1), _mm_mul_ps(vz, c1));
+      __m128 in = _mm_and_ps(_mm_cmpgt_ps(_mm_sub_ps(_mm_mul_ps(av, c0), _mm_mul_ps(vz, s0)), zero),
+                             _mm_cmplt_ps(_mm_sub_ps(_mm_mul_ps(av, c1), _mm_mul_ps(vz, s1)), zero));
+      __m128 mv = _mm_or_ps(_mm_and_ps(in, _mm_loadu_ps(PK + a)), _mm_andnot_ps(in, _mm_max_ps(f0, f1)));
+      __m128 wv = _mm_mul_ps(_mm_loadu_ps(C->mass + b * ku + a), _mm_max_ps(_mm_add_ps(mv, eps), zero));
+      _mm_storeu_ps(P->w + b * ku + a, wv);
+      sum = _mm_add_ps(sum, wv);
+    }
+    sum = _mm_add_ps(sum, _mm_movehl_ps(sum, sum));
+    sum = _mm_add_ss(sum, _mm_shuffle_ps(sum, sum, 1));
+    P->rows[b] = _mm_cvtss_f32(sum);
+    tot += P->rows[b];
+  }
+#else
+  float rr = sqrtf(nx * nx + ny * ny);
+  for (a = 0; a < ku; ++a) {
+    float c0 = C->cp[0][a], s0 = C->cp[1][a], c1 = C->cp[2][a], s1 = C->cp[3][a], d0 = nx * c0 + ny * s0, d1 = nx * c1 + ny * s1;
+    A[a] = c0 * ny - s0 * nx >= 0.0f && nx * s1 - ny * c1 >= 0.0f ? rr : (d0 > d1 ? d0 : d1);
+    PK[a] = sqrtf(A[a] * A[a] + nz * nz);
+  }
+  for (b = 0; b < C->kv; ++b) {
+    const float *t = C->ct[b];
+    float sum = 0.0f;
+    for (a = 0; a < ku; ++a) {
+      float f0 = A[a] * t[1] + nz * t[0], f1 = A[a] * t[3] + nz * t[2], mv = f0 > f1 ? f0 : f1;
+      if (A[a] * t[0] - nz * t[1] > 0.0f && A[a] * t[2] - nz * t[3] < 0.0f) mv = PK[a];
+      mv += 1e-5f;
+      P->w[b * ku + a] = C->mass[b * ku + a] * (mv > 0.0f ? mv : 0.0f);
+      sum += P->w[b * ku + a];
+    }
+    P->rows[b] = sum;
+    tot += sum;
+  }
+#endif
+  P->total = tot;
+}
+/* index in [0, n) of x in [0, 1] under weights w (none 0 picked), *rest: the fraction inside it */
+static inline int cl_pick(const float *w, int n, float tot, float x, float *rest) {
+  int k, last = 0;
+  x *= tot;
+  for (k = 0; k < n; ++k) {
+    if (w[k] > 0.0f) { last = k; if (x < w[k]) break; }
+    x -= w[k];
+  }
+  k = k < n ? k : last;
+  x /= w[k];
+  *rest = x < 1.0f ? (x > 0.0f ? x : 0.0f) : 1.0f;
+  return k;
+}
+typedef struct { const cl_level *C; const cl_point *P; } cl_ctx;
+static float cl_pdf_at(const void *ctx, const float d[3], float uv[2]) {
+  const cl_ctx *x = (const cl_ctx *)ctx;
+  const struct el_envlight__warp *W = x->C->W;
+  el_envlight__ploc q;
+  float c[4], wcell;
+  int a, b;
+  const uint16_t *pc, *pr;
+  uint32_t wr;
+  uv[0] = uv[1] = 0.0f;
+  if (!el_envlight__prod_locate(W, d, &q)) return 0.0f;
+  uv[0] = q.u; uv[1] = q.v;
+  a = W->cu_of[q.i]; b = W->cv_of[q.r];
+  wcell = x->P->w[b * x->C->ku + a];
+  pc = W->pcol + (size_t)q.r * W->cond_stride + (size_t)W->coff[a] + (size_t)(q.i - W->a0[a]);
+  pr = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)q.r + (size_t)b;
+  wr = (uint32_t)(pc[1] - pc[0]) * (uint32_t)(pr[1] - pr[0]);
+  if (!(wcell > 0.0f) || wr == 0) return 0.0f;
+  el_envlight__prod_corners(W, q.i, q.r, c);
+  return el_envlight__prod_eval(W, &q, 1u << 30, wr, c) * (wcell / x->P->total);
+}
+static void cl_sample(const el_envlight *l, const cl_level *C, const float n[3], const float u[2], float wi[3], float rgb[3], float *pdf) {
+  const struct el_envlight__warp *W = C->W;
+  cl_point pt;
+  cl_ctx ctx;
+  el_envlight__pick P;
+  float nl[3];
+  int a, b;
+  el_envlight__to_light(l, n, nl);
+  cl_weights(C, nl, &pt);
+  if (!(pt.total > 0.0f)) { *pdf = 0.0f; wi[0] = wi[1] = 0.0f; wi[2] = 1.0f; if (rgb) rgb[0] = rgb[1] = rgb[2] = 0.0f; return; }
+  b = cl_pick(pt.rows, C->kv, pt.total, el_envlight__clamp01(u[1]), &P.f1);
+  a = cl_pick(pt.w + b * C->ku, C->ku, pt.rows[b], el_envlight__clamp01(u[0]), &P.f0);
+  P.a = a; P.b = b;
+  P.p = W->prow + (size_t)a * ((size_t)W->h + 1 + (size_t)W->kv) + (size_t)W->b0[b] + (size_t)b;
+  el_envlight__pick3(W, &P);
+  el_envlight__pick4(W, &P);
+  ctx.C = C; ctx.P = &pt;
+  finish_patch(l, W, &P, 1u << 30, pt.w[b * C->ku + a] / pt.total, cl_pdf_at, &ctx, wi, rgb, pdf);
+}
+static float cl_pdf(const el_envlight *l, const cl_level *C, const float n[3], const float wi[3]) {
+  cl_point pt;
+  cl_ctx ctx;
+  float nl[3], d[3], uv[2];
+  el_envlight__to_light(l, n, nl);
+  if (!el_envlight__to_light_dir(l, wi, d)) return 0.0f;
+  cl_weights(C, nl, &pt);
+  if (!(pt.total > 0.0f)) return 0.0f;
+  ctx.C = C; ctx.P = &pt;
+  return cl_pdf_at(&ctx, d, uv);
+}
+
+/* the candidates behind one interface */
+enum { CA_LIB, CA_ALIAS2, CA_ALIAS4, CA_ALIAS2C, CA_CL };
+typedef struct { int kind; const char *name; const alias_tabs *A; const cl_level *C; } cand;
+static inline void cand_sample(const el_envlight *l, const cand *c, const float n[3], const float u[2], float wi[3], float rgb[3], float *pdf) {
+  if (c->kind == CA_LIB) el_envlight_sample_li_cos(l, n, u, wi, rgb, pdf);
+  else if (c->kind == CA_CL) cl_sample(l, c->C, n, u, wi, rgb, pdf);
+  else alias_sample(l, c->A, c->kind == CA_ALIAS4 ? 4 : c->kind == CA_ALIAS2C ? 1 : 2, n, u, wi, rgb, pdf);
+}
+static inline float cand_pdf(const el_envlight *l, const cand *c, const float n[3], const float wi[3]) {
+  return c->kind == CA_CL ? cl_pdf(l, c->C, n, wi) : el_envlight_pdf_li_cos(l, n, wi);
+}
+
+/* n calls of candidate c's sample (what 0: the loop alone, 1: sample with radiance, 2: pdf, 3: C&L's pass; -1: 1 with nrm's first normal only) over the
+ * nb precomputed normals (a new one per call, (k * 7) mod nb as bench_envlight's) and u; returns a sum */
+static double cand_loop(const el_envlight *l, const cand *c, int what, long n, const float *nrm, const float *uu, int nb) {
+  double acc = 0;
+  long k, mn = what < 0 ? 0 : nb - 1; /* what -1: sample with the radiance, always the first normal */
+  float wi[3], L[3], p;
+  if (what == 0) for (k = 0; k < n; ++k) acc += nrm[3 * ((k * 7) & (nb - 1))] + uu[2 * (k & (nb - 1))];
+  else if (what == 1 || what == -1)
+    for (k = 0; k < n; ++k) {
+      cand_sample(l, c, nrm + 3 * ((k * 7) & mn), uu + 2 * (k & (nb - 1)), wi, L, &p);
+      acc += p + wi[0];
+    }
+  else if (what == 2) for (k = 0; k < n; ++k) acc += cand_pdf(l, c, nrm + 3 * ((k * 7) & (nb - 1)), nrm + 3 * (k & (nb - 1)));
+  else if (c->kind == CA_CL) /* C&L's per-point pass alone (to light space and the weights) */
+    for (k = 0; k < n; ++k) {
+      cl_point pt;
+      float nl[3];
+      el_envlight__to_light(l, nrm + 3 * ((k * 7) & (nb - 1)), nl);
+      cl_weights(c->C, nl, &pt);
+      acc += pt.total + uu[2 * (k & (nb - 1))];
+    }
+  return acc;
+}
+
+#define NCAND 7
+#define CL0 4 /* the first C&L candidate */
+static const int CL_SIZE[3][2] = {{12, 12}, {16, 8}, {16, 16}};
+/* builds the candidates of light l (its product tables built); returns the count */
+static int cand_make(const el_envlight *l, cand *c, alias_tabs *A, cl_level *C, double *build_ms) {
+  const struct el_envlight__warp *W = el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
+  static char names[3][24];
+  double t;
+  int k;
+  memset(c, 0, NCAND * sizeof *c);
+  c[0].kind = CA_LIB; c[0].name = "library sample_li_cos";
+  t = process_now();
+  alias_init(A, W);
+  build_ms[1] = build_ms[2] = (process_now() - t) * 1e3;
+  c[1].kind = CA_ALIAS2; c[1].name = "alias, cell levels"; c[1].A = A;
+  c[2].kind = CA_ALIAS4; c[2].name = "alias, all 4 levels"; c[2].A = A;
+  c[3].kind = CA_ALIAS2C; c[3].name = "alias, cells, 4-byte"; c[3].A = A;
+  build_ms[3] = build_ms[1];
+  for (k = 0; k < 3; ++k) {
+    t = process_now();
+    if (!cl_init(C + k, l, CL_SIZE[k][0], CL_SIZE[k][1])) return CL0 + k;
+    build_ms[CL0 + k] = (process_now() - t) * 1e3;
+    snprintf(names[k], sizeof names[k], "C&L %dx%d per point", CL_SIZE[k][0], CL_SIZE[k][1]);
+    c[CL0 + k].kind = CA_CL; c[CL0 + k].name = names[k]; c[CL0 + k].C = C + k;
+  }
+  return NCAND;
+}
+static void cand_free(alias_tabs *A, cl_level *C, int nc) {
+  int k;
+  alias_free(A);
+  for (k = CL0; k < nc; ++k) el_envlight__warp_free(C[k - CL0].W);
+}
+
+/* the chi-square check of the cell pick: each cell's probability for normal n (the library's cell
+ * table's integer widths for the library and alias; the weights for C&L) and the cell a sample lands in */
+static const struct el_envlight__warp *cand_warp(const el_envlight *l, const cand *c) {
+  return c->kind == CA_CL ? c->C->W : el_envlight__prod_ensure(l, EL_ENVLIGHT__CELLS_U, EL_ENVLIGHT__CELLS_V, EL_ENVLIGHT__NORMAL_BINS);
+}
+static void cand_cell_p(const el_envlight *l, const cand *c, const float n[3], double *pc) {
+  const struct el_envlight__warp *W = cand_warp(l, c);
+  int a, b, k;
+  if (c->kind == CA_CL) {
+    cl_point pt;
+    float nl[3];
+    el_envlight__to_light(l, n, nl);
+    cl_weights(c->C, nl, &pt);
+    for (k = 0; k < W->ku * W->kv; ++k) pc[k] = pt.w[k] / pt.total;
+    return;
+  }
+  for (b = 0; b < W->kv; ++b) {
+    const uint16_t *tab = W->cos_tab + W->cos_off[normal_bin(l, W, n)], *row = el_envlight__sparse_row(W, tab, b);
+    for (a = 0; a < W->ku; ++a) {
+      k = a - (int)row[0] + (a < (int)row[0] ? W->ku : 0);
+      pc[b * W->ku + a] = k < (int)row[1] ? (double)(tab[b + 1] - tab[b]) * (row[k + 3] - row[k + 2]) / 1073741824.0 : 0.0;
+    }
+  }
+}
+static int cand_cell_of(const el_envlight *l, const cand *c, const float wi[3]) {
+  const struct el_envlight__warp *W = cand_warp(l, c);
+  el_envlight__ploc q;
+  float d[3];
+  if (!el_envlight__to_light_dir(l, wi, d) || !el_envlight__prod_locate(W, d, &q)) return -1;
+  return W->cv_of[q.r] * W->ku + W->cu_of[q.i];
+}
+/* (chi^2 - dof) / sqrt(2 dof) of counts against n pc, over the cells expecting >= 5 (the rest pooled) */
+static double chi2_z(const long *cnt, const double *pc, int nc, long n) {
+  double chi = 0, eo = 0, oo = 0;
+  int k, dof = -1;
+  for (k = 0; k < nc; ++k) {
+    double e = pc[k] * (double)n;
+    if (e >= 5) { chi += (cnt[k] - e) * (cnt[k] - e) / e; ++dof; }
+    else { eo += e; oo += (double)cnt[k]; }
+  }
+  if (eo >= 5) { chi += (oo - eo) * (oo - eo) / eo; ++dof; }
+  return dof > 0 ? (chi - dof) / sqrt(2.0 * dof) : 0.0;
+}
+
+/* everything the candidates need for one map: the light (its product tables built), the candidates, and
+ * NB random normals and u (a new normal per call in the timing and callgrind loops) */
+enum { CAND_NB = 1 << 18 };
+typedef struct {
+  el_image img;
+  el_envlight l;
+  alias_tabs A;
+  cl_level C[3];
+  cand c[NCAND];
+  int nc;
+  double build_ms[NCAND];
+  float nrm[3 * CAND_NB], uu[2 * CAND_NB];
+} cand_set;
+static cand_set *cand_set_make(const char *path) {
+  cand_set *S = (cand_set *)calloc(1, sizeof *S);
+  char err[512];
+  double t;
+  if (!S) return NULL;
+  if (el_image_load(path, &S->img, err, sizeof err) != 0) { printf("(%s)\n", err); free(S); return NULL; }
+  if (el_envlight_init(&S->l, S->img.pixels, S->img.width, S->img.height, 3, NULL) != EL_SUCCESS) { el_image_free(&S->img); free(S); return NULL; }
+  t = process_now();
+  el_envlight_prepare_product(&S->l, NULL);
+  t = (process_now() - t) * 1e3;
+  S->nc = cand_make(&S->l, S->c, &S->A, S->C, S->build_ms);
+  S->build_ms[0] = t;
+  random_dirs_u(S->nrm, S->uu, CAND_NB, 0x853c49e6748fea9bull);
+  return S;
+}
+static void cand_set_free(cand_set *S) {
+  cand_free(&S->A, S->C, S->nc);
+  el_envlight_free(&S->l);
+  el_image_free(&S->img);
+  free(S);
+}
+
+static void candidates_map(const char *path, int nsamp, int reps) {
+  enum { NB = CAND_NB, NLD = 64 };
+  cand_set *S = cand_set_make(path);
+  double N[NN][3], E[NN], tbest[NCAND], tpdf[NCAND], tfix[NCAND][NN], t, *build_ms;
+  int nc, q, k, j, rep, trials = nsamp / NLD;
+  size_t bytes[NCAND];
+  const float *nrm, *uu;
+  cand *c;
+  if (!S) return;
+  nc = S->nc; c = S->c; nrm = S->nrm; uu = S->uu; build_ms = S->build_ms;
+  bytes[0] = el_envlight_product_bytes(&S->l);
+  bytes[1] = bytes[0] + S->A.cell_bytes;
+  bytes[2] = bytes[1] + S->A.patch_bytes;
+  bytes[3] = bytes[0] + S->A.cell_bytes4;
+  for (k = CL0; k < nc; ++k) bytes[k] = S->C[k - CL0].bytes;
+  six_normals(&S->img, N);
+  quadrature(&S->img, N, NN, E);
+  for (q = 0; q < nc; ++q) { tbest[q] = tpdf[q] = 1e30; for (k = 0; k < NN; ++k) tfix[q][k] = 1e30; }
+  for (rep = 0; rep < reps; ++rep) /* time per sample, a new random normal per call (and a fixed one), interleaved rounds */
+    for (q = 0; q < nc; ++q) {
+      volatile double sink;
+      for (k = 0; k < NN; ++k) {
+        float n1[3];
+        n1[0] = (float)N[k][0]; n1[1] = (float)N[k][1]; n1[2] = (float)N[k][2];
+        t = process_now();
+        sink = cand_loop(&S->l, c + q, -1, NB / 4, n1, uu, NB);
+        t = process_now() - t;
+        if (t < tfix[q][k]) tfix[q][k] = t;
+      }
+      t = process_now();
+      sink = cand_loop(&S->l, c + q, 1, NB, nrm, uu, NB);
+      t = process_now() - t;
+      if (t < tbest[q]) tbest[q] = t;
+      if (q == 0 || q >= CL0) {
+        t = process_now();
+        sink = cand_loop(&S->l, c + q, 2, NB, nrm, uu, NB);
+        t = process_now() - t;
+        if (t < tpdf[q]) tpdf[q] = t;
+      }
+      (void)sink;
+    }
+  printf("\n%s (%dx%d): %d samples per normal (independent), %d x %d (Owen-scrambled Sobol', one estimate of %d points per trial);\n"
+         "ns per sample with the radiance, best of %d interleaved rounds of %d calls (CPU time)\n",
+         path, S->img.width, S->img.height, nsamp, trials, NLD, NLD, reps, NB);
+  printf("  %-22s %6s %8s %8s %6s %6s %9s %9s %6s %7s %7s %7s %7s %7s %s\n", "candidate", "MiB", "build ms", "relvar", "max|z|", "chi2 z", "pdf diff", "relvar LD",
+         "LD/ind", "ns", "x ns", "ns fix", "x ns", "pdf ns", "holes");
+  for (q = 0; q < nc; ++q) {
+    double gv = 0, gl = 0, gf = 0, zmax = 0, cmax = 0, *pc = (double *)malloc(2048 * sizeof(double));
+    long bad = 0, checked = 0, above = 0, hole = 0, *cnt = (long *)malloc(2048 * sizeof(long));
+    const struct el_envlight__warp *Wc = cand_warp(&S->l, c + q);
+    for (k = 0; k < NN; ++k) {
+      float n[3];
+      double s1 = 0, s2 = 0, m, var, e1 = 0, e2 = 0;
+      rng g;
+      g.s = 0x9e3779b97f4a7c15ull * (uint64_t)(k + 1) + (getenv("SEED") ? (uint64_t)atol(getenv("SEED")) : 0u);
+      for (j = 0; j < 3; ++j) n[j] = (float)N[k][j];
+      memset(cnt, 0, 2048 * sizeof(long));
+      for (j = 0; j < nsamp; ++j) {
+        float u[2], wi[3], rgb[3], pdf, cs;
+        int cell;
+        u[0] = rng_f(&g); u[1] = rng_f(&g);
+        cand_sample(&S->l, c + q, n, u, wi, rgb, &pdf);
+        if (pdf > 0 && (cell = cand_cell_of(&S->l, c + q, wi)) >= 0) ++cnt[cell];
+        cs = wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2];
+        if (pdf > 0 && cs > 0) { double f = lum3(rgb) * cs / pdf; s1 += f; s2 += f * f; }
+        if ((j & 15) == 0) { /* the pdf function at the sample: the same bits */
+          float p2 = cand_pdf(&S->l, c + q, n, wi);
+          bad += memcmp(&p2, &pdf, sizeof p2) != 0 && pdf > 0;
+          ++checked;
+        }
+      }
+      m = s1 / nsamp; var = s2 / nsamp - m * m;
+      gv += log(var / (E[k] * E[k])) / NN;
+      cand_cell_p(&S->l, c + q, n, pc);
+      if (fabs(chi2_z(cnt, pc, Wc->ku * Wc->kv, nsamp)) > fabs(cmax)) cmax = chi2_z(cnt, pc, Wc->ku * Wc->kv, nsamp);
+      if (getenv("VERBOSE"))
+        printf("    %-22s %-7s z %6.2f chi2 z %6.2f relvar %.4g\n", c[q].name, NNAME[k], (m - E[k]) / sqrt(var / nsamp), chi2_z(cnt, pc, Wc->ku * Wc->kv, nsamp),
+               var / (E[k] * E[k]));
+      if (fabs(m - E[k]) / sqrt(var / nsamp) > zmax) zmax = fabs(m - E[k]) / sqrt(var / nsamp);
+      for (j = 0; j < trials; ++j) { /* low-discrepancy points: the variance of one estimate of NLD points, x NLD */
+        uint32_t sa = hash32((uint32_t)(k * 7919 + j * 2 + 1)), sb = hash32((uint32_t)(k * 7919 + j * 2 + 2)), i;
+        double est = 0;
+        for (i = 0; i < NLD; ++i) {
+          float u[2], wi[3], rgb[3], pdf, cs;
+          u[0] = owen24(sobol0(i), sa); u[1] = owen24(sobol1(i), sb);
+          cand_sample(&S->l, c + q, n, u, wi, rgb, &pdf);
+          cs = wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2];
+          if (pdf > 0 && cs > 0) est += lum3(rgb) * cs / pdf;
+        }
+        est /= NLD;
+        e1 += est; e2 += est * est;
+      }
+      m = e1 / trials;
+      gl += log((e2 / trials - m * m) * NLD / (E[k] * E[k])) / NN;
+    }
+    for (k = 0; k < NN; ++k) gf += log(tfix[q][k] / (NB / 4) * 1e9) / NN;
+    for (k = 0; k < NB; ++k) { /* support: a random normal and direction above it where le > 0 must have pdf > 0 */
+      const float *n = nrm + 3 * k, *w = nrm + 3 * ((k * 7 + 1) & (NB - 1));
+      float L[3];
+      if (n[0] * w[0] + n[1] * w[1] + n[2] * w[2] <= 1e-6f) continue;
+      el_envlight_le(&S->l, w, L);
+      ++above;
+      hole += lum3(L) > 0 && !(cand_pdf(&S->l, c + q, n, w) > 0);
+    }
+    printf("  %-22s %6.2f %8.1f %8.4f %6.2f %6.2f %4ld/%-4ld %9.4f %6.2f %7.1f %7.2f %7.1f %7.2f", c[q].name, bytes[q] / 1048576.0, build_ms[q], exp(gv), zmax, cmax,
+           bad, checked, exp(gl), exp(gl - gv), tbest[q] / NB * 1e9, exp(gv) * tbest[q] / NB * 1e9, exp(gf), exp(gv + gf));
+    printf(" %7.1f", tpdf[q] < 1e30 ? tpdf[q] / NB * 1e9 : 0.0);
+    printf(" %ld/%ld\n", hole, above);
+    free(pc); free(cnt);
+    fflush(stdout);
+  }
+  printf("  (relvar: geometric mean over the six normals of Var / E^2 per sample, E the quadrature; max|z|: the largest |mean - E| /\n"
+         "   standard error over the normals; chi2 z: the cells' counts against their probabilities, (chi^2 - dof) / sqrt(2 dof),\n"
+         "   the largest |.| of the normals; pdf diff: samples whose pdf function differs from the returned pdf, of those checked;\n"
+         "   LD/ind: Sobol' variance per point over independent; ns: a new random normal per call; ns fix: one normal per run, the\n"
+         "   geometric mean over the six; x ns: relvar x ns, the time to unit variance; pdf ns: random normals and directions\n"
+         "   (0: pdf_li_cos itself); holes: random normals and directions above them with le > 0 but pdf 0, of those tried;\n"
+         "   MiB: everything a query reads)\n");
+  cand_set_free(S);
+}
+
+/* --callgrind OP N [MAP]: only N calls of OP after the setup (callgrind_product.sh's interface). OP: loop,
+ * lib, alias2, alias4, alias2c, cl12x12, cl16x8, cl16x16 (samples with the radiance), one of those + "_pdf", or a
+ * C&L one + "_pass" (its per-point pass alone: the normal to light space and the cells' weights) */
+static int candidates_callgrind(const char *op, long n, const char *map) {
+  static const char *ops[NCAND] = {"lib", "alias2", "alias4", "alias2c", "cl12x12", "cl16x8", "cl16x16"};
+  cand_set *S = cand_set_make(map ? map : EL_SOURCE_DIR "/data/envmaps/city.hdr");
+  volatile double sink = 0;
+  int q;
+  size_t len = 0;
+  if (!S) return 1;
+  if (!strcmp(op, "loop")) sink = cand_loop(&S->l, S->c, 0, n, S->nrm, S->uu, CAND_NB);
+  else {
+    for (q = 0; q < S->nc; ++q) {
+      len = strlen(ops[q]);
+      if (!strncmp(op, ops[q], len) && (op[len] == 0 || !strcmp(op + len, "_pdf") || (q >= CL0 && !strcmp(op + len, "_pass")))) break;
+    }
+    if (q == S->nc) { fprintf(stderr, "unknown OP %s\n", op); cand_set_free(S); return 2; }
+    sink = cand_loop(&S->l, S->c + q, op[len] == 0 ? 1 : op[len + 2] == 'd' ? 2 : 3, n, S->nrm, S->uu, CAND_NB);
+  }
+  (void)sink;
+  cand_set_free(S);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   const char *maps[5] = {"city", "sunset", "night", "forest", "studio"};
   const char *only = getenv("ONLY");
@@ -846,6 +1516,16 @@ int main(int argc, char **argv) {
     for (i = 2; i < argc; ++i) library_map(argv[i], nsamp);
     return 0;
   }
+  if (argc > 1 && !strcmp(argv[1], "--candidates")) {
+    int reps = getenv("REPS") ? atoi(getenv("REPS")) : 3;
+    if (argc == 2) {
+      candidates_map(EL_SOURCE_DIR "/data/envmaps/city.hdr", nsamp, reps);
+      candidates_map(EL_SOURCE_DIR "/data/envmaps/studio.hdr", nsamp, reps);
+    }
+    for (i = 2; i < argc; ++i) candidates_map(argv[i], nsamp, reps);
+    return 0;
+  }
+  if (argc >= 4 && !strcmp(argv[1], "--callgrind")) return candidates_callgrind(argv[2], atol(argv[3]), argc >= 5 ? argv[4] : NULL);
   if (argc > 1 && !strcmp(argv[1], "--batch")) {
     int reps = getenv("REPS") ? atoi(getenv("REPS")) : 5;
     if (argc == 2) {

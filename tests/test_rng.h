@@ -14,7 +14,11 @@
  *   xorshift32 x = {seed}; xorshift32_f(&x)  the MIP map tests' Marsaglia xorshift (13, 17, 5), likewise;
  *   xorshift64 x = {seed}; xorshift64_f(&x)  the portal's 64-bit xorshift (13, 7, 17), its top 24 bits;
  *   splitmix64 g = {seed}; splitmix64_next(&g), splitmix64_f(&g)  Steele et al.'s SplitMix64 (the
- *                                 distribution tests' and bench_ld_point's stream), floats from its top 24 bits.
+ *                                 distribution tests' and bench_ld_point's stream), floats from its top 24 bits;
+ *   sobol0(i), sobol1(i)          the first two dimensions of Sobol's sequence (van der Corput and its
+ *                                 partner: a (0,2)-sequence), 32 bits;
+ *   owen24(v, seed)               a nested uniform (Owen) scramble of v's top 24 bits, as a float in [0, 1)
+ *                                 (bench_ld_point's and bench_product's low-discrepancy points).
  *
  * The streams are fixed: tests that check numbers drawn from a given seed rely on them. */
 #ifndef EL_TEST_RNG_H
@@ -70,5 +74,24 @@ static inline uint64_t splitmix64_next(splitmix64 *r) {
   return z ^ (z >> 31);
 }
 static inline float splitmix64_f(splitmix64 *r) { return (float)(splitmix64_next(r) >> 40) * (1.0f / 16777216.0f); }
+
+static inline uint32_t sobol0(uint32_t i) { uint32_t r = 0, b = 0x80000000u; for (; i; i >>= 1, b >>= 1) if (i & 1) r ^= b; return r; }
+static inline uint32_t sobol1(uint32_t i) {
+  uint32_t r = 0, v = 0x80000000u;
+  for (; i; i >>= 1, v ^= v >> 1) if (i & 1) r ^= v;
+  return r;
+}
+/* bit i of v (31 down to 8) flipped by a hash of the bits above it and the seed */
+static inline float owen24(uint32_t v, uint32_t seed) {
+  uint32_t out = 0;
+  int i;
+  for (i = 31; i >= 8; i--) {
+    uint32_t prefix = i == 31 ? 0 : (v >> (i + 1)) | (1u << (31 - i));
+    uint32_t b = (v >> i) & 1u;
+    b ^= hash32(prefix ^ hash32(seed + (uint32_t)i)) & 1u;
+    out |= b << i;
+  }
+  return (float)(out >> 8) * (1.0f / 16777216.0f);
+}
 
 #endif
