@@ -106,7 +106,7 @@ void elr_sphere_prepare(elr_sphere *sp) {
  * Measured (callgrind_parts.sh, bench_city, zsobol): Embree and intersection 988 -> 764 instructions
  * per camera sample (direct), 1543 -> 1227 (path), with elr_sphere_hit's similarity path below; images
  * within 3.5e-4 relative of the double callbacks' (README, Benchmark). */
-#define ELR__SPH_REDO 0.01f /* |disc| below this times r^2: double */
+#define ELR__SPH_REDO 0.01f /* |disc| below this times a r^2: double */
 #define ELR__SPH_FAR 1e6f   /* |o|^2 - r^2 above this times r^2: double */
 #define ELR__SPH_NEAR 1.5e-5f /* |o|^2 - r^2 within this times |o|^2 of 0: double */
 /* one ray (rtcIntersect1, rtcOccluded1, and every ray without SIMD): sphere_simd.h's steps in plain C, in
@@ -221,7 +221,8 @@ static int elr__sph_ray(const elr_sphere *sp, const float *ray, size_t N, float 
 }
 /* W rays: a vector of SSE2's or AVX's, or one ray, then the lanes float cannot answer in double */
 static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *ray, size_t N, const int *valid, float *t) {
-  int hit, redo, k;
+  int hit, redo;
+  unsigned k;
 #if defined(ELR_SPHERE_SIMD)
   if (W == 8) hit = elr__sph_hit_avx(sp, ray, N, valid, t, &redo);
   else if (W == 4) hit = elr__sph_hit_sse2(sp, ray, N, valid, t, &redo);
