@@ -68,9 +68,13 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   const elr_v3 *n = elr_sun_cos_normal(s, sc, b, wo, &nc) ? &nc : NULL;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
   int lonly = !sc && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c: MIS kept) */
+  /* ELR_ENVSD_TWO: a second product light sample from the BSDF sample's numbers, each weighted 1/2 */
+  int two = !sc && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b), k;
+  if (two) lonly = 1;
   /* <<Sample light source with multiple importance sampling>> */
-  if (delta || C->ls != ELR_LS_BSDF) {
+  if (delta || C->ls != ELR_LS_BSDF) for (k = 0; k <= two; k++) {
     elr_light_sample ls;
+    if (k) ul = us;
     if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
     if (sc) elr_sun_light_sample(C->sun, sc, n, ul, &ls, ts);
     else {
@@ -87,6 +91,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
           /* <<Add light's contribution to reflected radiance>> */
           float w = 1.f;
           if (!delta && C->ls == ELR_LS_MIS && !lonly) w = elr_power_heuristic(pick * ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
+          if (two) w = 0.5f;
           *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls.L), w / ls.pdf));
         }
       }
