@@ -21,6 +21,21 @@
  * piecewise-constant density under a bilinear lookup) eats the gain in the sun's few texels.
  *   (f), (g): (a), (d) with a prototype of the proposed fix (below: the bilinear density, sampled by the
  * discrete table over le()'s patches and a bilinear warp inside the patch).
+ *
+ *   bench_ld_point --lit [MAP.hdr [N [TRIALS]]]   (issue 22's lit pixels) a ground point beside a sphere: the
+ *                  plane z = 0 of the map's frame, a sphere of radius 1 at (0, 0, 1) hiding part of the sky,
+ *                  points at distance 1.5-4 on the sun's side; the irradiance (luminance, V by the sphere) by
+ *                  product sampling alone, with a cosine sample and the power or balance heuristic, the patch
+ *                  density alone and with MIS, two product samples (independent nets, one 2N net, a shifted
+ *                  copy), a product + a patch sample (balance), and split weights (the light sample carries
+ *                  lum - c, the cosine sample min(lum, c)). City, 64 points, 1000 trials, Owen-scrambled
+ *                  Sobol' (2026-12-02): product MIS power 1.8-2.7e-4 at every point (independent 2.0-2.6e-3),
+ *                  the product alone 3.5e-5-3.2e-4 (1.0e-4-1.0e-3), two product samples 1.8e-5-1.7e-4, one
+ *                  2N net 1.2e-5-1.1e-4; without the sphere the product alone 1.7e-5 (the patch density
+ *                  alone 2e-6: the cells' constant cosine bounds cost stratification, but the sphere's edge
+ *                  costs more); split weights 2.0-2.9e-4 (their light part: the sky's samples weighted 0).
+ *                  A cosine MIS partner keeps a floor of about 2e-4 whatever the weights: the light
+ *                  sample's weighted integrand steps between the sun (weight ~1) and the sky (~0.1).
  * The prototype became the library's importance mode BILINEAR (issue 22; envlight.h, NOTES ON PRODUCT
  * SAMPLING 1): with IMPORTANCE 3, rows (a) and (d) are the library's sampler and match (f) and (g) (city,
  * 64 points, 4000 trials, Owen-scrambled Sobol': light alone 2.07e-6 against the prototype's 2.37e-6,
@@ -172,21 +187,22 @@ static int visible(const float w[3]) { /* the ray from g_P along w misses the sp
   return !(b > 0 && b * b > cc);
 }
 static double heur(double a, double b, int power) { return power ? a * a / (a * a + b * b) : a / (a + b); }
-#define LIT_E 14
+#define LIT_E 16
 static int lit_study(int argc, char **argv) {
   const char *path = argc > 2 && strcmp(argv[2], "-") ? argv[2] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
   int N = argc > 3 ? atoi(argv[3]) : 64, T = argc > 4 ? atoi(argv[4]) : 2000, kind, e, t, i, p, x, y, bx = 0, by = 0;
   static const char *ename[LIT_E] = {"product alone", "product MIS power", "product MIS balance", "patch map alone", "patch map MIS power",
                                      "2 product (BSDF dims)", "product+patch MIS bal", "product, no occluder",
                                      "product+cos clamp c", "product+cos clamp 4c", "compensated+cos clamp c",
-                                     "cos alone", "clamp c: light part", "clamp c: BSDF part"};
+                                     "cos alone", "clamp c: light part", "clamp c: BSDF part",
+                                     "2 product, one 2N net", "2 product, u + (1/2, 1/2)"};
   static const double pts[][2] = {{1.5, 0}, {2.5, 0}, {4, 0}, {2.5, 90}, {2.5, -60}};
   static const char *kname[4] = {"independent", "jittered", "sobol-owen", "multijitter"};
   el_envlight_options opt;
   el_image img;
   el_envlight l, lc;
   char err[256];
-  float *ul, *ub, best = -1.f, sun[3], n[3] = {0, 0, 1};
+  float *ul, *ub, *u2n, best = -1.f, sun[3], n[3] = {0, 0, 1};
   double phis, cmean = 0;
   if (N < 1 || N > 4096 || T < 2 || (int)(sqrt((double)N) + 0.5) * (int)(sqrt((double)N) + 0.5) != N) { fprintf(stderr, "bench_ld_point --lit: N a square in 1..4096, TRIALS >= 2\n"); return 1; }
   if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
@@ -206,6 +222,7 @@ static int lit_study(int argc, char **argv) {
   printf("%s: sun at texel (%d, %d), elevation %.1f degrees; %d points per estimate, %d trials; relative variance of one estimate (luminance)\n", path, bx, by,
          asin(sun[2]) * 180 / 3.14159265358979, N, T);
   ul = (float *)malloc(sizeof(float) * 2 * (size_t)N); ub = (float *)malloc(sizeof(float) * 2 * (size_t)N);
+  u2n = (float *)malloc(sizeof(float) * 4 * (size_t)N);
   for (p = 0; p < (int)(sizeof pts / sizeof pts[0]); p++) {
     double a = phis + pts[p][1] * 3.14159265358979 / 180;
     g_P[0] = pts[p][0] * cos(a); g_P[1] = pts[p][0] * sin(a); g_P[2] = 0;
@@ -215,6 +232,24 @@ static int lit_study(int argc, char **argv) {
       for (t = 0; t < T; t++) {
         double acc[LIT_E] = {0};
         points(kind, N, ul); points(kind, N, ub);
+        if (2 * N <= 4096) { /* (kinds 0 and 2: points() takes any n) */
+          points(kind, 2 * N, u2n);
+          for (i = 0; i < 2 * N; i++) {
+            float w[3], L[3], pp;
+            el_envlight_sample_li_cos(&l, n, u2n + 2 * i, w, L, &pp);
+            if (pp > 0 && w[2] > 0) acc[14] += 0.5 * visible(w) * lum(L) * w[2] / 3.14159265 / pp;
+          }
+        }
+        for (i = 0; i < N; i++) {
+          float w[3], L[3], pp, us[2];
+          us[0] = ul[2 * i] + 0.5f; us[1] = ul[2 * i + 1] + 0.5f;
+          if (us[0] >= 1.f) us[0] -= 1.f;
+          if (us[1] >= 1.f) us[1] -= 1.f;
+          el_envlight_sample_li_cos(&l, n, ul + 2 * i, w, L, &pp);
+          if (pp > 0 && w[2] > 0) acc[15] += 0.5 * visible(w) * lum(L) * w[2] / 3.14159265 / pp;
+          el_envlight_sample_li_cos(&l, n, us, w, L, &pp);
+          if (pp > 0 && w[2] > 0) acc[15] += 0.5 * visible(w) * lum(L) * w[2] / 3.14159265 / pp;
+        }
         for (i = 0; i < N; i++) {
           float wl[3], Ll[3], pl, wm[3], Lm[3], pm, wb[3], pb, Lb[3], w2[3], L2[3], p2, wc[3], Lc[3], pcc;
           el_envlight_sample_li_cos(&l, n, ul + 2 * i, wl, Ll, &pl);
@@ -258,7 +293,7 @@ static int lit_study(int argc, char **argv) {
       printf("  (mean %.4g, no occluder %.4g)\n", s1[0] / T, s1[7] / T);
     }
   }
-  free(ul); free(ub); el_envlight_free(&l); el_envlight_free(&lc); el_image_free(&img);
+  free(ul); free(ub); free(u2n); el_envlight_free(&l); el_envlight_free(&lc); el_image_free(&img);
   return 0;
 }
 
