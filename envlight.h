@@ -497,11 +497,12 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    1.25x sample_li, pdf_li_cos <= 150 and <= 1.5x pdf_li) are NOT met: the floor of this design is about
  *    the pdf plus the pick. The pdf (408) is the normal's bin (to light space, octahedral encoding: about
  *    60), wi to light space (27), (u, v) to the bilinear's precision (the two atan polynomials le() itself
- *    uses, so that rgb is le(wi) bit for bit: about 110), the four table widths (about 50), the corners and
+ *    uses, so that rgb is le(wi) bit for bit: about 110; the patch density's atan-free locate costs as much,
+ *    Tried since below), the four table widths (about 50), the corners and
  *    the density (about 60) and the calls; the sample adds the pick (four searches over 32, ~37, ~16 and 16
  *    entries: about 190 as binary searches, about 95 with the guide tables), two linear inversions, the
  *    direction (sinpi, cospi) and the atan pair again (bit-for-bit agreement with pdf_li_cos needs the
- *    direction located as the pdf locates it).
+ *    direction located as the pdf locates it; by angle addition and without atan: 742, Tried since below).
  *    N AT ONCE (sample_li_cos_n, pdf_li_cos_n; issue 20): the same work, bit for bit, with the arithmetic
  *    on four lanes of SSE2 (normal -> bin, the linear inversions, the direction's sinpi / cospi, the atan
  *    pair, the density) and the table reads lane by lane, in four stages over 16 samples (cell row, cell,
@@ -517,7 +518,8 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    217-224 and 59 ns. Issue 20's targets are not met this way either: the floor is the scalar part, the
  *    four searches (about 125 per sample, the guides' forward scans) and the pick's address and fraction
  *    arithmetic (about 110), the normal's table and the lanes' bookkeeping; the vector part is about 120
- *    per sample. In render's wave loop (render_wave.c, the wave's product samples in one call):
+ *    per sample (the atan-free locate, Tried since below, on four lanes: 625 and 400, its references
+ *    gathered lane by lane). In render's wave loop (render_wave.c, the wave's product samples in one call):
  *    callgrind_parts.sh, instructions per camera sample, city 4064 -> 3993 (light part 1066 -> 996), studio
  *    3264 -> 3114 (1011 -> 860; four lanes without stages or the texel reuse: 3969 and 3058); render CPU
  *    time, one thread, 64 spp, best of 3 interleaved: bench_city 1.98 -> 1.88 s, bench_studio 1.47 -> 1.18
@@ -554,11 +556,20 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    instructions estimated: 2.4x the variance on city, 0.080 against 0.033, 20x for the normal facing
  *    up, where the sun's texel dominates and its density is flat while le is bilinear); an SSE2 count in
  *    place of the binary searches (1049 instructions against 953). Tried since: the batched call for n
- *    normals (N AT ONCE above: 624 / 333 instructions, 2-3.5x less time). Built (below): alias tables (they
+ *    normals (N AT ONCE above: 624 / 333 instructions, 2-3.5x less time); the patch density's atan-free
+ *    locate (grids of at least 256 x 128: its half-texel finders and reference angles, the sample's
+ *    direction by angle addition, its patch checked by the signs of cross products with the patch's edges
+ *    so that the sampler skips the finders; git history: commit 7995289, reverted by the next), dropped: city,
+ *    instructions sample_li_cos 813 -> 742, pdf_li_cos 402 -> 420 (the finders alone, without the signs'
+ *    rule: 795 and 397), sample_li_cos_n 624 -> 625, pdf_li_cos_n 332 -> 400; bench_product --batch (best
+ *    of 3 interleaved) city 290 -> 276, 116.5 -> 116.0, 68 -> 71, 47.3 -> 48.1 ns, studio 259 -> 239,
+ *    112 -> 109, 69 -> 80, 44 -> 47; --library (one normal per run) city 207 -> 180 ns, studio 185 -> 174:
+ *    the single sample gains, the batched calls the renderer uses do not, the pdfs lose, and rgb would be
+ *    le(wi) only to the patch density's tolerance (188 KB more tables). Built (below): alias tables (they
  *    break the stratification), Conty and Lecocq's per-point 12x12
  *    coarse level (bench_product: its variance at 16x8 cells is 2x the tables'). Not tried: an equal-area or
  *    diamond-angle patch layout without atan (le() itself is lat-long with atan: rgb and the bilinear
- *    density would no longer be le's, and the atans are about a quarter of the pdf).
+ *    density would no longer be le's; on le's own patches locating without atan did not pay, above).
  *    CANDIDATES BUILT IN BENCH_PRODUCT --CANDIDATES (issue 20's two designs not built before, as prototypes
  *    on the library's own tables and helpers; city / studio 1024x512. Instructions with the radiance and a
  *    new random normal per call: OPS="lib alias2 alias4 alias2c cl12x12 cl16x8 cl16x16 lib_pdf cl12x12_pdf"

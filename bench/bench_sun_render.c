@@ -7,8 +7,15 @@
  *                    Run from the repository's root.
  *   bench_sun_render --csv [SPP [SEEDS [THREADS [SCENE ...]]]]   the same as CSV rows
  *                    (kind,option,scene,class,spp,pixels,mean,variance,cpu_s; option off / on)
+ *   bench_sun_render [--csv] [--split] [--loop-one] ...   --split: --sun split (sun.c: one spot and one sky sample per
+ *                    diffuse vertex, the one-sample loop) in place of --sun on; --loop-one: every render in the one-sample loop
+ *                    (the default's wave loop left out of the comparison); --pbrt-v3: every render with pbrt-v3's importance
+ *                    map (the default under a sun is le()'s patch density, on which no hot spot is found); --random: the
+ *                    independent sampler (pbrt's "random") in place of the scenes'
  *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
  *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below
+ *   bench_sun_render --lit-point   the library alone at one lit ground point: --sun split's estimator against the
+ *                    default's, per term (lit_point below)
  *   bench_sun_render --picture [OUT.png]   where 2000 light samples of a shadowed ground point land, without
  *                    and with the cache (the course's appendix, A3.14)
  *
@@ -187,13 +194,118 @@ static int shadow_point(void) {
   return 0;
 }
 
+/* ---- one lit point, the library alone: --sun split's estimator against the default's (issue 22) ----
+ * The ground point of --shadow-point (normal up, sunrise.hdr) with nothing in the way. Variance per camera
+ * sample over 2^18 independent camera samples of: the default (a product sample, sample_li_cos, and a cosine
+ * BSDF sample, the power heuristic) and --sun split's (a spot sample: the map's density, sample_li, kept inside
+ * the spot's cone, widened as sun.c does, from le()'s patches (importance BILINEAR) or the piecewise-constant
+ * bins (pbrt-v3's); a sky sample, the rest x cosine; the BSDF sample; the power heuristic over the three), and
+ * each term's share: the sun's cone (the spot and the BSDF sample there) and the rest. Last, what a spot sampler
+ * over le()'s patches would give (not in the library): the patches renormalised to the cone, drawn by rejection,
+ * their probability of the cone estimated from 2^22 draws (a diagnostic: its error, 2e-4, biases the mean). */
+static int lit_point(void) {
+  el_image img;
+  el_envlight lp, lb;
+  el_envlight_options o;
+  el_envlight_hotspots h;
+  el_envlight_mix_weights wr;
+  char err[256];
+  const float n[3] = {0, 0, 1};
+  int way, i, N = 1 << 18;
+  float ch;
+  double pcone;
+  if (el_image_load(EL_SOURCE_DIR "/data/envmaps/sunrise.hdr", &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  memset(&o, 0, sizeof o);
+  o.importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
+  if (el_envlight_init(&lp, img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS || el_envlight_hotspots_init(&h, &lp, NULL) != EL_SUCCESS || h.count != 1) return 1;
+  o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (el_envlight_init(&lb, img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS) return 1;
+  memset(&wr, 0, sizeof wr);
+  wr.rest = 1.f;
+  ch = cosf(1.1f * h.spot[0].half_angle + 1e-3f);
+  { /* the patches' probability of the cone, for way 3 (2^22 draws: about 2e-4 relative) */
+    int in = 0, M = 1 << 22;
+    g_rng.s = 1234567ULL;
+    for (i = 0; i < M; i++) {
+      float u[2], wi[3], pdf;
+      u[0] = frand(); u[1] = frand();
+      el_envlight_sample_li(&lb, u, wi, NULL, &pdf);
+      in += pdf > 0 && wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] >= ch;
+    }
+    pcone = (double)in / M;
+  }
+  printf("LIT (sunrise.hdr, normal up, nothing in the way; the patches put %.3f in the cone): variance per camera sample [sun's cone | rest]\n", pcone);
+  for (way = 0; way < 4; way++) {
+    const el_envlight *ls = way == 1 || way == 3 ? &lb : &lp;
+    double s1 = 0, s2 = 0, c1[2] = {0, 0}, c2[2] = {0, 0};
+    g_rng.s = 88172645463325252ULL;
+    for (i = 0; i < N; i++) {
+      float u[2], u2[2], u3[2], wi[3], L[3], pdf, d[3], Lb[3];
+      double f = 0, fc[2] = {0, 0}, pb, po, pc;
+      int t;
+      u[0] = frand(); u[1] = frand(); u2[0] = frand(); u2[1] = frand(); u3[0] = frand(); u3[1] = frand();
+      for (t = 0; t < (way ? 2 : 1); t++) { /* the light samples */
+        int inc;
+        if (way == 0) el_envlight_sample_li_cos(&lp, n, u, wi, L, &pdf);
+        else if (t == 0 && way == 3) { /* (rejection until in the cone: the patches renormalised to it) */
+          float uu[2];
+          int k;
+          uu[0] = u[0]; uu[1] = u[1];
+          for (k = 0; k < 1000; k++) {
+            el_envlight_sample_li(ls, uu, wi, L, &pdf);
+            if (wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] >= ch) break;
+            uu[0] = frand(); uu[1] = frand();
+          }
+          pdf = (float)(pdf / pcone);
+        } else if (t == 0) { el_envlight_sample_li(ls, u, wi, L, &pdf); if (wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] < ch) pdf = 0; }
+        else el_envlight_sample_li_mix_cos(&lp, &h, &wr, n, u3, wi, L, &pdf);
+        if (!(pdf > 0) || wi[2] <= 0) continue;
+        inc = wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] >= ch;
+        pc = wi[2] / M_PI;
+        po = way == 0 ? 0 : t == 0 ? el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, wi) : inc ? el_envlight_pdf_li(ls, wi) / (way == 3 ? pcone : 1.0) : 0;
+        fc[!inc] += L[1] * wi[2] / M_PI / pdf * ((double)pdf * pdf / ((double)pdf * pdf + po * po + pc * pc));
+      }
+      { /* the BSDF sample */
+        double r = sqrt(u2[0]), ph = 2 * M_PI * u2[1], pl;
+        int inc;
+        d[0] = (float)(r * cos(ph)); d[1] = (float)(r * sin(ph)); d[2] = (float)sqrt(1 - u2[0]);
+        pb = d[2] / M_PI;
+        inc = d[0] * h.spot[0].axis[0] + d[1] * h.spot[0].axis[1] + d[2] * h.spot[0].axis[2] >= ch;
+        if (way == 0) pl = el_envlight_pdf_li_cos(&lp, n, d);
+        else { double a = el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, d), b = inc ? el_envlight_pdf_li(ls, d) / (way == 3 ? pcone : 1.0) : 0; pl = sqrt(a * a + b * b); }
+        if (pb > 0) { el_envlight_le(&lp, d, Lb); fc[!inc] += Lb[1] * d[2] / M_PI / pb * (pb * pb / (pb * pb + pl * pl)); }
+      }
+      f = fc[0] + fc[1];
+      s1 += f; s2 += f * f;
+      for (t = 0; t < 2; t++) { c1[t] += fc[t]; c2[t] += fc[t] * fc[t]; }
+    }
+    printf("  %-58s mean %.5g  variance %.4g [%.4g | %.4g]\n",
+           way == 0 ? "default: sample_li_cos + BSDF" : way == 1 ? "split: the patches in the cone + rest x cosine + BSDF"
+           : way == 2 ? "split: the bins in the cone + rest x cosine + BSDF" : "split: the patches renormalised to the cone (rejection) + ...",
+           s1 / N, s2 / N - (s1 / N) * (s1 / N), c2[0] / N - (c1[0] / N) * (c1[0] / N), c2[1] / N - (c1[1] / N) * (c1[1] / N));
+  }
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&lp); el_envlight_free(&lb);
+  el_image_free(&img);
+  return 0;
+}
+
 #define CPU_ROUNDS 5
 int main(int argc, char **argv) {
   if (argc > 1 && !strcmp(argv[1], "--shadow-point")) return shadow_point();
+  if (argc > 1 && !strcmp(argv[1], "--lit-point")) return lit_point();
   if (argc > 1 && !strcmp(argv[1], "--picture")) return picture(argc > 2 ? argv[2] : "out/03-sun-samples.png");
   static const char *defaults[3] = {"scenes/sun_shadow_object.pbrt", "scenes/sun_porch.pbrt", "scenes/bench_city.pbrt"};
-  int csv = argc > 1 && !strcmp(argv[1], "--csv");
+  int csv = argc > 1 && !strcmp(argv[1], "--csv"), cmp = 1; /* cmp: the env_sun compared with off (1 on, 2 split) */
   if (csv) { argc--; argv++; }
+  for (;;) { /* --split: --sun split instead of on; --loop-one: every render in the one-sample loop */
+    if (argc > 1 && !strcmp(argv[1], "--split")) cmp = 2;
+    else if (argc > 1 && !strcmp(argv[1], "--loop-one")) sm_loop = ELR_LOOP_ONE;
+    else if (argc > 1 && !strcmp(argv[1], "--pbrt-v3")) sm_importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
+    else if (argc > 1 && !strcmp(argv[1], "--random")) sm_sampler = ELR_SAMPLER_RANDOM;
+    else break;
+    argc--; argv++;
+  }
   {
   int spp = argc > 1 ? atoi(argv[1]) : 16, ns = argc > 2 ? atoi(argv[2]) : 16, nt = argc > 3 ? atoi(argv[3]) : 2;
   const char **scenes = argc > 4 ? (const char **)(argv + 4) : defaults;
@@ -226,7 +338,7 @@ int main(int argc, char **argv) {
     } else
       cls = sm_classes(s, &w, &h);
     if (!cls) { printf("%s: no hot spot\n", scenes[i]); elr_scene_free(s); continue; }
-    if (sm_run(s, spp, ns, 0, nt, cls, w, h, &off) || sm_run(s, spp, ns, 1, nt, cls, w, h, &on)) return 1;
+    if (sm_run(s, spp, ns, 0, nt, cls, w, h, &off) || sm_run(s, spp, ns, cmp, nt, cls, w, h, &on)) return 1;
     toff = off.cpu / ns; ton = on.cpu / ns + on.st.t_sun_cpu;
     { /* the CPU per render for the equal-time columns: the best of CPU_ROUNDS interleaved rounds (off, on; the
        * render loop, plus the pilot for on), since the runs above take every off render, then every on one,
@@ -237,7 +349,8 @@ int main(int argc, char **argv) {
         for (mode = 0; mode < 2; mode++) {
           elr_stats st;
           double t;
-          o.spp = spp; o.seed = 1000; o.env_sun = mode;
+          o.spp = spp; o.seed = 1000; o.env_sun = mode ? cmp : 0; o.loop = sm_loop; o.importance = sm_importance;
+          if (sm_sampler >= 0) o.sampler = sm_sampler;
           if (elr_render(s, &o, &im, &st, err, sizeof err) != 0) { printf("%s: %s\n", scenes[i], err); return 1; }
           elr_image_free(&im);
           t = st.t_render_cpu + (mode ? st.t_sun_cpu : 0.0);
@@ -247,12 +360,17 @@ int main(int argc, char **argv) {
     if (csv) {
       for (c = 1; c <= 2; c++) {
         printf("sun_cache,off,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, off.n[c], off.mean[c], off.var[c], toff);
-        printf("sun_cache,on,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", scenes[i], c == 1 ? "shadowed" : "lit", spp, on.n[c], on.mean[c], on.var[c], ton);
+        printf("sun_cache,%s,%s,%s,%d,%d,%.6g,%.6g,%.4f\n", cmp == 2 ? "split" : "on", scenes[i], c == 1 ? "shadowed" : "lit", spp, on.n[c], on.mean[c], on.var[c], ton);
       }
       sm_free(&off); sm_free(&on); free(cls);
       elr_scene_free(s);
       continue;
     }
+    if (cmp == 2)
+      printf("%s (%dx%d, %s): cpu per render off %.3f s, split %.3f s (tables %.3f s CPU); %llu vertices split, %llu of them the sky "
+             "alone (\"on\" below: split)\n", scenes[i], w, h, on.st.integrator_path ? "path" : "directlighting", toff, ton, on.st.t_sun_cpu,
+             (unsigned long long)on.st.sunsplit_vertices, (unsigned long long)on.st.sunsplit_sky_only);
+    else
     printf("%s (%dx%d, %s): cpu per render off %.3f s, on %.3f s (pilot %.3f s CPU); %.1f%% of the sun's light samples at lowered "
            "vertices, %.1f%% in a spot's cone (off: see --stats)\n",
            scenes[i], w, h, on.st.integrator_path ? "path" : "directlighting", toff, ton, on.st.t_sun_cpu,

@@ -30,7 +30,8 @@ STRATS = {'map': ['--env-sampling', 'map'], 'default': [], 'product': ['--env-su
           'suncos.87': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '0.866'],  # the sun rule at 30 degrees
           'suncos1': ['--env-sun-diffuse', 'suncos', '--env-sun-cos', '1'],  # the rule never true (product everywhere)
           'bilinear': ['--importance', 'bilinear'],  # issue 22's patch density for the map alone
-          'pbrtv3': ['--importance', 'pbrt-v3']}  # the map alone's density before issue 22 made bilinear the default under a sun
+          'pbrtv3': ['--importance', 'pbrt-v3'],  # the map alone's density before issue 22 made bilinear the default under a sun
+          'split': ['--sun', 'split']}  # issue 22's splitting by component: one spot and one sky sample (examples/render/sun.c)
 
 
 def lum(img, i):

@@ -100,7 +100,9 @@ typedef struct elr_render_options {
   int env_sun;          /* issue 22 (sun.c): 1 on for a product-sampled sun map (elr__sun_share) with hot spots: a pilot learns where they are
                            hidden and the light samples there go to the rest of the map x cosine (1.3-1.9x less variance
                            in the sun's shadow at equal samples, but 1.3-1.8x the render's CPU time on the bench scenes:
-                           bench/bench_sun_render.c); 0 and -1 (the default, until its per-sample cost is down) off */
+                           bench/bench_sun_render.c); 2 split: at every vertex with a product normal one light sample
+                           of the hot spots and one of the rest x cosine, MIS with the BSDF sample over the three (the
+                           one-sample loop); 0 and -1 (the default, until its per-sample cost is down) off */
   int env_sun_diffuse;  /* -1: ELR_ENV_SUN_DIFFUSE; else with product sampling under a sun map (elr__sun_share), how
                            vertices with only diffuse lobes sample it: ELR_ENVSD_MAP the map alone with MIS, ELR_ENVSD_PRODUCT
                            the product with MIS, ELR_ENVSD_ALONE the product light sample alone, ELR_ENVSD_SUNCOS the map
@@ -173,6 +175,11 @@ typedef struct elr_stats {
   double t_sun, t_sun_cpu;    /* the pilot's wall and CPU time (in t_total, not in t_render) */
   uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* the sun light's samples; at lowered cells; at cells where
                                                               no spot was seen; landing in a spot's cone */
+  /* --sun split (env_sun 2, sun.c): built (its tables' CPU time in t_sun_cpu); the vertices whose environment light
+   * sample was split (one spot and one sky sample), and of them those with every spot below the horizon (the sky alone) */
+  int sunsplit_used, sunsplit_spot; /* sunsplit_spot: how the spot sample was drawn (sun.c's ELR_SUNSPLIT_SPOT: 0 the spots'
+                                       bins, 1 product sampling, 2 the map's own density inside the spots' cones) */
+  uint64_t sunsplit_vertices, sunsplit_sky_only;
 } elr_stats;
 
 typedef struct elr_image { int width, height; float *rgb; } elr_image; /* linear RGB, top row first */

@@ -918,6 +918,7 @@ typedef struct elr_tstats { /* one thread's counts */
   uint64_t sun_looked, sun_lowered, sun_dark, sun_to_spot; /* sun.c (--stats): environment light samples at vertices the
                         sun cache knows, of them where it lowered the spots' weight (and where it saw no spot), and of
                         the looked-up ones those that landed in a spot's cone */
+  uint64_t sunsplit_vertices, sunsplit_sky_only; /* --sun split: vertices split, of them with every spot below the horizon */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
@@ -939,6 +940,7 @@ typedef struct elr_ctx {
   int loop;               /* ELR_LOOP_*: the per-tile loop (ELR_LOOP_WAVE needs batch_light) */
   int wave_api;           /* render_wave.c: ELR_WAVE_API_* */
   const struct elr_sun *sun; /* sun.c: where the environment's hot spots are hidden (NULL: not learnt) */
+  const struct elr_sunsplit *sunsplit; /* sun.c, --sun split: one spot and one sky sample per diffuse vertex (NULL: off) */
 } elr_ctx;
 
 /* >> integrators (integrator.c: pbrt-v3's core/integrator.cpp; integrator_direct.c, integrator_path.c) */
@@ -1060,8 +1062,26 @@ int elr_sun_in_spot(const elr_sun *S, const float wi[3]);
  * choice for diffuse lobes asked for the map alone (sun.c) */
 int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf *b, elr_v3 wo, elr_v3 *n);
 float elr_sun_cell_alpha(const elr_sun_cell *c); /* sum P_k v_k / sum P_k of the cell (NULL: 1) */
+int elr_sun_cell_product(const elr_sun_cell *c, int has_n); /* the cell's density at a vertex with a product normal is the product's */
 void elr_sun_count(const elr_sun *S, const elr_sun_cell *c, const float wi[3], float pdf, elr_tstats *ts); /* --stats */
 /* elr_light_sample_li for the sun's light at a vertex of cell c (not NULL), counted for --stats */
 void elr_sun_light_sample(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, const float u[2], elr_light_sample *ls, elr_tstats *ts);
+/* --sun split (sun.c): at a vertex with a product normal n under a sun map, two light samples, one from the
+ * hot spots alone and one from the rest x cosine, MIS-weighted with the BSDF sample over the three */
+typedef struct elr_sunsplit elr_sunsplit;
+int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out); /* 0 and *out (NULL: no hot spot), -1 out of memory */
+void elr_sunsplit_free(elr_sunsplit *P);
+double elr_sunsplit_cpu(const elr_sunsplit *P); /* CPU seconds of the build (hot spots and tables) */
+const elr_light *elr_sunsplit_light(const elr_sunsplit *P);
+int elr_sunsplit_spot(const elr_sunsplit *P); /* how the spot sample is drawn (sun.c's ELR_SUNSPLIT_SPOT) */
+/* whether vertex (BSDF b, product normal n or NULL) of light l splits, and then from which part: 2 both, 1 the sky only
+ * (every spot below n's horizon), 0 no split */
+int elr_sunsplit_at(const elr_sunsplit *P, const elr_light *l, const elr_bsdf *b, const elr_v3 *n);
+/* the light sample of part k (0 the spots, 1 the sky) at normal n, counted for --stats; *other: the other part's density
+ * at its direction */
+void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, const float u[2], elr_light_sample *ls, float *other, elr_tstats *ts);
+/* sqrt(p_0^2 + p_1^2) of the parts' densities at wi, what the power heuristic of a BSDF sample compares (parts: as
+ * elr_sunsplit_at says, 1 the sky alone) */
+float elr_sunsplit_pdf(const elr_sunsplit *P, int parts, elr_v3 n, elr_v3 wi);
 
 #endif

@@ -48,6 +48,23 @@ int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_s
   return !(dist > 0.f) || !elr_occluded(s, o, elr_mul(d, 1.f / dist), dist * (1.f - 1e-4f));
 }
 
+/* <<Compute BSDF value for light sample>>, the shadow ray and <<Add light's contribution to reflected
+ * radiance>> for light sample ls: the power heuristic of pick x its pdf against the BSDF's (when mis)
+ * and pick x other, the density of another light technique in its direction (--sun split; 0: none) */
+static void elr__light_term(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light_sample *ls, int mis, float pick,
+                            float other, elr_tstats *ts, elr_v3 *Ld) {
+  elr_v3 f;
+  if (!(ls->pdf > 0.f)) return;
+  f = elr_mul(elr_bsdf_f(b, wo, ls->wi), fabsf(elr_dot(ls->wi, b->ns)));
+  if (elr_isblack(f)) return;
+  ts->shadow++;
+  if (elr_light_unoccluded(C->s, h, ls)) {
+    float pb = mis ? elr_bsdf_pdf(b, wo, ls->wi) : 0.f, po = pick * other;
+    float w = mis || po > 0.f ? elr_power_heuristic(pick * ls->pdf, po > 0.f ? sqrtf(pb * pb + po * po) : pb) : 1.f;
+    *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls->L), w / ls->pdf));
+  }
+}
+
 /* pbrt-v3's EstimateDirect at hit h (BSDF b, outgoing direction wo) for light l, with the 2D numbers
  * ul (the light sample) and us (the BSDF sample). Adds the light-sampled term, then the BSDF-sampled
  * term to *Ld. C->ls chooses the strategies (MIS, light only, BSDF only); delta lights take light
@@ -66,15 +83,26 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   const elr_sun_cell *sc = sunl ? elr_sun_lookup(C->sun, h, wo) : NULL;
   elr_v3 nc;
   const elr_v3 *n = elr_sun_cos_normal(s, sc, b, wo, &nc) ? &nc : NULL;
+  /* (--sun split, sun.c: a spot sample and a sky sample, 2; the sky alone, 1; 0: the light's density) */
+  int split = C->sunsplit && C->ls != ELR_LS_BSDF ? elr_sunsplit_at(C->sunsplit, l, b, n) : 0;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
-  int lonly = !sc && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c: MIS kept) */
+  int lonly = !sc && !split && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c, split: MIS kept) */
   /* ELR_ENVSD_TWO: a second product light sample from the BSDF sample's numbers, each weighted 1/2 */
-  int two = !sc && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b), k;
+  int two = !sc && !split && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b), kt;
   if (two) lonly = 1;
   /* <<Sample light source with multiple importance sampling>> */
-  if (delta || C->ls != ELR_LS_BSDF) for (k = 0; k <= two; k++) {
+  if (split) {
     elr_light_sample ls;
-    if (k) ul = us;
+    float other;
+    int k;
+    ts->sunsplit_vertices++; ts->sunsplit_sky_only += (uint64_t)(split == 1);
+    for (k = 2 - split; k < 2; k++) {
+      elr_sunsplit_sample(C->sunsplit, k, split, nc, ul, &ls, &other, ts); /* (one u for both: sun.c) */
+      elr__light_term(C, h, b, wo, &ls, C->ls == ELR_LS_MIS, pick, other, ts, Ld);
+    }
+  } else if (delta || C->ls != ELR_LS_BSDF) for (kt = 0; kt <= two; kt++) {
+    elr_light_sample ls;
+    if (kt) ul = us;
     if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
     if (sc) elr_sun_light_sample(C->sun, sc, n, ul, &ls, ts);
     else {
@@ -82,19 +110,10 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
       if (sunl) { float d[3]; elr_to3(ls.wi, d); elr_sun_count(C->sun, NULL, d, ls.pdf, ts); }
     }
     if (ls.portal >= 0) { if (ls.portal) ts->portal_used++; else ts->portal_fallback++; }
-    if (ls.pdf > 0.f) {
-      /* <<Compute BSDF value for light sample>> */
-      elr_v3 f = elr_mul(elr_bsdf_f(b, wo, ls.wi), fabsf(elr_dot(ls.wi, b->ns)));
-      if (!elr_isblack(f)) {
-        ts->shadow++;
-        if (elr_light_unoccluded(s, h, &ls)) {
-          /* <<Add light's contribution to reflected radiance>> */
-          float w = 1.f;
-          if (!delta && C->ls == ELR_LS_MIS && !lonly) w = elr_power_heuristic(pick * ls.pdf, elr_bsdf_pdf(b, wo, ls.wi));
-          if (two) w = 0.5f;
-          *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls.L), w / ls.pdf));
-        }
-      }
+    {
+      elr_v3 Lt = elr_v(0, 0, 0); /* (two: each sample's term, weighted 1/2) */
+      elr__light_term(C, h, b, wo, &ls, !delta && C->ls == ELR_LS_MIS && !lonly, pick, 0.f, ts, two ? &Lt : Ld);
+      if (two) *Ld = elr_add(*Ld, elr_mul(Lt, 0.5f));
     }
   }
   /* <<Sample BSDF with multiple importance sampling>> */
@@ -129,7 +148,9 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
         if (C->ls == ELR_LS_MIS) {
           float d[3];
           elr_to3(wi, d);
-          w = elr_power_heuristic(pdf, sc ? elr_sun_pdf(C->sun, sc, n, d) : elr_light_pdf_li_at(l, h->p, n, wi));
+          w = elr_power_heuristic(pdf, split ? elr_sunsplit_pdf(C->sunsplit, split, nc, wi)
+                                       : sc  ? elr_sun_pdf(C->sun, sc, n, d)
+                                             : elr_light_pdf_li_at(l, h->p, n, wi));
         }
         /* <<Add light contribution from material sampling>> */
         *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, elr_light_le(l, wi)), w / pdf));

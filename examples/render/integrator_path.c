@@ -27,6 +27,8 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   float prev_pdf = p->prev_pdf, eta_scale = p->eta_scale;
   elr_v3 prev_n = p->prev_n, prev_p = p->ray.o; /* prev_p: where the last light sample was drawn (portals) */
   const elr_sun_cell *prev_sun = p->prev_sun; /* and its sun-cache cell (sun.c) */
+  int prev_split = 0; /* and whether it split its light sample (--sun split, sun.c: elr_sunsplit_at's answer; render.c
+                         runs this loop alone then, so a path state from the wave loop never carries one) */
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;
@@ -48,7 +50,8 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
           {
             float d[3];
             elr_to3(r.d, d);
-            w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * (prev_sun && l == elr_sun_light(C->sun)
+            w = elr_power_heuristic(prev_pdf, C->ld.pick[li] * (prev_split && l == elr_sunsplit_light(C->sunsplit) ? elr_sunsplit_pdf(C->sunsplit, prev_split, prev_n, r.d)
+                                                                : prev_sun && l == elr_sun_light(C->sun)
                                                                     ? elr_sun_pdf(C->sun, prev_sun, prev_has_n ? &prev_n : NULL, d)
                                                                     : elr_light_pdf_li_at(l, prev_p, prev_has_n ? &prev_n : NULL, r.d)));
           }
@@ -89,6 +92,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
     prev_p = h.p;
     prev_sun = C->sun ? elr_sun_lookup(C->sun, &h, wo) : NULL;
     prev_has_n = elr_sun_cos_normal(s, prev_sun, &b, wo, &prev_n); /* the normal this vertex's light sample used */
+    prev_split = C->sunsplit && C->light_sampling && (b.has_diffuse || b.has_glossy) ? elr_sunsplit_at(C->sunsplit, elr_sunsplit_light(C->sunsplit), &b, prev_has_n ? &prev_n : NULL) : 0;
     if (spec == 2) eta_scale = elr_eta_scale(eta_scale, &b, wo); /* a specular transmission */
     /* the last vertex's continuation only matters for the emitters' BSDF-sampled part */
     if (depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;

@@ -22,7 +22,8 @@
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
  * --split off|auto|N (light and BSDF sample pairs per camera sample, directlighting), --loop one|wave (the per-tile loop: the reference or the wave loop), --wave-api single|packet16|stream|soa (how the wave loop calls Embree),
- * --sun auto|off|on (issue 22, sun.c: a pilot learns where the map's hot spots are hidden; auto: off for now). */
+ * --sun auto|off|on|split (issue 22, sun.c: a pilot learns where the map's hot spots are hidden; auto: off for now;
+ * split: one light sample of the hot spots and one of the rest x cosine at each diffuse vertex). */
 #include "el_render.h"
 #include <errno.h>
 #include <stdio.h>
@@ -133,9 +134,9 @@ int main(int argc, char **argv) {
       if (errno || *e || e == argv[i] || !(x >= -1.0 && x <= 1.0)) { fprintf(stderr, "render: --env-sun-cos must be a number in [-1, 1], got \"%s\"\n", argv[i]); return 1; }
       o.env_sun_cos = (float)x;
     } else if (!strcmp(a, "--sun") && i + 1 < argc) {
-      int k = parse_choice(a, argv[++i], "auto|off|on");
+      int k = parse_choice(a, argv[++i], "auto|off|on|split");
       if (k < 0) return 1;
-      o.env_sun = k - 1; /* auto -1, off 0, on 1 */
+      o.env_sun = k - 1; /* auto -1, off 0, on 1, split 2 */
     } else if (!strcmp(a, "--loop") && i + 1 < argc) {
       const char *m = argv[++i];
       if (!strcmp(m, "one")) o.loop = ELR_LOOP_ONE; else if (!strcmp(m, "wave")) o.loop = ELR_LOOP_WAVE;

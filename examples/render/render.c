@@ -138,6 +138,7 @@ static void *elr__worker(void *arg) {
   J->total.env_product += ts.env_product; J->total.env_map += ts.env_map; J->total.env_light_only += ts.env_light_only;
   J->total.sun_looked += ts.sun_looked; J->total.sun_lowered += ts.sun_lowered; J->total.sun_dark += ts.sun_dark;
   J->total.sun_to_spot += ts.sun_to_spot;
+  J->total.sunsplit_vertices += ts.sunsplit_vertices; J->total.sunsplit_sky_only += ts.sunsplit_sky_only;
   J->total.portal_used += ts.portal_used; J->total.portal_fallback += ts.portal_fallback;
   pthread_mutex_unlock(&J->mu);
   elr_sampler_free(&S);
@@ -323,9 +324,10 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
        * (EL_ENVLIGHT_IMPORTANCE_BILINEAR, issue 22: bench/sun_rule.py --strategies pbrtv3,default; README)
        * with a low-discrepancy sampler, whose points it keeps stratified; not with independent samples
        * (about break-even there: its CPU for 1.06x less variance), nor with --sun on, whose cache needs
-       * the hot spots of a piecewise-constant density */
+       * the hot spots of a piecewise-constant density (--sun split finds them on the light's own density, and
+       * takes the patches with any sampler: its spot sample draws them, sun.c) */
       if (l->importance_auto) l->importance_auto = 1; /* (2: chosen below, for --stats) */
-      if (importance < 0 && l->importance_auto && o->env_sun <= 0 && C->sampler.kind != ELR_SAMPLER_RANDOM && l->env->mapping == EL_ENVLIGHT_MAPPING_LATLONG && !l->portal) {
+      if (importance < 0 && l->importance_auto && (o->env_sun <= 0 || o->env_sun == 2) && (C->sampler.kind != ELR_SAMPLER_RANDOM || o->env_sun == 2) && l->env->mapping == EL_ENVLIGHT_MAPPING_LATLONG && !l->portal) {
         share = elr__sun_share(l->env, axis);
         if (share > ELR_ENV_SUN_SHARE) { importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR; l->importance_auto = 2; /* (--stats) */ }
       }
@@ -609,10 +611,11 @@ fail:
 
 /* issue 22 (sun.c): the pilot that learns where the sampled environment's hot spots are hidden, for the
  * first emitting environment sampled by product sampling (the default; not behind portals) */
-static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int fb[4], int nthreads, elr_stats *st, elr_sun **sun) {
+static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int fb[4], int nthreads, elr_stats *st, elr_sun **sun,
+                            elr_sunsplit **split) {
   const elr_scene *s = C->s;
   int i;
-  *sun = NULL;
+  *sun = NULL; *split = NULL;
   if (o->env_sun <= 0 || !C->light_sampling || C->ls == ELR_LS_BSDF) return 0; /* (-1, the default: off, el_render.h) */
   for (i = 0; i < s->nlight; i++) {
     const elr_light *l = &s->light[i];
@@ -621,6 +624,13 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
      * largest lamp's shadow (its other lamps stay lit and the rest x cosine draws them without the cosine:
      * envlight.h's NOTES ON HOT SPOTS 4), bench/bench_sun_render.c on scenes/bench_studio.pbrt */
     if (!s->env_sunny) return 0;
+    if (o->env_sun == 2) { /* --sun split: no pilot; the one-sample loop (render_wave.c draws one light sample a vertex) */
+      if (elr_sunsplit_build(l, split) != 0) return -1;
+      C->sunsplit = *split;
+      if (*split) C->loop = ELR_LOOP_ONE;
+      if (st && *split) { st->sunsplit_used = 1; st->sunsplit_spot = elr_sunsplit_spot(*split); st->t_sun_cpu = elr_sunsplit_cpu(*split); }
+      return 0;
+    }
     if (elr_sun_build(C, l, fb, nthreads, sun) != 0) return -1;
     C->sun = *sun;
     if (st && *sun) {
@@ -642,6 +652,7 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
 
 int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_stats *st, char *err, size_t errlen) {
   elr_sun *sun = NULL;
+  elr_sunsplit *sunsplit = NULL;
   elr_ctx C;
   elr_job J;
   elr_sampler_tables T;
@@ -690,7 +701,7 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
   nthreads = o->nthreads > 0 ? o->nthreads : (int)sysconf(_SC_NPROCESSORS_ONLN);
   if (nthreads < 1) nthreads = 1;
   if (nthreads > 1024) nthreads = 1024;
-  if (elr__sun_prepare(&C, o, fb, nthreads, st, &sun) != 0) { snprintf(err, errlen, "out of memory for the sun cache"); goto done; }
+  if (elr__sun_prepare(&C, o, fb, nthreads, st, &sun, &sunsplit) != 0) { snprintf(err, errlen, "out of memory for the sun cache"); goto done; }
   /* splitting: the light and BSDF samples per camera sample, chosen by a pilot */
   if (elr__split_choose(&C, o, s, fb, &T, nthreads, st, split_saved, err, errlen) != 0) goto done;
   if (elr__run(&C, o, &film, &T, nthreads, 1, o->seed, o->quiet, &J, err, errlen) != 0) goto done;
@@ -705,10 +716,11 @@ int elr_render(elr_scene *s, const elr_render_options *o, elr_image *out, elr_st
     elr__fill_stats(st, s, &C, &J.total, &film, nthreads, env_sampled, out);
     st->sun_looked = J.total.sun_looked; st->sun_lowered = J.total.sun_lowered; st->sun_dark = J.total.sun_dark;
     st->sun_to_spot = J.total.sun_to_spot;
+    st->sunsplit_vertices = J.total.sunsplit_vertices; st->sunsplit_sky_only = J.total.sunsplit_sky_only;
   }
   rc = 0;
 done:
-  elr_sun_free(sun);
+  elr_sun_free(sun); elr_sunsplit_free(sunsplit);
   if (st) st->t_total = elr_now() - t_start + s->t_parse;
   free(J.ready); elr_sampler_tables_free(&T);
   elr__split_restore(s, split_saved);

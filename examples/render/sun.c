@@ -1,5 +1,5 @@
-/* sun.c: where the sun is hidden (issue 22; render --sun on, off by default). The environment's hot spots
- * (envlight.h's el_envlight_hotspots: a sun, a lamp) are sampled less where a pilot found them hidden,
+/* sun.c: where the sun is hidden (issue 22; render --sun on, off by default; --sun split, SPLITTING below). The
+ * environment's hot spots (envlight.h's el_envlight_hotspots: a sun, a lamp) are sampled less where a pilot found them hidden,
  * and the sky that lights those places gets their samples. No pbrt counterpart (pbrt-v3 and -v4 sample
  * the map whole; Cycles cone-samples only its procedural sky's sun, with a fixed MIS weight).
  *
@@ -58,7 +58,17 @@
  * against loops of 0.20, 0.34, 0.46 s). Since issue 20's batched product sampling reached the wave loop
  * (el_envlight_sample_li_cos_n: the default's loop 0.21 -> 0.16, 0.35 -> 0.28, 0.53 -> 0.42 s) while a
  * dark cell's samples stay single calls: 1.19x, 1.28x, 1.19x (best of 5 interleaved, after the merge);
- * batching the mixture's samples the same way is the next step. Not in those: finding the hot spots and their cell tables,
+ * batching the mixture's samples the same way is the next step. Measured (perf, sun_porch, 32 spp, 1 thread): the
+ * largest single calls were not the mixture's but product samples, el_envlight_sample_li_cos, 10% of the process's
+ * cycles: a horizon cell's density is the product's itself; those samples and their pdfs now go through the wave's
+ * batched calls (elr_sun_cell_product; the images bit for bit the same): the loop 1.21x -> 1.15x, 1.33x -> 1.23x,
+ * 1.17x -> 1.11x the CPU of --sun off (16 spp, 1 thread, best of 5 interleaved); bench_sun_render (16 spp, 8 seeds):
+ * the whole image 0.86x, 0.84x, 0.82x at equal time (shadowed 1.21x, 0.85x, 0.78x). What the dark cells' mixture
+ * still costs there: its samples 5.3% of the cycles, their pdfs (el_envlight__hot_pdf_cos, the BSDF samples' and
+ * escaped rays' weights) 6.0%, the texels 3.1%; per sample no more than a batched product sample costs (3.6% of the
+ * cycles for 48% of the samples against 5.5% for 52% on sun_shadow_object); a batched form as much faster as the
+ * product's (2.8x) would save at most 9% of porch's cycles, and the earlier prefetching one saved nothing: not
+ * built this round. Not in those: finding the hot spots and their cell tables,
  * once per light (city.hdr, 2048x1024 bins: 0.28 G instructions, plus the light's own sampling tables where
  * the render would not build them, plus the cells' dilation 0.09 G: a fresh render --sun on pays them).
  * THE HORIZON (this round): a cell whose pilot rays towards its lowered spots all lay below their points'
@@ -81,6 +91,47 @@
  * vertices alone the shadow's variance is 1.006x less, at all 1.009x (before the horizon rule; its direct
  * light alone, maxdepth 1: 1.10x less), for 8% more CPU: 73% of the shadow's variance there is indirect
  * light from the sunlit ground, which no light-sample density changes.
+ *
+ * SPLITTING BY COMPONENT (render --sun split, issue 22's "one sun and one sky sample"; no pilot, no cache). At a
+ * vertex with a product normal n (elr_bsdf_cos_normal: diffuse and broad lobes) under a sun map, instead of the one
+ * product light sample: a SPOT sample and a SKY sample (the rest x cosine, el_envlight_sample_li_mix_cos_table with
+ * the spots' weight 0, one table per normal of an octahedral grid of 33 x 33, made once: 2 ms), plus the BSDF sample,
+ * one each, weighted by the power heuristic over the three techniques: a light sample of density p in direction w
+ * gets p^2 / (p^2 + p_o(w)^2 + p_b(w)^2) (p_o the other light sample's density there, p_b the BSDF's), the BSDF sample
+ * p_b^2 / (p_b^2 + p_s^2 + p_r^2) (elr_sunsplit_pdf); so the weights of the techniques that reach w sum to 1 and the
+ * estimate is unbiased (test_render_sun: |z| < 4 against the default, 8 seeds per class). The spot sample is the
+ * render's own density of the map (sample_li: le()'s patches under a sun) kept only inside the spots' cones (widened
+ * 10%; the rest dropped) where the spots hold at least half the power (sunrise.hdr: 0.75), else the spots' own bins
+ * (sample_li_mix, the rest's weight 0; city.hdr: 0.245). Where every spot lies below n's horizon, the renderer's
+ * product sample (no split). Both samples use the same two numbers (a third draw from the sampler: shadow 1.47x
+ * against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
+ * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
+ * shadowed 1.45x / 0.97x / 1.02x less variance at equal spp, lit 0.78x / 0.77x / 1.33x, the whole image 0.85x /
+ * 0.93x / 1.27x; at equal time against the default's wave loop 0.40x / 0.46x / 0.55x (the CPU 2.1x, 2.0x, 2.3x),
+ * against the default in the same one-sample loop (--loop-one) 0.68x / 0.74x / 1.09x (CPU 1.24x, 1.25x, 1.16x).
+ * At 64 spp (4 seeds): shadowed 1.63x / 0.94x / 0.83x, lit 0.96x / 0.87x / 1.01x, whole 1.03x / 0.93x / 0.98x at
+ * equal spp, 0.47x / 0.44x / 0.46x at equal time. bench/sun_rule.py (the whole image's relative variance over 4 seeds,
+ * 16 spp, one thread: time to unit variance against the default) 0.71x / 0.49x / 0.48x (per sample 1.31x / 1.01x /
+ * 1.11x). So off: an option.
+ * Variants (on sun_shadow_object, the first with the spots' bins on sunrise.hdr too: shadow 1.48x, lit 0.54x, whole
+ * 0.61x: its one-texel sun's bins have a constant density under a bilinear le(), and every spot sample lands there;
+ * the next as changes of that): the map's density in the cone on city: lit 0.77x (three quarters of its draws leave
+ * the cone); product sampling as the first sample (sample_li_cos, MIS with the sky sample where both reach): shadow
+ * 1.59x (city 1.29x), lit 0.91x (0.73x), whole 0.97x (0.79x); the sky by the map's rest without the cosine: shadow
+ * 1.37x; the two light samples without the BSDF sample at diffuse-only vertices: shadow 1.14x (1.24x with product
+ * sampling first); a third sampler draw for the sky sample: 1.47x against 1.54x; the sky sample alone where the spots
+ * are below the horizon (the same variance as drawing both there: the spot sample's f is 0):
+ * shadow 1.54x against 1.48x, lit unchanged. The shadow gains little because the default's BSDF sample already finds
+ * the sky there (A3.14); the lit pixels lose wherever the spot sample is worse than the product sampler's bilinear
+ * patches, and the extra sample and shadow ray cost 16-25% in the same loop. With the independent sampler (--random,
+ * 8 seeds; the spot sample then also from the patches) the lit pixels 0.73x on sun_shadow_object, but city's 2.27x
+ * and its whole image 2.01x less variance at equal spp, 0.94x at equal time against the wave default. WHY THE LIT
+ * PIXELS LOSE on sunrise.hdr (bench_sun_render --lit-point, the library alone, a lit ground point, variance per
+ * camera sample, sun's cone | rest): the default 0.164 | 0.0083, the split 0.193 | 0.0022 (the bins: 0.376): the sky
+ * gains 3.7x but the spot sample reaches the cone with probability 0.75 only (the patches' density is not
+ * renormalised to it), less than the product sampler's cosine-weighted share; the patches renormalised to the cone
+ * (drawn by rejection, a diagnostic) give 0.00015 | 0.0022, 59x less than the default in all. So the next step is a
+ * spot distribution over le()'s patches in the library (hot spots of the BILINEAR density, which has none today).
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
@@ -310,6 +361,20 @@ static int elr__sun_tables(elr_sun *S) {
   return 0;
 }
 
+/* the light's hot spots: found once per light and density, kept in the light (the scene's lights are never
+ * const objects; renders of one scene do not run concurrently); NULL: out of memory */
+static const el_envlight_hotspots *elr__sun_spots(const elr_light *l, const el_envlight *e) {
+  elr_light *lm = (elr_light *)l;
+  if (lm->sun_hs && lm->sun_hs_of != e) { el_envlight_hotspots_free(lm->sun_hs); free(lm->sun_hs); lm->sun_hs = NULL; }
+  if (!lm->sun_hs) {
+    lm->sun_hs = (el_envlight_hotspots *)calloc(1, sizeof *lm->sun_hs);
+    if (!lm->sun_hs) return NULL;
+    if (el_envlight_hotspots_init(lm->sun_hs, e, NULL) != EL_SUCCESS) memset(lm->sun_hs, 0, sizeof *lm->sun_hs);
+    lm->sun_hs_of = e;
+  }
+  return lm->sun_hs;
+}
+
 int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nthreads, elr_sun **out) {
   const elr_scene *s = C->s;
   elr_sun *S;
@@ -322,18 +387,7 @@ int elr_sun_build(const elr_ctx *C, const elr_light *l, const int fb[4], int nth
   S = (elr_sun *)calloc(1, sizeof *S);
   if (!S) return -1;
   S->l = l;
-  { /* the light's hot spots: found once per light and density, kept in the light (the scene's lights are
-     * never const objects; renders of one scene do not run concurrently) */
-    elr_light *lm = (elr_light *)l;
-    if (lm->sun_hs && lm->sun_hs_of != l->env_sample) { el_envlight_hotspots_free(lm->sun_hs); free(lm->sun_hs); lm->sun_hs = NULL; }
-    if (!lm->sun_hs) {
-      lm->sun_hs = (el_envlight_hotspots *)calloc(1, sizeof *lm->sun_hs);
-      if (!lm->sun_hs) { free(S); return -1; }
-      if (el_envlight_hotspots_init(lm->sun_hs, l->env_sample, NULL) != EL_SUCCESS) memset(lm->sun_hs, 0, sizeof *lm->sun_hs);
-      lm->sun_hs_of = l->env_sample;
-    }
-    S->hs = lm->sun_hs;
-  }
+  if (!(S->hs = elr__sun_spots(l, l->env_sample))) { free(S); return -1; }
   if (S->hs->count == 0) { free(S); return 0; } /* nothing to learn */
   nk = S->hs->count;
   for (k = 0; k < nk; k++) { Ps += S->hs->spot[k].share; S->cos_half[k] = cosf(S->hs->spot[k].half_angle); }
@@ -514,6 +568,9 @@ float elr_sun_pdf(const elr_sun *S, const elr_sun_cell *c, const elr_v3 *n, cons
 }
 
 float elr_sun_cell_alpha(const elr_sun_cell *c) { return c ? c->alpha : 1.f; }
+/* whether elr_sun_sample / elr_sun_pdf at a vertex of cell c (with a product normal: has_n) are the renderer's product
+ * sampling itself (a horizon cell): render_wave.c then draws them with the default's batched calls, the same bits */
+int elr_sun_cell_product(const elr_sun_cell *c, int has_n) { return c && has_n && c->horizon; }
 
 /* --stats: a light sample of the sun's light in direction wi (pdf 0: none), at a vertex of cell c (NULL: the
  * light's own density) */
@@ -547,4 +604,166 @@ int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf
     if ((b->lobe[i].flags & ELR_BSDF_TRANSMISSION) && !(b->lobe[i].flags & ELR_BSDF_SPECULAR)) return 0;
   *n = elr_dot(wo, b->ng) < 0.f ? elr_mul(b->ng, -1.f) : b->ng;
   return 1;
+}
+
+/* >> --sun split: one sample of the hot spots and one of the rest x cosine (issue 22's "draw one sun and one
+ * sky sample"; see the comment at the top). The multi-sample MIS weights over the three techniques (spot p_s,
+ * sky p_r, BSDF p_b; one sample each), with the power heuristic: p_s^2 / (p_s^2 + p_r^2 + p_b^2) for the spot
+ * sample, p_r^2 / (p_s^2 + p_r^2 + p_b^2) for the sky sample (the other light density: elr_sunsplit_sample's
+ * *other), p_b^2 / (p_b^2 + p_s^2 + p_r^2) for the BSDF sample (elr_sunsplit_pdf gives sqrt(p_s^2 + p_r^2)); at
+ * every direction the weights of the techniques that can draw it sum to 1. With the spots' bins the supports
+ * are disjoint (a bin is in a spot or in the rest: *other is 0); the map's density kept inside the cones
+ * overlaps the sky's rest bins there. */
+#ifndef ELR_SUNSPLIT_HORIZON
+#define ELR_SUNSPLIT_HORIZON 1 /* where every spot lies below the normal's horizon (f is 0 there): 1 the renderer's product
+                                * sample (no split), 2 the sky sample alone, 0 both samples anyway */
+#endif
+#ifndef ELR_SUNSPLIT_SKY_COS
+#define ELR_SUNSPLIT_SKY_COS 1 /* 1: the sky by the rest x cosine (el_envlight_sample_li_mix_cos); 0: the map's rest */
+#endif
+#ifndef ELR_SUNSPLIT_SPOT
+#define ELR_SUNSPLIT_SPOT -1 /* the first sample: 0 the spots' bins (sample_li_mix, the spots alone), 1 product sampling
+                              * (sample_li_cos: the sun and the sky), 2 the render's own density of the map (sample_li:
+                              * le()'s patches under a sun), kept only inside the spots' cones; -1: 2 where the spots
+                              * hold at least ELR_SUNSPLIT_SPOT_SHARE of the map's power (few samples dropped), else 0 */
+#endif
+#define ELR_SUNSPLIT_SPOT_SHARE 0.5f
+#define ELR_SUNSPLIT_NO 33 /* the normals of the sky's tables: an octahedral grid of 33 x 33 points, the axes among
+                            * them, the rest within about 4 degrees */
+struct elr_sunsplit {
+  const elr_light *l;
+  const el_envlight *e; /* the density whose hot spots and mixtures are sampled (l->env) */
+  const el_envlight_hotspots *hs;
+  el_envlight_mix_weights wspot, wsky; /* the spots at their shares and the rest 0; the rest alone */
+  float cos_half[EL_ENVLIGHT_HOTSPOT_MAX], sin_half[EL_ENVLIGHT_HOTSPOT_MAX];
+  float cos_wide[EL_ENVLIGHT_HOTSPOT_MAX]; /* twice as wide: where the spots' bins are looked for (their pdf, 0 outside) */
+  el_envlight_mix_cos_table *tabs;     /* the rest x cosine for each grid normal (ELR_SUNSPLIT_NO^2) */
+  int spot;                            /* how the first sample is drawn (ELR_SUNSPLIT_SPOT) */
+  double cpu;
+};
+
+/* the grid point of the octahedral map (y the pole: Y-up scenes' ground is a point) nearest to unit n */
+static int elr__sunsplit_qi(elr_v3 n) {
+  float a = fabsf(n.x) + fabsf(n.y) + fabsf(n.z), x, z, h = 0.5f * (float)(ELR_SUNSPLIT_NO - 1);
+  int i, j;
+  if (!(a > 0.f)) return 0;
+  x = n.x / a; z = n.z / a;
+  if (n.y < 0.f) {
+    float tx = (1.f - fabsf(z)) * (x >= 0.f ? 1.f : -1.f), tz = (1.f - fabsf(x)) * (z >= 0.f ? 1.f : -1.f);
+    x = tx; z = tz;
+  }
+  i = (int)lrintf((x + 1.f) * h); j = (int)lrintf((z + 1.f) * h);
+  i = i < 0 ? 0 : i >= ELR_SUNSPLIT_NO ? ELR_SUNSPLIT_NO - 1 : i;
+  j = j < 0 ? 0 : j >= ELR_SUNSPLIT_NO ? ELR_SUNSPLIT_NO - 1 : j;
+  return j * ELR_SUNSPLIT_NO + i;
+}
+static void elr__sunsplit_qn(int q, float n[3]) {
+  float x = 2.f * (float)(q % ELR_SUNSPLIT_NO) / (float)(ELR_SUNSPLIT_NO - 1) - 1.f;
+  float z = 2.f * (float)(q / ELR_SUNSPLIT_NO) / (float)(ELR_SUNSPLIT_NO - 1) - 1.f, y = 1.f - fabsf(x) - fabsf(z), l2;
+  if (y < 0.f) {
+    float tx = (1.f - fabsf(z)) * (x >= 0.f ? 1.f : -1.f), tz = (1.f - fabsf(x)) * (z >= 0.f ? 1.f : -1.f);
+    x = tx; z = tz;
+  }
+  l2 = 1.f / sqrtf(x * x + y * y + z * z);
+  n[0] = x * l2; n[1] = y * l2; n[2] = z * l2;
+}
+
+int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
+  elr_sunsplit *P;
+  double c0;
+  int k, q;
+  float ps = 0.f;
+  *out = NULL;
+  P = (elr_sunsplit *)calloc(1, sizeof *P);
+  if (!P) return -1;
+  P->l = l;
+  /* (the light's own density, not its env_sample: under a sun the render samples the map alone by le()'s
+   * patches, EL_ENVLIGHT_IMPORTANCE_BILINEAR, on which no hot spot is found) */
+  P->e = l->env;
+  if (!(P->hs = elr__sun_spots(l, P->e))) { free(P); return -1; }
+  if (P->hs->count == 0) { free(P); return 0; } /* nothing to split */
+  c0 = elr_cpu_now(); /* (the tables' time: the hot spots are the light's, found once) */
+  for (k = 0; k < P->hs->count; k++) {
+    float a = 1.1f * P->hs->spot[k].half_angle + 1e-3f; /* (a margin: the cone bounds its bins' corners and edge midpoints) */
+    P->wspot.spot[k] = P->hs->spot[k].share;
+    P->cos_half[k] = cosf(a); P->sin_half[k] = sinf(a); P->cos_wide[k] = cosf(2.f * a);
+  }
+  P->wsky.rest = 1.f;
+  for (k = 0; k < P->hs->count; k++) ps += P->hs->spot[k].share;
+  P->spot = ELR_SUNSPLIT_SPOT >= 0 ? ELR_SUNSPLIT_SPOT : ps >= ELR_SUNSPLIT_SPOT_SHARE ? 2 : 0;
+  if (P->spot == 2 && el_envlight_prepare_sampling(l->env_sample) != EL_SUCCESS) { free(P); return -1; }
+  if (ELR_SUNSPLIT_SKY_COS) {
+    P->tabs = (el_envlight_mix_cos_table *)malloc((size_t)ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO * sizeof *P->tabs);
+    if (!P->tabs) { free(P); return -1; }
+    for (q = 0; q < ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO; q++) {
+      float n[3];
+      elr__sunsplit_qn(q, n);
+      el_envlight_mix_cos_prepare(P->e, P->hs, &P->wsky, n, &P->tabs[q]);
+    }
+  }
+  P->cpu = elr_cpu_now() - c0;
+  *out = P;
+  return 0;
+}
+void elr_sunsplit_free(elr_sunsplit *P) {
+  if (!P) return;
+  free(P->tabs);
+  free(P);
+}
+double elr_sunsplit_cpu(const elr_sunsplit *P) { return P ? P->cpu : 0.0; }
+const elr_light *elr_sunsplit_light(const elr_sunsplit *P) { return P ? P->l : NULL; }
+int elr_sunsplit_spot(const elr_sunsplit *P) { return P ? P->spot : -1; }
+
+int elr_sunsplit_at(const elr_sunsplit *P, const elr_light *l, const elr_bsdf *b, const elr_v3 *n) {
+  int k;
+  if (!P || l != P->l || !n || b->env_mirror) return 0; /* (env_mirror: n is a lobe's proxy, not the normal) */
+  if (!ELR_SUNSPLIT_HORIZON) return 2;
+  for (k = 0; k < P->hs->count; k++) /* some of spot k's cone above n's horizon: angle(n, axis) < 90 deg + half-angle */
+    if (elr_dot(*n, elr_v(P->hs->spot[k].axis[0], P->hs->spot[k].axis[1], P->hs->spot[k].axis[2])) > -P->sin_half[k]) return 2;
+  return ELR_SUNSPLIT_HORIZON == 2 ? 1 : 0;
+}
+
+/* the sky part's density at d (world, unit) for normal n */
+static float elr__sunsplit_sky_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  const el_envlight *e = P->e;
+  return ELR_SUNSPLIT_SKY_COS ? el_envlight_pdf_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], d) : el_envlight_pdf_li_mix(e, P->hs, &P->wsky, d);
+}
+/* whether d lies in a spot's cone (cos_half, or cos_wide) */
+static int elr__sunsplit_in_cone(const elr_sunsplit *P, const float d[3], const float *cosk) {
+  int k;
+  for (k = 0; k < P->hs->count; k++)
+    if (d[0] * P->hs->spot[k].axis[0] + d[1] * P->hs->spot[k].axis[1] + d[2] * P->hs->spot[k].axis[2] >= cosk[k]) return 1;
+  return 0;
+}
+/* the first part's density at d (ELR_SUNSPLIT_SPOT) */
+static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  if (P->spot == 1) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
+  if (!elr__sunsplit_in_cone(P, d, P->spot == 2 ? P->cos_half : P->cos_wide)) return 0.f; /* (the bins: a shortcut only) */
+  return P->spot == 2 ? el_envlight_pdf_li(P->l->env_sample, d) : el_envlight_pdf_li_mix(P->e, P->hs, &P->wspot, d);
+}
+
+void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, const float u[2], elr_light_sample *ls, float *other, elr_tstats *ts) {
+  const el_envlight *e = P->e;
+  float wi[3], L[3];
+  ls->at_point = 0; ls->dist = INFINITY; ls->portal = -1;
+  if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
+  else if (k == 0 && P->spot == 2) { /* (a sample outside the cones is dropped: the part's density is 0 there) */
+    el_envlight_sample_li(P->l->env_sample, u, wi, L, &ls->pdf);
+    if (!elr__sunsplit_in_cone(P, wi, P->cos_half)) ls->pdf = 0.f;
+  } else if (k == 0) el_envlight_sample_li_mix(e, P->hs, &P->wspot, u, wi, L, &ls->pdf);
+  else if (ELR_SUNSPLIT_SKY_COS) el_envlight_sample_li_mix_cos_table(e, P->hs, &P->tabs[elr__sunsplit_qi(n)], u, wi, L, &ls->pdf);
+  else el_envlight_sample_li_mix(e, P->hs, &P->wsky, u, wi, L, &ls->pdf);
+  ls->wi = elr_from3(wi); ls->L = elr_from3(L);
+  /* (the other part's density there: with the spots' bins (ELR_SUNSPLIT_SPOT 0) none, the supports are disjoint) */
+  *other = !(ls->pdf > 0.f) || P->spot == 0 || parts != 2 ? 0.f : k == 0 ? elr__sunsplit_sky_pdf(P, n, wi) : elr__sunsplit_spot_pdf(P, n, wi);
+  ts->env_product++;
+}
+
+float elr_sunsplit_pdf(const elr_sunsplit *P, int parts, elr_v3 n, elr_v3 wi) {
+  float d[3], p, q;
+  elr_to3(wi, d);
+  p = elr__sunsplit_sky_pdf(P, n, d);
+  if (parts != 2) return p;
+  q = elr__sunsplit_spot_pdf(P, n, d);
+  return q > 0.f ? sqrtf(p * p + q * q) : p;
 }

@@ -69,7 +69,10 @@ static int sm__cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return x < y ? -1 : x > y ? 1 : 0;
 }
-/* nseeds renders at spp of scene s with the sun cache (sun: the env_sun option, 1 on, 0 off) into r; 0 on success */
+static int sm_loop = -1;       /* the renders' per-tile loop (elr_render_options.loop; -1 the default) */
+static int sm_importance = -1; /* and the environment's importance map (elr_render_options.importance) */
+static int sm_sampler = -1;    /* and the sampler (elr_render_options.sampler; -1: the scene's) */
+/* nseeds renders at spp of scene s with the sun cache (sun: the env_sun option, 1 on, 0 off, 2 split) into r; 0 on success */
 static int sm_run(elr_scene *s, int spp, int nseeds, int sun, int nthreads, const unsigned char *cls, int w, int h, sm_result *r) {
   double *s1, *s2;
   int k, i, np = w * h;
@@ -81,7 +84,8 @@ static int sm_run(elr_scene *s, int spp, int nseeds, int sun, int nthreads, cons
     elr_image im;
     char err[512];
     elr_render_options_default(&o);
-    o.spp = spp; o.nthreads = nthreads; o.seed = (uint64_t)(1000 + k); o.quiet = 1; o.env_sun = sun;
+    o.spp = spp; o.nthreads = nthreads; o.seed = (uint64_t)(1000 + k); o.quiet = 1; o.env_sun = sun; o.loop = sm_loop; o.importance = sm_importance;
+    if (sm_sampler >= 0) o.sampler = sm_sampler;
     if (elr_render(s, &o, &im, &r->st, err, sizeof err) != 0 || im.width != w || im.height != h) {
       printf("render failed: %s\n", err); free(s1); free(s2); return -1;
     }
