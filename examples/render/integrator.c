@@ -89,6 +89,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   int lonly = !sc && !split && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c, split: MIS kept) */
   /* ELR_ENVSD_TWO: a second product light sample from the BSDF sample's numbers, each weighted 1/2 */
   int two = !sc && !split && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b), kt;
+  if (two && s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) two = ts->env_two_pixel > 0; /* (the pixel's choice: render.c) */
   if (two) lonly = 1;
   /* <<Sample light source with multiple importance sampling>> */
   if (split) {
