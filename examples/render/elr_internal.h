@@ -1039,10 +1039,18 @@ typedef struct elr_first {
   const struct elr_first *more;
   int nmore;
   const struct elr_sun_cell *sun; /* sun.c: the vertex's sun-cache cell (elr_sun_lookup, made once per vertex) */
+  /* ELR_ENVSD_TWO(_PIXEL) (two = 1): the second product light sample, drawn from the BSDF sample's numbers
+   * (no BSDF sample then: bs, bray 0), and its shadow ray's answer as occ_l's */
+  int two, occ_l2;
+  elr_v3 wi2, L2;
+  float pdf2;
 } elr_first;
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */
 elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
+/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice (render.c; 1: two product light samples, 0: product MIS), two
+ * rays counted in ts; the reference loop and the wave loop make it at the pixel's start */
+int elr_two_pixel(const elr_ctx *C, int x, int y, elr_tstats *ts);
 
 /* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
 typedef struct elr_wave elr_wave;

@@ -49,6 +49,18 @@
 
 /* >> a first vertex computed ahead (elr_first): its shading in the reference's order (moved here from
  * render_batched.c, the batched loop, when the wave loop replaced it) */
+/* ELR_ENVSD_TWO(_PIXEL): Ld plus one of the two product light samples' terms weighted 1/2, as elr_estimate_direct
+ * sums it (elr__light_term without MIS into its own sum); fl its BSDF value times the cosine (read where pdf > 0),
+ * occ its shadow ray's answer (-1: traced here) */
+static elr_v3 elr__two_term(const elr_ctx *C, const elr_hit *h, elr_v3 Ld, elr_v3 fl, elr_v3 wi, elr_v3 L, float pdf, int occ, elr_tstats *ts) {
+  elr_v3 Lt = elr_v(0, 0, 0);
+  if (pdf > 0.f && !elr_isblack(fl)) {
+    ts->shadow++;
+    if (!(occ >= 0 ? occ : elr_occluded(C->s, elr_spawn_origin(h, wi), wi, INFINITY))) Lt = elr_add(Lt, elr_mul(elr_vmul(fl, L), 1.f / pdf));
+  }
+  return elr_add(Ld, elr_mul(Lt, 0.5f));
+}
+
 /* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
  * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
  * ahead in f */
@@ -60,6 +72,14 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
   /* (the normal as the light sample's: at a lowered sun-cache cell, sun.c's) */
   const elr_sun_cell *sc = f->sun; /* (elr_sun_lookup's, made by the wave loop) */
   int lonly = !sc && C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_sun_cos_normal(s, sc, b, wo, &nc), b);
+  if (f->two) { /* (two product light samples, no BSDF sample) */
+    elr_v3 fl = elr_v(0, 0, 0);
+    if (f->pdf > 0.f) fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
+    *Ld = elr__two_term(C, h, *Ld, fl, f->wi, f->L, f->pdf, f->occ_l, ts);
+    if (f->pdf2 > 0.f) fl = elr_mul(elr_bsdf_f(b, wo, f->wi2), fabsf(elr_dot(f->wi2, b->ns)));
+    *Ld = elr__two_term(C, h, *Ld, fl, f->wi2, f->L2, f->pdf2, f->occ_l2, ts);
+    return;
+  }
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
@@ -186,6 +206,10 @@ struct elr_wave {
   elr_v3 fl[ELR_WAVE];
   float flpdf[ELR_WAVE]; /* and the BSDF's pdf in its direction (computed with fl: the dot products they share) */
   int lonly[ELR_WAVE], fast[ELR_WAVE]; /* (fast 2: the camera ray left the scene; Ld its radiance) */
+  /* ELR_ENVSD_TWO(_PIXEL): per pair, its second light sample's index in W->u (or -1), BSDF value times the
+   * cosine and shadow ray; per pixel of the wave, its choice (ELR_ENVSD_TWO_PIXEL: elr_two_pixel) */
+  int light2[ELR_WAVE], shadow2[ELR_WAVE], two_pix[ELR_WAVE];
+  elr_v3 fl2[ELR_WAVE];
   elr_v3 Ld[ELR_WAVE];
   float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
@@ -238,12 +262,14 @@ static int elr__soa_lambert_ok(const elr_bsdf *t) {
 
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile) {
   elr_wave *W = (elr_wave *)calloc(1, sizeof *W);
-  int i, k, npix;
+  int i, k, npix, two;
   if (!W) return NULL;
   /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
-  if (W->npair > ELR_WAVE) W->npair = ELR_WAVE;
-  W->cap = ELR_WAVE / W->npair;
+  /* (ELR_ENVSD_TWO(_PIXEL): up to two light samples a pair, in the wave's arrays of ELR_WAVE) */
+  two = !C->path && C->s->env_sunny && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL);
+  if (W->npair > ELR_WAVE / (1 + two)) W->npair = ELR_WAVE / (1 + two);
+  W->cap = ELR_WAVE / ((1 + two) * W->npair);
   npix = C->spp >= W->cap ? 1 : W->cap / C->spp;
   if (npix > tile * tile) npix = tile * tile;
   W->S = (elr_sampler *)calloc((size_t)npix, sizeof(elr_sampler));
@@ -345,6 +371,11 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
     const elr_bsdf *b = &W->f[j].b;
     elr_v3 Ld = W->Ld[j];
     if (!W->fast[j]) continue;
+    if (p->two) { /* (two product light samples, no BSDF sample) */
+      Ld = elr__two_term(C, W->f[j].h, Ld, W->fl[k], p->wi, p->L, p->pdf, p->occ_l, ts);
+      W->Ld[j] = elr__two_term(C, W->f[j].h, Ld, W->fl2[k], p->wi2, p->L2, p->pdf2, p->occ_l2, ts);
+      continue;
+    }
     /* <<Sample light source with multiple importance sampling>> (W->fl: set where pdf > 0) */
     if (C->ls != ELR_LS_BSDF && p->pdf > 0.f && !elr_isblack(W->fl[k])) {
       ts->shadow++;
@@ -396,13 +427,14 @@ static inline float elr__ph_sel(float f, float g) { /* elr_power_heuristic, both
 
 /* lane j (a hit, not emitting) of the wave into W->A where its BSDF is a lone Lambertian lobe: 1 (its draws
  * made), or 0 (shaded by elr__direct_wave's general steps) */
-static int elr__soa_add(elr_wave *W, int j) {
+static int elr__soa_add(const elr_ctx *C, elr_wave *W, int j) {
   elr_wave_soa *A = &W->A;
   const elr_hit *h = &W->h[j];
   const elr_bsdf *t;
   int i = A->n, k = W->tmpl_of[h->material];
   if (k < 0 || !W->tmpl_lambert[k] || h->light >= 0) return 0;
   t = &W->tmpl[k];
+  if (t->env_two && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || W->two_pix[W->pix[j]] > 0)) return 0; /* (two light samples: the general steps) */
   elr_sampler_restore(&W->S[W->pix[j]], &W->pos[j]);
   elr_sampler_get2d(&W->S[W->pix[j]], &A->ul[2 * i]);
   { float us[2]; elr_sampler_get2d(&W->S[W->pix[j]], us); A->v0[i] = us[0]; A->v1[i] = us[1]; }
@@ -589,22 +621,23 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
     if (!q->hit) { elr_to3(W->cam[j].d, &W->wi[3 * nesc]); W->escaped[nesc++] = j; W->fast[j] = 2; continue; } /* (its radiance below) */
-    if (soa && elr__soa_add(W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
+    if (soa && elr__soa_add(C, W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
     elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
     /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
-    W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t));
+    W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t)) &&
+                 W->npair == (C->direct_one ? 1 : C->batch_light->nsamples); /* (else the samples past ELR_WAVE's: elr_direct_first) */
     W->Ld[j] = elr_v(0, 0, 0);
     W->vsc[j] = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
     q->more = &W->more[nm]; q->nmore = W->npair - 1; nm += W->npair - 1;
     for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
       float us[2];
-      int lonly = 0;
-      p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f; p->sun = W->vsc[j];
-      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1; W->lonly[np] = 0;
+      int lonly = 0, two = 0;
+      p->bs = p->bray = p->two = 0; p->occ_l = p->occ_b = p->occ_l2 = -1; p->pdf = p->pdf2 = 0.f; p->sun = W->vsc[j];
+      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = W->light2[np] = -1; W->lonly[np] = 0;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
@@ -612,9 +645,19 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
         W->has_n[n] = elr__cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
         lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
-        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
+        /* (ELR_ENVSD_TWO: a second product light sample from the BSDF draw, as elr_estimate_direct) */
+        two = !W->sc[n] && elr_env_two(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b) &&
+              (C->s->env_sun_diffuse != ELR_ENVSD_TWO_PIXEL || W->two_pix[W->pix[j]] > 0);
+        if (two) lonly = 1;
+        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product += (uint64_t)(1 + two); else ts->env_map++; ts->env_light_only += (uint64_t)(lonly * (1 + two)); } /* (--stats) */
         W->light[np] = n++;
         W->lonly[np] = lonly;
+        if (two) {
+          W->u[2 * n] = us[0]; W->u[2 * n + 1] = us[1];
+          W->sc[n] = W->sc[n - 1]; W->has_n[n] = W->has_n[n - 1]; W->normal[n] = W->normal[n - 1]; W->lpos[n] = W->lpos[n - 1];
+          W->light2[np] = n++;
+          p->two = 1;
+        }
       }
       if (C->ls != ELR_LS_LIGHT && !lonly) {
         int spec;
@@ -638,7 +681,17 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
   for (k = 0; k < np; k++) {
     elr_first *p = W->pair[k], *q = &W->f[W->pair_of[k]];
     int i = W->light[k];
-    W->shadow[k] = W->bshadow[k] = -1;
+    W->shadow[k] = W->bshadow[k] = W->shadow2[k] = -1;
+    if (W->light2[k] >= 0) { /* (the second light sample: its shadow ray as the first's) */
+      elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
+      float pb;
+      int i2 = W->light2[k];
+      p->wi2 = elr_from3(&W->wi[3 * i2]); p->L2 = elr_from3(&W->Le[3 * i2]); p->pdf2 = W->pdf[i2];
+      if (p->pdf2 > 0.f && !elr_isblack(W->fl2[k] = elr_mul(elr_bsdf_f_pdf_inl(&q->b, wo, p->wi2, &pb), fabsf(elr_dot(p->wi2, q->b.ns))))) {
+        W->shadow2[k] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi2), p->wi2, INFINITY);
+      }
+    }
     if (i >= 0) {
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
@@ -658,6 +711,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *p = W->pair[k];
     p->occ_l = W->shadow[k] >= 0 ? W->shadows.tfar[W->shadow[k]] < 0.f : 0;
     p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
+    p->occ_l2 = W->shadow2[k] >= 0 ? W->shadows.tfar[W->shadow2[k]] < 0.f : 0;
   }
   /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the directions
    * of the BSDF samples whose rays escaped (the others' are never read): gathered into one
@@ -890,6 +944,7 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
         take = W->cap;
       }
       if (k0 == 0) elr_sampler_start_pixel(S, x, y);
+      if (k0 == 0 && C->s->env_sunny && C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) W->two_pix[np] = elr_two_pixel(C, x, y, ts);
       for (k = k0; k < k0 + take; k++, m++) {
         /* <<Initialize CameraSample for current sample>>, <<Generate camera ray for current sample>> */
         W->pix[m] = np;
@@ -924,6 +979,7 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
       } else {
         elr_sampler *S = &W->S[W->pix[j]];
         elr_sampler_restore(S, &W->pos[j]); /* the sampler back at sample j, after its film draw */
+        ts->env_two_pixel = W->two_pix[W->pix[j]]; /* (ELR_ENVSD_TWO_PIXEL: the pixel's choice, for its later vertices) */
         L = elr_direct_first(C, S, &W->cam[j], &W->f[j], ts);
       }
       elr_to3(L, &W->rgb[3 * j]);
