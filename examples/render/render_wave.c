@@ -185,6 +185,12 @@ typedef struct elr_wave_soa {
   int sh[ELR_WAVE], bsh[ELR_WAVE];
   /* the environment in the BSDF sample's direction (where its ray escaped) */
   float bpe[ELR_WAVE], lbr[ELR_WAVE], lbg[ELR_WAVE], lbb[ELR_WAVE];
+  /* ELR_ENVSD_TWO(_PIXEL): the material's and pixel's choice (etwo), the lane's (two: elr_env_two), and the second
+   * product light sample (from the BSDF draw v0, v1) as the first's arrays above */
+  int etwo[ELR_WAVE], two[ELR_WAVE], sh2[ELR_WAVE];
+  float wl2[3 * ELR_WAVE], Ll2[3 * ELR_WAVE], lpdf2[ELR_WAVE];
+  float wlx2[ELR_WAVE], wly2[ELR_WAVE], wlz2[ELR_WAVE], llr2[ELR_WAVE], llg2[ELR_WAVE], llb2[ELR_WAVE];
+  float flr2[ELR_WAVE], flg2[ELR_WAVE], flb2[ELR_WAVE], flpdf2[ELR_WAVE], dlg2[ELR_WAVE];
 } elr_wave_soa;
 
 struct elr_wave {
@@ -434,7 +440,6 @@ static int elr__soa_add(const elr_ctx *C, elr_wave *W, int j) {
   int i = A->n, k = W->tmpl_of[h->material];
   if (k < 0 || !W->tmpl_lambert[k] || h->light >= 0) return 0;
   t = &W->tmpl[k];
-  if (t->env_two && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || W->two_pix[W->pix[j]] > 0)) return 0; /* (two light samples: the general steps) */
   elr_sampler_restore(&W->S[W->pix[j]], &W->pos[j]);
   elr_sampler_get2d(&W->S[W->pix[j]], &A->ul[2 * i]);
   { float us[2]; elr_sampler_get2d(&W->S[W->pix[j]], us); A->v0[i] = us[0]; A->v1[i] = us[1]; }
@@ -445,6 +450,7 @@ static int elr__soa_add(const elr_ctx *C, elr_wave *W, int j) {
   A->ox[i] = W->cam[j].d.x * -1.f; A->oy[i] = W->cam[j].d.y * -1.f; A->oz[i] = W->cam[j].d.z * -1.f;
   A->kr[i] = t->kd.x; A->kg[i] = t->kd.y; A->kb[i] = t->kd.z;
   A->elo[i] = t->env_light_only; A->emap[i] = t->env_map; A->stest[i] = t->env_sun_test;
+  A->etwo[i] = t->env_two && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || W->two_pix[W->pix[j]] > 0);
   A->sax[i] = t->env_sun_axis.x; A->say[i] = t->env_sun_axis.y; A->saz[i] = t->env_sun_axis.z; A->scos[i] = t->env_sun_cos;
   A->n++;
   return 1;
@@ -455,7 +461,7 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
   elr_wave_soa *A = &W->A;
   const elr_light *l = C->batch_light;
   const int n = A->n, lo_ok = l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated;
-  int i, nn = 0, nlo = 0;
+  int i, nn = 0, nlo = 0, ntwo = 0;
   for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the normal (elr_bsdf_cos_normal), lonly; the disk sample's radius and angle */
     float dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i], sg = dgo < 0.f ? -1.f : 1.f;
     float cx = A->gx[i] * sg, cy = A->gy[i] * sg, cz = A->gz[i] * sg;
@@ -464,7 +470,8 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
     int has = (A->emap[i] == 0) & !((A->stest[i] != 0) & (cx * A->sax[i] + cy * A->say[i] + cz * A->saz[i] >= A->scos[i]));
     A->cx[i] = cx; A->cy[i] = cy; A->cz[i] = cz;
     A->has_n[i] = has;
-    A->lonly[i] = has & A->elo[i] & lo_ok;
+    A->two[i] = has & A->etwo[i] & lo_ok; /* (elr_env_two; MIS) */
+    A->lonly[i] = (has & A->elo[i] & lo_ok) | A->two[i];
     A->r[i] = zero ? 0.f : big ? ox : oy;
     A->th[i] = zero ? 0.f : big ? ta : tb;
   }
@@ -496,8 +503,19 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
   for (i = 0; i < n; i++) /* (elr_estimate_direct's BSDF ray) */
     A->bray[i] = !A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f);
   /* the light samples (elr__env_samples' map and product cases) */
-  for (i = 0; i < n; i++) nn += A->has_n[i];
-  if (l->product) { ts->env_product += (uint64_t)nn; ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)nlo; } /* (--stats) */
+  for (i = 0; i < n; i++) { nn += A->has_n[i]; ntwo += A->two[i]; }
+  if (l->product) { ts->env_product += (uint64_t)(nn + ntwo); ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)(nlo + ntwo); } /* (--stats) */
+  if (ntwo > 0) { /* (the second product light samples, from the BSDF draws, in one call) */
+    float nv[3 * ELR_WAVE], um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
+    int idx[ELR_WAVE], m = 0;
+    for (i = 0; i < n; i++)
+      if (A->two[i]) { idx[m] = i; nv[3 * m] = A->cx[i]; nv[3 * m + 1] = A->cy[i]; nv[3 * m + 2] = A->cz[i]; um[2 * m] = A->v0[i]; um[2 * m + 1] = A->v1[i]; m++; }
+    el_envlight_sample_li_cos_n(l->env_sample, m, nv, um, wm, Lm, pm);
+    for (i = 0; i < m; i++) {
+      memcpy(&A->wl2[3 * idx[i]], &wm[3 * i], 3 * sizeof(float)); memcpy(&A->Ll2[3 * idx[i]], &Lm[3 * i], 3 * sizeof(float));
+      A->lpdf2[idx[i]] = pm[i];
+    }
+  }
   if (n == 0) return;
   if (!l->product || nn == 0) el_envlight_sample_li_n(l->env_sample, n, A->ul, A->wl, A->Ll, A->lpdf);
   else {
@@ -525,25 +543,43 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
   }
 }
 
+/* lane i's light sample (direction w): its f |cos| (fl), BSDF pdf and n_g . w (elr_bsdf_f_pdf_inl, elr__soa_shadows) */
+static inline void elr__soa_fl(const elr_wave_soa *A, int i, float wx, float wy, float wz, float *flr, float *flg, float *flb, float *flpdf, float *dlg) {
+  float x = A->nx[i], y = A->ny[i], z = A->nz[i];
+  float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
+  float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
+  int f0 = !((dgi * dgo > 0.f) & (co != 0.f));
+  float fr = A->kr[i] * ELR_INV_PI, fg = A->kg[i] * ELR_INV_PI, fb = A->kb[i] * ELR_INV_PI;
+  *flpdf = co * ci > 0.f ? ac * ELR_INV_PI : 0.f;
+  *flr = (f0 ? 0.f : fr) * ac; *flg = (f0 ? 0.f : fg) * ac; *flb = (f0 ? 0.f : fb) * ac;
+  *dlg = dgi;
+}
+
 /* the light samples' f |cos| and BSDF pdf (elr_bsdf_f_pdf_inl) of W->A's lanes, and their shadow rays and
  * the BSDF samples' into W->shadows */
 ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
   elr_wave_soa *A = &W->A;
   const int n = A->n;
-  int i;
+  int i, ntwo = 0;
   for (i = 0; i < n; i++) { /* (by component: the loops below take four lanes at a time, not two) */
     A->wlx[i] = A->wl[3 * i]; A->wly[i] = A->wl[3 * i + 1]; A->wlz[i] = A->wl[3 * i + 2];
     A->llr[i] = A->Ll[3 * i]; A->llg[i] = A->Ll[3 * i + 1]; A->llb[i] = A->Ll[3 * i + 2];
+    ntwo += A->two[i];
   }
-  for (i = 0; i < ELR_SOA_PAD(n); i++) {
-    float x = A->nx[i], y = A->ny[i], z = A->nz[i], wx = A->wlx[i], wy = A->wly[i], wz = A->wlz[i];
-    float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
-    float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
-    int f0 = !((dgi * dgo > 0.f) & (co != 0.f));
-    A->flpdf[i] = co * ci > 0.f ? ac * ELR_INV_PI : 0.f;
-    float fr = A->kr[i] * ELR_INV_PI, fg = A->kg[i] * ELR_INV_PI, fb = A->kb[i] * ELR_INV_PI;
-    A->flr[i] = (f0 ? 0.f : fr) * ac; A->flg[i] = (f0 ? 0.f : fg) * ac; A->flb[i] = (f0 ? 0.f : fb) * ac;
-    A->dlg[i] = dgi;
+  for (i = 0; i < ELR_SOA_PAD(n); i++) elr__soa_fl(A, i, A->wlx[i], A->wly[i], A->wlz[i], &A->flr[i], &A->flg[i], &A->flb[i], &A->flpdf[i], &A->dlg[i]);
+  for (i = 0; i < n; i++) A->sh2[i] = -1;
+  if (ntwo > 0) { /* (the second light samples of ELR_ENVSD_TWO's lanes: the same, and their shadow rays) */
+    for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (the lanes without one: an earlier wave's values, computed and never read) */
+      A->wlx2[i] = A->wl2[3 * i]; A->wly2[i] = A->wl2[3 * i + 1]; A->wlz2[i] = A->wl2[3 * i + 2];
+      A->llr2[i] = A->Ll2[3 * i]; A->llg2[i] = A->Ll2[3 * i + 1]; A->llb2[i] = A->Ll2[3 * i + 2];
+      elr__soa_fl(A, i, A->wlx2[i], A->wly2[i], A->wlz2[i], &A->flr2[i], &A->flg2[i], &A->flb2[i], &A->flpdf2[i], &A->dlg2[i]);
+    }
+    for (i = 0; i < n; i++)
+      if (A->two[i] && A->lpdf2[i] > 0.f && !(A->flr2[i] == 0.f && A->flg2[i] == 0.f && A->flb2[i] == 0.f)) {
+        float e = A->dlg2[i] >= 0.f ? A->eps[i] : -A->eps[i];
+        A->sh2[i] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wlx2[i], A->wly2[i], A->wlz2[i]), INFINITY);
+      }
   }
   for (i = 0; i < n; i++) { /* (elr_wave_add, elr_spawn_origin) */
     A->sh[i] = A->bsh[i] = -1;
@@ -569,7 +605,8 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
   float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nv[3 * ELR_WAVE], de[3 * ELR_WAVE], pq[ELR_WAVE], Le[3 * ELR_WAVE];
   int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i, nsh = 0, nb = 0;
   for (i = 0; i < n; i++) { /* (--stats; then the shadow rays' answers: 1 where the term counts) */
-    nsh += A->sh[i] >= 0; nb += A->bray[i];
+    nsh += (A->sh[i] >= 0) + (A->sh2[i] >= 0); nb += A->bray[i];
+    A->sh2[i] = A->sh2[i] >= 0 && !(W->shadows.tfar[A->sh2[i]] < 0.f);
     A->sh[i] = A->sh[i] >= 0 && !(W->shadows.tfar[A->sh[i]] < 0.f);
     A->bsh[i] = A->bsh[i] >= 0 && !(W->shadows.tfar[A->bsh[i]] < 0.f);
   }
@@ -599,6 +636,11 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
     float lr = ul ? tr : 0.f, lg = ul ? tg : 0.f, lb = ul ? tb : 0.f;
     float br = lr + A->fbr[i] * ac * A->lbr[i] * sb, bg = lg + A->fbg[i] * ac * A->lbg[i] * sb, bb = lb + A->fbb[i] * ac * A->lbb[i] * sb;
     A->flr[i] = ub ? br : lr; A->flg[i] = ub ? bg : lg; A->flb[i] = ub ? bb : lb;
+  }
+  for (i = 0; i < n; i++) if (A->two[i]) { /* (ELR_ENVSD_TWO: elr__two_term's sums, each term weighted 1/2; no BSDF sample) */
+    float s2 = 1.f / A->lpdf2[i], t1r = A->flr[i], t1g = A->flg[i], t1b = A->flb[i]; /* (the first term: lr above, lonly's weight 1) */
+    float t2r = A->sh2[i] ? 0.f + A->flr2[i] * A->llr2[i] * s2 : 0.f, t2g = A->sh2[i] ? 0.f + A->flg2[i] * A->llg2[i] * s2 : 0.f, t2b = A->sh2[i] ? 0.f + A->flb2[i] * A->llb2[i] * s2 : 0.f;
+    A->flr[i] = (0.f + t1r * 0.5f) + t2r * 0.5f; A->flg[i] = (0.f + t1g * 0.5f) + t2g * 0.5f; A->flb[i] = (0.f + t1b * 0.5f) + t2b * 0.5f;
   }
   for (i = 0; i < n; i++) W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
 }
