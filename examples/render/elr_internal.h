@@ -190,7 +190,7 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * ground's normal) 1.08 -> 1.89x (per sample 1.07 -> 1.63x): the product sample now costs less than the
  * map's (le()'s patch density) and its cosine still helps where the sun is high */
 /* ELR_ENVSD_TWO (issue 22's lit pixels, bench/ld_lit.py): directlighting spends the BSDF sample's numbers and ray
- * on a second product light sample (each weighted 1/2; elr_env_two), the reference loop only (render.c) */
+ * on a second product light sample (each weighted 1/2; elr_env_two), in both loops (render_wave.c draws it with the first) */
 /* ELR_ENVSD_TWO_PIXEL: the same per pixel: its first such vertex takes product MIS and a shadow ray towards the
  * sun's axis; the pixel's later ones take the two samples if that ray saw the sun (or the sun lay below the
  * vertex's horizon), product MIS otherwise */
@@ -1048,7 +1048,7 @@ typedef struct elr_first {
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */
 elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
-/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice (render.c; 1: two product light samples, 0: product MIS), two
+/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice (integrator_direct.c; 1: two product light samples, 0: product MIS), two
  * rays counted in ts; the reference loop and the wave loop make it at the pixel's start */
 int elr_two_pixel(const elr_ctx *C, int x, int y, elr_tstats *ts);
 

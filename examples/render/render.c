@@ -60,24 +60,6 @@ static void elr__merge(el_film *film, el_film_tile *t) {
   free(t);
 }
 
-/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice for all its samples (so that they keep one strategy and their
- * nets): 1 (two product light samples) when the camera ray through its centre misses the scene, or its hit
- * sees the sun's axis (the brightest texel's direction) or has it below the geometric horizon on the
- * camera's side; 0 (product MIS) when the scene hides the sun there. Two rays per pixel, counted. */
-int elr_two_pixel(const elr_ctx *C, int x, int y, elr_tstats *ts) {
-  const elr_scene *s = C->s;
-  elr_ray r;
-  elr_hit h;
-  elr_v3 a = s->env_sun_axis, ng;
-  elr_camera_ray(&C->cam, (float)x + 0.5f, (float)y + 0.5f, &r);
-  ts->camera++;
-  if (!elr_intersect(s, r.o, r.d, INFINITY, &h)) return 1;
-  ng = elr_dot(r.d, h.ng) > 0.f ? elr_mul(h.ng, -1.f) : h.ng;
-  if (!(elr_dot(a, ng) > 0.f)) return 1;
-  ts->shadow++;
-  return !elr_occluded(s, elr_spawn_origin(&h, a), a, INFINITY);
-}
-
 static void *elr__worker(void *arg) {
   elr_job *J = (elr_job *)arg;
   elr_ctx *C = J->C;
