@@ -624,8 +624,10 @@ int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf
 #ifndef ELR_SUNSPLIT_SPOT
 #define ELR_SUNSPLIT_SPOT -1 /* the first sample: 0 the spots' bins (sample_li_mix, the spots alone), 1 product sampling
                               * (sample_li_cos: the sun and the sky), 2 the render's own density of the map (sample_li:
-                              * le()'s patches under a sun), kept only inside the spots' cones; -1: 2 where the spots
-                              * hold at least ELR_SUNSPLIT_SPOT_SHARE of the map's power (few samples dropped), else 0 */
+                              * le()'s patches under a sun), kept only inside the spots' cones; 3 that density renormalised
+                              * to a rectangle of patches around each spot (el_envlight_sample_li_spot on the render's
+                              * density's own hot spots); -1: 3 where the render's density has hot spots, else 2 where the
+                              * spots hold at least ELR_SUNSPLIT_SPOT_SHARE of the map's power, else 0 */
 #endif
 #define ELR_SUNSPLIT_SPOT_SHARE 0.5f
 #define ELR_SUNSPLIT_NO 33 /* the normals of the sky's tables: an octahedral grid of 33 x 33 points, the axes among
@@ -639,6 +641,8 @@ struct elr_sunsplit {
   float cos_wide[EL_ENVLIGHT_HOTSPOT_MAX]; /* twice as wide: where the spots' bins are looked for (their pdf, 0 outside) */
   el_envlight_mix_cos_table *tabs;     /* the rest x cosine for each grid normal (ELR_SUNSPLIT_NO^2) */
   int spot;                            /* how the first sample is drawn (ELR_SUNSPLIT_SPOT) */
+  el_envlight_hotspots hsb;            /* spot 3: the hot spots of the render's own density (l->env_sample) */
+  float ak[EL_ENVLIGHT_HOTSPOT_MAX];   /* spot 3: the probability of drawing spot k (their shares, normalised) */
   double cpu;
 };
 
@@ -690,11 +694,19 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   }
   P->wsky.rest = 1.f;
   for (k = 0; k < P->hs->count; k++) ps += P->hs->spot[k].share;
-  P->spot = ELR_SUNSPLIT_SPOT >= 0 ? ELR_SUNSPLIT_SPOT : ps >= ELR_SUNSPLIT_SPOT_SHARE ? 2 : 0;
-  if (P->spot == 2 && el_envlight_prepare_sampling(l->env_sample) != EL_SUCCESS) { free(P); return -1; }
+  P->spot = ELR_SUNSPLIT_SPOT >= 0 ? ELR_SUNSPLIT_SPOT : 3;
+  if (P->spot == 3) { /* (no spot in the render's density: the next rule) */
+    float as = 0.f;
+    if (el_envlight_hotspots_init(&P->hsb, l->env_sample, NULL) != EL_SUCCESS) { free(P); return -1; }
+    for (k = 0; k < P->hsb.count; k++) as += P->hsb.spot[k].share;
+    for (k = 0; k < P->hsb.count; k++) P->ak[k] = P->hsb.spot[k].share / as;
+    if (P->hsb.count == 0) P->spot = ELR_SUNSPLIT_SPOT >= 0 ? 0 : -1;
+  }
+  if (P->spot < 0) P->spot = ps >= ELR_SUNSPLIT_SPOT_SHARE ? 2 : 0;
+  if (P->spot == 2 && el_envlight_prepare_sampling(l->env_sample) != EL_SUCCESS) { el_envlight_hotspots_free(&P->hsb); free(P); return -1; }
   if (ELR_SUNSPLIT_SKY_COS) {
     P->tabs = (el_envlight_mix_cos_table *)malloc((size_t)ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO * sizeof *P->tabs);
-    if (!P->tabs) { free(P); return -1; }
+    if (!P->tabs) { el_envlight_hotspots_free(&P->hsb); free(P); return -1; }
     for (q = 0; q < ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO; q++) {
       float n[3];
       elr__sunsplit_qn(q, n);
@@ -708,6 +720,7 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
 void elr_sunsplit_free(elr_sunsplit *P) {
   if (!P) return;
   free(P->tabs);
+  el_envlight_hotspots_free(&P->hsb);
   free(P);
 }
 double elr_sunsplit_cpu(const elr_sunsplit *P) { return P ? P->cpu : 0.0; }
@@ -737,6 +750,12 @@ static int elr__sunsplit_in_cone(const elr_sunsplit *P, const float d[3], const 
 }
 /* the first part's density at d (ELR_SUNSPLIT_SPOT) */
 static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  if (P->spot == 3) { /* the mixture of the spots' rectangles */
+    float p = 0.f;
+    int k;
+    for (k = 0; k < P->hsb.count; k++) p += P->ak[k] * el_envlight_pdf_li_spot(P->l->env_sample, &P->hsb, k, d);
+    return p;
+  }
   if (P->spot == 1) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
   if (!elr__sunsplit_in_cone(P, d, P->spot == 2 ? P->cos_half : P->cos_wide)) return 0.f; /* (the bins: a shortcut only) */
   return P->spot == 2 ? el_envlight_pdf_li(P->l->env_sample, d) : el_envlight_pdf_li_mix(P->e, P->hs, &P->wspot, d);
@@ -746,7 +765,14 @@ void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, cons
   const el_envlight *e = P->e;
   float wi[3], L[3];
   ls->at_point = 0; ls->dist = INFINITY; ls->portal = -1;
-  if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
+  if (k == 0 && P->spot == 3) { /* a spot by its share (u[0] reused), then le()'s patches of its rectangle */
+    float uu[2], c = 0.f;
+    int j = 0;
+    while (j + 1 < P->hsb.count && u[0] >= c + P->ak[j]) c += P->ak[j++];
+    uu[0] = fminf((u[0] - c) / P->ak[j], 0x1.fffffep-1f); uu[0] = uu[0] > 0.f ? uu[0] : 0.f; uu[1] = u[1];
+    el_envlight_sample_li_spot(P->l->env_sample, &P->hsb, j, uu, wi, L, &ls->pdf);
+    if (P->hsb.count > 1 && ls->pdf > 0.f) ls->pdf = elr__sunsplit_spot_pdf(P, n, wi); /* (one spot: already it) */
+  } else if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
   else if (k == 0 && P->spot == 2) { /* (a sample outside the cones is dropped: the part's density is 0 there) */
     el_envlight_sample_li(P->l->env_sample, u, wi, L, &ls->pdf);
     if (!elr__sunsplit_in_cone(P, wi, P->cos_half)) ls->pdf = 0.f;
