@@ -99,39 +99,36 @@
  * one each, weighted by the power heuristic over the three techniques: a light sample of density p in direction w
  * gets p^2 / (p^2 + p_o(w)^2 + p_b(w)^2) (p_o the other light sample's density there, p_b the BSDF's), the BSDF sample
  * p_b^2 / (p_b^2 + p_s^2 + p_r^2) (elr_sunsplit_pdf); so the weights of the techniques that reach w sum to 1 and the
- * estimate is unbiased (test_render_sun: |z| < 4 against the default, 8 seeds per class). The spot sample is the
- * render's own density of the map (sample_li: le()'s patches under a sun) kept only inside the spots' cones (widened
- * 10%; the rest dropped) where the spots hold at least half the power (sunrise.hdr: 0.75), else the spots' own bins
- * (sample_li_mix, the rest's weight 0; city.hdr: 0.245). Where every spot lies below n's horizon, the renderer's
- * product sample (no split). Both samples use the same two numbers (a third draw from the sampler: shadow 1.47x
- * against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
+ * estimate is unbiased (test_render_sun: |z| < 4 against the default, 8 seeds per class). The spot sample is
+ * el_envlight_sample_li_spot on the render's own density (l->env_sample: le()'s patches under a sun) and ITS hot spots
+ * (P->hsb; a spot by its share): le()'s patches renormalised to a rectangle of patches around the spot's cone, so every
+ * draw lands there and its pdf is pdf_li / P(rectangle) (ELR_SUNSPLIT_SPOT 3). Where every spot lies below n's horizon,
+ * the renderer's product sample (no split). Both samples use the same two numbers (a third draw from the sampler:
+ * shadow 1.47x against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
  * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
- * shadowed 1.45x / 0.97x / 1.02x less variance at equal spp, lit 0.78x / 0.77x / 1.33x, the whole image 0.85x /
- * 0.93x / 1.27x; at equal time against the default's wave loop 0.40x / 0.46x / 0.55x (the CPU 2.1x, 2.0x, 2.3x),
- * against the default in the same one-sample loop (--loop-one) 0.68x / 0.74x / 1.09x (CPU 1.24x, 1.25x, 1.16x).
- * At 64 spp (4 seeds): shadowed 1.63x / 0.94x / 0.83x, lit 0.96x / 0.87x / 1.01x, whole 1.03x / 0.93x / 0.98x at
- * equal spp, 0.47x / 0.44x / 0.46x at equal time. bench/sun_rule.py (the whole image's relative variance over 4 seeds,
- * 16 spp, one thread: time to unit variance against the default) 0.71x / 0.49x / 0.48x (per sample 1.31x / 1.01x /
- * 1.11x). So off: an option.
- * Variants (on sun_shadow_object, the first with the spots' bins on sunrise.hdr too: shadow 1.48x, lit 0.54x, whole
- * 0.61x: its one-texel sun's bins have a constant density under a bilinear le(), and every spot sample lands there;
- * the next as changes of that): the map's density in the cone on city: lit 0.77x (three quarters of its draws leave
- * the cone); product sampling as the first sample (sample_li_cos, MIS with the sky sample where both reach): shadow
- * 1.59x (city 1.29x), lit 0.91x (0.73x), whole 0.97x (0.79x); the sky by the map's rest without the cosine: shadow
- * 1.37x; the two light samples without the BSDF sample at diffuse-only vertices: shadow 1.14x (1.24x with product
- * sampling first); a third sampler draw for the sky sample: 1.47x against 1.54x; the sky sample alone where the spots
- * are below the horizon (the same variance as drawing both there: the spot sample's f is 0):
- * shadow 1.54x against 1.48x, lit unchanged. The shadow gains little because the default's BSDF sample already finds
- * the sky there (A3.14); the lit pixels lose wherever the spot sample is worse than the product sampler's bilinear
- * patches, and the extra sample and shadow ray cost 16-25% in the same loop. With the independent sampler (--random,
- * 8 seeds; the spot sample then also from the patches) the lit pixels 0.73x on sun_shadow_object, but city's 2.27x
- * and its whole image 2.01x less variance at equal spp, 0.94x at equal time against the wave default. WHY THE LIT
- * PIXELS LOSE on sunrise.hdr (bench_sun_render --lit-point, the library alone, a lit ground point, variance per
- * camera sample, sun's cone | rest): the default 0.164 | 0.0083, the split 0.193 | 0.0022 (the bins: 0.376): the sky
- * gains 3.7x but the spot sample reaches the cone with probability 0.75 only (the patches' density is not
- * renormalised to it), less than the product sampler's cosine-weighted share; the patches renormalised to the cone
- * (drawn by rejection, a diagnostic) give 0.00015 | 0.0022, 59x less than the default in all. So the next step is a
- * spot distribution over le()'s patches in the library (hot spots of the BILINEAR density, which has none today).
+ * shadowed 1.93x / 1.33x / 1.02x less variance at equal spp, lit 10.7x / 3.86x / 1.53x, the whole image 6.15x / 1.52x /
+ * 1.41x; at equal time against the default's wave loop 2.74x / 0.71x / 0.54x (the CPU 2.25x, 2.13x, 2.60x), against the
+ * default in the same one-sample loop (--loop-one) 4.50x / 1.15x / 0.97x (CPU 1.37x, 1.32x, 1.46x). At 64 spp (4 seeds):
+ * shadowed 2.17x / 1.46x / 0.83x, lit 11.5x / 3.81x / 1.19x, whole 6.61x / 1.66x / 1.12x at equal spp, 2.90x / 0.76x /
+ * 0.43x at equal time against the wave default. So the split wins every scene's image at equal spp, and at equal time
+ * the porch and the city lose mainly to the one-sample loop; off by default until the wave loop draws two light samples.
+ * Before el_envlight_sample_li_spot (the same bench): the map's density (sample_li) kept only inside the spots' cones
+ * widened 10% where the spots held half the power (sunrise.hdr: 0.75 of its draws reached the cone), else the spots'
+ * piecewise-constant bins (sample_li_mix, the rest's weight 0; city.hdr): shadowed 1.45x / 0.97x / 1.02x, lit 0.78x /
+ * 0.77x / 1.33x, whole 0.85x / 0.93x / 1.27x at equal spp (ELR_SUNSPLIT_SPOT 2 and 0 still build those).
+ * bench_sun_render --lit-point (the library alone, a lit ground point of sunrise.hdr, variance per camera sample, sun's
+ * cone | rest): the default 0.164 | 0.0083; the cone-clipped density 0.193 | 0.0022 (the bins: 0.376); the patches
+ * renormalised to the cone by rejection (a diagnostic) 0.00015 | 0.0022; sample_li_spot 0.00041 | 0.0022 (the rectangle
+ * holds a little sky beyond the cone): 54x less than the default in all.
+ * Variants (on sun_shadow_object, before sample_li_spot; the first with the spots' bins on sunrise.hdr: shadow 1.48x, lit
+ * 0.54x, whole 0.61x: its one-texel sun's bins have a constant density under a bilinear le(); the next as changes of
+ * that): product sampling as the first sample (sample_li_cos, MIS with the sky sample where both reach): shadow 1.59x
+ * (city 1.29x), lit 0.91x (0.73x), whole 0.97x (0.79x); the sky by the map's rest without the cosine: shadow 1.37x;
+ * the two light samples without the BSDF sample at diffuse-only vertices: shadow 1.14x (1.24x with product sampling
+ * first); a third sampler draw for the sky sample: 1.47x against 1.54x; the sky sample alone where the spots are below
+ * the horizon (the same variance as drawing both there: the spot sample's f is 0): shadow 1.54x against 1.48x.
+ * With the independent sampler (--random, 8 seeds, the cone-clipped patches) the lit pixels were 0.73x on
+ * sun_shadow_object, city's 2.27x and its whole image 2.01x at equal spp.
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
