@@ -10,7 +10,7 @@
  *   bench_sun_render [--csv] [--split] [--loop-one] ...   --split: --sun split (sun.c: one spot and one sky sample per
  *                    diffuse vertex, the one-sample loop) in place of --sun on; --loop-one: every render in the one-sample loop
  *                    (the default's wave loop left out of the comparison); --pbrt-v3: every render with pbrt-v3's importance
- *                    map (the default under a sun is le()'s patch density, on which no hot spot is found); --random: the
+ *                    map (the default under a sun is le()'s patch density); --random: the
  *                    independent sampler (pbrt's "random") in place of the scenes'
  *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
  *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below

@@ -4,8 +4,8 @@
  *
  *   1. detection: two suns, a sun at the pole, a sun across the seam, a sun of one texel, each found
  *      where it was put (the cone holds the sun's true direction, is a few bins wide) with a share that
- *      matches the frequency with which sample_li lands in the cone; no sun, a constant light, a black map
- *      and importance BILINEAR: no spot;
+ *      matches the frequency with which sample_li lands in the cone; no sun, a constant light, a black map:
+ *      no spot; importance BILINEAR: its spot, and the mixture samplers are sample_li there;
  *   2. default weights (all zero, NULL, NaN, negative, infinite, all-zero sum): sample_li_mix is
  *      sample_li and pdf_li_mix is pdf_li, bit for bit; explicit weights equal to the shares give pdf_li
  *      to 1e-6;

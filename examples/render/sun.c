@@ -679,8 +679,9 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   P = (elr_sunsplit *)calloc(1, sizeof *P);
   if (!P) return -1;
   P->l = l;
-  /* (the light's own density, not its env_sample: under a sun the render samples the map alone by le()'s
-   * patches, EL_ENVLIGHT_IMPORTANCE_BILINEAR, on which no hot spot is found) */
+  /* (the sky's rest x cosine from the light's own density, not its env_sample: under a sun the render samples the
+   * map by le()'s patches, EL_ENVLIGHT_IMPORTANCE_BILINEAR, whose hot spots give the spot sample (P->hsb) but which
+   * has no mixture tables) */
   P->e = l->env;
   if (!(P->hs = elr__sun_spots(l, P->e))) { free(P); return -1; }
   if (P->hs->count == 0) { free(P); return 0; } /* nothing to split */
