@@ -5559,6 +5559,19 @@ static void el_envlight__hot_keep(double share, float min_share, int64_t seed, u
   cand_share[s] = share; cand_seed[s] = seed; cand_accept[s] = accept;
 }
 
+/* spot k's public description (the light-space axis ax to world) and share; h->count = k + 1 */
+static void el_envlight__hot_set_spot(el_envlight_hotspots *h, const el_envlight *l, int k, const double ax[3], double half, double share, int64_t bins) {
+  float la[3], wa[3];
+  la[0] = (float)ax[0]; la[1] = (float)ax[1]; la[2] = (float)ax[2];
+  el_envlight__to_world(l, la, wa);
+  h->spot[k].axis[0] = wa[0]; h->spot[k].axis[1] = wa[1]; h->spot[k].axis[2] = wa[2];
+  h->spot[k].half_angle = (float)half;
+  h->spot[k].share = (float)share;
+  h->spot[k].bins = (int)bins;
+  h->share_d[k] = share;
+  h->count = k + 1;
+}
+
 /* Importance BILINEAR: spot k's rectangle of le()'s patches around the light-space cone (ax, half), and
  * its rows' CDF (NOTES ON HOT SPOTS 6) */
 static el_result el_envlight__hot_patch_rect(el_envlight_hotspots *h, const el_envlight *l, int k, const double ax[3], double half) {
@@ -5766,19 +5779,11 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
     for (k = 0; k < found; ++k) {
       int64_t tail = el_envlight__hot_grow(nu, nv, state, queue, cand_seed[k], cand_accept[k], EL_ENVLIGHT__HOT_BUILT);
       double share, ax[3], half;
-      float la[3], wa[3];
       el_envlight__hot_cone(tab, nu, nv, queue, tail, rowk, total, &share, ax, &half);
       r = el_envlight__hot_patch_rect(h, l, k, ax, half);
       if (r != EL_SUCCESS) goto done;
-      la[0] = (float)ax[0]; la[1] = (float)ax[1]; la[2] = (float)ax[2];
-      el_envlight__to_world(l, la, wa);
-      h->spot[k].axis[0] = wa[0]; h->spot[k].axis[1] = wa[1]; h->spot[k].axis[2] = wa[2];
-      h->spot[k].half_angle = (float)half;
-      h->spot[k].share = (float)share;
-      h->spot[k].bins = (int)tail;
-      h->share_d[k] = share;
+      el_envlight__hot_set_spot(h, l, k, ax, half, share, tail);
       rs -= share;
-      h->count = k + 1;
     }
     h->share_d[found] = rs > 0.0 ? rs : 0.0;
     h->rest_share = (float)h->share_d[found];
@@ -5839,17 +5844,7 @@ EL_DEF el_result el_envlight_hotspots_init(el_envlight_hotspots *h, const el_env
       EL_FREE(g);
       if (r != EL_SUCCESS) goto done;
       el_envlight__hot_cone(tab, nu, nv, queue, tail, rowk, total, &share, ax, &half);
-      {
-        float la[3], wa[3];
-        la[0] = (float)ax[0]; la[1] = (float)ax[1]; la[2] = (float)ax[2];
-        el_envlight__to_world(l, la, wa);
-        h->spot[k].axis[0] = wa[0]; h->spot[k].axis[1] = wa[1]; h->spot[k].axis[2] = wa[2];
-      }
-      h->spot[k].half_angle = (float)half;
-      h->spot[k].share = (float)share;
-      h->spot[k].bins = (int)tail;
-      h->share_d[k] = share;
-      h->count = k + 1;
+      el_envlight__hot_set_spot(h, l, k, ax, half, share, tail);
     }
     if (found > 0) {
       el_distribution_options dopt;
