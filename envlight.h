@@ -893,7 +893,11 @@ EL_DEF float el_envlight_pdf_li_spot(const el_envlight *l, const el_envlight_hot
  *    sample_li's own in-patch inversion (el_envlight__patch_finish_at): the probability of a patch is
  *    exactly its sample_li probability / P(R_k), so the density is pdf_li / P(R_k) on R_k. Memory: 8 bytes
  *    per patch row of R_k. Why: sunrise.hdr's sun holds 75% of le()'s patch mass; sample_li kept inside
- *    the cone wastes a quarter of the split's spot samples (sun.c, SPLITTING BY COMPONENT).
+ *    the cone wastes a quarter of the split's spot samples (sun.c, SPLITTING BY COMPONENT). Measured
+ *    (bench_sun 1. and 5.): on the CC0 maps the same spots as the piecewise-constant bins give (city 0.245,
+ *    forest 0.065, night 3, studio 4, sunset none; shares within 0.001); on the 1024x512 sunrise map a
+ *    rectangle of 9 x 6 patches, sample_li_spot with radiance 120 ns against sample_li's 145, pdf_li_spot
+ *    1.08x pdf_li's time.
  */
 
 /* >> declarations: portals (issue 23; NOTES ON PORTALS below) */
