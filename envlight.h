@@ -704,6 +704,8 @@ typedef struct el_envlight_hotspots {
   int prect[EL_ENVLIGHT_HOTSPOT_MAX][4];      /* first patch column (wraps), first patch row, columns, rows */
   uint64_t *prow[EL_ENVLIGHT_HOTSPOT_MAX];    /* rows + 1: the rows' CDF in the patch table's 2^48 units */
   float inv_pmass[EL_ENVLIGHT_HOTSPOT_MAX];   /* 1 / the rectangle's probability under sample_li (0: none) */
+  float pcos[EL_ENVLIGHT_HOTSPOT_MAX];        /* cos of a cone about spot[k].axis that holds the rectangle (pdf_li_spot's
+                                                 early 0 for the directions far from it) */
 } el_envlight_hotspots;
 
 /* Mixture weights: the probability of drawing from spot k (spot[k], k < count) and from the rest of the
@@ -5609,6 +5611,22 @@ static el_result el_envlight__hot_patch_rect(el_envlight_hotspots *h, const el_e
   }
   h->prow[k] = C;
   h->prect[k][0] = i0; h->prect[k][1] = r0; h->prect[k][2] = cols; h->prect[k][3] = rows;
+  { /* the farthest point of the rectangle's edges from the axis (65 points an edge), widened by two patch heights */
+    double vb[2], ub[2], far = 0.0, d[3];
+    int e, t;
+    vb[0] = r0 == 0 ? 0.0 : (r0 - 0.5) / hh; vb[1] = r1 == hh ? 1.0 : (r1 + 0.5) / hh;
+    ub[0] = (i0 + 0.5) / w; ub[1] = (i0 + cols + 0.5) / w;
+    for (e = 0; e < 4; ++e)
+      for (t = 0; t <= 64; ++t) {
+        double f = t / 64.0, uu = e < 2 ? ub[0] + f * (ub[1] - ub[0]) : ub[e - 2], vv = e < 2 ? vb[e] : vb[0] + f * (vb[1] - vb[0]), cc;
+        el_envlight__hot_dir(1, 1, uu, vv, d);
+        cc = ax[0] * d[0] + ax[1] * d[1] + ax[2] * d[2];
+        cc = acos(cc < 1.0 ? (cc > -1.0 ? cc : -1.0) : 1.0);
+        if (cc > far) far = cc;
+      }
+    far += 2.0 * EL_ENVLIGHT__PI / hh + (ub[1] - ub[0]) * 2.0 * EL_ENVLIGHT__PI / 64.0 + 1e-3;
+    h->pcos[k] = far < EL_ENVLIGHT__PI ? (float)cos(far) : -2.0f;
+  }
   mass = (double)C[rows] * 3.552713678800501e-15; /* 2^-48 */
   h->inv_pmass[k] = mass > 0.0 ? (float)(1.0 / mass) : 0.0f;
   return EL_SUCCESS;
@@ -5640,6 +5658,13 @@ EL_DEF float el_envlight_pdf_li_spot(const el_envlight *l, const el_envlight_hot
     memset(&w, 0, sizeof w);
     w.spot[k] = 1.0f;
     return el_envlight_pdf_li_mix(l, h, &w, dir);
+  }
+  { /* far from the rectangle (in double: no overflow or underflow for any float dir; NaN: on to the full query,
+     * which gives 0) */
+    const float *a = h->spot[k].axis;
+    double c = (double)dir[0] * a[0] + (double)dir[1] * a[1] + (double)dir[2] * a[2];
+    double n2 = (double)dir[0] * dir[0] + (double)dir[1] * dir[1] + (double)dir[2] * dir[2];
+    if (c < (double)h->pcos[k] * sqrt(n2)) return 0.0f;
   }
   if (!el_envlight__hot_spot_ok(l, h, k)) return 0.0f;
   p = el_envlight__patch_pdf_at(l, dir, &q);

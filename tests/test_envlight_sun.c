@@ -323,13 +323,21 @@ static void spot_test(int kind, int rot, int comp) {
     }
     el_envlight_sample_li_spot(&l, &h, h.count, u2, wi, rgb, &pdf);
     ok &= pdf == 0 && el_envlight_pdf_li_spot(&l, NULL, 0, wi) == 0 && el_envlight_pdf_li_spot(NULL, &h, 0, wi) == 0;
+    for (kk = 0; kk < h.count; ++kk) { /* a sample's direction scaled tiny and huge: the same pdf */
+      float t[3], b[3];
+      int c;
+      el_envlight_sample_li_spot(&l, &h, kk, u2, wi, rgb, &pdf);
+      for (c = 0; c < 3; ++c) { t[c] = ldexpf(wi[c], -100); b[c] = ldexpf(wi[c], 100); } /* (exact scalings) */
+      ok &= pdf > 0 && fabsf(el_envlight_pdf_li_spot(&l, &h, kk, t) - pdf) <= 1e-5f * pdf && fabsf(el_envlight_pdf_li_spot(&l, &h, kk, b) - pdf) <= 1e-5f * pdf;
+      /* (to 1e-5: pdf_li itself, which rescales the direction, is not bit for bit across scales) */
+    }
     o.compensated = !comp;
     if (el_envlight_init(&l2, px, W, H, 3, &o) == EL_SUCCESS) {
       el_envlight_sample_li_spot(&l2, &h, 0, u2, wi, rgb, &pdf);
       ok &= pdf == 0 && el_envlight_pdf_li_spot(&l2, &h, 0, wi) == 0;
       el_envlight_free(&l2);
     } else ok = 0;
-    check(ok, "%s: NaN / zero / infinite directions, NaN u, k out of range, NULL, another light's spots: pdf 0", name);
+    check(ok, "%s: NaN / zero / infinite directions, NaN u, k out of range, NULL, another light's spots: pdf 0; tiny and huge directions: the unit one's pdf (1e-5)", name);
   }
   el_envlight_hotspots_free(&h);
   el_envlight_free(&l);
