@@ -107,10 +107,11 @@
  * shadow 1.47x against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
  * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
  * shadowed 1.93x / 1.33x / 1.02x less variance at equal spp, lit 10.7x / 3.86x / 1.53x, the whole image 6.15x / 1.52x /
- * 1.41x; at equal time against the default's wave loop 2.74x / 0.71x / 0.54x (the CPU 2.25x, 2.13x, 2.60x), against the
- * default in the same one-sample loop (--loop-one) 4.50x / 1.15x / 0.97x (CPU 1.37x, 1.32x, 1.46x). At 64 spp (4 seeds):
+ * 1.41x; at equal time against the default's wave loop 2.78x / 0.71x / 0.59x (the CPU 2.22x, 2.15x, 2.39x), against the
+ * default in the same one-sample loop (--loop-one) 4.74x / 1.22x / 1.02x (CPU 1.30x, 1.24x, 1.39x). At 64 spp (4 seeds):
  * shadowed 2.17x / 1.46x / 0.83x, lit 11.5x / 3.81x / 1.19x, whole 6.61x / 1.66x / 1.12x at equal spp, 2.90x / 0.76x /
- * 0.43x at equal time against the wave default. So the split wins every scene's image at equal spp, and at equal time
+ * 0.43x at equal time against the wave default (before pdf_li_spot's early 0 far from the rectangle: on bench_city the
+ * spot pdfs of the sky and BSDF samples were 7.3% of the cycles, then under 2%). So the split wins every scene's image at equal spp, and at equal time
  * the porch and the city lose mainly to the one-sample loop; off by default until the wave loop draws two light samples.
  * Before el_envlight_sample_li_spot (the same bench): the map's density (sample_li) kept only inside the spots' cones
  * widened 10% where the spots held half the power (sunrise.hdr: 0.75 of its draws reached the cone), else the spots'
