@@ -14,7 +14,8 @@
  *                    independent sampler (pbrt's "random") in place of the scenes'
  *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
  *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below
- *   bench_sun_render --lit-point   the library alone at one lit ground point: --sun split's estimator against the
+ *   bench_sun_render --lit-point [MAP]   the library alone at one lit ground point (MAP: sunrise or city, data/envmaps):
+ *                    --sun split's estimator against the
  *                    default's, per term (lit_point below)
  *   bench_sun_render --picture [OUT.png]   where 2000 light samples of a shadowed ground point land, without
  *                    and with the cache (the course's appendix, A3.14)
@@ -205,7 +206,7 @@ static int shadow_point(void) {
  * their probability of the cone estimated from 2^22 draws (a diagnostic: its error, 2e-4, biases the mean); and
  * that sampler as the library now has it, exact: el_envlight_sample_li_spot (le()'s patches renormalised to a
  * rectangle of patches around the cone, the hot spots of the BILINEAR light itself). */
-static int lit_point(void) {
+static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunrise by default) */
   el_image img;
   el_envlight lp, lb;
   el_envlight_options o;
@@ -216,7 +217,9 @@ static int lit_point(void) {
   int way, i, N = 1 << 18;
   float ch;
   double pcone;
-  if (el_image_load(EL_SOURCE_DIR "/data/envmaps/sunrise.hdr", &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  char path[512];
+  snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, map);
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   memset(&o, 0, sizeof o);
   o.importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
   if (el_envlight_init(&lp, img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS || el_envlight_hotspots_init(&h, &lp, NULL) != EL_SUCCESS || h.count != 1) return 1;
@@ -236,7 +239,7 @@ static int lit_point(void) {
     }
     pcone = (double)in / M;
   }
-  printf("LIT (sunrise.hdr, normal up, nothing in the way; the patches put %.3f in the cone): variance per camera sample [sun's cone | rest]\n", pcone);
+  printf("LIT (%s.hdr, normal up, nothing in the way; the patches put %.3f in the cone): variance per camera sample [sun's cone | rest]\n", map, pcone);
   for (way = 0; way < 5; way++) {
     const el_envlight *ls = way == 1 || way >= 3 ? &lb : &lp;
     double s1 = 0, s2 = 0, c1[2] = {0, 0}, c2[2] = {0, 0};
@@ -298,7 +301,7 @@ static int lit_point(void) {
 #define CPU_ROUNDS 5
 int main(int argc, char **argv) {
   if (argc > 1 && !strcmp(argv[1], "--shadow-point")) return shadow_point();
-  if (argc > 1 && !strcmp(argv[1], "--lit-point")) return lit_point();
+  if (argc > 1 && !strcmp(argv[1], "--lit-point")) return lit_point(argc > 2 ? argv[2] : "sunrise");
   if (argc > 1 && !strcmp(argv[1], "--picture")) return picture(argc > 2 ? argv[2] : "out/03-sun-samples.png");
   static const char *defaults[3] = {"scenes/sun_shadow_object.pbrt", "scenes/sun_porch.pbrt", "scenes/bench_city.pbrt"};
   int csv = argc > 1 && !strcmp(argv[1], "--csv"), cmp = 1; /* cmp: the env_sun compared with off (1 on, 2 split) */
