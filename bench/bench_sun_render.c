@@ -205,7 +205,8 @@ static int shadow_point(void) {
  * over le()'s patches would give (not in the library): the patches renormalised to the cone, drawn by rejection,
  * their probability of the cone estimated from 2^22 draws (a diagnostic: its error, 2e-4, biases the mean); and
  * that sampler as the library now has it, exact: el_envlight_sample_li_spot (le()'s patches renormalised to a
- * rectangle of patches around the cone, the hot spots of the BILINEAR light itself). */
+ * rectangle of patches around the cone, the hot spots of the BILINEAR light itself); last, that spot sampler with the
+ * sky drawn by product sampling over the patches (sample_li_cos, the sun included) instead of the rest x cosine. */
 static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunrise by default) */
   el_image img;
   el_envlight lp, lb;
@@ -240,7 +241,7 @@ static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunr
     pcone = (double)in / M;
   }
   printf("LIT (%s.hdr, normal up, nothing in the way; the patches put %.3f in the cone): variance per camera sample [sun's cone | rest]\n", map, pcone);
-  for (way = 0; way < 5; way++) {
+  for (way = 0; way < 6; way++) {
     const el_envlight *ls = way == 1 || way >= 3 ? &lb : &lp;
     double s1 = 0, s2 = 0, c1[2] = {0, 0}, c2[2] = {0, 0};
     g_rng.s = 88172645463325252ULL;
@@ -262,13 +263,14 @@ static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunr
             uu[0] = frand(); uu[1] = frand();
           }
           pdf = (float)(pdf / pcone);
-        } else if (t == 0 && way == 4) el_envlight_sample_li_spot(&lb, &hb, 0, u, wi, L, &pdf);
+        } else if (t == 0 && way >= 4) el_envlight_sample_li_spot(&lb, &hb, 0, u, wi, L, &pdf);
+        else if (t == 1 && way == 5) el_envlight_sample_li_cos(&lb, n, u3, wi, L, &pdf); /* (the sky by product sampling: sun included) */
         else if (t == 0) { el_envlight_sample_li(ls, u, wi, L, &pdf); if (wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] < ch) pdf = 0; }
         else el_envlight_sample_li_mix_cos(&lp, &h, &wr, n, u3, wi, L, &pdf);
         if (!(pdf > 0) || wi[2] <= 0) continue;
         inc = wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] >= ch;
         pc = wi[2] / M_PI;
-        po = way == 0 ? 0 : t == 0 ? el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, wi) : way == 4 ? el_envlight_pdf_li_spot(&lb, &hb, 0, wi)
+        po = way == 0 ? 0 : t == 0 ? (way == 5 ? el_envlight_pdf_li_cos(&lb, n, wi) : el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, wi)) : way >= 4 ? el_envlight_pdf_li_spot(&lb, &hb, 0, wi)
              : inc ? el_envlight_pdf_li(ls, wi) / (way == 3 ? pcone : 1.0) : 0;
         fc[!inc] += L[1] * wi[2] / M_PI / pdf * ((double)pdf * pdf / ((double)pdf * pdf + po * po + pc * pc));
       }
@@ -279,7 +281,7 @@ static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunr
         pb = d[2] / M_PI;
         inc = d[0] * h.spot[0].axis[0] + d[1] * h.spot[0].axis[1] + d[2] * h.spot[0].axis[2] >= ch;
         if (way == 0) pl = el_envlight_pdf_li_cos(&lp, n, d);
-        else { double a = el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, d), b = way == 4 ? el_envlight_pdf_li_spot(&lb, &hb, 0, d) : inc ? el_envlight_pdf_li(ls, d) / (way == 3 ? pcone : 1.0) : 0; pl = sqrt(a * a + b * b); }
+        else { double a = way == 5 ? el_envlight_pdf_li_cos(&lb, n, d) : el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, d), b = way >= 4 ? el_envlight_pdf_li_spot(&lb, &hb, 0, d) : inc ? el_envlight_pdf_li(ls, d) / (way == 3 ? pcone : 1.0) : 0; pl = sqrt(a * a + b * b); }
         if (pb > 0) { el_envlight_le(&lp, d, Lb); fc[!inc] += Lb[1] * d[2] / M_PI / pb * (pb * pb / (pb * pb + pl * pl)); }
       }
       f = fc[0] + fc[1];
@@ -289,7 +291,7 @@ static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunr
     printf("  %-58s mean %.5g  variance %.4g [%.4g | %.4g]\n",
            way == 0 ? "default: sample_li_cos + BSDF" : way == 1 ? "split: the patches in the cone + rest x cosine + BSDF"
            : way == 2 ? "split: the bins in the cone + rest x cosine + BSDF" : way == 3 ? "split: the patches renormalised to the cone (rejection) + ..."
-           : "split: sample_li_spot (the patches' rectangle) + ...",
+           : way == 4 ? "split: sample_li_spot (the patches' rectangle) + ..." : "sample_li_spot + product sampling (patches x cos) + BSDF",
            s1 / N, s2 / N - (s1 / N) * (s1 / N), c2[0] / N - (c1[0] / N) * (c1[0] / N), c2[1] / N - (c1[1] / N) * (c1[1] / N));
   }
   el_envlight_hotspots_free(&h); el_envlight_hotspots_free(&hb);
