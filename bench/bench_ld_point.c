@@ -21,6 +21,21 @@
  * piecewise-constant density under a bilinear lookup) eats the gain in the sun's few texels.
  *   (f), (g): (a), (d) with a prototype of the proposed fix (below: the bilinear density, sampled by the
  * discrete table over le()'s patches and a bilinear warp inside the patch).
+ *
+ *   bench_ld_point --lit [MAP.hdr [N [TRIALS]]]   (issue 22's lit pixels) a ground point beside a sphere: the
+ *                  plane z = 0 of the map's frame, a sphere of radius 1 at (0, 0, 1) hiding part of the sky,
+ *                  points at distance 1.5-4 on the sun's side; the irradiance (luminance, V by the sphere) by
+ *                  product sampling alone, with a cosine sample and the power or balance heuristic, the patch
+ *                  density alone and with MIS, two product samples (independent nets, one 2N net, a shifted
+ *                  copy), a product + a patch sample (balance), and split weights (the light sample carries
+ *                  lum - c, the cosine sample min(lum, c)). City, 64 points, 1000 trials, Owen-scrambled
+ *                  Sobol' (2026-12-02): product MIS power 1.8-2.7e-4 at every point (independent 2.0-2.6e-3),
+ *                  the product alone 3.5e-5-3.2e-4 (1.0e-4-1.0e-3), two product samples 1.8e-5-1.7e-4, one
+ *                  2N net 1.2e-5-1.1e-4; without the sphere the product alone 1.7e-5 (the patch density
+ *                  alone 2e-6: the cells' constant cosine bounds cost stratification, but the sphere's edge
+ *                  costs more); split weights 2.0-2.9e-4 (their light part: the sky's samples weighted 0).
+ *                  A cosine MIS partner keeps a floor of about 2e-4 whatever the weights: the light
+ *                  sample's weighted integrand steps between the sun (weight ~1) and the sky (~0.1).
  * The prototype became the library's importance mode BILINEAR (issue 22; envlight.h, NOTES ON PRODUCT
  * SAMPLING 1): with IMPORTANCE 3, rows (a) and (d) are the library's sampler and match (f) and (g) (city,
  * 64 points, 4000 trials, Owen-scrambled Sobol': light alone 2.07e-6 against the prototype's 2.37e-6,
@@ -161,6 +176,127 @@ static void cos_sample(const float u[2], float d[3], float *pdf) {
   *pdf = d[2] / 3.14159265f;
 }
 
+/* ---- --lit: a lit ground point beside a sphere (issue 22: why the lit pixels keep less of the
+ * low-discrepancy gain than Mitsuba's). The ground of bench_city in the map's frame: the plane z = 0,
+ * normal +z, a sphere of radius 1 at (0, 0, 1) hiding part of the sky; ground points at distance D from
+ * the sphere's foot, on the sun's side (azimuth of the brightest texel + A degrees). Estimators of the
+ * irradiance (luminance, V by the sphere), N points each, per point kind: */
+static double g_P[3];
+static int visible(const float w[3]) { /* the ray from g_P along w misses the sphere */
+  double c[3] = {-g_P[0], -g_P[1], 1.0 - g_P[2]}, b = w[0] * c[0] + w[1] * c[1] + w[2] * c[2], cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - 1.0;
+  return !(b > 0 && b * b > cc);
+}
+static double heur(double a, double b, int power) { return power ? a * a / (a * a + b * b) : a / (a + b); }
+#define LIT_E 16
+static int lit_study(int argc, char **argv) {
+  const char *path = argc > 2 && strcmp(argv[2], "-") ? argv[2] : EL_SOURCE_DIR "/data/envmaps/city.hdr";
+  int N = argc > 3 ? atoi(argv[3]) : 64, T = argc > 4 ? atoi(argv[4]) : 2000, kind, e, t, i, p, x, y, bx = 0, by = 0;
+  static const char *ename[LIT_E] = {"product alone", "product MIS power", "product MIS balance", "patch map alone", "patch map MIS power",
+                                     "2 product (BSDF dims)", "product+patch MIS bal", "product, no occluder",
+                                     "product+cos clamp c", "product+cos clamp 4c", "compensated+cos clamp c",
+                                     "cos alone", "clamp c: light part", "clamp c: BSDF part",
+                                     "2 product, one 2N net", "2 product, u + (1/2, 1/2)"};
+  static const double pts[][2] = {{1.5, 0}, {2.5, 0}, {4, 0}, {2.5, 90}, {2.5, -60}};
+  static const char *kname[4] = {"independent", "jittered", "sobol-owen", "multijitter"};
+  el_envlight_options opt;
+  el_image img;
+  el_envlight l, lc;
+  char err[256];
+  float *ul, *ub, *u2n, best = -1.f, sun[3], n[3] = {0, 0, 1};
+  double phis, cmean = 0;
+  if (N < 1 || N > 4096 || T < 2 || (int)(sqrt((double)N) + 0.5) * (int)(sqrt((double)N) + 0.5) != N) { fprintf(stderr, "bench_ld_point --lit: N a square in 1..4096, TRIALS >= 2\n"); return 1; }
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  memset(&opt, 0, sizeof opt);
+  opt.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (el_envlight_init(&l, img.pixels, img.width, img.height, 3, &opt) != EL_SUCCESS) { fprintf(stderr, "%s: init failed\n", path); return 1; }
+  opt.compensated = 1;
+  if (el_envlight_init(&lc, img.pixels, img.width, img.height, 3, &opt) != EL_SUCCESS) { fprintf(stderr, "%s: init failed\n", path); return 1; }
+  for (y = 0; y < img.height; y++) /* the mean luminance over the sphere (the compensation's offset, about) */
+    for (x = 0; x < img.width; x++) cmean += lum(img.pixels + 3 * ((size_t)y * (size_t)img.width + (size_t)x)) * sin(3.14159265358979 * (y + 0.5) / img.height);
+  cmean *= 3.14159265358979 / img.height * 2 * 3.14159265358979 / img.width / (4 * 3.14159265358979);
+  for (y = 0; y < img.height; y++)
+    for (x = 0; x < img.width; x++) { float v = (float)lum(img.pixels + 3 * ((size_t)y * (size_t)img.width + (size_t)x)); if (v > best) { best = v; bx = x; by = y; } }
+  uv_dir((bx + 0.5) / img.width, (by + 0.5) / img.height, sun);
+  phis = atan2(sun[1], sun[0]);
+  printf("mean luminance c = %.4g\n", cmean);
+  printf("%s: sun at texel (%d, %d), elevation %.1f degrees; %d points per estimate, %d trials; relative variance of one estimate (luminance)\n", path, bx, by,
+         asin(sun[2]) * 180 / 3.14159265358979, N, T);
+  ul = (float *)malloc(sizeof(float) * 2 * (size_t)N); ub = (float *)malloc(sizeof(float) * 2 * (size_t)N);
+  u2n = (float *)malloc(sizeof(float) * 4 * (size_t)N);
+  for (p = 0; p < (int)(sizeof pts / sizeof pts[0]); p++) {
+    double a = phis + pts[p][1] * 3.14159265358979 / 180;
+    g_P[0] = pts[p][0] * cos(a); g_P[1] = pts[p][0] * sin(a); g_P[2] = 0;
+    printf("ground point at distance %.1f, azimuth sun%+.0f: the sun %s\n", pts[p][0], pts[p][1], visible(sun) ? "visible" : "HIDDEN");
+    for (kind = 0; kind < 4; kind += 2) {
+      double s1[LIT_E] = {0}, s2[LIT_E] = {0};
+      for (t = 0; t < T; t++) {
+        double acc[LIT_E] = {0};
+        points(kind, N, ul); points(kind, N, ub);
+        if (2 * N <= 4096) { /* (kinds 0 and 2: points() takes any n) */
+          points(kind, 2 * N, u2n);
+          for (i = 0; i < 2 * N; i++) {
+            float w[3], L[3], pp;
+            el_envlight_sample_li_cos(&l, n, u2n + 2 * i, w, L, &pp);
+            if (pp > 0 && w[2] > 0) acc[14] += 0.5 * visible(w) * lum(L) * w[2] / 3.14159265 / pp;
+          }
+        }
+        for (i = 0; i < N; i++) {
+          float w[3], L[3], pp, us[2];
+          us[0] = ul[2 * i] + 0.5f; us[1] = ul[2 * i + 1] + 0.5f;
+          if (us[0] >= 1.f) us[0] -= 1.f;
+          if (us[1] >= 1.f) us[1] -= 1.f;
+          el_envlight_sample_li_cos(&l, n, ul + 2 * i, w, L, &pp);
+          if (pp > 0 && w[2] > 0) acc[15] += 0.5 * visible(w) * lum(L) * w[2] / 3.14159265 / pp;
+          el_envlight_sample_li_cos(&l, n, us, w, L, &pp);
+          if (pp > 0 && w[2] > 0) acc[15] += 0.5 * visible(w) * lum(L) * w[2] / 3.14159265 / pp;
+        }
+        for (i = 0; i < N; i++) {
+          float wl[3], Ll[3], pl, wm[3], Lm[3], pm, wb[3], pb, Lb[3], w2[3], L2[3], p2, wc[3], Lc[3], pcc;
+          el_envlight_sample_li_cos(&l, n, ul + 2 * i, wl, Ll, &pl);
+          el_envlight_sample_li(&l, ul + 2 * i, wm, Lm, &pm);
+          el_envlight_sample_li_cos(&l, n, ub + 2 * i, w2, L2, &p2);
+          cos_sample(ub + 2 * i, wb, &pb);
+          el_envlight_sample_li_cos(&lc, n, ul + 2 * i, wc, Lc, &pcc);
+          if (pcc > 0 && wc[2] > 0) { /* the compensated product: the light carries lum - c */
+            double f = lum(Lc) * wc[2] / 3.14159265, lm = lum(Lc);
+            acc[10] += visible(wc) * (lm > 1.5 * cmean ? 1 - 1.5 * cmean / lm : 0) * f / pcc;
+          }
+          if (pl > 0 && wl[2] > 0) { /* clamp weights: the light carries lum - c, the BSDF sample min(lum, c) */
+            double f = lum(Ll) * wl[2] / 3.14159265, lm = lum(Ll), v = visible(wl);
+            acc[8] += v * (lm > cmean ? 1 - cmean / lm : 0) * f / pl; acc[12] += v * (lm > cmean ? 1 - cmean / lm : 0) * f / pl;
+            acc[9] += v * (lm > 4 * cmean ? 1 - 4 * cmean / lm : 0) * f / pl;
+          }
+          if (pl > 0 && wl[2] > 0) {
+            double f = lum(Ll) * wl[2] / 3.14159265, v = visible(wl), pbl = wl[2] / 3.14159265, pml = el_envlight_pdf_li(&l, wl);
+            acc[0] += v * f / pl; acc[1] += v * heur(pl, pbl, 1) * f / pl; acc[2] += v * heur(pl, pbl, 0) * f / pl;
+            acc[5] += 0.5 * v * f / pl; acc[6] += v * f / (pl + pml); acc[7] += f / pl;
+          }
+          if (p2 > 0 && w2[2] > 0) acc[5] += 0.5 * visible(w2) * lum(L2) * w2[2] / 3.14159265 / p2;
+          if (pm > 0 && wm[2] > 0) {
+            double f = lum(Lm) * wm[2] / 3.14159265, v = visible(wm), pbm = wm[2] / 3.14159265, plm = el_envlight_pdf_li_cos(&l, n, wm);
+            acc[3] += v * f / pm; acc[4] += v * heur(pm, pbm, 1) * f / pm; acc[6] += v * f / (pm + plm);
+          }
+          if (pb > 0 && visible(wb)) {
+            double f, pc = el_envlight_pdf_li_cos(&l, n, wb), pmb = el_envlight_pdf_li(&l, wb);
+            el_envlight_le(&l, wb, Lb);
+            f = lum(Lb) * wb[2] / 3.14159265;
+            double lm = lum(Lb);
+            acc[8] += (lm > cmean ? cmean / lm : 1) * f / pb; acc[13] += (lm > cmean ? cmean / lm : 1) * f / pb; acc[11] += f / pb; acc[9] += (lm > 4 * cmean ? 4 * cmean / lm : 1) * f / pb;
+            acc[10] += (lm > 1.5 * cmean ? 1.5 * cmean / lm : 1) * f / pb;
+            acc[1] += heur(pb, pc, 1) * f / pb; acc[2] += heur(pb, pc, 0) * f / pb; acc[4] += heur(pb, pmb, 1) * f / pb;
+          }
+        }
+        for (e = 0; e < LIT_E; e++) { double v = acc[e] / N; s1[e] += v; s2[e] += v * v; }
+      }
+      printf("  %-12s", kname[kind]);
+      for (e = 0; e < LIT_E; e++) { double m = s1[e] / T; printf("  %s %.2e", ename[e], (s2[e] - s1[e] * m) / (T - 1) / (m * m)); }
+      printf("  (mean %.4g, no occluder %.4g)\n", s1[0] / T, s1[7] / T);
+    }
+  }
+  free(ul); free(ub); free(u2n); el_envlight_free(&l); el_envlight_free(&lc); el_image_free(&img);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   const char *path = argc > 1 && strcmp(argv[1], "-") ? argv[1] : EL_SOURCE_DIR "/data/envmaps/city.hdr"; /* - : the default (the tutorial's quote) */
   int N = argc > 2 ? atoi(argv[2]) : 64, T = argc > 3 ? atoi(argv[3]) : 4000, imp = argc > 4 ? atoi(argv[4]) : 1, res = argc > 5 ? atoi(argv[5]) : 0, kind, e, t, i;
@@ -174,6 +310,7 @@ int main(int argc, char **argv) {
                                  "(f) patch warp, light alone", "(g) patch warp, MIS light+BSDF"};
   double var[4][7], mean[4][7];
   float *ul, *ub;
+  if (argc > 1 && !strcmp(argv[1], "--lit")) return lit_study(argc, argv);
   if (N < 1 || N > 4096 || T < 2 || (int)(sqrt((double)N) + 0.5) * (int)(sqrt((double)N) + 0.5) != N) { fprintf(stderr, "bench_ld_point: N a square in 1..4096, TRIALS >= 2\n"); return 1; }
   if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   memset(&opt, 0, sizeof opt);

@@ -111,7 +111,11 @@
  * file; a material's constant BSDF copied per hit, Lambertian sampling and f/pdf inline, elr_wave_add
  * inline; examples/render/README.md has the table); the same images. Loop CPU, one thread, 64 spp, 7
  * interleaved rounds against main's binary: bench_city direct 0.870-0.931x, path 0.873-0.945x,
- * bench_studio 0.917-0.969x. */
+ * bench_studio 0.917-0.969x.
+ * Measured 2026-12-02 (issue 21, fourth round: the first vertex of matte in structure-of-arrays form,
+ * render_wave.c's elr__soa_*), callgrind_parts.sh: bench_city direct 3716 -> 3224 (loop 1065 -> 621),
+ * bench_studio direct 2678 -> 2449, path unchanged; the same images. Loop CPU, one thread, 64 spp, 5
+ * interleaved rounds: bench_city 0.88-0.92x (median 0.915), bench_studio 0.96-1.01x (median 0.967). */
 #define _POSIX_C_SOURCE 200809L
 #include "el_render.h"
 #include "elr_internal.h"

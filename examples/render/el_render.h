@@ -108,7 +108,9 @@ typedef struct elr_render_options {
                            the product with MIS, ELR_ENVSD_ALONE the product light sample alone, ELR_ENVSD_SUNCOS the map
                            alone where the sun is within acos(env_sun_cos) of the normal, the product with MIS elsewhere
                            (issue 20's sun rule, the default until the wave loop batched product samples; now
-                           ELR_ENVSD_PRODUCT: elr_internal.h) */
+                           ELR_ENVSD_PRODUCT: elr_internal.h); ELR_ENVSD_TWO and ELR_ENVSD_TWO_PIXEL: directlighting's
+                           BSDF sample spent on a second product light sample (everywhere, or in the pixels whose
+                           centre sees the sun), the reference loop only (issue 22's lit pixels) */
   float env_sun_cos;    /* < -2: ELR_ENV_SUN_COS; else that threshold */
 } elr_render_options;
 void elr_render_options_default(elr_render_options *o);

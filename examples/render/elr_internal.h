@@ -125,6 +125,10 @@ typedef struct elr_sphere {
   int material, light;
   int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
   int object;    /* -1, or the prototype it belongs to */
+  /* the intersection callbacks' (elr_sphere_prepare): the centre wc in o2w's target space (in float), o2w.inv's
+   * 3x3 with wc's place in object space as the fourth column, radius^2; sim: o2w is a similarity, of scale wr / radius */
+  float wc[3], w2o[12], r2, wr;
+  int sim;
 } elr_sphere;
 
 /* pbrt-v3's Disk (shapes/disk.cpp): the annulus innerradius <= r <= radius, 0 <= phi <= phimax, at
@@ -139,7 +143,9 @@ typedef struct elr_disk {
  * meshes and spheres with .object == its index, in its own space (the CTM at each Shape); ObjectInstance
  * places it with the CTM of that line (pbrt-v3's TransformedPrimitive). scene.c makes each prototype that
  * is instanced one Embree scene, and each instance an Embree instance of it: one copy of the geometry. */
-typedef struct elr_sphere_set { const struct elr_sphere *sph; const int *idx; } elr_sphere_set; /* user-geometry primID -> sphere */
+typedef struct elr_sphere_set { /* user-geometry primID -> sphere; simd: elr_sphere_simd() */
+  const struct elr_sphere *sph; const int *idx; int simd;
+} elr_sphere_set;
 typedef struct elr_object {
   int nmesh, nsph, ninstances;
   double lo[3], hi[3];        /* the bounds of its shapes, in its space */
@@ -183,7 +189,12 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * 1.68 -> 1.70x, sun_porch 1.63 -> 1.66x, and sun_shadow_object with the sun raised to 80 degrees (10 from the
  * ground's normal) 1.08 -> 1.89x (per sample 1.07 -> 1.63x): the product sample now costs less than the
  * map's (le()'s patch density) and its cosine still helps where the sun is high */
-enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3 };
+/* ELR_ENVSD_TWO (issue 22's lit pixels, bench/ld_lit.py): directlighting spends the BSDF sample's numbers and ray
+ * on a second product light sample (each weighted 1/2; elr_env_two), the reference loop only (render.c) */
+/* ELR_ENVSD_TWO_PIXEL: the same per pixel: its first such vertex takes product MIS and a shadow ray towards the
+ * sun's axis; the pixel's later ones take the two samples if that ray saw the sun (or the sun lay below the
+ * vertex's horizon), product MIS otherwise */
+enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3, ELR_ENVSD_TWO = 4, ELR_ENVSD_TWO_PIXEL = 5 };
 #define ELR_ENV_SUN_COS 0.5f
 #define ELR_ENV_SUN_DIFFUSE ELR_ENVSD_PRODUCT
 enum { ELR_LIGHT_INFINITE = 0, ELR_LIGHT_POINT = 1, ELR_LIGHT_DISTANT = 2, ELR_LIGHT_AREA = 3 };
@@ -379,6 +390,12 @@ void elr_triangle_hit(const elr_scene *s, int mesh, unsigned tri, float b1, floa
 struct RTCBoundsFunctionArguments;
 struct RTCIntersectFunctionNArguments;
 struct RTCOccludedFunctionNArguments;
+void elr_sphere_prepare(elr_sphere *sp); /* w2o and r2, before Embree's build (scene.c) */
+/* the sphere callbacks' intersection of rays i0 .. i0 + 15 of N in Embree's RTCRayN layout (valid[i]
+ * -1: a ray to answer) with vectors of width simd (0 none, 1 SSE2, 2 AVX; at most elr_sphere_simd()):
+ * the bits of the rays that hit (bit i - i0), with t[i - i0] (the same t for every width) */
+unsigned elr_sphere_hit_rays(const elr_sphere *sp, int simd, const float *ray, unsigned N, unsigned i0, const int *valid, float t[16]);
+int elr_sphere_simd(void); /* the widest this CPU runs (or the environment's ELR_SPHERE_SIMD when lower) */
 void elr_sphere_bounds(const struct RTCBoundsFunctionArguments *a);
 void elr_sphere_intersect(const struct RTCIntersectFunctionNArguments *a);
 void elr_sphere_occluded(const struct RTCOccludedFunctionNArguments *a);
@@ -470,6 +487,7 @@ typedef struct elr_bsdf {
   int env_map; /* a glossy lobe peaked enough that the environment's map alone samples this vertex (elr_bsdf_cos_normal) */
   int env_light_only; /* no lobe narrower than the scene's env_light_alpha: directlighting's product light sample
                          alone estimates the environment here (elr_env_light_only) */
+  int env_two;      /* ELR_ENVSD_TWO at a diffuse-only vertex under a sun: two product light samples (elr_env_two) */
   int env_sun_test; /* ELR_ENVSD_SUNCOS at a diffuse-only vertex under a sun: elr_bsdf_cos_normal chooses the map
                        alone where its normal is within acos(env_sun_cos) of env_sun_axis */
   elr_v3 env_sun_axis; float env_sun_cos;
@@ -583,6 +601,12 @@ static inline int elr_bsdf_cos_normal(const elr_bsdf *b, elr_v3 wo, elr_v3 *n) {
  * with the compensated density (max(L - mean, 0): unbiased only together with the BSDF sample). */
 static inline int elr_env_light_only(int ls_mis, int sample_bsdf, const elr_light *l, int has_n, const elr_bsdf *b) {
   return ls_mis && sample_bsdf && has_n && l->kind == ELR_LIGHT_INFINITE && l->product && b->env_light_only && !l->env_sample->compensated;
+}
+/* ELR_ENVSD_TWO: where the product light sample would be MIS's partner of a BSDF sample at a diffuse-only
+ * vertex under a sun map (directlighting), a second product light sample takes the BSDF sample's numbers
+ * instead, both weighted 1/2: unbiased as the light sample alone (the same conditions) */
+static inline int elr_env_two(int ls_mis, int sample_bsdf, const elr_light *l, int has_n, const elr_bsdf *b) {
+  return ls_mis && sample_bsdf && has_n && l->kind == ELR_LIGHT_INFINITE && l->product && b->env_two && !l->env_sample->compensated;
 }
 /* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
 void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
@@ -910,6 +934,8 @@ typedef struct elr_tstats { /* one thread's counts */
                         sun cache knows, of them where it lowered the spots' weight (and where it saw no spot), and of
                         the looked-up ones those that landed in a spot's cone */
   uint64_t sunsplit_vertices, sunsplit_sky_only; /* --sun split: vertices split, of them with every spot below the horizon */
+  int env_two_pixel; /* ELR_ENVSD_TWO_PIXEL: the current pixel's choice (-1: not made yet; 1 two product samples, 0 MIS),
+                        reset by the reference loop at each pixel (integrator.c's elr_estimate_direct makes it) */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;

@@ -87,6 +87,10 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   int split = C->sunsplit && C->ls != ELR_LS_BSDF ? elr_sunsplit_at(C->sunsplit, l, b, n) : 0;
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
   int lonly = !sc && !split && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c, split: MIS kept) */
+  /* ELR_ENVSD_TWO: a second product light sample from the BSDF sample's numbers, each weighted 1/2 */
+  int two = !sc && !split && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b), kt;
+  if (two && s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) two = ts->env_two_pixel > 0; /* (the pixel's choice: render.c) */
+  if (two) lonly = 1;
   /* <<Sample light source with multiple importance sampling>> */
   if (split) {
     elr_light_sample ls;
@@ -97,8 +101,9 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
       elr_sunsplit_sample(C->sunsplit, k, split, nc, ul, &ls, &other, ts); /* (one u for both: sun.c) */
       elr__light_term(C, h, b, wo, &ls, C->ls == ELR_LS_MIS, pick, other, ts, Ld);
     }
-  } else if (delta || C->ls != ELR_LS_BSDF) {
+  } else if (delta || C->ls != ELR_LS_BSDF) for (kt = 0; kt <= two; kt++) {
     elr_light_sample ls;
+    if (kt) ul = us;
     if (l->kind == ELR_LIGHT_INFINITE && l->product) { if (n) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
     if (sc) elr_sun_light_sample(C->sun, sc, n, ul, &ls, ts);
     else {
@@ -106,7 +111,11 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
       if (sunl) { float d[3]; elr_to3(ls.wi, d); elr_sun_count(C->sun, NULL, d, ls.pdf, ts); }
     }
     if (ls.portal >= 0) { if (ls.portal) ts->portal_used++; else ts->portal_fallback++; }
-    elr__light_term(C, h, b, wo, &ls, !delta && C->ls == ELR_LS_MIS && !lonly, pick, 0.f, ts, Ld);
+    {
+      elr_v3 Lt = elr_v(0, 0, 0); /* (two: each sample's term, weighted 1/2) */
+      elr__light_term(C, h, b, wo, &ls, !delta && C->ls == ELR_LS_MIS && !lonly, pick, 0.f, ts, two ? &Lt : Ld);
+      if (two) *Ld = elr_add(*Ld, elr_mul(Lt, 0.5f));
+    }
   }
   /* <<Sample BSDF with multiple importance sampling>> */
   if (!delta && sample_bsdf && C->ls != ELR_LS_LIGHT && !lonly) {

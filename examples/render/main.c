@@ -15,8 +15,10 @@
  * diffuse lobe sample the map alone under a sun map, the product around the mirror direction otherwise; 0 never;
  * default ELR_ENV_LOBE_ALPHA), --env-light-alpha A (and directlighting vertices
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
- * --env-sun-diffuse map|product|alone|suncos (under a sun map, diffuse-only vertices: the map alone with MIS, the
- * product with MIS, the product light sample alone, the sun rule by the normal; default ELR_ENV_SUN_DIFFUSE: product),
+ * --env-sun-diffuse map|product|alone|suncos|two|twopixel (under a sun map, diffuse-only vertices: the map alone with MIS, the
+ * product with MIS, the product light sample alone, the sun rule by the normal, two product light samples in place of
+ * directlighting's light + BSDF pair (the reference loop), twopixel: that where the pixel's centre sees the sun,
+ * product MIS where not; default ELR_ENV_SUN_DIFFUSE: product),
  * --env-sun-cos C (the sun rule's threshold: the map alone where the sun is within acos(C) of the normal),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's
  * importance map: envlight's cell average, pbrt-v3's 2x-resolution point lookups, raw texels),
@@ -125,7 +127,7 @@ int main(int argc, char **argv) {
     } else if (!strcmp(a, "--randomization") && i + 1 < argc) {
       if ((o.randomization = parse_choice(a, argv[++i], "none|permutedigits|fastowen|owen")) < 0) return 1;
     } else if (!strcmp(a, "--env-sun-diffuse") && i + 1 < argc) {
-      if ((o.env_sun_diffuse = parse_choice(a, argv[++i], "map|product|alone|suncos")) < 0) return 1;
+      if ((o.env_sun_diffuse = parse_choice(a, argv[++i], "map|product|alone|suncos|two|twopixel")) < 0) return 1;
     } else if (!strcmp(a, "--env-sun-cos") && i + 1 < argc) {
       char *e;
       double x;

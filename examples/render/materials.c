@@ -153,8 +153,9 @@ static void elr__env_choice(const elr_scene *s, elr_bsdf *b) {
   b->env_map = (peaked && s->env_sunny) || (sun_diffuse && s->env_sun_diffuse == ELR_ENVSD_MAP);
   b->env_mirror = peaked && !s->env_sunny; /* (MIS only: the mirror's cosine is no bound of f) */
   b->env_sun_test = sun_diffuse && s->env_sun_diffuse == ELR_ENVSD_SUNCOS;
+  b->env_two = sun_diffuse && (s->env_sun_diffuse == ELR_ENVSD_TWO || s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL);
   if (b->env_sun_test) { b->env_sun_axis = s->env_sun_axis; b->env_sun_cos = s->env_sun_cos; }
-  b->env_light_only = !b->env_mirror && !(sun_diffuse && (s->env_sun_diffuse == ELR_ENVSD_PRODUCT || b->env_sun_test)) && s->env_light_alpha < INFINITY &&
+  b->env_light_only = !b->env_mirror && !(sun_diffuse && (s->env_sun_diffuse == ELR_ENVSD_PRODUCT || b->env_sun_test || b->env_two)) && s->env_light_alpha < INFINITY &&
                       a >= (diffuse ? 1.f : 2.f) * s->env_light_alpha; /* (INFINITY: never) */
 }
 

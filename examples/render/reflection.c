@@ -440,7 +440,7 @@ void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta) {
   b->kd = b->ks = b->kr = elr_v(0, 0, 0);
   b->alpha = 1.f;
   b->eta = eta;
-  b->env_map = b->env_light_only = b->env_mirror = b->env_sun_test = 0;
+  b->env_map = b->env_light_only = b->env_mirror = b->env_sun_test = b->env_two = 0;
 }
 float elr_bsdf_lobe_alpha(const elr_bsdf *b) {
   float a = INFINITY;

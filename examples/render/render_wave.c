@@ -17,7 +17,9 @@
  *
  * Direct lighting: the first vertex computed ahead (elr_first), with the
  *   wave's camera rays, light samples and shadow rays (light and BSDF sampled) each in one call; then
- *   its shading in the wave (elr__direct_shade) where no specular bounce follows and it emits nothing,
+ *   its shading in the wave (elr__direct_shade) where no specular bounce follows and it emits nothing
+ *   (in structure-of-arrays form, elr__soa_*, where its BSDF is a lone Lambertian lobe; an escaped camera
+ *   ray's radiance in one el_envlight_le_n call),
  *   else elr_direct_first, with the shadow rays' answers, and the reference integrator from the second
  *   vertex (specular reflection and transmission, a light's further "samples"). The wave's radiance
  *   goes to the film in one el_film_tile_add_samples call.
@@ -40,6 +42,9 @@
 
 #ifndef ELR_WAVE
 #define ELR_WAVE 256 /* camera samples in a wave at most */
+#endif
+#if ELR_WAVE % 8 != 0
+#error "ELR_WAVE must be a multiple of 8 (ELR_SOA_PAD)"
 #endif
 
 /* >> a first vertex computed ahead (elr_first): its shading in the reference's order (moved here from
@@ -137,6 +142,31 @@ static void elr__occluded(const elr_ctx *C, elr_wave_rays *w, elr_tstats *ts) {
   ts->t_embree += elr_now() - t0;
 }
 
+/* The first vertex of direct lighting where the BSDF is a lone Lambertian lobe (matte of sigma 0, constant
+ * Kd), one lane per camera sample (issue 21): elr__direct_soa's arrays, one float (or flag) per lane, so
+ * that each stage is a loop over plain arrays that gcc and clang vectorise (SSE2 at -O3). */
+typedef struct elr_wave_soa {
+  int n, lane[ELR_WAVE]; /* lanes in use; each one's camera sample (index in the wave) */
+  /* the hit (point, geometric and shading normal, ray offset), wo, the material (Kd, issue 20's flags) */
+  float px[ELR_WAVE], py[ELR_WAVE], pz[ELR_WAVE], gx[ELR_WAVE], gy[ELR_WAVE], gz[ELR_WAVE];
+  float nx[ELR_WAVE], ny[ELR_WAVE], nz[ELR_WAVE], eps[ELR_WAVE], ox[ELR_WAVE], oy[ELR_WAVE], oz[ELR_WAVE];
+  float kr[ELR_WAVE], kg[ELR_WAVE], kb[ELR_WAVE];
+  int elo[ELR_WAVE], emap[ELR_WAVE], stest[ELR_WAVE]; /* env_light_only, env_map, env_sun_test */
+  float sax[ELR_WAVE], say[ELR_WAVE], saz[ELR_WAVE], scos[ELR_WAVE]; /* env_sun_axis, env_sun_cos */
+  float ul[2 * ELR_WAVE], v0[ELR_WAVE], v1[ELR_WAVE]; /* the light draw (pairs, as envlight.h takes them), the BSDF draw */
+  /* the product-sampling normal (has_n), lonly; the BSDF sample: direction, f, pdf, its ray (bray) */
+  int has_n[ELR_WAVE], lonly[ELR_WAVE], bray[ELR_WAVE];
+  float cx[ELR_WAVE], cy[ELR_WAVE], cz[ELR_WAVE], th[ELR_WAVE], r[ELR_WAVE], c[ELR_WAVE], s[ELR_WAVE];
+  float wbx[ELR_WAVE], wby[ELR_WAVE], wbz[ELR_WAVE], fbr[ELR_WAVE], fbg[ELR_WAVE], fbb[ELR_WAVE], bpdf[ELR_WAVE];
+  /* the light sample (as envlight.h returns it), its f |cos| and BSDF pdf; the shadow rays (index in W->shadows or -1) */
+  float wl[3 * ELR_WAVE], Ll[3 * ELR_WAVE], lpdf[ELR_WAVE];
+  float wlx[ELR_WAVE], wly[ELR_WAVE], wlz[ELR_WAVE], llr[ELR_WAVE], llg[ELR_WAVE], llb[ELR_WAVE]; /* (the same, by component) */
+  float flr[ELR_WAVE], flg[ELR_WAVE], flb[ELR_WAVE], flpdf[ELR_WAVE], dlg[ELR_WAVE], dbg[ELR_WAVE];
+  int sh[ELR_WAVE], bsh[ELR_WAVE];
+  /* the environment in the BSDF sample's direction (where its ray escaped) */
+  float bpe[ELR_WAVE], lbr[ELR_WAVE], lbg[ELR_WAVE], lbb[ELR_WAVE];
+} elr_wave_soa;
+
 struct elr_wave {
   elr_sampler *S; /* one per pixel of a wave */
   int nS, npix;   /* samplers made, pixels per wave */
@@ -155,7 +185,7 @@ struct elr_wave {
    * cosine and its lonly; per camera sample: shaded here (1) or by elr_direct_first (0), and its Ld */
   elr_v3 fl[ELR_WAVE];
   float flpdf[ELR_WAVE]; /* and the BSDF's pdf in its direction (computed with fl: the dot products they share) */
-  int lonly[ELR_WAVE], fast[ELR_WAVE];
+  int lonly[ELR_WAVE], fast[ELR_WAVE]; /* (fast 2: the camera ray left the scene; Ld its radiance) */
   elr_v3 Ld[ELR_WAVE];
   float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
@@ -177,6 +207,8 @@ struct elr_wave {
   /* per material, the BSDF it has at every hit but for the frame (elr_bsdf_constant), or -1: its index in tmpl */
   int *tmpl_of;
   elr_bsdf *tmpl;
+  unsigned char *tmpl_lambert; /* per template: a lone Lambertian lobe (elr__soa_lambert_ok), shaded in A */
+  elr_wave_soa A; /* direct lighting: the first vertices of such lanes, structure of arrays (elr__direct_soa) */
 };
 
 /* elr_sun_cos_normal with its first case inline (no lowered cell, or a BSDF whose choice the cell does not
@@ -196,6 +228,12 @@ static inline void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const e
   if (c->nlobes) memcpy(b->lobe, c->lobe, (size_t)c->nlobes * sizeof(elr_bxdf));
   b->ns = h->ns; b->ng = h->ng;
   elr_onb(b->ns, &b->ss, &b->ts);
+}
+
+/* a material's constant BSDF that elr__direct_soa shades: a lone Lambertian lobe (elr_bsdf_lambert_alone's
+ * case, nothing specular or glossy; issue 20's choice made per material: env_map, env_sun_test) */
+static int elr__soa_lambert_ok(const elr_bsdf *t) {
+  return t->has_diffuse && !t->has_glossy && !t->has_specular && t->ncomp == 1 && !t->nlobes && !t->spec_r && !t->spec_t && !t->env_mirror;
 }
 
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile) {
@@ -227,6 +265,9 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   W->tmpl = (elr_bsdf *)malloc(((size_t)k + 1) * sizeof(elr_bsdf));
   if (!W->tmpl) { elr_wave_free(W); return NULL; }
   for (i = 0; i < C->s->nmat; i++) if (W->tmpl_of[i] >= 0) elr_bsdf_constant(C->s, i, &W->tmpl[W->tmpl_of[i]]);
+  W->tmpl_lambert = (unsigned char *)calloc((size_t)k + 1, 1);
+  if (!W->tmpl_lambert) { elr_wave_free(W); return NULL; }
+  for (i = 0; i < k; i++) W->tmpl_lambert[i] = (unsigned char)elr__soa_lambert_ok(&W->tmpl[i]);
   return W;
 }
 
@@ -234,7 +275,7 @@ void elr_wave_free(elr_wave *W) {
   int i;
   if (!W) return;
   for (i = 0; i < W->nS; i++) elr_sampler_free(&W->S[i]);
-  free(W->S); free(W->tmpl_of); free(W->tmpl);
+  free(W->S); free(W->tmpl_of); free(W->tmpl); free(W->tmpl_lambert);
   free(W);
 }
 
@@ -326,14 +367,220 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
   }
 }
 
+/* >> the first vertex of direct lighting in structure-of-arrays form (issue 21)
+ * Where the wave loop shades the first vertex itself (elr__direct_shade's lanes) and the BSDF is a lone
+ * Lambertian lobe, under the environment alone (no portals, no sun cache, MIS, one light sample pair per
+ * camera sample), its steps run over W->A, a stage at a time over all such lanes: the BSDF sample
+ * (elr_bsdf_lambert_sample), the product-sampling normal (elr_bsdf_cos_normal) and lonly
+ * (elr_env_light_only), the light sample's f and pdf (elr_bsdf_f_pdf_inl), the shadow rays' origins
+ * (elr_spawn_origin), the MIS weights (elr_power_heuristic) and the sums of elr__direct_shade: the same
+ * floating-point operations in the same order as those functions, each condition a select, so the
+ * same bits (test_render_wave). The readable one-lane form is the code those names point to. Only the
+ * cosine of the disk sample's angle stays a libm call a lane (a vector sine would round otherwise). */
+/* ELR_SOA_CLONES: the SoA stages built for SSE2 and AVX2, chosen at run time by the CPU (gcc and clang's
+ * target_clones; AVX2 without FMA, so the same roundings) */
+#if defined(ELR_SOA_AVX2) && (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#define ELR_SOA_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define ELR_SOA_CLONES
+#endif
+/* the vector loops run to n rounded up to 8 lanes (the arrays hold ELR_WAVE, a multiple of 8): no scalar
+ * remainder, so that gcc vectorises them at -O2 too (its very cheap cost model); the lanes past n hold
+ * an earlier wave's values (or calloc's zeros), computed and never read */
+#define ELR_SOA_PAD(n) (((n) + 7) & ~7)
+static inline float elr__ph_sel(float f, float g) { /* elr_power_heuristic, both branches computed and selected */
+  float f2 = f * f, g2 = g * g, rg = g / f, rf = f / g, r = f >= g ? rg : rf, wr = 1.f / (1.f + r * r), q = f2 / (f2 + g2);
+  float wbig = f >= g ? wr : 1.f - wr, wn = f2 + g2 > 0.f ? q : 0.f;
+  return (f > 1e18f) | (g > 1e18f) ? wbig : wn;
+}
+
+/* lane j (a hit, not emitting) of the wave into W->A where its BSDF is a lone Lambertian lobe: 1 (its draws
+ * made), or 0 (shaded by elr__direct_wave's general steps) */
+static int elr__soa_add(elr_wave *W, int j) {
+  elr_wave_soa *A = &W->A;
+  const elr_hit *h = &W->h[j];
+  const elr_bsdf *t;
+  int i = A->n, k = W->tmpl_of[h->material];
+  if (k < 0 || !W->tmpl_lambert[k] || h->light >= 0) return 0;
+  t = &W->tmpl[k];
+  elr_sampler_restore(&W->S[W->pix[j]], &W->pos[j]);
+  elr_sampler_get2d(&W->S[W->pix[j]], &A->ul[2 * i]);
+  { float us[2]; elr_sampler_get2d(&W->S[W->pix[j]], us); A->v0[i] = us[0]; A->v1[i] = us[1]; }
+  if (!(A->v0[i] >= 0.f && A->v0[i] < 1.f)) return 0; /* (elr_bsdf_lambert_alone's u0; the general steps draw again) */
+  A->lane[i] = j;
+  A->px[i] = h->p.x; A->py[i] = h->p.y; A->pz[i] = h->p.z; A->gx[i] = h->ng.x; A->gy[i] = h->ng.y; A->gz[i] = h->ng.z;
+  A->nx[i] = h->ns.x; A->ny[i] = h->ns.y; A->nz[i] = h->ns.z; A->eps[i] = h->eps;
+  A->ox[i] = W->cam[j].d.x * -1.f; A->oy[i] = W->cam[j].d.y * -1.f; A->oz[i] = W->cam[j].d.z * -1.f;
+  A->kr[i] = t->kd.x; A->kg[i] = t->kd.y; A->kb[i] = t->kd.z;
+  A->elo[i] = t->env_light_only; A->emap[i] = t->env_map; A->stest[i] = t->env_sun_test;
+  A->sax[i] = t->env_sun_axis.x; A->say[i] = t->env_sun_axis.y; A->saz[i] = t->env_sun_axis.z; A->scos[i] = t->env_sun_cos;
+  A->n++;
+  return 1;
+}
+
+/* the BSDF samples and product-sampling normals of W->A's lanes, then their light samples */
+ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
+  elr_wave_soa *A = &W->A;
+  const elr_light *l = C->batch_light;
+  const int n = A->n, lo_ok = l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated;
+  int i, nn = 0, nlo = 0;
+  for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the normal (elr_bsdf_cos_normal), lonly; the disk sample's radius and angle */
+    float dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i], sg = dgo < 0.f ? -1.f : 1.f;
+    float cx = A->gx[i] * sg, cy = A->gy[i] * sg, cz = A->gz[i] * sg;
+    float ox = 2.f * A->v0[i] - 1.f, oy = 2.f * A->v1[i] - 1.f, ta = (ELR_PI / 4.f) * (oy / ox), tb = ELR_PI / 2.f - (ELR_PI / 4.f) * (ox / oy);
+    int zero = (ox == 0.f) & (oy == 0.f), big = fabsf(ox) > fabsf(oy);
+    int has = (A->emap[i] == 0) & !((A->stest[i] != 0) & (cx * A->sax[i] + cy * A->say[i] + cz * A->saz[i] >= A->scos[i]));
+    A->cx[i] = cx; A->cy[i] = cy; A->cz[i] = cz;
+    A->has_n[i] = has;
+    A->lonly[i] = has & A->elo[i] & lo_ok;
+    A->r[i] = zero ? 0.f : big ? ox : oy;
+    A->th[i] = zero ? 0.f : big ? ta : tb;
+  }
+  for (i = 0; i < n; i++) nlo += A->lonly[i];
+  for (i = 0; i < n; i++) { /* (one sincosf a lane, none where the light sample is taken alone) */
+    float th = A->th[i];
+    if (A->lonly[i]) { A->c[i] = 1.f; A->s[i] = 0.f; continue; }
+    A->c[i] = cosf(th); A->s[i] = sinf(th);
+  }
+  if (nlo < n) for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the cosine sample in the frame of ns (elr_onb), in world space; its f and pdf */
+    float x = A->nx[i], y = A->ny[i], z = A->nz[i], sign = z >= 0.f ? 1.f : -1.f, a = -1.f / (sign + z), b = x * y * a;
+    float ssx = 1.f + sign * x * x * a, ssy = sign * b, ssz = -sign * x, tsx = b, tsy = sign + y * y * a, tsz = -y;
+    float r = A->r[i], c = A->c[i], sn = A->s[i], z2 = 1.f - r * r * (c * c + sn * sn);
+    float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, lx = r * c, ly = r * sn, lz = sqrtf(z2 > 0.f ? z2 : 0.f);
+    float wx, wy, wz, ci, pdf, dgo, dgi, fr, fg, fb;
+    int f0;
+    lz = co < 0.f ? -lz : lz;
+    wx = ssx * lx + tsx * ly + x * lz; wy = ssy * lx + tsy * ly + y * lz; wz = ssz * lx + tsz * ly + z * lz;
+    ci = wx * x + wy * y + wz * z;
+    pdf = co * ci > 0.f ? fabsf(ci) * ELR_INV_PI : 0.f; /* (/ ncomp, 1) */
+    dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i]; dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
+    f0 = !((dgi * dgo > 0.f) & (co != 0.f));
+    A->wbx[i] = wx; A->wby[i] = wy; A->wbz[i] = wz; A->bpdf[i] = pdf;
+    fr = A->kr[i] * ELR_INV_PI; fg = A->kg[i] * ELR_INV_PI; fb = A->kb[i] * ELR_INV_PI; /* (loaded in every lane: a select, no branch) */
+    fr = f0 ? 0.f : fr; fg = f0 ? 0.f : fg; fb = f0 ? 0.f : fb;
+    A->fbr[i] = fr; A->fbg[i] = fg; A->fbb[i] = fb;
+    A->dbg[i] = dgi;
+  }
+  for (i = 0; i < n; i++) /* (elr_estimate_direct's BSDF ray) */
+    A->bray[i] = !A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f);
+  /* the light samples (elr__env_samples' map and product cases) */
+  for (i = 0; i < n; i++) nn += A->has_n[i];
+  if (l->product) { ts->env_product += (uint64_t)nn; ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)nlo; } /* (--stats) */
+  if (n == 0) return;
+  if (!l->product || nn == 0) el_envlight_sample_li_n(l->env_sample, n, A->ul, A->wl, A->Ll, A->lpdf);
+  else {
+    float nv[3 * ELR_WAVE], um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
+    int idx[ELR_WAVE], k, m = 0;
+    if (nn == n) {
+      for (i = 0; i < n; i++) { nv[3 * i] = A->cx[i]; nv[3 * i + 1] = A->cy[i]; nv[3 * i + 2] = A->cz[i]; }
+      el_envlight_sample_li_cos_n(l->env_sample, n, nv, A->ul, A->wl, A->Ll, A->lpdf);
+      return;
+    }
+    for (k = 0; k < 2; k++) { /* the product lanes, then the map's */
+      m = 0;
+      for (i = 0; i < n; i++)
+        if (A->has_n[i] == !k) {
+          idx[m] = i; nv[3 * m] = A->cx[i]; nv[3 * m + 1] = A->cy[i]; nv[3 * m + 2] = A->cz[i];
+          um[2 * m] = A->ul[2 * i]; um[2 * m + 1] = A->ul[2 * i + 1]; m++;
+        }
+      if (m > 0 && k == 0) el_envlight_sample_li_cos_n(l->env_sample, m, nv, um, wm, Lm, pm);
+      else if (m > 0) el_envlight_sample_li_n(l->env_sample, m, um, wm, Lm, pm);
+      for (i = 0; i < m; i++) {
+        memcpy(&A->wl[3 * idx[i]], &wm[3 * i], 3 * sizeof(float)); memcpy(&A->Ll[3 * idx[i]], &Lm[3 * i], 3 * sizeof(float));
+        A->lpdf[idx[i]] = pm[i];
+      }
+    }
+  }
+}
+
+/* the light samples' f |cos| and BSDF pdf (elr_bsdf_f_pdf_inl) of W->A's lanes, and their shadow rays and
+ * the BSDF samples' into W->shadows */
+ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
+  elr_wave_soa *A = &W->A;
+  const int n = A->n;
+  int i;
+  for (i = 0; i < n; i++) { /* (by component: the loops below take four lanes at a time, not two) */
+    A->wlx[i] = A->wl[3 * i]; A->wly[i] = A->wl[3 * i + 1]; A->wlz[i] = A->wl[3 * i + 2];
+    A->llr[i] = A->Ll[3 * i]; A->llg[i] = A->Ll[3 * i + 1]; A->llb[i] = A->Ll[3 * i + 2];
+  }
+  for (i = 0; i < ELR_SOA_PAD(n); i++) {
+    float x = A->nx[i], y = A->ny[i], z = A->nz[i], wx = A->wlx[i], wy = A->wly[i], wz = A->wlz[i];
+    float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
+    float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
+    int f0 = !((dgi * dgo > 0.f) & (co != 0.f));
+    A->flpdf[i] = co * ci > 0.f ? ac * ELR_INV_PI : 0.f;
+    float fr = A->kr[i] * ELR_INV_PI, fg = A->kg[i] * ELR_INV_PI, fb = A->kb[i] * ELR_INV_PI;
+    A->flr[i] = (f0 ? 0.f : fr) * ac; A->flg[i] = (f0 ? 0.f : fg) * ac; A->flb[i] = (f0 ? 0.f : fb) * ac;
+    A->dlg[i] = dgi;
+  }
+  for (i = 0; i < n; i++) { /* (elr_wave_add, elr_spawn_origin) */
+    A->sh[i] = A->bsh[i] = -1;
+    if (A->lpdf[i] > 0.f && !(A->flr[i] == 0.f && A->flg[i] == 0.f && A->flb[i] == 0.f)) {
+      float e = A->dlg[i] >= 0.f ? A->eps[i] : -A->eps[i];
+      A->sh[i] = W->shadows.n;
+      elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wlx[i], A->wly[i], A->wlz[i]), INFINITY);
+    }
+    if (A->bray[i]) {
+      float e = A->dbg[i] >= 0.f ? A->eps[i] : -A->eps[i];
+      A->bsh[i] = W->shadows.n;
+      elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wbx[i], A->wby[i], A->wbz[i]), INFINITY);
+    }
+  }
+}
+
+/* after the shadow rays: the environment in the escaped BSDF samples' directions, then each lane's Ld
+ * (elr__direct_shade's sums) into W->Ld */
+ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
+  elr_wave_soa *A = &W->A;
+  const elr_light *l = C->batch_light;
+  const int n = A->n;
+  float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nv[3 * ELR_WAVE], de[3 * ELR_WAVE], pq[ELR_WAVE], Le[3 * ELR_WAVE];
+  int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i, nsh = 0, nb = 0;
+  for (i = 0; i < n; i++) { /* (--stats; then the shadow rays' answers: 1 where the term counts) */
+    nsh += A->sh[i] >= 0; nb += A->bray[i];
+    A->sh[i] = A->sh[i] >= 0 && !(W->shadows.tfar[A->sh[i]] < 0.f);
+    A->bsh[i] = A->bsh[i] >= 0 && !(W->shadows.tfar[A->bsh[i]] < 0.f);
+  }
+  ts->shadow += (uint64_t)nsh; ts->bsdfl += (uint64_t)nb;
+  for (i = 0; i < n; i++) { /* (the escaped BSDF rays gathered without branches: every lane written, the counts
+                              * moved by its flags; whether a ray escaped is a coin toss the branch predictor loses) */
+    int e = A->bsh[i], c = e & (l->product && A->has_n[i]);
+    float x = A->wbx[i], y = A->wby[i], z = A->wbz[i];
+    A->bpe[i] = 0.f; A->lbr[i] = A->lbg[i] = A->lbb[i] = 0.f;
+    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e;
+    dc[3 * nc] = x; dc[3 * nc + 1] = y; dc[3 * nc + 2] = z; kc[nc] = i;
+    nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
+    dm[3 * nm] = x; dm[3 * nm + 1] = y; dm[3 * nm + 2] = z; km[nm] = i; nm += e & !c;
+  }
+  if (nm > 0) el_envlight_pdf_li_n(l->env_sample, nm, dm, pq);
+  for (i = 0; i < nm; i++) A->bpe[km[i]] = pq[i];
+  if (nc > 0) el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
+  for (i = 0; i < nc; i++) A->bpe[kc[i]] = pq[i];
+  if (ne > 0) el_envlight_le_n(l->env, ne, de, Le);
+  for (i = 0; i < ne; i++) { A->lbr[ke[i]] = Le[3 * i]; A->lbg[ke[i]] = Le[3 * i + 1]; A->lbb[ke[i]] = Le[3 * i + 2]; }
+  for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (elr__direct_shade: Ld from 0, the light sample's term, then the BSDF sample's) */
+    int ul = A->sh[i], ub = A->bsh[i];
+    float lp = A->lpdf[i], wp = elr__ph_sel(lp, A->flpdf[i]), wl = A->lonly[i] ? 1.f : wp, sl = wl / lp;
+    float bp = A->bpdf[i], wb = elr__ph_sel(bp, A->bpe[i]), sb = wb / bp;
+    float ac = fabsf(A->wbx[i] * A->nx[i] + A->wby[i] * A->ny[i] + A->wbz[i] * A->nz[i]);
+    float tr = 0.f + A->flr[i] * A->llr[i] * sl, tg = 0.f + A->flg[i] * A->llg[i] * sl, tb = 0.f + A->flb[i] * A->llb[i] * sl;
+    float lr = ul ? tr : 0.f, lg = ul ? tg : 0.f, lb = ul ? tb : 0.f;
+    float br = lr + A->fbr[i] * ac * A->lbr[i] * sb, bg = lg + A->fbg[i] * ac * A->lbg[i] * sb, bb = lb + A->fbb[i] * ac * A->lbb[i] * sb;
+    A->flr[i] = ub ? br : lr; A->flg[i] = ub ? bg : lg; A->flb[i] = ub ? bb : lb;
+  }
+  for (i = 0; i < n; i++) W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
+}
+
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
  * in W->rays, traced): the hits' BSDF samples, light samples and environment lookups for the whole
  * wave, for each of the light's W->npair sample pairs (its "samples" count, or splitting's), then all
  * their shadow rays */
 static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
-  int j, k, n = 0, np = 0, nm = 0;
-  W->shadows.n = 0;
+  /* (W->A's lanes: a lone Lambertian lobe under the environment alone, one pair, MIS; elr__soa_add) */
+  const int soa = W->npair == 1 && C->light_sampling && C->ls == ELR_LS_MIS && !C->batch_light->portal && !C->sun;
+  int j, k, n = 0, np = 0, nm = 0, nesc = 0;
+  W->shadows.n = 0; W->A.n = 0;
   for (j = 0; j < m; j++) {
     elr_first *q = &W->f[j];
     elr_sampler *S = &W->S[W->pix[j]];
@@ -341,7 +588,8 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     q->h = &W->h[j]; /* (the pair loop below sets the light sampling's fields: elr_direct_first reads them nowhere else) */
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
-    if (!q->hit) continue;
+    if (!q->hit) { elr_to3(W->cam[j].d, &W->wi[3 * nesc]); W->escaped[nesc++] = j; W->fast[j] = 2; continue; } /* (its radiance below) */
+    if (soa && elr__soa_add(W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
     elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
@@ -377,8 +625,14 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       np++;
     }
   }
+  /* the camera rays that left the scene: their radiance, elr_direct_first's p.L + beta (0 + Le) (the
+   * environment is the only light that emits: elr_infinite_le's sum is its le), in one el_envlight_le_n
+   * call (the same bits as el_envlight_le each; their cache misses overlap) */
+  el_envlight_le_n(env, nesc, W->wi, W->Le);
+  for (k = 0; k < nesc; k++) W->Ld[W->escaped[k]] = elr_add(elr_v(0, 0, 0), elr_from3(&W->Le[3 * k]));
   /* the light samples */
   elr__env_samples(C->batch_light, n, W->u, W->normal, W->has_n, W->lpos, W->wi, W->Le, W->pdf, C->sun, W->sc, ts);
+  elr__soa_sample(C, W, ts);
   /* the shadow rays elr_direct_first will ask about: the light sample's when its BSDF value is not
    * black, the BSDF sample's (W->shadow, W->bshadow: their index in W->shadows) */
   for (k = 0; k < np; k++) {
@@ -398,6 +652,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wb), p->wb, INFINITY);
     }
   }
+  elr__soa_shadows(W);
   elr__occluded(C, &W->shadows, ts);
   for (k = 0; k < np; k++) {
     elr_first *p = W->pair[k];
@@ -435,6 +690,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     el_envlight_le_n(env, ne, de, Le);
     for (k = 0; k < ne; k++) W->pair[ke[k]]->Lb = elr_from3(&Le[3 * k]);
   }
+  elr__soa_shade(C, W, ts);
   elr__direct_shade(C, W, np, ts);
 }
 
@@ -657,7 +913,11 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
     for (j = 0; j < m; j++) {
       elr_v3 L;
       if (C->path) L = W->p[j].L;
-      else if (W->fast[j]) { /* elr_direct_first's sums: p.L + beta (0 + Ld / n) */
+      else if (W->fast[j] == 2) { /* (left the scene: elr_direct_first's p.L + beta Le, Le made above) */
+        elr_path_state ps;
+        elr_path_begin(&ps, &W->cam[j]);
+        L = elr_add(ps.L, elr_vmul(ps.beta, W->Ld[j]));
+      } else if (W->fast[j]) { /* elr_direct_first's sums: p.L + beta (0 + Ld / n) */
         elr_path_state ps;
         elr_path_begin(&ps, &W->cam[j]);
         L = elr_add(ps.L, elr_vmul(ps.beta, elr_add(elr_v(0, 0, 0), elr_mul(W->Ld[j], 1.f / (float)(C->direct_one ? 1 : C->batch_light->nsamples)))));

@@ -43,6 +43,7 @@ static unsigned elr__attach_spheres(RTCDevice dev, RTCScene sc, elr_sphere_set *
   RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_USER);
   unsigned id;
   rtcSetGeometryUserPrimitiveCount(g, (unsigned)n);
+  set->simd = elr_sphere_simd();
   rtcSetGeometryUserData(g, set);
   rtcSetGeometryBoundsFunction(g, elr_sphere_bounds, NULL);
   rtcSetGeometryIntersectFunction(g, elr_sphere_intersect);
@@ -100,6 +101,7 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
   if (!s->geom_kind || !s->geom_index) { snprintf(err, errlen, "out of memory"); return -1; }
   s->sphere_geom = ~0u;
   s->disk_geom = ~0u;
+  for (i = 0; i < s->nsph; i++) elr_sphere_prepare(&s->sph[i]); /* the callbacks' float copies */
   /* the world's meshes, one geometry each (a prototype's belong to its own scene, below) */
   for (i = 0; i < s->nmesh; i++) {
     unsigned id;
@@ -108,8 +110,9 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
     if (id == RTC_INVALID_GEOMETRY_ID) return -1;
     s->geom_kind[id] = 0; s->geom_index[id] = i;
   }
-  /* Spheres are the user geometry above (pbrt-v3's Sphere in object space, in double precision: any
-   * affine transform, so a non-uniform Scale gives an exact ellipsoid). With the environment variable
+  /* Spheres are the user geometry above (pbrt-v3's Sphere in object space, in float several rays at a
+   * time and in double where float is not enough, shapes.c: any affine transform, so a non-uniform
+   * Scale gives an exact ellipsoid). With the environment variable
    * ELR_EMBREE_SPHERES set, spheres whose object-to-world transform is a similarity (rotation, uniform
    * scale, translation) use Embree's RTC_GEOMETRY_TYPE_SPHERE_POINT instead; on the benchmark scene that
    * was not faster (830 vs 734 instructions per rtcIntersect1 under callgrind, and lower measured rates),
@@ -120,7 +123,11 @@ int elr_scene_build(elr_scene *s, char *err, size_t errlen) {
    * the image differs in the sphere's pixels by at most 4.6e-5 relative (Embree's float t before the
    * projection onto the sphere); on 200000 random rays at the bench sphere the hit distances differ by
    * at most 1.4e-6 relative, the normals by 4.4e-6, and no ray hits one and misses the other. Exact
-   * enough, but not faster: still not the default. */
+   * enough, but not faster: still not the default. Since the callbacks test 4 or 8 rays at once in
+   * float (issue 21), Embree and intersection take 764 instructions per camera sample on bench_city
+   * (direct, callgrind_parts.sh) against 1396 with ELR_EMBREE_SPHERES=1 on the same build. The scene's
+   * build quality (LOW instead of HIGH) and RTC_SCENE_FLAG_DYNAMIC change nothing there (764: a sphere
+   * and two triangles), RTC_SCENE_FLAG_COMPACT costs more (796): HIGH, no flags stay. */
   s->sph_builtin = (int *)calloc((size_t)s->nsph + 1, sizeof(int));
   if (!s->sph_builtin) { snprintf(err, errlen, "out of memory"); return -1; }
   s->builtin_geom = ~0u;

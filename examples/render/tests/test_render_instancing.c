@@ -8,9 +8,11 @@
  *      not the copies' (Embree intersects the instance in its own space, in float; the copies' vertices
  *      were transformed in double), so the images are compared within a stated bound, not bit for bit.
  *   2. Images: textured matte, glass and plastic, spheres and meshes (with normals), rotations, a
- *      non-uniform scale and a mirroring instance transform, path tracer: mean |difference| below 1e-4
+ *      non-uniform scale and a mirroring instance transform, path tracer: mean |difference| below 3e-4
  *      of the mean and 99.5% of the pixel channels within 1e-3 (a ray that grazes a silhouette may hit
- *      in one scene and miss in the other).
+ *      in one scene and miss in the other, and a path through glass may take another branch: each such
+ *      sample adds about 5e-5; over seeds 1 to 12 the mean |difference| was 3.4e-5 to 2.0e-4, with the
+ *      double-precision sphere callbacks as with the float ones, issue 21).
  *   3. One copy of the geometry: 100 instances of a 2048-triangle prototype keep one mesh and add less
  *      than 1 KiB of Embree memory per instance, where 100 copies add the whole mesh each time; a
  *      prototype that is never instanced is not built.
@@ -101,7 +103,7 @@ static void hits_and_images(void) {
         mean += b.rgb[k]; diff += d;
         close += d <= 1e-3 * fmax(1.0, b.rgb[k]);
       }
-      rt_check(diff < 1e-4 * mean && close >= n * 995 / 1000,
+      rt_check(diff < 3e-4 * mean && close >= n * 995 / 1000,
                "path-traced images: mean |difference| %.3g of the mean, %d of %d pixel channels within 1e-3", diff / mean, close, n);
       elr_image_free(&a); elr_image_free(&b);
     }

@@ -32,6 +32,8 @@
  *     And under that sun map (directlighting, path): the metal by the map alone, the diffuse vertices by
  *     product MIS (and, directlighting, split by the sun rule), against the map alone.
  *  3. The mirror's product against the map alone on one metal sphere (unbiased_mirror, below).
+ *  4. --env-sun-diffuse two (two_samples, below), and its image under the sun map against the map alone as in 2.
+ *     Seen to fail with each of the two samples weighted 1 instead of 1/2 (directlighting image mean z = 108).
  */
 #include "render_test_util.h"
 
@@ -296,6 +298,31 @@ static void unbiased_mirror(void) {
   elr_scene_free(s);
 }
 
+/* 4. --env-sun-diffuse two (ELR_ENVSD_TWO, issue 22's lit pixels): a matte sphere under the sun map takes two
+ * product light samples per camera sample (each counted, both "alone") and no BSDF-sampled ray; its
+ * unbiasedness is unbiased()'s under the sun map, called after this. The same for twopixel
+ * (ELR_ENVSD_TWO_PIXEL): every pixel of the lone sphere sees the sun or has it below its horizon. */
+static void two_samples(void) {
+  char err[512];
+  elr_image img;
+  elr_stats st;
+  char text[2048];
+  char *p;
+  elr_scene *s;
+  snprintf(text, sizeof text, "%s", one_sphere("Material \"matte\""));
+  if ((p = strstr(text, "sky.pfm")) != NULL) memcpy(p, "sun.pfm", 7);
+  if (!(s = rt_load("one.pbrt", text, err, sizeof err))) { rt_check(0, "load: %s", err); return; }
+  if (render(s, -1, -1.f, -1.f, 1, &img, &st) != 0) { rt_check(0, "render (two)"); elr_scene_free(s); return; }
+  rt_check(st.env_product_samples == 2 * st.samples && st.env_light_only_samples == 2 * st.samples && st.env_map_samples == 0 &&
+           st.bsdf_light_rays == 0, "matte under the sun map, --env-sun-diffuse %s: two product light samples per camera sample, "
+           "no BSDF ray (samples %llu: product %llu, alone %llu, map %llu; BSDF rays %llu)", g_sun_diffuse == ELR_ENVSD_TWO ? "two" : "twopixel",
+           (unsigned long long)st.samples,
+           (unsigned long long)st.env_product_samples, (unsigned long long)st.env_light_only_samples, (unsigned long long)st.env_map_samples,
+           (unsigned long long)st.bsdf_light_rays);
+  elr_image_free(&img);
+  elr_scene_free(s);
+}
+
 int main(void) {
   rt_mkdir("test_render_lobes");
   make_map();
@@ -310,6 +337,12 @@ int main(void) {
   unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
   unbiased("\"path\" \"integer maxdepth\" [ 3 ]", -1.f, -1.f, 0.02f);
   g_sun_diffuse = ELR_ENVSD_SUNCOS; /* (the sun rule splits the diffuse vertices) */
+  unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
+  g_sun_diffuse = ELR_ENVSD_TWO; /* (two product light samples at the diffuse vertices: two_samples checks it ran) */
+  two_samples();
+  unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
+  g_sun_diffuse = ELR_ENVSD_TWO_PIXEL; /* (the same, chosen per pixel) */
+  two_samples();
   unbiased("\"directlighting\"", -1.f, -1.f, 0.02f);
   g_sun_diffuse = -1;
   g_map = "sky.pfm";

@@ -15,7 +15,14 @@
  *  4. The render chose the wave loop (elr_stats.loop) where it should, and not where it should not (BSDF
  *     sampling only samples no light: the cases of 1. with it run the reference loop).
  *  5. Bit for bit on spheres alone with constant materials: the BSDFs the wave loop copies from one made
- *     per render (matte, Oren-Nayar, plastic, glass) and those it does not (anisotropic metal, substrate). */
+ *     per render (matte, Oren-Nayar, plastic, glass) and those it does not (anisotropic metal, substrate).
+ *  6. Bit for bit, with the same ray and strategy counts, on matte surfaces alone (the waves whose first
+ *     vertices render_wave.c shades in structure-of-arrays form, elr__soa_*; and the path tracer on
+ *     them) under a sun map: each way
+ *     diffuse vertices take it (the map alone with MIS, the product with MIS, the sun test choosing
+ *     per vertex, the product light sample alone), the map alone for every vertex, and a smooth map
+ *     (the product light sample alone); a matte of Kd 0 in one channel, a light of 2 samples (not shaded
+ *     there) and halton. */
 #include "render_test_util.h"
 
 static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
@@ -39,11 +46,12 @@ static elr_scene *load(const char *sampler, const char *integrator, const char *
 
 /* issue 20's per-lobe thresholds for the render below (-1: the defaults) */
 static float lobe_alpha = -1.f, light_alpha = -1.f;
+static int sun_diffuse = -1; /* (ELR_ENVSD_*; -1 the default) */
 static int render(elr_scene *s, int loop, int api, int ls, int nthreads, int spp, elr_image *img, elr_stats *st, char *err) {
   elr_render_options o;
   elr_render_options_default(&o);
   o.nthreads = nthreads; o.seed = 11; o.quiet = 1; o.loop = loop; o.wave_api = api; o.light_sampling = ls; o.spp = spp;
-  o.env_lobe_alpha = lobe_alpha; o.env_light_alpha = light_alpha;
+  o.env_lobe_alpha = lobe_alpha; o.env_light_alpha = light_alpha; o.env_sun_diffuse = sun_diffuse;
   return elr_render(s, &o, img, st, err, 512);
 }
 
@@ -200,6 +208,72 @@ int main(void) {
       } else rt_check(0, "constant-BSDF scene, %s: %s", integ[c], err);
       elr_scene_free(s);
     }
+  }
+  /* 6. matte alone (structure-of-arrays shading) under a sun map and a smooth one */
+  {
+    /* (expected: light samples of the product alone, of the map alone (with product sampling on), of product MIS) */
+    static const struct { const char *sampler, *light; int sun, sd; float light_alpha; int alone, map, mis, path; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 0},
+      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3", "", 1, ELR_ENVSD_MAP, -1.f, 0, 1, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 0},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, ELR_ENVSD_ALONE, -1.f, 1, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"string sampling\" \"map\"", 1, -1, -1.f, 0, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, -1, -1.f, 0, 0, 1, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 1, 0, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, -1, INFINITY, 0, 0, 1, 0},
+      /* the path tracer (never the light sample alone) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", " \"string sampling\" \"map\"", 0, -1, -1.f, 0, 0, 0, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 0, 0, 1, 1},
+    };
+    /* (a sun: one texel of a 512 x 256 map, where the sun test's share, ELR_ENV_SUN_AREA of the sphere, is a texel) */
+    static float env[3 * 512 * 256];
+    int c, i;
+    for (i = 0; i < 512 * 256; i++) env[3 * i] = env[3 * i + 1] = env[3 * i + 2] = 0.3f + 0.05f * (float)(i % 7);
+    env[3 * (60 * 512 + 90)] = env[3 * (60 * 512 + 90) + 1] = 2e5f; env[3 * (60 * 512 + 90) + 2] = 1.5e5f;
+    el_image_write_pfm(rt_path("sun.pfm"), env, 512, 256, 3, err, sizeof err);
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      static char buf[4096];
+      elr_scene *s;
+      elr_image ref, img;
+      elr_stats sr, st;
+      snprintf(buf, sizeof buf,
+               "LookAt 0 1.5 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 18\n%s\nIntegrator %s\n"
+               "WorldBegin\nAttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string mapname\" \"%s\"%s\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.2 0.6 0.3 ]\nTranslate 0.6 0.7 0.4\nShape \"sphere\" \"float radius\" 0.6\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
+               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\nWorldEnd\n",
+               cases[c].sampler, cases[c].path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light);
+      s = rt_load("wave_soa.pbrt", buf, err, 512);
+      if (!s) { rt_check(0, "matte scene %d: %s", c, err); continue; }
+      sun_diffuse = cases[c].sd; light_alpha = cases[c].light_alpha; lobe_alpha = -1.f;
+      if (render(s, ELR_LOOP_ONE, -1, -1, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &img, &st, err) == 0) {
+        size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+        for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
+        rt_check(st.loop == ELR_LOOP_WAVE && diff == 0 && st.shadow_rays == sr.shadow_rays && st.bsdf_light_rays == sr.bsdf_light_rays &&
+                     st.bounce_rays == sr.bounce_rays &&
+                     st.env_product_samples == sr.env_product_samples && st.env_map_samples == sr.env_map_samples &&
+                     st.env_light_only_samples == sr.env_light_only_samples,
+                 "matte case %d (%s%s, sun %d, diffuse %d): %zu of %zu values differ from the reference; shadow %llu/%llu, bsdf %llu/%llu, "
+                 "product %llu/%llu, map %llu/%llu, alone %llu/%llu",
+                 c, cases[c].sampler, cases[c].light, cases[c].sun, cases[c].sd, diff, n, (unsigned long long)st.shadow_rays,
+                 (unsigned long long)sr.shadow_rays, (unsigned long long)st.bsdf_light_rays, (unsigned long long)sr.bsdf_light_rays,
+                 (unsigned long long)st.env_product_samples, (unsigned long long)sr.env_product_samples,
+                 (unsigned long long)st.env_map_samples, (unsigned long long)sr.env_map_samples,
+                 (unsigned long long)st.env_light_only_samples, (unsigned long long)sr.env_light_only_samples);
+        /* (each way taken: a vertex of the light sample alone, of product MIS, of the map alone, as the case asks) */
+        rt_check((sr.env_light_only_samples > 0) == cases[c].alone && (sr.env_map_samples > 0) == cases[c].map &&
+                     (sr.env_product_samples > sr.env_light_only_samples) == cases[c].mis,
+                 "matte case %d: strategies product %llu, map %llu, alone %llu", c, (unsigned long long)sr.env_product_samples,
+                 (unsigned long long)sr.env_map_samples, (unsigned long long)sr.env_light_only_samples);
+        elr_image_free(&img); elr_image_free(&ref);
+      } else rt_check(0, "matte scene %d: %s", c, err);
+      elr_scene_free(s);
+    }
+    sun_diffuse = -1; light_alpha = -1.f;
   }
   return rt_finish("test_render_wave");
 }
