@@ -107,8 +107,8 @@
  * shadow 1.47x against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
  * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
  * shadowed 1.93x / 1.33x / 1.02x less variance at equal spp, lit 10.7x / 3.86x / 1.53x, the whole image 6.15x / 1.52x /
- * 1.41x; at equal time against the default's wave loop 2.78x / 0.71x / 0.59x (the CPU 2.22x, 2.15x, 2.39x), against the
- * default in the same one-sample loop (--loop-one) 4.74x / 1.22x / 1.02x (CPU 1.30x, 1.24x, 1.39x). At 64 spp (4 seeds):
+ * 1.41x; at equal time against the default's wave loop 2.32x / 0.71x / 0.51x (the CPU 2.64x, 2.14x, 2.75x), against the
+ * default in the same one-sample loop (--loop-one) 4.76x / 1.20x / 1.08x (CPU 1.29x, 1.27x, 1.31x). At 64 spp (4 seeds):
  * shadowed 2.17x / 1.46x / 0.83x, lit 11.5x / 3.81x / 1.19x, whole 6.61x / 1.66x / 1.12x at equal spp, 2.90x / 0.76x /
  * 0.43x at equal time against the wave default (before pdf_li_spot's early 0 far from the rectangle: on bench_city the
  * spot pdfs of the sky and BSDF samples were 7.3% of the cycles, then under 2%). So the split wins every scene's image at equal spp, and at equal time
