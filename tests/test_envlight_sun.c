@@ -344,6 +344,30 @@ static void spot_test(int kind, int rot, int comp) {
 }
 static void test_spot(void) {
   int kind;
+  { /* the other importance modes: spot k is sample_li_mix with its weight alone, bit for bit */
+    static float px[MAXWH * 3];
+    el_envlight l;
+    el_envlight_hotspots h;
+    int i, k, bad = 0;
+    make_map(MAP_TWO, px);
+    make_light(&l, px, 1);
+    el_envlight_hotspots_init(&h, &l, NULL);
+    for (k = 0; k < h.count; ++k)
+      for (i = 0; i < 1000; ++i) {
+        el_envlight_mix_weights w;
+        float u[2], wa[3], wb[3], ra[3], rb[3], pa, pb;
+        memset(&w, 0, sizeof w); w.spot[k] = 1.0f;
+        u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
+        el_envlight_sample_li_spot(&l, &h, k, u, wa, ra, &pa);
+        el_envlight_sample_li_mix(&l, &h, &w, u, wb, rb, &pb);
+        bad += memcmp(wa, wb, sizeof wa) || memcmp(ra, rb, sizeof ra) || memcmp(&pa, &pb, sizeof pa) || !(pa > 0) ||
+               el_envlight_pdf_li_spot(&l, &h, k, wa) != el_envlight_pdf_li_mix(&l, &h, &w, wa);
+      }
+    check(h.count == 2 && bad == 0, "spot two suns, the default importance, rotated: sample_li_spot / pdf_li_spot are sample_li_mix / pdf_li_mix "
+          "with the spot's weight alone (%d of %d differ)", bad, 1000 * h.count);
+    el_envlight_hotspots_free(&h);
+    el_envlight_free(&l);
+  }
   for (kind = 0; kind < SPOT_KINDS; ++kind) spot_test(kind, kind == MAP_SEAM || kind == SPOT_HORIZON, 0);
   spot_test(MAP_TWO, 1, 0);
   spot_test(SPOT_HORIZON, 0, 1);
