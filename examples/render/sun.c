@@ -109,9 +109,10 @@
  * shadowed 1.93x / 1.33x / 1.02x less variance at equal spp, lit 10.7x / 3.86x / 1.53x, the whole image 6.15x / 1.52x /
  * 1.41x; at equal time against the default's wave loop 2.32x / 0.71x / 0.51x (the CPU 2.64x, 2.14x, 2.75x), against the
  * default in the same one-sample loop (--loop-one) 4.76x / 1.20x / 1.08x (CPU 1.29x, 1.27x, 1.31x). At 64 spp (4 seeds):
- * shadowed 2.17x / 1.46x / 0.83x, lit 11.5x / 3.81x / 1.19x, whole 6.61x / 1.66x / 1.12x at equal spp, 2.90x / 0.76x /
- * 0.43x at equal time against the wave default (before pdf_li_spot's early 0 far from the rectangle: on bench_city the
- * spot pdfs of the sky and BSDF samples were 7.3% of the cycles, then under 2%). So the split wins every scene's image at equal spp, and at equal time
+ * shadowed 2.17x / 1.46x / 0.83x, lit 11.5x / 3.81x / 1.19x, whole 6.61x / 1.66x / 1.12x at equal spp, 2.58x / 0.74x /
+ * 0.39x at equal time against the wave default (pdf_li_spot answers 0 at once far from the rectangle: on bench_city the
+ * spot pdfs of the sky and BSDF samples were 7.3% of the cycles before, under 2% after). The city's shadow loses at
+ * 64 spp (0.83x): there the spot sample is wasted and the default's BSDF sample already finds the sky (A3.14). So the split wins every scene's image at equal spp, and at equal time
  * the porch and the city lose mainly to the one-sample loop; off by default until the wave loop draws two light samples.
  * Before el_envlight_sample_li_spot (the same bench): the map's density (sample_li) kept only inside the spots' cones
  * widened 10% where the spots held half the power (sunrise.hdr: 0.75 of its draws reached the cone), else the spots'
