@@ -807,13 +807,15 @@ class OursRunner:
         self.args, self.workdir = args, workdir
         self.fixed = {}
 
-    def render(self, scene_file, spp, seed, sampler, env_sampling=None):
-        """(image, CPU s of the render loop, CPU s of the whole process); the fixed costs from --stats"""
+    def render(self, scene_file, spp, seed, sampler, env_sampling=None, extra=()):
+        """(image, CPU s of the render loop, CPU s of the whole process); the fixed costs from --stats;
+        extra: more render options (--variant)"""
         out = os.path.join(self.workdir, "o.exr")
         cmd = [self.args.render, scene_file, "--spp", str(spp), "--nthreads", str(self.args.threads),
                "--quiet", "--stats", "--seed", str(seed), "--outfile", out, "--sampler", sampler]
         if env_sampling:
             cmd += ["--env-sampling", env_sampling]
+        cmd += list(extra)
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, capture_output=True, text=True)
         r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -908,6 +910,12 @@ def variance_mode(args):
                      ("mitsuba", "stratified 4/4", "direct", "stratified", 4)]
     if args.map_too:
         cfgs += [("ours", "%s 1/1, map alone" % ld, None, ld, 1)]
+    variant_opts = {}  # --variant NAME=OPTIONS: ours with more render options, direct lighting, both samplers
+    for v in args.variant:
+        name, _, opts = v.partition("=")
+        for smp in ("random", ld):
+            cfgs += [("ours", "%s 1/1 %s" % (smp, name), "direct", smp, 1)]
+            variant_opts["%s 1/1 %s" % (smp, name)] = opts.split()
     print("variance mode: %s x %s, spp %s, %d seeds per configuration, %d threads, path maxdepth %d; Mitsuba %s %s; "
           "load average %.2f %.2f %.2f" % (("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
                                             ",".join(map(str, spps)), seeds, args.threads, maxdepth, mi.__version__, variant)
@@ -942,7 +950,7 @@ def variance_mode(args):
                             img, cpu = mr.render(mr.scene(sc_key, sc, integ, c[4], c[3], maxdepth), spp, r + 1)
                         else:
                             env = "map" if "map alone" in c[1] else None
-                            img, cpu, _ = ours.render(files[c[4]], spp, r + 1, c[3], env)
+                            img, cpu, _ = ours.render(files[c[4]], spp, r + 1, c[3], env, variant_opts.get(c[1], ()))
                         imgs.setdefault(c[1], []).append(img)
                         cpus.setdefault(c[1], []).append(cpu)
                 for c in mine:
@@ -974,6 +982,16 @@ def variance_mode(args):
                 rows.append([sc_key, integ, spp, "%.2f" % (g("ours", "random 1/1") / g("mitsuba", "independent 1/1")),
                              "%.2f" % (g("ours", "%s 1/1" % ld) / g("mitsuba", "multijitter 1/1"))])
     print(fmt_table(rows, ["map", "integrator", "spp", "random / independent", "%s / multijitter" % ld]))
+    for v in args.variant:  # the same ratios for each --variant (its options replace the default's strategy)
+        name = v.partition("=")[0]
+        rows = []
+        for sc_key, _ in VAR_SCENES:
+            for spp in spps:
+                g = lambda side, cfg: results.get((sc_key, "direct", spp, side, cfg), (float("nan"),))[0]
+                rows.append([sc_key, "direct", spp, "%.2f" % (g("ours", "random 1/1 " + name) / g("mitsuba", "independent 1/1")),
+                             "%.2f" % (g("ours", "%s 1/1 %s" % (ld, name)) / g("mitsuba", "multijitter 1/1"))])
+        print("\n(a) for --variant %s" % v)
+        print(fmt_table(rows, ["map", "integrator", "spp", "random / independent", "%s / multijitter" % ld]))
     print("\n(b) equal time: cost (relvar x CPU s) of our best configuration over Mitsuba's best "
           "(issue 14's target <= 0.5)")
 
@@ -1109,6 +1127,9 @@ def main():
     ap.add_argument("--quick", action="store_true", help="160x120, 16 and 64 spp, 2 seeds, fewer configurations")
     ap.add_argument("--seeds", type=int, default=3, help="seeds per configuration in the variance modes")
     ap.add_argument("--our-sampler", default="zsobol", help="our low-discrepancy sampler in the variance mode")
+    ap.add_argument("--variant", action="append", default=[],
+                    help="variance mode: NAME=OPTIONS, ours with more render options (direct lighting, random and the "
+                         "low-discrepancy sampler), e.g. 'twopixel=--env-sun-diffuse twopixel'; in (b)'s best and its own (a)")
     ap.add_argument("--map-too", action="store_true", help="variance mode: also ours with the map alone (no product)")
     ap.add_argument("--var-res", type=int, nargs=2, default=None,
                     help="resolution of the variance modes (default: the scene's, 320x240; --sampler-variance 320x240)")
