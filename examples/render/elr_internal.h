@@ -126,9 +126,10 @@ typedef struct elr_sphere {
   int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
   int object;    /* -1, or the prototype it belongs to */
   /* the intersection callbacks' (elr_sphere_prepare): the centre wc in o2w's target space (in float), o2w.inv's
-   * 3x3 with wc's place in object space as the fourth column, radius^2; sim: o2w is a similarity, of scale wr / radius */
+   * 3x3 with wc's place in object space as the fourth column, radius^2; sim: o2w is a similarity, of scale wr / radius;
+   * dbl: every ray in double (radius^2 or a r^2 out of float's comfortable range: shapes.c) */
   float wc[3], w2o[12], r2, wr;
-  int sim;
+  int sim, dbl;
 } elr_sphere;
 
 /* pbrt-v3's Disk (shapes/disk.cpp): the annulus innerradius <= r <= radius, 0 <= phi <= phimax, at
