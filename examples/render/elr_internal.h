@@ -192,9 +192,9 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * map's (le()'s patch density) and its cosine still helps where the sun is high */
 /* ELR_ENVSD_TWO (issue 22's lit pixels, bench/ld_lit.py): directlighting spends the BSDF sample's numbers and ray
  * on a second product light sample (each weighted 1/2; elr_env_two), the reference loop only (render.c) */
-/* ELR_ENVSD_TWO_PIXEL: the same per pixel: its first such vertex takes product MIS and a shadow ray towards the
- * sun's axis; the pixel's later ones take the two samples if that ray saw the sun (or the sun lay below the
- * vertex's horizon), product MIS otherwise */
+/* ELR_ENVSD_TWO_PIXEL: the same per pixel, chosen before its samples (render.c's elr__two_pixel: the camera ray
+ * through its centre and a shadow ray towards the sun's axis): the two samples where that ray misses the scene,
+ * its hit sees the sun or has it below the geometric horizon, product MIS where the scene hides the sun */
 enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3, ELR_ENVSD_TWO = 4, ELR_ENVSD_TWO_PIXEL = 5 };
 #define ELR_ENV_SUN_COS 0.5f
 #define ELR_ENV_SUN_DIFFUSE ELR_ENVSD_PRODUCT
@@ -935,8 +935,8 @@ typedef struct elr_tstats { /* one thread's counts */
                         sun cache knows, of them where it lowered the spots' weight (and where it saw no spot), and of
                         the looked-up ones those that landed in a spot's cone */
   uint64_t sunsplit_vertices, sunsplit_sky_only; /* --sun split: vertices split, of them with every spot below the horizon */
-  int env_two_pixel; /* ELR_ENVSD_TWO_PIXEL: the current pixel's choice (-1: not made yet; 1 two product samples, 0 MIS),
-                        reset by the reference loop at each pixel (integrator.c's elr_estimate_direct makes it) */
+  int env_two_pixel; /* ELR_ENVSD_TWO_PIXEL: the current pixel's choice (1 two product samples, 0 MIS), made by the
+                        reference loop at each pixel (render.c's elr__two_pixel), read by integrator.c's elr_estimate_direct */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
