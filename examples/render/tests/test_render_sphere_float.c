@@ -240,6 +240,31 @@ int main(void) {
     printf("  sphere %d (radius %g at %g from the origin): t error up to %.2g relative, %.1f float ulps of the scale; point %.2g radii, "
            "normal %.2g\n", si, R, cmax, sdt[si], sdr[si], sdp[si], sdn[si]);
   }
+  { /* 6. rays from the centre (a camera or a light inside a sphere): every one hits, t as the reference's, every width */
+    long centre_bad = 0, centre_n = 0;
+    for (si = 0; si < NSPH; si++) {
+      const elr_sphere *sp = &s->sph[si];
+      long double zero[3] = {0, 0, 0}, pw[3], nw[3];
+      obj_to_world(sp, zero, pw, nw);
+      for (i = 0; i < 64; i += 16) {
+        ray_t rr[16];
+        float buf[9 * 16], t[16];
+        int valid[16];
+        unsigned bits;
+        for (k = 0; k < 16; k++) { long double d[3]; unit(&g, d); set_ray(&rr[k], pw, d); valid[k] = -1; }
+        pack(rr, 16, buf);
+        for (w = 0; w <= simd; w++) {
+          bits = elr_sphere_hit_rays(sp, w, buf, 16, 0, valid, t);
+          for (k = 0; k < 16; k++) {
+            long double rdisc, tr = ref_hit(sp, &rr[k], &rdisc);
+            centre_n++;
+            centre_bad += !(bits >> k & 1) || !(tr > 0) || fabsl(t[k] - tr) > 1e-5L * tr;
+          }
+        }
+      }
+    }
+    rt_check(centre_bad == 0 && centre_n > 0, "rays from each sphere's centre hit it at the reference's t (within 1e-5): %ld of %ld not", centre_bad, centre_n);
+  }
   rt_check(mism_width == 0, "every width (and a ray alone) gives the same hits and the same t bit for bit: %ld differences", mism_width);
   rt_check(mism_ref == 0 && hits > NRAYS / 4,
            "hit or miss as the long double reference: %ld disagreements in %d rays (%ld hits; %ld ties within 1e-9 of grazing left out; "
