@@ -236,6 +236,7 @@ static int elr__sph_ray(const elr_sphere *sp, const float *ray, size_t N, float 
 static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *ray, size_t N, const int *valid, float *t) {
   int hit, redo;
   unsigned k;
+  (void)W; /* (without SIMD: one ray, whatever W) */
 #if defined(ELR_SPHERE_SIMD)
   if (W == 8) hit = elr__sph_hit_avx(sp, ray, N, valid, t, &redo);
   else if (W == 4) hit = elr__sph_hit_sse2(sp, ray, N, valid, t, &redo);
