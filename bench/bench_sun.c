@@ -22,6 +22,9 @@
  * 4. Cost: ns per sample of sample_li and sample_li_mix (spots 0.02) with radiance on the sunrise map,
  *    best of 5 interleaved rounds of 2^20 (the machine is shared: read ratios), and the bytes of the
  *    hot-spot tables.
+ * 5. Importance BILINEAR (le()'s patches, the render's density under a sun): the hot spots found on the
+ *    same maps at the default min_radiance, and ns per sample of sample_li and el_envlight_sample_li_spot
+ *    (the largest spot's patch rectangle) with radiance, and of pdf_li and pdf_li_spot, on the sunrise map.
  */
 #define _POSIX_C_SOURCE 200809L
 #define EL_IMPLEMENTATION
@@ -218,6 +221,46 @@ static void cost(const el_envlight *l) {
   free(u);
 }
 
+static void cost_spot(const float *px) {
+  el_envlight l;
+  el_envlight_options o;
+  el_envlight_hotspots h;
+  float *u = (float *)malloc(sizeof(float) * 2 * (1 << 20)), d[3];
+  double best[4] = {1e30, 1e30, 1e30, 1e30}, sink = 0;
+  int round, which, i, n = 1 << 20;
+  memset(&o, 0, sizeof o);
+  o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  if (!u || el_envlight_init(&l, px, GW, GH, 3, &o) != EL_SUCCESS) { free(u); return; }
+  el_envlight_hotspots_init(&h, &l, NULL);
+  for (i = 0; i < 2 * n; ++i) u[i] = rng_f(&g_rng);
+  for (round = 0; round < 5 && h.count > 0; ++round)
+    for (which = 0; which < 4; ++which) {
+      double t0 = wall_now(), t;
+      for (i = 0; i < n; ++i) {
+        float wi[3], rgb[3], pdf;
+        if (which == 0) el_envlight_sample_li(&l, u + 2 * i, wi, rgb, &pdf);
+        else if (which == 1) el_envlight_sample_li_spot(&l, &h, 0, u + 2 * i, wi, rgb, &pdf);
+        else { /* (the pdfs at the directions of sample_li_spot's samples: u reused as a direction's angles) */
+          float ph = 6.2831853f * u[2 * i], z = 0.9f + 0.1f * u[2 * i + 1], r = sqrtf(1 - z * z), a[3];
+          a[0] = r * cosf(ph); a[1] = r * sinf(ph); a[2] = z; /* (around +z; then onto the spot's axis below) */
+          d[0] = a[0] + 8 * h.spot[0].axis[0]; d[1] = a[1] + 8 * h.spot[0].axis[1]; d[2] = a[2] + 8 * h.spot[0].axis[2];
+          pdf = which == 2 ? el_envlight_pdf_li(&l, d) : el_envlight_pdf_li_spot(&l, &h, 0, d);
+          rgb[0] = 0;
+        }
+        sink += pdf + rgb[0];
+      }
+      t = (wall_now() - t0) / n * 1e9;
+      if (t < best[which]) best[which] = t;
+    }
+  if (h.count > 0)
+    printf("5. importance BILINEAR on the sunrise map (best of 5 interleaved rounds of 2^20): sample_li + radiance %.0f ns, sample_li_spot + "
+           "radiance %.0f ns (%.2fx); pdf_li %.0f ns, pdf_li_spot %.0f ns (%.2fx) near the spot; its rectangle %d x %d patches [%g]\n",
+           best[0], best[1], best[1] / best[0], best[2], best[3], best[3] / best[2], h.prect[0][2], h.prect[0][3], sink > 0 ? 0.0 : 1.0);
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&l);
+  free(u);
+}
+
 int main(int argc, char **argv) {
   static const char *maps[5] = {"city", "forest", "night", "studio", "sunset"};
   const float thr[5] = {10, 30, 100, 300, 1000};
@@ -235,11 +278,23 @@ int main(int argc, char **argv) {
       if (el_image_load(path, &im, err, sizeof err) != 0) { printf("%s: %s\n", maps[mi], err); continue; }
     }
     have[mi] = el_envlight_init(&ls[mi], im.pixels, im.width, im.height, im.channels, NULL) == EL_SUCCESS;
+    { /* 5.: the same map under importance BILINEAR */
+      el_envlight lb;
+      el_envlight_options o;
+      memset(&o, 0, sizeof o);
+      o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+      if (el_envlight_init(&lb, im.pixels, im.width, im.height, im.channels, &o) == EL_SUCCESS) {
+        printf("importance BILINEAR: ");
+        spots_line(maps[mi], &lb, 100);
+        el_envlight_free(&lb);
+      }
+    }
     el_image_free(&im);
   }
   for (mi = 0; mi < G_COUNT; ++mi) {
     make_map(mi, px);
     el_envlight_init(&lg[mi], px, GW, GH, 3, NULL);
+    if (mi == G_SUNRISE) cost_spot(px);
   }
   printf("1. hot spots (min_share 0.05, max_half_angle 11.5 deg; share/half-angle/bins per spot), by min_radiance\n");
   for (t = 0; t < 5; ++t) {

@@ -10,11 +10,12 @@
  *   bench_sun_render [--csv] [--split] [--loop-one] ...   --split: --sun split (sun.c: one spot and one sky sample per
  *                    diffuse vertex, the one-sample loop) in place of --sun on; --loop-one: every render in the one-sample loop
  *                    (the default's wave loop left out of the comparison); --pbrt-v3: every render with pbrt-v3's importance
- *                    map (the default under a sun is le()'s patch density, on which no hot spot is found); --random: the
+ *                    map (the default under a sun is le()'s patch density); --random: the
  *                    independent sampler (pbrt's "random") in place of the scenes'
  *   bench_sun_render --shadow-point   the library alone at one shadowed ground point: which density pays
  *                    (light sample alone, and with a cosine BSDF sample), see shadow_point below
- *   bench_sun_render --lit-point   the library alone at one lit ground point: --sun split's estimator against the
+ *   bench_sun_render --lit-point [MAP]   the library alone at one lit ground point (MAP: sunrise or city, data/envmaps):
+ *                    --sun split's estimator against the
  *                    default's, per term (lit_point below)
  *   bench_sun_render --picture [OUT.png]   where 2000 light samples of a shadowed ground point land, without
  *                    and with the cache (the course's appendix, A3.14)
@@ -202,24 +203,29 @@ static int shadow_point(void) {
  * bins (pbrt-v3's); a sky sample, the rest x cosine; the BSDF sample; the power heuristic over the three), and
  * each term's share: the sun's cone (the spot and the BSDF sample there) and the rest. Last, what a spot sampler
  * over le()'s patches would give (not in the library): the patches renormalised to the cone, drawn by rejection,
- * their probability of the cone estimated from 2^22 draws (a diagnostic: its error, 2e-4, biases the mean). */
-static int lit_point(void) {
+ * their probability of the cone estimated from 2^22 draws (a diagnostic: its error, 2e-4, biases the mean); and
+ * that sampler as the library now has it, exact: el_envlight_sample_li_spot (le()'s patches renormalised to a
+ * rectangle of patches around the cone, the hot spots of the BILINEAR light itself); last, that spot sampler with the
+ * sky drawn by product sampling over the patches (sample_li_cos, the sun included) instead of the rest x cosine. */
+static int lit_point(const char *map) { /* map: an .hdr under data/envmaps (sunrise by default) */
   el_image img;
   el_envlight lp, lb;
   el_envlight_options o;
-  el_envlight_hotspots h;
+  el_envlight_hotspots h, hb;
   el_envlight_mix_weights wr;
   char err[256];
   const float n[3] = {0, 0, 1};
   int way, i, N = 1 << 18;
   float ch;
   double pcone;
-  if (el_image_load(EL_SOURCE_DIR "/data/envmaps/sunrise.hdr", &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
+  char path[512];
+  snprintf(path, sizeof path, "%s/data/envmaps/%s.hdr", EL_SOURCE_DIR, map);
+  if (el_image_load(path, &img, err, sizeof err) != 0) { fprintf(stderr, "%s\n", err); return 1; }
   memset(&o, 0, sizeof o);
   o.importance = EL_ENVLIGHT_IMPORTANCE_PBRT_V3;
   if (el_envlight_init(&lp, img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS || el_envlight_hotspots_init(&h, &lp, NULL) != EL_SUCCESS || h.count != 1) return 1;
   o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
-  if (el_envlight_init(&lb, img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS) return 1;
+  if (el_envlight_init(&lb, img.pixels, img.width, img.height, 3, &o) != EL_SUCCESS || el_envlight_hotspots_init(&hb, &lb, NULL) != EL_SUCCESS || hb.count != 1) return 1;
   memset(&wr, 0, sizeof wr);
   wr.rest = 1.f;
   ch = cosf(1.1f * h.spot[0].half_angle + 1e-3f);
@@ -234,9 +240,9 @@ static int lit_point(void) {
     }
     pcone = (double)in / M;
   }
-  printf("LIT (sunrise.hdr, normal up, nothing in the way; the patches put %.3f in the cone): variance per camera sample [sun's cone | rest]\n", pcone);
-  for (way = 0; way < 4; way++) {
-    const el_envlight *ls = way == 1 || way == 3 ? &lb : &lp;
+  printf("LIT (%s.hdr, normal up, nothing in the way; the patches put %.3f in the cone): variance per camera sample [sun's cone | rest]\n", map, pcone);
+  for (way = 0; way < 6; way++) {
+    const el_envlight *ls = way == 1 || way >= 3 ? &lb : &lp;
     double s1 = 0, s2 = 0, c1[2] = {0, 0}, c2[2] = {0, 0};
     g_rng.s = 88172645463325252ULL;
     for (i = 0; i < N; i++) {
@@ -257,12 +263,15 @@ static int lit_point(void) {
             uu[0] = frand(); uu[1] = frand();
           }
           pdf = (float)(pdf / pcone);
-        } else if (t == 0) { el_envlight_sample_li(ls, u, wi, L, &pdf); if (wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] < ch) pdf = 0; }
+        } else if (t == 0 && way >= 4) el_envlight_sample_li_spot(&lb, &hb, 0, u, wi, L, &pdf);
+        else if (t == 1 && way == 5) el_envlight_sample_li_cos(&lb, n, u3, wi, L, &pdf); /* (the sky by product sampling: sun included) */
+        else if (t == 0) { el_envlight_sample_li(ls, u, wi, L, &pdf); if (wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] < ch) pdf = 0; }
         else el_envlight_sample_li_mix_cos(&lp, &h, &wr, n, u3, wi, L, &pdf);
         if (!(pdf > 0) || wi[2] <= 0) continue;
         inc = wi[0] * h.spot[0].axis[0] + wi[1] * h.spot[0].axis[1] + wi[2] * h.spot[0].axis[2] >= ch;
         pc = wi[2] / M_PI;
-        po = way == 0 ? 0 : t == 0 ? el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, wi) : inc ? el_envlight_pdf_li(ls, wi) / (way == 3 ? pcone : 1.0) : 0;
+        po = way == 0 ? 0 : t == 0 ? (way == 5 ? el_envlight_pdf_li_cos(&lb, n, wi) : el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, wi)) : way >= 4 ? el_envlight_pdf_li_spot(&lb, &hb, 0, wi)
+             : inc ? el_envlight_pdf_li(ls, wi) / (way == 3 ? pcone : 1.0) : 0;
         fc[!inc] += L[1] * wi[2] / M_PI / pdf * ((double)pdf * pdf / ((double)pdf * pdf + po * po + pc * pc));
       }
       { /* the BSDF sample */
@@ -272,7 +281,7 @@ static int lit_point(void) {
         pb = d[2] / M_PI;
         inc = d[0] * h.spot[0].axis[0] + d[1] * h.spot[0].axis[1] + d[2] * h.spot[0].axis[2] >= ch;
         if (way == 0) pl = el_envlight_pdf_li_cos(&lp, n, d);
-        else { double a = el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, d), b = inc ? el_envlight_pdf_li(ls, d) / (way == 3 ? pcone : 1.0) : 0; pl = sqrt(a * a + b * b); }
+        else { double a = way == 5 ? el_envlight_pdf_li_cos(&lb, n, d) : el_envlight_pdf_li_mix_cos(&lp, &h, &wr, n, d), b = way >= 4 ? el_envlight_pdf_li_spot(&lb, &hb, 0, d) : inc ? el_envlight_pdf_li(ls, d) / (way == 3 ? pcone : 1.0) : 0; pl = sqrt(a * a + b * b); }
         if (pb > 0) { el_envlight_le(&lp, d, Lb); fc[!inc] += Lb[1] * d[2] / M_PI / pb * (pb * pb / (pb * pb + pl * pl)); }
       }
       f = fc[0] + fc[1];
@@ -281,10 +290,11 @@ static int lit_point(void) {
     }
     printf("  %-58s mean %.5g  variance %.4g [%.4g | %.4g]\n",
            way == 0 ? "default: sample_li_cos + BSDF" : way == 1 ? "split: the patches in the cone + rest x cosine + BSDF"
-           : way == 2 ? "split: the bins in the cone + rest x cosine + BSDF" : "split: the patches renormalised to the cone (rejection) + ...",
+           : way == 2 ? "split: the bins in the cone + rest x cosine + BSDF" : way == 3 ? "split: the patches renormalised to the cone (rejection) + ..."
+           : way == 4 ? "split: sample_li_spot (the patches' rectangle) + ..." : "sample_li_spot + product sampling (patches x cos) + BSDF",
            s1 / N, s2 / N - (s1 / N) * (s1 / N), c2[0] / N - (c1[0] / N) * (c1[0] / N), c2[1] / N - (c1[1] / N) * (c1[1] / N));
   }
-  el_envlight_hotspots_free(&h);
+  el_envlight_hotspots_free(&h); el_envlight_hotspots_free(&hb);
   el_envlight_free(&lp); el_envlight_free(&lb);
   el_image_free(&img);
   return 0;
@@ -293,7 +303,7 @@ static int lit_point(void) {
 #define CPU_ROUNDS 5
 int main(int argc, char **argv) {
   if (argc > 1 && !strcmp(argv[1], "--shadow-point")) return shadow_point();
-  if (argc > 1 && !strcmp(argv[1], "--lit-point")) return lit_point();
+  if (argc > 1 && !strcmp(argv[1], "--lit-point")) return lit_point(argc > 2 ? argv[2] : "sunrise");
   if (argc > 1 && !strcmp(argv[1], "--picture")) return picture(argc > 2 ? argv[2] : "out/03-sun-samples.png");
   static const char *defaults[3] = {"scenes/sun_shadow_object.pbrt", "scenes/sun_porch.pbrt", "scenes/bench_city.pbrt"};
   int csv = argc > 1 && !strcmp(argv[1], "--csv"), cmp = 1; /* cmp: the env_sun compared with off (1 on, 2 split) */

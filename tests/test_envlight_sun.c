@@ -4,8 +4,8 @@
  *
  *   1. detection: two suns, a sun at the pole, a sun across the seam, a sun of one texel, each found
  *      where it was put (the cone holds the sun's true direction, is a few bins wide) with a share that
- *      matches the frequency with which sample_li lands in the cone; no sun, a constant light, a black map
- *      and importance BILINEAR: no spot;
+ *      matches the frequency with which sample_li lands in the cone; no sun, a constant light, a black map:
+ *      no spot; importance BILINEAR: its spot, and the mixture samplers are sample_li there;
  *   2. default weights (all zero, NULL, NaN, negative, infinite, all-zero sum): sample_li_mix is
  *      sample_li and pdf_li_mix is pdf_li, bit for bit; explicit weights equal to the shares give pdf_li
  *      to 1e-6;
@@ -23,7 +23,13 @@
  *   6. cells of more than 256 bins a side (8208 x 32 and 128 x 4104 maps), where the rest x cosine tables
  *      have no guide and are searched by bisection: chi-square over every bin, sampled pdf == pdf_li_mix_cos,
  *      unbiasedness, hostile u, normals, directions and weights 0 and 1; that such cells exist is read from
- *      el_envlight_hotspots' private cell_u0 / cell_v0 (the one white-box check here).
+ *      el_envlight_hotspots' private cell_u0 / cell_v0 (the one white-box check here);
+ *   7. importance BILINEAR's spots, sample_li_spot / pdf_li_spot: on two suns, a sun at the pole, across the
+ *      seam, of one texel (and at 1e12), a weak (city-like) and a horizon (sunrise-like) sun, 128 x 64 and
+ *      512 x 256 (the fast path), rotated, compensated: chi-square over le()'s patches split 2 x 2 (the
+ *      expected mass of a quarter: pdf x sin(theta) at its centre, exact for the bilinear density), the pdf
+ *      integrating to 1, the sampled pdf == pdf_li_spot bit for bit, pdf 0 a few texels beyond the cone and
+ *      > 0 all over it, the mean of lum(le) / pdf against a quadrature over the rectangle, hostile inputs.
  */
 #define EL_IMPLEMENTATION
 #include "envlight.h"
@@ -153,7 +159,7 @@ static void test_detection(void) {
       el_envlight_hotspots_free(&h);
       el_envlight_free(&l);
     }
-  { /* no spot: a constant light, a black map, importance BILINEAR (a sun, but not piecewise constant) */
+  { /* no spot: a constant light, a black map; importance BILINEAR: its spots (section 7), no mixture */
     el_envlight l;
     el_envlight_hotspots h;
     el_envlight_options o;
@@ -169,9 +175,207 @@ static void test_detection(void) {
     memset(&o, 0, sizeof o);
     o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
     el_envlight_init(&l, px, W, H, 3, &o);
-    check(el_envlight_hotspots_init(&h, &l, NULL) == EL_SUCCESS && h.count == 0, "importance BILINEAR: no spot (not supported)");
+    { /* the mixture samplers are sample_li there (no mixture tables), bit for bit */
+      float u[2] = {0.3f, 0.7f}, wa[3], wb[3], pa, pb;
+      el_envlight_mix_weights mw;
+      memset(&mw, 0, sizeof mw); mw.spot[0] = 1.0f;
+      el_envlight_hotspots_init(&h, &l, NULL);
+      el_envlight_sample_li_mix(&l, &h, &mw, u, wa, NULL, &pa);
+      el_envlight_sample_li(&l, u, wb, NULL, &pb);
+      check(h.count == 1 && !memcmp(wa, wb, sizeof wa) && !memcmp(&pa, &pb, sizeof pa) &&
+            el_envlight_pdf_li_mix(&l, &h, &mw, wa) == el_envlight_pdf_li(&l, wa),
+            "importance BILINEAR: its one spot found (%d), sample_li_mix / pdf_li_mix are sample_li / pdf_li", h.count);
+    }
     el_envlight_hotspots_free(&h); el_envlight_free(&l);
   }
+}
+
+/* ---- 7. importance BILINEAR: sample_li_spot / pdf_li_spot (NOTES ON HOT SPOTS 6) ---- */
+enum { SPOT_1E12 = MAP_COUNT, SPOT_WEAK, SPOT_HORIZON, SPOT_KINDS };
+static const char *spot_name(int kind) {
+  return kind == SPOT_1E12 ? "one texel at 1e12" : kind == SPOT_WEAK ? "weak sun (city-like)" : kind == SPOT_HORIZON ? "sunrise-like" : map_name[kind];
+}
+static void spot_map(int kind, float *px) {
+  int c, x, y;
+  make_map(kind < MAP_COUNT ? kind : MAP_NONE, px);
+  for (c = 0; c < 3; ++c) {
+    if (kind == SPOT_1E12) px[3 * (12 * W + 70) + c] = 1e12f;
+    if (kind == SPOT_WEAK) for (y = 20; y < 22; ++y) for (x = 40; x < 42; ++x) px[3 * (y * W + x) + c] = 250.0f;
+    if (kind == SPOT_HORIZON) for (y = H / 2 - 4; y < H / 2 - 1; ++y) for (x = 10; x < 13; ++x) px[3 * (y * W + x) + c] = 1e4f;
+  }
+}
+/* where a light-space direction falls: patch column (texel centres i .. i + 1), patch row (h + 1 rows, the
+ * pole rows half), each split 2 x 2: the bin index in (2 W) x (2 (H + 1)) */
+static int patch_bin(const float d[3]) {
+  double u = atan2((double)d[1], (double)d[0]) / (2 * PI), v = acos(d[2] / sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2])) / PI;
+  double pu, pv;
+  int i, r, a, b;
+  if (u < 0) u += 1;
+  pu = u * W - 0.5; if (pu < 0) pu += W;
+  i = (int)pu; if (i >= W) i = W - 1;
+  if (v < 0.5 / H) { r = 0; pv = v * 2 * H; }
+  else if (v >= 1 - 0.5 / H) { r = H; pv = (v - (1 - 0.5 / H)) * 2 * H; }
+  else { pv = v * H + 0.5; r = (int)pv; if (r > H - 1) r = H - 1; if (r < 1) r = 1; pv -= r; }
+  a = (int)((pu - i) * 2); b = (int)(pv * 2);
+  a = a < 0 ? 0 : a > 1 ? 1 : a; b = b < 0 ? 0 : b > 1 ? 1 : b;
+  return (2 * r + b) * 2 * W + 2 * i + a;
+}
+/* the light-space direction at the centre of sub-bin (column x of 2 W, row y of 2 (H + 1)) and its solid
+ * angle element sin(theta) du dv (u, v in radians) */
+static double patch_bin_at(int x, int y, double fx, double fy, double q, double d[3]) { /* (fx, fy): where in it */
+  int r = y / 2, b = y % 2;
+  double v0, v1, u = ((x + fx) / 2.0 + 0.5) / W, v;
+  if (r == 0) { v0 = 0.25 * b / H; v1 = v0 + 0.25 / H; }
+  else if (r == H) { v0 = 1 - 0.5 / H + 0.25 * b / H; v1 = v0 + 0.25 / H; }
+  else { v0 = (r - 0.5 + 0.5 * b) / H; v1 = v0 + 0.5 / H; }
+  v = v0 + fy * (v1 - v0);
+  if (u >= 1) u -= 1;
+  uv_dir(u, v, d);
+  return sin(PI * v) * (PI * (v1 - v0)) * (2 * PI / (2.0 * W)) / (q * q); /* q x q points */
+}
+static double patch_bin_dir(int x, int y, double d[3]) { return patch_bin_at(x, y, 0.5, 0.5, 1, d); }
+/* the integral of lum(le) over sub-bin (x, y) (light space; m: the light's rotation or NULL), 8 x 8 points */
+static double patch_bin_le(const el_envlight *l, const float *m, int x, int y) {
+  double sum = 0;
+  int a, b;
+  for (b = 0; b < 8; ++b)
+    for (a = 0; a < 8; ++a) {
+      double dd[3], dw = patch_bin_at(x, y, (a + 0.5) / 8, (b + 0.5) / 8, 8, dd);
+      float f[3], g[3], rgb[3];
+      f[0] = (float)dd[0]; f[1] = (float)dd[1]; f[2] = (float)dd[2];
+      if (m) mul(m, f, g); else memcpy(g, f, sizeof f);
+      el_envlight_le(l, g, rgb);
+      sum += (0.212671 * rgb[0] + 0.715160 * rgb[1] + 0.072169 * rgb[2]) * dw;
+    }
+  return sum;
+}
+static void spot_test(int kind, int rot, int comp) {
+  static float px[MAXWH * 3];
+  static double expect[2 * 513 * 2 * 257], obs[2 * 513 * 2 * 257], lum_ref[2 * 513 * 2 * 257];
+  el_envlight l;
+  el_envlight_hotspots h;
+  el_envlight_options o;
+  float m[9];
+  int k, nb = 2 * W * 2 * (H + 1), i, n = 100000;
+  char name[96];
+  spot_map(kind, px);
+  memset(&o, 0, sizeof o);
+  o.importance = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
+  o.compensated = comp;
+  if (rot) rotation37(o.light_to_world);
+  rotation37(m);
+  snprintf(name, sizeof name, "spot %s %dx%d%s%s", spot_name(kind), W, H, rot ? " rotated" : "", comp ? " compensated" : "");
+  if (el_envlight_init(&l, px, W, H, 3, &o) != EL_SUCCESS || el_envlight_hotspots_init(&h, &l, NULL) != EL_SUCCESS) { check(0, "%s: init", name); return; }
+  check(kind == MAP_NONE ? h.count == 0 : h.count == (kind == MAP_TWO ? 2 : 1), "%s: %d spots (share %.3f, half-angle %.2f deg)", name, h.count,
+        h.count ? h.spot[0].share : 0.0f, h.count ? h.spot[0].half_angle * 180 / PI : 0.0);
+  for (k = 0; k < h.count; ++k) {
+    double total = 0, x2, pval, mean = 0, m2 = 0, ref = 0, sd;
+    int mismatch = 0, bad = 0, dof, impossible = 0, outside = 0, uncovered = 0;
+    for (i = 0; i < nb; ++i) { /* exact for pdf x sin(theta), bilinear over each patch: the midpoint of each quarter */
+      double dd[3], dw = patch_bin_dir(i % (2 * W), i / (2 * W), dd);
+      float a[3], b[3], p;
+      a[0] = (float)dd[0]; a[1] = (float)dd[1]; a[2] = (float)dd[2];
+      if (rot) mul(m, a, b); else memcpy(b, a, sizeof a);
+      p = el_envlight_pdf_li_spot(&l, &h, k, b);
+      expect[i] = p * dw;
+      total += expect[i];
+      lum_ref[i] = 0;
+      if (p > 0) { lum_ref[i] = patch_bin_le(&l, rot ? m : NULL, i % (2 * W), i / (2 * W)); ref += lum_ref[i]; }
+      obs[i] = 0;
+      { /* pdf 0 outside a few texels around the cone; every direction of the cone inside (where pdf_li > 0) */
+        double ang = angle_between(dd, h.spot[k].axis), tex = PI / H;
+        float ax[3];
+        if (rot) { mul_t(m, h.spot[k].axis, ax); ang = angle_between(dd, ax); }
+        if (p > 0 && ang > 1.5 * (h.spot[k].half_angle + 2 * tex) && !(kind == MAP_POLE)) ++outside; /* (a rectangle's corners) */
+        if (ang < h.spot[k].half_angle && !(p > 0) && el_envlight_pdf_li(&l, b) > 0) ++uncovered;
+      }
+    }
+    for (i = 0; i < n; ++i) {
+      float u[2], wi[3], rgb[3], pdf, q, d[3], f;
+      u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
+      el_envlight_sample_li_spot(&l, &h, k, u, wi, rgb, &pdf);
+      q = el_envlight_pdf_li_spot(&l, &h, k, wi);
+      if (memcmp(&q, &pdf, sizeof q)) ++mismatch;
+      if (!(pdf > 0) || !isfinite(pdf) || !isfinite(rgb[0]) || !isfinite(wi[0])) { ++bad; continue; }
+      if (rot) mul_t(m, wi, d); else memcpy(d, wi, sizeof d);
+      obs[patch_bin(d)]++;
+      f = (float)((0.212671 * rgb[0] + 0.715160 * rgb[1] + 0.072169 * rgb[2]) / pdf);
+      mean += f; m2 += (double)f * f;
+    }
+    mean /= n; sd = sqrt((m2 / n - mean * mean) / n);
+    x2 = chisq_pooled(expect, obs, (size_t)nb, total, n, &impossible, &dof);
+    pval = dof > 1 ? gammq(0.5 * (dof - 1), 0.5 * x2) : 1.0;
+    check(pval > 1e-3 && impossible == 0 && fabs(total - 1) < 2e-3, "%s [%d]: chi2 %.1f, %d dof, p = %.3g, pdf integrates to %.5f, %d bins hit at pdf 0",
+          name, k, x2, dof - 1, pval, total, impossible);
+    check(mismatch == 0 && bad == 0, "%s [%d]: sampled pdf == pdf_li_spot(wi) bit for bit (%d of %d differ, %d bad)", name, k, mismatch, n, bad);
+    check(outside == 0 && uncovered == 0, "%s [%d]: pdf 0 beyond 1.5 x (the cone + 2 texels) (%d bins), > 0 over the cone (%d uncovered)", name, k, outside, uncovered);
+    check(fabs(mean - ref) < 4.5 * sd + 2e-3 * ref, "%s [%d]: unbiased, mean of lum(le) / pdf %.6g, quadrature over the rectangle %.6g (%.1f sd)",
+          name, k, mean, ref, fabs(mean - ref) / (sd > 0 ? sd : 1));
+  }
+  { /* hostile: NaN, zero, infinite directions; NaN u; k out of range; another light's spots */
+    float z[3] = {0, 0, 0}, nn[3] = {NAN, 0, 1}, inf[3] = {INFINITY, 0, 0}, u[2] = {NAN, 0.5f}, u2[2] = {0.5f, 0.5f}, wi[3], rgb[3], pdf;
+    int ok = 1, kk;
+    el_envlight l2;
+    for (kk = -1; kk <= h.count; ++kk) {
+      ok &= el_envlight_pdf_li_spot(&l, &h, kk, z) == 0 && el_envlight_pdf_li_spot(&l, &h, kk, nn) == 0 && el_envlight_pdf_li_spot(&l, &h, kk, inf) == 0;
+      el_envlight_sample_li_spot(&l, &h, kk, u, wi, rgb, &pdf);
+      ok &= pdf == 0 && isfinite(wi[0]) && isfinite(wi[1]) && isfinite(wi[2]) && rgb[0] == 0;
+    }
+    el_envlight_sample_li_spot(&l, &h, h.count, u2, wi, rgb, &pdf);
+    ok &= pdf == 0 && el_envlight_pdf_li_spot(&l, NULL, 0, wi) == 0 && el_envlight_pdf_li_spot(NULL, &h, 0, wi) == 0;
+    for (kk = 0; kk < h.count; ++kk) { /* a sample's direction scaled tiny and huge: the same pdf */
+      float t[3], b[3];
+      int c;
+      el_envlight_sample_li_spot(&l, &h, kk, u2, wi, rgb, &pdf);
+      for (c = 0; c < 3; ++c) { t[c] = ldexpf(wi[c], -100); b[c] = ldexpf(wi[c], 100); } /* (exact scalings) */
+      ok &= pdf > 0 && fabsf(el_envlight_pdf_li_spot(&l, &h, kk, t) - pdf) <= 1e-5f * pdf && fabsf(el_envlight_pdf_li_spot(&l, &h, kk, b) - pdf) <= 1e-5f * pdf;
+      /* (to 1e-5: pdf_li itself, which rescales the direction, is not bit for bit across scales) */
+    }
+    o.compensated = !comp;
+    if (el_envlight_init(&l2, px, W, H, 3, &o) == EL_SUCCESS) {
+      el_envlight_sample_li_spot(&l2, &h, 0, u2, wi, rgb, &pdf);
+      ok &= pdf == 0 && el_envlight_pdf_li_spot(&l2, &h, 0, wi) == 0;
+      el_envlight_free(&l2);
+    } else ok = 0;
+    check(ok, "%s: NaN / zero / infinite directions, NaN u, k out of range, NULL, another light's spots: pdf 0; tiny and huge directions: the unit one's pdf (1e-5)", name);
+  }
+  el_envlight_hotspots_free(&h);
+  el_envlight_free(&l);
+}
+static void test_spot(void) {
+  int kind;
+  { /* the other importance modes: spot k is sample_li_mix with its weight alone, bit for bit */
+    static float px[MAXWH * 3];
+    el_envlight l;
+    el_envlight_hotspots h;
+    int i, k, bad = 0;
+    make_map(MAP_TWO, px);
+    make_light(&l, px, 1);
+    el_envlight_hotspots_init(&h, &l, NULL);
+    for (k = 0; k < h.count; ++k)
+      for (i = 0; i < 1000; ++i) {
+        el_envlight_mix_weights w;
+        float u[2], wa[3], wb[3], ra[3], rb[3], pa, pb;
+        memset(&w, 0, sizeof w); w.spot[k] = 1.0f;
+        u[0] = rng_f(&g_rng); u[1] = rng_f(&g_rng);
+        el_envlight_sample_li_spot(&l, &h, k, u, wa, ra, &pa);
+        el_envlight_sample_li_mix(&l, &h, &w, u, wb, rb, &pb);
+        bad += memcmp(wa, wb, sizeof wa) || memcmp(ra, rb, sizeof ra) || memcmp(&pa, &pb, sizeof pa) || !(pa > 0) ||
+               el_envlight_pdf_li_spot(&l, &h, k, wa) != el_envlight_pdf_li_mix(&l, &h, &w, wa);
+      }
+    check(h.count == 2 && bad == 0, "spot two suns, the default importance, rotated: sample_li_spot / pdf_li_spot are sample_li_mix / pdf_li_mix "
+          "with the spot's weight alone (%d of %d differ)", bad, 1000 * h.count);
+    el_envlight_hotspots_free(&h);
+    el_envlight_free(&l);
+  }
+  for (kind = 0; kind < SPOT_KINDS; ++kind) spot_test(kind, kind == MAP_SEAM || kind == SPOT_HORIZON, 0);
+  spot_test(MAP_TWO, 1, 0);
+  spot_test(SPOT_HORIZON, 0, 1);
+  g_w = 512; g_h = 256; /* the fast path (maps of at least 256 x 128): no atan */
+  spot_test(SPOT_HORIZON, 0, 0);
+  spot_test(MAP_SEAM, 1, 0);
+  spot_test(MAP_POLE, 0, 0);
+  g_w = 128; g_h = 64;
 }
 
 /* ---- 2. default weights ---- */
@@ -805,6 +1009,7 @@ int main(void) {
   test_unbiased();
   test_hostile();
   test_long_cells();
+  test_spot();
   printf("%d passed, %d failed\n", g_pass, g_fail);
   return g_fail ? 1 : 0;
 }

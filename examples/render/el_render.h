@@ -180,7 +180,7 @@ typedef struct elr_stats {
   /* --sun split (env_sun 2, sun.c): built (its tables' CPU time in t_sun_cpu); the vertices whose environment light
    * sample was split (one spot and one sky sample), and of them those with every spot below the horizon (the sky alone) */
   int sunsplit_used, sunsplit_spot; /* sunsplit_spot: how the spot sample was drawn (sun.c's ELR_SUNSPLIT_SPOT: 0 the spots'
-                                       bins, 1 product sampling, 2 the map's own density inside the spots' cones) */
+                                       bins, 1 product sampling, 2 the map's own density inside the spots' cones, 3 el_envlight_sample_li_spot) */
   uint64_t sunsplit_vertices, sunsplit_sky_only;
 } elr_stats;
 

@@ -191,9 +191,9 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * ground's normal) 1.08 -> 1.89x (per sample 1.07 -> 1.63x): the product sample now costs less than the
  * map's (le()'s patch density) and its cosine still helps where the sun is high */
 /* ELR_ENVSD_TWO (issue 22's lit pixels, bench/ld_lit.py): directlighting spends the BSDF sample's numbers and ray
- * on a second product light sample (each weighted 1/2; elr_env_two), the reference loop only (render.c) */
-/* ELR_ENVSD_TWO_PIXEL: the same per pixel, chosen before its samples (render.c's elr__two_pixel: the camera ray
- * through its centre and a shadow ray towards the sun's axis): the two samples where that ray misses the scene,
+ * on a second product light sample (each weighted 1/2; elr_env_two), in both loops (render_wave.c draws it with the first) */
+/* ELR_ENVSD_TWO_PIXEL: the same per pixel, chosen before its samples (integrator_direct.c's elr_two_pixel: the camera
+ * ray through its centre and a shadow ray towards the sun's axis): the two samples where that ray misses the scene,
  * its hit sees the sun or has it below the geometric horizon, product MIS where the scene hides the sun */
 enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3, ELR_ENVSD_TWO = 4, ELR_ENVSD_TWO_PIXEL = 5 };
 #define ELR_ENV_SUN_COS 0.5f
@@ -936,7 +936,7 @@ typedef struct elr_tstats { /* one thread's counts */
                         the looked-up ones those that landed in a spot's cone */
   uint64_t sunsplit_vertices, sunsplit_sky_only; /* --sun split: vertices split, of them with every spot below the horizon */
   int env_two_pixel; /* ELR_ENVSD_TWO_PIXEL: the current pixel's choice (1 two product samples, 0 MIS), made by the
-                        reference loop at each pixel (render.c's elr__two_pixel), read by integrator.c's elr_estimate_direct */
+                        reference loop at each pixel (elr_two_pixel), read by elr_estimate_direct (the wave loop: W->two_pix) */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;
@@ -1040,10 +1040,18 @@ typedef struct elr_first {
   const struct elr_first *more;
   int nmore;
   const struct elr_sun_cell *sun; /* sun.c: the vertex's sun-cache cell (elr_sun_lookup, made once per vertex) */
+  /* ELR_ENVSD_TWO(_PIXEL) (two = 1): the second product light sample, drawn from the BSDF sample's numbers
+   * (no BSDF sample then: bs, bray 0), and its shadow ray's answer as occ_l's */
+  int two, occ_l2;
+  elr_v3 wi2, L2;
+  float pdf2;
 } elr_first;
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */
 elr_v3 elr_direct_first(const elr_ctx *C, elr_sampler *S, const elr_ray *r, const elr_first *f, elr_tstats *ts);
+/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice (integrator_direct.c; 1: two product light samples, 0: product MIS), two
+ * rays counted in ts; the reference loop and the wave loop make it at the pixel's start */
+int elr_two_pixel(const elr_ctx *C, int x, int y, elr_tstats *ts);
 
 /* render_wave.c: a thread's wave loop (its samplers, one per pixel of a wave, and the wave's arrays) */
 typedef struct elr_wave elr_wave;

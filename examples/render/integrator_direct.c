@@ -64,3 +64,21 @@ elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_s
     r = pending[npending].ray; beta = pending[npending].beta; depth = pending[npending].depth;
   }
 }
+
+/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice for all its samples (so that they keep one strategy and their
+ * nets; made at the pixel's start by render.c's reference loop and render_wave.c): 1 (two product light samples) when the camera ray through its centre misses the scene, or its hit
+ * sees the sun's axis (the brightest texel's direction) or has it below the geometric horizon on the
+ * camera's side; 0 (product MIS) when the scene hides the sun there. Two rays per pixel, counted. */
+int elr_two_pixel(const elr_ctx *C, int x, int y, elr_tstats *ts) {
+  const elr_scene *s = C->s;
+  elr_ray r;
+  elr_hit h;
+  elr_v3 a = s->env_sun_axis, ng;
+  elr_camera_ray(&C->cam, (float)x + 0.5f, (float)y + 0.5f, &r);
+  ts->camera++;
+  if (!elr_intersect(s, r.o, r.d, INFINITY, &h)) return 1;
+  ng = elr_dot(r.d, h.ng) > 0.f ? elr_mul(h.ng, -1.f) : h.ng;
+  if (!(elr_dot(a, ng) > 0.f)) return 1;
+  ts->shadow++;
+  return !elr_occluded(s, elr_spawn_origin(&h, a), a, INFINITY);
+}

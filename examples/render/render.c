@@ -60,24 +60,6 @@ static void elr__merge(el_film *film, el_film_tile *t) {
   free(t);
 }
 
-/* ELR_ENVSD_TWO_PIXEL: pixel (x, y)'s choice for all its samples (so that they keep one strategy and their
- * nets): 1 (two product light samples) when the camera ray through its centre misses the scene, or its hit
- * sees the sun's axis (the brightest texel's direction) or has it below the geometric horizon on the
- * camera's side; 0 (product MIS) when the scene hides the sun there. Two rays per pixel, counted. */
-static int elr__two_pixel(const elr_ctx *C, int x, int y, elr_tstats *ts) {
-  const elr_scene *s = C->s;
-  elr_ray r;
-  elr_hit h;
-  elr_v3 a = s->env_sun_axis, ng;
-  elr_camera_ray(&C->cam, (float)x + 0.5f, (float)y + 0.5f, &r);
-  ts->camera++;
-  if (!elr_intersect(s, r.o, r.d, INFINITY, &h)) return 1;
-  ng = elr_dot(r.d, h.ng) > 0.f ? elr_mul(h.ng, -1.f) : h.ng;
-  if (!(elr_dot(a, ng) > 0.f)) return 1;
-  ts->shadow++;
-  return !elr_occluded(s, elr_spawn_origin(&h, a), a, INFINITY);
-}
-
 static void *elr__worker(void *arg) {
   elr_job *J = (elr_job *)arg;
   elr_ctx *C = J->C;
@@ -118,7 +100,7 @@ static void *elr__worker(void *arg) {
     else for (y = y0; y < y1; y++)
       for (x = x0; x < x1; x++) {
         elr_sampler_start_pixel(&S, x, y);
-        if (C->s->env_sunny && C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) ts.env_two_pixel = elr__two_pixel(C, x, y, &ts);
+        if (C->s->env_sunny && C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) ts.env_two_pixel = elr_two_pixel(C, x, y, &ts);
         /* <<Loop over pixel samples>> */
         for (k = 0; k < C->spp; k++) {
           float fx, fy, rgb[3];
@@ -389,9 +371,8 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_WAVE       ? o->loop
               : C->path && pixel_sampler && C->batch_light->product ? ELR_LOOP_ONE
                                                                     : ELR_LOOP_WAVE;
-    /* (ELR_ENVSD_TWO, directlighting's two product light samples at diffuse vertices under a sun map:
-     * the reference loop only, whatever --loop says: the wave loop does not know it yet) */
-    if (!C->path && s->env_sunny && (s->env_sun_diffuse == ELR_ENVSD_TWO || s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL)) C->loop = ELR_LOOP_ONE;
+    /* (ELR_ENVSD_TWO(_PIXEL), directlighting's two product light samples at diffuse vertices under a sun map:
+     * the wave loop too, the same image: render_wave.c, test_render_wave) */
     /* (portals, whose density depends on the shading point, are sampled by the wave loop at each
      * vertex, el_envlight_portal_sample_li; with a pixel sampler like the map alone: test_render_portal) */
   }

@@ -49,6 +49,18 @@
 
 /* >> a first vertex computed ahead (elr_first): its shading in the reference's order (moved here from
  * render_batched.c, the batched loop, when the wave loop replaced it) */
+/* ELR_ENVSD_TWO(_PIXEL): Ld plus one of the two product light samples' terms weighted 1/2, as elr_estimate_direct
+ * sums it (elr__light_term without MIS into its own sum); fl its BSDF value times the cosine (read where pdf > 0),
+ * occ its shadow ray's answer (-1: traced here) */
+static elr_v3 elr__two_term(const elr_ctx *C, const elr_hit *h, elr_v3 Ld, elr_v3 fl, elr_v3 wi, elr_v3 L, float pdf, int occ, elr_tstats *ts) {
+  elr_v3 Lt = elr_v(0, 0, 0);
+  if (pdf > 0.f && !elr_isblack(fl)) {
+    ts->shadow++;
+    if (!(occ >= 0 ? occ : elr_occluded(C->s, elr_spawn_origin(h, wi), wi, INFINITY))) Lt = elr_add(Lt, elr_mul(elr_vmul(fl, L), 1.f / pdf));
+  }
+  return elr_add(Ld, elr_mul(Lt, 0.5f));
+}
+
 /* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
  * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
  * ahead in f */
@@ -60,6 +72,14 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
   /* (the normal as the light sample's: at a lowered sun-cache cell, sun.c's) */
   const elr_sun_cell *sc = f->sun; /* (elr_sun_lookup's, made by the wave loop) */
   int lonly = !sc && C->ls == ELR_LS_MIS && elr_env_light_only(1, sample_bsdf, C->batch_light, elr_sun_cos_normal(s, sc, b, wo, &nc), b);
+  if (f->two) { /* (two product light samples, no BSDF sample) */
+    elr_v3 fl = elr_v(0, 0, 0);
+    if (f->pdf > 0.f) fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
+    *Ld = elr__two_term(C, h, *Ld, fl, f->wi, f->L, f->pdf, f->occ_l, ts);
+    if (f->pdf2 > 0.f) fl = elr_mul(elr_bsdf_f(b, wo, f->wi2), fabsf(elr_dot(f->wi2, b->ns)));
+    *Ld = elr__two_term(C, h, *Ld, fl, f->wi2, f->L2, f->pdf2, f->occ_l2, ts);
+    return;
+  }
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
@@ -165,6 +185,12 @@ typedef struct elr_wave_soa {
   int sh[ELR_WAVE], bsh[ELR_WAVE];
   /* the environment in the BSDF sample's direction (where its ray escaped) */
   float bpe[ELR_WAVE], lbr[ELR_WAVE], lbg[ELR_WAVE], lbb[ELR_WAVE];
+  /* ELR_ENVSD_TWO(_PIXEL): the material's and pixel's choice (etwo), the lane's (two: elr_env_two), and the second
+   * product light sample (from the BSDF draw v0, v1) as the first's arrays above */
+  int etwo[ELR_WAVE], two[ELR_WAVE], sh2[ELR_WAVE];
+  float wl2[3 * ELR_WAVE], Ll2[3 * ELR_WAVE], lpdf2[ELR_WAVE];
+  float wlx2[ELR_WAVE], wly2[ELR_WAVE], wlz2[ELR_WAVE], llr2[ELR_WAVE], llg2[ELR_WAVE], llb2[ELR_WAVE];
+  float flr2[ELR_WAVE], flg2[ELR_WAVE], flb2[ELR_WAVE], flpdf2[ELR_WAVE], dlg2[ELR_WAVE];
 } elr_wave_soa;
 
 struct elr_wave {
@@ -186,6 +212,10 @@ struct elr_wave {
   elr_v3 fl[ELR_WAVE];
   float flpdf[ELR_WAVE]; /* and the BSDF's pdf in its direction (computed with fl: the dot products they share) */
   int lonly[ELR_WAVE], fast[ELR_WAVE]; /* (fast 2: the camera ray left the scene; Ld its radiance) */
+  /* ELR_ENVSD_TWO(_PIXEL): per pair, its second light sample's index in W->u (or -1), BSDF value times the
+   * cosine and shadow ray; per pixel of the wave, its choice (ELR_ENVSD_TWO_PIXEL: elr_two_pixel) */
+  int light2[ELR_WAVE], shadow2[ELR_WAVE], two_pix[ELR_WAVE];
+  elr_v3 fl2[ELR_WAVE];
   elr_v3 Ld[ELR_WAVE];
   float rgb[3 * ELR_WAVE]; /* each camera sample's radiance, to the film in one call */
   /* path: each path's state, and at its vertex the BSDF, the light sample and the BSDF sample */
@@ -238,12 +268,14 @@ static int elr__soa_lambert_ok(const elr_bsdf *t) {
 
 elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t seed, int tile) {
   elr_wave *W = (elr_wave *)calloc(1, sizeof *W);
-  int i, k, npix;
+  int i, k, npix, two;
   if (!W) return NULL;
   /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
-  if (W->npair > ELR_WAVE) W->npair = ELR_WAVE;
-  W->cap = ELR_WAVE / W->npair;
+  /* (ELR_ENVSD_TWO(_PIXEL): up to two light samples a pair, in the wave's arrays of ELR_WAVE) */
+  two = !C->path && C->s->env_sunny && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL);
+  if (W->npair > ELR_WAVE / (1 + two)) W->npair = ELR_WAVE / (1 + two);
+  W->cap = ELR_WAVE / ((1 + two) * W->npair);
   npix = C->spp >= W->cap ? 1 : W->cap / C->spp;
   if (npix > tile * tile) npix = tile * tile;
   W->S = (elr_sampler *)calloc((size_t)npix, sizeof(elr_sampler));
@@ -345,6 +377,11 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
     const elr_bsdf *b = &W->f[j].b;
     elr_v3 Ld = W->Ld[j];
     if (!W->fast[j]) continue;
+    if (p->two) { /* (two product light samples, no BSDF sample) */
+      Ld = elr__two_term(C, W->f[j].h, Ld, W->fl[k], p->wi, p->L, p->pdf, p->occ_l, ts);
+      W->Ld[j] = elr__two_term(C, W->f[j].h, Ld, W->fl2[k], p->wi2, p->L2, p->pdf2, p->occ_l2, ts);
+      continue;
+    }
     /* <<Sample light source with multiple importance sampling>> (W->fl: set where pdf > 0) */
     if (C->ls != ELR_LS_BSDF && p->pdf > 0.f && !elr_isblack(W->fl[k])) {
       ts->shadow++;
@@ -396,7 +433,7 @@ static inline float elr__ph_sel(float f, float g) { /* elr_power_heuristic, both
 
 /* lane j (a hit, not emitting) of the wave into W->A where its BSDF is a lone Lambertian lobe: 1 (its draws
  * made), or 0 (shaded by elr__direct_wave's general steps) */
-static int elr__soa_add(elr_wave *W, int j) {
+static int elr__soa_add(const elr_ctx *C, elr_wave *W, int j) {
   elr_wave_soa *A = &W->A;
   const elr_hit *h = &W->h[j];
   const elr_bsdf *t;
@@ -413,6 +450,7 @@ static int elr__soa_add(elr_wave *W, int j) {
   A->ox[i] = W->cam[j].d.x * -1.f; A->oy[i] = W->cam[j].d.y * -1.f; A->oz[i] = W->cam[j].d.z * -1.f;
   A->kr[i] = t->kd.x; A->kg[i] = t->kd.y; A->kb[i] = t->kd.z;
   A->elo[i] = t->env_light_only; A->emap[i] = t->env_map; A->stest[i] = t->env_sun_test;
+  A->etwo[i] = t->env_two && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || W->two_pix[W->pix[j]] > 0);
   A->sax[i] = t->env_sun_axis.x; A->say[i] = t->env_sun_axis.y; A->saz[i] = t->env_sun_axis.z; A->scos[i] = t->env_sun_cos;
   A->n++;
   return 1;
@@ -423,7 +461,7 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
   elr_wave_soa *A = &W->A;
   const elr_light *l = C->batch_light;
   const int n = A->n, lo_ok = l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated;
-  int i, nn = 0, nlo = 0;
+  int i, nn = 0, nlo = 0, ntwo = 0;
   for (i = 0; i < ELR_SOA_PAD(n); i++) { /* the normal (elr_bsdf_cos_normal), lonly; the disk sample's radius and angle */
     float dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i], sg = dgo < 0.f ? -1.f : 1.f;
     float cx = A->gx[i] * sg, cy = A->gy[i] * sg, cz = A->gz[i] * sg;
@@ -432,7 +470,8 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
     int has = (A->emap[i] == 0) & !((A->stest[i] != 0) & (cx * A->sax[i] + cy * A->say[i] + cz * A->saz[i] >= A->scos[i]));
     A->cx[i] = cx; A->cy[i] = cy; A->cz[i] = cz;
     A->has_n[i] = has;
-    A->lonly[i] = has & A->elo[i] & lo_ok;
+    A->two[i] = has & A->etwo[i] & lo_ok; /* (elr_env_two; MIS) */
+    A->lonly[i] = (has & A->elo[i] & lo_ok) | A->two[i];
     A->r[i] = zero ? 0.f : big ? ox : oy;
     A->th[i] = zero ? 0.f : big ? ta : tb;
   }
@@ -464,8 +503,19 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
   for (i = 0; i < n; i++) /* (elr_estimate_direct's BSDF ray) */
     A->bray[i] = !A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f);
   /* the light samples (elr__env_samples' map and product cases) */
-  for (i = 0; i < n; i++) nn += A->has_n[i];
-  if (l->product) { ts->env_product += (uint64_t)nn; ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)nlo; } /* (--stats) */
+  for (i = 0; i < n; i++) { nn += A->has_n[i]; ntwo += A->two[i]; }
+  if (l->product) { ts->env_product += (uint64_t)(nn + ntwo); ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)(nlo + ntwo); } /* (--stats) */
+  if (ntwo > 0) { /* (the second product light samples, from the BSDF draws, in one call) */
+    float nv[3 * ELR_WAVE], um[2 * ELR_WAVE], wm[3 * ELR_WAVE], Lm[3 * ELR_WAVE], pm[ELR_WAVE];
+    int idx[ELR_WAVE], m = 0;
+    for (i = 0; i < n; i++)
+      if (A->two[i]) { idx[m] = i; nv[3 * m] = A->cx[i]; nv[3 * m + 1] = A->cy[i]; nv[3 * m + 2] = A->cz[i]; um[2 * m] = A->v0[i]; um[2 * m + 1] = A->v1[i]; m++; }
+    el_envlight_sample_li_cos_n(l->env_sample, m, nv, um, wm, Lm, pm);
+    for (i = 0; i < m; i++) {
+      memcpy(&A->wl2[3 * idx[i]], &wm[3 * i], 3 * sizeof(float)); memcpy(&A->Ll2[3 * idx[i]], &Lm[3 * i], 3 * sizeof(float));
+      A->lpdf2[idx[i]] = pm[i];
+    }
+  }
   if (n == 0) return;
   if (!l->product || nn == 0) el_envlight_sample_li_n(l->env_sample, n, A->ul, A->wl, A->Ll, A->lpdf);
   else {
@@ -493,25 +543,43 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
   }
 }
 
+/* lane i's light sample (direction w): its f |cos| (fl), BSDF pdf and n_g . w (elr_bsdf_f_pdf_inl, elr__soa_shadows) */
+static inline void elr__soa_fl(const elr_wave_soa *A, int i, float wx, float wy, float wz, float *flr, float *flg, float *flb, float *flpdf, float *dlg) {
+  float x = A->nx[i], y = A->ny[i], z = A->nz[i];
+  float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
+  float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
+  int f0 = !((dgi * dgo > 0.f) & (co != 0.f));
+  float fr = A->kr[i] * ELR_INV_PI, fg = A->kg[i] * ELR_INV_PI, fb = A->kb[i] * ELR_INV_PI;
+  *flpdf = co * ci > 0.f ? ac * ELR_INV_PI : 0.f;
+  *flr = (f0 ? 0.f : fr) * ac; *flg = (f0 ? 0.f : fg) * ac; *flb = (f0 ? 0.f : fb) * ac;
+  *dlg = dgi;
+}
+
 /* the light samples' f |cos| and BSDF pdf (elr_bsdf_f_pdf_inl) of W->A's lanes, and their shadow rays and
  * the BSDF samples' into W->shadows */
 ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
   elr_wave_soa *A = &W->A;
   const int n = A->n;
-  int i;
+  int i, ntwo = 0;
   for (i = 0; i < n; i++) { /* (by component: the loops below take four lanes at a time, not two) */
     A->wlx[i] = A->wl[3 * i]; A->wly[i] = A->wl[3 * i + 1]; A->wlz[i] = A->wl[3 * i + 2];
     A->llr[i] = A->Ll[3 * i]; A->llg[i] = A->Ll[3 * i + 1]; A->llb[i] = A->Ll[3 * i + 2];
+    ntwo += A->two[i];
   }
-  for (i = 0; i < ELR_SOA_PAD(n); i++) {
-    float x = A->nx[i], y = A->ny[i], z = A->nz[i], wx = A->wlx[i], wy = A->wly[i], wz = A->wlz[i];
-    float co = A->ox[i] * x + A->oy[i] * y + A->oz[i] * z, ci = wx * x + wy * y + wz * z, ac = fabsf(ci);
-    float dgi = wx * A->gx[i] + wy * A->gy[i] + wz * A->gz[i], dgo = A->ox[i] * A->gx[i] + A->oy[i] * A->gy[i] + A->oz[i] * A->gz[i];
-    int f0 = !((dgi * dgo > 0.f) & (co != 0.f));
-    A->flpdf[i] = co * ci > 0.f ? ac * ELR_INV_PI : 0.f;
-    float fr = A->kr[i] * ELR_INV_PI, fg = A->kg[i] * ELR_INV_PI, fb = A->kb[i] * ELR_INV_PI;
-    A->flr[i] = (f0 ? 0.f : fr) * ac; A->flg[i] = (f0 ? 0.f : fg) * ac; A->flb[i] = (f0 ? 0.f : fb) * ac;
-    A->dlg[i] = dgi;
+  for (i = 0; i < ELR_SOA_PAD(n); i++) elr__soa_fl(A, i, A->wlx[i], A->wly[i], A->wlz[i], &A->flr[i], &A->flg[i], &A->flb[i], &A->flpdf[i], &A->dlg[i]);
+  for (i = 0; i < n; i++) A->sh2[i] = -1;
+  if (ntwo > 0) { /* (the second light samples of ELR_ENVSD_TWO's lanes: the same, and their shadow rays) */
+    for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (the lanes without one: an earlier wave's values, computed and never read) */
+      A->wlx2[i] = A->wl2[3 * i]; A->wly2[i] = A->wl2[3 * i + 1]; A->wlz2[i] = A->wl2[3 * i + 2];
+      A->llr2[i] = A->Ll2[3 * i]; A->llg2[i] = A->Ll2[3 * i + 1]; A->llb2[i] = A->Ll2[3 * i + 2];
+      elr__soa_fl(A, i, A->wlx2[i], A->wly2[i], A->wlz2[i], &A->flr2[i], &A->flg2[i], &A->flb2[i], &A->flpdf2[i], &A->dlg2[i]);
+    }
+    for (i = 0; i < n; i++)
+      if (A->two[i] && A->lpdf2[i] > 0.f && !(A->flr2[i] == 0.f && A->flg2[i] == 0.f && A->flb2[i] == 0.f)) {
+        float e = A->dlg2[i] >= 0.f ? A->eps[i] : -A->eps[i];
+        A->sh2[i] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wlx2[i], A->wly2[i], A->wlz2[i]), INFINITY);
+      }
   }
   for (i = 0; i < n; i++) { /* (elr_wave_add, elr_spawn_origin) */
     A->sh[i] = A->bsh[i] = -1;
@@ -537,7 +605,8 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
   float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nv[3 * ELR_WAVE], de[3 * ELR_WAVE], pq[ELR_WAVE], Le[3 * ELR_WAVE];
   int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i, nsh = 0, nb = 0;
   for (i = 0; i < n; i++) { /* (--stats; then the shadow rays' answers: 1 where the term counts) */
-    nsh += A->sh[i] >= 0; nb += A->bray[i];
+    nsh += (A->sh[i] >= 0) + (A->sh2[i] >= 0); nb += A->bray[i];
+    A->sh2[i] = A->sh2[i] >= 0 && !(W->shadows.tfar[A->sh2[i]] < 0.f);
     A->sh[i] = A->sh[i] >= 0 && !(W->shadows.tfar[A->sh[i]] < 0.f);
     A->bsh[i] = A->bsh[i] >= 0 && !(W->shadows.tfar[A->bsh[i]] < 0.f);
   }
@@ -568,6 +637,11 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
     float br = lr + A->fbr[i] * ac * A->lbr[i] * sb, bg = lg + A->fbg[i] * ac * A->lbg[i] * sb, bb = lb + A->fbb[i] * ac * A->lbb[i] * sb;
     A->flr[i] = ub ? br : lr; A->flg[i] = ub ? bg : lg; A->flb[i] = ub ? bb : lb;
   }
+  for (i = 0; i < n; i++) if (A->two[i]) { /* (ELR_ENVSD_TWO: elr__two_term's sums, each term weighted 1/2; no BSDF sample) */
+    float s2 = 1.f / A->lpdf2[i], t1r = A->flr[i], t1g = A->flg[i], t1b = A->flb[i]; /* (the first term: lr above, lonly's weight 1) */
+    float t2r = A->sh2[i] ? 0.f + A->flr2[i] * A->llr2[i] * s2 : 0.f, t2g = A->sh2[i] ? 0.f + A->flg2[i] * A->llg2[i] * s2 : 0.f, t2b = A->sh2[i] ? 0.f + A->flb2[i] * A->llb2[i] * s2 : 0.f;
+    A->flr[i] = (0.f + t1r * 0.5f) + t2r * 0.5f; A->flg[i] = (0.f + t1g * 0.5f) + t2g * 0.5f; A->flb[i] = (0.f + t1b * 0.5f) + t2b * 0.5f;
+  }
   for (i = 0; i < n; i++) W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
 }
 
@@ -589,22 +663,23 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
     if (!q->hit) { elr_to3(W->cam[j].d, &W->wi[3 * nesc]); W->escaped[nesc++] = j; W->fast[j] = 2; continue; } /* (its radiance below) */
-    if (soa && elr__soa_add(W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
+    if (soa && elr__soa_add(C, W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
     elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
     /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
-    W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t));
+    W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t)) &&
+                 W->npair == (C->direct_one ? 1 : C->batch_light->nsamples); /* (else the samples past ELR_WAVE's: elr_direct_first) */
     W->Ld[j] = elr_v(0, 0, 0);
     W->vsc[j] = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
     q->more = &W->more[nm]; q->nmore = W->npair - 1; nm += W->npair - 1;
     for (k = 0; k < W->npair; k++) { /* each pair's light draw, then its BSDF draw */
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
       float us[2];
-      int lonly = 0;
-      p->bs = p->bray = 0; p->occ_l = p->occ_b = -1; p->pdf = 0.f; p->sun = W->vsc[j];
-      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = -1; W->lonly[np] = 0;
+      int lonly = 0, two = 0;
+      p->bs = p->bray = p->two = 0; p->occ_l = p->occ_b = p->occ_l2 = -1; p->pdf = p->pdf2 = 0.f; p->sun = W->vsc[j];
+      W->pair[np] = p; W->pair_of[np] = j; W->light[np] = W->light2[np] = -1; W->lonly[np] = 0;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
       if (C->ls != ELR_LS_BSDF) {
@@ -612,9 +687,19 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
         W->has_n[n] = elr__cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
         lonly = !W->sc[n] && elr_env_light_only(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b); /* (as elr_estimate_direct) */
-        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; ts->env_light_only += (uint64_t)lonly; } /* (--stats) */
+        /* (ELR_ENVSD_TWO: a second product light sample from the BSDF draw, as elr_estimate_direct) */
+        two = !W->sc[n] && elr_env_two(C->ls == ELR_LS_MIS, 1, C->batch_light, W->has_n[n], &q->b) &&
+              (C->s->env_sun_diffuse != ELR_ENVSD_TWO_PIXEL || W->two_pix[W->pix[j]] > 0);
+        if (two) lonly = 1;
+        if (C->batch_light->product) { if (W->has_n[n]) ts->env_product += (uint64_t)(1 + two); else ts->env_map++; ts->env_light_only += (uint64_t)(lonly * (1 + two)); } /* (--stats) */
         W->light[np] = n++;
         W->lonly[np] = lonly;
+        if (two) {
+          W->u[2 * n] = us[0]; W->u[2 * n + 1] = us[1];
+          W->sc[n] = W->sc[n - 1]; W->has_n[n] = W->has_n[n - 1]; W->normal[n] = W->normal[n - 1]; W->lpos[n] = W->lpos[n - 1];
+          W->light2[np] = n++;
+          p->two = 1;
+        }
       }
       if (C->ls != ELR_LS_LIGHT && !lonly) {
         int spec;
@@ -638,7 +723,17 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
   for (k = 0; k < np; k++) {
     elr_first *p = W->pair[k], *q = &W->f[W->pair_of[k]];
     int i = W->light[k];
-    W->shadow[k] = W->bshadow[k] = -1;
+    W->shadow[k] = W->bshadow[k] = W->shadow2[k] = -1;
+    if (W->light2[k] >= 0) { /* (the second light sample: its shadow ray as the first's) */
+      elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
+      float pb;
+      int i2 = W->light2[k];
+      p->wi2 = elr_from3(&W->wi[3 * i2]); p->L2 = elr_from3(&W->Le[3 * i2]); p->pdf2 = W->pdf[i2];
+      if (p->pdf2 > 0.f && !elr_isblack(W->fl2[k] = elr_mul(elr_bsdf_f_pdf_inl(&q->b, wo, p->wi2, &pb), fabsf(elr_dot(p->wi2, q->b.ns))))) {
+        W->shadow2[k] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_spawn_origin(q->h, p->wi2), p->wi2, INFINITY);
+      }
+    }
     if (i >= 0) {
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       p->wi = elr_from3(&W->wi[3 * i]); p->L = elr_from3(&W->Le[3 * i]); p->pdf = W->pdf[i];
@@ -658,6 +753,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *p = W->pair[k];
     p->occ_l = W->shadow[k] >= 0 ? W->shadows.tfar[W->shadow[k]] < 0.f : 0;
     p->occ_b = W->bshadow[k] >= 0 ? W->shadows.tfar[W->bshadow[k]] < 0.f : 0;
+    p->occ_l2 = W->shadow2[k] >= 0 ? W->shadows.tfar[W->shadow2[k]] < 0.f : 0;
   }
   /* the environment's pdf (with product sampling, for the vertex's normal) and radiance in the directions
    * of the BSDF samples whose rays escaped (the others' are never read): gathered into one
@@ -890,6 +986,7 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
         take = W->cap;
       }
       if (k0 == 0) elr_sampler_start_pixel(S, x, y);
+      if (k0 == 0 && C->s->env_sunny && C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) W->two_pix[np] = elr_two_pixel(C, x, y, ts);
       for (k = k0; k < k0 + take; k++, m++) {
         /* <<Initialize CameraSample for current sample>>, <<Generate camera ray for current sample>> */
         W->pix[m] = np;
@@ -924,6 +1021,7 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
       } else {
         elr_sampler *S = &W->S[W->pix[j]];
         elr_sampler_restore(S, &W->pos[j]); /* the sampler back at sample j, after its film draw */
+        ts->env_two_pixel = W->two_pix[W->pix[j]]; /* (ELR_ENVSD_TWO_PIXEL: the pixel's choice, for its later vertices) */
         L = elr_direct_first(C, S, &W->cam[j], &W->f[j], ts);
       }
       elr_to3(L, &W->rgb[3 * j]);

@@ -132,7 +132,7 @@ void elr_stats_print(const elr_stats *st, void *fp) {
     fprintf(f, "  sun split          %llu vertices drew a light sample of the hot spots (%s) and one of the rest x cosine, %llu the "
                "rest alone (every spot below the horizon); tables %.3f s CPU\n",
             (unsigned long long)(st->sunsplit_vertices - st->sunsplit_sky_only),
-            st->sunsplit_spot == 2 ? "the map's density inside their cones" : st->sunsplit_spot == 1 ? "product sampling" : "their bins",
+            st->sunsplit_spot == 3 ? "le()'s patches around their cones" : st->sunsplit_spot == 2 ? "the map's density inside their cones" : st->sunsplit_spot == 1 ? "product sampling" : "their bins",
             (unsigned long long)st->sunsplit_sky_only, st->t_sun_cpu);
   fprintf(f, "  film               %10.1f KiB; splat buffer %s\n", (double)st->bytes_film / 1024.0,
           st->splats_allocated ? "allocated" : "not allocated (nothing splats)");

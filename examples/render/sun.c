@@ -99,39 +99,43 @@
  * one each, weighted by the power heuristic over the three techniques: a light sample of density p in direction w
  * gets p^2 / (p^2 + p_o(w)^2 + p_b(w)^2) (p_o the other light sample's density there, p_b the BSDF's), the BSDF sample
  * p_b^2 / (p_b^2 + p_s^2 + p_r^2) (elr_sunsplit_pdf); so the weights of the techniques that reach w sum to 1 and the
- * estimate is unbiased (test_render_sun: |z| < 4 against the default, 8 seeds per class). The spot sample is the
- * render's own density of the map (sample_li: le()'s patches under a sun) kept only inside the spots' cones (widened
- * 10%; the rest dropped) where the spots hold at least half the power (sunrise.hdr: 0.75), else the spots' own bins
- * (sample_li_mix, the rest's weight 0; city.hdr: 0.245). Where every spot lies below n's horizon, the renderer's
- * product sample (no split). Both samples use the same two numbers (a third draw from the sampler: shadow 1.47x
- * against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
+ * estimate is unbiased (test_render_sun: |z| < 4 against the default, 8 seeds per class). The spot sample is
+ * el_envlight_sample_li_spot on the render's own density (l->env_sample: le()'s patches under a sun) and ITS hot spots
+ * (P->hsb; a spot by its share): le()'s patches renormalised to a rectangle of patches around the spot's cone, so every
+ * draw lands there and its pdf is pdf_li / P(rectangle) (ELR_SUNSPLIT_SPOT 3). Where every spot lies below n's horizon,
+ * the renderer's product sample (no split). Both samples use the same two numbers (a third draw from the sampler:
+ * shadow 1.47x against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
  * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
- * shadowed 1.45x / 0.97x / 1.02x less variance at equal spp, lit 0.78x / 0.77x / 1.33x, the whole image 0.85x /
- * 0.93x / 1.27x; at equal time against the default's wave loop 0.40x / 0.46x / 0.55x (the CPU 2.1x, 2.0x, 2.3x),
- * against the default in the same one-sample loop (--loop-one) 0.68x / 0.74x / 1.09x (CPU 1.24x, 1.25x, 1.16x).
- * At 64 spp (4 seeds): shadowed 1.63x / 0.94x / 0.83x, lit 0.96x / 0.87x / 1.01x, whole 1.03x / 0.93x / 0.98x at
- * equal spp, 0.47x / 0.44x / 0.46x at equal time. bench/sun_rule.py (the whole image's relative variance over 4 seeds,
- * 16 spp, one thread: time to unit variance against the default) 0.71x / 0.49x / 0.48x (per sample 1.31x / 1.01x /
- * 1.11x). So off: an option.
- * Variants (on sun_shadow_object, the first with the spots' bins on sunrise.hdr too: shadow 1.48x, lit 0.54x, whole
- * 0.61x: its one-texel sun's bins have a constant density under a bilinear le(), and every spot sample lands there;
- * the next as changes of that): the map's density in the cone on city: lit 0.77x (three quarters of its draws leave
- * the cone); product sampling as the first sample (sample_li_cos, MIS with the sky sample where both reach): shadow
- * 1.59x (city 1.29x), lit 0.91x (0.73x), whole 0.97x (0.79x); the sky by the map's rest without the cosine: shadow
- * 1.37x; the two light samples without the BSDF sample at diffuse-only vertices: shadow 1.14x (1.24x with product
- * sampling first); a third sampler draw for the sky sample: 1.47x against 1.54x; the sky sample alone where the spots
- * are below the horizon (the same variance as drawing both there: the spot sample's f is 0):
- * shadow 1.54x against 1.48x, lit unchanged. The shadow gains little because the default's BSDF sample already finds
- * the sky there (A3.14); the lit pixels lose wherever the spot sample is worse than the product sampler's bilinear
- * patches, and the extra sample and shadow ray cost 16-25% in the same loop. With the independent sampler (--random,
- * 8 seeds; the spot sample then also from the patches) the lit pixels 0.73x on sun_shadow_object, but city's 2.27x
- * and its whole image 2.01x less variance at equal spp, 0.94x at equal time against the wave default. WHY THE LIT
- * PIXELS LOSE on sunrise.hdr (bench_sun_render --lit-point, the library alone, a lit ground point, variance per
- * camera sample, sun's cone | rest): the default 0.164 | 0.0083, the split 0.193 | 0.0022 (the bins: 0.376): the sky
- * gains 3.7x but the spot sample reaches the cone with probability 0.75 only (the patches' density is not
- * renormalised to it), less than the product sampler's cosine-weighted share; the patches renormalised to the cone
- * (drawn by rejection, a diagnostic) give 0.00015 | 0.0022, 59x less than the default in all. So the next step is a
- * spot distribution over le()'s patches in the library (hot spots of the BILINEAR density, which has none today).
+ * shadowed 1.93x / 1.33x / 1.02x less variance at equal spp, lit 10.7x / 3.86x / 1.53x, the whole image 6.15x / 1.52x /
+ * 1.41x; at equal time against the default's wave loop 2.32x / 0.71x / 0.51x (the CPU 2.64x, 2.14x, 2.75x), against the
+ * default in the same one-sample loop (--loop-one) 4.76x / 1.20x / 1.08x (CPU 1.29x, 1.27x, 1.31x). At 64 spp (4 seeds):
+ * shadowed 2.17x / 1.46x / 0.83x, lit 11.5x / 3.81x / 1.19x, whole 6.61x / 1.66x / 1.12x at equal spp, 2.58x / 0.74x /
+ * 0.39x at equal time against the wave default (pdf_li_spot answers 0 at once far from the rectangle: on bench_city the
+ * spot pdfs of the sky and BSDF samples were 7.3% of the cycles before, under 2% after). The city's shadow loses at
+ * 64 spp (0.83x): there the spot sample is wasted and the default's BSDF sample already finds the sky (A3.14). So the split wins every scene's image at equal spp, and at equal time
+ * the porch and the city lose mainly to the one-sample loop; off by default until the wave loop draws two light samples.
+ * Before el_envlight_sample_li_spot (the same bench): the map's density (sample_li) kept only inside the spots' cones
+ * widened 10% where the spots held half the power (sunrise.hdr: 0.75 of its draws reached the cone), else the spots'
+ * piecewise-constant bins (sample_li_mix, the rest's weight 0; city.hdr): shadowed 1.45x / 0.97x / 1.02x, lit 0.78x /
+ * 0.77x / 1.33x, whole 0.85x / 0.93x / 1.27x at equal spp (ELR_SUNSPLIT_SPOT 2 and 0 still build those).
+ * bench_sun_render --lit-point (the library alone, a lit ground point of sunrise.hdr, variance per camera sample, sun's
+ * cone | rest): the default 0.164 | 0.0083; the cone-clipped density 0.193 | 0.0022 (the bins: 0.376); the patches
+ * renormalised to the cone by rejection (a diagnostic) 0.00015 | 0.0022; sample_li_spot 0.00041 | 0.0022 (the rectangle
+ * holds a little sky beyond the cone): 54x less than the default in all. On city.hdr (--lit-point city; its sun 0.247
+ * of the patches' mass): the default 1.128 | 0.587, sample_li_spot 0.0052 | 0.226, 3.1x less in all: what is left
+ * there is the sky (the rest x cosine), which is why bench_city gains least. The sky by product sampling over the
+ * patches instead (sample_li_cos, with sample_li_spot: the last --lit-point row): 0.502 on city, 0.0198 on sunrise,
+ * 2.3x and 7.6x more than with the rest x cosine.
+ * Variants (on sun_shadow_object, before sample_li_spot; the first with the spots' bins on sunrise.hdr: shadow 1.48x, lit
+ * 0.54x, whole 0.61x: its one-texel sun's bins have a constant density under a bilinear le(); the next as changes of
+ * that): product sampling as the first sample (sample_li_cos, MIS with the sky sample where both reach): shadow 1.59x
+ * (city 1.29x), lit 0.91x (0.73x), whole 0.97x (0.79x); the sky by the map's rest without the cosine: shadow 1.37x;
+ * the two light samples without the BSDF sample at diffuse-only vertices: shadow 1.14x (1.24x with product sampling
+ * first); a third sampler draw for the sky sample: 1.47x against 1.54x; the sky sample alone where the spots are below
+ * the horizon (the same variance as drawing both there: the spot sample's f is 0): shadow 1.54x against 1.48x.
+ * With the independent sampler (--random, 16 spp, 8 seeds) the whole image 7.85x / 1.69x / 2.21x less variance at equal
+ * spp (lit 18.5x / 9.6x / 2.58x), 3.07x / 0.72x / 0.75x at equal time against the wave default (before sample_li_spot,
+ * the cone-clipped patches: lit 0.73x on sun_shadow_object, city's whole image 2.01x).
  *
  * Cited and compared (tutorials/05-appendix-fast-paths.md, A3.14): Kondapaneni et al. 2019 (optimal MIS
  * weights) and Grittmann et al. 2019 (variance-aware MIS) tune the COMBINATION of fixed techniques; here
@@ -624,8 +628,10 @@ int elr_sun_cos_normal(const elr_scene *s, const elr_sun_cell *c, const elr_bsdf
 #ifndef ELR_SUNSPLIT_SPOT
 #define ELR_SUNSPLIT_SPOT -1 /* the first sample: 0 the spots' bins (sample_li_mix, the spots alone), 1 product sampling
                               * (sample_li_cos: the sun and the sky), 2 the render's own density of the map (sample_li:
-                              * le()'s patches under a sun), kept only inside the spots' cones; -1: 2 where the spots
-                              * hold at least ELR_SUNSPLIT_SPOT_SHARE of the map's power (few samples dropped), else 0 */
+                              * le()'s patches under a sun), kept only inside the spots' cones; 3 that density renormalised
+                              * to a rectangle of patches around each spot (el_envlight_sample_li_spot on the render's
+                              * density's own hot spots); -1: 3 where the render's density has hot spots, else 2 where the
+                              * spots hold at least ELR_SUNSPLIT_SPOT_SHARE of the map's power, else 0 */
 #endif
 #define ELR_SUNSPLIT_SPOT_SHARE 0.5f
 #define ELR_SUNSPLIT_NO 33 /* the normals of the sky's tables: an octahedral grid of 33 x 33 points, the axes among
@@ -639,6 +645,8 @@ struct elr_sunsplit {
   float cos_wide[EL_ENVLIGHT_HOTSPOT_MAX]; /* twice as wide: where the spots' bins are looked for (their pdf, 0 outside) */
   el_envlight_mix_cos_table *tabs;     /* the rest x cosine for each grid normal (ELR_SUNSPLIT_NO^2) */
   int spot;                            /* how the first sample is drawn (ELR_SUNSPLIT_SPOT) */
+  el_envlight_hotspots hsb;            /* spot 3: the hot spots of the render's own density (l->env_sample) */
+  float ak[EL_ENVLIGHT_HOTSPOT_MAX];   /* spot 3: the probability of drawing spot k (their shares, normalised) */
   double cpu;
 };
 
@@ -677,8 +685,9 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   P = (elr_sunsplit *)calloc(1, sizeof *P);
   if (!P) return -1;
   P->l = l;
-  /* (the light's own density, not its env_sample: under a sun the render samples the map alone by le()'s
-   * patches, EL_ENVLIGHT_IMPORTANCE_BILINEAR, on which no hot spot is found) */
+  /* (the sky's rest x cosine from the light's own density, not its env_sample: under a sun the render samples the
+   * map by le()'s patches, EL_ENVLIGHT_IMPORTANCE_BILINEAR, whose hot spots give the spot sample (P->hsb) but which
+   * has no mixture tables) */
   P->e = l->env;
   if (!(P->hs = elr__sun_spots(l, P->e))) { free(P); return -1; }
   if (P->hs->count == 0) { free(P); return 0; } /* nothing to split */
@@ -690,11 +699,19 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
   }
   P->wsky.rest = 1.f;
   for (k = 0; k < P->hs->count; k++) ps += P->hs->spot[k].share;
-  P->spot = ELR_SUNSPLIT_SPOT >= 0 ? ELR_SUNSPLIT_SPOT : ps >= ELR_SUNSPLIT_SPOT_SHARE ? 2 : 0;
-  if (P->spot == 2 && el_envlight_prepare_sampling(l->env_sample) != EL_SUCCESS) { free(P); return -1; }
+  P->spot = ELR_SUNSPLIT_SPOT >= 0 ? ELR_SUNSPLIT_SPOT : 3;
+  if (P->spot == 3) { /* (no spot in the render's density: the next rule) */
+    float as = 0.f;
+    if (el_envlight_hotspots_init(&P->hsb, l->env_sample, NULL) != EL_SUCCESS) { free(P); return -1; }
+    for (k = 0; k < P->hsb.count; k++) as += P->hsb.spot[k].share;
+    for (k = 0; k < P->hsb.count; k++) P->ak[k] = P->hsb.spot[k].share / as;
+    if (P->hsb.count == 0) P->spot = ELR_SUNSPLIT_SPOT >= 0 ? 0 : -1;
+  }
+  if (P->spot < 0) P->spot = ps >= ELR_SUNSPLIT_SPOT_SHARE ? 2 : 0;
+  if (P->spot == 2 && el_envlight_prepare_sampling(l->env_sample) != EL_SUCCESS) { el_envlight_hotspots_free(&P->hsb); free(P); return -1; }
   if (ELR_SUNSPLIT_SKY_COS) {
     P->tabs = (el_envlight_mix_cos_table *)malloc((size_t)ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO * sizeof *P->tabs);
-    if (!P->tabs) { free(P); return -1; }
+    if (!P->tabs) { el_envlight_hotspots_free(&P->hsb); free(P); return -1; }
     for (q = 0; q < ELR_SUNSPLIT_NO * ELR_SUNSPLIT_NO; q++) {
       float n[3];
       elr__sunsplit_qn(q, n);
@@ -708,6 +725,7 @@ int elr_sunsplit_build(const elr_light *l, elr_sunsplit **out) {
 void elr_sunsplit_free(elr_sunsplit *P) {
   if (!P) return;
   free(P->tabs);
+  el_envlight_hotspots_free(&P->hsb);
   free(P);
 }
 double elr_sunsplit_cpu(const elr_sunsplit *P) { return P ? P->cpu : 0.0; }
@@ -737,6 +755,12 @@ static int elr__sunsplit_in_cone(const elr_sunsplit *P, const float d[3], const 
 }
 /* the first part's density at d (ELR_SUNSPLIT_SPOT) */
 static float elr__sunsplit_spot_pdf(const elr_sunsplit *P, elr_v3 n, const float d[3]) {
+  if (P->spot == 3) { /* the mixture of the spots' rectangles */
+    float p = 0.f;
+    int k;
+    for (k = 0; k < P->hsb.count; k++) p += P->ak[k] * el_envlight_pdf_li_spot(P->l->env_sample, &P->hsb, k, d);
+    return p;
+  }
   if (P->spot == 1) { float nn[3]; elr_to3(n, nn); return el_envlight_pdf_li_cos(P->l->env_sample, nn, d); }
   if (!elr__sunsplit_in_cone(P, d, P->spot == 2 ? P->cos_half : P->cos_wide)) return 0.f; /* (the bins: a shortcut only) */
   return P->spot == 2 ? el_envlight_pdf_li(P->l->env_sample, d) : el_envlight_pdf_li_mix(P->e, P->hs, &P->wspot, d);
@@ -746,7 +770,14 @@ void elr_sunsplit_sample(const elr_sunsplit *P, int k, int parts, elr_v3 n, cons
   const el_envlight *e = P->e;
   float wi[3], L[3];
   ls->at_point = 0; ls->dist = INFINITY; ls->portal = -1;
-  if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
+  if (k == 0 && P->spot == 3) { /* a spot by its share (u[0] reused), then le()'s patches of its rectangle */
+    float uu[2], c = 0.f;
+    int j = 0;
+    while (j + 1 < P->hsb.count && u[0] >= c + P->ak[j]) c += P->ak[j++];
+    uu[0] = fminf((u[0] - c) / P->ak[j], 0x1.fffffep-1f); uu[0] = uu[0] > 0.f ? uu[0] : 0.f; uu[1] = u[1];
+    el_envlight_sample_li_spot(P->l->env_sample, &P->hsb, j, uu, wi, L, &ls->pdf);
+    if (P->hsb.count > 1 && ls->pdf > 0.f) ls->pdf = elr__sunsplit_spot_pdf(P, n, wi); /* (one spot: already it) */
+  } else if (k == 0 && P->spot == 1) { float nn[3]; elr_to3(n, nn); el_envlight_sample_li_cos(P->l->env_sample, nn, u, wi, L, &ls->pdf); }
   else if (k == 0 && P->spot == 2) { /* (a sample outside the cones is dropped: the part's density is 0 there) */
     el_envlight_sample_li(P->l->env_sample, u, wi, L, &ls->pdf);
     if (!elr__sunsplit_in_cone(P, wi, P->cos_half)) ls->pdf = 0.f;

@@ -163,8 +163,9 @@ static void hostile(void) {
 }
 
 /* --sun split (sun.c: a light sample of the hot spots and one of the rest x cosine at every diffuse vertex, MIS over
- * the three techniques with the BSDF sample; both ways of drawing the spot sample: sunrise.hdr's scenes the map's density
- * inside the cone, bench_city's the spot's bins): UNBIASED against the default (--sun off), 8 seeds of 8 spp (city 4) each, per
+ * the three techniques with the BSDF sample; the spot sample el_envlight_sample_li_spot, le()'s patches renormalised to a
+ * rectangle around the spot, on both maps; the older ways, sun.c's ELR_SUNSPLIT_SPOT 0 and 2, were checked the same way
+ * when they were the default): UNBIASED against the default (--sun off), 8 seeds of 8 spp (city 4) each, per
  * class and over the image, |z| < 4 as above (measured with planted errors: the BSDF sample's weight leaving out the
  * spot sample's density, which counts the sun twice, z +5.2 on sun_shadow_object's lit pixels and whole image, +5.9 on
  * bench_city's, +2.9 on sun_porch's; the light samples' weights ignoring the BSDF's, z +56 to +582; NOT caught: the
@@ -207,15 +208,55 @@ static void split_check(const char *name, int spp, int spot) {
   elr_scene_free(s);
 }
 
+/* --sun split on a map of TWO suns (a generated 256 x 128 PFM: suns of one texel, 3e5 and 2e5, so that the render's sun
+ * rule sees a sun; about 0.55 and 0.37 of the power):
+ * the spot sample picks a spot by its share and its pdf is the mixture of the two rectangles' (sun.c, ELR_SUNSPLIT_SPOT
+ * 3); unbiased against the default over the whole image, 8 seeds of 8 spp, |z| < 4 (planted: every spot sample from the
+ * first spot, its pdf still the mixture's: z -254) */
+static void two_suns_check(void) {
+  char text[2048], err[512];
+  elr_scene *s;
+  sm_result off, sp;
+  unsigned char *cls;
+  int w, h, x, y, c;
+  const int mw = 256, mh = 128, ns = 8;
+  FILE *f = fopen(rt_path("two_suns.pfm"), "wb");
+  if (!f) { rt_check(0, "two suns: writes its map"); return; }
+  fprintf(f, "PF\n%d %d\n-1.0\n", mw, mh);
+  for (y = 0; y < mh; y++)
+    for (x = 0; x < mw; x++) {
+      float v = 0.4f + 0.3f * (float)y / mh, sun = x == 50 && y == mh - 41 ? 3e5f : x == 160 && y == mh - 45 ? 2e5f : 0.f; /* (PFM rows run bottom to top) */
+      for (c = 0; c < 3; c++) { float q = sun > 0.f ? sun : v * (c == 2 ? 1.2f : 1.f); fwrite(&q, 4, 1, f); }
+    }
+  fclose(f);
+  snprintf(text, sizeof text, "LookAt 0 2.6 -7   0 0.3 1.5   0 1 0\nCamera \"perspective\" \"float fov\" [ 45 ]\n"
+           "Film \"image\" \"integer xresolution\" [ 48 ] \"integer yresolution\" [ 36 ]\nSampler \"halton\" \"integer pixelsamples\" [ 8 ]\n"
+           "Integrator \"directlighting\"\nWorldBegin\nAttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string mapname\" \"two_suns.pfm\"\n"
+           "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [ 0.5 0.5 0.5 ]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -30 0 -30  30 0 -30  30 0 30  -30 0 30 ]\n"
+           "Translate 0.5 0.8 1\nShape \"sphere\" \"float radius\" 0.8\nWorldEnd\n");
+  s = rt_load("two_suns.pbrt", text, err, sizeof err);
+  if (!s) { rt_check(0, "two suns scene loads: %s", err); return; }
+  { elr_image im; rt_render(s, 1, -1, -1, 2, 1, &im, NULL); elr_image_free(&im); } /* (the light's tables, for the classes) */
+  cls = sm_classes(s, &w, &h);
+  if (!cls || sm_run(s, 8, ns, 0, 2, cls, w, h, &off) || sm_run(s, 8, ns, 2, 2, cls, w, h, &sp)) { rt_check(0, "two suns renders"); elr_scene_free(s); free(cls); return; }
+  rt_check(fabs(sm_z(&sp, &off, cls, w * h, -1, ns)) < 4 && sp.st.sunsplit_used && sp.st.sunsplit_vertices > 0 && sp.st.sunsplit_spot == 3,
+           "--sun split, two suns: whole image's means agree (z %+.2f), %llu vertices split, the spot sample by way %d",
+           sm_z(&sp, &off, cls, w * h, -1, ns), (unsigned long long)sp.st.sunsplit_vertices, sp.st.sunsplit_spot);
+  sm_free(&off); sm_free(&sp); free(cls);
+  elr_scene_free(s);
+}
+
 int main(void) {
   rt_mkdir("sun");
   compare("sun_shadow_object.pbrt", 1.3);
   compare("sun_porch.pbrt", 1.0);
   determinism("sun_shadow_object.pbrt");
   determinism("sun_porch.pbrt");
-  split_check("sun_shadow_object.pbrt", 8, 2); /* (sunrise.hdr: the sun 0.75 of the power, the map's density in the cone) */
-  split_check("sun_porch.pbrt", 8, 2);
-  split_check("bench_city.pbrt", 4, 0);         /* (city.hdr: its sun 0.245, the spot's bins) */
+  split_check("sun_shadow_object.pbrt", 8, 3); /* (sunrise.hdr: el_envlight_sample_li_spot on le()'s patches) */
+  split_check("sun_porch.pbrt", 8, 3);
+  split_check("bench_city.pbrt", 4, 3);         /* (city.hdr: the same, its sun 0.245 of the power) */
+  two_suns_check();
   no_spot();
   hostile();
   return rt_finish("test_render_sun");

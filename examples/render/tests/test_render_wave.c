@@ -22,7 +22,9 @@
  *     diffuse vertices take it (the map alone with MIS, the product with MIS, the sun test choosing
  *     per vertex, the product light sample alone), the map alone for every vertex, and a smooth map
  *     (the product light sample alone); a matte of Kd 0 in one channel, a light of 2 samples (not shaded
- *     there) and halton. */
+ *     there) and halton; --env-sun-diffuse two and twopixel (two product light samples where the BSDF sample
+ *     was; twopixel's choice per pixel, its two rays counted), with a mirror (later vertices in the reference
+ *     integrator with the pixel's choice) and a light of 2 samples. */
 #include "render_test_util.h"
 
 static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
@@ -212,20 +214,28 @@ int main(void) {
   /* 6. matte alone (structure-of-arrays shading) under a sun map and a smooth one */
   {
     /* (expected: light samples of the product alone, of the map alone (with product sampling on), of product MIS) */
-    static const struct { const char *sampler, *light; int sun, sd; float light_alpha; int alone, map, mis, path; } cases[] = {
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 0},
-      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3", "", 1, ELR_ENVSD_MAP, -1.f, 0, 1, 0, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 0},
-      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, ELR_ENVSD_ALONE, -1.f, 1, 0, 0, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"string sampling\" \"map\"", 1, -1, -1.f, 0, 0, 0, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, -1, -1.f, 0, 0, 1, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 1, 0, 0, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, -1, INFINITY, 0, 0, 1, 0},
+    static const struct { const char *sampler, *light; int sun, sd; float light_alpha; int alone, map, mis, path, mirror; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 0, 0},
+      {"Sampler \"stratified\" \"integer xsamples\" 3 \"integer ysamples\" 3", "", 1, ELR_ENVSD_MAP, -1.f, 0, 1, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 0, 0},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, ELR_ENVSD_ALONE, -1.f, 1, 0, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"string sampling\" \"map\"", 1, -1, -1.f, 0, 0, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, -1, -1.f, 0, 0, 1, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 1, 0, 0, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, -1, INFINITY, 0, 0, 1, 0, 0},
+      /* --env-sun-diffuse two and twopixel (two product light samples, no BSDF sample; per pixel: some pixels
+       * product MIS), with a mirror sphere (the matte seen in it shaded by elr_direct_first with the
+       * pixel's choice) and a light of 2 samples (no structure-of-arrays lanes) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_TWO, -1.f, 1, 0, 0, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_TWO_PIXEL, -1.f, 1, 0, 1, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, ELR_ENVSD_TWO_PIXEL, -1.f, 1, 0, 1, 0, 1},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", " \"integer samples\" 2", 1, ELR_ENVSD_TWO, -1.f, 1, 0, 0, 0, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, ELR_ENVSD_TWO_PIXEL, -1.f, 1, 0, 1, 0, 1},
       /* the path tracer (never the light sample alone) */
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 1},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 1},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", " \"string sampling\" \"map\"", 0, -1, -1.f, 0, 0, 0, 1},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 0, 0, 1, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, ELR_ENVSD_PRODUCT, -1.f, 0, 0, 1, 1, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 4", "", 1, ELR_ENVSD_SUNCOS, -1.f, 0, 1, 1, 1, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", " \"string sampling\" \"map\"", 0, -1, -1.f, 0, 0, 0, 1, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, -1, -1.f, 0, 0, 1, 1, 0},
     };
     /* (a sun: one texel of a 512 x 256 map, where the sun test's share, ELR_ENV_SUN_AREA of the sphere, is a texel) */
     static float env[3 * 512 * 256];
@@ -245,8 +255,9 @@ int main(void) {
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.2 0.6 0.3 ]\nTranslate 0.6 0.7 0.4\nShape \"sphere\" \"float radius\" 0.6\nAttributeEnd\n"
                "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
-               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\nWorldEnd\n",
-               cases[c].sampler, cases[c].path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light);
+               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\n%s\nWorldEnd\n",
+               cases[c].sampler, cases[c].path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light,
+               cases[c].mirror ? "AttributeBegin\nMaterial \"mirror\"\nTranslate 0 0.4 -1.2\nShape \"sphere\" \"float radius\" 0.35\nAttributeEnd" : "");
       s = rt_load("wave_soa.pbrt", buf, err, 512);
       if (!s) { rt_check(0, "matte scene %d: %s", c, err); continue; }
       sun_diffuse = cases[c].sd; light_alpha = cases[c].light_alpha; lobe_alpha = -1.f;
@@ -254,7 +265,7 @@ int main(void) {
         size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
         for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
         rt_check(st.loop == ELR_LOOP_WAVE && diff == 0 && st.shadow_rays == sr.shadow_rays && st.bsdf_light_rays == sr.bsdf_light_rays &&
-                     st.bounce_rays == sr.bounce_rays &&
+                     st.bounce_rays == sr.bounce_rays && st.camera_rays == sr.camera_rays &&
                      st.env_product_samples == sr.env_product_samples && st.env_map_samples == sr.env_map_samples &&
                      st.env_light_only_samples == sr.env_light_only_samples,
                  "matte case %d (%s%s, sun %d, diffuse %d): %zu of %zu values differ from the reference; shadow %llu/%llu, bsdf %llu/%llu, "
