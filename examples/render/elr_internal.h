@@ -126,9 +126,10 @@ typedef struct elr_sphere {
   int flip;      /* pbrt-v3: ReverseOrientation xor a transform that swaps handedness */
   int object;    /* -1, or the prototype it belongs to */
   /* the intersection callbacks' (elr_sphere_prepare): the centre wc in o2w's target space (in float), o2w.inv's
-   * 3x3 with wc's place in object space as the fourth column, radius^2; sim: o2w is a similarity, of scale wr / radius */
+   * 3x3 with wc's place in object space as the fourth column, radius^2; sim: o2w is a similarity, of scale wr / radius;
+   * dbl: every ray in double (radius^2 or a r^2 out of float's comfortable range: shapes.c) */
   float wc[3], w2o[12], r2, wr;
-  int sim;
+  int sim, dbl;
 } elr_sphere;
 
 /* pbrt-v3's Disk (shapes/disk.cpp): the annulus innerradius <= r <= radius, 0 <= phi <= phimax, at
@@ -191,9 +192,9 @@ enum { ELR_ENVLS_PRODUCT = 0, ELR_ENVLS_MAP = 1 };
  * map's (le()'s patch density) and its cosine still helps where the sun is high */
 /* ELR_ENVSD_TWO (issue 22's lit pixels, bench/ld_lit.py): directlighting spends the BSDF sample's numbers and ray
  * on a second product light sample (each weighted 1/2; elr_env_two), in both loops (render_wave.c draws it with the first) */
-/* ELR_ENVSD_TWO_PIXEL: the same per pixel: its first such vertex takes product MIS and a shadow ray towards the
- * sun's axis; the pixel's later ones take the two samples if that ray saw the sun (or the sun lay below the
- * vertex's horizon), product MIS otherwise */
+/* ELR_ENVSD_TWO_PIXEL: the same per pixel, chosen before its samples (integrator_direct.c's elr_two_pixel: the camera
+ * ray through its centre and a shadow ray towards the sun's axis): the two samples where that ray misses the scene,
+ * its hit sees the sun or has it below the geometric horizon, product MIS where the scene hides the sun */
 enum { ELR_ENVSD_MAP = 0, ELR_ENVSD_PRODUCT = 1, ELR_ENVSD_ALONE = 2, ELR_ENVSD_SUNCOS = 3, ELR_ENVSD_TWO = 4, ELR_ENVSD_TWO_PIXEL = 5 };
 #define ELR_ENV_SUN_COS 0.5f
 #define ELR_ENV_SUN_DIFFUSE ELR_ENVSD_PRODUCT
@@ -934,8 +935,8 @@ typedef struct elr_tstats { /* one thread's counts */
                         sun cache knows, of them where it lowered the spots' weight (and where it saw no spot), and of
                         the looked-up ones those that landed in a spot's cone */
   uint64_t sunsplit_vertices, sunsplit_sky_only; /* --sun split: vertices split, of them with every spot below the horizon */
-  int env_two_pixel; /* ELR_ENVSD_TWO_PIXEL: the current pixel's choice (-1: not made yet; 1 two product samples, 0 MIS),
-                        reset by the reference loop at each pixel (integrator.c's elr_estimate_direct makes it) */
+  int env_two_pixel; /* ELR_ENVSD_TWO_PIXEL: the current pixel's choice (1 two product samples, 0 MIS), made by the
+                        reference loop at each pixel (elr_two_pixel), read by elr_estimate_direct (the wave loop: W->two_pix) */
 } elr_tstats;
 typedef struct elr_ctx {
   elr_scene *s;

@@ -428,7 +428,7 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
 static inline float elr__ph_sel(float f, float g) { /* elr_power_heuristic, both branches computed and selected */
   float f2 = f * f, g2 = g * g, rg = g / f, rf = f / g, r = f >= g ? rg : rf, wr = 1.f / (1.f + r * r), q = f2 / (f2 + g2);
   float wbig = f >= g ? wr : 1.f - wr, wn = f2 + g2 > 0.f ? q : 0.f;
-  return (f > 1e18f) | (g > 1e18f) ? wbig : wn;
+  return ((f > 1e18f) | (g > 1e18f)) ? wbig : wn;
 }
 
 /* lane j (a hit, not emitting) of the wave into W->A where its BSDF is a lone Lambertian lobe: 1 (its draws

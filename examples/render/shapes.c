@@ -89,6 +89,18 @@ void elr_sphere_prepare(elr_sphere *sp) {
     sp->w2o[4 * r + 3] = (float)(sp->o2w.inv[r][0] * w[0] + sp->o2w.inv[r][1] * w[1] + sp->o2w.inv[r][2] * w[2] + sp->o2w.inv[r][3]);
   }
   sp->r2 = sp->radius * sp->radius;
+  /* float's a r^2 (a = |w2o d|^2, between the squares of w2o's smallest and largest row for a unit d) and r^2
+   * must stay far inside float's range (the tests below multiply them by 1e6 and 1e-2): the parser takes a
+   * radius of 1e20 under Scale 1e-19 (r^2 overflows: the sphere vanished) or 1e-18 under Scale 1e18 (a r^2
+   * underflows: rays hit it anywhere); those, and any like them, take the double path for every ray */
+  {
+    double lo = DBL_MAX, hi = 0, rr = (double)sp->radius * sp->radius;
+    for (r = 0; r < 3; r++) {
+      double q = sp->o2w.inv[r][0] * sp->o2w.inv[r][0] + sp->o2w.inv[r][1] * sp->o2w.inv[r][1] + sp->o2w.inv[r][2] * sp->o2w.inv[r][2];
+      lo = q < lo ? q : lo; hi = q > hi ? q : hi;
+    }
+    sp->dbl = !(rr >= 1e-16 && rr <= 1e16 && lo * rr >= 1e-16 && hi * rr <= 1e16);
+  }
   sp->sim = elr__similarity(&sp->o2w, &sc);
   sp->wc[0] = wc.x; sp->wc[1] = wc.y; sp->wc[2] = wc.z;
   sp->wr = (float)(sp->radius * sc);
@@ -102,7 +114,8 @@ void elr_sphere_prepare(elr_sphere *sp) {
  * within 1.5e-5 |o|^2 of 0 (an origin that near the surface, not one spawned from it: c's sign says
  * inside or out). About 1% of the rays the callbacks test on bench_city take the double path.
  * test_render_sphere_float checks every width and a ray alone bit for bit against each other and
- * against its own long double quadratic on 2e5 random rays (grazing, near-surface and spawned ones).
+ * against its own long double quadratic on 2.1e5 random rays (grazing, near-surface and spawned ones) and
+ * on rays from each centre.
  * Measured (callgrind_parts.sh, bench_city, zsobol): Embree and intersection 988 -> 764 instructions
  * per camera sample (direct), 1543 -> 1227 (path), with elr_sphere_hit's similarity path below; images
  * within 3.5e-4 relative of the double callbacks' (README, Benchmark). */
@@ -211,7 +224,7 @@ int elr_sphere_simd(void) {
 
 /* one ray in float, or in double where float is not enough: 1 on a hit (t in *t) */
 static int elr__sph_ray(const elr_sphere *sp, const float *ray, size_t N, float *t) {
-  int hit = elr__sph_one(sp, ray, N, t);
+  int hit = sp->dbl ? -1 : elr__sph_one(sp, ray, N, t);
   if (hit < 0) {
     double td = elr__sph_hit(sp, ray[0], ray[N], ray[2 * N], ray[4 * N], ray[5 * N], ray[6 * N], ray[3 * N], ray[8 * N]);
     *t = (float)td;
@@ -223,6 +236,7 @@ static int elr__sph_ray(const elr_sphere *sp, const float *ray, size_t N, float 
 static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *ray, size_t N, const int *valid, float *t) {
   int hit, redo;
   unsigned k;
+  (void)W; /* (without SIMD: one ray, whatever W) */
 #if defined(ELR_SPHERE_SIMD)
   if (W == 8) hit = elr__sph_hit_avx(sp, ray, N, valid, t, &redo);
   else if (W == 4) hit = elr__sph_hit_sse2(sp, ray, N, valid, t, &redo);
@@ -239,6 +253,7 @@ static unsigned elr__sph_vector(const elr_sphere *sp, unsigned W, const float *r
 }
 unsigned elr_sphere_hit_rays(const elr_sphere *sp, int simd, const float *ray, unsigned N, unsigned i0, const int *valid, float t[16]) {
   unsigned bits = 0, i, end = i0 + 16 < N ? i0 + 16 : N, W;
+  if (sp->dbl) simd = 0; /* (one ray at a time, each in double: elr__sph_ray) */
   for (i = i0; i < end; i += W) { /* the widest vector the CPU runs that the rays fill (one ray at a time for the rest) */
     W = simd >= 2 && end - i >= 8 ? 8 : simd >= 1 && end - i >= 4 ? 4 : 1;
     bits |= elr__sph_vector(sp, W, ray + i, N, valid + i, t + (i - i0)) << (i - i0);

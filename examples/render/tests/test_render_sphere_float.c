@@ -1,8 +1,9 @@
 /* test_render_sphere_float: the sphere callbacks' float intersection (shapes.c's elr_sphere_hit_rays,
  * sphere_simd.h) and the hit record made from it (elr_sphere_hit), against this test's own quadratic
- * in long double, on 200000 random rays at five spheres: a unit sphere, an ellipsoid (rotated,
+ * in long double, on 210000 random rays at seven spheres: a unit sphere, an ellipsoid (rotated,
  * non-uniformly scaled), a small sphere 200 units from the origin, a sphere of radius 999 (seen from
- * near its surface) and a mirrored one.
+ * near its surface), a mirrored one, and two whose object-space radius is far from their world radius
+ * (1e20 scaled by 1e-19, 1e-18 scaled by 1e18: the parser takes both, float's r^2 does not).
  *   1. Every vector width this CPU runs (plain C, SSE2, AVX) and a ray alone (N = 1, as rtcIntersect1
  *      calls it) give the same hits and bit for bit the same t as packets of 16 (the one-ray loop and
  *      the wave loop make the same image).
@@ -86,8 +87,10 @@ int main(void) {
       "AttributeBegin\n  Translate 200 80 -50\n  Shape \"sphere\" \"float radius\" 0.05\nAttributeEnd\n"
       "AttributeBegin\n  Translate 0 -1000 0\n  Shape \"sphere\" \"float radius\" 999\nAttributeEnd\n"
       "AttributeBegin\n  Translate -3 1 0\n  Rotate 70 0 0 1\n  Scale -2 2 2\n  Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+      "AttributeBegin\n  Translate 5 5 5\n  Scale 1e-19 1e-19 1e-19\n  Shape \"sphere\" \"float radius\" 1e20\nAttributeEnd\n"
+      "AttributeBegin\n  Translate -5 5 5\n  Scale 1e18 1e18 1e18\n  Shape \"sphere\" \"float radius\" 1e-18\nAttributeEnd\n"
       "WorldEnd\n";
-  enum { NRAYS = 200000, NSPH = 5 };
+  enum { NRAYS = 210000, NSPH = 7 };
   char err[1024];
   elr_scene *s;
   rng g = rng_make(21);
@@ -99,7 +102,7 @@ int main(void) {
   int *kind = (int *)malloc(sizeof(int) * NRAYS);
   rt_mkdir("test_render_sphere_float");
   s = rt_load("spheres.pbrt", scene, err, sizeof err);
-  if (!s || s->nsph != NSPH || !rays || !kind) { printf("FAIL: loading the scene: %s\n", s ? "not 5 spheres" : err); return 1; }
+  if (!s || s->nsph != NSPH || !rays || !kind) { printf("FAIL: loading the scene: %s\n", s ? "not 7 spheres" : err); return 1; }
   simd = elr_sphere_simd();
   printf("vector widths tested: plain C%s%s\n", simd >= 1 ? ", SSE2" : "", simd >= 2 ? ", AVX" : "");
   for (si = 0; si < NSPH; si++) {
@@ -236,6 +239,31 @@ int main(void) {
     }
     printf("  sphere %d (radius %g at %g from the origin): t error up to %.2g relative, %.1f float ulps of the scale; point %.2g radii, "
            "normal %.2g\n", si, R, cmax, sdt[si], sdr[si], sdp[si], sdn[si]);
+  }
+  { /* 6. rays from the centre (a camera or a light inside a sphere): every one hits, t as the reference's, every width */
+    long centre_bad = 0, centre_n = 0;
+    for (si = 0; si < NSPH; si++) {
+      const elr_sphere *sp = &s->sph[si];
+      long double zero[3] = {0, 0, 0}, pw[3], nw[3];
+      obj_to_world(sp, zero, pw, nw);
+      for (i = 0; i < 64; i += 16) {
+        ray_t rr[16];
+        float buf[9 * 16], t[16];
+        int valid[16];
+        unsigned bits;
+        for (k = 0; k < 16; k++) { long double d[3]; unit(&g, d); set_ray(&rr[k], pw, d); valid[k] = -1; }
+        pack(rr, 16, buf);
+        for (w = 0; w <= simd; w++) {
+          bits = elr_sphere_hit_rays(sp, w, buf, 16, 0, valid, t);
+          for (k = 0; k < 16; k++) {
+            long double rdisc, tr = ref_hit(sp, &rr[k], &rdisc);
+            centre_n++;
+            centre_bad += !(bits >> k & 1) || !(tr > 0) || fabsl(t[k] - tr) > 1e-5L * tr;
+          }
+        }
+      }
+    }
+    rt_check(centre_bad == 0 && centre_n > 0, "rays from each sphere's centre hit it at the reference's t (within 1e-5): %ld of %ld not", centre_bad, centre_n);
   }
   rt_check(mism_width == 0, "every width (and a ray alone) gives the same hits and the same t bit for bit: %ld differences", mism_width);
   rt_check(mism_ref == 0 && hits > NRAYS / 4,
