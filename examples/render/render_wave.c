@@ -61,6 +61,14 @@ static elr_v3 elr__two_term(const elr_ctx *C, const elr_hit *h, elr_v3 Ld, elr_v
   return elr_add(Ld, elr_mul(Lt, 0.5f));
 }
 
+/* --sun split (sun.c): the spot and sky samples' terms drawn ahead in f, as elr_estimate_direct's split branch
+ * sums them (their shadow rays' answers in f: the wave's) */
+static void elr__split_terms(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_first *f, elr_tstats *ts, elr_v3 *Ld) {
+  int k;
+  for (k = 2 - f->split; k < 2; k++)
+    elr_light_term(C, h, b, wo, &f->ssl[k], C->ls == ELR_LS_MIS, 1.f, f->sother[k], k ? f->occ_l2 : f->occ_l, ts, Ld);
+}
+
 /* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
  * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
  * ahead in f */
@@ -80,6 +88,7 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
     *Ld = elr__two_term(C, h, *Ld, fl, f->wi2, f->L2, f->pdf2, f->occ_l2, ts);
     return;
   }
+  if (f->split) elr__split_terms(C, h, b, wo, f, ts, Ld); /* (then the BSDF sample's term; f->pdf 0) */
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
@@ -274,6 +283,7 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
   /* (ELR_ENVSD_TWO(_PIXEL): up to two light samples a pair, in the wave's arrays of ELR_WAVE) */
   two = !C->path && C->s->env_sunny && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL);
+  two |= !C->path && C->sunsplit; /* (--sun split: a spot and a sky sample, and the BSDF sample: three shadow rays a pair) */
   if (W->npair > ELR_WAVE / (1 + two)) W->npair = ELR_WAVE / (1 + two);
   W->cap = ELR_WAVE / ((1 + two) * W->npair);
   npix = C->spp >= W->cap ? 1 : W->cap / C->spp;
@@ -382,6 +392,7 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
       W->Ld[j] = elr__two_term(C, W->f[j].h, Ld, W->fl2[k], p->wi2, p->L2, p->pdf2, p->occ_l2, ts);
       continue;
     }
+    if (p->split) elr__split_terms(C, W->f[j].h, b, elr_mul(W->cam[j].d, -1.f), p, ts, &Ld); /* (then the BSDF sample's; p->pdf 0) */
     /* <<Sample light source with multiple importance sampling>> (W->fl: set where pdf > 0) */
     if (C->ls != ELR_LS_BSDF && p->pdf > 0.f && !elr_isblack(W->fl[k])) {
       ts->shadow++;
@@ -652,7 +663,7 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
 static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
   /* (W->A's lanes: a lone Lambertian lobe under the environment alone, one pair, MIS; elr__soa_add) */
-  const int soa = W->npair == 1 && C->light_sampling && C->ls == ELR_LS_MIS && !C->batch_light->portal && !C->sun;
+  const int soa = W->npair == 1 && C->light_sampling && C->ls == ELR_LS_MIS && !C->batch_light->portal && !C->sun && !C->sunsplit;
   int j, k, n = 0, np = 0, nm = 0, nesc = 0;
   W->shadows.n = 0; W->A.n = 0;
   for (j = 0; j < m; j++) {
@@ -678,11 +689,21 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
       float us[2];
       int lonly = 0, two = 0;
-      p->bs = p->bray = p->two = 0; p->occ_l = p->occ_b = p->occ_l2 = -1; p->pdf = p->pdf2 = 0.f; p->sun = W->vsc[j];
+      p->bs = p->bray = p->two = p->split = 0; p->occ_l = p->occ_b = p->occ_l2 = -1; p->pdf = p->pdf2 = 0.f; p->sun = W->vsc[j];
       W->pair[np] = p; W->pair_of[np] = j; W->light[np] = W->light2[np] = -1; W->lonly[np] = 0;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
-      if (C->ls != ELR_LS_BSDF) {
+      if (C->ls != ELR_LS_BSDF && C->sunsplit) { /* (--sun split: as elr_estimate_direct, no sun cache then) */
+        elr_v3 nv;
+        int has = elr_sun_cos_normal(C->s, NULL, &q->b, wo, &nv), kk;
+        p->split = elr_sunsplit_at(C->sunsplit, C->batch_light, &q->b, has ? &nv : NULL);
+        if (p->split) {
+          ts->sunsplit_vertices++; ts->sunsplit_sky_only += (uint64_t)(p->split == 1);
+          p->nsplit = nv; p->ssl[0].pdf = 0.f;
+          for (kk = 2 - p->split; kk < 2; kk++) elr_sunsplit_sample(C->sunsplit, kk, p->split, nv, &W->u[2 * n], &p->ssl[kk], &p->sother[kk], ts);
+        }
+      }
+      if (C->ls != ELR_LS_BSDF && !p->split) {
         W->sc[n] = W->vsc[j];
         W->has_n[n] = elr__cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
@@ -724,6 +745,16 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *p = W->pair[k], *q = &W->f[W->pair_of[k]];
     int i = W->light[k];
     W->shadow[k] = W->bshadow[k] = W->shadow2[k] = -1;
+    if (p->split) { /* (the spot and sky samples' shadow rays where elr_light_term traces one) */
+      elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
+      int kk;
+      for (kk = 2 - p->split; kk < 2; kk++) {
+        const elr_light_sample *ls = &p->ssl[kk];
+        if (!(ls->pdf > 0.f) || elr_isblack(elr_mul(elr_bsdf_f(&q->b, wo, ls->wi), fabsf(elr_dot(ls->wi, q->b.ns))))) continue;
+        if (kk) W->shadow2[k] = W->shadows.n; else W->shadow[k] = W->shadows.n;
+        elr_wave_add(&W->shadows, elr_spawn_origin(q->h, ls->wi), ls->wi, ls->dist);
+      }
+    }
     if (W->light2[k] >= 0) { /* (the second light sample: its shadow ray as the first's) */
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       float pb;
@@ -768,7 +799,8 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       if (!p->bray || p->occ_b) continue;
       elr_to3(p->wb, d);
       ke[ne++] = k;
-      if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+      if (p->split) p->bpdf_env = elr_sunsplit_pdf(C->sunsplit, p->split, p->nsplit, p->wb); /* (as elr_estimate_direct) */
+      else if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
       else if (C->batch_light->product) { /* (the normal of the pair's light sample where it has one: the same call) */
         elr_v3 nv;
         const elr_sun_cell *c = W->vsc[W->pair_of[k]];
