@@ -300,16 +300,21 @@ int main(void) {
    * sun map: bit for bit, the same ray and strategy counts, vertices split; with a mirror (the mattes seen in
    * it: the reference integrator's split) and a light of 2 samples */
   {
-    static const struct { const char *sampler, *light; int mirror, wide; } cases[] = {
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, 0},
-      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, 0},
+    static const struct { const char *sampler, *light; int mirror, wide, path; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, 0, 0},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, 0, 0},
       /* a sun of one texel in a halo of 10 x 10 texels (about 7 degrees wide): its rectangle holds sky, so many light samples meet
        * the other light technique's density there (with the one-texel sun, 2 of the split case 0-4's samples) */
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 1},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 1, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1, 0},
+      /* the path tracer (maxdepth 5: the escaped rays' weights against the split densities) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, 1, 1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 1, 1},
     };
     static float env[3 * 512 * 256];
     int c, i, x, y;
@@ -322,7 +327,7 @@ int main(void) {
     el_image_write_pfm(rt_path("sunwide.pfm"), env, 512, 256, 3, err, sizeof err);
     sun_mode = 2;
     for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
-      elr_scene *s = load_matte(cases[c].sampler, 0, cases[c].wide ? "sunwide.pfm" : "sun.pfm", cases[c].light, cases[c].mirror, err);
+      elr_scene *s = load_matte(cases[c].sampler, cases[c].path, cases[c].wide ? "sunwide.pfm" : "sun.pfm", cases[c].light, cases[c].mirror, err);
       elr_image ref, img;
       elr_stats sr, st;
       if (!s) { rt_check(0, "split scene %d: %s", c, err); continue; }
@@ -334,9 +339,9 @@ int main(void) {
                      st.shadow_rays == sr.shadow_rays && st.bsdf_light_rays == sr.bsdf_light_rays && st.bounce_rays == sr.bounce_rays &&
                      st.camera_rays == sr.camera_rays && st.env_product_samples == sr.env_product_samples &&
                      st.env_map_samples == sr.env_map_samples && st.env_light_only_samples == sr.env_light_only_samples,
-                 "split case %d (%s%s, mirror %d): %zu of %zu values differ from the reference; split vertices %llu/%llu, shadow "
+                 "split case %d (%s%s, mirror %d, path %d): %zu of %zu values differ from the reference; split vertices %llu/%llu, shadow "
                  "%llu/%llu, bsdf %llu/%llu, product %llu/%llu",
-                 c, cases[c].sampler, cases[c].light, cases[c].mirror, diff, n, (unsigned long long)st.sunsplit_vertices,
+                 c, cases[c].sampler, cases[c].light, cases[c].mirror, cases[c].path, diff, n, (unsigned long long)st.sunsplit_vertices,
                  (unsigned long long)sr.sunsplit_vertices, (unsigned long long)st.shadow_rays, (unsigned long long)sr.shadow_rays,
                  (unsigned long long)st.bsdf_light_rays, (unsigned long long)sr.bsdf_light_rays,
                  (unsigned long long)st.env_product_samples, (unsigned long long)sr.env_product_samples);
