@@ -26,9 +26,10 @@
  *     was; twopixel's choice per pixel, its two rays counted), with a mirror (later vertices in the reference
  *     integrator with the pixel's choice) and a light of 2 samples.
  *  7. --sun split (a spot, a sky and the BSDF sample, three-way MIS) bit for bit, with the same ray, strategy and
- *     split-vertex counts: zsobol, random, halton, a mirror, a light of 2 samples, on 6.'s one-texel sun and on a
- *     sun in a halo and a bright sky (where light samples meet the other light technique's density: a one-ulp
- *     change to the wave's weight of those samples fails both of its cases, 5 and 3 values). */
+ *     split-vertex counts, directlighting and path, light sampling alone too: zsobol, random, halton, a mirror, a
+ *     light of 2 samples, on 6.'s one-texel sun and on a sun in a halo and a bright sky (where light samples meet the
+ *     other light technique's density: a one-ulp change to the wave's weight of those samples fails cases 5, 6, 9
+ *     and 10; to the path wave's escaped-ray split pdf, cases 7 to 10). */
 #include "render_test_util.h"
 
 static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
@@ -300,21 +301,24 @@ int main(void) {
    * sun map: bit for bit, the same ray and strategy counts, vertices split; with a mirror (the mattes seen in
    * it: the reference integrator's split) and a light of 2 samples */
   {
-    static const struct { const char *sampler, *light; int mirror, wide, path; } cases[] = {
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 0, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 0},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, 0, 0},
-      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, 0, 0},
+    static const struct { const char *sampler, *light; int mirror, wide, path, ls; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 0, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 0, -1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, 0, 0, -1},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, 0, 0, -1},
       /* a sun of one texel in a halo of 10 x 10 texels (about 7 degrees wide): its rectangle holds sky, so many light samples meet
        * the other light technique's density there (with the one-texel sun, 2 of the split case 0-4's samples) */
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 1, 0},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 1, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1, 0, -1},
       /* the path tracer (maxdepth 5: the escaped rays' weights against the split densities) */
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 1},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 1},
-      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, 1, 1},
-      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 1, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 1, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 1, -1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, 1, 1, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 1, 1, -1},
+      /* light sampling alone (the split weights without the BSDF's density) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, 1, 0, ELR_LS_LIGHT},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1, 1, ELR_LS_LIGHT},
     };
     static float env[3 * 512 * 256];
     int c, i, x, y;
@@ -331,7 +335,7 @@ int main(void) {
       elr_image ref, img;
       elr_stats sr, st;
       if (!s) { rt_check(0, "split scene %d: %s", c, err); continue; }
-      if (render(s, ELR_LOOP_ONE, -1, -1, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &img, &st, err) == 0) {
+      if (render(s, ELR_LOOP_ONE, -1, cases[c].ls, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, cases[c].ls, 2, 0, &img, &st, err) == 0) {
         size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
         for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
         rt_check(st.loop == ELR_LOOP_WAVE && sr.loop == ELR_LOOP_ONE && diff == 0 && sr.sunsplit_vertices > 0 &&
