@@ -8,7 +8,7 @@
  *   bench_sun_render --csv [SPP [SEEDS [THREADS [SCENE ...]]]]   the same as CSV rows
  *                    (kind,option,scene,class,spp,pixels,mean,variance,cpu_s; option off / on)
  *   bench_sun_render [--csv] [--split] [--loop-one] ...   --split: --sun split (sun.c: one spot and one sky sample per
- *                    diffuse vertex, the one-sample loop) in place of --sun on; --loop-one: every render in the one-sample loop
+ *                    diffuse vertex, in the default's loop) in place of --sun on; --loop-one: every render in the one-sample loop
  *                    (the default's wave loop left out of the comparison); --pbrt-v3: every render with pbrt-v3's importance
  *                    map (the default under a sun is le()'s patch density); --random: the
  *                    independent sampler (pbrt's "random") in place of the scenes'

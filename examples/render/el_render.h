@@ -101,8 +101,8 @@ typedef struct elr_render_options {
                            hidden and the light samples there go to the rest of the map x cosine (1.3-1.9x less variance
                            in the sun's shadow at equal samples, but 1.3-1.8x the render's CPU time on the bench scenes:
                            bench/bench_sun_render.c); 2 split: at every vertex with a product normal one light sample
-                           of the hot spots and one of the rest x cosine, MIS with the BSDF sample over the three (the
-                           one-sample loop); 0 and -1 (the default, until its per-sample cost is down) off */
+                           of the hot spots and one of the rest x cosine, MIS with the BSDF sample over the three
+                           (either loop: the same image); 0 and -1 (the default, until its per-sample cost is down) off */
   int env_sun_diffuse;  /* -1: ELR_ENV_SUN_DIFFUSE; else with product sampling under a sun map (elr__sun_share), how
                            vertices with only diffuse lobes sample it: ELR_ENVSD_MAP the map alone with MIS, ELR_ENVSD_PRODUCT
                            the product with MIS, ELR_ENVSD_ALONE the product light sample alone, ELR_ENVSD_SUNCOS the map

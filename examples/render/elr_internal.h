@@ -994,6 +994,9 @@ static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
 /* pbrt-v3's VisibilityTester::Unoccluded of a light sample taken at h (integrator.c: lights.c traces no rays) */
 int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_sample *ls);
+/* a light sample's term of elr_estimate_direct (integrator.c; occ: its shadow ray's answer, -1: traced there) */
+void elr_light_term(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light_sample *ls, int mis, float pick,
+                    float other, int occ, elr_tstats *ts, elr_v3 *Ld);
 void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light *l, const float ul[2],
                          const float us[2], int sample_bsdf, float pick, elr_tstats *ts, elr_v3 *Ld);
 elr_v3 elr_uniform_sample_all_lights(const elr_ctx *C, elr_sampler *S, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, int use_counts,
@@ -1045,6 +1048,13 @@ typedef struct elr_first {
   int two, occ_l2;
   elr_v3 wi2, L2;
   float pdf2;
+  /* --sun split (sun.c; split 2: a spot and a sky sample, 1: the sky alone, 0: none): sample k in ssl[k], the other
+   * light technique's density there in sother[k] (elr_sunsplit_sample), their shadow rays' answers occ_l and occ_l2;
+   * nsplit the product normal (the BSDF sample's MIS weight: elr_sunsplit_pdf) */
+  int split;
+  elr_light_sample ssl[2];
+  float sother[2];
+  elr_v3 nsplit;
 } elr_first;
 /* elr_direct_li with its first vertex computed ahead in f (camera ray r; the sampler at the sample's
  * first draw after its camera sample) */

@@ -50,15 +50,16 @@ int elr_light_unoccluded(const elr_scene *s, const elr_hit *h, const elr_light_s
 
 /* <<Compute BSDF value for light sample>>, the shadow ray and <<Add light's contribution to reflected
  * radiance>> for light sample ls: the power heuristic of pick x its pdf against the BSDF's (when mis)
- * and pick x other, the density of another light technique in its direction (--sun split; 0: none) */
-static void elr__light_term(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light_sample *ls, int mis, float pick,
-                            float other, elr_tstats *ts, elr_v3 *Ld) {
+ * and pick x other, the density of another light technique in its direction (--sun split; 0: none);
+ * occ the shadow ray's answer when the caller traced it (the wave loop: 1 occluded, 0 not), -1: traced here */
+void elr_light_term(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light_sample *ls, int mis, float pick,
+                    float other, int occ, elr_tstats *ts, elr_v3 *Ld) {
   elr_v3 f;
   if (!(ls->pdf > 0.f)) return;
   f = elr_mul(elr_bsdf_f(b, wo, ls->wi), fabsf(elr_dot(ls->wi, b->ns)));
   if (elr_isblack(f)) return;
   ts->shadow++;
-  if (elr_light_unoccluded(C->s, h, ls)) {
+  if (occ >= 0 ? !occ : elr_light_unoccluded(C->s, h, ls)) {
     float pb = mis ? elr_bsdf_pdf(b, wo, ls->wi) : 0.f, po = pick * other;
     float w = mis || po > 0.f ? elr_power_heuristic(pick * ls->pdf, po > 0.f ? sqrtf(pb * pb + po * po) : pb) : 1.f;
     *Ld = elr_add(*Ld, elr_mul(elr_vmul(f, ls->L), w / ls->pdf));
@@ -99,7 +100,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
     ts->sunsplit_vertices++; ts->sunsplit_sky_only += (uint64_t)(split == 1);
     for (k = 2 - split; k < 2; k++) {
       elr_sunsplit_sample(C->sunsplit, k, split, nc, ul, &ls, &other, ts); /* (one u for both: sun.c) */
-      elr__light_term(C, h, b, wo, &ls, C->ls == ELR_LS_MIS, pick, other, ts, Ld);
+      elr_light_term(C, h, b, wo, &ls, C->ls == ELR_LS_MIS, pick, other, -1, ts, Ld);
     }
   } else if (delta || C->ls != ELR_LS_BSDF) for (kt = 0; kt <= two; kt++) {
     elr_light_sample ls;
@@ -113,7 +114,7 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
     if (ls.portal >= 0) { if (ls.portal) ts->portal_used++; else ts->portal_fallback++; }
     {
       elr_v3 Lt = elr_v(0, 0, 0); /* (two: each sample's term, weighted 1/2) */
-      elr__light_term(C, h, b, wo, &ls, !delta && C->ls == ELR_LS_MIS && !lonly, pick, 0.f, ts, two ? &Lt : Ld);
+      elr_light_term(C, h, b, wo, &ls, !delta && C->ls == ELR_LS_MIS && !lonly, pick, 0.f, -1, ts, two ? &Lt : Ld);
       if (two) *Ld = elr_add(*Ld, elr_mul(Lt, 0.5f));
     }
   }

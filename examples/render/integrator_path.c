@@ -27,8 +27,8 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   float prev_pdf = p->prev_pdf, eta_scale = p->eta_scale;
   elr_v3 prev_n = p->prev_n, prev_p = p->ray.o; /* prev_p: where the last light sample was drawn (portals) */
   const elr_sun_cell *prev_sun = p->prev_sun; /* and its sun-cache cell (sun.c) */
-  int prev_split = 0; /* and whether it split its light sample (--sun split, sun.c: elr_sunsplit_at's answer; render.c
-                         runs this loop alone then, so a path state from the wave loop never carries one) */
+  int prev_split = 0; /* and whether it split its light sample (--sun split, sun.c: elr_sunsplit_at's answer; p is a
+                         camera ray's state here: render.c's loop; the wave loop keeps its own, render_wave.c) */
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;

@@ -624,10 +624,9 @@ static int elr__sun_prepare(elr_ctx *C, const elr_render_options *o, const int f
      * largest lamp's shadow (its other lamps stay lit and the rest x cosine draws them without the cosine:
      * envlight.h's NOTES ON HOT SPOTS 4), bench/bench_sun_render.c on scenes/bench_studio.pbrt */
     if (!s->env_sunny) return 0;
-    if (o->env_sun == 2) { /* --sun split: no pilot; the one-sample loop (render_wave.c draws one light sample a vertex) */
+    if (o->env_sun == 2) { /* --sun split: no pilot; either loop (render_wave.c: the same image, test_render_wave) */
       if (elr_sunsplit_build(l, split) != 0) return -1;
       C->sunsplit = *split;
-      if (*split) C->loop = ELR_LOOP_ONE;
       if (st && *split) { st->sunsplit_used = 1; st->sunsplit_spot = elr_sunsplit_spot(*split); st->t_sun_cpu = elr_sunsplit_cpu(*split); }
       return 0;
     }

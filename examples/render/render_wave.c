@@ -61,6 +61,14 @@ static elr_v3 elr__two_term(const elr_ctx *C, const elr_hit *h, elr_v3 Ld, elr_v
   return elr_add(Ld, elr_mul(Lt, 0.5f));
 }
 
+/* --sun split (sun.c): the spot and sky samples' terms drawn ahead in f, as elr_estimate_direct's split branch
+ * sums them (their shadow rays' answers in f: the wave's) */
+static void elr__split_terms(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_first *f, elr_tstats *ts, elr_v3 *Ld) {
+  int k;
+  for (k = 2 - f->split; k < 2; k++)
+    elr_light_term(C, h, b, wo, &f->ssl[k], C->ls == ELR_LS_MIS, 1.f, f->sother[k], k ? f->occ_l2 : f->occ_l, ts, Ld);
+}
+
 /* elr_estimate_direct for the environment's first sample at a first vertex (hit h, BSDF b), with the
  * light sample and the BSDF sample (and the environment's pdf and radiance in its direction) drawn
  * ahead in f */
@@ -80,6 +88,7 @@ static void elr__estimate_direct_ahead(const elr_ctx *C, const elr_hit *h, const
     *Ld = elr__two_term(C, h, *Ld, fl, f->wi2, f->L2, f->pdf2, f->occ_l2, ts);
     return;
   }
+  if (f->split) elr__split_terms(C, h, b, wo, f, ts, Ld); /* (then the BSDF sample's term; f->pdf 0) */
   /* <<Sample light source with multiple importance sampling>> */
   if (C->ls != ELR_LS_BSDF && f->pdf > 0.f) {
     elr_v3 fl = elr_mul(elr_bsdf_f(b, wo, f->wi), fabsf(elr_dot(f->wi, b->ns)));
@@ -233,6 +242,12 @@ struct elr_wave {
   const elr_sun_cell *vsc[ELR_WAVE]; /* and each camera sample's vertex's */
   elr_v3 lpos[ELR_WAVE];   /* portals (issue 23): each light sample's point, */
   elr_v3 prevp[ELR_WAVE];  /* and each path's last vertex (its escaped ray's pdf is taken there) */
+  /* --sun split, the path tracer: per path, its vertex's split (elr_first.split), spot and sky samples (2 j + k), the
+   * other light technique's densities there and their shadow rays; the split of the vertex its ray left (prevsplit:
+   * elr_path_li's prev_split, the escaped ray's MIS weight) */
+  int psplit[ELR_WAVE], prevsplit[ELR_WAVE], psh[2 * ELR_WAVE];
+  elr_light_sample pssl[2 * ELR_WAVE];
+  float psother[2 * ELR_WAVE];
   elr_wave_rays rays, shadows;
   /* per material, the BSDF it has at every hit but for the frame (elr_bsdf_constant), or -1: its index in tmpl */
   int *tmpl_of;
@@ -274,6 +289,7 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
   /* (ELR_ENVSD_TWO(_PIXEL): up to two light samples a pair, in the wave's arrays of ELR_WAVE) */
   two = !C->path && C->s->env_sunny && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL);
+  two |= !C->path && C->sunsplit; /* (--sun split: a spot and a sky sample, and the BSDF sample: three shadow rays a pair) */
   if (W->npair > ELR_WAVE / (1 + two)) W->npair = ELR_WAVE / (1 + two);
   W->cap = ELR_WAVE / ((1 + two) * W->npair);
   npix = C->spp >= W->cap ? 1 : W->cap / C->spp;
@@ -382,6 +398,7 @@ static void elr__direct_shade(const elr_ctx *C, elr_wave *W, int np, elr_tstats 
       W->Ld[j] = elr__two_term(C, W->f[j].h, Ld, W->fl2[k], p->wi2, p->L2, p->pdf2, p->occ_l2, ts);
       continue;
     }
+    if (p->split) elr__split_terms(C, W->f[j].h, b, elr_mul(W->cam[j].d, -1.f), p, ts, &Ld); /* (then the BSDF sample's; p->pdf 0) */
     /* <<Sample light source with multiple importance sampling>> (W->fl: set where pdf > 0) */
     if (C->ls != ELR_LS_BSDF && p->pdf > 0.f && !elr_isblack(W->fl[k])) {
       ts->shadow++;
@@ -645,6 +662,13 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
   for (i = 0; i < n; i++) W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
 }
 
+/* --sun split: light sample ls's shadow ray into sh where elr_light_term traces one (hit h, BSDF b, wo): its index, or -1 */
+static int elr__split_shadow(elr_wave_rays *sh, const elr_hit *h, const elr_bsdf *b, elr_v3 wo, const elr_light_sample *ls) {
+  if (!(ls->pdf > 0.f) || elr_isblack(elr_mul(elr_bsdf_f(b, wo, ls->wi), fabsf(elr_dot(ls->wi, b->ns))))) return -1;
+  elr_wave_add(sh, elr_spawn_origin(h, ls->wi), ls->wi, ls->dist);
+  return sh->n - 1;
+}
+
 /* the direct-lighting integrator's first vertex for the m camera samples of the wave (their camera rays
  * in W->rays, traced): the hits' BSDF samples, light samples and environment lookups for the whole
  * wave, for each of the light's W->npair sample pairs (its "samples" count, or splitting's), then all
@@ -652,7 +676,7 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
 static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts) {
   const el_envlight *env = C->batch_light->env, *env_sample = C->batch_light->env_sample;
   /* (W->A's lanes: a lone Lambertian lobe under the environment alone, one pair, MIS; elr__soa_add) */
-  const int soa = W->npair == 1 && C->light_sampling && C->ls == ELR_LS_MIS && !C->batch_light->portal && !C->sun;
+  const int soa = W->npair == 1 && C->light_sampling && C->ls == ELR_LS_MIS && !C->batch_light->portal && !C->sun && !C->sunsplit;
   int j, k, n = 0, np = 0, nm = 0, nesc = 0;
   W->shadows.n = 0; W->A.n = 0;
   for (j = 0; j < m; j++) {
@@ -678,11 +702,21 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       elr_first *p = k == 0 ? q : &W->more[nm - (W->npair - 1) + k - 1];
       float us[2];
       int lonly = 0, two = 0;
-      p->bs = p->bray = p->two = 0; p->occ_l = p->occ_b = p->occ_l2 = -1; p->pdf = p->pdf2 = 0.f; p->sun = W->vsc[j];
+      p->bs = p->bray = p->two = p->split = 0; p->occ_l = p->occ_b = p->occ_l2 = -1; p->pdf = p->pdf2 = 0.f; p->sun = W->vsc[j];
       W->pair[np] = p; W->pair_of[np] = j; W->light[np] = W->light2[np] = -1; W->lonly[np] = 0;
       elr_sampler_get2d(S, &W->u[2 * n]);
       elr_sampler_get2d(S, us);
-      if (C->ls != ELR_LS_BSDF) {
+      if (C->ls != ELR_LS_BSDF && C->sunsplit) { /* (--sun split: as elr_estimate_direct, no sun cache then) */
+        elr_v3 nv;
+        int has = elr_sun_cos_normal(C->s, NULL, &q->b, wo, &nv), kk;
+        p->split = elr_sunsplit_at(C->sunsplit, C->batch_light, &q->b, has ? &nv : NULL);
+        if (p->split) {
+          ts->sunsplit_vertices++; ts->sunsplit_sky_only += (uint64_t)(p->split == 1);
+          p->nsplit = nv; p->ssl[0].pdf = 0.f;
+          for (kk = 2 - p->split; kk < 2; kk++) elr_sunsplit_sample(C->sunsplit, kk, p->split, nv, &W->u[2 * n], &p->ssl[kk], &p->sother[kk], ts);
+        }
+      }
+      if (C->ls != ELR_LS_BSDF && !p->split) {
         W->sc[n] = W->vsc[j];
         W->has_n[n] = elr__cos_normal(C->s, W->sc[n], &q->b, wo, &W->normal[n]);
         W->lpos[n] = W->h[j].p;
@@ -724,6 +758,11 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     elr_first *p = W->pair[k], *q = &W->f[W->pair_of[k]];
     int i = W->light[k];
     W->shadow[k] = W->bshadow[k] = W->shadow2[k] = -1;
+    if (p->split) { /* (the spot and sky samples' shadow rays where elr_light_term traces one) */
+      elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
+      int kk;
+      for (kk = 2 - p->split; kk < 2; kk++) *(kk ? &W->shadow2[k] : &W->shadow[k]) = elr__split_shadow(&W->shadows, q->h, &q->b, wo, &p->ssl[kk]);
+    }
     if (W->light2[k] >= 0) { /* (the second light sample: its shadow ray as the first's) */
       elr_v3 wo = elr_mul(W->cam[W->pair_of[k]].d, -1.f);
       float pb;
@@ -768,7 +807,8 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
       if (!p->bray || p->occ_b) continue;
       elr_to3(p->wb, d);
       ke[ne++] = k;
-      if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
+      if (p->split) p->bpdf_env = elr_sunsplit_pdf(C->sunsplit, p->split, p->nsplit, p->wb); /* (as elr_estimate_direct) */
+      else if (C->batch_light->portal) p->bpdf_env = elr_light_pdf_li_at(C->batch_light, W->f[W->pair_of[k]].h->p, NULL, p->wb);
       else if (C->batch_light->product) { /* (the normal of the pair's light sample where it has one: the same call) */
         elr_v3 nv;
         const elr_sun_cell *c = W->vsc[W->pair_of[k]];
@@ -798,7 +838,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
   const el_envlight *env = l->env, *env_sample = l->env_sample;
   const float pick = C->ld.pick ? C->ld.pick[l - s->light] : 1.f; /* the one emitting light: 1 */
   int j, depth, nalive = m;
-  for (j = 0; j < m; j++) { elr_path_begin(&W->p[j], &W->cam[j]); W->alive[j] = 1; W->ray[j] = j; }
+  for (j = 0; j < m; j++) { elr_path_begin(&W->p[j], &W->cam[j]); W->alive[j] = 1; W->ray[j] = j; W->prevsplit[j] = 0; }
   for (depth = 0; nalive > 0; depth++) {
     int n = 0, ne = 0;
     if (depth > 0) { /* the rays of the paths alive, in one call */
@@ -816,7 +856,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_tex_ctx tc;
       elr_v3 wo, dpdx, dpdy;
       float u[2];
-      W->light[j] = W->escaped[j] = -1;
+      W->light[j] = W->escaped[j] = -1; W->psplit[j] = 0;
       if (!W->alive[j]) continue;
       if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
         float d[3];
@@ -854,8 +894,17 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
         W->has_n[n] = elr__cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
         W->lpos[n] = h->p;
-        if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
-        W->light[j] = n++;
+        /* (--sun split: the spot and sky samples drawn here, as elr_estimate_direct; no sun cache then) */
+        W->psplit[j] = C->sunsplit && C->ls != ELR_LS_BSDF ? elr_sunsplit_at(C->sunsplit, l, b, W->has_n[n] ? &W->normal[n] : NULL) : 0;
+        if (W->psplit[j]) {
+          int k;
+          ts->sunsplit_vertices++; ts->sunsplit_sky_only += (uint64_t)(W->psplit[j] == 1);
+          W->pssl[2 * j].pdf = 0.f;
+          for (k = 2 - W->psplit[j]; k < 2; k++) elr_sunsplit_sample(C->sunsplit, k, W->psplit[j], W->normal[n], &W->u[2 * n], &W->pssl[2 * j + k], &W->psother[2 * j + k], ts);
+        } else {
+          if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
+          W->light[j] = n++;
+        }
       }
       /* <<Sample BSDF to get new path direction>> */
       elr_sampler_get2d(S, u);
@@ -877,7 +926,8 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
         else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) { /* (only where the weight is
           * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
-          if (W->p[j].prev_sun && !elr_sun_cell_product(W->p[j].prev_sun, W->p[j].prev_has_n)) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
+          if (W->prevsplit[j]) W->pdf[e] = elr_sunsplit_pdf(C->sunsplit, W->prevsplit[j], W->p[j].prev_n, elr_from3(&W->wi[3 * e])); /* (as elr_path_li) */
+          else if (W->p[j].prev_sun && !elr_sun_cell_product(W->p[j].prev_sun, W->p[j].prev_has_n)) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
           else if (W->p[j].prev_has_n) { elr_to3(W->p[j].prev_n, &nn[3 * nc]); memcpy(&dc[3 * nc], &W->wi[3 * e], 3 * sizeof(float)); kc[nc++] = e; } /* (elr_light_pdf_li) */
           else { memcpy(&dm[3 * nm], &W->wi[3 * e], 3 * sizeof(float)); km[nm++] = e; }
         } else W->pdf[e] = 0.f;
@@ -923,6 +973,10 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           }
         }
       }
+      if (W->psplit[j]) { /* (--sun split: the spot and sky samples' shadow rays, two a path at most: ELR_WAVE_RAYS) */
+        int k;
+        for (k = 2 - W->psplit[j]; k < 2; k++) W->psh[2 * j + k] = elr__split_shadow(&W->shadows, &W->h[j], &W->b[j], elr_mul(p->ray.d, -1.f), &W->pssl[2 * j + k]);
+      }
     }
     elr__occluded(C, &W->shadows, ts);
     /* each path's direct light, then its next ray (<<Possibly terminate the path with Russian roulette>>) */
@@ -937,6 +991,14 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         elr_v3 Ld = elr_v(0, 0, 0);
         if (W->shadow[j] >= 0 && !(W->shadows.tfar[W->shadow[j]] < 0.f)) Ld = elr_add(Ld, W->contrib[j]);
         p->L = elr_add(p->L, elr_vmul(p->beta, elr_mul(Ld, 1.f / pick)));
+      } else if (W->psplit[j]) { /* (--sun split: elr_estimate_direct's split terms, then UniformSampleOneLight's 1 / pick) */
+        elr_v3 Ld = elr_v(0, 0, 0);
+        int k, i;
+        for (k = 2 - W->psplit[j]; k < 2; k++) {
+          i = W->psh[2 * j + k];
+          elr_light_term(C, &W->h[j], b, wo, &W->pssl[2 * j + k], C->ls == ELR_LS_MIS, pick, W->psother[2 * j + k], i >= 0 ? W->shadows.tfar[i] < 0.f : 0, ts, &Ld);
+        }
+        p->L = elr_add(p->L, elr_vmul(p->beta, elr_mul(Ld, 1.f / pick)));
       }
       if (elr_isblack(f) || pdf == 0.f) { W->alive[j] = 0; nalive--; continue; }
       p->beta = elr_mul(elr_vmul(p->beta, f), fabsf(elr_dot(wi, b->ns)) / pdf);
@@ -948,6 +1010,8 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         p->prev_sun = C->sun ? elr_sun_lookup(C->sun, &W->h[j], wo) : NULL;
         p->prev_has_n = elr_sun_cos_normal(s, p->prev_sun, b, wo, &p->prev_n);
       }
+      W->prevsplit[j] = C->sunsplit && C->light_sampling && (b->has_diffuse || b->has_glossy) /* (as elr_path_li's prev_split) */
+                          ? elr_sunsplit_at(C->sunsplit, elr_sunsplit_light(C->sunsplit), b, p->prev_has_n ? &p->prev_n : NULL) : 0;
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {

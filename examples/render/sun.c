@@ -104,7 +104,10 @@
  * (P->hsb; a spot by its share): le()'s patches renormalised to a rectangle of patches around the spot's cone, so every
  * draw lands there and its pdf is pdf_li / P(rectangle) (ELR_SUNSPLIT_SPOT 3). Where every spot lies below n's horizon,
  * the renderer's product sample (no split). Both samples use the same two numbers (a third draw from the sampler:
- * shadow 1.47x against 1.54x). The one-sample loop (render_wave.c draws one light sample a vertex).
+ * shadow 1.47x against 1.54x). Both loops: render_wave.c draws the two samples at the vertex (elr_sunsplit_sample, one
+ * call each), traces their shadow rays with the wave's (so a directlighting wave holds half the camera samples: three
+ * shadow rays a pair; no structure-of-arrays lanes) and sums them with elr_light_term, the reference's order: the
+ * same image bit for bit (test_render_wave 7., directlighting and path).
  * Measured (bench_sun_render --split, 16 spp, 8 seeds, 2 threads; object / porch / city), against the default:
  * shadowed 1.93x / 1.33x / 1.02x less variance at equal spp, lit 10.7x / 3.86x / 1.53x, the whole image 6.15x / 1.52x /
  * 1.41x; at equal time against the default's wave loop 2.32x / 0.71x / 0.51x (the CPU 2.64x, 2.14x, 2.75x), against the
@@ -113,7 +116,13 @@
  * 0.39x at equal time against the wave default (pdf_li_spot answers 0 at once far from the rectangle: on bench_city the
  * spot pdfs of the sky and BSDF samples were 7.3% of the cycles before, under 2% after). The city's shadow loses at
  * 64 spp (0.83x): there the spot sample is wasted and the default's BSDF sample already finds the sky (A3.14). So the split wins every scene's image at equal spp, and at equal time
- * the porch and the city lose mainly to the one-sample loop; off by default until the wave loop draws two light samples.
+ * the porch and the city lost mainly to the one-sample loop. IN THE WAVE LOOP (the same images, so the same variances):
+ * loop CPU against the default (render --stats, 64 spp, 2 threads, mean of 3 interleaved rounds) 1.86x / 1.58x / 1.94x
+ * (from 2.64x / 2.14x / 2.75x), so at equal time the whole image 3.31x / 0.96x / 0.73x less variance at 16 spp (bench_sun_render
+ * --split's own CPU columns: 3.21x / 0.96x / 0.73x), 3.55x / 1.05x / 0.58x at 64 spp; the porch as directlighting (Integrator
+ * changed, 16 spp, 8 seeds): 2.00x at equal spp (shadow 1.24x, lit 8.90x), CPU 1.70x, 1.18x at equal time. What is left is the
+ * library's sampling (perf, bench_city: el_envlight__hot_pdf_cos 15%, sample_li_spot 13%, sample_li_mix_cos_table 13%, the
+ * bilinear lookup 8%; the wave itself 7%, Embree small). Off by default: the city still loses at equal time.
  * Before el_envlight_sample_li_spot (the same bench): the map's density (sample_li) kept only inside the spots' cones
  * widened 10% where the spots held half the power (sunrise.hdr: 0.75 of its draws reached the cone), else the spots'
  * piecewise-constant bins (sample_li_mix, the rest's weight 0; city.hdr): shadowed 1.45x / 0.97x / 1.02x, lit 0.78x /

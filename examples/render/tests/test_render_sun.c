@@ -192,9 +192,9 @@ static void split_check(const char *name, int spp, int spot) {
              sp.n[c], sp.mean[c], off.mean[c], z);
   }
   rt_check(fabs(sm_z(&sp, &off, cls, w * h, -1, ns)) < 4, "--sun split, %s: whole image's means agree (z %+.2f)", name, sm_z(&sp, &off, cls, w * h, -1, ns));
-  rt_check(sp.st.sunsplit_used && sp.st.sunsplit_vertices > 0 && !sp.st.sun_used && sp.st.loop == ELR_LOOP_ONE && sp.st.sunsplit_spot == spot,
+  rt_check(sp.st.sunsplit_used && sp.st.sunsplit_vertices > 0 && !sp.st.sun_used && sp.st.loop == off.st.loop && sp.st.sunsplit_spot == spot,
            "--sun split, %s: --stats: %llu vertices split (%llu of them the sky alone), the spot sample by way %d (%d expected), no "
-           "cache, the one-sample loop", name, (unsigned long long)sp.st.sunsplit_vertices, (unsigned long long)sp.st.sunsplit_sky_only,
+           "cache, the default's loop", name, (unsigned long long)sp.st.sunsplit_vertices, (unsigned long long)sp.st.sunsplit_sky_only,
            sp.st.sunsplit_spot, spot);
   sm_free(&off); sm_free(&sp); free(cls);
   elr_render_options_default(&o);

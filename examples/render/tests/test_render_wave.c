@@ -24,7 +24,12 @@
  *     (the product light sample alone); a matte of Kd 0 in one channel, a light of 2 samples (not shaded
  *     there) and halton; --env-sun-diffuse two and twopixel (two product light samples where the BSDF sample
  *     was; twopixel's choice per pixel, its two rays counted), with a mirror (later vertices in the reference
- *     integrator with the pixel's choice) and a light of 2 samples. */
+ *     integrator with the pixel's choice) and a light of 2 samples.
+ *  7. --sun split (a spot, a sky and the BSDF sample, three-way MIS) bit for bit, with the same ray, strategy and
+ *     split-vertex counts, directlighting and path, light sampling alone too: zsobol, random, halton, a mirror, a
+ *     light of 2 samples, on 6.'s one-texel sun and on a sun in a halo and a bright sky (where light samples meet the
+ *     other light technique's density: a one-ulp change to the wave's weight of those samples fails cases 5, 6, 9
+ *     and 10; to the path wave's escaped-ray split pdf, cases 7 to 10). */
 #include "render_test_util.h"
 
 static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
@@ -49,12 +54,30 @@ static elr_scene *load(const char *sampler, const char *integrator, const char *
 /* issue 20's per-lobe thresholds for the render below (-1: the defaults) */
 static float lobe_alpha = -1.f, light_alpha = -1.f;
 static int sun_diffuse = -1; /* (ELR_ENVSD_*; -1 the default) */
+static int sun_mode = -1;    /* (render --sun: 2 split; -1 the default) */
 static int render(elr_scene *s, int loop, int api, int ls, int nthreads, int spp, elr_image *img, elr_stats *st, char *err) {
   elr_render_options o;
   elr_render_options_default(&o);
   o.nthreads = nthreads; o.seed = 11; o.quiet = 1; o.loop = loop; o.wave_api = api; o.light_sampling = ls; o.spp = spp;
-  o.env_lobe_alpha = lobe_alpha; o.env_light_alpha = light_alpha; o.env_sun_diffuse = sun_diffuse;
+  o.env_lobe_alpha = lobe_alpha; o.env_light_alpha = light_alpha; o.env_sun_diffuse = sun_diffuse; o.env_sun = sun_mode;
   return elr_render(s, &o, img, st, err, 512);
+}
+
+/* 6. and 7.'s scene: two matte spheres on a matte plane under map (sun.pfm or env.pfm), a mirror sphere in front
+ * of them if mirror */
+static elr_scene *load_matte(const char *sampler, int path, const char *map, const char *light, int mirror, char *err) {
+  static char buf[4096];
+  snprintf(buf, sizeof buf,
+           "LookAt 0 1.5 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+           "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 18\n%s\nIntegrator %s\n"
+           "WorldBegin\nAttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string mapname\" \"%s\"%s\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.2 0.6 0.3 ]\nTranslate 0.6 0.7 0.4\nShape \"sphere\" \"float radius\" 0.6\nAttributeEnd\n"
+           "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\n%s\nWorldEnd\n",
+           sampler, path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", map, light,
+           mirror ? "AttributeBegin\nMaterial \"mirror\"\nTranslate 0 0.4 -1.2\nShape \"sphere\" \"float radius\" 0.35\nAttributeEnd" : "");
+  return rt_load("wave_soa.pbrt", buf, err, 512);
 }
 
 int main(void) {
@@ -244,21 +267,9 @@ int main(void) {
     env[3 * (60 * 512 + 90)] = env[3 * (60 * 512 + 90) + 1] = 2e5f; env[3 * (60 * 512 + 90) + 2] = 1.5e5f;
     el_image_write_pfm(rt_path("sun.pfm"), env, 512, 256, 3, err, sizeof err);
     for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
-      static char buf[4096];
-      elr_scene *s;
+      elr_scene *s = load_matte(cases[c].sampler, cases[c].path, cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light, cases[c].mirror, err);
       elr_image ref, img;
       elr_stats sr, st;
-      snprintf(buf, sizeof buf,
-               "LookAt 0 1.5 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
-               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 18\n%s\nIntegrator %s\n"
-               "WorldBegin\nAttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string mapname\" \"%s\"%s\nAttributeEnd\n"
-               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
-               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.2 0.6 0.3 ]\nTranslate 0.6 0.7 0.4\nShape \"sphere\" \"float radius\" 0.6\nAttributeEnd\n"
-               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
-               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\n%s\nWorldEnd\n",
-               cases[c].sampler, cases[c].path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", cases[c].sun ? "sun.pfm" : "env.pfm", cases[c].light,
-               cases[c].mirror ? "AttributeBegin\nMaterial \"mirror\"\nTranslate 0 0.4 -1.2\nShape \"sphere\" \"float radius\" 0.35\nAttributeEnd" : "");
-      s = rt_load("wave_soa.pbrt", buf, err, 512);
       if (!s) { rt_check(0, "matte scene %d: %s", c, err); continue; }
       sun_diffuse = cases[c].sd; light_alpha = cases[c].light_alpha; lobe_alpha = -1.f;
       if (render(s, ELR_LOOP_ONE, -1, -1, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &img, &st, err) == 0) {
@@ -285,6 +296,64 @@ int main(void) {
       elr_scene_free(s);
     }
     sun_diffuse = -1; light_alpha = -1.f;
+  }
+  /* 7. --sun split (sun.c: a spot and a sky sample and the BSDF sample, three-way MIS) in the wave loop on 6.'s
+   * sun map: bit for bit, the same ray and strategy counts, vertices split; with a mirror (the mattes seen in
+   * it: the reference integrator's split) and a light of 2 samples */
+  {
+    static const struct { const char *sampler, *light; int mirror, wide, path, ls; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 0, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 0, -1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", " \"integer samples\" 2", 1, 0, 0, -1},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", "", 1, 0, 0, -1},
+      /* a sun of one texel in a halo of 10 x 10 texels (about 7 degrees wide): its rectangle holds sky, so many light samples meet
+       * the other light technique's density there (with the one-texel sun, 2 of the split case 0-4's samples) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 1, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1, 0, -1},
+      /* the path tracer (maxdepth 5: the escaped rays' weights against the split densities) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 0, 0, 1, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 0, 1, -1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, 1, 1, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 0, 1, 1, -1},
+      /* light sampling alone (the split weights without the BSDF's density) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", "", 1, 1, 0, ELR_LS_LIGHT},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", "", 1, 1, 1, ELR_LS_LIGHT},
+    };
+    static float env[3 * 512 * 256];
+    int c, i, x, y;
+    for (i = 0; i < 512 * 256; i++) env[3 * i] = env[3 * i + 1] = env[3 * i + 2] = 0.3f + 0.05f * (float)(i % 7);
+    for (y = 48; y < 74; y++) /* (a bright sky about it, below the hot spots' threshold: sky samples in the spot's rectangle) */
+      for (x = 78; x < 104; x++) env[3 * (y * 512 + x)] = env[3 * (y * 512 + x) + 1] = env[3 * (y * 512 + x) + 2] = 150.f;
+    for (y = 56; y < 66; y++)
+      for (x = 86; x < 96; x++) env[3 * (y * 512 + x)] = env[3 * (y * 512 + x) + 1] = 2000.f, env[3 * (y * 512 + x) + 2] = 1500.f;
+    env[3 * (60 * 512 + 90)] = env[3 * (60 * 512 + 90) + 1] = 2e5f; env[3 * (60 * 512 + 90) + 2] = 1.5e5f; /* (a sun map: ELR_ENV_SUN_SHARE) */
+    el_image_write_pfm(rt_path("sunwide.pfm"), env, 512, 256, 3, err, sizeof err);
+    sun_mode = 2;
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      elr_scene *s = load_matte(cases[c].sampler, cases[c].path, cases[c].wide ? "sunwide.pfm" : "sun.pfm", cases[c].light, cases[c].mirror, err);
+      elr_image ref, img;
+      elr_stats sr, st;
+      if (!s) { rt_check(0, "split scene %d: %s", c, err); continue; }
+      if (render(s, ELR_LOOP_ONE, -1, cases[c].ls, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, cases[c].ls, 2, 0, &img, &st, err) == 0) {
+        size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+        for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
+        rt_check(st.loop == ELR_LOOP_WAVE && sr.loop == ELR_LOOP_ONE && diff == 0 && sr.sunsplit_vertices > 0 &&
+                     st.sunsplit_vertices == sr.sunsplit_vertices && st.sunsplit_sky_only == sr.sunsplit_sky_only &&
+                     st.shadow_rays == sr.shadow_rays && st.bsdf_light_rays == sr.bsdf_light_rays && st.bounce_rays == sr.bounce_rays &&
+                     st.camera_rays == sr.camera_rays && st.env_product_samples == sr.env_product_samples &&
+                     st.env_map_samples == sr.env_map_samples && st.env_light_only_samples == sr.env_light_only_samples,
+                 "split case %d (%s%s, mirror %d, path %d): %zu of %zu values differ from the reference; split vertices %llu/%llu, shadow "
+                 "%llu/%llu, bsdf %llu/%llu, product %llu/%llu",
+                 c, cases[c].sampler, cases[c].light, cases[c].mirror, cases[c].path, diff, n, (unsigned long long)st.sunsplit_vertices,
+                 (unsigned long long)sr.sunsplit_vertices, (unsigned long long)st.shadow_rays, (unsigned long long)sr.shadow_rays,
+                 (unsigned long long)st.bsdf_light_rays, (unsigned long long)sr.bsdf_light_rays,
+                 (unsigned long long)st.env_product_samples, (unsigned long long)sr.env_product_samples);
+        elr_image_free(&img); elr_image_free(&ref);
+      } else rt_check(0, "split scene %d: %s", c, err);
+      elr_scene_free(s);
+    }
+    sun_mode = -1;
   }
   return rt_finish("test_render_wave");
 }
