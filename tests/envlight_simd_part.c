@@ -51,3 +51,18 @@ int ELS_PART(draws)(const float *px, int w, int h, const float m[9], const float
   el_envlight_free(&l);
   return spots;
 }
+
+int ELS_PART(pdf_le)(const float *px, int w, int h, const float m[9], const float *nrm, const float *dirs, int n, float *out) {
+  el_envlight l;
+  el_envlight_options o;
+  float *buf = (float *)malloc((size_t)n * 4 * sizeof(float));
+  int i;
+  memset(&o, 0, sizeof o);
+  if (m) memcpy(o.light_to_world, m, sizeof o.light_to_world);
+  if (!buf || el_envlight_init(&l, px, w, h, 3, &o) != EL_SUCCESS) { free(buf); return -1; }
+  el_envlight_pdf_li_cos_le_n(&l, n, nrm, dirs, buf, buf + n);
+  for (i = 0; i < n; ++i) { out[4 * i] = buf[i]; memcpy(out + 4 * i + 1, buf + n + 3 * i, 3 * sizeof(float)); }
+  free(buf);
+  el_envlight_free(&l);
+  return 0;
+}

@@ -13,4 +13,8 @@
  * sample_li_cos_n's pdf. Returns the light's hot spots, -1 when an init failed. */
 int els_simd_draws(const float *px, int w, int h, const float m[9], const float *u, int n, float *out);
 int els_scalar_draws(const float *px, int w, int h, const float m[9], const float *u, int n, float *out);
+/* pdf_li_cos_le_n (issue 21) of a light made from px at n directions dirs[3 i ..] for normals nrm[3 i ..]:
+ * out[4 i ..] = pdf, rgb. Returns 0, -1 when the init failed. */
+int els_simd_pdf_le(const float *px, int w, int h, const float m[9], const float *nrm, const float *dirs, int n, float *out);
+int els_scalar_pdf_le(const float *px, int w, int h, const float m[9], const float *nrm, const float *dirs, int n, float *out);
 #endif

@@ -19,7 +19,9 @@
  *     directions (NaN, zero, denormal, huge, non-unit);
  *   - el_envlight_pdf_li_n and el_envlight_le_n (issue 21: a wave's escaped rays) against pdf_li and le
  *     at the same random, hostile and sampled directions, n as above (the first call of a light's pdf
- *     builds its sampling tables).
+ *     builds its sampling tables);
+ *   - el_envlight_pdf_li_cos_le_n (issue 21: an escaped ray's pdf and radiance in one pass) against
+ *     pdf_li_cos and le at the same directions and normals (random, hostile, sampled), n as above.
  * Built twice: as is, and with EL_NO_SIMD (test_envlight_batch_scalar: the plain loop).
  */
 #define EL_IMPLEMENTATION
@@ -92,7 +94,7 @@ static void check_light(const char *name, el_envlight *l, uint64_t seed) {
   static const int sizes[] = {17, 0, 1, 2, 3, 4, 5, 45}; /* 17 first: the batched call builds the tables; 45: a
                                                                 * full staged pass of 32 lanes and a tail */
   rng r = rng_make(seed);
-  int rep, bad_s = 0, bad_p = 0, bad_trip = 0, bad_pl = 0, bad_le = 0, batches = 0, lanes = 0, sampled = 0;
+  int rep, bad_s = 0, bad_p = 0, bad_trip = 0, bad_pl = 0, bad_le = 0, bad_cl = 0, batches = 0, lanes = 0, sampled = 0;
   for (rep = 0; rep < 800; ++rep) {
     float nrm[3 * NMAX], u[2 * NMAX], wa[3 * NMAX], wb[3 * NMAX], La[3 * NMAX], Lb[3 * NMAX], pa[NMAX], pb[NMAX];
     float dirs[3 * NMAX], qa[NMAX], qb[NMAX];
@@ -159,8 +161,26 @@ static void check_light(const char *name, el_envlight *l, uint64_t seed) {
         for (k = 0; k < n; ++k)
           if (memcmp(La2 + 3 * k, Lb2 + 3 * k, 12)) { printf("  %s rep %d lane %d of %d: le_n %.9g, le %.9g\n", name, rep, k, n, La2[3 * k], Lb2[3 * k]); break; }
     }
+    /* pdf_li_cos_le_n (issue 21: both lookups in one pass) at the same directions (random, hostile) and at
+     * the sampled ones, with the same normals (hostile ones among them), as pdf_li_cos and le */
+    for (i = 0; i < 2; ++i) {
+      const float *dd = i ? wb : dirs;
+      float La2[3 * NMAX], Lb2[3 * NMAX];
+      int k;
+      memset(qa, 0x7f, sizeof qa); memset(qb, 0x7f, sizeof qb); memset(La2, 0x7f, sizeof La2); memcpy(Lb2, La2, sizeof La2);
+      el_envlight_pdf_li_cos_le_n(l, n, nrm, dd, qa, La2);
+      for (k = 0; k < n; ++k) { qb[k] = el_envlight_pdf_li_cos(l, nrm + 3 * k, dd + 3 * k); el_envlight_le(l, dd + 3 * k, Lb2 + 3 * k); }
+      if ((memcmp(qa, qb, sizeof qa) || memcmp(La2, Lb2, sizeof La2)) && bad_cl++ < 3)
+        for (k = 0; k < n; ++k)
+          if (memcmp(qa + k, qb + k, 4) || memcmp(La2 + 3 * k, Lb2 + 3 * k, 12)) {
+            printf("  %s rep %d lane %d of %d: pdf_li_cos_le_n %.9g (%.9g %.9g %.9g), pdf_li_cos %.9g, le (%.9g %.9g %.9g)\n", name, rep, k, n,
+                   qa[k], La2[3 * k], La2[3 * k + 1], La2[3 * k + 2], qb[k], Lb2[3 * k], Lb2[3 * k + 1], Lb2[3 * k + 2]);
+            break;
+          }
+    }
     ++batches; lanes += n;
   }
+  check(bad_cl == 0, "pdf_li_cos_le_n: %s: %d of %d batches bit-identical to pdf_li_cos and le", name, 2 * batches - bad_cl, 2 * batches);
   check(bad_pl == 0, "pdf_li_n: %s: %d of %d batches bit-identical to pdf_li", name, 2 * batches - bad_pl, 2 * batches);
   check(bad_le == 0, "le_n: %s: %d of %d batches bit-identical to le", name, 2 * batches - bad_le, 2 * batches);
   check(bad_s == 0, "sample_li_cos_n: %s: %d of %d batches (%d lanes) bit-identical to sample_li_cos", name, batches - bad_s, batches, lanes);

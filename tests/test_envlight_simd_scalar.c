@@ -43,6 +43,29 @@ int main(void) {
               mi ? "rotated" : "identity", part[p], c == 0 ? "wi" : c == 1 ? "rgb" : "pdf", diff, N, first);
       }
   }
+  { /* pdf_li_cos_le_n (issue 21): four lanes against the plain loops, random normals and directions of any
+     * length, every seventh lane a zero, NaN, huge or non-unit one */
+    float *nv = (float *)malloc(6 * (size_t)N * sizeof(float)), *dv = nv ? nv + 3 * (size_t)N : NULL, nan = 0.0f;
+    volatile float z = 0.0f;
+    nan = z / z;
+    if (!nv) { check(0, "allocate"); return 1; }
+    for (i = 0; i < 6 * N; ++i) nv[i] = (2.0f * rng_f(&r) - 1.0f) * (i % 5 == 0 ? 1e-3f : 1.0f);
+    for (i = 0; i < 2 * N; i += 7) { /* i: a point of nv (i < N) or dv */
+      float *q = nv + 3 * (size_t)i, h = (i / 7) % 4 == 0 ? 0.0f : (i / 7) % 4 == 1 ? nan : (i / 7) % 4 == 2 ? 3e38f : 1e-30f;
+      q[i % 3] = h;
+      if ((i / 7) % 4 == 0) q[0] = q[1] = q[2] = 0.0f;
+    }
+    for (mi = 0; mi < 2; ++mi) {
+      int sa = els_simd_pdf_le(px, W, H, mi ? rot : NULL, nv, dv, N, a), sb = els_scalar_pdf_le(px, W, H, mi ? rot : NULL, nv, dv, N, b);
+      int diff = 0, first = -1;
+      check(sa == 0 && sb == 0, "pdf_li_cos_le_n: the lights initialise");
+      for (i = 0; i < N; ++i)
+        if (memcmp(a + 4 * (size_t)i, b + 4 * (size_t)i, 4 * sizeof(float))) { diff++; if (first < 0) first = i; }
+      check(diff == 0, "%s, pdf_li_cos_le_n: pdf and rgb of the SSE2 and the EL_NO_SIMD builds bit-identical (%d of %d differ, first %d)",
+            mi ? "rotated" : "identity", diff, N, first);
+    }
+    free(nv);
+  }
   free(px); free(u); free(a); free(b);
   printf("test_envlight_simd_scalar: %d passed, %d failed\n", g_pass, g_fail);
   return g_fail ? 1 : 0;
