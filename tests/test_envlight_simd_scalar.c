@@ -2,7 +2,7 @@
  * code (the scalar code does the same operations in the same order). One program holds both builds
  * (envlight_simd_part.c compiled twice, EL_STATIC) and compares their bits: sample_li, sample_li_mix
  * and the rest x cosine mixture (wi, rgb, pdf), sample_li_cos_n and pdf_li_cos_n (four lanes against
- * the plain loop) on a 512 x 256 map with a sun (the direction tables),
+ * the plain loop), pdf_li_cos_le_n (hostile normals and directions among random ones) on a 512 x 256 map with a sun (the direction tables),
  * under the identity (a signed permutation: the radiance at the sample's own (u, v)) and a general
  * rotation. Neither build is the reference: they must agree (before the fix of the mixtures' scalar
  * path, the rgb of the mixture samples differed under the identity). On a CPU without SSE2 both halves

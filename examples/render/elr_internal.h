@@ -223,6 +223,8 @@ typedef struct elr_light {
   el_envlight *env;        /* the radiance, as the scene gave it: le */
   el_envlight *env_sample; /* the density sample_li and pdf_li use: env, or env_alt */
   el_envlight *env_alt;    /* another density the render options asked for, or NULL */
+  int le_same;             /* env_sample's le is env's, bit for bit (env itself, or env_alt over env's texels and matrix):
+                            * an escaped ray's pdf and radiance then come from one el_envlight_pdf_li_cos_le_n call */
   int compensated, importance; /* the scene's density: EL_ENVLIGHT_IMPORTANCE_* */
   int importance_auto;         /* 1: the scene gave no "importance": BILINEAR under a sun (issue 22), else importance; 2: so chosen */
   int alt_compensated, alt_importance;

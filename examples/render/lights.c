@@ -198,6 +198,7 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
     return -1;
   }
   l->env_sample = l->env;
+  l->le_same = 1;
   return 0;
 }
 
@@ -209,6 +210,15 @@ int elr_infinite_init(elr_light *l, const float *rgb, int w, int h, const float 
  * map's own tables only when need_map (some surface transmits through a non-specular lobe: its vertices
  * sample the map alone). Returns -1 when the distribution cannot be built. */
 static int elr__portal_build(elr_light *l, int compensated, char *err, size_t errlen);
+/* 1 when b's le is a's bit for bit: the same light, or env_alt made of a's texels (no_copy) with a's matrix,
+ * mapping and constant (le reads nothing else) */
+static int elr__le_same(const el_envlight *a, const el_envlight *b) {
+  return a == b || (a && b && a->texels == b->texels && a->width == b->width && a->height == b->height && a->mapping == b->mapping &&
+                    a->exact_transform == b->exact_transform && !memcmp(a->to_world, b->to_world, sizeof a->to_world) &&
+                    !memcmp(a->perm, b->perm, sizeof a->perm) && !memcmp(a->iperm, b->iperm, sizeof a->iperm) &&
+                    !memcmp(a->sign, b->sign, sizeof a->sign) && !memcmp(a->isign, b->isign, sizeof a->isign) &&
+                    !memcmp(a->constant, b->constant, sizeof a->constant));
+}
 int elr_infinite_prepare(elr_light *l, int compensated, int importance, int product, int need_map) {
   if (compensated < 0) compensated = l->compensated;
   if (importance < 0) importance = l->importance;
@@ -242,6 +252,7 @@ int elr_infinite_prepare(elr_light *l, int compensated, int importance, int prod
     }
     l->env_sample = l->env_alt;
   }
+  l->le_same = elr__le_same(l->env, l->env_sample);
   l->product = product < 0 ? l->sampling == ELR_ENVLS_PRODUCT : product;
   /* the portals' tables with the compensation this render asks for (--compensated: pbrt-v4's portal
    * light has none; envlight's portal density max(lum - mean, 0) is the MIS partner of the BSDF) */

@@ -359,6 +359,12 @@ static void elr__env_samples(const elr_light *l, int n, const float *u, const el
      * el_envlight_sample_li_cos each, four samples' arithmetic at a time (issue 20) */
     float nn[3 * ELR_WAVE];
     int nc = 0;
+    for (i = 0; i < n && has_n[i] && !(sun && sc[i]); i++) elr_to3(normal[i], &nn[3 * i]);
+    if (n > 0 && i == n) { /* (every vertex has a normal and no sun-cache cell: u, wi, Le and pdf used in place, no copies) */
+      el_envlight_sample_li_cos_n(l->env_sample, n, nn, u, wi, Le, pdf);
+      if (sun) for (i = 0; i < n; i++) elr_sun_count(sun, sc[i], &wi[3 * i], pdf[i], ts);
+      return;
+    }
     for (i = 0; i < n; i++)
       if (!(sun && sc[i] && !elr_sun_cell_product(sc[i], 1)) && has_n[i]) { idx[nc] = i; elr_to3(normal[i], &nn[3 * nc]); um[2 * nc] = u[2 * i]; um[2 * nc + 1] = u[2 * i + 1]; nc++; }
     if (nc > 0) el_envlight_sample_li_cos_n(l->env_sample, nc, nn, um, wm, Lm, pm);
@@ -618,7 +624,7 @@ ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
 ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tstats *ts) {
   elr_wave_soa *A = &W->A;
   const elr_light *l = C->batch_light;
-  const int n = A->n;
+  const int n = A->n, le_same = l->le_same; /* (the product lanes' le comes with their pdf: el_envlight_pdf_li_cos_le_n) */
   float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nv[3 * ELR_WAVE], de[3 * ELR_WAVE], pq[ELR_WAVE], Le[3 * ELR_WAVE];
   int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i, nsh = 0, nb = 0;
   for (i = 0; i < n; i++) { /* (--stats; then the shadow rays' answers: 1 where the term counts) */
@@ -633,15 +639,20 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
     int e = A->bsh[i], c = e & (l->product && A->has_n[i]);
     float x = A->wbx[i], y = A->wby[i], z = A->wbz[i];
     A->bpe[i] = 0.f; A->lbr[i] = A->lbg[i] = A->lbb[i] = 0.f;
-    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e;
+    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e & !(c & le_same);
     dc[3 * nc] = x; dc[3 * nc + 1] = y; dc[3 * nc + 2] = z; kc[nc] = i;
     nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
     dm[3 * nm] = x; dm[3 * nm + 1] = y; dm[3 * nm + 2] = z; km[nm] = i; nm += e & !c;
   }
   if (nm > 0) el_envlight_pdf_li_n(l->env_sample, nm, dm, pq);
   for (i = 0; i < nm; i++) A->bpe[km[i]] = pq[i];
-  if (nc > 0) el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
-  for (i = 0; i < nc; i++) A->bpe[kc[i]] = pq[i];
+  if (le_same) {
+    if (nc > 0) el_envlight_pdf_li_cos_le_n(l->env_sample, nc, nv, dc, pq, Le);
+    for (i = 0; i < nc; i++) { A->bpe[kc[i]] = pq[i]; A->lbr[kc[i]] = Le[3 * i]; A->lbg[kc[i]] = Le[3 * i + 1]; A->lbb[kc[i]] = Le[3 * i + 2]; }
+  } else {
+    if (nc > 0) el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
+    for (i = 0; i < nc; i++) A->bpe[kc[i]] = pq[i];
+  }
   if (ne > 0) el_envlight_le_n(l->env, ne, de, Le);
   for (i = 0; i < ne; i++) { A->lbr[ke[i]] = Le[3 * i]; A->lbg[ke[i]] = Le[3 * i + 1]; A->lbb[ke[i]] = Le[3 * i + 2]; }
   for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (elr__direct_shade: Ld from 0, the light sample's term, then the BSDF sample's) */
@@ -801,6 +812,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
   {
     float de[3 * ELR_WAVE], dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nn[3 * ELR_WAVE], Le[3 * ELR_WAVE], pq[ELR_WAVE];
     int ke[ELR_WAVE], km[ELR_WAVE], kc[ELR_WAVE], ne = 0, nm = 0, nc = 0;
+    const int le_same = C->batch_light->le_same; /* (then the product pairs' le comes with their pdf: el_envlight_pdf_li_cos_le_n) */
     for (k = 0; k < np; k++) {
       elr_first *p = W->pair[k];
       float *d = &de[3 * ne];
@@ -815,14 +827,19 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
         int i = W->light[k], has = i >= 0 ? W->has_n[i] : elr_sun_cos_normal(C->s, c, &W->f[W->pair_of[k]].b, elr_mul(W->cam[W->pair_of[k]].d, -1.f), &nv);
         if (i >= 0 && has) nv = W->normal[i];
         if (c && !elr_sun_cell_product(c, has)) p->bpdf_env = elr_sun_pdf(C->sun, c, has ? &nv : NULL, d);
-        else if (has) { elr_to3(nv, &nn[3 * nc]); memcpy(&dc[3 * nc], d, 3 * sizeof(float)); kc[nc++] = k; } /* (elr_light_pdf_li) */
+        else if (has) { elr_to3(nv, &nn[3 * nc]); memcpy(&dc[3 * nc], d, 3 * sizeof(float)); kc[nc++] = k; ne -= le_same; } /* (elr_light_pdf_li) */
         else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = k; }
       } else { memcpy(&dm[3 * nm], d, 3 * sizeof(float)); km[nm++] = k; }
     }
     el_envlight_pdf_li_n(env_sample, nm, dm, pq);
     for (k = 0; k < nm; k++) W->pair[km[k]]->bpdf_env = pq[k];
-    el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
-    for (k = 0; k < nc; k++) W->pair[kc[k]]->bpdf_env = pq[k];
+    if (le_same) {
+      el_envlight_pdf_li_cos_le_n(env_sample, nc, nn, dc, pq, Le);
+      for (k = 0; k < nc; k++) { W->pair[kc[k]]->bpdf_env = pq[k]; W->pair[kc[k]]->Lb = elr_from3(&Le[3 * k]); }
+    } else {
+      el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
+      for (k = 0; k < nc; k++) W->pair[kc[k]]->bpdf_env = pq[k];
+    }
     el_envlight_le_n(env, ne, de, Le);
     for (k = 0; k < ne; k++) W->pair[ke[k]]->Lb = elr_from3(&Le[3 * k]);
   }
@@ -911,6 +928,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       W->fs[j] = elr_bsdf_sample_inl(b, wo, u[0], u[1], &W->wnext[j], &W->pdfs[j], &W->spec[j]);
       elr_sampler_save(S, &W->pos[j]);
     }
+    int le_done = 0; /* (the escaped rays' le already looked up: le_same below) */
     /* the light samples in one call; the escaped rays' environment in one pass */
     elr__env_samples(l, n, W->u, W->normal, W->has_n, W->lpos, W->wi + 3 * ne, W->Le + 3 * ne, W->pdf + ne, C->sun, W->sc, ts);
     /* (batched: el_envlight_pdf_li_n, el_envlight_pdf_li_cos_n and el_envlight_le_n over the escaped rays,
@@ -934,10 +952,24 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       }
       el_envlight_pdf_li_n(env_sample, nm, dm, pq);
       for (k = 0; k < nm; k++) W->pdf[km[k]] = pq[k];
-      el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
-      for (k = 0; k < nc; k++) W->pdf[kc[k]] = pq[k];
+      if (l->le_same && nc > 0) { /* (le_same: these rays' le with their pdf in one el_envlight_pdf_li_cos_le_n call,
+        * the other escaped rays' in one el_envlight_le_n call) */
+        float Lq[3 * ELR_WAVE];
+        unsigned char with_pdf[ELR_WAVE];
+        el_envlight_pdf_li_cos_le_n(env_sample, nc, nn, dc, pq, Lq);
+        memset(with_pdf, 0, (size_t)ne);
+        for (k = 0; k < nc; k++) { W->pdf[kc[k]] = pq[k]; memcpy(&W->Le[3 * kc[k]], &Lq[3 * k], 3 * sizeof(float)); with_pdf[kc[k]] = 1; }
+        for (k = 0, nm = 0; k < ne; k++)
+          if (!with_pdf[k]) { memcpy(&dm[3 * nm], &W->wi[3 * k], 3 * sizeof(float)); km[nm++] = k; }
+        el_envlight_le_n(env, nm, dm, Lq);
+        for (k = 0; k < nm; k++) memcpy(&W->Le[3 * km[k]], &Lq[3 * k], 3 * sizeof(float));
+        le_done = 1;
+      } else {
+        el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
+        for (k = 0; k < nc; k++) W->pdf[kc[k]] = pq[k];
+      }
     }
-    el_envlight_le_n(env, ne, W->wi, W->Le);
+    if (!le_done) el_envlight_le_n(env, ne, W->wi, W->Le);
     /* escaped paths end; the light samples' BSDF values, MIS weights and shadow rays */
     W->shadows.n = 0;
     for (j = 0; j < m; j++) {

@@ -355,5 +355,60 @@ int main(void) {
     }
     sun_mode = -1;
   }
+  /* 8. le_same (issue 21): where the density's light (env_sample) has env's le, the wave looks up an escaped BSDF ray's
+   * product pdf and radiance in one el_envlight_pdf_li_cos_le_n call; bit for bit the reference's two lookups. The
+   * sun map (the patch density: env_alt over env's texels), the smooth one (env itself) and the smooth one with
+   * --compensated (env_alt again), the light under a general rotation (the matrix compared bit for bit) or the
+   * scene's; direct lighting (structure-of-arrays lanes; a light of 2 samples: the general stage) and the path tracer */
+  {
+    /* (same: le_same expected; under the rotation env_alt's matrix, made again from env's, differs in its bits: the two lookups) */
+    static const struct { const char *map, *light; int rot, path, comp, same; } cases[] = {
+      {"sun.pfm", "", 0, 0, -1, 1}, {"sun.pfm", " \"integer samples\" 2", 0, 0, -1, 1}, {"sun.pfm", "", 0, 1, -1, 1},
+      {"sun.pfm", "", 1, 0, -1, 0}, {"sun.pfm", "", 1, 1, -1, 0},
+      {"env.pfm", "", 0, 0, -1, 1}, {"env.pfm", "", 1, 1, -1, 1}, {"env.pfm", " \"integer samples\" 2", 1, 0, -1, 1},
+      {"env.pfm", " \"integer samples\" 2", 0, 0, 1, 1}, {"env.pfm", "", 0, 1, 1, 1}, {"env.pfm", "", 1, 1, 1, 0},
+    };
+    int c;
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      static char buf[4096];
+      elr_scene *s;
+      elr_image ref, img;
+      elr_stats sr, st;
+      elr_render_options o;
+      snprintf(buf, sizeof buf,
+               "LookAt 0 1.5 -4  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+               "Film \"image\" \"integer xresolution\" 24 \"integer yresolution\" 18\nSampler \"zsobol\" \"integer pixelsamples\" 8\nIntegrator %s\n"
+               "WorldBegin\nAttributeBegin\n%s\nLightSource \"infinite\" \"string mapname\" \"%s\"%s\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.7 0.5 0 ]\nTranslate -0.6 0.5 0\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+               "AttributeBegin\nMaterial \"matte\" \"rgb Kd\" [ 0.4 0.4 0.4 ]\n"
+               "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point P\" [ -5 0 -5  5 0 -5  5 0 5  -5 0 5 ]\nAttributeEnd\nWorldEnd\n",
+               cases[c].path ? "\"path\" \"integer maxdepth\" 5" : "\"directlighting\"", cases[c].rot ? "Rotate 37 1 2 3" : "Rotate -90 1 0 0",
+               cases[c].map, cases[c].light);
+      s = rt_load("wave_lesame.pbrt", buf, err, 512);
+      if (!s) { rt_check(0, "le_same scene %d: %s", c, err); continue; }
+      elr_render_options_default(&o);
+      o.nthreads = 2; o.seed = 11; o.quiet = 1; o.compensated = cases[c].comp;
+      o.env_light_alpha = INFINITY; /* (product MIS on the mattes under the smooth map too: BSDF samples) */
+      o.loop = ELR_LOOP_ONE;
+      if (elr_render(s, &o, &ref, &sr, err, 512) == 0) {
+        o.loop = ELR_LOOP_WAVE;
+        if (elr_render(s, &o, &img, &st, err, 512) == 0) {
+          size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+          int i, same = 0;
+          for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
+          for (i = 0; i < s->nlight; i++) if (s->light[i].kind == ELR_LIGHT_INFINITE) same = s->light[i].le_same && s->light[i].product;
+          rt_check(st.loop == ELR_LOOP_WAVE && same == cases[c].same && diff == 0 && st.bsdf_light_rays == sr.bsdf_light_rays &&
+                       st.bounce_rays == sr.bounce_rays && (cases[c].path ? st.bounce_rays : st.bsdf_light_rays) > 0,
+                   "le_same case %d (%s%s, rotated %d, path %d, compensated %d): le_same %d, %zu of %zu values differ from the reference; bsdf rays "
+                   "%llu/%llu, bounces %llu/%llu", c, cases[c].map, cases[c].light, cases[c].rot, cases[c].path, cases[c].comp, same, diff, n,
+                   (unsigned long long)st.bsdf_light_rays, (unsigned long long)sr.bsdf_light_rays, (unsigned long long)st.bounce_rays,
+                   (unsigned long long)sr.bounce_rays);
+          elr_image_free(&img);
+        } else rt_check(0, "le_same scene %d: %s", c, err);
+        elr_image_free(&ref);
+      } else rt_check(0, "le_same scene %d: %s", c, err);
+      elr_scene_free(s);
+    }
+  }
   return rt_finish("test_render_wave");
 }
