@@ -3329,6 +3329,20 @@ static inline int el_envlight__search_guided(const uint16_t *c, int n, const uin
   int i;
   k = k < 32767u ? k : 32767u;
   i = g[k >> EL_ENVLIGHT__GUIDE_SHIFT];
+#if EL_ENVLIGHT__SSE && (defined(__GNUC__) || defined(__clang__))
+  /* eight steps at once while c[i + 1 .. i + 8] lie in [0, n - 1]: the entries <= k are a prefix (c is
+   * monotone), so the steps are the lanes before the first entry > k (uint16 compared as int16 after
+   * - 32768 on both sides) */
+  {
+    const __m128i bias = _mm_set1_epi16((short)(-32767 - 1)), kk = _mm_set1_epi16((short)((int)k - 32768));
+    while (i + 8 < n) {
+      __m128i v = _mm_xor_si128(_mm_loadu_si128((const __m128i *)(const void *)(c + i + 1)), bias);
+      unsigned m = (unsigned)_mm_movemask_epi8(_mm_cmpgt_epi16(v, kk));
+      if (m) return i + (int)((unsigned)__builtin_ctz(m) >> 1);
+      i += 8;
+    }
+  }
+#endif
   while (i + 1 < n && (uint32_t)c[i + 1] <= k) ++i;
   return i;
 }

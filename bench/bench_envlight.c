@@ -17,6 +17,8 @@
  *                                        batches of 64, the same normals and u): sample_cos_n
  *                                        sample_cos_n_rgb pdf_cos_n sample_cos_n_rotated pdf_cos_n_rotated;
  *                                        pdf_li_n, le_n (batches of 64, run_pdf's directions): pdf_n le_n;
+ *                                        pdf_li_cos_le_n (pdf_cos_n's normals and directions): pdf_cos_le_n
+ *                                        pdf_cos_le_n_rotated, and le_n alone on them: le_cos_n le_cos_n_rotated;
  *                                        the hot-spot mixture with the rest x cosine (256 prepared
  *                                        tables, spots at 3%): sample_mix_cos_rgb pdf_mix_cos
  *   EL_ENVMAPS=DIR                       the CC0 maps' folder (default ../shared/envmaps next to the repository)
@@ -246,6 +248,22 @@ static double run_pdf_cos_n(el_envlight *l, long n) {
   }
   return acc;
 }
+/* pdf_li_cos_le_n (issue 21: an escaped ray's product pdf and le in one pass), run_pdf_cos_n's normals and
+ * directions; le = 1: le_n alone on those directions (pdf_cos_n + le_cos_n: the two calls it replaces) */
+static double run_pdf_cos_le_n(el_envlight *l, long n, int le) {
+  double acc = 0;
+  long k;
+  int j, m;
+  float p[CB], v[3 * CB];
+  for (k = 0; k < n; k += CB) {
+    long o = k & (NP - 1);
+    m = n - k < CB ? (int)(n - k) : CB;
+    if (le) el_envlight_le_n(l, m, g_dir + 3 * o, v);
+    else el_envlight_pdf_li_cos_le_n(l, m, g_nrm + 3 * o, g_dir + 3 * o, p, v);
+    for (j = 0; j < m; ++j) acc += (le ? 0.0f : p[j]) + v[3 * j + 1];
+  }
+  return acc;
+}
 /* pdf_li_n (le = 0) and le_n (le = 1) (issue 21: a wave's escaped rays), batches of 64 of the
  * directions run_pdf / run_le use */
 static double run_escape_n(el_envlight *l, long n, int le) {
@@ -353,8 +371,8 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   if (!strcmp(op, "sample_guide") || !strcmp(op, "sample_guide_rgb")) sampler = EL_ENVLIGHT_SAMPLER_GUIDE;
   if (!strcmp(op, "sample_alias")) sampler = EL_ENVLIGHT_SAMPLER_ALIAS;
   if (!strcmp(op, "sample_rotated") || !strcmp(op, "pdf_rotated") || !strcmp(op, "sample_cos_rotated") || !strcmp(op, "pdf_cos_rotated") ||
-      !strcmp(op, "sample_cos_n_rotated") || !strcmp(op, "pdf_cos_n_rotated") ||
-      !strcmp(op, "sample_bilinear_rotated") || !strcmp(op, "pdf_bilinear_rotated")) {
+      !strcmp(op, "sample_cos_n_rotated") || !strcmp(op, "pdf_cos_n_rotated") || !strcmp(op, "pdf_cos_le_n_rotated") ||
+      !strcmp(op, "le_cos_n_rotated") || !strcmp(op, "sample_bilinear_rotated") || !strcmp(op, "pdf_bilinear_rotated")) {
     sampler = EL_ENVLIGHT_SAMPLER_GUIDE; rot = 1; make_rot();
   }
   if (!strncmp(op, "sample_bilinear", 15) || !strncmp(op, "pdf_bilinear", 12)) imp = EL_ENVLIGHT_IMPORTANCE_BILINEAR;
@@ -391,6 +409,9 @@ static int callgrind_mode(const char *op, long n, const char *map) {
   } else if (!strcmp(op, "pdf_cos_n") || !strcmp(op, "pdf_cos_n_rotated")) {
     make_normals();
     sink = run_pdf_cos_n(&l, n);
+  } else if (!strcmp(op, "pdf_cos_le_n") || !strcmp(op, "pdf_cos_le_n_rotated") || !strcmp(op, "le_cos_n") || !strcmp(op, "le_cos_n_rotated")) {
+    make_normals();
+    sink = run_pdf_cos_le_n(&l, n, op[0] == 'l');
   } else if (!strcmp(op, "sample_cos") || !strcmp(op, "sample_cos_rgb") || !strcmp(op, "sample_cos_rotated")) sink = run_sample_cos(&l, n, !strcmp(op, "sample_cos_rgb"));
   else if (!strcmp(op, "pdf_cos") || !strcmp(op, "pdf_cos_rotated")) sink = run_pdf_cos(&l, n);
   else if (!strcmp(op, "sample_mix_cos_rgb") || !strcmp(op, "pdf_mix_cos")) {

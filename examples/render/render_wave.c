@@ -639,22 +639,24 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
     int e = A->bsh[i], c = e & (l->product && A->has_n[i]);
     float x = A->wbx[i], y = A->wby[i], z = A->wbz[i];
     A->bpe[i] = 0.f; A->lbr[i] = A->lbg[i] = A->lbb[i] = 0.f;
-    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e & !(c & le_same);
+    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e;
     dc[3 * nc] = x; dc[3 * nc + 1] = y; dc[3 * nc + 2] = z; kc[nc] = i;
     nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
     dm[3 * nm] = x; dm[3 * nm + 1] = y; dm[3 * nm + 2] = z; km[nm] = i; nm += e & !c;
   }
   if (nm > 0) el_envlight_pdf_li_n(l->env_sample, nm, dm, pq);
   for (i = 0; i < nm; i++) A->bpe[km[i]] = pq[i];
-  if (le_same) {
+  if (le_same) { /* (the others' le: the escaped rays without a product pdf are dm's) */
     if (nc > 0) el_envlight_pdf_li_cos_le_n(l->env_sample, nc, nv, dc, pq, Le);
     for (i = 0; i < nc; i++) { A->bpe[kc[i]] = pq[i]; A->lbr[kc[i]] = Le[3 * i]; A->lbg[kc[i]] = Le[3 * i + 1]; A->lbb[kc[i]] = Le[3 * i + 2]; }
+    if (nm > 0) el_envlight_le_n(l->env, nm, dm, Le);
+    for (i = 0; i < nm; i++) { A->lbr[km[i]] = Le[3 * i]; A->lbg[km[i]] = Le[3 * i + 1]; A->lbb[km[i]] = Le[3 * i + 2]; }
   } else {
     if (nc > 0) el_envlight_pdf_li_cos_n(l->env_sample, nc, nv, dc, pq);
     for (i = 0; i < nc; i++) A->bpe[kc[i]] = pq[i];
+    if (ne > 0) el_envlight_le_n(l->env, ne, de, Le);
+    for (i = 0; i < ne; i++) { A->lbr[ke[i]] = Le[3 * i]; A->lbg[ke[i]] = Le[3 * i + 1]; A->lbb[ke[i]] = Le[3 * i + 2]; }
   }
-  if (ne > 0) el_envlight_le_n(l->env, ne, de, Le);
-  for (i = 0; i < ne; i++) { A->lbr[ke[i]] = Le[3 * i]; A->lbg[ke[i]] = Le[3 * i + 1]; A->lbb[ke[i]] = Le[3 * i + 2]; }
   for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (elr__direct_shade: Ld from 0, the light sample's term, then the BSDF sample's) */
     int ul = A->sh[i], ub = A->bsh[i];
     float lp = A->lpdf[i], wp = elr__ph_sel(lp, A->flpdf[i]), wl = A->lonly[i] ? 1.f : wp, sl = wl / lp;
@@ -955,12 +957,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       if (l->le_same && nc > 0) { /* (le_same: these rays' le with their pdf in one el_envlight_pdf_li_cos_le_n call,
         * the other escaped rays' in one el_envlight_le_n call) */
         float Lq[3 * ELR_WAVE];
-        unsigned char with_pdf[ELR_WAVE];
+        int q = 0;
         el_envlight_pdf_li_cos_le_n(env_sample, nc, nn, dc, pq, Lq);
-        memset(with_pdf, 0, (size_t)ne);
-        for (k = 0; k < nc; k++) { W->pdf[kc[k]] = pq[k]; memcpy(&W->Le[3 * kc[k]], &Lq[3 * k], 3 * sizeof(float)); with_pdf[kc[k]] = 1; }
-        for (k = 0, nm = 0; k < ne; k++)
-          if (!with_pdf[k]) { memcpy(&dm[3 * nm], &W->wi[3 * k], 3 * sizeof(float)); km[nm++] = k; }
+        for (k = 0; k < nc; k++) { W->pdf[kc[k]] = pq[k]; memcpy(&W->Le[3 * kc[k]], &Lq[3 * k], 3 * sizeof(float)); }
+        for (k = 0, nm = 0; k < ne; k++) /* (the others: kc ascends as the escaped rays' indices do) */
+          if (q < nc && kc[q] == k) q++;
+          else { memcpy(&dm[3 * nm], &W->wi[3 * k], 3 * sizeof(float)); km[nm++] = k; }
         el_envlight_le_n(env, nm, dm, Lq);
         for (k = 0; k < nm; k++) memcpy(&W->Le[3 * km[k]], &Lq[3 * k], 3 * sizeof(float));
         le_done = 1;
