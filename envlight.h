@@ -368,10 +368,11 @@ EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *n
 /* Both of an escaped ray's lookups for MIS against product sampling, n at once: pdf[i] =
  * pdf_li_cos(normals[3i..], dirs[3i..]) and rgb[3i..] = le(dirs[3i..]), bit for bit what pdf_li_cos_n and
  * le_n return (so the same normals: any length, pointing to the side the light arrives from; a zero, NaN
- * or infinite normal gives pdf 0, the direction's le all the same; a zero or NaN direction gives pdf 0
- * and le 0). With SSE2 one pass: le's (u, v) is where the pdf locates the direction, so the mapping runs
- * once and the texel reads are requested with the pdf's (about 490 instructions per direction against
- * 335 + 250 for the two calls; NOTES ON PRODUCT SAMPLING, COST). n <= 0 does nothing; pdf and rgb must
+ * or infinite normal gives pdf 0, the direction's le all the same; a zero, NaN or infinite direction gives
+ * pdf 0 and le 0). pdf 0 means sample_li_cos never picks that direction for that normal (no light there,
+ * or below the cells that straddle the horizon): MIS gives the BSDF sample the whole weight. With SSE2 one pass: le's (u, v) is where the pdf locates the direction, so the mapping runs
+ * once and the texel reads are requested with the pdf's (about 480 instructions per direction against
+ * 332 + 256 for the two calls; NOTES ON PRODUCT SAMPLING, N AT ONCE). n <= 0 does nothing; pdf and rgb must
  * not overlap normals or dirs. */
 EL_DEF void el_envlight_pdf_li_cos_le_n(const el_envlight *l, int n, const float *normals, const float *dirs, float *pdf, float *rgb);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
@@ -533,6 +534,16 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    3264 -> 3114 (1011 -> 860; four lanes without stages or the texel reuse: 3969 and 3058); render CPU
  *    time, one thread, 64 spp, best of 3 interleaved: bench_city 1.98 -> 1.88 s, bench_studio 1.47 -> 1.18
  *    s, images byte-identical.
+ *    PDF AND RADIANCE AT ONCE (pdf_li_cos_le_n; issue 21: a wave's escaped BSDF rays, whose MIS weight needs
+ *    the product pdf and whose estimate needs le): pdf_li_cos_n's pass, and le's four texels located from
+ *    the (u, v) the pdf's locate computes anyway (the same light-space direction, the same atan polynomials
+ *    and square root as le's: bit for bit) and requested with the pdf's table lines. Directions that need
+ *    rescaling (zero, NaN, infinite, huge) take le's own cold path. bench_envlight --callgrind pdf_cos_le_n
+ *    (city 1024x512, batches of 64, the loop's 9 subtracted): 481 instructions per direction against 332 +
+ *    256 for pdf_li_cos_n and le_n (490 against 341 + 272 under a general rotation). The guide tables'
+ *    forward scans step eight uint16 entries at a time with SSE2 (compared as int16 after - 32768; the
+ *    first entry above k from the compare's mask); the scans are short (1-3 steps mostly): sample_cos_n
+ *    632.6 -> 631.8.
  *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
  *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
  *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
@@ -1258,7 +1269,7 @@ EL_DEF size_t el_envlight_portal_bytes(const el_envlight_portal *p);
 #include <math.h>
 #include <string.h>
 
-/* SSE2 (x86-64 always has it) for sample_li's search and direction and for the construction loops;
+/* SSE2 (x86-64 always has it) for sample_li's search and direction, the guided CDF searches and the construction loops;
  * define EL_NO_SIMD for the scalar code, which does the same operations in the same order */
 #if !defined(EL_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #define EL_ENVLIGHT__SSE 1
