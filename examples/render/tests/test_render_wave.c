@@ -355,5 +355,47 @@ int main(void) {
     }
     sun_mode = -1;
   }
+  /* 8. --env-sun-diffuse two and twopixel in the path tracer (issue 22: two product light samples at every diffuse
+   * vertex, the second from UniformSampleOneLight's BSDF draw, and weight 0 for the environment where the
+   * continuation ray from such a vertex leaves the scene) on 6.'s sun map: bit for bit, the same ray and strategy
+   * counts; zsobol, random, halton, a mirror (its reflections: vertices after a specular bounce), twopixel with
+   * pixels of both choices */
+  {
+    static const struct { const char *sampler; int sd, mirror, mis; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", ELR_ENVSD_TWO, 0, 0},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", ELR_ENVSD_TWO, 1, 0},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", ELR_ENVSD_TWO_PIXEL, 0, 1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", ELR_ENVSD_TWO_PIXEL, 1, 1},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", ELR_ENVSD_TWO_PIXEL, 1, 1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 300", ELR_ENVSD_TWO, 1, 0}, /* (a pixel in several waves) */
+    };
+    int c;
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      elr_scene *s = load_matte(cases[c].sampler, 1, "sun.pfm", "", cases[c].mirror, err);
+      elr_image ref, img;
+      elr_stats sr, st;
+      if (!s) { rt_check(0, "path two scene %d: %s", c, err); continue; }
+      sun_diffuse = cases[c].sd;
+      if (render(s, ELR_LOOP_ONE, -1, -1, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &img, &st, err) == 0) {
+        size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+        for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
+        rt_check(st.loop == ELR_LOOP_WAVE && sr.loop == ELR_LOOP_ONE && diff == 0 && st.shadow_rays == sr.shadow_rays &&
+                     st.bounce_rays == sr.bounce_rays && st.camera_rays == sr.camera_rays && st.env_product_samples == sr.env_product_samples &&
+                     st.env_map_samples == sr.env_map_samples && st.env_light_only_samples == sr.env_light_only_samples,
+                 "path two case %d (%s, diffuse %d, mirror %d): %zu of %zu values differ from the reference; shadow %llu/%llu, bounce "
+                 "%llu/%llu, product %llu/%llu, alone %llu/%llu",
+                 c, cases[c].sampler, cases[c].sd, cases[c].mirror, diff, n, (unsigned long long)st.shadow_rays, (unsigned long long)sr.shadow_rays,
+                 (unsigned long long)st.bounce_rays, (unsigned long long)sr.bounce_rays, (unsigned long long)st.env_product_samples,
+                 (unsigned long long)sr.env_product_samples, (unsigned long long)st.env_light_only_samples,
+                 (unsigned long long)sr.env_light_only_samples);
+        /* (two taken at vertices: light samples alone; twopixel's pixels of product MIS too, two's none) */
+        rt_check(sr.env_light_only_samples > 0 && (sr.env_product_samples > sr.env_light_only_samples) == cases[c].mis,
+                 "path two case %d: product %llu, alone %llu", c, (unsigned long long)sr.env_product_samples, (unsigned long long)sr.env_light_only_samples);
+        elr_image_free(&img); elr_image_free(&ref);
+      } else rt_check(0, "path two scene %d: %s", c, err);
+      elr_scene_free(s);
+    }
+    sun_diffuse = -1;
+  }
   return rt_finish("test_render_wave");
 }
