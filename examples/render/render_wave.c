@@ -246,6 +246,7 @@ struct elr_wave {
    * other light technique's densities there and their shadow rays; the split of the vertex its ray left (prevsplit:
    * elr_path_li's prev_split, the escaped ray's MIS weight) */
   int psplit[ELR_WAVE], prevsplit[ELR_WAVE], psh[2 * ELR_WAVE];
+  int ptwo[ELR_WAVE]; /* ELR_ENVSD_TWO(_PIXEL), the path tracer: its vertex's elr_path_two (two product light samples there) */
   elr_light_sample pssl[2 * ELR_WAVE];
   float psother[2 * ELR_WAVE];
   elr_wave_rays rays, shadows;
@@ -857,10 +858,14 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_tex_ctx tc;
       elr_v3 wo, dpdx, dpdy;
       float u[2];
-      W->light[j] = W->light2[j] = W->escaped[j] = -1; W->psplit[j] = 0;
+      W->light[j] = W->light2[j] = W->escaped[j] = -1; W->psplit[j] = W->ptwo[j] = 0;
       if (!W->alive[j]) continue;
       if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
         float d[3];
+        if (p->depth > 0 && !p->specular && C->light_sampling && elr_path_two_light(C, l, p->prev_two, p->prev_sun, W->prevsplit[j])) {
+          W->alive[j] = 0; nalive--; /* (ELR_ENVSD_TWO(_PIXEL): the environment's weight is 0, as elr_path_li; nothing to look up) */
+          continue;
+        }
         elr_to3(p->ray.d, d);
         W->escaped[j] = ne;
         memcpy(&W->wi[3 * ne], d, sizeof d);
@@ -906,7 +911,8 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           W->light[j] = n++;
         }
         if (two_pixel) ts->env_two_pixel = W->two_pix[W->pix[j]];
-        if (W->light[j] >= 0 && elr_path_two(C, b, wo, ts) && elr_path_two_light(C, l, 1, W->sc[n - 1], 0)) {
+        W->ptwo[j] = elr_path_two(C, b, wo, ts);
+        if (W->light[j] >= 0 && W->ptwo[j] && elr_path_two_light(C, l, 1, W->sc[n - 1], 0)) {
           /* ELR_ENVSD_TWO(_PIXEL): the BSDF draw is the second product light sample's, at the same vertex */
           int i = n - 1;
           elr_sampler_get2d(S, &W->u[2 * n]);
@@ -935,8 +941,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
         else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) { /* (only where the weight is
           * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
-          if (elr_path_two_light(C, l, W->p[j].prev_two, W->p[j].prev_sun, W->prevsplit[j])) W->pdf[e] = 0.f; /* (weight 0, below) */
-          else if (W->prevsplit[j]) W->pdf[e] = elr_sunsplit_pdf(C->sunsplit, W->prevsplit[j], W->p[j].prev_n, elr_from3(&W->wi[3 * e])); /* (as elr_path_li) */
+          if (W->prevsplit[j]) W->pdf[e] = elr_sunsplit_pdf(C->sunsplit, W->prevsplit[j], W->p[j].prev_n, elr_from3(&W->wi[3 * e])); /* (as elr_path_li) */
           else if (W->p[j].prev_sun && !elr_sun_cell_product(W->p[j].prev_sun, W->p[j].prev_has_n)) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
           else if (W->p[j].prev_has_n) { elr_to3(W->p[j].prev_n, &nn[3 * nc]); memcpy(&dc[3 * nc], &W->wi[3 * e], 3 * sizeof(float)); kc[nc++] = e; } /* (elr_light_pdf_li) */
           else { memcpy(&dm[3 * nm], &W->wi[3 * e], 3 * sizeof(float)); km[nm++] = e; }
@@ -959,7 +964,6 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         int skip = 0;
         if (p->depth > 0 && !p->specular && C->light_sampling) {
           if (C->ls == ELR_LS_LIGHT) skip = 1;
-          else if (elr_path_two_light(C, l, p->prev_two, p->prev_sun, W->prevsplit[j])) skip = 1; /* (as elr_path_li) */
           else if (C->ls == ELR_LS_MIS) w = elr_power_heuristic(p->prev_pdf, pick * W->pdf[e]);
         }
         if (!skip) p->L = elr_add(p->L, elr_mul(elr_vmul(p->beta, elr_from3(&W->Le[3 * e])), w));
@@ -1043,8 +1047,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       }
       W->prevsplit[j] = C->sunsplit && C->light_sampling && (b->has_diffuse || b->has_glossy) /* (as elr_path_li's prev_split) */
                           ? elr_sunsplit_at(C->sunsplit, elr_sunsplit_light(C->sunsplit), b, p->prev_has_n ? &p->prev_n : NULL) : 0;
-      if (two_pixel) ts->env_two_pixel = W->two_pix[W->pix[j]];
-      p->prev_two = elr_path_two(C, b, wo, ts); /* (as elr_path_li's prev_two) */
+      p->prev_two = W->ptwo[j]; /* (as elr_path_li's prev_two: elr_path_two, 0 without light sampling there) */
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {
