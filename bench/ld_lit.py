@@ -11,6 +11,9 @@ the CPU seconds of our render loop, and each strategy's low-discrepancy gain (ra
 
     python3 bench/ld_lit.py [--res 320 240] [--spp 64] [--seeds 4] [--threads 2]
                             [--configs default,map,...] [--mitsuba] [--scene scenes/bench_city.pbrt]
+                            [--integrator direct|path] [--maxdepth 5]
+
+--integrator path: the path tracer (maxdepth --maxdepth; Mitsuba's 'path' with max_depth one more, 1/1 only).
 
 A configuration is a name (CONFIGS below: render's hidden options) run with zsobol and random; NAME@2 renders
 with the light's "integer samples" [ 2 ] (two light + BSDF sample pairs per camera sample, or two light samples);
@@ -51,6 +54,8 @@ CONFIGS = {
     "suncos": ["--env-sun-diffuse", "suncos"],
     "sun": ["--sun", "on"],
     "alone": ["--env-sun-diffuse", "alone"],  # the product light sample alone at diffuse vertices (MIS elsewhere)
+    "two": ["--env-sun-diffuse", "two"],  # two product light samples at diffuse vertices (no BSDF sample's MIS)
+    "twopixel": ["--env-sun-diffuse", "twopixel"],  # the same where the pixel's centre sees the sun
 }
 
 
@@ -76,6 +81,8 @@ def main():
     ap.add_argument("--samplers", default="zsobol,random")
     ap.add_argument("--extra", action="append", default=[], help="name=options (added to --configs)")
     ap.add_argument("--mitsuba", action="store_true")
+    ap.add_argument("--integrator", choices=("direct", "path"), default="direct")
+    ap.add_argument("--maxdepth", type=int, default=5, help="--integrator path: pbrt's maxdepth (bounces)")
     ap.add_argument("--save", help="write the images and classes to this .npz (for further analysis)")
     args = ap.parse_args()
     cfgs = [(n, CONFIGS[n.split("@")[0]]) for n in args.configs.split(",") if n]
@@ -84,16 +91,16 @@ def main():
         cfgs.append((n, shlex.split(o)))
     work = tempfile.mkdtemp(prefix="el_ld_lit_")
     scene = os.path.join(work, "s.pbrt")
-    text = mc.scene_variant(args.scene, tuple(args.res), "direct", 1)
+    text = mc.scene_variant(args.scene, tuple(args.res), args.integrator, 1, args.maxdepth)
     with open(scene, "w") as f:
         f.write(text)
     scene2 = os.path.join(work, "s2.pbrt")  # a configuration named NAME@2: the light's "integer samples" [ 2 ]
     with open(scene2, "w") as f:
-        f.write(mc.scene_variant(args.scene, tuple(args.res), "direct", 2))
+        f.write(mc.scene_variant(args.scene, tuple(args.res), args.integrator, 2, args.maxdepth))
     sc = mc.parse_pbrt(scene, text)
     classes = mc.pixel_classes(sc)
-    print("ld_lit: %s at %dx%d, %d spp, %d seeds; lit %d, shadowed %d pixels" % (
-        os.path.basename(args.scene), args.res[0], args.res[1], args.spp, args.seeds,
+    print("ld_lit: %s at %dx%d, %s, %d spp, %d seeds; lit %d, shadowed %d pixels" % (
+        os.path.basename(args.scene), args.res[0], args.res[1], args.integrator, args.spp, args.seeds,
         int(classes["lit"].sum()), int(classes["shadowed"].sum())))
     runs = [(n + " " + s, s, o) for n, o in cfgs for s in args.samplers.split(",")]
     mr = None
@@ -101,14 +108,15 @@ def main():
         import mitsuba as mi
         mr = mc.MiVarRunner(args.threads, work, "llvm_ad_rgb" if "llvm_ad_rgb" in mi.variants() else "scalar_rgb")
         for smp in ("independent", "multijitter"):
-            for nb in (1, 0):
+            for nb in ((1, 0) if args.integrator == "direct" else (1,)):
                 runs.append(("mitsuba %s 1/%d" % (smp, nb), None, (smp, nb)))
     imgs, cpus = {}, {}
     for r in range(args.seeds):
         for name, smp, o in runs:
             if smp is None:
                 d = mc.mitsuba_scene_dict(mr.mi, sc, args.spp, work, True, o[0])
-                d["integrator"] = {"type": "direct", "emitter_samples": 1, "bsdf_samples": o[1]}
+                d["integrator"] = ({"type": "direct", "emitter_samples": 1, "bsdf_samples": o[1]} if args.integrator == "direct"
+                                   else {"type": "path", "max_depth": args.maxdepth + 1, "rr_depth": 4})
                 key = ("mi", o)
                 if key not in mr.scenes:
                     mr.scenes[key] = mr.mi.load_dict(d)

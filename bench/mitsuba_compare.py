@@ -31,6 +31,11 @@ The default run (variance mode; issues 13 and 14)
     python3 bench/mitsuba_compare.py [--quick] [--seeds 3] [--var-res W H] [--var-spp 64,256]
                                      [--our-sampler 02sequence] [--map-too] [--no-stratified-splitting]
                                      [--threads 2] [--maxdepth 5] [--regions | --mask FILE]
+                                     [--var-maps sun,smooth] [--var-integrators direct,path]
+                                     [--variant NAME=OPTIONS ...] [--variant-integrators direct,path]
+  --variant NAME=OPTIONS: ours with more render options (random and --our-sampler), on the integrators of
+  --variant-integrators (default direct,path); its own (a) and (d) tables, and a candidate for (b)'s best.
+  --var-maps, --var-integrators: run only these maps and integrators (shorter runs).
   --regions: pixel_classes() ray-casts the parsed scene in numpy (neither renderer's code) at 4x4
   positions per pixel and casts a shadow ray towards the map's brightest texel (sun_direction()): "lit"
   pixels see the sun from every position, "shadowed" from none (background, silhouettes and penumbrae
@@ -882,7 +887,14 @@ def variance_mode(args):
         spps = [int(x) for x in args.var_spp.split(",")]
     seeds = 2 if quick else args.seeds
     ld = args.our_sampler
-    integs = ["direct", "path"]
+    integs = [i for i in args.var_integrators.split(",") if i]
+    var_integs = [i for i in args.variant_integrators.split(",") if i]  # the integrators the --variant options run on
+    var_scenes = [(k, f) for k, f in VAR_SCENES if k in args.var_maps.split(",")]
+    for i in integs + var_integs:
+        if i not in ("direct", "path"):
+            die("--var-integrators / --variant-integrators: direct or path, not %r" % i)
+    if not var_scenes:
+        die("--var-maps: none of %s" % ",".join(k for k, _ in VAR_SCENES))
     maxdepth = args.maxdepth
     workdir = tempfile.mkdtemp(prefix="el_mitsuba_var_")
     variant = "llvm_ad_rgb"
@@ -910,21 +922,21 @@ def variance_mode(args):
                      ("mitsuba", "stratified 4/4", "direct", "stratified", 4)]
     if args.map_too:
         cfgs += [("ours", "%s 1/1, map alone" % ld, None, ld, 1)]
-    variant_opts = {}  # --variant NAME=OPTIONS: ours with more render options, direct lighting, both samplers
+    variant_opts = {}  # --variant NAME=OPTIONS: ours with more render options, --variant-integrators, both samplers
     for v in args.variant:
         name, _, opts = v.partition("=")
         for smp in ("random", ld):
-            cfgs += [("ours", "%s 1/1 %s" % (smp, name), "direct", smp, 1)]
+            cfgs += [("ours", "%s 1/1 %s" % (smp, name), i, smp, 1) for i in var_integs]
             variant_opts["%s 1/1 %s" % (smp, name)] = opts.split()
     print("variance mode: %s x %s, spp %s, %d seeds per configuration, %d threads, path maxdepth %d; Mitsuba %s %s; "
-          "load average %.2f %.2f %.2f" % (("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in VAR_SCENES),
+          "load average %.2f %.2f %.2f" % (("%dx%d" % res if res else "scene resolution", ",".join(n for n, _ in var_scenes),
                                             ",".join(map(str, spps)), seeds, args.threads, maxdepth, mi.__version__, variant)
                                            + os.getloadavg()))
     t_start = time.time()
     regions = {}  # (scene) -> {"lit": mask, "shadowed": mask}: --regions (the scene's geometry) or --mask FILE
     results = {}  # (scene, integ, spp, side, name) -> (relvar, median CPU s, mean image)
     by_region = {}  # the same keys -> {"lit": relvar, "shadowed": relvar}
-    for sc_key, fname in VAR_SCENES:
+    for sc_key, fname in var_scenes:
         path = os.path.join(ROOT, "scenes", fname)
         for integ in integs:
             files = {}
@@ -975,7 +987,7 @@ def variance_mode(args):
     print("\n(a) equal spp, matched samplers, one light + one BSDF sample: relvar ours / relvar Mitsuba "
           "(issue 13's target <= 0.5)")
     rows = []
-    for sc_key, _ in VAR_SCENES:
+    for sc_key, _ in var_scenes:
         for integ in integs:
             for spp in spps:
                 g = lambda side, name: results.get((sc_key, integ, spp, side, name), (float("nan"),))[0]
@@ -985,11 +997,12 @@ def variance_mode(args):
     for v in args.variant:  # the same ratios for each --variant (its options replace the default's strategy)
         name = v.partition("=")[0]
         rows = []
-        for sc_key, _ in VAR_SCENES:
-            for spp in spps:
-                g = lambda side, cfg: results.get((sc_key, "direct", spp, side, cfg), (float("nan"),))[0]
-                rows.append([sc_key, "direct", spp, "%.2f" % (g("ours", "random 1/1 " + name) / g("mitsuba", "independent 1/1")),
-                             "%.2f" % (g("ours", "%s 1/1 %s" % (ld, name)) / g("mitsuba", "multijitter 1/1"))])
+        for sc_key, _ in var_scenes:
+            for integ in [i for i in integs if i in var_integs]:
+                for spp in spps:
+                    g = lambda side, cfg: results.get((sc_key, integ, spp, side, cfg), (float("nan"),))[0]
+                    rows.append([sc_key, integ, spp, "%.2f" % (g("ours", "random 1/1 " + name) / g("mitsuba", "independent 1/1")),
+                                 "%.2f" % (g("ours", "%s 1/1 %s" % (ld, name)) / g("mitsuba", "multijitter 1/1"))])
         print("\n(a) for --variant %s" % v)
         print(fmt_table(rows, ["map", "integrator", "spp", "random / independent", "%s / multijitter" % ld]))
     print("\n(b) equal time: cost (relvar x CPU s) of our best configuration over Mitsuba's best "
@@ -1004,7 +1017,7 @@ def variance_mode(args):
         return (min(m) if m else None), (min(o) if o else None)
 
     rows = []
-    for sc_key, _ in VAR_SCENES:
+    for sc_key, _ in var_scenes:
         for integ in integs:
             for spp in spps:
                 bm, bo = best(sc_key, integ, spp)
@@ -1015,7 +1028,7 @@ def variance_mode(args):
     print("\n(c) CPU per camera sample (the render loop's CPU s at equal spp and resolution), ours / Mitsuba, one light + "
           "one BSDF sample (issue 21's target <= 1), and the equal-time ratio of (b) again (issue 21's target <= 0.5)")
     rows = []
-    for sc_key, _ in VAR_SCENES:
+    for sc_key, _ in var_scenes:
         for integ in integs:
             for spp in spps:
                 g = lambda side, name: results.get((sc_key, integ, spp, side, name), (float("nan"), float("nan")))[1]
@@ -1031,7 +1044,7 @@ def variance_mode(args):
               % ("--mask " + args.mask if args.mask else "--regions: lit = every position of the pixel sees the sun, "
                  "shadowed = none does", ld))
         rows = []
-        for sc_key, _ in VAR_SCENES:
+        for sc_key, _ in var_scenes:
             for integ in integs:
                 for spp in spps:
                     for reg in ("lit", "shadowed"):
@@ -1045,9 +1058,22 @@ def variance_mode(args):
                                      "%.2f (%s / %s)" % (min(o)[0] / min(m)[0], min(o)[1], min(m)[1]) if m and o else "-"])
         print(fmt_table(rows, ["map", "integrator", "spp", "region", "%s / multijitter" % ld, "random / independent",
                                "equal time"]))
+        for v in args.variant:  # the same equal-spp ratios by region for each --variant
+            name = v.partition("=")[0]
+            rows = []
+            for sc_key, _ in var_scenes:
+                for integ in [i for i in integs if i in var_integs]:
+                    for spp in spps:
+                        for reg in ("lit", "shadowed"):
+                            g = lambda side, name: by_region.get((sc_key, integ, spp, side, name), {}).get(reg, float("nan"))
+                            rows.append([sc_key, integ, spp, reg,
+                                         "%.2f" % (g("ours", "%s 1/1 %s" % (ld, name)) / g("mitsuba", "multijitter 1/1")),
+                                         "%.2f" % (g("ours", "random 1/1 " + name) / g("mitsuba", "independent 1/1"))])
+            print("\n(d) for --variant %s" % v)
+            print(fmt_table(rows, ["map", "integrator", "spp", "region", "%s / multijitter" % ld, "random / independent"]))
     print("\nbias check: relative difference of the image means, ours (%s 1/1) against Mitsuba (multijitter 1/1), "
           "at %d spp:" % (ld, spps[-1]))
-    for sc_key, _ in VAR_SCENES:
+    for sc_key, _ in var_scenes:
         for integ in integs:
             a = results.get((sc_key, integ, spps[-1], "ours", "%s 1/1" % ld))
             b = results.get((sc_key, integ, spps[-1], "mitsuba", "multijitter 1/1"))
@@ -1081,7 +1107,7 @@ def sampler_variance_mode(args):
     print("our samplers: relative variance across %d seeds, directlighting (MIS, 1 light + 1 BSDF sample), "
           "%dx%d, %d threads" % (seeds, res[0], res[1], args.threads))
     rows = []
-    for sc_key, fname in VAR_SCENES:
+    for sc_key, fname in var_scenes:
         f = os.path.join(workdir, "%s.pbrt" % sc_key)
         with open(f, "w") as fh:
             fh.write(scene_variant(os.path.join(ROOT, "scenes", fname), res, "direct", 1))
@@ -1128,8 +1154,13 @@ def main():
     ap.add_argument("--seeds", type=int, default=3, help="seeds per configuration in the variance modes")
     ap.add_argument("--our-sampler", default="zsobol", help="our low-discrepancy sampler in the variance mode")
     ap.add_argument("--variant", action="append", default=[],
-                    help="variance mode: NAME=OPTIONS, ours with more render options (direct lighting, random and the "
+                    help="variance mode: NAME=OPTIONS, ours with more render options (--variant-integrators, random and the "
                          "low-discrepancy sampler), e.g. 'twopixel=--env-sun-diffuse twopixel'; in (b)'s best and its own (a)")
+    ap.add_argument("--variant-integrators", default="direct,path",
+                    help="variance mode: the integrators the --variant options run on (default direct,path)")
+    ap.add_argument("--var-integrators", default="direct,path", help="variance mode: the integrators to run (default direct,path)")
+    ap.add_argument("--var-maps", default=",".join(k for k, _ in VAR_SCENES),
+                    help="variance mode: the maps to run (default %s)" % ",".join(k for k, _ in VAR_SCENES))
     ap.add_argument("--map-too", action="store_true", help="variance mode: also ours with the map alone (no product)")
     ap.add_argument("--var-res", type=int, nargs=2, default=None,
                     help="resolution of the variance modes (default: the scene's, 320x240; --sampler-variance 320x240)")

@@ -611,6 +611,13 @@ static inline int elr_env_light_only(int ls_mis, int sample_bsdf, const elr_ligh
 static inline int elr_env_two(int ls_mis, int sample_bsdf, const elr_light *l, int has_n, const elr_bsdf *b) {
   return ls_mis && sample_bsdf && has_n && l->kind == ELR_LIGHT_INFINITE && l->product && b->env_two && !l->env_sample->compensated;
 }
+/* The path tracer too (issue 22): UniformSampleOneLight's BSDF draw, which its continuation ray leaves unused,
+ * gives the second product light sample (elr_estimate_direct with sample_bsdf 0), and the continuation ray that
+ * leaves the scene from such a vertex takes weight 0 for that light (elr_path_state.prev_two: the vertex's part,
+ * elr_path_two; elr_env_two_light the light's). Unbiased as above: light l's sample alone there, no MIS. */
+static inline int elr_env_two_light(const elr_light *l) {
+  return l->kind == ELR_LIGHT_INFINITE && l->product && !l->env_sample->compensated;
+}
 /* a BSDF of pbrt-v3's BxDF list: the frame (unit ns and ng), then lobes added (NULL when full) */
 void elr_bsdf_begin(elr_bsdf *b, elr_v3 ns, elr_v3 ng, float eta);
 elr_bxdf *elr_bsdf_add(elr_bsdf *b, int type);
@@ -987,10 +994,11 @@ typedef struct elr_path_state {
   elr_v3 prev_n;
   float eta_scale; /* pbrt-v3's etaScale: the radiance scaling of the refractions so far, left out of Russian roulette */
   const struct elr_sun_cell *prev_sun; /* sun.c: the last vertex's sun-cache cell (NULL: the light's own density) */
+  int prev_two; /* ELR_ENVSD_TWO(_PIXEL): the last vertex took two product light samples of an environment (elr_path_two) */
 } elr_path_state;
 static inline void elr_path_begin(elr_path_state *p, const elr_ray *camera_ray) {
   p->ray = *camera_ray; p->depth = 0; p->L = elr_v(0, 0, 0); p->beta = elr_v(1, 1, 1); p->specular = 0; p->prev_pdf = 0.f;
-  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f; p->prev_sun = NULL;
+  p->prev_has_n = 0; p->prev_n = elr_v(0, 0, 0); p->eta_scale = 1.f; p->prev_sun = NULL; p->prev_two = 0;
 }
 
 elr_v3 elr_infinite_le(const elr_scene *s, elr_v3 d);
@@ -1019,6 +1027,10 @@ elr_v3 elr_direct_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, 
 elr_v3 elr_direct_li_branches(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, const elr_path_state *waiting, int nwaiting,
                               int splits, elr_tstats *ts);
 elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, elr_tstats *ts);
+/* ELR_ENVSD_TWO(_PIXEL) in the path tracer (integrator.c): the vertex's part (BSDF b, wo; the pixel's choice in ts),
+ * and whether a ray that left such a vertex (prev_two, its sun-cache cell and split) gives light l weight 0 */
+int elr_path_two(const elr_ctx *C, const elr_bsdf *b, elr_v3 wo, const elr_tstats *ts);
+int elr_path_two_light(const elr_ctx *C, const elr_light *l, int prev_two, const struct elr_sun_cell *prev_sun, int prev_split);
 /* render_wave.c: a camera sample's first vertex, computed ahead: the camera ray's
  * hit (hit = 0: it left the scene) and, at a hit, the environment sample for the first light-sampling
  * draw there. */

@@ -89,7 +89,8 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
   /* issue 20: the product light sample alone where the lobes are diffuse or broad (elr_env_light_only) */
   int lonly = !sc && !split && elr_env_light_only(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b); /* (sun.c, split: MIS kept) */
   /* ELR_ENVSD_TWO: a second product light sample from the BSDF sample's numbers, each weighted 1/2 */
-  int two = !sc && !split && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf, l, n != NULL, b), kt;
+  /* (the path tracer: the second from UniformSampleOneLight's BSDF draw, elr_path_two) */
+  int two = !sc && !split && elr_env_two(C->ls == ELR_LS_MIS, sample_bsdf || C->path, l, n != NULL, b), kt;
   if (two && s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL) two = ts->env_two_pixel > 0; /* (the pixel's choice: render.c) */
   if (two) lonly = 1;
   /* <<Sample light source with multiple importance sampling>> */
@@ -159,6 +160,20 @@ void elr_estimate_direct(const elr_ctx *C, const elr_hit *h, const elr_bsdf *b, 
       }
     }
   }
+}
+
+/* ELR_ENVSD_TWO(_PIXEL) in the path tracer: 1 where elr_estimate_direct at this vertex (BSDF b, wo) takes an
+ * environment's two product light samples (elr_env_two's conditions but the light's, the pixel's choice), so that
+ * the continuation ray, when it leaves the scene, gives that light nothing (elr_path_two_light: the light's part,
+ * with the vertex's sun-cache cell and split as elr_estimate_direct finds them for that light) */
+int elr_path_two(const elr_ctx *C, const elr_bsdf *b, elr_v3 wo, const elr_tstats *ts) {
+  elr_v3 n;
+  if (!C->light_sampling || !(b->has_diffuse || b->has_glossy) || C->ls != ELR_LS_MIS || !b->env_two) return 0;
+  if (C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL && !(ts->env_two_pixel > 0)) return 0;
+  return elr_bsdf_cos_normal(b, wo, &n);
+}
+int elr_path_two_light(const elr_ctx *C, const elr_light *l, int prev_two, const elr_sun_cell *prev_sun, int prev_split) {
+  return prev_two && elr_env_two_light(l) && !(prev_sun && l == elr_sun_light(C->sun)) && !(prev_split && l == elr_sunsplit_light(C->sunsplit));
 }
 
 /* pbrt-v3's UniformSampleAllLights: the direct light at h from every light that emits, each light's

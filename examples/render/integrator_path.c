@@ -29,6 +29,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
   const elr_sun_cell *prev_sun = p->prev_sun; /* and its sun-cache cell (sun.c) */
   int prev_split = 0; /* and whether it split its light sample (--sun split, sun.c: elr_sunsplit_at's answer; p is a
                          camera ray's state here: render.c's loop; the wave loop keeps its own, render_wave.c) */
+  int prev_two = p->prev_two; /* and whether it took two product light samples (ELR_ENVSD_TWO(_PIXEL): elr_path_two) */
   for (depth = p->depth;; depth++) {
     elr_hit h;
     elr_bsdf b;
@@ -46,6 +47,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
         if (l->kind != ELR_LIGHT_INFINITE || !elr_light_emits(l)) continue;
         if (depth > 0 && !specular && C->light_sampling) {
           if (C->ls == ELR_LS_LIGHT) continue;
+          if (elr_path_two_light(C, l, prev_two, prev_sun, prev_split)) continue; /* (its light sample alone: weight 0 here) */
           if (C->ls == ELR_LS_MIS) /* the light's density as the previous vertex's light sample had it: its normal */
           {
             float d[3];
@@ -93,6 +95,7 @@ elr_v3 elr_path_li(const elr_ctx *C, elr_sampler *S, const elr_path_state *p, el
     prev_sun = C->sun ? elr_sun_lookup(C->sun, &h, wo) : NULL;
     prev_has_n = elr_sun_cos_normal(s, prev_sun, &b, wo, &prev_n); /* the normal this vertex's light sample used */
     prev_split = C->sunsplit && C->light_sampling && (b.has_diffuse || b.has_glossy) ? elr_sunsplit_at(C->sunsplit, elr_sunsplit_light(C->sunsplit), &b, prev_has_n ? &prev_n : NULL) : 0;
+    prev_two = elr_path_two(C, &b, wo, ts);
     if (spec == 2) eta_scale = elr_eta_scale(eta_scale, &b, wo); /* a specular transmission */
     /* the last vertex's continuation only matters for the emitters' BSDF-sampled part */
     if (depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) break;

@@ -17,7 +17,8 @@
  * whose lobes are diffuse or of alpha >= A take the product light sample alone; inf never; ELR_ENV_LIGHT_ALPHA),
  * --env-sun-diffuse map|product|alone|suncos|two|twopixel (under a sun map, diffuse-only vertices: the map alone with MIS, the
  * product with MIS, the product light sample alone, the sun rule by the normal, two product light samples in place of
- * directlighting's light + BSDF pair, twopixel: that where the pixel's centre sees the sun,
+ * directlighting's light + BSDF pair (the path tracer: of its light sample, the continuation ray's environment weighted 0
+ * there), twopixel: that where the pixel's centre sees the sun,
  * product MIS where not; default ELR_ENV_SUN_DIFFUSE: product),
  * --env-sun-cos C (the sun rule's threshold: the map alone where the sun is within acos(C) of the normal),
  * --sampler random|stratified|halton|sobol|02sequence|zsobol|paddedsobol, --importance cellaverage|pbrt-v3|texel (the environment's

@@ -371,7 +371,7 @@ static int elr__decide_lights(elr_ctx *C, const elr_render_options *o, elr_stats
     C->loop = o->loop == ELR_LOOP_ONE || o->loop == ELR_LOOP_WAVE       ? o->loop
               : C->path && pixel_sampler && C->batch_light->product ? ELR_LOOP_ONE
                                                                     : ELR_LOOP_WAVE;
-    /* (ELR_ENVSD_TWO(_PIXEL), directlighting's two product light samples at diffuse vertices under a sun map:
+    /* (ELR_ENVSD_TWO(_PIXEL), two product light samples at diffuse vertices under a sun map, directlighting and path:
      * the wave loop too, the same image: render_wave.c, test_render_wave) */
     /* (portals, whose density depends on the shading point, are sampled by the wave loop at each
      * vertex, el_envlight_portal_sample_li; with a pixel sampler like the map alone: test_render_portal) */

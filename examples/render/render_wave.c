@@ -246,6 +246,7 @@ struct elr_wave {
    * other light technique's densities there and their shadow rays; the split of the vertex its ray left (prevsplit:
    * elr_path_li's prev_split, the escaped ray's MIS weight) */
   int psplit[ELR_WAVE], prevsplit[ELR_WAVE], psh[2 * ELR_WAVE];
+  int ptwo[ELR_WAVE]; /* ELR_ENVSD_TWO(_PIXEL), the path tracer: its vertex's elr_path_two (two product light samples there) */
   elr_light_sample pssl[2 * ELR_WAVE];
   float psother[2 * ELR_WAVE];
   elr_wave_rays rays, shadows;
@@ -288,7 +289,7 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   /* direct lighting, strategy "all": the light's sample pairs drawn ahead with the first, up to ELR_WAVE */
   W->npair = !C->path && !C->direct_one ? C->batch_light->nsamples : 1;
   /* (ELR_ENVSD_TWO(_PIXEL): up to two light samples a pair, in the wave's arrays of ELR_WAVE) */
-  two = !C->path && C->s->env_sunny && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL);
+  two = C->s->env_sunny && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || C->s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL); /* (the path tracer too) */
   two |= !C->path && C->sunsplit; /* (--sun split: a spot and a sky sample, and the BSDF sample: three shadow rays a pair) */
   if (W->npair > ELR_WAVE / (1 + two)) W->npair = ELR_WAVE / (1 + two);
   W->cap = ELR_WAVE / ((1 + two) * W->npair);
@@ -856,6 +857,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
   const elr_light *l = C->batch_light;
   const el_envlight *env = l->env, *env_sample = l->env_sample;
   const float pick = C->ld.pick ? C->ld.pick[l - s->light] : 1.f; /* the one emitting light: 1 */
+  const int two_pixel = s->env_sunny && s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL; /* (ts->env_two_pixel: each path's pixel's) */
   int j, depth, nalive = m;
   for (j = 0; j < m; j++) { elr_path_begin(&W->p[j], &W->cam[j]); W->alive[j] = 1; W->ray[j] = j; W->prevsplit[j] = 0; }
   for (depth = 0; nalive > 0; depth++) {
@@ -875,10 +877,14 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_tex_ctx tc;
       elr_v3 wo, dpdx, dpdy;
       float u[2];
-      W->light[j] = W->escaped[j] = -1; W->psplit[j] = 0;
+      W->light[j] = W->light2[j] = W->escaped[j] = -1; W->psplit[j] = W->ptwo[j] = 0;
       if (!W->alive[j]) continue;
       if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
         float d[3];
+        if (p->depth > 0 && !p->specular && C->light_sampling && elr_path_two_light(C, l, p->prev_two, p->prev_sun, W->prevsplit[j])) {
+          W->alive[j] = 0; nalive--; /* (ELR_ENVSD_TWO(_PIXEL): the environment's weight is 0, as elr_path_li; nothing to look up) */
+          continue;
+        }
         elr_to3(p->ray.d, d);
         W->escaped[j] = ne;
         memcpy(&W->wi[3 * ne], d, sizeof d);
@@ -909,7 +915,6 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         /* UniformSampleOneLight with the one light: its light draw, then the BSDF draw it makes and
          * does not use (sample_bsdf = 0): skipped, the sampler left where the draw leaves it */
         elr_sampler_get2d(S, &W->u[2 * n]);
-        elr_sampler_skip2d(S);
         W->sc[n] = C->sun ? elr_sun_lookup(C->sun, h, wo) : NULL;
         W->has_n[n] = elr__cos_normal(s, W->sc[n], b, wo, &W->normal[n]);
         W->lpos[n] = h->p;
@@ -924,6 +929,16 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           if (l->product) { if (W->has_n[n]) ts->env_product++; else ts->env_map++; } /* (--stats) */
           W->light[j] = n++;
         }
+        if (two_pixel) ts->env_two_pixel = W->two_pix[W->pix[j]];
+        W->ptwo[j] = elr_path_two(C, b, wo, ts);
+        if (W->light[j] >= 0 && W->ptwo[j] && elr_path_two_light(C, l, 1, W->sc[n - 1], 0)) {
+          /* ELR_ENVSD_TWO(_PIXEL): the BSDF draw is the second product light sample's, at the same vertex */
+          int i = n - 1;
+          elr_sampler_get2d(S, &W->u[2 * n]);
+          W->sc[n] = W->sc[i]; W->has_n[n] = W->has_n[i]; W->normal[n] = W->normal[i]; W->lpos[n] = W->lpos[i];
+          ts->env_product++; ts->env_light_only += 2; /* (--stats, as elr_estimate_direct counts them) */
+          W->light2[j] = n++;
+        } else elr_sampler_skip2d(S);
       }
       /* <<Sample BSDF to get new path direction>> */
       elr_sampler_get2d(S, u);
@@ -989,7 +1004,20 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         W->alive[j] = 0; nalive--;
         continue;
       }
-      if (i >= 0) { /* elr_estimate_direct's light-sampled term (no BSDF-sampled term in the path tracer) */
+      if (i >= 0 && W->light2[j] >= 0) { /* (two product light samples: each one's f |cos| and shadow ray; elr__two_term below) */
+        const elr_bsdf *b = &W->b[j];
+        elr_v3 wo = elr_mul(p->ray.d, -1.f);
+        int k;
+        for (k = 0; k < 2; k++) {
+          int q = ne + (k ? W->light2[j] : i);
+          elr_v3 wi = elr_from3(&W->wi[3 * q]), fl = elr_v(0, 0, 0);
+          int *sh = k ? &W->shadow2[j] : &W->shadow[j];
+          *sh = -1;
+          if (W->pdf[q] > 0.f) fl = elr_mul(elr_bsdf_f(b, wo, wi), fabsf(elr_dot(wi, b->ns)));
+          if (!elr_isblack(fl)) { *sh = W->shadows.n; elr_wave_add(&W->shadows, elr_spawn_origin(&W->h[j], wi), wi, INFINITY); }
+          if (k) W->fl2[j] = fl; else W->fl[j] = fl;
+        }
+      } else if (i >= 0) { /* elr_estimate_direct's light-sampled term (no BSDF-sampled term in the path tracer) */
         const elr_bsdf *b = &W->b[j];
         elr_v3 wo = elr_mul(p->ray.d, -1.f), wi = elr_from3(&W->wi[3 * (ne + i)]);
         float lpdf = W->pdf[ne + i];
@@ -1021,7 +1049,14 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       float pdf = W->pdfs[j];
       int spec = W->spec[j];
       if (!W->alive[j]) continue;
-      if (W->light[j] >= 0) {
+      if (W->light2[j] >= 0) { /* (two product light samples, each weighted 1/2, as elr_estimate_direct sums them) */
+        int q1 = ne + W->light[j], q2 = ne + W->light2[j], s1 = W->shadow[j], s2 = W->shadow2[j];
+        elr_v3 Ld = elr__two_term(C, &W->h[j], elr_v(0, 0, 0), W->fl[j], elr_from3(&W->wi[3 * q1]), elr_from3(&W->Le[3 * q1]), W->pdf[q1],
+                                  s1 >= 0 ? W->shadows.tfar[s1] < 0.f : 0, ts);
+        Ld = elr__two_term(C, &W->h[j], Ld, W->fl2[j], elr_from3(&W->wi[3 * q2]), elr_from3(&W->Le[3 * q2]), W->pdf[q2],
+                           s2 >= 0 ? W->shadows.tfar[s2] < 0.f : 0, ts);
+        p->L = elr_add(p->L, elr_vmul(p->beta, elr_mul(Ld, 1.f / pick)));
+      } else if (W->light[j] >= 0) {
         elr_v3 Ld = elr_v(0, 0, 0);
         if (W->shadow[j] >= 0 && !(W->shadows.tfar[W->shadow[j]] < 0.f)) Ld = elr_add(Ld, W->contrib[j]);
         p->L = elr_add(p->L, elr_vmul(p->beta, elr_mul(Ld, 1.f / pick)));
@@ -1046,6 +1081,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       }
       W->prevsplit[j] = C->sunsplit && C->light_sampling && (b->has_diffuse || b->has_glossy) /* (as elr_path_li's prev_split) */
                           ? elr_sunsplit_at(C->sunsplit, elr_sunsplit_light(C->sunsplit), b, p->prev_has_n ? &p->prev_n : NULL) : 0;
+      p->prev_two = W->ptwo[j]; /* (as elr_path_li's prev_two: elr_path_two, 0 without light sampling there) */
       W->prevp[j] = W->h[j].p;
       if (spec == 2) p->eta_scale = elr_eta_scale(p->eta_scale, b, wo);
       if (p->depth + 1 == C->maxdepth && (!(C->has_env || C->has_area) || (!spec && C->ls == ELR_LS_LIGHT && C->light_sampling))) {

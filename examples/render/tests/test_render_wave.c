@@ -29,7 +29,10 @@
  *     split-vertex counts, directlighting and path, light sampling alone too: zsobol, random, halton, a mirror, a
  *     light of 2 samples, on 6.'s one-texel sun and on a sun in a halo and a bright sky (where light samples meet the
  *     other light technique's density: a one-ulp change to the wave's weight of those samples fails cases 5, 6, 9
- *     and 10; to the path wave's escaped-ray split pdf, cases 7 to 10). */
+ *     and 10; to the path wave's escaped-ray split pdf, cases 7 to 10).
+ *  9. le_same (issue 21: an escaped BSDF ray's product pdf and radiance in one el_envlight_pdf_li_cos_le_n call) bit for
+ *     bit, on and off (env_alt under a general rotation: its matrix bits differ), direct lighting and path, sun and smooth
+ *     maps, --compensated (a 1.0001 factor on the joint call's radiance in the SoA or the path stage fails it). */
 #include "render_test_util.h"
 
 static elr_scene *load(const char *sampler, const char *integrator, const char *lightparams, int w, int h, char *err) {
@@ -355,7 +358,53 @@ int main(void) {
     }
     sun_mode = -1;
   }
-  /* 8. le_same (issue 21): where the density's light (env_sample) has env's le, the wave looks up an escaped BSDF ray's
+  /* 8. --env-sun-diffuse two and twopixel in the path tracer (issue 22: two product light samples at every diffuse
+   * vertex, the second from UniformSampleOneLight's BSDF draw, and weight 0 for the environment where the
+   * continuation ray from such a vertex leaves the scene) on 6.'s sun map: bit for bit, the same ray and strategy
+   * counts; zsobol, random, halton, a mirror (its reflections: vertices after a specular bounce), twopixel with
+   * pixels of both choices; with --sun on (two left out at the cells that lower the sun: their MIS kept) and --sun split
+   * (two left out: the split's three-way MIS), where only the first condition below is asked */
+  {
+    static const struct { const char *sampler; int sd, mirror, mis, sun; } cases[] = {
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", ELR_ENVSD_TWO, 0, 0, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", ELR_ENVSD_TWO, 1, 0, -1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", ELR_ENVSD_TWO_PIXEL, 0, 1, -1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", ELR_ENVSD_TWO_PIXEL, 1, 1, -1},
+      {"Sampler \"halton\" \"integer pixelsamples\" 5", ELR_ENVSD_TWO_PIXEL, 1, 1, -1},
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 300", ELR_ENVSD_TWO, 1, 0, -1}, /* (a pixel in several waves) */
+      {"Sampler \"zsobol\" \"integer pixelsamples\" 8", ELR_ENVSD_TWO, 1, 0, 1},
+      {"Sampler \"random\" \"integer pixelsamples\" 4", ELR_ENVSD_TWO_PIXEL, 1, 1, 2},
+    };
+    int c;
+    for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
+      elr_scene *s = load_matte(cases[c].sampler, 1, "sun.pfm", "", cases[c].mirror, err);
+      elr_image ref, img;
+      elr_stats sr, st;
+      if (!s) { rt_check(0, "path two scene %d: %s", c, err); continue; }
+      sun_diffuse = cases[c].sd; sun_mode = cases[c].sun;
+      if (render(s, ELR_LOOP_ONE, -1, -1, 1, 0, &ref, &sr, err) == 0 && render(s, ELR_LOOP_WAVE, -1, -1, 2, 0, &img, &st, err) == 0) {
+        size_t n = (size_t)img.width * img.height * 3, k, diff = 0;
+        for (k = 0; k < n; k++) diff += memcmp(&img.rgb[k], &ref.rgb[k], sizeof(float)) != 0;
+        rt_check(st.loop == ELR_LOOP_WAVE && sr.loop == ELR_LOOP_ONE && diff == 0 && st.shadow_rays == sr.shadow_rays &&
+                     st.bounce_rays == sr.bounce_rays && st.camera_rays == sr.camera_rays && st.env_product_samples == sr.env_product_samples &&
+                     st.env_map_samples == sr.env_map_samples && st.env_light_only_samples == sr.env_light_only_samples,
+                 "path two case %d (%s, diffuse %d, mirror %d): %zu of %zu values differ from the reference; shadow %llu/%llu, bounce "
+                 "%llu/%llu, product %llu/%llu, alone %llu/%llu",
+                 c, cases[c].sampler, cases[c].sd, cases[c].mirror, diff, n, (unsigned long long)st.shadow_rays, (unsigned long long)sr.shadow_rays,
+                 (unsigned long long)st.bounce_rays, (unsigned long long)sr.bounce_rays, (unsigned long long)st.env_product_samples,
+                 (unsigned long long)sr.env_product_samples, (unsigned long long)st.env_light_only_samples,
+                 (unsigned long long)sr.env_light_only_samples);
+        /* (two taken at vertices: light samples alone; twopixel's pixels of product MIS too, two's none) */
+        if (cases[c].sun < 0)
+          rt_check(sr.env_light_only_samples > 0 && (sr.env_product_samples > sr.env_light_only_samples) == cases[c].mis,
+                   "path two case %d: product %llu, alone %llu", c, (unsigned long long)sr.env_product_samples, (unsigned long long)sr.env_light_only_samples);
+        elr_image_free(&img); elr_image_free(&ref);
+      } else rt_check(0, "path two scene %d: %s", c, err);
+      elr_scene_free(s);
+    }
+    sun_diffuse = -1; sun_mode = -1;
+  }
+  /* 9. le_same (issue 21): where the density's light (env_sample) has env's le, the wave looks up an escaped BSDF ray's
    * product pdf and radiance in one el_envlight_pdf_li_cos_le_n call; bit for bit the reference's two lookups. The
    * sun map (the patch density: env_alt over env's texels), the smooth one (env itself) and the smooth one with
    * --compensated (env_alt again), the light under a general rotation (the matrix compared bit for bit) or the
