@@ -542,8 +542,9 @@ EL_DEF size_t el_envlight_product_bytes(const el_envlight *l);
  *    (city 1024x512, batches of 64, the loop's 9 subtracted): 481 instructions per direction against 332 +
  *    256 for pdf_li_cos_n and le_n (490 against 341 + 272 under a general rotation). The guide tables'
  *    forward scans step eight uint16 entries at a time with SSE2 (compared as int16 after - 32768; the
- *    first entry above k from the compare's mask); the scans are short (1-3 steps mostly): sample_cos_n
- *    632.6 -> 631.8.
+ *    first entry above k from the compare's mask): sample_cos_n 632.6 -> 631.8 instructions, but render's
+ *    loop CPU 0.93-0.97x (bench_city and bench_studio, direct and path, 6 interleaved rounds against the
+ *    same binary with the scalar scan; likely its varying step count's mispredicted exit branch).
  *    TIME-TO-UNIT-VARIANCE (bench/bench_product --library: relative variance per sample x CPU ns per
  *    sample, geometric mean over six normals, one fixed normal per run, 200,000 samples, loaded 2-core
  *    machine): city 6.50 (0.0338 x 192 ns; before this round 6.92: 0.0338 x 204 ns; sample_li 214:
