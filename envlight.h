@@ -370,10 +370,11 @@ EL_DEF void el_envlight_pdf_li_cos_n(const el_envlight *l, int n, const float *n
  * le_n return (so the same normals: any length, pointing to the side the light arrives from; a zero, NaN
  * or infinite normal gives pdf 0, the direction's le all the same; a zero, NaN or infinite direction gives
  * pdf 0 and le 0). pdf 0 means sample_li_cos never picks that direction for that normal (no light there,
- * or below the cells that straddle the horizon): MIS gives the BSDF sample the whole weight. With SSE2 one pass: le's (u, v) is where the pdf locates the direction, so the mapping runs
- * once and the texel reads are requested with the pdf's (about 480 instructions per direction against
- * 332 + 256 for the two calls; NOTES ON PRODUCT SAMPLING, N AT ONCE). n <= 0 does nothing; pdf and rgb must
- * not overlap normals or dirs. */
+ * or below the cells that straddle the horizon): MIS gives the BSDF sample the whole weight. With SSE2
+ * one pass: le's (u, v) is where the pdf locates the direction, so the mapping runs once and the texel
+ * reads are requested with the pdf's (about 480 instructions per direction against 332 + 256 for the two
+ * calls; NOTES ON PRODUCT SAMPLING, PDF AND RADIANCE AT ONCE). n <= 0 does nothing; pdf and rgb must not
+ * overlap normals or dirs. */
 EL_DEF void el_envlight_pdf_li_cos_le_n(const el_envlight *l, int n, const float *normals, const float *dirs, float *pdf, float *rgb);
 /* Build the product tables now (before sharing the light when there are no atomics), with sizes (opt
  * may be NULL: the defaults on a first build, whatever was built otherwise). Returns the build's result;
