@@ -859,14 +859,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
   const float pick = C->ld.pick ? C->ld.pick[l - s->light] : 1.f; /* the one emitting light: 1 */
   const int two_pixel = s->env_sunny && s->env_sun_diffuse == ELR_ENVSD_TWO_PIXEL; /* (ts->env_two_pixel: each path's pixel's) */
   int j, depth, nalive = m;
+  int ej[ELR_WAVE]; /* each escaped ray's path */
   for (j = 0; j < m; j++) { elr_path_begin(&W->p[j], &W->cam[j]); W->alive[j] = 1; W->ray[j] = j; W->prevsplit[j] = 0; }
   for (depth = 0; nalive > 0; depth++) {
     int n = 0, ne = 0;
-    if (depth > 0) { /* the rays of the paths alive, in one call */
-      W->rays.n = 0;
-      for (j = 0; j < m; j++) if (W->alive[j]) { W->ray[j] = W->rays.n; elr_wave_add(&W->rays, W->p[j].ray.o, W->p[j].ray.d, INFINITY); }
-      elr__intersect(C, &W->rays, 0, ts);
-    }
+    if (depth > 0) elr__intersect(C, &W->rays, 0, ts); /* the rays of the paths alive, in one call (added at the end of the
+                                                        * last vertex's loop, in the order of their paths) */
     /* <<Intersect ray with scene and store intersection in isect>>, <<Possibly add emitted light at
      * intersection>>, the BSDF, the draws of light sampling and of the BSDF sample */
     for (j = 0; j < m; j++) {
@@ -881,12 +879,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       if (!W->alive[j]) continue;
       if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
         float d[3];
-        if (p->depth > 0 && !p->specular && C->light_sampling && elr_path_two_light(C, l, p->prev_two, p->prev_sun, W->prevsplit[j])) {
+        if (p->depth > 0 && !p->specular && C->light_sampling && p->prev_two && elr_path_two_light(C, l, p->prev_two, p->prev_sun, W->prevsplit[j])) {
           W->alive[j] = 0; nalive--; /* (ELR_ENVSD_TWO(_PIXEL): the environment's weight is 0, as elr_path_li; nothing to look up) */
           continue;
         }
         elr_to3(p->ray.d, d);
-        W->escaped[j] = ne;
+        W->escaped[j] = ne; ej[ne] = j;
         memcpy(&W->wi[3 * ne], d, sizeof d);
         ne++;
         continue;
@@ -930,7 +928,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           W->light[j] = n++;
         }
         if (two_pixel) ts->env_two_pixel = W->two_pix[W->pix[j]];
-        W->ptwo[j] = elr_path_two(C, b, wo, ts);
+        W->ptwo[j] = b->env_two ? elr_path_two(C, b, wo, ts) : 0; /* (its first test inline: no call at most vertices) */
         if (W->light[j] >= 0 && W->ptwo[j] && elr_path_two_light(C, l, 1, W->sc[n - 1], 0)) {
           /* ELR_ENVSD_TWO(_PIXEL): the BSDF draw is the second product light sample's, at the same vertex */
           int i = n - 1;
@@ -953,10 +951,9 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
     if (!l->portal && !l->product) el_envlight_pdf_li_n(env_sample, ne, W->wi, W->pdf);
     else {
       float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nn[3 * ELR_WAVE], pq[ELR_WAVE];
-      int km[ELR_WAVE], kc[ELR_WAVE], nm = 0, nc = 0, k;
-      for (j = 0; j < m; j++) { /* (with product sampling, for the normal of the vertex the ray left) */
-        int e = W->escaped[j];
-        if (e < 0) continue;
+      int km[ELR_WAVE], kc[ELR_WAVE], nm = 0, nc = 0, k, e;
+      for (e = 0; e < ne; e++) { /* (with product sampling, for the normal of the vertex the ray left) */
+        j = ej[e];
         if (l->portal) /* (at the vertex the ray left, as elr_path_li's prev_p) */
           W->pdf[e] = W->p[j].depth > 0 ? elr_light_pdf_li_at(l, W->prevp[j], NULL, elr_from3(&W->wi[3 * e])) : 0.f;
         else if (W->p[j].depth > 0 && !W->p[j].specular && C->light_sampling && C->ls == ELR_LS_MIS) { /* (only where the weight is
@@ -1041,7 +1038,9 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       }
     }
     elr__occluded(C, &W->shadows, ts);
-    /* each path's direct light, then its next ray (<<Possibly terminate the path with Russian roulette>>) */
+    /* each path's direct light, then its next ray (<<Possibly terminate the path with Russian roulette>>), into
+     * W->rays (read by the stages above: free now) */
+    W->rays.n = 0;
     for (j = 0; j < m; j++) {
       elr_path_state *p = &W->p[j];
       const elr_bsdf *b = &W->b[j];
@@ -1101,6 +1100,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         }
       }
       p->depth++;
+      W->ray[j] = W->rays.n; elr_wave_add(&W->rays, p->ray.o, p->ray.d, INFINITY);
     }
   }
 }
