@@ -231,6 +231,7 @@ struct elr_wave {
   elr_path_state p[ELR_WAVE];
   int alive[ELR_WAVE], ray[ELR_WAVE], light[ELR_WAVE], shadow[ELR_WAVE], escaped[ELR_WAVE], bshadow[ELR_WAVE];
   elr_bsdf b[ELR_WAVE];
+  int bt[ELR_WAVE]; /* 1 + the template (W->tmpl) whose fields b holds, or 0: elr__bsdf_init copies them again only when it changes */
   elr_v3 fs[ELR_WAVE], wnext[ELR_WAVE], contrib[ELR_WAVE];
   float pdfs[ELR_WAVE];
   int spec[ELR_WAVE];
@@ -906,7 +907,11 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         memset(&tc, 0, sizeof tc);
         if (s->mat_textured[h->material]) { elr_hit_uv(s, h); tc.u = h->u; tc.v = h->v; }
       }
-      elr__bsdf_init(s, W, h, &tc, b);
+      {
+        int t = W->tmpl_of[h->material];
+        if (t >= 0 && W->bt[j] == t + 1) { b->ns = h->ns; b->ng = h->ng; elr_onb(b->ns, &b->ss, &b->ts); } /* (elr__bsdf_init's frame) */
+        else { elr__bsdf_init(s, W, h, &tc, b); W->bt[j] = t + 1; }
+      }
       wo = elr_mul(p->ray.d, -1.f);
       elr_sampler_restore(S, &W->pos[j]);
       if (C->light_sampling && (b->has_diffuse || b->has_glossy)) {
