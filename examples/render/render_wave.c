@@ -872,12 +872,12 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
       elr_path_state *p = &W->p[j];
       elr_hit *h = &W->h[j];
       elr_bsdf *b = &W->b[j];
-      elr_sampler *S = &W->S[W->pix[j]];
+      elr_sampler *S;
       elr_tex_ctx tc;
       elr_v3 wo, dpdx, dpdy;
       float u[2];
+      if (!W->alive[j]) continue; /* (its light, escaped, psplit, ptwo and shadow read for the paths alive alone) */
       W->light[j] = W->light2[j] = W->escaped[j] = -1; W->psplit[j] = W->ptwo[j] = 0;
-      if (!W->alive[j]) continue;
       if (!elr_wave_hit(s, &W->rays, W->ray[j], h)) { /* escaped: its environment in the pass below */
         float d[3];
         if (p->depth > 0 && !p->specular && C->light_sampling && p->prev_two && elr_path_two_light(C, l, p->prev_two, p->prev_sun, W->prevsplit[j])) {
@@ -913,6 +913,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         else { elr__bsdf_init(s, W, h, &tc, b); W->bt[j] = t + 1; }
       }
       wo = elr_mul(p->ray.d, -1.f);
+      S = &W->S[W->pix[j]];
       elr_sampler_restore(S, &W->pos[j]);
       if (C->light_sampling && (b->has_diffuse || b->has_glossy)) {
         /* UniformSampleOneLight with the one light: its light draw, then the BSDF draw it makes and
@@ -993,7 +994,9 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
     W->shadows.n = 0;
     for (j = 0; j < m; j++) {
       elr_path_state *p = &W->p[j];
-      int e = W->escaped[j], i = W->light[j];
+      int e, i;
+      if (!W->alive[j]) continue; /* (the escaped paths are alive until here) */
+      e = W->escaped[j]; i = W->light[j];
       W->shadow[j] = -1;
       if (e >= 0) {
         float w = 1.f;
