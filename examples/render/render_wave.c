@@ -966,12 +966,18 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
           * used, as elr_path_li: a camera ray's pdf would build the map's own tables for nothing) */
           if (W->prevsplit[j]) W->pdf[e] = elr_sunsplit_pdf(C->sunsplit, W->prevsplit[j], W->p[j].prev_n, elr_from3(&W->wi[3 * e])); /* (as elr_path_li) */
           else if (W->p[j].prev_sun && !elr_sun_cell_product(W->p[j].prev_sun, W->p[j].prev_has_n)) W->pdf[e] = elr_sun_pdf(C->sun, W->p[j].prev_sun, W->p[j].prev_has_n ? &W->p[j].prev_n : NULL, &W->wi[3 * e]);
-          else if (W->p[j].prev_has_n) { elr_to3(W->p[j].prev_n, &nn[3 * nc]); memcpy(&dc[3 * nc], &W->wi[3 * e], 3 * sizeof(float)); kc[nc++] = e; } /* (elr_light_pdf_li) */
+          else if (W->p[j].prev_has_n) { elr_to3(W->p[j].prev_n, &nn[3 * nc]); kc[nc++] = e; } /* (elr_light_pdf_li; directions below) */
           else { memcpy(&dm[3 * nm], &W->wi[3 * e], 3 * sizeof(float)); km[nm++] = e; }
         } else W->pdf[e] = 0.f;
       }
       el_envlight_pdf_li_n(env_sample, nm, dm, pq);
       for (k = 0; k < nm; k++) W->pdf[km[k]] = pq[k];
+      if (nc == ne && nc > 0) { /* (every escaped ray's pdf with its normal, kc[k] = k: W->wi, W->pdf, W->Le in place, no copies) */
+        if (l->le_same) { el_envlight_pdf_li_cos_le_n(env_sample, nc, nn, W->wi, W->pdf, W->Le); le_done = 1; }
+        else el_envlight_pdf_li_cos_n(env_sample, nc, nn, W->wi, W->pdf);
+        nc = 0;
+      }
+      for (k = 0; k < nc; k++) memcpy(&dc[3 * k], &W->wi[3 * kc[k]], 3 * sizeof(float));
       if (l->le_same && nc > 0) { /* (le_same: these rays' le with their pdf in one el_envlight_pdf_li_cos_le_n call,
         * the other escaped rays' in one el_envlight_le_n call) */
         float Lq[3 * ELR_WAVE];
@@ -984,7 +990,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         el_envlight_le_n(env, nm, dm, Lq);
         for (k = 0; k < nm; k++) memcpy(&W->Le[3 * km[k]], &Lq[3 * k], 3 * sizeof(float));
         le_done = 1;
-      } else {
+      } else if (nc > 0) {
         el_envlight_pdf_li_cos_n(env_sample, nc, nn, dc, pq);
         for (k = 0; k < nc; k++) W->pdf[kc[k]] = pq[k];
       }
