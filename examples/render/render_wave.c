@@ -175,7 +175,7 @@ static void elr__occluded(const elr_ctx *C, elr_wave_rays *w, elr_tstats *ts) {
  * Kd), one lane per camera sample (issue 21): elr__direct_soa's arrays, one float (or flag) per lane, so
  * that each stage is a loop over plain arrays that gcc and clang vectorise (SSE2 at -O3). */
 typedef struct elr_wave_soa {
-  int n, lane[ELR_WAVE]; /* lanes in use; each one's camera sample (index in the wave) */
+  int n, nsh, nb, lane[ELR_WAVE]; /* lanes in use (their light and BSDF shadow rays, --stats); each one's camera sample (index in the wave) */
   /* the hit (point, geometric and shading normal, ray offset), wo, the material (Kd, issue 20's flags) */
   float px[ELR_WAVE], py[ELR_WAVE], pz[ELR_WAVE], gx[ELR_WAVE], gy[ELR_WAVE], gz[ELR_WAVE];
   float nx[ELR_WAVE], ny[ELR_WAVE], nz[ELR_WAVE], eps[ELR_WAVE], ox[ELR_WAVE], oy[ELR_WAVE], oz[ELR_WAVE];
@@ -200,6 +200,7 @@ typedef struct elr_wave_soa {
   float wl2[3 * ELR_WAVE], Ll2[3 * ELR_WAVE], lpdf2[ELR_WAVE];
   float wlx2[ELR_WAVE], wly2[ELR_WAVE], wlz2[ELR_WAVE], llr2[ELR_WAVE], llg2[ELR_WAVE], llb2[ELR_WAVE];
   float flr2[ELR_WAVE], flg2[ELR_WAVE], flb2[ELR_WAVE], flpdf2[ELR_WAVE], dlg2[ELR_WAVE];
+  int tk[ELR_WAVE]; /* the template whose fields (kr ... scos) lane i holds, from an earlier wave too; -1: none */
 } elr_wave_soa;
 
 struct elr_wave {
@@ -318,6 +319,7 @@ elr_wave *elr_wave_new(const elr_ctx *C, const elr_sampler_tables *T, uint64_t s
   W->tmpl_lambert = (unsigned char *)calloc((size_t)k + 1, 1);
   if (!W->tmpl_lambert) { elr_wave_free(W); return NULL; }
   for (i = 0; i < k; i++) W->tmpl_lambert[i] = (unsigned char)elr__soa_lambert_ok(&W->tmpl[i]);
+  for (i = 0; i < ELR_WAVE; i++) W->A.tk[i] = -1;
   return W;
 }
 
@@ -473,10 +475,13 @@ static int elr__soa_add(const elr_ctx *C, elr_wave *W, int j) {
   A->px[i] = h->p.x; A->py[i] = h->p.y; A->pz[i] = h->p.z; A->gx[i] = h->ng.x; A->gy[i] = h->ng.y; A->gz[i] = h->ng.z;
   A->nx[i] = h->ns.x; A->ny[i] = h->ns.y; A->nz[i] = h->ns.z; A->eps[i] = h->eps;
   A->ox[i] = W->cam[j].d.x * -1.f; A->oy[i] = W->cam[j].d.y * -1.f; A->oz[i] = W->cam[j].d.z * -1.f;
-  A->kr[i] = t->kd.x; A->kg[i] = t->kd.y; A->kb[i] = t->kd.z;
-  A->elo[i] = t->env_light_only; A->emap[i] = t->env_map; A->stest[i] = t->env_sun_test;
+  if (A->tk[i] != k) { /* (the template's fields: copied only where the lane's template changes) */
+    A->tk[i] = k;
+    A->kr[i] = t->kd.x; A->kg[i] = t->kd.y; A->kb[i] = t->kd.z;
+    A->elo[i] = t->env_light_only; A->emap[i] = t->env_map; A->stest[i] = t->env_sun_test;
+    A->sax[i] = t->env_sun_axis.x; A->say[i] = t->env_sun_axis.y; A->saz[i] = t->env_sun_axis.z; A->scos[i] = t->env_sun_cos;
+  }
   A->etwo[i] = t->env_two && (C->s->env_sun_diffuse == ELR_ENVSD_TWO || W->two_pix[W->pix[j]] > 0);
-  A->sax[i] = t->env_sun_axis.x; A->say[i] = t->env_sun_axis.y; A->saz[i] = t->env_sun_axis.z; A->scos[i] = t->env_sun_cos;
   A->n++;
   return 1;
 }
@@ -585,7 +590,7 @@ static inline void elr__soa_fl(const elr_wave_soa *A, int i, float wx, float wy,
 ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
   elr_wave_soa *A = &W->A;
   const int n = A->n;
-  int i, ntwo = 0;
+  int i, ntwo = 0, nsh0 = W->shadows.n, nb = 0;
   for (i = 0; i < n; i++) { /* (by component: the loops below take four lanes at a time, not two) */
     A->wlx[i] = A->wl[3 * i]; A->wly[i] = A->wl[3 * i + 1]; A->wlz[i] = A->wl[3 * i + 2];
     A->llr[i] = A->Ll[3 * i]; A->llg[i] = A->Ll[3 * i + 1]; A->llb[i] = A->Ll[3 * i + 2];
@@ -615,10 +620,11 @@ ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
     }
     if (A->bray[i]) {
       float e = A->dbg[i] >= 0.f ? A->eps[i] : -A->eps[i];
-      A->bsh[i] = W->shadows.n;
+      A->bsh[i] = W->shadows.n; nb++;
       elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wbx[i], A->wby[i], A->wbz[i]), INFINITY);
     }
   }
+  A->nsh = W->shadows.n - nsh0 - nb; A->nb = nb; /* (--stats: the light samples' shadow rays, the BSDF samples') */
 }
 
 /* after the shadow rays: the environment in the escaped BSDF samples' directions, then each lane's Ld
@@ -628,20 +634,19 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
   const elr_light *l = C->batch_light;
   const int n = A->n, le_same = l->le_same; /* (the product lanes' le comes with their pdf: el_envlight_pdf_li_cos_le_n) */
   float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nv[3 * ELR_WAVE], de[3 * ELR_WAVE], pq[ELR_WAVE], Le[3 * ELR_WAVE];
-  int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i, nsh = 0, nb = 0;
-  for (i = 0; i < n; i++) { /* (--stats; then the shadow rays' answers: 1 where the term counts) */
-    nsh += (A->sh[i] >= 0) + (A->sh2[i] >= 0); nb += A->bray[i];
+  int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i;
+  for (i = 0; i < n; i++) { /* (the shadow rays' answers: 1 where the term counts) */
     A->sh2[i] = A->sh2[i] >= 0 && !(W->shadows.tfar[A->sh2[i]] < 0.f);
     A->sh[i] = A->sh[i] >= 0 && !(W->shadows.tfar[A->sh[i]] < 0.f);
     A->bsh[i] = A->bsh[i] >= 0 && !(W->shadows.tfar[A->bsh[i]] < 0.f);
   }
-  ts->shadow += (uint64_t)nsh; ts->bsdfl += (uint64_t)nb;
+  ts->shadow += (uint64_t)A->nsh; ts->bsdfl += (uint64_t)A->nb; /* (--stats, counted in elr__soa_shadows) */
   for (i = 0; i < n; i++) { /* (the escaped BSDF rays gathered without branches: every lane written, the counts
                               * moved by its flags; whether a ray escaped is a coin toss the branch predictor loses) */
     int e = A->bsh[i], c = e & (l->product && A->has_n[i]);
     float x = A->wbx[i], y = A->wby[i], z = A->wbz[i];
     A->bpe[i] = 0.f; A->lbr[i] = A->lbg[i] = A->lbb[i] = 0.f;
-    de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e;
+    if (!le_same) { de[3 * ne] = x; de[3 * ne + 1] = y; de[3 * ne + 2] = z; ke[ne] = i; ne += e; } /* (a test the predictor wins) */
     dc[3 * nc] = x; dc[3 * nc + 1] = y; dc[3 * nc + 2] = z; kc[nc] = i;
     nv[3 * nc] = A->cx[i]; nv[3 * nc + 1] = A->cy[i]; nv[3 * nc + 2] = A->cz[i]; nc += c;
     dm[3 * nm] = x; dm[3 * nm + 1] = y; dm[3 * nm + 2] = z; km[nm] = i; nm += e & !c;
@@ -669,12 +674,14 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
     float br = lr + A->fbr[i] * ac * A->lbr[i] * sb, bg = lg + A->fbg[i] * ac * A->lbg[i] * sb, bb = lb + A->fbb[i] * ac * A->lbb[i] * sb;
     A->flr[i] = ub ? br : lr; A->flg[i] = ub ? bg : lg; A->flb[i] = ub ? bb : lb;
   }
-  for (i = 0; i < n; i++) if (A->two[i]) { /* (ELR_ENVSD_TWO: elr__two_term's sums, each term weighted 1/2; no BSDF sample) */
-    float s2 = 1.f / A->lpdf2[i], t1r = A->flr[i], t1g = A->flg[i], t1b = A->flb[i]; /* (the first term: lr above, lonly's weight 1) */
-    float t2r = A->sh2[i] ? 0.f + A->flr2[i] * A->llr2[i] * s2 : 0.f, t2g = A->sh2[i] ? 0.f + A->flg2[i] * A->llg2[i] * s2 : 0.f, t2b = A->sh2[i] ? 0.f + A->flb2[i] * A->llb2[i] * s2 : 0.f;
-    A->flr[i] = (0.f + t1r * 0.5f) + t2r * 0.5f; A->flg[i] = (0.f + t1g * 0.5f) + t2g * 0.5f; A->flb[i] = (0.f + t1b * 0.5f) + t2b * 0.5f;
+  for (i = 0; i < n; i++) { /* each lane's Ld into W->Ld */
+    if (A->two[i]) { /* (ELR_ENVSD_TWO: elr__two_term's sums, each term weighted 1/2; no BSDF sample) */
+      float s2 = 1.f / A->lpdf2[i], t1r = A->flr[i], t1g = A->flg[i], t1b = A->flb[i]; /* (the first term: lr above, lonly's weight 1) */
+      float t2r = A->sh2[i] ? 0.f + A->flr2[i] * A->llr2[i] * s2 : 0.f, t2g = A->sh2[i] ? 0.f + A->flg2[i] * A->llg2[i] * s2 : 0.f, t2b = A->sh2[i] ? 0.f + A->flb2[i] * A->llb2[i] * s2 : 0.f;
+      A->flr[i] = (0.f + t1r * 0.5f) + t2r * 0.5f; A->flg[i] = (0.f + t1g * 0.5f) + t2g * 0.5f; A->flb[i] = (0.f + t1b * 0.5f) + t2b * 0.5f;
+    }
+    W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
   }
-  for (i = 0; i < n; i++) W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
 }
 
 /* --sun split: light sample ls's shadow ray into sh where elr_light_term traces one (hit h, BSDF b, wo): its index, or -1 */
@@ -1126,6 +1133,7 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
   int w = x1 - x0, npx = w * (y1 - y0), p = 0, k0 = 0;
   while (p < npx) {
     int m = 0, j, np = 0;
+    W->rays.n = 0;
     while (p < npx && np < W->npix) {
       int x = x0 + (p % w), y = y0 + (p / w), k, take = C->spp - k0;
       elr_sampler *S = &W->S[np];
@@ -1141,6 +1149,7 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
         elr_sampler_camera_sample(S, k, x, y, &W->fx[m], &W->fy[m]);
         elr_sampler_save(S, &W->pos[m]);
         elr_camera_ray(&C->cam, W->fx[m], W->fy[m], &W->cam[m]);
+        elr_wave_add(&W->rays, W->cam[m].o, W->cam[m].d, INFINITY); /* (the wave's camera rays, traced in one call below) */
         ts->camera++;
       }
       np++;
@@ -1148,9 +1157,6 @@ void elr_wave_render_tile(const elr_ctx *C, elr_wave *W, int x0, int y0, int x1,
       if (k0 < C->spp) break; /* the pixel goes on in the next wave (npix is 1 then) */
       k0 = 0; p++;
     }
-    /* the camera rays in one call */
-    W->rays.n = 0;
-    for (j = 0; j < m; j++) elr_wave_add(&W->rays, W->cam[j].o, W->cam[j].d, INFINITY);
     elr__intersect(C, &W->rays, 1, ts);
     if (C->path) elr__path_wave(C, W, m, ts);
     else elr__direct_wave(C, W, m, ts);
