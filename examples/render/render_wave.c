@@ -597,8 +597,8 @@ ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
     ntwo += A->two[i];
   }
   for (i = 0; i < ELR_SOA_PAD(n); i++) elr__soa_fl(A, i, A->wlx[i], A->wly[i], A->wlz[i], &A->flr[i], &A->flg[i], &A->flb[i], &A->flpdf[i], &A->dlg[i]);
-  for (i = 0; i < n; i++) A->sh2[i] = -1;
-  if (ntwo > 0) { /* (the second light samples of ELR_ENVSD_TWO's lanes: the same, and their shadow rays) */
+  if (ntwo > 0) { /* (the second light samples of ELR_ENVSD_TWO's lanes: the same, and their shadow rays; sh2 read in those lanes alone) */
+    for (i = 0; i < n; i++) A->sh2[i] = -1;
     for (i = 0; i < ELR_SOA_PAD(n); i++) { /* (the lanes without one: an earlier wave's values, computed and never read) */
       A->wlx2[i] = A->wl2[3 * i]; A->wly2[i] = A->wl2[3 * i + 1]; A->wlz2[i] = A->wl2[3 * i + 2];
       A->llr2[i] = A->Ll2[3 * i]; A->llg2[i] = A->Ll2[3 * i + 1]; A->llb2[i] = A->Ll2[3 * i + 2];
@@ -635,8 +635,7 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
   const int n = A->n, le_same = l->le_same; /* (the product lanes' le comes with their pdf: el_envlight_pdf_li_cos_le_n) */
   float dm[3 * ELR_WAVE], dc[3 * ELR_WAVE], nv[3 * ELR_WAVE], de[3 * ELR_WAVE], pq[ELR_WAVE], Le[3 * ELR_WAVE];
   int km[ELR_WAVE], kc[ELR_WAVE], ke[ELR_WAVE], nm = 0, nc = 0, ne = 0, i;
-  for (i = 0; i < n; i++) { /* (the shadow rays' answers: 1 where the term counts) */
-    A->sh2[i] = A->sh2[i] >= 0 && !(W->shadows.tfar[A->sh2[i]] < 0.f);
+  for (i = 0; i < n; i++) { /* (the shadow rays' answers: 1 where the term counts; sh2's in the ELR_ENVSD_TWO loop below) */
     A->sh[i] = A->sh[i] >= 0 && !(W->shadows.tfar[A->sh[i]] < 0.f);
     A->bsh[i] = A->bsh[i] >= 0 && !(W->shadows.tfar[A->bsh[i]] < 0.f);
   }
@@ -677,7 +676,8 @@ ELR_SOA_CLONES static void elr__soa_shade(const elr_ctx *C, elr_wave *W, elr_tst
   for (i = 0; i < n; i++) { /* each lane's Ld into W->Ld */
     if (A->two[i]) { /* (ELR_ENVSD_TWO: elr__two_term's sums, each term weighted 1/2; no BSDF sample) */
       float s2 = 1.f / A->lpdf2[i], t1r = A->flr[i], t1g = A->flg[i], t1b = A->flb[i]; /* (the first term: lr above, lonly's weight 1) */
-      float t2r = A->sh2[i] ? 0.f + A->flr2[i] * A->llr2[i] * s2 : 0.f, t2g = A->sh2[i] ? 0.f + A->flg2[i] * A->llg2[i] * s2 : 0.f, t2b = A->sh2[i] ? 0.f + A->flb2[i] * A->llb2[i] * s2 : 0.f;
+      int u2 = A->sh2[i] >= 0 && !(W->shadows.tfar[A->sh2[i]] < 0.f); /* (its shadow ray's answer) */
+      float t2r = u2 ? 0.f + A->flr2[i] * A->llr2[i] * s2 : 0.f, t2g = u2 ? 0.f + A->flg2[i] * A->llg2[i] * s2 : 0.f, t2b = u2 ? 0.f + A->flb2[i] * A->llb2[i] * s2 : 0.f;
       A->flr[i] = (0.f + t1r * 0.5f) + t2r * 0.5f; A->flg[i] = (0.f + t1g * 0.5f) + t2g * 0.5f; A->flb[i] = (0.f + t1b * 0.5f) + t2b * 0.5f;
     }
     W->Ld[A->lane[i]] = elr_v(A->flr[i], A->flg[i], A->flb[i]);
@@ -703,13 +703,14 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
   W->shadows.n = 0; W->A.n = 0;
   for (j = 0; j < m; j++) {
     elr_first *q = &W->f[j];
-    elr_sampler *S = &W->S[W->pix[j]];
-    elr_v3 wo = elr_mul(W->cam[j].d, -1.f);
+    elr_sampler *S;
+    elr_v3 wo;
     q->h = &W->h[j]; /* (the pair loop below sets the light sampling's fields: elr_direct_first reads them nowhere else) */
     q->hit = elr_wave_hit(C->s, &W->rays, j, &W->h[j]);
     W->fast[j] = 0;
     if (!q->hit) { elr_to3(W->cam[j].d, &W->wi[3 * nesc]); W->escaped[nesc++] = j; W->fast[j] = 2; continue; } /* (its radiance below) */
     if (soa && elr__soa_add(C, W, j)) { W->fast[j] = 1; continue; } /* (shaded in W->A) */
+    S = &W->S[W->pix[j]]; wo = elr_mul(W->cam[j].d, -1.f);
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
     elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
