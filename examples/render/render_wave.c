@@ -464,13 +464,17 @@ static int elr__soa_add(const elr_ctx *C, elr_wave *W, int j) {
   elr_wave_soa *A = &W->A;
   const elr_hit *h = &W->h[j];
   const elr_bsdf *t;
+  elr_sampler *S;
+  float us[2];
   int i = A->n, k = W->tmpl_of[h->material];
   if (k < 0 || !W->tmpl_lambert[k] || h->light >= 0) return 0;
   t = &W->tmpl[k];
-  elr_sampler_restore(&W->S[W->pix[j]], &W->pos[j]);
-  elr_sampler_get2d(&W->S[W->pix[j]], &A->ul[2 * i]);
-  { float us[2]; elr_sampler_get2d(&W->S[W->pix[j]], us); A->v0[i] = us[0]; A->v1[i] = us[1]; }
-  if (!(A->v0[i] >= 0.f && A->v0[i] < 1.f)) return 0; /* (elr_bsdf_lambert_alone's u0; the general steps draw again) */
+  S = &W->S[W->pix[j]];
+  elr_sampler_restore(S, &W->pos[j]);
+  elr_sampler_get2d(S, &A->ul[2 * i]);
+  elr_sampler_get2d(S, us);
+  A->v0[i] = us[0]; A->v1[i] = us[1];
+  if (!(us[0] >= 0.f && us[0] < 1.f)) return 0; /* (elr_bsdf_lambert_alone's u0; the general steps draw again) */
   A->lane[i] = j;
   A->px[i] = h->p.x; A->py[i] = h->p.y; A->pz[i] = h->p.z; A->gx[i] = h->ng.x; A->gy[i] = h->ng.y; A->gz[i] = h->ng.z;
   A->nx[i] = h->ns.x; A->ny[i] = h->ns.y; A->nz[i] = h->ns.z; A->eps[i] = h->eps;
