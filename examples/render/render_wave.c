@@ -183,8 +183,8 @@ typedef struct elr_wave_soa {
   int elo[ELR_WAVE], emap[ELR_WAVE], stest[ELR_WAVE]; /* env_light_only, env_map, env_sun_test */
   float sax[ELR_WAVE], say[ELR_WAVE], saz[ELR_WAVE], scos[ELR_WAVE]; /* env_sun_axis, env_sun_cos */
   float ul[2 * ELR_WAVE], v0[ELR_WAVE], v1[ELR_WAVE]; /* the light draw (pairs, as envlight.h takes them), the BSDF draw */
-  /* the product-sampling normal (has_n), lonly; the BSDF sample: direction, f, pdf, its ray (bray) */
-  int has_n[ELR_WAVE], lonly[ELR_WAVE], bray[ELR_WAVE];
+  /* the product-sampling normal (has_n), lonly; the BSDF sample: direction, f, pdf (whether it traces a ray: elr__soa_shadows) */
+  int has_n[ELR_WAVE], lonly[ELR_WAVE];
   float cx[ELR_WAVE], cy[ELR_WAVE], cz[ELR_WAVE], th[ELR_WAVE], r[ELR_WAVE], c[ELR_WAVE], s[ELR_WAVE];
   float wbx[ELR_WAVE], wby[ELR_WAVE], wbz[ELR_WAVE], fbr[ELR_WAVE], fbg[ELR_WAVE], fbb[ELR_WAVE], bpdf[ELR_WAVE];
   /* the light sample (as envlight.h returns it), its f |cos| and BSDF pdf; the shadow rays (index in W->shadows or -1) */
@@ -534,8 +534,6 @@ ELR_SOA_CLONES static void elr__soa_sample(const elr_ctx *C, elr_wave *W, elr_ts
     A->fbr[i] = fr; A->fbg[i] = fg; A->fbb[i] = fb;
     A->dbg[i] = dgi;
   }
-  for (i = 0; i < n; i++) /* (elr_estimate_direct's BSDF ray) */
-    A->bray[i] = !A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f);
   /* the light samples (elr__env_samples' map and product cases) */
   for (i = 0; i < n; i++) { nn += A->has_n[i]; ntwo += A->two[i]; }
   if (l->product) { ts->env_product += (uint64_t)(nn + ntwo); ts->env_map += (uint64_t)(n - nn); ts->env_light_only += (uint64_t)(nlo + ntwo); } /* (--stats) */
@@ -622,7 +620,7 @@ ELR_SOA_CLONES static void elr__soa_shadows(elr_wave *W) {
       A->sh[i] = W->shadows.n;
       elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wlx[i], A->wly[i], A->wlz[i]), INFINITY);
     }
-    if (A->bray[i]) {
+    if (!A->lonly[i] && A->bpdf[i] > 0.f && !(A->fbr[i] == 0.f && A->fbg[i] == 0.f && A->fbb[i] == 0.f)) { /* (elr_estimate_direct's BSDF ray) */
       float e = A->dbg[i] >= 0.f ? A->eps[i] : -A->eps[i];
       A->bsh[i] = W->shadows.n; nb++;
       elr_wave_add(&W->shadows, elr_v(A->px[i] + A->gx[i] * e, A->py[i] + A->gy[i] * e, A->pz[i] + A->gz[i] * e), elr_v(A->wbx[i], A->wby[i], A->wbz[i]), INFINITY);
