@@ -555,17 +555,15 @@ static inline int elr_bsdf_lambert_alone(const elr_bsdf *b, float u0) {
   return b->ncomp == 1 && b->has_diffuse && !b->nlobes && u0 >= 0.f && u0 < 1.f;
 }
 static inline elr_v3 elr_bsdf_lambert_sample(const elr_bsdf *b, elr_v3 woW, float u0, float u1, elr_v3 *wiW, float *pdf, int *specular) {
-  /* (elr_bsdf_lambert_pdf and elr_bsdf_lambert_f written out, the same floats: into locals, stored at the end, so that the
-   * store through wiW does not make the compiler read b's fields and redo the dot products with wo; issue 21) */
-  float woz = elr_dot(woW, b->ns), ci;
+  /* (the results into locals, stored at the end, so that the store through wiW does not make the compiler read b's
+   * fields and redo the dot products with wo; issue 21) */
+  float woz = elr_dot(woW, b->ns), p;
   elr_v3 wi, f;
-  *specular = 0;
-  if (woz == 0.f) { *pdf = 0.f; return elr_v(0, 0, 0); }
+  if (woz == 0.f) { *pdf = 0.f; *specular = 0; return elr_v(0, 0, 0); }
   wi = elr_bsdf_to_world(b, elr_bsdf_fixed_cosine_sample(woz, u0, u1));
-  ci = elr_dot(wi, b->ns);
-  f = elr_dot(wi, b->ng) * elr_dot(woW, b->ng) > 0.f && b->has_diffuse && woz != 0.f ? elr_mul(b->kd, ELR_INV_PI) : elr_v(0, 0, 0);
-  *pdf = b->has_diffuse && woz * ci > 0.f ? fabsf(ci) * ELR_INV_PI / (float)b->ncomp : 0.f;
-  *wiW = wi;
+  f = elr_bsdf_lambert_f(b, woW, wi);
+  p = elr_bsdf_lambert_pdf(b, woW, wi);
+  *pdf = p; *wiW = wi; *specular = 0;
   return f;
 }
 static inline elr_v3 elr_bsdf_sample_inl(const elr_bsdf *b, elr_v3 wo, float u0, float u1, elr_v3 *wi, float *pdf, int *specular) {

@@ -266,14 +266,18 @@ static inline int elr__cos_normal(const elr_scene *s, const elr_sun_cell *c, con
 }
 
 /* elr_bsdf_init for the wave: from the material's constant BSDF where it has one (a copy of the fields
- * elr_bsdf_init writes, then the frame elr_bsdf_init makes: the same BSDF), else elr_bsdf_init */
-static inline void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b) {
+ * elr_bsdf_init writes, then the frame elr_bsdf_init makes: the same BSDF), else elr_bsdf_init. held (or NULL):
+ * 1 + the template whose fields b holds already (0: none), so that they are copied only when it changes */
+static inline void elr__bsdf_init(const elr_scene *s, const elr_wave *W, const elr_hit *h, const elr_tex_ctx *tc, elr_bsdf *b, int *held) {
   int t = W->tmpl_of[h->material];
   const elr_bsdf *c;
-  if (t < 0) { elr_bsdf_init(s, h, tc, b); return; }
+  if (t < 0) { elr_bsdf_init(s, h, tc, b); if (held) *held = 0; return; }
   c = &W->tmpl[t];
-  memcpy(b, c, offsetof(elr_bsdf, lobe)); /* (a size the compiler knows: moves, no call) */
-  if (c->nlobes) memcpy(b->lobe, c->lobe, (size_t)c->nlobes * sizeof(elr_bxdf));
+  if (!held || *held != t + 1) {
+    memcpy(b, c, offsetof(elr_bsdf, lobe)); /* (a size the compiler knows: moves, no call) */
+    if (c->nlobes) memcpy(b->lobe, c->lobe, (size_t)c->nlobes * sizeof(elr_bxdf));
+    if (held) *held = t + 1;
+  }
   b->ns = h->ns; b->ng = h->ng;
   elr_onb(b->ns, &b->ss, &b->ts);
 }
@@ -715,7 +719,7 @@ static void elr__direct_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *t
     S = &W->S[W->pix[j]]; wo = elr_mul(W->cam[j].d, -1.f);
     elr_sampler_restore(S, &W->pos[j]);
     elr_compute_differentials(C->s, &W->cam[j], &W->h[j], &q->tc, &q->dpdx, &q->dpdy);
-    elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b);
+    elr__bsdf_init(C->s, W, &W->h[j], &q->tc, &q->b, NULL);
     if (!C->light_sampling || !(q->b.has_diffuse || q->b.has_glossy)) continue;
     /* shaded below (elr__direct_shade) unless it emits or the reference follows a specular bounce */
     W->fast[j] = W->h[j].light < 0 && !(1 < C->maxdepth && (q->b.spec_r || q->b.spec_t)) &&
@@ -917,11 +921,7 @@ static void elr__path_wave(const elr_ctx *C, elr_wave *W, int m, elr_tstats *ts)
         memset(&tc, 0, sizeof tc);
         if (s->mat_textured[h->material]) { elr_hit_uv(s, h); tc.u = h->u; tc.v = h->v; }
       }
-      {
-        int t = W->tmpl_of[h->material];
-        if (t >= 0 && W->bt[j] == t + 1) { b->ns = h->ns; b->ng = h->ng; elr_onb(b->ns, &b->ss, &b->ts); } /* (elr__bsdf_init's frame) */
-        else { elr__bsdf_init(s, W, h, &tc, b); W->bt[j] = t + 1; }
-      }
+      elr__bsdf_init(s, W, h, &tc, b, &W->bt[j]);
       wo = elr_mul(p->ray.d, -1.f);
       S = &W->S[W->pix[j]];
       elr_sampler_restore(S, &W->pos[j]);
